@@ -32,8 +32,8 @@ struct FullBlock {
 
 // Coverage of one primitive within one tile. Blocks come in descent order; the two lists never overlap.
 struct PrimCoverage {
-    uint32_t payload = 0;        // PrimCommon::payload
-    uint16_t sample_mask = 0;    // PrimCommon::sample_mask & ((1 << samples) - 1)
+    uint32_t payload = 0;      // PrimCommon::payload
+    uint16_t sample_mask = 0;  // PrimCommon::sample_mask & ((1 << samples) - 1)
     bool front_facing = true;
     const Block4* blocks = nullptr;
     size_t num_blocks = 0;
@@ -46,7 +46,7 @@ struct PrimCoverage {
 // time; `worker` (< Scene::rasterize's worker count) indexes per-thread scratch. The sequence of calls per tile
 // is identical for any thread count and any method that matches the reference.
 class CoverageConsumer {
-public:
+  public:
     virtual ~CoverageConsumer() = default;
     virtual void begin_tile(unsigned worker, const TileInfo& tile) = 0;
     virtual void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) = 0;

@@ -18,13 +18,15 @@ inline constexpr int32_t kSamplePos4x[4][2] = {{96, 32}, {224, 96}, {32, 160}, {
 
 // Offset subtracted before snapping triangles: 0.5 at 1 sample (moves pixel centres to integer fixed coordinates),
 // 0 at 4 samples (the lattice is the pixel corner and samples sit at kSamplePos4x).
-inline constexpr float triangle_snap_offset(int samples) { return samples > 1 ? 0.0f : 0.5f; }
+inline constexpr float triangle_snap_offset(int samples) {
+    return samples > 1 ? 0.0f : 0.5f;
+}
 
 // Triangle snap: X = rne(fl(x - offset) * 256) (SSE cvtps2dq in round-to-nearest-even). Returns false for NaN/Inf
 // or anything outside |X| < 2^22, leaving *out untouched; never overflows.
 inline bool snap_triangle_coord(float x, float offset, int32_t* out) {
-    const float shifted = x - offset;        // fl(x - offset)
-    const float scaled = shifted * 256.0f;   // exact scaling by a power of two (or Inf)
+    const float shifted = x - offset;                                        // fl(x - offset)
+    const float scaled = shifted * 256.0f;                                   // exact scaling by a power of two (or Inf)
     if (!(std::fabs(scaled) < static_cast<float>(kMaxFixed))) return false;  // NaN fails too
     *out = static_cast<int32_t>(std::nearbyint(scaled));  // default FP environment: round half to even
     return *out > -kMaxFixed && *out < kMaxFixed;
@@ -42,7 +44,11 @@ inline bool snap_round_half_away(float a, int32_t* out) {
 }
 
 // floor(a / 2^k) and ceil(a / 2^k) for signed 64-bit a (arithmetic shift is floor in C++20).
-inline constexpr int64_t floor_shift(int64_t a, int k) { return a >> k; }
-inline constexpr int64_t ceil_shift(int64_t a, int k) { return -((-a) >> k); }
+inline constexpr int64_t floor_shift(int64_t a, int k) {
+    return a >> k;
+}
+inline constexpr int64_t ceil_shift(int64_t a, int k) {
+    return -((-a) >> k);
+}
 
 }  // namespace tilevk::rast

@@ -19,8 +19,8 @@ enum class CullMode : uint8_t { kNone = 0, kFront = 1, kBack = 2, kBoth = 3 };
 // Common per-primitive data.
 struct PrimCommon {
     ClipRect clip;
-    uint32_t payload = 0;         // draw-local index handed back to the consumer to find state/vertices
-    uint16_t sample_mask = 0xF;   // ANDed into every sample mask (bit s = sample s; bit 0 only at 1x)
+    uint32_t payload = 0;        // draw-local index handed back to the consumer to find state/vertices
+    uint16_t sample_mask = 0xF;  // ANDed into every sample mask (bit s = sample s; bit 0 only at 1x)
 };
 
 // A triangle in float window coordinates (y down), as produced by the viewport transform.
@@ -28,8 +28,8 @@ struct TriangleInput {
     float x[3], y[3];
     PrimCommon common;
     CullMode cull = CullMode::kNone;
-    bool front_ccw = true;         // VK_FRONT_FACE_COUNTER_CLOCKWISE: area > 0 ("ccw" in lavapipe) is front
-    bool flatshade_first = true;   // provoking vertex first (Vulkan default): CW fix-up swaps v1,v2 else v0,v1
+    bool front_ccw = true;        // VK_FRONT_FACE_COUNTER_CLOCKWISE: area > 0 ("ccw" in lavapipe) is front
+    bool flatshade_first = true;  // provoking vertex first (Vulkan default): CW fix-up swaps v1,v2 else v0,v1
 };
 
 // One edge plane in fixed point: a sample at fixed (X, Y) is inside iff c + a*X + b*Y > 0.
@@ -62,11 +62,11 @@ struct BoxInput {
 // Result of adding a primitive. Anything but kAccepted means nothing was binned.
 enum class SetupStatus : uint8_t {
     kAccepted,
-    kCulled,       // facing culled
-    kDegenerate,   // zero area / empty box / empty sample mask
-    kClipped,      // bbox ∩ clip rect is empty
-    kOutOfRange,   // NaN/Inf or |coordinate| >= 16384 px (never overflowed, rejected)
-    kInvalid,      // bad plane count or plane magnitudes
+    kCulled,      // facing culled
+    kDegenerate,  // zero area / empty box / empty sample mask
+    kClipped,     // bbox ∩ clip rect is empty
+    kOutOfRange,  // NaN/Inf or |coordinate| >= 16384 px (never overflowed, rejected)
+    kInvalid,     // bad plane count or plane magnitudes
 };
 
 const char* to_string(SetupStatus s);

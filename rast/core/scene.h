@@ -17,8 +17,8 @@
 namespace tilevk::rast {
 
 class ThreadPool;
-struct Prim;   // set-up primitive (setup.h)
-struct BinCmd; // tile command (setup.h)
+struct Prim;    // set-up primitive (setup.h)
+struct BinCmd;  // tile command (setup.h)
 
 struct SceneConfig {
     int32_t width = 0, height = 0;  // framebuffer size in pixels, 1..16384
@@ -32,7 +32,7 @@ struct SceneStats {
 };
 
 class Scene {
-public:
+  public:
     explicit Scene(const SceneConfig& config);  // invalid sizes are clamped to [1,16384], samples to {1,4}
     ~Scene();
     Scene(const Scene&) = delete;
@@ -53,7 +53,7 @@ public:
     const SceneStats& stats() const { return stats_; }
     void set_method(Method m) { config_.method = m; }
 
-private:
+  private:
     SetupStatus bin(Prim& prim);
 
     SceneConfig config_;

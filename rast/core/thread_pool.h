@@ -11,7 +11,7 @@
 namespace tilevk::rast {
 
 class ThreadPool {
-public:
+  public:
     // num_threads: total workers including the calling thread; 0 and 1 both mean "run in the calling thread".
     explicit ThreadPool(unsigned num_threads);
     ~ThreadPool();
@@ -27,7 +27,7 @@ public:
 
     static unsigned threads_from_env();  // TILEVK_THREADS or std::thread::hardware_concurrency()
 
-private:
+  private:
     void worker_main(unsigned worker);
     void work(unsigned worker);
 
@@ -36,9 +36,9 @@ private:
     std::condition_variable start_cv_, done_cv_;
     const std::function<void(unsigned, size_t)>* fn_ = nullptr;
     size_t num_tasks_ = 0;
-    size_t next_task_ = 0;    // guarded by mutex_
-    unsigned generation_ = 0; // guarded by mutex_
-    unsigned busy_ = 0;       // guarded by mutex_
+    size_t next_task_ = 0;     // guarded by mutex_
+    unsigned generation_ = 0;  // guarded by mutex_
+    unsigned busy_ = 0;        // guarded by mutex_
     bool stop_ = false;
 };
 

@@ -1,0 +1,152 @@
+// Triangle / convex / box setup from snapped vertices (lp_setup_tri.c calc_fixed_position, triangle_both/cw/ccw,
+// do_triangle_ccw; lp_setup_point.c for boxes).
+//
+// Range proof for the 64-bit arithmetic here: |X|,|Y| < 2^22, so deltas are < 2^23 and every product DY*x is
+// < 2^45; c = DY*x_i - DX*y_i + 1 < 2^46 + 1. Nothing here needs more than 64 bits.
+#include "rast/core/setup.h"
+
+#include <algorithm>
+
+namespace tilevk::rast {
+
+const char* to_string(SetupStatus s) {
+    switch (s) {
+        case SetupStatus::kAccepted:
+            return "accepted";
+        case SetupStatus::kCulled:
+            return "culled";
+        case SetupStatus::kDegenerate:
+            return "degenerate";
+        case SetupStatus::kClipped:
+            return "clipped";
+        case SetupStatus::kOutOfRange:
+            return "out-of-range";
+        case SetupStatus::kInvalid:
+            return "invalid";
+    }
+    return "?";
+}
+
+namespace {
+
+ClipRect intersect(const ClipRect& a, const ClipRect& b) {
+    return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
+
+uint16_t limit_mask(uint16_t mask, int samples) {
+    return mask & static_cast<uint16_t>((1u << samples) - 1u);
+}
+
+// Clips the fixed-point pixel box [px0,px1]x[py0,py1] (inclusive) against clip ∩ fb and appends box planes
+// on every side where the clip cut the box or force_min/force_max ask for one. Triangles never cover a sample left
+// of/above their vertices (E >= 0 is the closed triangle; outside it E <= -1, so E + bias <= 0), so their min sides
+// need no plane; at 1x a sample at X == maxX can be on the closed triangle, and lavapipe's bbox (maxX-1)>>8 excludes
+// it, so the max sides get a plane. At 4x every sample of pixel ((maxX-1)>>8)+1 has X >= maxX + 32: no plane. Sample X
+// of pixel px satisfies px*256 <= X < px*256 + 256, hence "px >= x0" is "X - x0*256 + 1 > 0" and "px <= x1" is
+// "(x1+1)*256 - X > 0".
+SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const PrimCommon& common, int samples,
+                       const ClipRect& fb, bool force_min, bool force_max, Prim* out) {
+    const ClipRect clip = intersect(common.clip, fb);
+    const int32_t x0 = std::max(px0, clip.x0), y0 = std::max(py0, clip.y0);
+    const int32_t x1 = std::min(px1, clip.x1 - 1), y1 = std::min(py1, clip.y1 - 1);
+    if (x0 > x1 || y0 > y1) return SetupStatus::kClipped;
+    out->x0 = x0, out->y0 = y0, out->x1 = x1, out->y1 = y1;
+    out->payload = common.payload;
+    out->sample_mask = limit_mask(common.sample_mask, samples);
+    if (out->sample_mask == 0) return SetupStatus::kDegenerate;
+    int n = out->num_shape_planes;
+    if (x0 > px0 || force_min) out->planes[n++] = {-int64_t{x0} * kFixedOne + 1, 1, 0};
+    if (y0 > py0 || force_min) out->planes[n++] = {-int64_t{y0} * kFixedOne + 1, 0, 1};
+    if (x1 < px1 || force_max) out->planes[n++] = {(int64_t{x1} + 1) * kFixedOne, -1, 0};
+    if (y1 < py1 || force_max) out->planes[n++] = {(int64_t{y1} + 1) * kFixedOne, 0, -1};
+    out->num_planes = static_cast<uint8_t>(n);
+    return SetupStatus::kAccepted;
+}
+
+}  // namespace
+
+SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out) {
+    const float offset = triangle_snap_offset(samples);
+    int32_t x[3], y[3];
+    for (int i = 0; i < 3; ++i) {
+        if (!snap_triangle_coord(in.x[i], offset, &x[i]) || !snap_triangle_coord(in.y[i], offset, &y[i]))
+            return SetupStatus::kOutOfRange;
+    }
+    // area = dx01*dy20 - dx20*dy01, exact (|d| < 2^23, products < 2^46).
+    const int64_t area = int64_t{x[0] - x[1]} * (y[2] - y[0]) - int64_t{x[2] - x[0]} * (y[0] - y[1]);
+    if (area == 0) return SetupStatus::kDegenerate;
+    const bool ccw = area > 0;
+    const bool front = ccw == in.front_ccw;
+    if ((front && (static_cast<int>(in.cull) & static_cast<int>(CullMode::kFront))) ||
+        (!front && (static_cast<int>(in.cull) & static_cast<int>(CullMode::kBack))))
+        return SetupStatus::kCulled;
+    int order[3] = {0, 1, 2};
+    if (!ccw) {
+        // CW -> CCW keeping the provoking vertex: (v0,v2,v1) with flatshade_first, else (v1,v0,v2).
+        if (in.flatshade_first)
+            std::swap(order[1], order[2]);
+        else
+            std::swap(order[0], order[1]);
+    }
+    int32_t vx[3], vy[3];
+    for (int i = 0; i < 3; ++i) {
+        vx[i] = x[order[i]], vy[i] = y[order[i]];
+        out->fx[i] = in.x[order[i]], out->fy[i] = in.y[order[i]];
+    }
+    out->front_facing = front;
+    out->is_triangle = true;
+    // Edge i -> j: E = DY*(x_i - X) - DX*(y_i - Y) + bias, i.e. a = -DY, b = DX, c = DY*x_i - DX*y_i + bias,
+    // bias = 1 when DY < 0 || (DY == 0 && DX > 0) (top-left rule, y down).
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        const int32_t dy = vy[i] - vy[j], dx = vx[i] - vx[j];
+        const int64_t bias = (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
+        out->planes[i] = {int64_t{dy} * vx[i] - int64_t{dx} * vy[i] + bias, -dy, dx};
+    }
+    out->num_shape_planes = 3;
+    // Inclusive pixel box: x0 = minX>>8, x1 = (maxX-1)>>8 (arithmetic shifts = floor).
+    const int32_t minx = std::min({vx[0], vx[1], vx[2]}), maxx = std::max({vx[0], vx[1], vx[2]});
+    const int32_t miny = std::min({vy[0], vy[1], vy[2]}), maxy = std::max({vy[0], vy[1], vy[2]});
+    return finish_box(minx >> kSubpixelBits, miny >> kSubpixelBits, (maxx - 1) >> kSubpixelBits,
+                      (maxy - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/false,
+                      /*force_max=*/samples == 1, out);
+}
+
+SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out) {
+    if (in.num_planes < 1 || in.num_planes > 4) return SetupStatus::kInvalid;
+    for (int i = 0; i < in.num_planes; ++i) {
+        const EdgePlane& p = in.planes[i];
+        if (p.a <= -(1 << 23) || p.a >= (1 << 23) || p.b <= -(1 << 23) || p.b >= (1 << 23) ||
+            p.c <= -(int64_t{1} << 47) || p.c >= (int64_t{1} << 47))
+            return SetupStatus::kInvalid;
+        out->planes[i] = p;
+    }
+    for (int32_t v : {in.min_x, in.min_y, in.max_x, in.max_y})
+        if (v <= -kMaxFixed || v >= kMaxFixed) return SetupStatus::kOutOfRange;
+    if (in.min_x >= in.max_x || in.min_y >= in.max_y) return SetupStatus::kDegenerate;
+    out->num_shape_planes = static_cast<uint8_t>(in.num_planes);
+    out->front_facing = in.front_facing;
+    out->is_triangle = false;
+    return finish_box(in.min_x >> kSubpixelBits, in.min_y >> kSubpixelBits, (in.max_x - 1) >> kSubpixelBits,
+                      (in.max_y - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/true,
+                      /*force_max=*/true, out);
+}
+
+SetupStatus setup_box(const BoxInput& in, int samples, const ClipRect& fb, Prim* out) {
+    for (int32_t v : {in.x0, in.y0, in.x1, in.y1})
+        if (v <= -kMaxFixed || v >= kMaxFixed) return SetupStatus::kOutOfRange;
+    if (in.x0 >= in.x1 || in.y0 >= in.y1) return SetupStatus::kDegenerate;
+    // x0 <= X < x1 as planes: X - x0 + 1 > 0 and x1 - X > 0 (lavapipe's point planes with c++ on left/top).
+    out->planes[0] = {-int64_t{in.x0} + 1, 1, 0};
+    out->planes[1] = {-int64_t{in.y0} + 1, 0, 1};
+    out->planes[2] = {int64_t{in.x1}, -1, 0};
+    out->planes[3] = {int64_t{in.y1}, 0, -1};
+    out->num_shape_planes = 4;
+    out->front_facing = in.front_facing;
+    out->is_triangle = false;
+    return finish_box(in.x0 >> kSubpixelBits, in.y0 >> kSubpixelBits, (in.x1 - 1) >> kSubpixelBits,
+                      (in.y1 - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/false,
+                      /*force_max=*/false, out);
+}
+
+}  // namespace tilevk::rast

@@ -1,0 +1,132 @@
+// Internal: per-tile plane state and the two hot kernels of the descent, each with a scalar and an AVX2 version
+// that give identical results (tests/rast/core/kernel_test.cpp checks this).
+//
+// Units. Inside a tile every plane is evaluated on the pixel lattice in "pixel units": for sample s with offset
+// (sx, sy), E(X,Y) = c + a*X + b*Y with X = px*256 + sx. Writing C_s = E at the tile origin pixel, and because
+// E changes by a multiple of 256 per pixel, E > 0  <=>  ceil(C_s/256) + a*dx + b*dy > 0  (dx, dy pixel offsets
+// from the tile origin). So c[s] = ceil(C_s/256) and the pixel steps are a and b themselves.
+//
+// Why 32 bits suffice inside a tile (tile size T <= 64): |a|, |b| < 2^23 (deltas of coordinates below 2^22).
+// A plane is only kept for a tile when it neither accepts nor rejects the whole tile, i.e. its minimum over the
+// tile's samples is <= 0 and its maximum is > 0. Across the tile its values span at most
+//   (T-1)*(|a|+|b|) + (c_hi - c_lo) <= 63*(|a|+|b|) + (|a|+|b|)*192/256 + 1 < 64*2^24 = 2^30,
+// so every value at any pixel/sample of the tile, and every block extreme (which is such a value), lies in
+// (-2^30, 2^30]. Lane offsets a*dx + b*dy with dx, dy <= 63 are below 2^30 too, so no sum overflows.
+#pragma once
+
+#include <cstdint>
+
+#if TILEVK_SIMD_AVX2
+#include <immintrin.h>
+#endif
+
+namespace tilevk::rast {
+
+struct TilePlane {
+    int32_t c[4];    // ceil(C_s/256) at the tile origin pixel, per sample (only c[0] at 1x)
+    int32_t a, b;    // pixel steps
+    int32_t lo, hi;  // min and max of c[] over samples
+};
+
+// Lane i of a 16-lane block grid: column i&3, row i>>2.
+inline constexpr int32_t kLaneCol[16] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
+inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+
+// Classifies the 4x4 grid of sub-blocks of size `step` at tile-relative origin (ox, oy) against one plane:
+// bit i of *reject: the plane's maximum over sub-block i is <= 0; bit i of *accept: its minimum is > 0.
+// Corner value = base + a*step*col + b*step*row (one vector add over the step table), where base includes the
+// extreme-corner offset (step-1)*(max(a,0)+max(b,0)) (reject) or (step-1)*(min(a,0)+min(b,0)) (accept).
+inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject,
+                              uint32_t* accept) {
+    const int32_t origin = p.a * ox + p.b * oy;
+    const int32_t hi = p.hi + origin + (step - 1) * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
+    const int32_t lo = p.lo + origin + (step - 1) * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
+    uint32_t rej = 0, acc = 0;
+    for (int i = 0; i < 16; ++i) {
+        const int32_t off = p.a * step * kLaneCol[i] + p.b * step * kLaneRow[i];
+        rej |= static_cast<uint32_t>(hi + off <= 0) << i;
+        acc |= static_cast<uint32_t>(lo + off > 0) << i;
+    }
+    *reject = rej, *accept = acc;
+}
+
+// Pixel mask of a 4x4 block at tile-relative (ox, oy) for sample s: bit (y*4+x) set iff c[s] + a*(ox+x) +
+// b*(oy+y) > 0 for every plane.
+inline uint32_t mask4x4_scalar(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+    uint32_t m = 0xFFFF;
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = planes[k];
+        const int32_t base = p.c[s] + p.a * ox + p.b * oy;
+        uint32_t bits = 0;
+        for (int i = 0; i < 16; ++i)
+            bits |= static_cast<uint32_t>(base + p.a * kLaneCol[i] + p.b * kLaneRow[i] > 0) << i;
+        m &= bits;
+    }
+    return m;
+}
+
+#if TILEVK_SIMD_AVX2
+namespace avx2 {
+
+inline uint32_t positive_bits(__m256i v0, __m256i v1) {
+    const __m256i zero = _mm256_setzero_si256();
+    const uint32_t m0 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v0, zero))));
+    const uint32_t m1 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v1, zero))));
+    return m0 | (m1 << 8);
+}
+
+// Step table a*col + b*row for the 16 lanes, scaled by `step`: two registers (rows 0-1, rows 2-3).
+inline void step_table(int32_t a, int32_t b, __m256i* t0, __m256i* t1) {
+    const __m256i col = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
+    const __m256i row = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+    const __m256i va = _mm256_set1_epi32(a), vb = _mm256_set1_epi32(b);
+    *t0 = _mm256_add_epi32(_mm256_mullo_epi32(va, col), _mm256_mullo_epi32(vb, row));
+    *t1 = _mm256_add_epi32(*t0, _mm256_set1_epi32(2 * b));
+}
+
+}  // namespace avx2
+
+inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject,
+                            uint32_t* accept) {
+    const int32_t origin = p.a * ox + p.b * oy;
+    const int32_t hi = p.hi + origin + (step - 1) * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
+    const int32_t lo = p.lo + origin + (step - 1) * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
+    __m256i t0, t1;
+    avx2::step_table(p.a * step, p.b * step, &t0, &t1);
+    const __m256i vhi = _mm256_set1_epi32(hi), vlo = _mm256_set1_epi32(lo);
+    // reject: hi + off <= 0  <=>  !(hi + off > 0)
+    *reject = ~avx2::positive_bits(_mm256_add_epi32(vhi, t0), _mm256_add_epi32(vhi, t1)) & 0xFFFF;
+    *accept = avx2::positive_bits(_mm256_add_epi32(vlo, t0), _mm256_add_epi32(vlo, t1));
+}
+
+inline uint32_t mask4x4_avx2(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+    uint32_t m = 0xFFFF;
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = planes[k];
+        __m256i t0, t1;
+        avx2::step_table(p.a, p.b, &t0, &t1);
+        const __m256i base = _mm256_set1_epi32(p.c[s] + p.a * ox + p.b * oy);
+        m &= avx2::positive_bits(_mm256_add_epi32(base, t0), _mm256_add_epi32(base, t1));
+    }
+    return m;
+}
+#endif
+
+// The kernels the rasterizer uses: AVX2 when built with it, else the scalar twin.
+inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject, uint32_t* accept) {
+#if TILEVK_SIMD_AVX2
+    classify16_avx2(p, ox, oy, step, reject, accept);
+#else
+    classify16_scalar(p, ox, oy, step, reject, accept);
+#endif
+}
+
+inline uint32_t mask4x4(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+#if TILEVK_SIMD_AVX2
+    return mask4x4_avx2(planes, n, s, ox, oy);
+#else
+    return mask4x4_scalar(planes, n, s, ox, oy);
+#endif
+}
+
+}  // namespace tilevk::rast

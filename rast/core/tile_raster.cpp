@@ -1,0 +1,269 @@
+// Per-tile rasterization of one primitive: the hierarchy (hier), the bounding-box scan (bbox), the brute-force
+// oracle (reference) and the unsnapped float baseline (float).
+#include "rast/core/tile_raster.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace tilevk::rast {
+
+namespace {
+
+void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
+    if (samples == 1) {
+        *sx = 0, *sy = 0;
+    } else {
+        *sx = kSamplePos4x[s][0], *sy = kSamplePos4x[s][1];
+    }
+}
+
+// Appends a 4x4 block from per-sample masks after ANDing the primitive's sample mask; drops empty blocks.
+void push_block(TileScratch* out, int32_t x, int32_t y, const uint32_t* masks, int samples, uint16_t sample_mask) {
+    Block4 b;
+    b.x = x, b.y = y;
+    uint32_t any = 0;
+    for (int s = 0; s < samples; ++s) {
+        b.mask[s] = static_cast<uint16_t>(((sample_mask >> s) & 1u) ? masks[s] : 0u);
+        any |= b.mask[s];
+    }
+    if (any) out->blocks.push_back(b);
+}
+
+void push_full4(TileScratch* out, int32_t x, int32_t y, int samples, uint16_t sample_mask) {
+    const uint32_t full[4] = {0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF};
+    push_block(out, x, y, full, samples, sample_mask);
+}
+
+// --- hier: 64 -> 16 -> 4 -----------------------------------------------------------------------------------------
+
+// A 4x4 block at tile-relative (ox, oy) known not to be rejected by the level above.
+void hier_block4(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, int32_t ox, int32_t oy,
+                 TileScratch* out) {
+    uint32_t masks[4];
+    for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(planes, n, s, ox, oy);
+    push_block(out, t.x0 + ox, t.y0 + oy, masks, t.samples, prim.sample_mask);
+}
+
+// Classifies the 4x4 grid of sub-blocks of size `step` at (ox, oy) over the live planes; lanes outside `side`
+// sub-blocks per row/column are ignored. Returns masks of rejected-by-none and accepted-by-all lanes; per plane,
+// acc[k] says which lanes that plane accepts (so it can be dropped inside them).
+void classify_grid(const TilePlane* planes, int n, int32_t ox, int32_t oy, int32_t step, int side, uint32_t* live,
+                   uint32_t* full, uint32_t* acc) {
+    uint32_t valid = 0;
+    for (int r = 0; r < side; ++r) valid |= ((1u << side) - 1u) << (4 * r);
+    uint32_t rej_any = 0, acc_all = valid;
+    for (int k = 0; k < n; ++k) {
+        uint32_t rej, a;
+        classify16(planes[k], ox, oy, step, &rej, &a);
+        rej_any |= rej;
+        acc_all &= a;
+        acc[k] = a;
+    }
+    *live = valid & ~rej_any;
+    *full = *live & acc_all;
+}
+
+// Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
+int drop_accepted(const TilePlane* planes, int n, const uint32_t* acc, int lane, TilePlane* kept) {
+    int m = 0;
+    for (int k = 0; k < n; ++k)
+        if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
+    return m;
+}
+
+// A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, accept whole ones, mask the partial ones.
+void hier_block16(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, int32_t ox, int32_t oy,
+                  TileScratch* out) {
+    uint32_t live, full, acc[Prim::kMaxPlanes];
+    classify_grid(planes, n, ox, oy, 4, 4, &live, &full, acc);
+    for (uint32_t m = live; m; m &= m - 1) {
+        const int lane = std::countr_zero(m);
+        const int32_t bx = ox + 4 * (lane & 3), by = oy + 4 * (lane >> 2);
+        if ((full >> lane) & 1u) {
+            push_full4(out, t.x0 + bx, t.y0 + by, t.samples, prim.sample_mask);
+        } else {
+            TilePlane kept[Prim::kMaxPlanes];
+            const int k = drop_accepted(planes, n, acc, lane, kept);
+            hier_block4(prim, t, kept, k, bx, by, out);
+        }
+    }
+}
+
+void raster_hier(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, TileScratch* out) {
+    // Small-primitive fast paths: a box inside one aligned 4x4 block or one aligned 16x16 block skips the levels
+    // above it (the box bounds all coverage, so nothing outside it can be missed).
+    const int32_t rx0 = std::max(prim.x0, t.x0) - t.x0, rx1 = std::min(prim.x1, t.x0 + t.size - 1) - t.x0;
+    const int32_t ry0 = std::max(prim.y0, t.y0) - t.y0, ry1 = std::min(prim.y1, t.y0 + t.size - 1) - t.y0;
+    if ((rx0 >> 2) == (rx1 >> 2) && (ry0 >> 2) == (ry1 >> 2)) {
+        hier_block4(prim, t, planes, n, rx0 & ~3, ry0 & ~3, out);
+        return;
+    }
+    if ((rx0 >> 4) == (rx1 >> 4) && (ry0 >> 4) == (ry1 >> 4)) {
+        hier_block16(prim, t, planes, n, rx0 & ~15, ry0 & ~15, out);
+        return;
+    }
+    if (t.size == 16) {
+        hier_block16(prim, t, planes, n, 0, 0, out);
+        return;
+    }
+    uint32_t live, full, acc[Prim::kMaxPlanes];
+    classify_grid(planes, n, 0, 0, 16, t.size / 16, &live, &full, acc);
+    for (uint32_t m = live; m; m &= m - 1) {
+        const int lane = std::countr_zero(m);
+        const int32_t bx = 16 * (lane & 3), by = 16 * (lane >> 2);
+        if ((full >> lane) & 1u) {
+            out->full.push_back({t.x0 + bx, t.y0 + by, 16});
+        } else {
+            TilePlane kept[Prim::kMaxPlanes];
+            const int k = drop_accepted(planes, n, acc, lane, kept);
+            hier_block16(prim, t, kept, k, bx, by, out);
+        }
+    }
+}
+
+// --- bbox: every 4x4 block of box ∩ tile, planes stepped incrementally in 32 bits ---------------------------------
+
+void raster_bbox(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, TileScratch* out) {
+    const int32_t rx0 = (std::max(prim.x0, t.x0) - t.x0) & ~3, rx1 = std::min(prim.x1, t.x0 + t.size - 1) - t.x0;
+    const int32_t ry0 = (std::max(prim.y0, t.y0) - t.y0) & ~3, ry1 = std::min(prim.y1, t.y0 + t.size - 1) - t.y0;
+    // Row-start planes: c at (rx0, y); stepping a block right adds 4a, down adds 4b.
+    TilePlane row[Prim::kMaxPlanes], cur[Prim::kMaxPlanes];
+    for (int k = 0; k < n; ++k) {
+        row[k] = planes[k];
+        for (int s = 0; s < t.samples; ++s) row[k].c[s] += planes[k].a * rx0 + planes[k].b * ry0;
+    }
+    for (int32_t by = ry0; by <= ry1; by += 4) {
+        for (int k = 0; k < n; ++k) cur[k] = row[k];
+        for (int32_t bx = rx0; bx <= rx1; bx += 4) {
+            uint32_t masks[4];
+            for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(cur, n, s, 0, 0);
+            push_block(out, t.x0 + bx, t.y0 + by, masks, t.samples, prim.sample_mask);
+            for (int k = 0; k < n; ++k)
+                for (int s = 0; s < t.samples; ++s) cur[k].c[s] += 4 * cur[k].a;
+        }
+        for (int k = 0; k < n; ++k)
+            for (int s = 0; s < t.samples; ++s) row[k].c[s] += 4 * row[k].b;
+    }
+}
+
+// --- reference: per pixel, per sample, 64-bit, shape planes only, box as loop bounds ------------------------------
+
+template <typename Inside>
+void raster_per_sample(const Prim& prim, const TileGeom& t, Inside inside, TileScratch* out) {
+    const int32_t x0 = std::max(prim.x0, t.x0), x1 = std::min(prim.x1, t.x0 + t.size - 1);
+    const int32_t y0 = std::max(prim.y0, t.y0), y1 = std::min(prim.y1, t.y0 + t.size - 1);
+    for (int32_t by = y0 & ~3; by <= y1; by += 4) {
+        for (int32_t bx = x0 & ~3; bx <= x1; bx += 4) {
+            uint32_t masks[4] = {0, 0, 0, 0};
+            for (int i = 0; i < 16; ++i) {
+                const int32_t px = bx + (i & 3), py = by + (i >> 2);
+                if (px < x0 || px > x1 || py < y0 || py > y1) continue;
+                for (int s = 0; s < t.samples; ++s)
+                    if (inside(px, py, s)) masks[s] |= 1u << i;
+            }
+            push_block(out, bx, by, masks, t.samples, prim.sample_mask);
+        }
+    }
+}
+
+void raster_reference(const Prim& prim, const TileGeom& t, TileScratch* out) {
+    raster_per_sample(
+        prim, t,
+        [&](int32_t px, int32_t py, int s) {
+            int32_t sx, sy;
+            sample_offset(t.samples, s, &sx, &sy);
+            const int64_t X = int64_t{px} * kFixedOne + sx, Y = int64_t{py} * kFixedOne + sy;
+            for (int k = 0; k < prim.num_shape_planes; ++k) {
+                const EdgePlane& p = prim.planes[k];
+                if (!(p.c + p.a * X + p.b * Y > 0)) return false;  // E = c + a*X + b*Y > 0
+            }
+            return true;
+        },
+        out);
+}
+
+// --- float: unsnapped float edge functions at the sample's window position ---------------------------------------
+
+void raster_float(const Prim& prim, const TileGeom& t, TileScratch* out) {
+    if (!prim.is_triangle) {
+        raster_reference(prim, t, out);
+        return;
+    }
+    raster_per_sample(
+        prim, t,
+        [&](int32_t px, int32_t py, int s) {
+            // Window position of the sample: pixel centre at 1x, corner + pos/256 at 4x.
+            float X, Y;
+            if (t.samples == 1) {
+                X = static_cast<float>(px) + 0.5f, Y = static_cast<float>(py) + 0.5f;
+            } else {
+                X = static_cast<float>(px) + kSamplePos4x[s][0] / 256.0f;
+                Y = static_cast<float>(py) + kSamplePos4x[s][1] / 256.0f;
+            }
+            for (int i = 0; i < 3; ++i) {
+                const int j = (i + 1) % 3;
+                const float dy = prim.fy[i] - prim.fy[j], dx = prim.fx[i] - prim.fx[j];
+                // E = DY*(x_i - X) - DX*(y_i - Y), top-left edges inclusive.
+                const float e = dy * (prim.fx[i] - X) - dx * (prim.fy[i] - Y);
+                const bool top_left = dy < 0.0f || (dy == 0.0f && dx > 0.0f);
+                if (!(e > 0.0f || (e == 0.0f && top_left))) return false;
+            }
+            return true;
+        },
+        out);
+}
+
+}  // namespace
+
+TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out) {
+    int n = 0;
+    const int64_t span = tile.size - 1;
+    for (int k = 0; k < prim.num_planes; ++k) {
+        const EdgePlane& p = prim.planes[k];
+        TilePlane tp;
+        tp.a = p.a, tp.b = p.b;
+        int64_t lo = INT64_MAX, hi = INT64_MIN;
+        for (int s = 0; s < tile.samples; ++s) {
+            int32_t sx, sy;
+            sample_offset(tile.samples, s, &sx, &sy);
+            // C_s = c + a*X + b*Y at the tile origin pixel's sample s; c[s] = ceil(C_s / 256).
+            const int64_t X = int64_t{tile.x0} * kFixedOne + sx, Y = int64_t{tile.y0} * kFixedOne + sy;
+            const int64_t c = ceil_shift(p.c + p.a * X + p.b * Y, kSubpixelBits);
+            lo = std::min(lo, c), hi = std::max(hi, c);
+            tp.c[s] = static_cast<int32_t>(c);  // only kept (and then in range) if the plane is live, below
+        }
+        const int64_t min_v = lo + span * (int64_t{std::min(p.a, 0)} + std::min(p.b, 0));
+        const int64_t max_v = hi + span * (int64_t{std::max(p.a, 0)} + std::max(p.b, 0));
+        if (max_v <= 0) return TileClass::kReject;
+        if (min_v > 0) continue;  // trivially inside the whole tile: drop
+        tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
+        out[n++] = tp;
+    }
+    *num_out = n;
+    return n == 0 ? TileClass::kWhole : TileClass::kPartial;
+}
+
+void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch) {
+    scratch->blocks.clear();
+    scratch->full.clear();
+    if (method == Method::kReference) return raster_reference(prim, tile, scratch);
+    if (method == Method::kFloat) return raster_float(prim, tile, scratch);
+    if (whole) {
+        scratch->full.push_back({tile.x0, tile.y0, tile.size});
+        return;
+    }
+    TilePlane planes[Prim::kMaxPlanes];
+    int n = 0;
+    const TileClass cls = tile_setup(prim, tile, planes, &n);
+    if (cls == TileClass::kReject) return;
+    if (cls == TileClass::kWhole && method == Method::kHier) {
+        scratch->full.push_back({tile.x0, tile.y0, tile.size});
+        return;
+    }
+    if (method == Method::kHier)
+        raster_hier(prim, tile, planes, n, scratch);
+    else
+        raster_bbox(prim, tile, planes, n, scratch);
+}
+
+}  // namespace tilevk::rast

@@ -1,0 +1,36 @@
+// Internal: rasterizing one primitive within one tile with each method, into per-worker scratch lists.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rast/core/coverage.h"
+#include "rast/core/method.h"
+#include "rast/core/setup.h"
+#include "rast/core/tile_kernels.h"
+
+namespace tilevk::rast {
+
+struct TileGeom {
+    int32_t x0, y0;  // tile origin in pixels
+    int32_t size;    // tile size T (16, 32 or 64)
+    int samples;     // 1 or 4
+};
+
+// Result of tile_setup.
+enum class TileClass { kReject, kWhole, kPartial };
+
+// Evaluates every plane of `prim` for the tile in 64-bit (the only 64-bit step of the rasterizer), rejects the tile
+// if a plane is <= 0 over all of it, drops planes that are > 0 over all of it, and writes the others as 32-bit
+// TilePlanes (see tile_kernels.h for the proof). kWhole: no plane left and the tile lies inside the prim's box.
+TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
+
+struct TileScratch {
+    std::vector<Block4> blocks;
+    std::vector<FullBlock> full;
+};
+
+// Appends the coverage of `prim` in `tile` to scratch (cleared first). `whole` = binned as a whole-tile command.
+void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+
+}  // namespace tilevk::rast
