@@ -23,8 +23,9 @@ struct Block4 {
     uint16_t mask[kMaxSamples] = {};
 };
 
-// A fully covered square: every pixel in [x, x+size)^2 (size 4, 16 or the tile size, clipped to nothing: the square
-// is always inside the framebuffer and clip rect) has coverage == primitive sample_mask for every sample.
+// A fully covered square: every pixel in [x, x+size)^2 (size 4, 16 or the tile size; the square is always inside
+// the framebuffer and the clip rect) has, for every sample s, coverage bit s == bit s of the primitive's
+// sample_mask. The fast path for consumers: no per-pixel mask to look at.
 struct FullBlock {
     int32_t x = 0, y = 0;
     int32_t size = 0;

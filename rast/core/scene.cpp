@@ -2,6 +2,7 @@
 #include "rast/core/scene.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "rast/core/setup.h"
 #include "rast/core/thread_pool.h"
@@ -84,7 +85,8 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
     tiles.reserve(bins_.size());
     for (uint32_t i = 0; i < bins_.size(); ++i)
         if (visit_empty_tiles || !bins_[i].empty()) tiles.push_back(i);
-    std::vector<TileScratch> scratch(pool.num_workers());
+    std::vector<std::unique_ptr<TileScratch>> scratch(pool.num_workers());
+    for (auto& p : scratch) p = std::make_unique<TileScratch>();
     const Method method = config_.method;
     const int32_t T = config_.tile_size;
     pool.run(tiles.size(), [&](unsigned worker, size_t task) {
@@ -92,7 +94,7 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
         const int32_t tx = static_cast<int32_t>(index % tiles_x_), ty = static_cast<int32_t>(index / tiles_x_);
         TileInfo info{index, tx * T, ty * T, std::min(T, config_.width - tx * T), std::min(T, config_.height - ty * T)};
         const TileGeom geom{tx * T, ty * T, T, config_.samples};
-        TileScratch& s = scratch[worker];
+        TileScratch& s = *scratch[worker];
         consumer.begin_tile(worker, info);
         const std::vector<BinCmd>& bin = bins_[index];
         for (size_t i = 0; i < bin.size(); ++i) {
@@ -106,15 +108,15 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
             }
             const Prim& prim = prims_[cmd.prim];
             raster_prim_in_tile(method, prim, geom, cmd.flags & kBinWholeTile, &s);
-            if (s.blocks.empty() && s.full.empty()) continue;
+            if (s.num_blocks == 0 && s.num_full == 0) continue;
             PrimCoverage cov;
             cov.payload = prim.payload;
             cov.sample_mask = prim.sample_mask;
             cov.front_facing = prim.front_facing;
-            cov.blocks = s.blocks.data();
-            cov.num_blocks = s.blocks.size();
-            cov.full = s.full.data();
-            cov.num_full = s.full.size();
+            cov.blocks = s.blocks;
+            cov.num_blocks = s.num_blocks;
+            cov.full = s.full;
+            cov.num_full = s.num_full;
             consumer.primitive(worker, info, cov);
         }
         consumer.end_tile(worker, info);

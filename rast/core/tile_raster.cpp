@@ -18,28 +18,25 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
 }
 
 // Appends a 4x4 block from per-sample masks after ANDing the primitive's sample mask; drops empty blocks.
-void push_block(TileScratch* out, int32_t x, int32_t y, const uint32_t* masks, int samples, uint16_t sample_mask) {
-    Block4 b;
+[[gnu::always_inline]] inline void push_block(TileScratch* out, int32_t x, int32_t y, const uint32_t* masks, int samples, uint16_t sample_mask) {
+    Block4& b = out->blocks[out->num_blocks];
     b.x = x, b.y = y;
     uint32_t any = 0;
-    for (int s = 0; s < samples; ++s) {
-        b.mask[s] = static_cast<uint16_t>(((sample_mask >> s) & 1u) ? masks[s] : 0u);
+    for (int s = 0; s < kMaxSamples; ++s) {
+        b.mask[s] = static_cast<uint16_t>(s < samples && ((sample_mask >> s) & 1u) ? masks[s] : 0u);
         any |= b.mask[s];
     }
-    if (any) out->blocks.push_back(b);
+    out->num_blocks += any != 0;  // the slot is reused when empty
 }
 
-void push_full4(TileScratch* out, int32_t x, int32_t y, int samples, uint16_t sample_mask) {
-    const uint32_t full[4] = {0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF};
-    push_block(out, x, y, full, samples, sample_mask);
-}
+[[gnu::always_inline]] inline void push_full(TileScratch* out, int32_t x, int32_t y, int32_t size) { out->full[out->num_full++] = {x, y, size}; }
 
 // --- hier: 64 -> 16 -> 4 -----------------------------------------------------------------------------------------
 
 using PlaneList = const TilePlane* const*;
 
 // A 4x4 block at tile-relative (ox, oy) known not to be rejected by the level above.
-void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
+[[gnu::always_inline]] inline void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
                  TileScratch* out) {
     uint32_t masks[4];
     for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(planes, n, s, ox, oy);
@@ -49,7 +46,7 @@ void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, i
 // Classifies the 4x4 grid of sub-blocks of size 2^shift at (ox, oy) over the live planes; lanes outside `side`
 // sub-blocks per row/column are ignored. Returns the lanes rejected by no plane and those accepted by all; per
 // plane, acc[k] says which lanes that plane accepts (so it can be dropped inside them).
-void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift, int side, uint32_t* live, uint32_t* full,
+[[gnu::always_inline]] inline void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift, int side, uint32_t* live, uint32_t* full,
                    uint32_t* acc) {
     const uint32_t valid = side == 4 ? 0xFFFFu : side == 2 ? 0x33u : 0x1u;
     uint32_t rej_any = 0, acc_all = valid;
@@ -65,7 +62,7 @@ void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift, i
 }
 
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
-int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane, const TilePlane** kept) {
+[[gnu::always_inline]] inline int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane, const TilePlane** kept) {
     int m = 0;
     for (int k = 0; k < n; ++k)
         if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
@@ -81,7 +78,7 @@ void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, 
         const int lane = std::countr_zero(m);
         const int32_t bx = ox + 4 * (lane & 3), by = oy + 4 * (lane >> 2);
         if ((full >> lane) & 1u) {
-            push_full4(out, t.x0 + bx, t.y0 + by, t.samples, prim.sample_mask);
+            push_full(out, t.x0 + bx, t.y0 + by, 4);
         } else {
             const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, n, acc, lane, kept);
@@ -120,7 +117,7 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
         const int lane = std::countr_zero(m);
         const int32_t bx = 16 * (lane & 3), by = 16 * (lane >> 2);
         if ((full >> lane) & 1u) {
-            out->full.push_back({t.x0 + bx, t.y0 + by, 16});
+            push_full(out, t.x0 + bx, t.y0 + by, 16);
         } else {
             const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, n, acc, lane, kept);
@@ -232,12 +229,12 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
 }
 
 void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch) {
-    scratch->blocks.clear();
-    scratch->full.clear();
+    scratch->num_blocks = 0;
+    scratch->num_full = 0;
     if (method == Method::kReference) return raster_reference(prim, tile, scratch);
     if (method == Method::kFloat) return raster_float(prim, tile, scratch);
     if (whole) {
-        scratch->full.push_back({tile.x0, tile.y0, tile.size});
+        push_full(scratch, tile.x0, tile.y0, tile.size);
         return;
     }
     TilePlane planes[Prim::kMaxPlanes];
@@ -247,7 +244,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     for (int k = 0; k < n; ++k) list[k] = &planes[k];
     if (cls == TileClass::kReject) return;
     if (cls == TileClass::kWhole && method == Method::kHier) {
-        scratch->full.push_back({tile.x0, tile.y0, tile.size});
+        push_full(scratch, tile.x0, tile.y0, tile.size);
         return;
     }
     if (method == Method::kHier)

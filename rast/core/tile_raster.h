@@ -26,9 +26,13 @@ enum class TileClass { kReject, kWhole, kPartial };
 // the tile lies inside the prim's box.
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
 
+// Fixed capacity: one primitive covers each 4x4 block of a tile at most once (<= (64/4)^2 = 256 blocks), and full
+// blocks (4, 16 or tile sized) never overlap, so neither list can exceed 256 entries. No allocation per primitive.
 struct TileScratch {
-    std::vector<Block4> blocks;
-    std::vector<FullBlock> full;
+    static constexpr size_t kCapacity = 256;
+    Block4 blocks[kCapacity];
+    FullBlock full[kCapacity];
+    size_t num_blocks = 0, num_full = 0;
 };
 
 // Appends the coverage of `prim` in `tile` to scratch (cleared first). `whole` = binned as a whole-tile command.
