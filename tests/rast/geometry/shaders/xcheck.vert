@@ -6,6 +6,7 @@ layout(location = 1) noperspective out vec4 v_linear;
 layout(location = 2) flat out vec4 v_flat;
 void main() {
     gl_Position = pos;
+    gl_PointSize = col.a * 8.0;  // points: sizes from the alpha channel
     v_smooth = col;
     v_linear = col;
     v_flat = col;
