@@ -78,7 +78,8 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
     float info_dx = dx, info_dy = dy;
     // line and point snapping ignore the 0.5 offset in MSAA; coefficients below always use 0.5
     const float po = cfg.multisample ? 0.0f : 0.5f;
-    // the attribute planes are relative to the (possibly swapped, Bresenham) first vertex
+    // The attribute planes always use the draw-order vertices and the pre-swap dx/dy: lavapipe's lp_line_info
+    // keeps v1/v2 from before the Bresenham swap.
     const float* c1 = v0;
     const float* c2 = v1;
     bool ok = true;
@@ -142,7 +143,6 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
             // the offsets are C doubles (0.5 literal) stored to float
             if (dx < 0) {
                 p1 = w2, p2 = w1;
-                c1 = v1, c2 = v0;
                 dx = -dx, dy = -dy;
                 if (will_start != draw_start) {
                     x_off_end = static_cast<float>(static_cast<double>(-x1diff) - 0.5);
@@ -199,7 +199,6 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
             info_dy = info_dy * (1 + dxdy * dxdy);
             if (dy > 0) {
                 p1 = w2, p2 = w1;
-                c1 = v1, c2 = v0;
                 dx = -dx, dy = -dy;
                 if (will_start != draw_start) {
                     y_off_end = static_cast<float>(static_cast<double>(-y1diff) + 0.5);
@@ -242,7 +241,7 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
         out->max_y = std::max(out->max_y, y[i]);
     }
 
-    // Attribute planes, relative to c1 (the first vertex after any Bresenham swap), with setup->pixel_offset 0.5.
+    // Attribute planes relative to the first vertex, with setup->pixel_offset (0.5, also in MSAA).
     const float* q1 = win_pos(c1);
     const float* q2 = win_pos(c2);
     const float x1c = q1[0] - 0.5f;

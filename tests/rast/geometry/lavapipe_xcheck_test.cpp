@@ -68,6 +68,21 @@ class Lavapipe {
         feats.largePoints = VK_TRUE;
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         dci.pEnabledFeatures = &feats;
+        VkPhysicalDeviceLineRasterizationFeaturesEXT line_feats{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+        line_feats.bresenhamLines = VK_TRUE;
+        const char* ext = VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME;
+        uint32_t next = 0;
+        vkEnumerateDeviceExtensionProperties(pd_, nullptr, &next, nullptr);
+        std::vector<VkExtensionProperties> exts(next);
+        vkEnumerateDeviceExtensionProperties(pd_, nullptr, &next, exts.data());
+        for (const auto& e : exts)
+            if (std::strcmp(e.extensionName, ext) == 0) has_line_ext_ = true;
+        if (has_line_ext_) {
+            dci.enabledExtensionCount = 1;
+            dci.ppEnabledExtensionNames = &ext;
+            dci.pNext = &line_feats;
+        }
         dci.queueCreateInfoCount = 1;
         dci.pQueueCreateInfos = &qci;
         if (vkCreateDevice(pd_, &dci, nullptr, &dev_) != VK_SUCCESS) return false;
@@ -79,10 +94,13 @@ class Lavapipe {
         if (inst_) vkDestroyInstance(inst_, nullptr);
     }
 
+    bool has_line_ext() const { return has_line_ext_; }
+
     // Renders `verts` as a triangle list with the given fragment mode; returns RGBA8 pixels.
     std::vector<uint8_t> render(const std::vector<InVertex>& verts, int mode,
-                                VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1) {
-        const VkPipeline pipe = pipeline(topo, line_width);
+                                VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1,
+                                bool bresenham = false) {
+        const VkPipeline pipe = pipeline(topo, line_width, bresenham);
         if (pipe == VK_NULL_HANDLE) return {};
         std::memcpy(vb_map_, verts.data(), verts.size() * sizeof(InVertex));
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -140,9 +158,9 @@ class Lavapipe {
         vkBindBufferMemory(dev_, *b, m, 0);
         return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
     }
-    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width) {
+    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham) {
         for (const auto& p : pipes_)
-            if (p.topo == topo && p.width == line_width) return p.pipe;
+            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham) return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
         st[0].stage = VK_SHADER_STAGE_VERTEX_BIT, st[0].module = vs_, st[0].pName = "main";
@@ -168,6 +186,10 @@ class Lavapipe {
         rs.cullMode = VK_CULL_MODE_NONE;
         rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
         rs.lineWidth = line_width;
+        VkPipelineRasterizationLineStateCreateInfoEXT ls{
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+        ls.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
+        if (bresenham) rs.pNext = &ls;
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
         VkPipelineColorBlendAttachmentState cba{};
@@ -188,7 +210,7 @@ class Lavapipe {
         gi.renderPass = pass_;
         VkPipeline pipe = VK_NULL_HANDLE;
         if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
-        pipes_.push_back({topo, line_width, pipe});
+        pipes_.push_back({topo, line_width, bresenham, pipe});
         return pipe;
     }
     bool setup() {
@@ -292,9 +314,11 @@ class Lavapipe {
     struct Pipe {
         VkPrimitiveTopology topo;
         float width;
+        bool bresenham;
         VkPipeline pipe;
     };
     std::vector<Pipe> pipes_;
+    bool has_line_ext_ = false;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
 };
 
@@ -417,12 +441,14 @@ struct ModelState {
     }
 };
 
-std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, bool fma, float width) {
+std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, bool fma, float width,
+                                 bool bresenham = false) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
     ModelState st(fma);
     LineSetupConfig lc;
     lc.layout = st.cc.layout;
     lc.width = width;
+    lc.mode = bresenham ? LineMode::kBresenham : LineMode::kRectangular;
     for (size_t i = 0; i + 1 < verts.size(); i += 2) {
         float r0[kFloats], r1[kFloats];
         const uint32_t m0 = st.record(verts[i], r0), m1 = st.record(verts[i + 1], r1);
@@ -623,4 +649,43 @@ TEST(LavapipeCrossCheck, PointsIncludingOffscreenCentres) {
     }
     std::printf("points: %d lit pixels compared\n", lit);
     EXPECT_GT(lit, 2000);
+}
+
+TEST(LavapipeCrossCheck, BresenhamLines) {
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    if (!lvp.has_line_ext()) GTEST_SKIP() << "no VK_EXT_line_rasterization";
+    std::mt19937 rng(78);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const bool fma = host_has_fma();
+    int lit = 0, differs_from_rect = 0;
+    for (int s = 0; s < 16; ++s) {
+        std::vector<InVertex> sc;
+        for (int k = 0; k < 2 * 6; ++k) {
+            const float w = 0.5f + 2.0f * u(rng);
+            // a quarter of the endpoints on pixel centres / edges, where the diamond rule has its special cases
+            float x = u(rng) * 2.4f - 1.2f, y = u(rng) * 2.4f - 1.2f;
+            if (k % 4 == 0) x = (std::floor((x + 1) * 32) + 0.5f) / 32 - 1, y = std::floor((y + 1) * 32) / 32 - 1;
+            sc.push_back(iv(x * w, y * w, 0.5f * w, w, u(rng), u(rng), u(rng), u(rng)));
+        }
+        for (float width : {1.0f, 3.0f}) {
+            for (int mode : {0, 1, 4}) {
+                const auto got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, width, true);
+                const auto want = model_lines(sc, mode, fma, width, true);
+                int first;
+                const int diff = count_diff(got, want, &first);
+                EXPECT_EQ(diff, 0) << "scene " << s << " width " << width << " mode " << mode << " first diff pixel "
+                                   << first / 4 << " (x " << (first / 4) % kSize << ", y " << (first / 4) / kSize
+                                   << ") lavapipe " << int(got[first < 0 ? 0 : first]) << " model "
+                                   << int(want[first < 0 ? 0 : first]);
+                int f2;
+                differs_from_rect += count_diff(got, model_lines(sc, mode, fma, width, false), &f2);
+                for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+            }
+        }
+    }
+    std::printf("bresenham lines: %d lit pixels compared, %d channels differ from the rectangular model\n", lit,
+                differs_from_rect);
+    EXPECT_GT(lit, 2000);
+    EXPECT_GT(differs_from_rect, 0);  // the two line modes are really different
 }

@@ -128,10 +128,11 @@ TEST(LineSetup, BresenhamDiamondExitDropsTheEndPixel) {
     const auto cov = covered(l, 40, 40);
     ASSERT_EQ(cov.size(), 20u);
     EXPECT_EQ(cov.front(), std::make_pair(10, 20));
-    // x-major: info.dx = dx*(1 + 0) = -20 (before the swap), dy = 0; planes from the swapped first vertex (30.5)
-    // a1 = 20 (v1's), a2 = 0: da21 = 20, dadx = 20*-20/400 = -1, a0 = 20 - (-1)*(30.5-0.5) = 50
-    EXPECT_EQ(p[0].dadx[0], -1.0f);
-    EXPECT_EQ(p[0].a0[0], 50.0f);
+    // x-major: info.dx = dx*(1 + 0) = -20, dy = 0, both from before the swap, and the planes keep the draw-order
+    // vertices (lp_line_info is filled before the swap): a1 = 0, a2 = 20: dadx = (-20*-20)/400 = 1,
+    // a0 = 0 - 1*(10.5-0.5) = -10
+    EXPECT_EQ(p[0].dadx[0], 1.0f);
+    EXPECT_EQ(p[0].a0[0], -10.0f);
 }
 
 TEST(PointSetup, SquaresSizesAndPointCoord) {
