@@ -15,6 +15,7 @@
 #include "rast/geometry/clip.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/planes.h"
+#include "rast/geometry/vertex_fetch.h"
 #include "rast/geometry/viewport.h"
 #include "xcheck_frag.spv.h"
 #include "xcheck_vert.spv.h"
@@ -99,8 +100,8 @@ class Lavapipe {
     // Renders `verts` as a triangle list with the given fragment mode; returns RGBA8 pixels.
     std::vector<uint8_t> render(const std::vector<InVertex>& verts, int mode,
                                 VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1,
-                                bool bresenham = false) {
-        const VkPipeline pipe = pipeline(topo, line_width, bresenham);
+                                bool bresenham = false, VkFormat col_format = VK_FORMAT_R32G32B32A32_SFLOAT) {
+        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format);
         if (pipe == VK_NULL_HANDLE) return {};
         std::memcpy(vb_map_, verts.data(), verts.size() * sizeof(InVertex));
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -158,16 +159,16 @@ class Lavapipe {
         vkBindBufferMemory(dev_, *b, m, 0);
         return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
     }
-    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham) {
+    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format) {
         for (const auto& p : pipes_)
-            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham) return p.pipe;
+            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format)
+                return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
         st[0].stage = VK_SHADER_STAGE_VERTEX_BIT, st[0].module = vs_, st[0].pName = "main";
         st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT, st[1].module = fs_, st[1].pName = "main";
         VkVertexInputBindingDescription bind{0, sizeof(InVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-        VkVertexInputAttributeDescription attrs[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
-                                                      {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
+        VkVertexInputAttributeDescription attrs[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 0, col_format, 16}};
         VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
         vin.vertexBindingDescriptionCount = 1;
         vin.pVertexBindingDescriptions = &bind;
@@ -210,7 +211,7 @@ class Lavapipe {
         gi.renderPass = pass_;
         VkPipeline pipe = VK_NULL_HANDLE;
         if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
-        pipes_.push_back({topo, line_width, bresenham, pipe});
+        pipes_.push_back({topo, line_width, bresenham, col_format, pipe});
         return pipe;
     }
     bool setup() {
@@ -315,6 +316,7 @@ class Lavapipe {
         VkPrimitiveTopology topo;
         float width;
         bool bresenham;
+        VkFormat format;
         VkPipeline pipe;
     };
     std::vector<Pipe> pipes_;
@@ -469,12 +471,17 @@ std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, b
     return img;
 }
 
-std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, bool fma) {
+// col_format: the colour bytes of each InVertex are an element of this format, converted by vertex_fetch.
+std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, bool fma,
+                                  VertexFormat col_format = VertexFormat::kR32G32B32A32Float) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
     ModelState st(fma);
     PointSetupConfig pc;
     pc.layout = st.cc.layout;
-    for (const auto& v : verts) {
+    for (const auto& raw : verts) {
+        InVertex v = raw;
+        const FetchedAttrib f = convert_element(col_format, reinterpret_cast<const uint8_t*>(raw.col));
+        std::memcpy(v.col, f.w, 16);
         float r[kFloats];
         const uint32_t m = st.record(v, r);
         if (!clip_point_keep(r, m)) continue;
@@ -688,4 +695,66 @@ TEST(LavapipeCrossCheck, BresenhamLines) {
                 differs_from_rect);
     EXPECT_GT(lit, 2000);
     EXPECT_GT(differs_from_rect, 0);  // the two line modes are really different
+}
+
+TEST(LavapipeCrossCheck, VertexFormatConversions) {
+    // Points with constant colours fetched from each format; the amplified mode (fract(x*65536)) exposes the low
+    // bits of every converted value in the u8 output.
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    const struct {
+        VkFormat vk;
+        VertexFormat ours;
+    } formats[] = {
+        {VK_FORMAT_R8G8B8A8_UNORM, VertexFormat::kR8G8B8A8Unorm},
+        {VK_FORMAT_R8G8B8A8_SNORM, VertexFormat::kR8G8B8A8Snorm},
+        {VK_FORMAT_B8G8R8A8_UNORM, VertexFormat::kB8G8R8A8Unorm},
+        {VK_FORMAT_R8G8_UNORM, VertexFormat::kR8G8Unorm},
+        {VK_FORMAT_R8G8B8_SNORM, VertexFormat::kR8G8B8Snorm},
+        {VK_FORMAT_R16G16B16A16_UNORM, VertexFormat::kR16G16B16A16Unorm},
+        {VK_FORMAT_R16G16B16A16_SNORM, VertexFormat::kR16G16B16A16Snorm},
+        {VK_FORMAT_R16G16_SNORM, VertexFormat::kR16G16Snorm},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, VertexFormat::kR16G16B16A16Float},
+        {VK_FORMAT_R32G32B32_SFLOAT, VertexFormat::kR32G32B32Float},
+        {VK_FORMAT_R32_SFLOAT, VertexFormat::kR32Float},
+    };
+    std::mt19937 rng(404);
+    const bool fma = host_has_fma();
+    int lit = 0;
+    for (const auto& f : formats) {
+        std::vector<InVertex> sc;
+        for (int k = 0; k < 64; ++k) {
+            InVertex v = iv(((k % 8) + 0.5f) / 4 - 1, ((k / 8) + 0.5f) / 4 - 1, 0.5f, 1, 0, 0, 0);
+            uint8_t bytes[16];
+            for (auto& b : bytes) b = static_cast<uint8_t>(rng());
+            if (k < 4) std::memset(bytes, k == 0 ? 0x00 : k == 1 ? 0xFF : k == 2 ? 0x80 : 0x7F, 16);  // extremes
+            if (f.ours == VertexFormat::kR16G16B16A16Float || f.ours == VertexFormat::kR32G32B32Float ||
+                f.ours == VertexFormat::kR32Float) {
+                // finite values in [0, 1): random mantissa bits
+                for (int c = 0; c < 4; ++c) {
+                    const float x = static_cast<float>(rng() % 1000000) / 1000000.0f;
+                    if (f.ours == VertexFormat::kR16G16B16A16Float) {
+                        const uint16_t h = static_cast<uint16_t>(0x3800 | (rng() & 0x3FF));  // [0.5, 1)
+                        std::memcpy(bytes + 2 * c, &h, 2);
+                    } else {
+                        std::memcpy(bytes + 4 * c, &x, 4);
+                    }
+                }
+            }
+            std::memcpy(v.col, bytes, 16);
+            sc.push_back(v);
+        }
+        for (int mode : {1, 5}) {
+            const auto got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 1, false, f.vk);
+            const auto want = model_points(sc, mode, fma, f.ours);
+            int first;
+            const int diff = count_diff(got, want, &first);
+            EXPECT_EQ(diff, 0) << "format " << f.vk << " mode " << mode << " first diff pixel " << first / 4
+                               << " channel " << first % 4 << " lavapipe " << int(got[first < 0 ? 0 : first])
+                               << " model " << int(want[first < 0 ? 0 : first]);
+            for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+        }
+    }
+    std::printf("vertex formats: %d lit pixels compared\n", lit);
+    EXPECT_GT(lit, 500);
 }
