@@ -67,6 +67,7 @@ class Lavapipe {
         VkPhysicalDeviceFeatures feats{};
         feats.wideLines = VK_TRUE;
         feats.largePoints = VK_TRUE;
+        feats.depthBiasClamp = VK_TRUE;
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         dci.pEnabledFeatures = &feats;
         VkPhysicalDeviceLineRasterizationFeaturesEXT line_feats{
@@ -100,8 +101,9 @@ class Lavapipe {
     // Renders `verts` as a triangle list with the given fragment mode; returns RGBA8 pixels.
     std::vector<uint8_t> render(const std::vector<InVertex>& verts, int mode,
                                 VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1,
-                                bool bresenham = false, VkFormat col_format = VK_FORMAT_R32G32B32A32_SFLOAT) {
-        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format);
+                                bool bresenham = false, VkFormat col_format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                                const DepthBias* bias = nullptr) {
+        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format, bias);
         if (pipe == VK_NULL_HANDLE) return {};
         std::memcpy(vb_map_, verts.data(), verts.size() * sizeof(InVertex));
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -159,9 +161,13 @@ class Lavapipe {
         vkBindBufferMemory(dev_, *b, m, 0);
         return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
     }
-    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format) {
+    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format,
+                        const DepthBias* bias) {
+        const DepthBias b = bias ? *bias : DepthBias{};
         for (const auto& p : pipes_)
-            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format)
+            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format &&
+                p.bias.constant_factor == b.constant_factor && p.bias.slope_factor == b.slope_factor &&
+                p.bias.clamp == b.clamp)
                 return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
@@ -187,6 +193,10 @@ class Lavapipe {
         rs.cullMode = VK_CULL_MODE_NONE;
         rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
         rs.lineWidth = line_width;
+        rs.depthBiasEnable = bias != nullptr;
+        rs.depthBiasConstantFactor = b.constant_factor;
+        rs.depthBiasSlopeFactor = b.slope_factor;
+        rs.depthBiasClamp = b.clamp;
         VkPipelineRasterizationLineStateCreateInfoEXT ls{
             VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
         ls.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
@@ -211,7 +221,7 @@ class Lavapipe {
         gi.renderPass = pass_;
         VkPipeline pipe = VK_NULL_HANDLE;
         if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
-        pipes_.push_back({topo, line_width, bresenham, col_format, pipe});
+        pipes_.push_back({topo, line_width, bresenham, col_format, b, pipe});
         return pipe;
     }
     bool setup() {
@@ -317,6 +327,7 @@ class Lavapipe {
         float width;
         bool bresenham;
         VkFormat format;
+        DepthBias bias;
         VkPipeline pipe;
     };
     std::vector<Pipe> pipes_;
@@ -337,7 +348,8 @@ uint8_t to_unorm8(float x) {
 }
 
 // wrong_divide: a/oow instead of a*(1/oow), a deliberately wrong rule for the negative test.
-std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fma, bool wrong_divide = false) {
+std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fma, bool wrong_divide = false,
+                           const DepthBias* bias = nullptr) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
     const ClipMaskConfig cm{};
     ViewportConfig vc;
@@ -348,6 +360,7 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
     cc.vp = vc.vp;
     PlaneSetupConfig pc;
     pc.layout = cc.layout;
+    if (bias) pc.bias = *bias;  // no depth attachment: lavapipe's default mrd is D24's
     std::vector<float> scratch(kClipScratchVertices * kFloats);
     auto mad = [fma](float a, float b, float c) { return fma ? std::fma(a, b, c) : a * b + c; };
     for (size_t t = 0; t + 2 < verts.size(); t += 3) {
@@ -389,6 +402,15 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
                     }
                     if (!in) continue;
                     const float fx = static_cast<float>(px), fy = static_cast<float>(py);
+                    if (mode & 8) {
+                        // gl_FragCoord.z = fmuladd(dzdy, py, fmuladd(dzdx, px, z0)) + offset (plain add)
+                        const float zi = mad(tp.pos.dady[2], fy, mad(tp.pos.dadx[2], fx, tp.pos.a0[2]));
+                        const float z = zi + tp.depth_offset;
+                        const float big = z * 65536.0f, mid = z * 256.0f, huge = z * 16777216.0f;
+                        const float ch[4] = {big - std::floor(big), mid - std::floor(mid), z, huge - std::floor(huge)};
+                        for (int c = 0; c < 4; ++c) img[(py * kSize + px) * 4 + c] = to_unorm8(ch[c]);
+                        continue;
+                    }
                     const AttribPlane& a = ap[mode & 3];
                     const float oow = mad(tp.pos.dady[3], fy, mad(tp.pos.dadx[3], fx, tp.pos.a0[3]));
                     const float rw = 1.0f / oow;
@@ -757,4 +779,44 @@ TEST(LavapipeCrossCheck, VertexFormatConversions) {
     }
     std::printf("vertex formats: %d lit pixels compared\n", lit);
     EXPECT_GT(lit, 500);
+}
+
+TEST(LavapipeCrossCheck, DepthPlaneAndDepthBias) {
+    // gl_FragCoord.z carries the z plane plus lavapipe's depth offset (unorm24 units without a depth attachment).
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    const auto scenes = make_scenes();
+    const bool fma = host_has_fma();
+    DepthBias cases[4];
+    cases[0] = DepthBias{};
+    cases[1].constant_factor = 3.0f;
+    cases[2].constant_factor = 1.5f, cases[2].slope_factor = 0.75f;
+    cases[3].constant_factor = -200.0f, cases[3].slope_factor = -2.0f, cases[3].clamp = -0.0004f;
+    int lit = 0, unbiased_diff = 0, no_factor2_diff = 0;
+    for (int b = 0; b < 4; ++b) {
+        for (size_t s = 0; s < 12; ++s) {
+            const auto got = lvp.render(scenes[s], 8, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false,
+                                        VK_FORMAT_R32G32B32A32_SFLOAT, b == 0 ? nullptr : &cases[b]);
+            const auto want = model(scenes[s], 8, fma, false, b == 0 ? nullptr : &cases[b]);
+            int first;
+            const int diff = count_diff(got, want, &first);
+            EXPECT_EQ(diff, 0) << "bias case " << b << " scene " << s << " first diff pixel " << first / 4
+                               << " channel " << first % 4 << " lavapipe " << int(got[first < 0 ? 0 : first])
+                               << " model " << int(want[first < 0 ? 0 : first]);
+            for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+            if (b != 0) {
+                // negative control: the same scene without the bias (or without the factor 2) must differ
+                int f2;
+                unbiased_diff += count_diff(got, model(scenes[s], 8, fma), &f2);
+                DepthBias half = cases[b];
+                half.constant_factor *= 0.5f;
+                no_factor2_diff += count_diff(got, model(scenes[s], 8, fma, false, &half), &f2);
+            }
+        }
+    }
+    std::printf("depth: %d lit pixels compared; controls differ: no bias %d, no factor 2 %d\n", lit, unbiased_diff,
+                no_factor2_diff);
+    EXPECT_GT(unbiased_diff, 0);
+    EXPECT_GT(no_factor2_diff, 0);
+    EXPECT_GT(lit, 2000);
 }

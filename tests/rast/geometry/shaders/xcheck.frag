@@ -9,4 +9,9 @@ void main() {
     o = sel == 0 ? v_smooth : (sel == 1 ? v_linear : v_flat);
     // amplified mode: exact x*2^16 then fract (x - floor(x), exact), so one-ulp differences reach the u8 output
     if ((pc.mode & 4) != 0) o = fract(o * 65536.0);
+    // depth mode: the interpolated window z with lavapipe's depth offset, low bits exposed
+    if ((pc.mode & 8) != 0) {
+        float z = gl_FragCoord.z;
+        o = vec4(fract(z * 65536.0), fract(z * 256.0), z, fract(z * 16777216.0));
+    }
 }
