@@ -15,6 +15,7 @@
 #include "rast/geometry/clip.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/planes.h"
+#include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
 #include "rast/geometry/viewport.h"
 #include "xcheck_frag.spv.h"
@@ -25,10 +26,20 @@ using namespace tilevk::rast::geometry;
 namespace {
 
 constexpr int kSize = 64;
+constexpr size_t kIndexOffset = 1 << 19;  // index data lives in the upper half of the vertex buffer
 
 struct InVertex {
     float pos[4];
     float col[4];
+};
+
+// Less common state for a draw (pipeline key, plus an optional 32-bit index buffer).
+struct Extra {
+    bool depth_clamp = false;
+    VkCullModeFlags cull = VK_CULL_MODE_NONE;
+    VkFrontFace front = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    bool restart = false;
+    const std::vector<uint32_t>* indices = nullptr;
 };
 
 #define VK_OK(x)                                      \
@@ -68,6 +79,7 @@ class Lavapipe {
         feats.wideLines = VK_TRUE;
         feats.largePoints = VK_TRUE;
         feats.depthBiasClamp = VK_TRUE;
+        feats.depthClamp = VK_TRUE;
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         dci.pEnabledFeatures = &feats;
         VkPhysicalDeviceLineRasterizationFeaturesEXT line_feats{
@@ -102,8 +114,8 @@ class Lavapipe {
     std::vector<uint8_t> render(const std::vector<InVertex>& verts, int mode,
                                 VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1,
                                 bool bresenham = false, VkFormat col_format = VK_FORMAT_R32G32B32A32_SFLOAT,
-                                const DepthBias* bias = nullptr) {
-        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format, bias);
+                                const DepthBias* bias = nullptr, const Extra& extra = Extra{}) {
+        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format, bias, extra);
         if (pipe == VK_NULL_HANDLE) return {};
         std::memcpy(vb_map_, verts.data(), verts.size() * sizeof(InVertex));
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -121,7 +133,13 @@ class Lavapipe {
         VkDeviceSize off = 0;
         vkCmdBindVertexBuffers(cmd_, 0, 1, &vb_, &off);
         vkCmdPushConstants(cmd_, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &mode);
-        vkCmdDraw(cmd_, static_cast<uint32_t>(verts.size()), 1, 0, 0);
+        if (extra.indices) {
+            std::memcpy(static_cast<char*>(vb_map_) + kIndexOffset, extra.indices->data(), extra.indices->size() * 4);
+            vkCmdBindIndexBuffer(cmd_, vb_, kIndexOffset, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(cmd_, static_cast<uint32_t>(extra.indices->size()), 1, 0, 0, 0);
+        } else {
+            vkCmdDraw(cmd_, static_cast<uint32_t>(verts.size()), 1, 0, 0);
+        }
         vkCmdEndRenderPass(cmd_);
         VkBufferImageCopy copy{};
         copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -162,12 +180,13 @@ class Lavapipe {
         return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
     }
     VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format,
-                        const DepthBias* bias) {
+                        const DepthBias* bias, const Extra& x) {
         const DepthBias b = bias ? *bias : DepthBias{};
         for (const auto& p : pipes_)
             if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format &&
                 p.bias.constant_factor == b.constant_factor && p.bias.slope_factor == b.slope_factor &&
-                p.bias.clamp == b.clamp)
+                p.bias.clamp == b.clamp && p.x.depth_clamp == x.depth_clamp && p.x.cull == x.cull &&
+                p.x.front == x.front && p.x.restart == x.restart)
                 return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
@@ -182,6 +201,7 @@ class Lavapipe {
         vin.pVertexAttributeDescriptions = attrs;
         VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
         ia.topology = topo;
+        ia.primitiveRestartEnable = x.restart;
         VkViewport vp{0, 0, kSize, kSize, 0, 1};
         VkRect2D sc{{0, 0}, {kSize, kSize}};
         VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
@@ -190,8 +210,9 @@ class Lavapipe {
         vps.pScissors = &sc;
         VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
         rs.polygonMode = VK_POLYGON_MODE_FILL;
-        rs.cullMode = VK_CULL_MODE_NONE;
-        rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+        rs.cullMode = x.cull;
+        rs.frontFace = x.front;
+        rs.depthClampEnable = x.depth_clamp;
         rs.lineWidth = line_width;
         rs.depthBiasEnable = bias != nullptr;
         rs.depthBiasConstantFactor = b.constant_factor;
@@ -221,11 +242,12 @@ class Lavapipe {
         gi.renderPass = pass_;
         VkPipeline pipe = VK_NULL_HANDLE;
         if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
-        pipes_.push_back({topo, line_width, bresenham, col_format, b, pipe});
+        pipes_.push_back({topo, line_width, bresenham, col_format, b, x, pipe});
         return pipe;
     }
     bool setup() {
-        if (!buffer(1 << 20, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &vb_, &vb_map_)) return false;
+        if (!buffer(1 << 20, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &vb_, &vb_map_))
+            return false;
         if (!buffer(kSize * kSize * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, &rb_, &rb_map_)) return false;
         VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         ii.imageType = VK_IMAGE_TYPE_2D;
@@ -328,6 +350,7 @@ class Lavapipe {
         bool bresenham;
         VkFormat format;
         DepthBias bias;
+        Extra x;
         VkPipeline pipe;
     };
     std::vector<Pipe> pipes_;
@@ -348,10 +371,22 @@ uint8_t to_unorm8(float x) {
 }
 
 // wrong_divide: a/oow instead of a*(1/oow), a deliberately wrong rule for the negative test.
+struct ModelExtra {
+    bool clip_z = true;  // !depthClampEnable
+    bool cull_front = false, cull_back = false;
+    bool front_ccw = true;
+};
+
 std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fma, bool wrong_divide = false,
-                           const DepthBias* bias = nullptr) {
+                           const DepthBias* bias = nullptr, const ModelExtra& mx = ModelExtra{}) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
-    const ClipMaskConfig cm{};
+    ClipMaskConfig cm{};
+    cm.clip_z = mx.clip_z;
+    // draw runs its pipeline (clip, then float cull when a cull mode is set) for a whole vertex batch as soon as
+    // one vertex has a clip mask; these scenes are one batch each.
+    bool pipeline_path = false;
+    for (const auto& v : verts) pipeline_path = pipeline_path || compute_clipmask(cm, v.pos) != 0;
+    const FloatCull fcull{mx.cull_front, mx.cull_back, mx.front_ccw};
     ViewportConfig vc;
     vc.vp = make_viewport(0, 0, kSize, kSize, 0, 1);
     vc.fused = fma;
@@ -375,6 +410,9 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
         const uint32_t n = clip_triangle(cc, rec[0], rec[1], rec[2], mask[0], mask[1], mask[2], scratch.data(), tris);
         for (uint32_t i = 0; i < n; ++i) {
             const float* v[3] = {tris[i].v[0], tris[i].v[1], tris[i].v[2]};
+            if (pipeline_path && (mx.cull_front || mx.cull_back) &&
+                !float_cull_keep(fcull, v[0] + 4, v[1] + 4, v[2] + 4))
+                continue;
             // snap: rne(fl(x - 0.5) * 256)
             int64_t X[3], Y[3];
             for (int k = 0; k < 3; ++k) {
@@ -383,6 +421,9 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
             }
             const int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
             if (area == 0) continue;
+            // llvmpipe's own cull on the exact fixed-point area: area > 0 is "ccw"
+            const bool front = (area > 0) == mx.front_ccw;
+            if ((front && mx.cull_front) || (!front && mx.cull_back)) continue;
             if (area < 0) {  // CW -> CCW with flatshade_first: swap v1, v2
                 std::swap(v[1], v[2]);
                 std::swap(X[1], X[2]);
@@ -819,4 +860,106 @@ TEST(LavapipeCrossCheck, DepthPlaneAndDepthBias) {
     EXPECT_GT(unbiased_diff, 0);
     EXPECT_GT(no_factor2_diff, 0);
     EXPECT_GT(lit, 2000);
+}
+
+TEST(LavapipeCrossCheck, DepthClampNegativeWAndCulling) {
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    auto scenes = make_scenes();
+    std::mt19937 rng(909);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int s = 0; s < 12; ++s) {  // vertices behind the eye (w < 0) and far outside z
+        std::vector<InVertex> sc;
+        for (int k = 0; k < 3 * 4; ++k) {
+            const float w = -1.0f + 4.0f * u(rng);
+            sc.push_back(iv((u(rng) * 3 - 1.5f) * 1.5f, (u(rng) * 3 - 1.5f) * 1.5f, (u(rng) * 3 - 1) * 1.5f, w, u(rng),
+                            u(rng), u(rng), u(rng)));
+        }
+        scenes.push_back(sc);
+    }
+    const bool fma = host_has_fma();
+    int lit = 0;
+    for (int variant = 0; variant < 4; ++variant) {
+        Extra x;
+        ModelExtra mx;
+        x.depth_clamp = variant == 1;
+        mx.clip_z = !x.depth_clamp;
+        if (variant == 2) x.cull = VK_CULL_MODE_BACK_BIT, mx.cull_back = true;
+        if (variant == 3) {
+            x.cull = VK_CULL_MODE_FRONT_BIT, mx.cull_front = true;
+            x.front = VK_FRONT_FACE_CLOCKWISE, mx.front_ccw = false;
+        }
+        for (size_t s = 0; s < scenes.size(); ++s) {
+            for (int mode : {0, 4}) {
+                const auto got = lvp.render(scenes[s], mode, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false,
+                                            VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+                const auto want = model(scenes[s], mode, fma, false, nullptr, mx);
+                int first;
+                const int diff = count_diff(got, want, &first);
+                EXPECT_EQ(diff, 0) << "variant " << variant << " scene " << s << " mode " << mode
+                                   << " first diff pixel " << first / 4 << " lavapipe "
+                                   << int(got[first < 0 ? 0 : first]) << " model " << int(want[first < 0 ? 0 : first]);
+                for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+            }
+        }
+    }
+    std::printf("depth clamp / w<0 / cull: %d lit pixels compared\n", lit);
+    EXPECT_GT(lit, 5000);
+}
+
+TEST(LavapipeCrossCheck, StripsFansAndRestartOrders) {
+    // Indexed strips and fans with primitive restart: assemble_primitives' order (and thus each triangle's plane
+    // rounding and provoking vertex) must reproduce lavapipe's pixels, in the amplified and flat modes.
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    std::mt19937 rng(1717);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const bool fma = host_has_fma();
+    int lit = 0, wrong_diff = 0;
+    for (int s = 0; s < 12; ++s) {
+        std::vector<InVertex> verts;
+        for (int k = 0; k < 16; ++k) {
+            const float w = 0.5f + 2.0f * u(rng);
+            verts.push_back(iv((u(rng) * 2.8f - 1.4f) * w, (u(rng) * 2.8f - 1.4f) * w, 0.5f * w, w, u(rng), u(rng),
+                               u(rng), u(rng)));
+        }
+        std::vector<uint32_t> idx;
+        for (int k = 0; k < 14; ++k) idx.push_back(rng() % 16);
+        idx[6] = 0xFFFFFFFFu;  // restart in the middle
+        for (auto topo : {VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN}) {
+            IndexSource src;
+            src.indices = reinterpret_cast<const uint8_t*>(idx.data());
+            src.index_size = 4;
+            src.index_count_total = static_cast<uint32_t>(idx.size());
+            src.count = src.index_count_total;
+            src.primitive_restart = true;
+            const Topology t =
+                topo == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP ? Topology::kTriangleStrip : Topology::kTriangleFan;
+            std::vector<uint32_t> order(assembled_index_capacity(t, src.count));
+            const uint32_t prims = assemble_primitives(src, t, true, order.data(), order.size());
+            std::vector<InVertex> list, wrong;
+            for (uint32_t i = 0; i < prims * 3; ++i) list.push_back(verts[order[i]]);
+            // negative control: the last-vertex-provoking order
+            std::vector<uint32_t> order_last(order.size());
+            assemble_primitives(src, t, false, order_last.data(), order_last.size());
+            for (uint32_t i = 0; i < prims * 3; ++i) wrong.push_back(verts[order_last[i]]);
+            Extra x;
+            x.restart = true;
+            x.indices = &idx;
+            for (int mode : {2, 4, 5}) {
+                const auto got = lvp.render(verts, mode, topo, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+                const auto want = model(list, mode, fma);
+                int first;
+                const int diff = count_diff(got, want, &first);
+                EXPECT_EQ(diff, 0) << "topology " << topo << " scene " << s << " mode " << mode << " first diff pixel "
+                                   << first / 4 << " lavapipe " << int(got[first < 0 ? 0 : first]) << " model "
+                                   << int(want[first < 0 ? 0 : first]);
+                for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+                wrong_diff += count_diff(got, model(wrong, mode, fma), &first);
+            }
+        }
+    }
+    std::printf("strips/fans: %d lit pixels compared; last-vertex order differs in %d channels\n", lit, wrong_diff);
+    EXPECT_GT(wrong_diff, 0);
+    EXPECT_GT(lit, 5000);
 }
