@@ -68,7 +68,8 @@ TEST(FragmentBlend, Lerp8EndpointsAndDifferenceFromMulNorm) {
             ASSERT_EQ(lerp8(255, uint8_t(v0), uint8_t(v1)), v1);
             ASSERT_EQ(lerp8(0, uint8_t(v0), uint8_t(v1)), v0);
             for (int x = 1; x < 255; x += 17) {
-                const int generic = std::min(255, mul_norm8(uint8_t(v1), uint8_t(x)) + mul_norm8(uint8_t(v0), uint8_t(255 - x)));
+                const int generic =
+                    std::min(255, mul_norm8(uint8_t(v1), uint8_t(x)) + mul_norm8(uint8_t(v0), uint8_t(255 - x)));
                 differs += lerp8(uint8_t(x), uint8_t(v0), uint8_t(v1)) != generic;
             }
         }
@@ -98,32 +99,53 @@ struct RefPixel {
 static int ref_factor(BlendFactor f, int c, bool alpha_chan, bool has_alpha, const RefPixel& p) {
     const int sa = p.s[3], da = has_alpha ? p.d[3] : 255, ka = p.k[3];
     switch (f) {
-        case BlendFactor::Zero: return 0;
-        case BlendFactor::One: return 255;
-        case BlendFactor::SrcColor: return p.s[c];
-        case BlendFactor::OneMinusSrcColor: return 255 - p.s[c];
-        case BlendFactor::DstColor: return p.d[c];
-        case BlendFactor::OneMinusDstColor: return 255 - p.d[c];
-        case BlendFactor::SrcAlpha: return sa;
-        case BlendFactor::OneMinusSrcAlpha: return 255 - sa;
-        case BlendFactor::DstAlpha: return da;
-        case BlendFactor::OneMinusDstAlpha: return 255 - da;
-        case BlendFactor::ConstantColor: return p.k[c];
-        case BlendFactor::OneMinusConstantColor: return 255 - p.k[c];
-        case BlendFactor::ConstantAlpha: return ka;
-        case BlendFactor::OneMinusConstantAlpha: return 255 - ka;
-        case BlendFactor::SrcAlphaSaturate: return alpha_chan ? 255 : std::min(sa, 255 - da);
-        default: return -1;
+        case BlendFactor::Zero:
+            return 0;
+        case BlendFactor::One:
+            return 255;
+        case BlendFactor::SrcColor:
+            return p.s[c];
+        case BlendFactor::OneMinusSrcColor:
+            return 255 - p.s[c];
+        case BlendFactor::DstColor:
+            return p.d[c];
+        case BlendFactor::OneMinusDstColor:
+            return 255 - p.d[c];
+        case BlendFactor::SrcAlpha:
+            return sa;
+        case BlendFactor::OneMinusSrcAlpha:
+            return 255 - sa;
+        case BlendFactor::DstAlpha:
+            return da;
+        case BlendFactor::OneMinusDstAlpha:
+            return 255 - da;
+        case BlendFactor::ConstantColor:
+            return p.k[c];
+        case BlendFactor::OneMinusConstantColor:
+            return 255 - p.k[c];
+        case BlendFactor::ConstantAlpha:
+            return ka;
+        case BlendFactor::OneMinusConstantAlpha:
+            return 255 - ka;
+        case BlendFactor::SrcAlphaSaturate:
+            return alpha_chan ? 255 : std::min(sa, 255 - da);
+        default:
+            return -1;
     }
 }
 
 static int ref_op(BlendOp op, int s, int d) {
     switch (op) {
-        case BlendOp::Add: return std::min(255, s + d);
-        case BlendOp::Subtract: return std::max(0, s - d);
-        case BlendOp::ReverseSubtract: return std::max(0, d - s);
-        case BlendOp::Min: return std::min(s, d);
-        case BlendOp::Max: return std::max(s, d);
+        case BlendOp::Add:
+            return std::min(255, s + d);
+        case BlendOp::Subtract:
+            return std::max(0, s - d);
+        case BlendOp::ReverseSubtract:
+            return std::max(0, d - s);
+        case BlendOp::Min:
+            return std::min(s, d);
+        case BlendOp::Max:
+            return std::max(s, d);
     }
     return -1;
 }
@@ -132,15 +154,24 @@ static bool complementary(BlendFactor a, BlendFactor b) {
     // Zero<->One, X <-> OneMinusX (VkBlendFactor pairs), except the pair (Zero, One) ordering is symmetric
     auto inv = [](BlendFactor f) -> int {
         switch (f) {
-            case BlendFactor::Zero: return int(BlendFactor::One);
-            case BlendFactor::One: return int(BlendFactor::Zero);
-            case BlendFactor::SrcColor: return int(BlendFactor::OneMinusSrcColor);
-            case BlendFactor::SrcAlpha: return int(BlendFactor::OneMinusSrcAlpha);
-            case BlendFactor::DstColor: return int(BlendFactor::OneMinusDstColor);
-            case BlendFactor::DstAlpha: return int(BlendFactor::OneMinusDstAlpha);
-            case BlendFactor::ConstantColor: return int(BlendFactor::OneMinusConstantColor);
-            case BlendFactor::ConstantAlpha: return int(BlendFactor::OneMinusConstantAlpha);
-            default: return -1;
+            case BlendFactor::Zero:
+                return int(BlendFactor::One);
+            case BlendFactor::One:
+                return int(BlendFactor::Zero);
+            case BlendFactor::SrcColor:
+                return int(BlendFactor::OneMinusSrcColor);
+            case BlendFactor::SrcAlpha:
+                return int(BlendFactor::OneMinusSrcAlpha);
+            case BlendFactor::DstColor:
+                return int(BlendFactor::OneMinusDstColor);
+            case BlendFactor::DstAlpha:
+                return int(BlendFactor::OneMinusDstAlpha);
+            case BlendFactor::ConstantColor:
+                return int(BlendFactor::OneMinusConstantColor);
+            case BlendFactor::ConstantAlpha:
+                return int(BlendFactor::OneMinusConstantAlpha);
+            default:
+                return -1;
         }
     };
     return inv(a) == int(b) || inv(b) == int(a);
@@ -188,7 +219,9 @@ static void ref_blend_unorm8(const BlendAttachment& a0, const FormatInfo& fi, co
     }
 }
 
-static int mem_index(const FormatInfo& fi, int c) { return (fi.bgra && c < 3) ? 2 - c : c; }
+static int mem_index(const FormatInfo& fi, int c) {
+    return (fi.bgra && c < 3) ? 2 - c : c;
+}
 
 TEST(FragmentBlend, Unorm8EveryFactorAndOpAgainstReference) {
     std::mt19937 rng(2024);
