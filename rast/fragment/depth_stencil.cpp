@@ -35,6 +35,8 @@ inline int32_t cvtps2dq(float f) {
 float clamp_depth(float z, const DepthStencilState& s, DepthFormat f) {
     // lp_build_clamp(z, lo, hi) = max(min(z, hi), lo)
     const bool restrict01 = !(s.unrestricted_depth && f == DepthFormat::D32F);
+    // The clamps are SSE min/max run under MXCSR DAZ: a denormal z reads as zero (verified against lavapipe).
+    if ((restrict01 || s.depth_clamp) && z != 0.0f && std::fabs(z) < 0x1p-126f) z = 0.0f;
     if (restrict01) z = sse_max(sse_min(z, 1.0f), 0.0f);
     if (s.depth_clamp) z = sse_max(sse_min(z, s.max_depth), s.min_depth);
     return z;
@@ -97,6 +99,9 @@ bool compare(CompareOp op, uint32_t a, uint32_t b) {
 
 bool compare_float(CompareOp op, float a, float b) {
     // lp_build_compare: ordered predicates (false on NaN) except NOTEQUAL, which is unordered-or-not-equal.
+    // Compares run under DAZ: denormal operands compare as zero.
+    if (a != 0.0f && std::fabs(a) < 0x1p-126f) a = 0.0f;
+    if (b != 0.0f && std::fabs(b) < 0x1p-126f) b = 0.0f;
     switch (op) {
         case CompareOp::Never:
             return false;

@@ -5,7 +5,8 @@
 // -> convert to the stored format -> stencil test (ref & cmask  OP  stored & cmask) -> stencil fail op
 // -> depth test (z_src OP z_stored, in the stored format's precision) -> depth write
 // -> depth-fail / depth-pass stencil ops, each masked by the stencil write mask.
-// Clamps use SSE min/max semantics: min(z, hi) returns hi when z is NaN, so a NaN z becomes 1.0 (or max_depth).
+// Clamps use SSE min/max semantics: min(z, hi) returns hi when z is NaN, so a NaN z becomes 1.0 (or max_depth);
+// they run under DAZ, so a denormal z becomes 0. D32F compares also treat denormals as zero.
 #pragma once
 
 #include <cstdint>

@@ -98,7 +98,7 @@ bool resolve_pixel(ColorFormat f, const uint8_t* const samples[kMaxSamples], uin
                 break;
         }
     }
-    return fi.kind != ChannelKind::Srgb8;
+    return true;
 }
 
 void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_t src_pitch, uint8_t* dst,

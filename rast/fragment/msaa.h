@@ -34,8 +34,8 @@ uint16_t any_sample(const uint16_t sample_masks[kMaxSamples]);
 // (UNORM8: fl(u * fl(1/255)); sRGB: polynomial; half exact; float as is). Missing channels: 0,0,0,1.
 void fetch_texel(ColorFormat f, const uint8_t* px, float rgba[4], bool fused);
 
-// Resolve one pixel from `samples` (4) stored pixels into `out`.
-// Returns false for formats whose resolve is not modelled exactly (sRGB: UNVERIFIED, still computed).
+// Resolve one pixel from `samples` (4) stored pixels into `out`. Verified against lavapipe for RGBA8, R8, RGBA16F,
+// R32F and RGBA8 sRGB (decode polynomial -> average -> rsqrt encode, on this CPU). Always returns true.
 bool resolve_pixel(ColorFormat f, const uint8_t* const samples[kMaxSamples], uint8_t* out, bool fused);
 
 // Resolve a w x h rectangle. Sample s of pixel (x,y) is at src + s*sample_stride + y*src_pitch + x*bytes.
