@@ -12,8 +12,8 @@ void* Arena::allocate(size_t size, size_t align) {
     }
     size_t capacity = size > kBlockSize ? size : kBlockSize;
     const VkAllocationCallbacks& a = callbacks_ != nullptr ? *callbacks_ : default_allocator();
-    auto* block = static_cast<Block*>(
-        host_alloc(a, offsetof(Block, data) + capacity, 16, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT));
+    auto* block =
+        static_cast<Block*>(host_alloc(a, offsetof(Block, data) + capacity, 16, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT));
     if (block == nullptr) return nullptr;
     block->next = head_;
     block->size = capacity;

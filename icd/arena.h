@@ -9,7 +9,7 @@
 namespace tilevk::icd {
 
 class Arena {
-public:
+  public:
     explicit Arena(const VkAllocationCallbacks* callbacks = nullptr) : callbacks_(callbacks) {}
     ~Arena() { release(); }
     Arena(const Arena&) = delete;
@@ -29,7 +29,7 @@ public:
         return dst;
     }
 
-private:
+  private:
     struct Block {
         Block* next;
         size_t size;

@@ -19,7 +19,9 @@ float float_of(uint32_t u) {
 }
 
 // Reference curve used to fit the table: the sRGB encode with the exponent 0.41666666 (as Mesa's generator).
-double linear_to_srgb_curve(double x) { return x >= 0.0031308 ? 1.055 * std::pow(x, 0.41666666) - 0.055 : 12.92 * x; }
+double linear_to_srgb_curve(double x) {
+    return x >= 0.0031308 ? 1.055 * std::pow(x, 0.41666666) - 0.055 : 12.92 * x;
+}
 
 // rygorous' linear->sRGB scheme (public domain gist 2203834), which Mesa uses: 13 exponents x 8 mantissa buckets
 // between 2^-13 and 1; per bucket a least-squares line val(t) = a + b*t over the next 8 mantissa bits t, fitted to
@@ -69,7 +71,7 @@ uint8_t float_to_ubyte(float f) {
 uint8_t linear_float_to_srgb8(float x) {
     static const SrgbTable table;
     const float min_val = float_of(uint32_t(127 - 13) << 23);  // 2^-13 and below map to 0
-    const float almost_one = float_of(0x3f7fffff);               // 1 - 2^-24 and above map to 255
+    const float almost_one = float_of(0x3f7fffff);             // 1 - 2^-24 and above map to 255
     if (!(x > min_val)) x = min_val;
     if (x > almost_one) x = almost_one;
     uint32_t u = bits_of(x);
@@ -79,24 +81,20 @@ uint8_t linear_float_to_srgb8(float x) {
     return uint8_t((bias + scale * t) >> 16);
 }
 
-uint16_t float_to_half_rne(float f) {
+// Round toward zero, like vcvtps2ph with imm 3 (what Mesa's _mesa_float_to_float16_rtz runs on F16C CPUs):
+// finite values too large for half become the largest finite half, never infinity.
+uint16_t float_to_half_rtz(float f) {
     uint32_t u = bits_of(f);
     uint16_t sign = uint16_t((u >> 16) & 0x8000);
     uint32_t exp = (u >> 23) & 0xff, mant = u & 0x7fffff;
-    if (exp == 0xff) return uint16_t(sign | 0x7c00 | (mant ? 0x200 : 0));  // Inf, or a quiet NaN
+    if (exp == 0xff) return uint16_t(sign | 0x7c00 | (mant ? 0x200 | (mant >> 13) : 0));  // Inf; NaN made quiet
     int e = int(exp) - 127 + 15;
-    if (e >= 0x1f) return uint16_t(sign | 0x7c00);  // overflow to infinity
+    if (e >= 0x1f) return uint16_t(sign | 0x7bff);
     if (e <= 0) {
-        if (e < -10) return sign;  // below half the smallest subnormal: zero
-        mant |= 0x800000;          // subnormal half: shift the implicit bit in, round to nearest even
-        uint32_t shift = uint32_t(14 - e);
-        uint32_t h = mant >> shift, rem = mant & ((1u << shift) - 1), halfway = 1u << (shift - 1);
-        if (rem > halfway || (rem == halfway && (h & 1))) ++h;
-        return uint16_t(sign | h);
+        if (e < -10) return sign;                                 // below the smallest subnormal: zero
+        return uint16_t(sign | ((mant | 0x800000) >> (14 - e)));  // subnormal half, truncated
     }
-    uint32_t h = (uint32_t(e) << 10) | (mant >> 13), rem = mant & 0x1fff;
-    if (rem > 0x1000 || (rem == 0x1000 && (h & 1))) ++h;  // a carry into the exponent is the right result
-    return uint16_t(sign | h);
+    return uint16_t(sign | (uint32_t(e) << 10) | (mant >> 13));
 }
 
 float half_to_float(uint16_t h) {
@@ -124,7 +122,7 @@ void pack_clear_color(const FormatInfo& f, const VkClearColorValue& value, uint8
         }
         case PackKind::kFloat16:
             for (uint32_t i = 0; i < f.channels; ++i) {
-                uint16_t h = float_to_half_rne(c[i]);
+                uint16_t h = float_to_half_rtz(c[i]);
                 std::memcpy(texel + 2 * i, &h, 2);
             }
             break;

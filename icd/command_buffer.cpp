@@ -13,7 +13,9 @@
 namespace tilevk::icd {
 namespace {
 
-CommandBuffer* cb_of(VkCommandBuffer h) { return from_handle<CommandBuffer>(h); }
+CommandBuffer* cb_of(VkCommandBuffer h) {
+    return from_handle<CommandBuffer>(h);
+}
 
 // Copies an array of handles into the arena as object pointers.
 template <class T>
@@ -54,8 +56,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyImage(VkCommandBuffer commandBuffer, VkIma
     }
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBufferToImage(VkCommandBuffer commandBuffer, VkBuffer srcBuffer,
-                                                    VkImage dstImage, VkImageLayout, uint32_t regionCount,
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBufferToImage(VkCommandBuffer commandBuffer, VkBuffer srcBuffer, VkImage dstImage,
+                                                    VkImageLayout, uint32_t regionCount,
                                                     const VkBufferImageCopy* pRegions) {
     CommandBuffer* cb = cb_of(commandBuffer);
     if (auto* c = cb->append<CmdCopyBufferToImage>()) {
@@ -156,10 +158,10 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdResetEvent(VkCommandBuffer commandBuffer, VkEv
     if (auto* c = cb_of(commandBuffer)->append<CmdResetEvent>()) c->event = from_handle<Event>(event);
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdWaitEvents(VkCommandBuffer commandBuffer, uint32_t eventCount,
-                                             const VkEvent* pEvents, VkPipelineStageFlags, VkPipelineStageFlags,
-                                             uint32_t, const VkMemoryBarrier*, uint32_t, const VkBufferMemoryBarrier*,
-                                             uint32_t, const VkImageMemoryBarrier*) {
+VKAPI_ATTR void VKAPI_CALL tvk_CmdWaitEvents(VkCommandBuffer commandBuffer, uint32_t eventCount, const VkEvent* pEvents,
+                                             VkPipelineStageFlags, VkPipelineStageFlags, uint32_t,
+                                             const VkMemoryBarrier*, uint32_t, const VkBufferMemoryBarrier*, uint32_t,
+                                             const VkImageMemoryBarrier*) {
     CommandBuffer* cb = cb_of(commandBuffer);
     if (auto* c = cb->append<CmdWaitEvents>()) {
         c->count = eventCount;

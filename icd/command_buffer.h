@@ -47,8 +47,10 @@ struct CommandBuffer : DispatchableObject {
         T* cmd = static_cast<T*>(mem);
         cmd->type = T::kType;
         cmd->next = nullptr;
-        if (last != nullptr) last->next = cmd;
-        else first = cmd;
+        if (last != nullptr)
+            last->next = cmd;
+        else
+            first = cmd;
         last = cmd;
         return cmd;
     }

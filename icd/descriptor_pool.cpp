@@ -11,7 +11,9 @@
 namespace tilevk::icd {
 namespace {
 
-void free_set(DescriptorSet* set) { destroy_object(set); }
+void free_set(DescriptorSet* set) {
+    destroy_object(set);
+}
 
 // Slot of array element `element` of `binding`, following Vulkan's rule that an update running past the end of a
 // binding continues into the next binding(s) in binding order.
@@ -151,8 +153,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCoun
                     const VkDescriptorBufferInfo& bi = w.pBufferInfo[j];
                     d->buffer = from_handle<Buffer>(bi.buffer);
                     d->offset = bi.offset;
-                    d->range = bi.range == VK_WHOLE_SIZE && d->buffer != nullptr ? d->buffer->size - bi.offset
-                                                                                  : bi.range;
+                    d->range =
+                        bi.range == VK_WHOLE_SIZE && d->buffer != nullptr ? d->buffer->size - bi.offset : bi.range;
                     break;
                 }
             }

@@ -15,8 +15,7 @@ const LayoutBinding* DescriptorSetLayout::find(uint32_t binding) const {
     return nullptr;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorSetLayout(VkDevice device,
-                                                             const VkDescriptorSetLayoutCreateInfo* ci,
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorSetLayout(VkDevice device, const VkDescriptorSetLayoutCreateInfo* ci,
                                                              const VkAllocationCallbacks* pAllocator,
                                                              VkDescriptorSetLayout* pSetLayout) {
     Device* dev = from_handle<Device>(device);

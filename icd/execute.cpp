@@ -101,23 +101,45 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
 void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
     for (Cmd* cmd = cb->first; cmd != nullptr; cmd = cmd->next) {
         switch (cmd->type) {
-            case CmdType::kCopyBuffer: exec_copy_buffer(*static_cast<CmdCopyBuffer*>(cmd)); break;
-            case CmdType::kCopyImage: exec_copy_image(*static_cast<CmdCopyImage*>(cmd)); break;
-            case CmdType::kCopyBufferToImage: exec_copy_buffer_to_image(*static_cast<CmdCopyBufferToImage*>(cmd)); break;
-            case CmdType::kCopyImageToBuffer: exec_copy_image_to_buffer(*static_cast<CmdCopyImageToBuffer*>(cmd)); break;
-            case CmdType::kUpdateBuffer: exec_update_buffer(*static_cast<CmdUpdateBuffer*>(cmd)); break;
-            case CmdType::kFillBuffer: exec_fill_buffer(*static_cast<CmdFillBuffer*>(cmd)); break;
-            case CmdType::kClearColorImage: exec_clear_color_image(*static_cast<CmdClearColorImage*>(cmd)); break;
+            case CmdType::kCopyBuffer:
+                exec_copy_buffer(*static_cast<CmdCopyBuffer*>(cmd));
+                break;
+            case CmdType::kCopyImage:
+                exec_copy_image(*static_cast<CmdCopyImage*>(cmd));
+                break;
+            case CmdType::kCopyBufferToImage:
+                exec_copy_buffer_to_image(*static_cast<CmdCopyBufferToImage*>(cmd));
+                break;
+            case CmdType::kCopyImageToBuffer:
+                exec_copy_image_to_buffer(*static_cast<CmdCopyImageToBuffer*>(cmd));
+                break;
+            case CmdType::kUpdateBuffer:
+                exec_update_buffer(*static_cast<CmdUpdateBuffer*>(cmd));
+                break;
+            case CmdType::kFillBuffer:
+                exec_fill_buffer(*static_cast<CmdFillBuffer*>(cmd));
+                break;
+            case CmdType::kClearColorImage:
+                exec_clear_color_image(*static_cast<CmdClearColorImage*>(cmd));
+                break;
             case CmdType::kClearDepthStencilImage:
                 exec_clear_depth_stencil_image(*static_cast<CmdClearDepthStencilImage*>(cmd));
                 break;
-            case CmdType::kResolveImage: exec_resolve_image(*static_cast<CmdResolveImage*>(cmd)); break;
+            case CmdType::kResolveImage:
+                exec_resolve_image(*static_cast<CmdResolveImage*>(cmd));
+                break;
             // Execution is serial and in order, so barriers have nothing left to order.
-            case CmdType::kPipelineBarrier: break;
-            case CmdType::kSetEvent: static_cast<CmdSetEvent*>(cmd)->event->set.store(true); break;
-            case CmdType::kResetEvent: static_cast<CmdResetEvent*>(cmd)->event->set.store(false); break;
+            case CmdType::kPipelineBarrier:
+                break;
+            case CmdType::kSetEvent:
+                static_cast<CmdSetEvent*>(cmd)->event->set.store(true);
+                break;
+            case CmdType::kResetEvent:
+                static_cast<CmdResetEvent*>(cmd)->event->set.store(false);
+                break;
             // Device-side sets happened earlier in this serial stream; host sets must precede the submission.
-            case CmdType::kWaitEvents: break;
+            case CmdType::kWaitEvents:
+                break;
             case CmdType::kBeginRenderPass: {
                 auto* c = static_cast<CmdBeginRenderPass*>(cmd);
                 st.render_pass = c->render_pass;
@@ -140,7 +162,9 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
                 st.render_pass = nullptr;
                 st.framebuffer = nullptr;
                 break;
-            case CmdType::kClearAttachments: clear_attachments(st, *static_cast<CmdClearAttachments*>(cmd)); break;
+            case CmdType::kClearAttachments:
+                clear_attachments(st, *static_cast<CmdClearAttachments*>(cmd));
+                break;
             case CmdType::kExecuteCommands: {
                 auto* c = static_cast<CmdExecuteCommands*>(cmd);
                 for (uint32_t i = 0; i < c->count; ++i) execute_command_buffer(c->buffers[i], st);

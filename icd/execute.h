@@ -38,8 +38,8 @@ void exec_resolve_image(const CmdResolveImage& c);
 void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D& rect, const uint8_t* texel,
                uint32_t byte_offset, uint32_t byte_count);
 // Packs and writes a colour clear into rect of `layer_count` layers from `base_layer`.
-void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
-                      const VkRect2D& rect, const VkClearColorValue& color);
+void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
+                      const VkClearColorValue& color);
 // Clears the given aspects of a depth/stencil image in rect.
 void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
                               const VkRect2D& rect, VkImageAspectFlags aspects, const VkClearDepthStencilValue& v);

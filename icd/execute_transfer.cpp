@@ -16,7 +16,9 @@ uint32_t resolve_count(const Image& img, uint32_t base, uint32_t count, bool lay
     return count == (layers ? VK_REMAINING_ARRAY_LAYERS : VK_REMAINING_MIP_LEVELS) ? total - base : count;
 }
 
-VkRect2D full_rect(const Image& img, uint32_t level) { return {{0, 0}, {img.level_width(level), img.level_height(level)}}; }
+VkRect2D full_rect(const Image& img, uint32_t level) {
+    return {{0, 0}, {img.level_width(level), img.level_height(level)}};
+}
 
 // Copies one row of `width` texels of `aspect` between a buffer (packed aspect texels) and an image row.
 void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, uint8_t* buffer_row, uint32_t width,
@@ -24,16 +26,20 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
     const FormatInfo& f = *img.format;
     const uint32_t bytes = buffer_texel_bytes(f, aspect);
     if (bytes == f.texel_bytes) {
-        if (to_image) std::memcpy(image_row, buffer_row, size_t(width) * bytes);
-        else std::memcpy(buffer_row, image_row, size_t(width) * bytes);
+        if (to_image)
+            std::memcpy(image_row, buffer_row, size_t(width) * bytes);
+        else
+            std::memcpy(buffer_row, image_row, size_t(width) * bytes);
         return;
     }
     // One aspect of an interleaved depth/stencil texel.
     const uint32_t off = aspect_offset(f, aspect);
     for (uint32_t x = 0; x < width; ++x) {
         uint8_t* t = image_row + size_t(x) * f.texel_bytes + off;
-        if (to_image) std::memcpy(t, buffer_row + size_t(x) * bytes, bytes);
-        else std::memcpy(buffer_row + size_t(x) * bytes, t, bytes);
+        if (to_image)
+            std::memcpy(t, buffer_row + size_t(x) * bytes, bytes);
+        else
+            std::memcpy(buffer_row + size_t(x) * bytes, t, bytes);
     }
 }
 
@@ -47,8 +53,8 @@ void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r
         for (uint32_t y = 0; y < r.imageExtent.height; ++y) {
             // texel (x, y, layer l) of the region is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
             uint8_t* brow = buf.data() + r.bufferOffset + ((l * img_height + y) * row_len) * bytes;
-            uint8_t* irow = img.texel(s.mipLevel, s.baseArrayLayer + l, uint32_t(r.imageOffset.x),
-                                      uint32_t(r.imageOffset.y) + y);
+            uint8_t* irow =
+                img.texel(s.mipLevel, s.baseArrayLayer + l, uint32_t(r.imageOffset.x), uint32_t(r.imageOffset.y) + y);
             copy_row(img, s.aspectMask, irow, brow, r.imageExtent.width, to_image);
         }
     }
@@ -75,7 +81,8 @@ void exec_copy_image(const CmdCopyImage& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageCopy& r = c.regions[i];
         const VkImageAspectFlags aspect = r.srcSubresource.aspectMask;
-        const uint32_t layers = resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        const uint32_t layers =
+            resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
         const FormatInfo& f = *c.src->format;
         const bool whole_texel = buffer_texel_bytes(f, aspect) == f.texel_bytes;
         const uint32_t off = aspect_offset(f, aspect), bytes = buffer_texel_bytes(f, aspect);
@@ -127,11 +134,12 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
     }
 }
 
-void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
-                      const VkRect2D& rect, const VkClearColorValue& color) {
+void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
+                      const VkClearColorValue& color) {
     uint8_t texel[16] = {};
     pack_clear_color(*img.format, color, texel);
-    for (uint32_t l = 0; l < layer_count; ++l) fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->texel_bytes);
+    for (uint32_t l = 0; l < layer_count; ++l)
+        fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->texel_bytes);
 }
 
 void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
@@ -173,7 +181,9 @@ void exec_clear_depth_stencil_image(const CmdClearDepthStencilImage& c) {
     }
 }
 
-bool can_resolve(const FormatInfo& f) { return f.pack == PackKind::kUnorm8 || f.pack == PackKind::kFloat32; }
+bool can_resolve(const FormatInfo& f) {
+    return f.pack == PackKind::kUnorm8 || f.pack == PackKind::kFloat32;
+}
 
 // lavapipe resolves with util_blitter's MSAA-resolve shader (NEAREST, notes §3):
 //   sum = 0; for s in 0..3: sum = fl(sum + texel_s)   with texel_s = fl(float(u8) * fl(1/255)) for UNORM8
@@ -202,8 +212,10 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
                     sum = sum + v;
                 }
                 float avg = sum * inv_samples;
-                if (f.pack == PackKind::kUnorm8) out[ch] = unorm8_from_float(avg);
-                else std::memcpy(out + 4 * ch, &avg, 4);
+                if (f.pack == PackKind::kUnorm8)
+                    out[ch] = unorm8_from_float(avg);
+                else
+                    std::memcpy(out + 4 * ch, &avg, 4);
             }
         }
     }
@@ -217,7 +229,8 @@ void exec_resolve_image(const CmdResolveImage& c) {
                       int(c.src->format->format));
             continue;
         }
-        const uint32_t layers = resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        const uint32_t layers =
+            resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
         for (uint32_t l = 0; l < layers; ++l) {
             resolve_rect(*c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + l,
                          {r.srcOffset.x, r.srcOffset.y}, *c.dst, r.dstSubresource.mipLevel,

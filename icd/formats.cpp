@@ -68,6 +68,19 @@ const FormatInfo* find_format(VkFormat format) {
     return nullptr;
 }
 
+bool format_supports_msaa(const FormatInfo& f) {
+    switch (f.pack) {
+        case PackKind::kUnorm8:
+        case PackKind::kFloat32:
+        case PackKind::kD16:
+        case PackKind::kD32F:
+        case PackKind::kD32FS8:
+            return true;
+        default:
+            return false;
+    }
+}
+
 uint32_t buffer_texel_bytes(const FormatInfo& f, VkImageAspectFlags aspect) {
     if (f.pack == PackKind::kD32FS8) return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : 4;
     return f.texel_bytes;

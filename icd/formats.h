@@ -11,7 +11,7 @@ enum class PackKind : uint8_t {
     kNone,     // not an image format
     kUnorm8,   // float_to_ubyte per channel
     kSrgb8,    // linear float -> sRGB 8-bit for RGB, float_to_ubyte for alpha
-    kFloat16,  // IEEE half, round to nearest even
+    kFloat16,  // IEEE half, rounded toward zero
     kFloat32,  // stored as is
     kD16,      // depth: lrint(z * 65535.0) in double
     kD32F,     // depth: (float)z
@@ -32,6 +32,10 @@ struct FormatInfo {
 
 // The table entry for `format`, or nullptr if tilevk does not know the format at all.
 const FormatInfo* find_format(VkFormat format);
+
+// True if images of the format may have 4 samples: every 4x colour format must be resolvable (execute_transfer.cpp
+// implements lavapipe's resolve for UNORM8 and FLOAT32 only); depth formats are never resolved in Vulkan 1.0.
+bool format_supports_msaa(const FormatInfo& f);
 
 // Bytes of one aspect of a texel as laid out in a buffer for vkCmdCopyBufferToImage/ImageToBuffer.
 uint32_t buffer_texel_bytes(const FormatInfo& f, VkImageAspectFlags aspect);

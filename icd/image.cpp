@@ -43,6 +43,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     if (ci->samples != VK_SAMPLE_COUNT_1_BIT && ci->samples != VK_SAMPLE_COUNT_4_BIT) {
         return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: %u samples (only 1 and 4)", unsigned(ci->samples));
     }
+    if (ci->samples != VK_SAMPLE_COUNT_1_BIT && (!format_supports_msaa(*f) || ci->tiling != VK_IMAGE_TILING_OPTIMAL)) {
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: format %d cannot be multisampled in tilevk",
+                    int(ci->format));
+    }
     if (ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.width > kMaxImageDimension ||
         ci->extent.height > kMaxImageDimension || ci->mipLevels == 0 || ci->mipLevels > kMaxMipLevels ||
         ci->arrayLayers == 0 || ci->arrayLayers > kMaxArrayLayers) {

@@ -6,8 +6,9 @@
 
 namespace tilevk::icd {
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceExtensionProperties(const char* pLayerName, uint32_t* pPropertyCount,
-                                                                         VkExtensionProperties*) {
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceExtensionProperties(const char* pLayerName,
+                                                                        uint32_t* pPropertyCount,
+                                                                        VkExtensionProperties*) {
     if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
     *pPropertyCount = 0;  // tilevk implements no instance extension
     return VK_SUCCESS;

@@ -20,8 +20,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
         return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: %llu bytes exceed the heap",
                     (unsigned long long)size);
     }
-    DeviceMemory* mem = create_object<DeviceMemory>(pick_allocator(pAllocator, &dev->allocator),
-                                                    VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    DeviceMemory* mem =
+        create_object<DeviceMemory>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (mem == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateMemory: out of host memory");
     // Device memory is not host memory in Vulkan's sense: it does not go through the allocation callbacks.
     void* p = nullptr;

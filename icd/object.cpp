@@ -25,7 +25,9 @@ void* VKAPI_CALL default_realloc(void* user, void* old, size_t size, size_t alig
     return nullptr;
 }
 
-void VKAPI_CALL default_free(void*, void* p) { free(p); }
+void VKAPI_CALL default_free(void*, void* p) {
+    free(p);
+}
 
 void vlog(const char* fmt, va_list ap) {
     char buf[512];
@@ -36,8 +38,8 @@ void vlog(const char* fmt, va_list ap) {
 }  // namespace
 
 const VkAllocationCallbacks& default_allocator() {
-    static const VkAllocationCallbacks kDefault = {nullptr, default_alloc, default_realloc, default_free, nullptr,
-                                                   nullptr};
+    static const VkAllocationCallbacks kDefault = {nullptr,      default_alloc, default_realloc,
+                                                   default_free, nullptr,       nullptr};
     return kDefault;
 }
 

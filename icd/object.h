@@ -7,6 +7,7 @@
 #include <cassert>
 #include <cstddef>
 #include <new>
+#include <type_traits>
 #include <utility>
 
 namespace tilevk::icd {
@@ -23,9 +24,7 @@ struct DispatchableObject {
     VkObjectType object_type;
     VkAllocationCallbacks allocator;  // the callbacks this object was allocated with (defaults when none given)
 
-    explicit DispatchableObject(VkObjectType t) : object_type(t) {
-        loader_data.loaderMagic = ICD_LOADER_MAGIC;
-    }
+    explicit DispatchableObject(VkObjectType t) : object_type(t) { loader_data.loaderMagic = ICD_LOADER_MAGIC; }
 };
 
 struct NonDispatchableObject {
@@ -73,9 +72,13 @@ typename T::Handle to_handle(T* obj) {
     return reinterpret_cast<typename T::Handle>(obj);
 }
 
-// Checks at compile time that the loader's data sits at offset 0 of a dispatchable object.
-#define TILEVK_ASSERT_DISPATCHABLE(T)                                                                  \
-    static_assert(offsetof(T, loader_data) == 0, #T ": VK_LOADER_DATA must be the first field");      \
-    static_assert(sizeof(((T*)nullptr)->loader_data) == sizeof(void*), #T ": loader data is one pointer")
+// Checks at compile time that the loader's data sits at offset 0 of a dispatchable object: it is the first field
+// of DispatchableObject (standard layout), which is the first and only base of T (no virtual functions, so no
+// vtable pointer ahead of it; the Itanium C++ ABI puts a non-virtual first base at offset 0).
+static_assert(std::is_standard_layout_v<VK_LOADER_DATA> && sizeof(VK_LOADER_DATA) == sizeof(void*));
+static_assert(offsetof(DispatchableObject, loader_data) == 0);
+#define TILEVK_ASSERT_DISPATCHABLE(T)                                                    \
+    static_assert(std::is_base_of_v<DispatchableObject, T> && !std::is_polymorphic_v<T>, \
+                  #T ": must derive from DispatchableObject and have no virtual functions")
 
 }  // namespace tilevk::icd

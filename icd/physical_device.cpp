@@ -189,9 +189,11 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFormatProperties(VkPhysicalDevic
     pFormatProperties->bufferFeatures = f->buffer_features;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(
-    VkPhysicalDevice, VkFormat format, VkImageType type, VkImageTiling tiling, VkImageUsageFlags usage,
-    VkImageCreateFlags flags, VkImageFormatProperties* pProps) {
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhysicalDevice, VkFormat format,
+                                                                          VkImageType type, VkImageTiling tiling,
+                                                                          VkImageUsageFlags usage,
+                                                                          VkImageCreateFlags flags,
+                                                                          VkImageFormatProperties* pProps) {
     *pProps = {};
     const FormatInfo* f = find_format(format);
     if (f == nullptr || f->aspects == 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;
@@ -213,9 +215,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
-    const bool attachment = (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT |
-                                     VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment ? kSampleCounts : VK_SAMPLE_COUNT_1_BIT;
+    const bool attachment =
+        (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f)
+                               ? kSampleCounts
+                               : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;
     return VK_SUCCESS;
 }
@@ -228,15 +232,15 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceSparseImageFormatProperties(VkPh
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceExtensionProperties(VkPhysicalDevice, const char* pLayerName,
-                                                                       uint32_t* pPropertyCount,
-                                                                       VkExtensionProperties*) {
+                                                                      uint32_t* pPropertyCount,
+                                                                      VkExtensionProperties*) {
     if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
     *pPropertyCount = 0;  // no device extension is implemented
     return VK_SUCCESS;
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceLayerProperties(VkPhysicalDevice, uint32_t* pPropertyCount,
-                                                                   VkLayerProperties*) {
+                                                                  VkLayerProperties*) {
     *pPropertyCount = 0;
     return VK_SUCCESS;
 }

@@ -14,7 +14,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
     for (uint32_t i = 0; i < submitCount; ++i) {
         const VkSubmitInfo& s = pSubmits[i];
         // Waits on semaphores are satisfied: everything submitted earlier has already finished.
-        for (uint32_t j = 0; j < s.waitSemaphoreCount; ++j) from_handle<Semaphore>(s.pWaitSemaphores[j])->signaled = false;
+        for (uint32_t j = 0; j < s.waitSemaphoreCount; ++j)
+            from_handle<Semaphore>(s.pWaitSemaphores[j])->signaled = false;
         for (uint32_t j = 0; j < s.commandBufferCount; ++j) {
             ExecState st;
             execute_command_buffer(from_handle<CommandBuffer>(s.pCommandBuffers[j]), st);
