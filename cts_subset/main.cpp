@@ -22,16 +22,17 @@ namespace {
 struct Options {
     bool list = false;
     std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
-    bool device_is_prefix = true;
+    bool device_is_prefix = true, png_all = false;
     int timing = 0;
 };
 
 void usage() {
     std::puts(
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
-        "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE]\n"
+        "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
+        "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
         "  VK_ICD_FILENAMES defaults to this build's tilevk_icd.json and lavapipe's manifest.");
 }
 
@@ -52,6 +53,7 @@ bool parse(int argc, char** argv, Options& o) {
         else if (a == "--junit") { if (!value(o.junit)) return false; }
         else if (a == "--json") { if (!value(o.json)) return false; }
         else if (a == "--png-dir") { if (!value(o.png_dir)) return false; }
+        else if (a == "--png-all") o.png_all = true;
         else if (a == "--start-after") { if (!value(o.start_after)) return false; }
         else if (a == "--timing") {
             if (!value(n)) return false;
@@ -173,10 +175,8 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     if (const CoverageOracle& oracle = coverage_oracle(); oracle && why.empty()) {
         if (auto e = oracle(scene, a.planes); !e.empty()) why = "coverage oracle: " + e;
     }
-    if (!why.empty()) {
-        if (!o.png_dir.empty()) save_pngs(o.png_dir, c.name, a.planes, b.planes);
-        return fail(why);
-    }
+    if (!o.png_dir.empty() && (!why.empty() || o.png_all)) save_pngs(o.png_dir, c.name, a.planes, b.planes);
+    if (!why.empty()) return fail(why);
     return r;
 }
 
