@@ -44,7 +44,9 @@ inline Vertex vtx(float x, float y, float z = 0.0f, float w = 1.0f, std::array<f
     for (int i = 0; i < 4; ++i) v.color[i] = c[i];
     return v;
 }
-inline Vertex vtxc(float x, float y, std::array<float, 4> c) { return vtx(x, y, 0.0f, 1.0f, c); }
+inline Vertex vtxc(float x, float y, std::array<float, 4> c) {
+    return vtx(x, y, 0.0f, 1.0f, c);
+}
 
 inline Scene one_draw(Draw d, uint32_t w = 64, uint32_t h = 64) {
     Scene s;
@@ -56,12 +58,20 @@ inline Scene one_draw(Draw d, uint32_t w = 64, uint32_t h = 64) {
 
 // ONE,ONE additive blending, used by the coverage-counting checks.
 inline VkPipelineColorBlendAttachmentState additive() {
-    return {VK_TRUE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD,
-            VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE, VK_BLEND_OP_ADD, 0xF};
+    return {VK_TRUE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_OP_ADD,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_OP_ADD,
+            0xF};
 }
 
 // An RGBA8 word as read back (R in the low byte).
-constexpr uint32_t rgba8(uint32_t r, uint32_t g, uint32_t b, uint32_t a) { return r | g << 8 | b << 16 | a << 24; }
+constexpr uint32_t rgba8(uint32_t r, uint32_t g, uint32_t b, uint32_t a) {
+    return r | g << 8 | b << 16 | a << 24;
+}
 
 // A deterministic pseudo-random generator for random-primitive cases (identical on every platform).
 struct Lcg {

@@ -17,8 +17,7 @@ void add_api_cases(CaseList& out) {
     };
     uint32_t clear = rgba8(32, 64, 191, 255), magenta = rgba8(255, 0, 255, 255);
     out.push_back({"api.smoke.triangle", [=] { return smoke(VK_FORMAT_R8G8B8A8_UNORM); },
-                   all_of({palette_only({clear, magenta}), pixel_is(128, 128, magenta), pixel_is(4, 4, clear)}),
-                   ""});
+                   all_of({palette_only({clear, magenta}), pixel_is(128, 128, magenta), pixel_is(4, 4, clear)}), ""});
     // B8G8R8A8 with no depth attachment: lavapipe's linear rasterizer (notes §0.3/§8) may take this frame.
     out.push_back({"api.smoke.triangle_bgra_linear", [=] { return smoke(VK_FORMAT_B8G8R8A8_UNORM); },
                    all_of({palette_only({rgba8(191, 64, 32, 255), magenta}), pixel_is(128, 128, magenta)}),
@@ -36,7 +35,7 @@ void add_api_cases(CaseList& out) {
         std::array<float, 4> half = {0.5f, 0.5f, 0.5f, 1.0f};
         Draw d;
         d.vertices = {vtxc(-0.5f, -0.5f, half), vtxc(0.5f, -0.5f, half), vtxc(0.5f, 0.5f, half),
-                      vtxc(-0.5f, -0.5f, half), vtxc(0.5f, 0.5f, half), vtxc(-0.5f, 0.5f, half)};
+                      vtxc(-0.5f, -0.5f, half), vtxc(0.5f, 0.5f, half),  vtxc(-0.5f, 0.5f, half)};
         Scene s = one_draw(d, 128, 128);
         s.target.color = format;
         return s;
@@ -44,8 +43,8 @@ void add_api_cases(CaseList& out) {
     out.push_back({"api.smoke.rect_rgba", [=] { return rect(VK_FORMAT_R8G8B8A8_UNORM); },
                    all_of({palette_only({0, rgba8(128, 128, 128, 255)}), pixel_is(64, 64, rgba8(128, 128, 128, 255))}),
                    ""});
-    out.push_back({"api.smoke.rect_bgra_linear", [=] { return rect(VK_FORMAT_B8G8R8A8_UNORM); }, nullptr,
-                   "bgra-linear-path"});
+    out.push_back(
+        {"api.smoke.rect_bgra_linear", [=] { return rect(VK_FORMAT_B8G8R8A8_UNORM); }, nullptr, "bgra-linear-path"});
     out.push_back({"api.smoke.two_draws",
                    [] {
                        Draw a, b;

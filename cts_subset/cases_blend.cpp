@@ -13,9 +13,10 @@ Scene blend_scene(VkPipelineColorBlendAttachmentState b) {
     top.blend = b;
     float constants[4] = {0.25f, 0.5f, 0.75f, 0.6f};
     std::copy(constants, constants + 4, top.blend_constants);
-    top.vertices = {vtx(-0.9f, -0.9f, 0, 1, {1.0f, 0.2f, 0.0f, 0.9f}), vtx(0.9f, -0.6f, 0, 1, {0.0f, 1.0f, 0.4f, 0.1f}),
-                    vtx(-0.5f, 0.9f, 0, 1, {0.3f, 0.0f, 1.0f, 0.5f}), vtx(0.9f, 0.9f, 0, 1, {0.7f, 0.7f, 0.2f, 0.3f}),
-                    vtx(0.2f, -0.9f, 0, 1, {1.0f, 1.0f, 1.0f, 0.0f}), vtx(-0.9f, 0.4f, 0, 1, {0.5f, 0.1f, 0.9f, 1.0f})};
+    top.vertices = {
+        vtx(-0.9f, -0.9f, 0, 1, {1.0f, 0.2f, 0.0f, 0.9f}), vtx(0.9f, -0.6f, 0, 1, {0.0f, 1.0f, 0.4f, 0.1f}),
+        vtx(-0.5f, 0.9f, 0, 1, {0.3f, 0.0f, 1.0f, 0.5f}),  vtx(0.9f, 0.9f, 0, 1, {0.7f, 0.7f, 0.2f, 0.3f}),
+        vtx(0.2f, -0.9f, 0, 1, {1.0f, 1.0f, 1.0f, 0.0f}),  vtx(-0.9f, 0.4f, 0, 1, {0.5f, 0.1f, 0.9f, 1.0f})};
     Scene s = one_draw(bg);
     s.draws.push_back(top);
     return s;

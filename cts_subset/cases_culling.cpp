@@ -55,7 +55,8 @@ void add_culling_cases(CaseList& out) {
                     d.front_face = f.face;
                     d.frag = Frag::kFacing;
                     d.blend = additive();
-                    for (uint32_t i = 0; i < t.count; ++i) d.vertices.push_back(vtx(rng.range(-1, 1), rng.range(-1, 1)));
+                    for (uint32_t i = 0; i < t.count; ++i)
+                        d.vertices.push_back(vtx(rng.range(-1, 1), rng.range(-1, 1)));
                     return one_draw(d);
                 };
                 std::vector<Check> checks;

@@ -16,8 +16,8 @@ Scene compare_scene(VkFormat format, VkCompareOp op) {
     slope.depth_test = slope.depth_write = true;
     slope.depth_op = op;
     slope.vertices = {vtx(-0.9f, -0.9f, 0.0f, 1, {1, 0, 0, 1}), vtx(0.9f, -0.8f, 1.0f, 1, {0, 1, 0, 1}),
-                      vtx(0.0f, 0.95f, 0.5f, 1, {0, 0, 1, 1}), vtx(-0.8f, 0.5f, 0.5f, 1, {1, 1, 0, 1}),
-                      vtx(0.7f, 0.6f, 0.5f, 1, {0, 1, 1, 1}), vtx(0.1f, -0.95f, 0.5f, 1, {1, 0, 1, 1})};
+                      vtx(0.0f, 0.95f, 0.5f, 1, {0, 0, 1, 1}),  vtx(-0.8f, 0.5f, 0.5f, 1, {1, 1, 0, 1}),
+                      vtx(0.7f, 0.6f, 0.5f, 1, {0, 1, 1, 1}),   vtx(0.1f, -0.95f, 0.5f, 1, {1, 0, 1, 1})};
     Scene s = one_draw(plane);
     s.draws.push_back(slope);
     s.target.depth = format;
@@ -49,10 +49,14 @@ void add_depth_cases(CaseList& out) {
         const char* name;
         VkCompareOp op;
     };
-    const Op ops[] = {{"never", VK_COMPARE_OP_NEVER},   {"less", VK_COMPARE_OP_LESS},
-                      {"equal", VK_COMPARE_OP_EQUAL},   {"less_or_equal", VK_COMPARE_OP_LESS_OR_EQUAL},
-                      {"greater", VK_COMPARE_OP_GREATER}, {"not_equal", VK_COMPARE_OP_NOT_EQUAL},
-                      {"greater_or_equal", VK_COMPARE_OP_GREATER_OR_EQUAL}, {"always", VK_COMPARE_OP_ALWAYS}};
+    const Op ops[] = {{"never", VK_COMPARE_OP_NEVER},
+                      {"less", VK_COMPARE_OP_LESS},
+                      {"equal", VK_COMPARE_OP_EQUAL},
+                      {"less_or_equal", VK_COMPARE_OP_LESS_OR_EQUAL},
+                      {"greater", VK_COMPARE_OP_GREATER},
+                      {"not_equal", VK_COMPARE_OP_NOT_EQUAL},
+                      {"greater_or_equal", VK_COMPARE_OP_GREATER_OR_EQUAL},
+                      {"always", VK_COMPARE_OP_ALWAYS}};
     struct Fmt {
         const char* name;
         VkFormat format;
@@ -62,16 +66,19 @@ void add_depth_cases(CaseList& out) {
         for (const Op& o : ops)
             out.push_back({std::string("depth.compare.") + f.name + "_" + o.name,
                            [=] { return compare_scene(f.format, o.op); }, nullptr, ""});
-    out.push_back({"depth.compare.d24s8_less", [] { return compare_scene(VK_FORMAT_D24_UNORM_S8_UINT, VK_COMPARE_OP_LESS); },
-                   nullptr, ""});
+    out.push_back({"depth.compare.d24s8_less",
+                   [] { return compare_scene(VK_FORMAT_D24_UNORM_S8_UINT, VK_COMPARE_OP_LESS); }, nullptr, ""});
     out.push_back({"depth.compare.d32s8_less",
                    [] { return compare_scene(VK_FORMAT_D32_SFLOAT_S8_UINT, VK_COMPARE_OP_LESS); }, nullptr, ""});
     struct Bias {
         const char* name;
         float constant, slope, clamp;
     };
-    const Bias biases[] = {{"constant_pos", 4, 0, 0},  {"constant_neg", -4, 0, 0}, {"slope", 0, 2, 0},
-                           {"slope_neg", 0, -2, 0}, {"clamp", -100, -4, -0.001f}};
+    const Bias biases[] = {{"constant_pos", 4, 0, 0},
+                           {"constant_neg", -4, 0, 0},
+                           {"slope", 0, 2, 0},
+                           {"slope_neg", 0, -2, 0},
+                           {"clamp", -100, -4, -0.001f}};
     for (const Fmt& f : fmts)
         for (const Bias& b : biases)
             out.push_back({std::string("depth.bias.") + f.name + "_" + b.name,
@@ -83,14 +90,15 @@ void add_depth_cases(CaseList& out) {
                 Draw d;
                 d.depth_test = d.depth_write = true;
                 d.depth_clamp = clamp;
-                d.vertices = {vtx(-0.9f, -0.9f, -0.5f, 1, {1, 0, 0, 1}), vtx(0.9f, -0.9f, 1.5f, 1, {0, 1, 0, 1}),
-                              vtx(0.0f, 0.9f, 0.5f, 1, {0, 0, 1, 1}), vtx(-0.9f, 0.9f, 1.2f, 2, {1, 1, 0, 1}),
+                d.vertices = {vtx(-0.9f, -0.9f, -0.5f, 1, {1, 0, 0, 1}),  vtx(0.9f, -0.9f, 1.5f, 1, {0, 1, 0, 1}),
+                              vtx(0.0f, 0.9f, 0.5f, 1, {0, 0, 1, 1}),     vtx(-0.9f, 0.9f, 1.2f, 2, {1, 1, 0, 1}),
                               vtx(0.9f, 0.9f, -0.2f, 0.5f, {0, 1, 1, 1}), vtx(0.5f, -0.5f, 0.3f, 1, {1, 0, 1, 1})};
                 Scene s = one_draw(d);
                 s.target.depth = f.format;
                 return s;
             };
-            out.push_back({std::string("depth.") + (clamp ? "clamp_" : "near_far_clipping_") + f.name, scene, nullptr, ""});
+            out.push_back(
+                {std::string("depth.") + (clamp ? "clamp_" : "near_far_clipping_") + f.name, scene, nullptr, ""});
         }
     // A depth range narrower than [0,1].
     out.push_back({"depth.viewport_depth_range_d32",

@@ -73,14 +73,14 @@ void add_fill_rule_cases(CaseList& out) {
     const std::string g = "rasterization.fill_rules.";
     const int S = int(kSize);
     // Quads whose corners are off pixel centres, on screen: each pixel at most once.
-    out.push_back({g + "basic_quad", [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false)); },
-                   exactly_once(0), ""});
+    out.push_back(
+        {g + "basic_quad", [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false)); }, exactly_once(0), ""});
     out.push_back({g + "basic_quad_reverse", [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, true)); },
                    exactly_once(0), ""});
     out.push_back({g + "clipped_full", [] { return one_draw(quad(-1.5f, -1.5f, 1.5f, 1.5f, false)); },
                    exactly_once(0, 0, 0, S, S), ""});
-    out.push_back({g + "clipped_partly", [] { return one_draw(quad(-0.3f, -1.6f, 1.7f, 0.45f, false)); },
-                   exactly_once(0), ""});
+    out.push_back(
+        {g + "clipped_partly", [] { return one_draw(quad(-0.3f, -1.6f, 1.7f, 0.45f, false)); }, exactly_once(0), ""});
     out.push_back({g + "projected", [] { return one_draw(quad(-0.8f, -0.7f, 0.6f, 0.9f, false, 1.0f, 3.0f)); },
                    exactly_once(0), ""});
     // Shared edges with every interior vertex shifted by k/256 pixel (the 8-bit sub-pixel grid).
@@ -91,14 +91,14 @@ void add_fill_rule_cases(CaseList& out) {
     }
     for (uint32_t seed = 1; seed <= 4; ++seed)
         out.push_back({g + "shared_edges_jitter_" + std::to_string(seed),
-                       [=] { return one_draw(grid(9, 0.0f, 2.5f, seed, seed % 2 == 0)); },
-                       exactly_once(0, 0, 0, S, S), ""});
+                       [=] { return one_draw(grid(9, 0.0f, 2.5f, seed, seed % 2 == 0)); }, exactly_once(0, 0, 0, S, S),
+                       ""});
     // Fans whose centre sits on a pixel centre, a pixel corner, and between.
     const float centres[][2] = {{32.5f, 32.5f}, {32.0f, 32.0f}, {20.25f, 40.75f}, {10.5f, 50.0f}};
     for (int i = 0; i < 4; ++i)
         out.push_back({g + "fan_centre_" + std::to_string(i),
-                       [=] { return one_draw(fan(centres[i][0], centres[i][1], 11 + i)); },
-                       exactly_once(0, 0, 0, S, S), ""});
+                       [=] { return one_draw(fan(centres[i][0], centres[i][1], 11 + i)); }, exactly_once(0, 0, 0, S, S),
+                       ""});
 }
 
 }  // namespace tilevk::cts

@@ -9,7 +9,8 @@ void add_interpolation_cases(CaseList& out) {
         const char* name;
         Interp interp;
     };
-    const Mode modes[] = {{"smooth", Interp::kSmooth}, {"flat", Interp::kFlat}, {"noperspective", Interp::kNoPerspective}};
+    const Mode modes[] = {
+        {"smooth", Interp::kSmooth}, {"flat", Interp::kFlat}, {"noperspective", Interp::kNoPerspective}};
     struct Topo {
         const char* name;
         VkPrimitiveTopology topo;

@@ -26,7 +26,8 @@ void add_multisample_cases(CaseList& out) {
     const std::string g = "multisample.";
     out.push_back({g + "coverage_4x_triangles", [] { return ms_scene(random_triangles(11)); }, nullptr, ""});
     out.push_back({g + "coverage_4x_triangle_strip",
-                   [] { return ms_scene(random_triangles(12, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, 10)); }, nullptr, ""});
+                   [] { return ms_scene(random_triangles(12, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, 10)); }, nullptr,
+                   ""});
     out.push_back({g + "coverage_4x_lines",
                    [] { return ms_scene(random_triangles(13, VK_PRIMITIVE_TOPOLOGY_LINE_LIST)); }, nullptr, ""});
     out.push_back({g + "coverage_4x_points",
@@ -64,7 +65,7 @@ void add_multisample_cases(CaseList& out) {
                    [] {
                        Draw d;
                        d.alpha_to_coverage = true;
-                       d.vertices = {vtx(-1, -1, 0, 1, {1, 0, 0, 0}), vtx(1, -1, 0, 1, {0, 1, 0, 1}),
+                       d.vertices = {vtx(-1, -1, 0, 1, {1, 0, 0, 0}),   vtx(1, -1, 0, 1, {0, 1, 0, 1}),
                                      vtx(-1, 1, 0, 1, {0, 0, 1, 0.5f}), vtx(1, -1, 0, 1, {0, 1, 0, 1}),
                                      vtx(1, 1, 0, 1, {1, 1, 1, 0.25f}), vtx(-1, 1, 0, 1, {0, 0, 1, 0.5f})};
                        return ms_scene(d);
@@ -82,8 +83,14 @@ void add_multisample_cases(CaseList& out) {
     out.push_back({g + "resolve_blend",
                    [] {
                        Draw a = random_triangles(21), b = random_triangles(22);
-                       b.blend = {VK_TRUE, VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-                                  VK_BLEND_OP_ADD, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD, 0xF};
+                       b.blend = {VK_TRUE,
+                                  VK_BLEND_FACTOR_SRC_ALPHA,
+                                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+                                  VK_BLEND_OP_ADD,
+                                  VK_BLEND_FACTOR_ONE,
+                                  VK_BLEND_FACTOR_ZERO,
+                                  VK_BLEND_OP_ADD,
+                                  0xF};
                        Scene s = ms_scene(a);
                        s.draws.push_back(b);
                        return s;

@@ -31,7 +31,7 @@ Scene stencil_scene(VkFormat format, VkStencilOpState front, VkStencilOpState ba
     // One front-facing and one back-facing triangle (CCW is front by default).
     std::array<float, 4> c = {0, 1, 0, 1};
     test.vertices = {vtx(-0.8f, -0.8f, 0.5f, 1, c), vtx(0.9f, -0.8f, 0.5f, 1, c), vtx(-0.8f, 0.9f, 0.5f, 1, c),
-                     vtx(0.9f, -0.7f, 0.5f, 1, c), vtx(0.9f, 0.9f, 0.5f, 1, c), vtx(-0.7f, 0.9f, 0.5f, 1, c)};
+                     vtx(0.9f, -0.7f, 0.5f, 1, c),  vtx(0.9f, 0.9f, 0.5f, 1, c),  vtx(-0.7f, 0.9f, 0.5f, 1, c)};
     Scene s = one_draw(seed);
     s.draws.push_back(test);
     s.target.depth = format;
@@ -73,21 +73,25 @@ void add_stencil_cases(CaseList& out) {
         const char* name;
         VkCompareOp op;
     };
-    const Cmp cmps[] = {{"never", VK_COMPARE_OP_NEVER},   {"less", VK_COMPARE_OP_LESS},
-                        {"equal", VK_COMPARE_OP_EQUAL},   {"less_or_equal", VK_COMPARE_OP_LESS_OR_EQUAL},
-                        {"greater", VK_COMPARE_OP_GREATER}, {"not_equal", VK_COMPARE_OP_NOT_EQUAL},
-                        {"greater_or_equal", VK_COMPARE_OP_GREATER_OR_EQUAL}, {"always", VK_COMPARE_OP_ALWAYS}};
+    const Cmp cmps[] = {{"never", VK_COMPARE_OP_NEVER},
+                        {"less", VK_COMPARE_OP_LESS},
+                        {"equal", VK_COMPARE_OP_EQUAL},
+                        {"less_or_equal", VK_COMPARE_OP_LESS_OR_EQUAL},
+                        {"greater", VK_COMPARE_OP_GREATER},
+                        {"not_equal", VK_COMPARE_OP_NOT_EQUAL},
+                        {"greater_or_equal", VK_COMPARE_OP_GREATER_OR_EQUAL},
+                        {"always", VK_COMPARE_OP_ALWAYS}};
     for (const Cmp& c : cmps) {
         // Reference 0x80 lies between the cleared 5 and the seeded 0xFE, so each op splits the quad differently.
         auto st = state(c.op, VK_STENCIL_OP_INCREMENT_AND_WRAP, VK_STENCIL_OP_INVERT, K, 0x80);
-        out.push_back({std::string("stencil.compare.") + c.name, [=] { return stencil_scene(fmt, st, st, false); },
-                       nullptr, ""});
+        out.push_back(
+            {std::string("stencil.compare.") + c.name, [=] { return stencil_scene(fmt, st, st, false); }, nullptr, ""});
     }
     auto masked = [&](const char* name, uint32_t cmask, uint32_t wmask) {
-        auto st = state(VK_COMPARE_OP_EQUAL, VK_STENCIL_OP_INVERT, VK_STENCIL_OP_INCREMENT_AND_WRAP, K, 0x04, cmask,
-                        wmask);
-        out.push_back({std::string("stencil.mask.") + name, [=] { return stencil_scene(fmt, st, st, false); }, nullptr,
-                       ""});
+        auto st =
+            state(VK_COMPARE_OP_EQUAL, VK_STENCIL_OP_INVERT, VK_STENCIL_OP_INCREMENT_AND_WRAP, K, 0x04, cmask, wmask);
+        out.push_back(
+            {std::string("stencil.mask.") + name, [=] { return stencil_scene(fmt, st, st, false); }, nullptr, ""});
     };
     masked("compare_mask_0x0c", 0x0C, 0xFF);
     masked("write_mask_0x0f", 0xFF, 0x0F);

@@ -29,8 +29,9 @@ void add_texture_cases(CaseList& out) {
             TextureSpec t;
             t.pattern = p;
             t.mag = t.min = f;
-            out.push_back({std::string("texture.filter.mag_") + fname + (p == TexPattern::kChecker ? "_checker" : "_gradient"),
-                           [=] { return textured(t, 0.0f, 1.0f); }, nullptr, ""});
+            out.push_back(
+                {std::string("texture.filter.mag_") + fname + (p == TexPattern::kChecker ? "_checker" : "_gradient"),
+                 [=] { return textured(t, 0.0f, 1.0f); }, nullptr, ""});
         }
         for (VkSamplerMipmapMode m : {VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_MIPMAP_MODE_LINEAR}) {
             TextureSpec t;

@@ -9,15 +9,16 @@ Draw colourful(uint32_t seed, int n = 12) {
     Lcg rng{seed};
     Draw d;
     for (int i = 0; i < n; ++i)
-        d.vertices.push_back(vtx(rng.range(-1.2f, 1.2f), rng.range(-1.2f, 1.2f), 0, 1, {rng.next(), rng.next(), rng.next(), 1}));
+        d.vertices.push_back(
+            vtx(rng.range(-1.2f, 1.2f), rng.range(-1.2f, 1.2f), 0, 1, {rng.next(), rng.next(), rng.next(), 1}));
     return d;
 }
 
 }  // namespace
 
 void add_viewport_cases(CaseList& out) {
-    const VkRect2D scissors[] = {{{10, 10}, {30, 20}}, {{0, 0}, {1, 1}}, {{40, 33}, {100, 100}}, {{63, 0}, {1, 64}},
-                                 {{0, 0}, {0, 0}}};
+    const VkRect2D scissors[] = {
+        {{10, 10}, {30, 20}}, {{0, 0}, {1, 1}}, {{40, 33}, {100, 100}}, {{63, 0}, {1, 64}}, {{0, 0}, {0, 0}}};
     const char* scissor_names[] = {"partial", "one_pixel", "past_bottom_right", "last_column", "empty"};
     for (int i = 0; i < 5; ++i) {
         VkRect2D sc = scissors[i];
@@ -29,10 +30,11 @@ void add_viewport_cases(CaseList& out) {
                        },
                        nullptr, ""});
     }
-    const VkViewport viewports[] = {{16, 8, 32, 32, 0, 1}, {-16, -24, 64, 64, 0, 1}, {40, 40, 64, 64, 0, 1},
-                                    {0.5f, 0.25f, 50.5f, 40.75f, 0, 1}, {10, 10, 1, 1, 0, 1}, {-200, -200, 500, 500, 0, 1}};
-    const char* vp_names[] = {"offset", "partly_off_screen_top_left", "partly_off_screen_bottom_right",
-                              "fractional", "one_pixel", "larger_than_target"};
+    const VkViewport viewports[] = {{16, 8, 32, 32, 0, 1},  {-16, -24, 64, 64, 0, 1},
+                                    {40, 40, 64, 64, 0, 1}, {0.5f, 0.25f, 50.5f, 40.75f, 0, 1},
+                                    {10, 10, 1, 1, 0, 1},   {-200, -200, 500, 500, 0, 1}};
+    const char* vp_names[] = {"offset",    "partly_off_screen_top_left", "partly_off_screen_bottom_right", "fractional",
+                              "one_pixel", "larger_than_target"};
     for (int i = 0; i < 6; ++i) {
         VkViewport vp = viewports[i];
         out.push_back({std::string("viewport.") + vp_names[i],
@@ -50,7 +52,8 @@ void add_viewport_cases(CaseList& out) {
         out.push_back({name,
                        [=] {
                            Draw d;
-                           d.vertices = {vtx(-far, -far * 0.7f, 0, 1, {1, 0, 0, 1}), vtx(far * 0.9f, -0.3f, 0, 1, {0, 1, 0, 1}),
+                           d.vertices = {vtx(-far, -far * 0.7f, 0, 1, {1, 0, 0, 1}),
+                                         vtx(far * 0.9f, -0.3f, 0, 1, {0, 1, 0, 1}),
                                          vtx(0.1f, far, 0, 1, {0, 0, 1, 1})};
                            return one_draw(d);
                        },
@@ -86,8 +89,8 @@ void add_viewport_cases(CaseList& out) {
                        return one_draw(d);
                    },
                    nullptr, ""});
-    out.push_back({"rasterization.huge.large_target_2048",
-                   [] { return one_draw(colourful(992), 2048, 2048); }, nullptr, ""});
+    out.push_back(
+        {"rasterization.huge.large_target_2048", [] { return one_draw(colourful(992), 2048, 2048); }, nullptr, ""});
 }
 
 }  // namespace tilevk::cts

@@ -60,8 +60,12 @@ std::string vertex_source(const Draw& d) {
         "layout(location=1) in vec4 in_color;\n"
         "layout(location=2) in vec2 in_uv;\n"
         "layout(location=3) in float in_psize;\n"
-        "layout(location=0) " + q + "out vec4 v_color;\n"
-        "layout(location=1) " + q + "out vec2 v_uv;\n"
+        "layout(location=0) " +
+        q +
+        "out vec4 v_color;\n"
+        "layout(location=1) " +
+        q +
+        "out vec2 v_uv;\n"
         "void main() {\n"
         "  gl_Position = in_pos;\n"
         "  v_color = in_color;\n"
@@ -74,21 +78,28 @@ std::string vertex_source(const Draw& d) {
 
 std::string fragment_source(const Draw& d) {
     std::string q = qualifier(d.interp);
-    std::string s = "#version 450\n"
-                    "layout(location=0) " + q + "in vec4 v_color;\n"
-                    "layout(location=1) " + q + "in vec2 v_uv;\n"
-                    "layout(location=0) out vec4 o_color;\n";
+    std::string s =
+        "#version 450\n"
+        "layout(location=0) " +
+        q +
+        "in vec4 v_color;\n"
+        "layout(location=1) " +
+        q +
+        "in vec2 v_uv;\n"
+        "layout(location=0) out vec4 o_color;\n";
     switch (d.frag) {
         case Frag::kColor:
             return s + "void main() { o_color = v_color; }\n";
         case Frag::kTexture:
-            return s + "layout(set=0, binding=0) uniform sampler2D tex;\n"
-                       "void main() { o_color = texture(tex, v_uv); }\n";
+            return s +
+                   "layout(set=0, binding=0) uniform sampler2D tex;\n"
+                   "void main() { o_color = texture(tex, v_uv); }\n";
         case Frag::kCount:
             return s + "void main() { o_color = vec4(1.0 / 255.0); }\n";
         case Frag::kFacing:
-            return s + "void main() { o_color = gl_FrontFacing ? vec4(1.0/255.0, 0, 0, 1.0/255.0)"
-                       " : vec4(0, 1.0/255.0, 0, 1.0/255.0); }\n";
+            return s +
+                   "void main() { o_color = gl_FrontFacing ? vec4(1.0/255.0, 0, 0, 1.0/255.0)"
+                   " : vec4(0, 1.0/255.0, 0, 1.0/255.0); }\n";
     }
     return s;
 }

@@ -17,8 +17,7 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
         }
         uint32_t v;
         std::memcpy(&v, t, 4);
-        if (p.format == VK_FORMAT_D24_UNORM_S8_UINT || p.format == VK_FORMAT_X8_D24_UNORM_PACK32)
-            return v & 0xFFFFFFu;
+        if (p.format == VK_FORMAT_D24_UNORM_S8_UINT || p.format == VK_FORMAT_X8_D24_UNORM_PACK32) return v & 0xFFFFFFu;
         float f;
         std::memcpy(&f, t, 4);
         return f;
@@ -26,7 +25,9 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
     return t[i];
 }
 
-uint32_t channels(const Plane& p) { return p.name == "color" ? p.texel_bytes : 1; }
+uint32_t channels(const Plane& p) {
+    return p.name == "color" ? p.texel_bytes : 1;
+}
 
 const Plane* find_color(const std::vector<Plane>& planes) {
     for (const Plane& p : planes)
@@ -34,7 +35,9 @@ const Plane* find_color(const std::vector<Plane>& planes) {
     return nullptr;
 }
 
-std::string at(uint32_t x, uint32_t y) { return "(" + std::to_string(x) + "," + std::to_string(y) + ")"; }
+std::string at(uint32_t x, uint32_t y) {
+    return "(" + std::to_string(x) + "," + std::to_string(y) + ")";
+}
 
 CoverageOracle& oracle_slot() {
     static CoverageOracle oracle;
@@ -77,8 +80,8 @@ std::vector<uint8_t> to_rgba8(const Plane& p) {
             continue;
         }
         double v = channel(p, t, 0);
-        double scale = p.name == "stencil" ? 1.0
-                       : p.format == VK_FORMAT_D16_UNORM ? 255.0 / 65535.0
+        double scale = p.name == "stencil"                       ? 1.0
+                       : p.format == VK_FORMAT_D16_UNORM         ? 255.0 / 65535.0
                        : p.format == VK_FORMAT_D24_UNORM_S8_UINT ? 255.0 / 16777215.0
                                                                  : 255.0;
         uint8_t g = uint8_t(std::clamp(v * scale, 0.0, 255.0));
@@ -91,9 +94,9 @@ std::vector<uint8_t> diff_rgba8(const Plane& a, const Plane& b) {
     size_t n = size_t(a.width) * a.height;
     std::vector<uint8_t> out(n * 4, 0);
     for (size_t i = 0; i < n; ++i) {
-        bool same = i * a.texel_bytes + a.texel_bytes <= b.data.size() &&
-                    std::memcmp(a.data.data() + i * a.texel_bytes, b.data.data() + i * a.texel_bytes,
-                                a.texel_bytes) == 0;
+        bool same =
+            i * a.texel_bytes + a.texel_bytes <= b.data.size() &&
+            std::memcmp(a.data.data() + i * a.texel_bytes, b.data.data() + i * a.texel_bytes, a.texel_bytes) == 0;
         out[i * 4] = same ? 0 : 255;
         out[i * 4 + 3] = 255;
     }
@@ -168,7 +171,11 @@ Check all_of(std::vector<Check> checks) {
     };
 }
 
-void set_coverage_oracle(CoverageOracle oracle) { oracle_slot() = std::move(oracle); }
-const CoverageOracle& coverage_oracle() { return oracle_slot(); }
+void set_coverage_oracle(CoverageOracle oracle) {
+    oracle_slot() = std::move(oracle);
+}
+const CoverageOracle& coverage_oracle() {
+    return oracle_slot();
+}
 
 }  // namespace tilevk::cts

@@ -15,8 +15,8 @@ struct PlaneDiff {
     std::string plane;
     uint64_t differing = 0;  // pixels with any differing byte
     uint64_t total = 0;
-    double max_error = 0;    // largest per-channel difference in the format's units (unorm8 steps, D16 steps, ...)
-    std::string problem;     // non-empty when the planes cannot be compared (size/format mismatch)
+    double max_error = 0;  // largest per-channel difference in the format's units (unorm8 steps, D16 steps, ...)
+    std::string problem;   // non-empty when the planes cannot be compared (size/format mismatch)
 };
 
 PlaneDiff compare_planes(const Plane& ours, const Plane& ref);

@@ -19,9 +19,8 @@ std::string model_dir() {
 
 Mesh load_mesh(const std::string& path, float yaw, float pitch) {
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(
-        path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                  aiProcess_SortByPType);
+    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                       aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (!scene) throw std::runtime_error("assimp cannot load " + path + ": " + importer.GetErrorString());
     std::vector<std::array<float, 3>> pos;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {

@@ -19,8 +19,12 @@ bool has_stencil(VkFormat f) {
     return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
            f == VK_FORMAT_S8_UINT;
 }
-bool has_depth(VkFormat f) { return f != VK_FORMAT_S8_UINT && f != VK_FORMAT_UNDEFINED; }
-uint32_t depth_copy_bytes(VkFormat f) { return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4; }
+bool has_depth(VkFormat f) {
+    return f != VK_FORMAT_S8_UINT && f != VK_FORMAT_UNDEFINED;
+}
+uint32_t depth_copy_bytes(VkFormat f) {
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4;
+}
 
 // Destroys what was created, in reverse order, whether the scene finished or threw.
 struct Cleanup {
@@ -116,7 +120,7 @@ void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_
 
 // Texel of mip `level` at (x,y): every level has its own tint so that mip selection shows in the image.
 void texel(const TextureSpec& t, uint32_t level, uint32_t x, uint32_t y, uint32_t w, uint32_t h, uint8_t out[4]) {
-    static const uint8_t kTint[8][3] = {{255, 255, 255}, {255, 64, 64},   {64, 255, 64}, {64, 64, 255},
+    static const uint8_t kTint[8][3] = {{255, 255, 255}, {255, 64, 64},  {64, 255, 64},  {64, 64, 255},
                                         {255, 255, 64},  {255, 64, 255}, {64, 255, 255}, {128, 128, 128}};
     const uint8_t* tint = kTint[level % 8];
     if (t.pattern == TexPattern::kChecker) {
@@ -147,12 +151,14 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     tex.view = make_view(c, gc, tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT, t.mip_levels);
     VkDeviceSize total = 0;
-    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels; ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2))
+    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
+         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2))
         total += VkDeviceSize(w) * h * 4;
     tex.staging = make_buffer(c, gc, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
     VkDeviceSize offset = 0;
-    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels; ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2)) {
+    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
+         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2)) {
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) texel(t, l, x, y, w, h, bytes + offset + (VkDeviceSize(y) * w + x) * 4);
         VkBufferImageCopy r{};
@@ -296,9 +302,8 @@ VkRenderPass make_render_pass(const DeviceContext& c, Cleanup& gc, const Target&
     }
     if (resolve) {
         resolve_ref.attachment = uint32_t(att.size());
-        att.push_back({0, t.color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                       VK_ATTACHMENT_STORE_OP_STORE, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                       VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+        att.push_back({0, t.color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE,
+                       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL});
     }
     VkSubpassDescription sub{};
@@ -383,8 +388,10 @@ RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
     // Multisampled depth cannot be copied to a buffer; only single-sampled depth/stencil is judged.
     if (depth_img && t.samples == VK_SAMPLE_COUNT_1_BIT) {
         if (has_depth(t.depth))
-            reads.push_back({depth_img, VK_IMAGE_ASPECT_DEPTH_BIT,
-                             {"depth", t.depth, t.width, t.height, depth_copy_bytes(t.depth)}, {}});
+            reads.push_back({depth_img,
+                             VK_IMAGE_ASPECT_DEPTH_BIT,
+                             {"depth", t.depth, t.width, t.height, depth_copy_bytes(t.depth)},
+                             {}});
         if (has_stencil(t.depth))
             reads.push_back({depth_img, VK_IMAGE_ASPECT_STENCIL_BIT, {"stencil", t.depth, t.width, t.height, 1}, {}});
     }
@@ -490,8 +497,7 @@ RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
     VkDeviceSize first = 0;
     for (size_t i = 0; i < s.draws.size(); ++i) {
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes[i]);
-        if (sets[i])
-            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i], 0, nullptr);
+        if (sets[i]) vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i], 0, nullptr);
         VkDeviceSize offset = first * sizeof(Vertex);
         vkCmdBindVertexBuffers(cb, 0, 1, &vb.buffer, &offset);
         if (!s.draws[i].vertices.empty()) vkCmdDraw(cb, uint32_t(s.draws[i].vertices.size()), 1, 0, 0);
@@ -506,8 +512,8 @@ RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
     }
     VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                             VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr,
-                         0, nullptr);
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0,
+                         nullptr);
     vk_check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
 
     VkFenceCreateInfo fci2{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};

@@ -59,16 +59,16 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         if (d.depth_bias && d.bias_clamp != 0.0f && !f.depthBiasClamp) return "feature depthBiasClamp";
         const auto& b = d.blend;
         if (b.blendEnable && !f.dualSrcBlend &&
-            (uses_src1(b.srcColorBlendFactor) || uses_src1(b.dstColorBlendFactor) ||
-             uses_src1(b.srcAlphaBlendFactor) || uses_src1(b.dstAlphaBlendFactor)))
+            (uses_src1(b.srcColorBlendFactor) || uses_src1(b.dstColorBlendFactor) || uses_src1(b.srcAlphaBlendFactor) ||
+             uses_src1(b.dstAlphaBlendFactor)))
             return "feature dualSrcBlend";
         if (d.texture) {
             VkFormatFeatureFlags need = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
             if (d.texture->mag == VK_FILTER_LINEAR || d.texture->min == VK_FILTER_LINEAR ||
                 d.texture->mip_mode == VK_SAMPLER_MIPMAP_MODE_LINEAR)
                 need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-            auto e = check_format(c, VK_FORMAT_R8G8B8A8_UNORM, need, VK_IMAGE_USAGE_SAMPLED_BIT,
-                                  VK_SAMPLE_COUNT_1_BIT, "texture");
+            auto e = check_format(c, VK_FORMAT_R8G8B8A8_UNORM, need, VK_IMAGE_USAGE_SAMPLED_BIT, VK_SAMPLE_COUNT_1_BIT,
+                                  "texture");
             if (!e.empty()) return e;
         }
         if (d.viewport) {

@@ -93,9 +93,10 @@ bool write_json(const std::string& path, const RunInfo& info, const std::vector<
         const CaseResult& r = results[i];
         o << "    {\"name\": \"" << json_escape(r.name) << "\", \"status\": \"" << status_name(r.status)
           << "\", \"reason\": \"" << json_escape(r.reason) << "\", \"note\": \"" << json_escape(r.note)
-          << "\", \"differing\": " << r.differing << ", \"total\": " << r.total << ", \"max_error\": "
-          << num(r.max_error) << ", \"check\": \"" << json_escape(r.check) << "\", \"ours_ms\": " << num(r.ours_ms)
-          << ", \"ref_ms\": " << num(r.ref_ms) << ", \"ours_pipeline_ms\": " << num(r.ours_pipeline_ms)
+          << "\", \"differing\": " << r.differing << ", \"total\": " << r.total
+          << ", \"max_error\": " << num(r.max_error) << ", \"check\": \"" << json_escape(r.check)
+          << "\", \"ours_ms\": " << num(r.ours_ms) << ", \"ref_ms\": " << num(r.ref_ms)
+          << ", \"ours_pipeline_ms\": " << num(r.ours_pipeline_ms)
           << ", \"ref_pipeline_ms\": " << num(r.ref_pipeline_ms) << ", \"seconds\": " << num(r.seconds) << "}"
           << (i + 1 < results.size() ? "," : "") << "\n";
     }

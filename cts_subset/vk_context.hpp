@@ -32,7 +32,7 @@ struct DeviceContext {
 };
 
 class Instance {
-public:
+  public:
     Instance();
     ~Instance();
     Instance(const Instance&) = delete;
@@ -44,7 +44,7 @@ public:
     bool open(const std::string& substring, bool prefix, DeviceContext& out, std::string& reason) const;
     static void close(DeviceContext& ctx);
 
-private:
+  private:
     VkInstance instance_ = VK_NULL_HANDLE;
     std::vector<VkPhysicalDevice> physicals_;
 };

@@ -69,7 +69,9 @@ def speed_accuracy_chart(runs, path):
         ax.annotate(run["label"], (g, acc), textcoords="offset points", xytext=(6, 4))
     if missing:
         ax.text(0.02, 0.02, "no timings (nothing drawn): " + ", ".join(missing), transform=ax.transAxes, fontsize=8)
+    xs = [1.0] + [g for g in (geomean([ratio(c) for c in r["cases"]]) for r in runs) if g]
     ax.set_xscale("log")
+    ax.set_xlim(min(xs) / 2, max(xs) * 2)
     ax.set_xlabel("time / lavapipe time (geometric mean over cases, lower is faster)")
     ax.set_ylabel("cases byte-exact with lavapipe (%)")
     ax.set_ylim(-5, 105)
@@ -186,7 +188,7 @@ def main():
         ours_ms = c["ours_ms"] if c.get("ours_ms", -1) >= 0 else None
         ref_ms = c["ref_ms"] if c.get("ref_ms", -1) >= 0 else None
         note = f" [{c['note']}]" if c.get("note") else ""
-        md.append(f"| {c['name']}{note} | {c['status']} | {fmt(exact_pct(c), '.3f')} | {fmt(c['max_error'], 'g')} | "
+        md.append(f"| {c['name']}{note} | {c['status']} | {fmt(exact_pct(c), '.3f')} | {fmt(c['max_error'] if c['total'] else None, 'g')} | "
                   f"{fmt(ours_ms)} | {fmt(ref_ms)} | {fmt(ratio(c))} | {pm} | "
                   f"{c['reason'].replace('|', '/')} |")
     with open(os.path.join(a.out, "summary.md"), "w") as f:
