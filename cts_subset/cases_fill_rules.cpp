@@ -83,6 +83,13 @@ void add_fill_rule_cases(CaseList& out) {
         {g + "clipped_partly", [] { return one_draw(quad(-0.3f, -1.6f, 1.7f, 0.45f, false)); }, exactly_once(0), ""});
     out.push_back({g + "projected", [] { return one_draw(quad(-0.8f, -0.7f, 0.6f, 0.9f, false, 1.0f, 3.0f)); },
                    exactly_once(0), ""});
+    out.push_back({g + "basic_quad_bgra_linear",
+                   [] {
+                       Scene s = one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false));
+                       s.target.color = VK_FORMAT_B8G8R8A8_UNORM;
+                       return s;
+                   },
+                   exactly_once(0), "bgra-linear-path"});
     // Shared edges with every interior vertex shifted by k/256 pixel (the 8-bit sub-pixel grid).
     for (int k : {0, 1, 2, 64, 127, 128, 129, 255}) {
         out.push_back({g + "shared_edges_offset_" + std::to_string(k),

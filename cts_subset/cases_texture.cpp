@@ -65,6 +65,19 @@ void add_texture_cases(CaseList& out) {
             out.push_back({std::string("texture.wrap.") + w.name + (f == VK_FILTER_NEAREST ? "_nearest" : "_linear"),
                            [=] { return textured(t, -1.25f, 2.5f); }, nullptr, ""});
         }
+    // The same textured rectangle on B8G8R8A8 without depth: lavapipe's linear path (notes §8) may shade it.
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+        TextureSpec t;
+        t.mag = t.min = f;
+        out.push_back(
+            {std::string("texture.filter.mag_") + (f == VK_FILTER_NEAREST ? "nearest" : "linear") + "_bgra_linear",
+             [=] {
+                 Scene s = textured(t, 0.0f, 1.0f);
+                 s.target.color = VK_FORMAT_B8G8R8A8_UNORM;
+                 return s;
+             },
+             nullptr, "bgra-linear-path"});
+    }
     TextureSpec lod0;
     lod0.width = lod0.height = 64;
     lod0.mip_levels = 7;

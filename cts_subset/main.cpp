@@ -22,7 +22,7 @@ namespace {
 struct Options {
     bool list = false;
     std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
-    bool device_is_prefix = true, png_all = false;
+    bool device_is_prefix = true, png_all = false, selftest_perturb = false;
     int timing = 0;
 };
 
@@ -30,8 +30,10 @@ void usage() {
     std::puts(
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
+        "                  [--selftest-perturb]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
+        "  --selftest-perturb flips one bit of the device-under-test's read-back (proves the comparison).\n"
         "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
         "  VK_ICD_FILENAMES defaults to this build's tilevk_icd.json and lavapipe's manifest.");
 }
@@ -64,6 +66,8 @@ bool parse(int argc, char** argv, Options& o) {
             if (!value(o.png_dir)) return false;
         } else if (a == "--png-all")
             o.png_all = true;
+        else if (a == "--selftest-perturb")
+            o.selftest_perturb = true;
         else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
         } else if (a == "--timing") {
@@ -169,6 +173,8 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     } catch (const std::exception& e) {
         return fail("reference " + ref.name + ": " + e.what());
     }
+    // Harness self-test: one changed bit in our first plane must be caught by every comparison path.
+    if (o.selftest_perturb && !a.planes.empty() && !a.planes[0].data.empty()) a.planes[0].data[0] ^= 1;
     r.ours_ms = median(a.frame_ms);
     r.ref_ms = median(b.frame_ms);
     r.ours_pipeline_ms = a.pipeline_ms;
