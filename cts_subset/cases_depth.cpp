@@ -10,7 +10,7 @@ Scene compare_scene(VkFormat format, VkCompareOp op) {
     Draw plane;
     plane.depth_test = plane.depth_write = true;
     plane.depth_op = VK_COMPARE_OP_ALWAYS;
-    std::array<float, 4> grey = {0.3f, 0.3f, 0.3f, 1};
+    std::array<float, 4> grey = {0.25f, 0.25f, 0.25f, 1};
     plane.vertices = {vtx(-1, -1, 0.5f, 1, grey), vtx(3, -1, 0.5f, 1, grey), vtx(-1, 3, 0.5f, 1, grey)};
     Draw slope;
     slope.depth_test = slope.depth_write = true;
@@ -65,7 +65,9 @@ void add_depth_cases(CaseList& out) {
     for (const Fmt& f : fmts)
         for (const Op& o : ops)
             out.push_back({std::string("depth.compare.") + f.name + "_" + o.name,
-                           [=] { return compare_scene(f.format, o.op); }, nullptr, ""});
+                           [=] { return compare_scene(f.format, o.op); },
+                           // NEVER: only the plane (0.25 -> unorm8 64) may show.
+                           o.op == VK_COMPARE_OP_NEVER ? palette_only({rgba8(64, 64, 64, 255)}) : Check(), ""});
     out.push_back({"depth.compare.d24s8_less",
                    [] { return compare_scene(VK_FORMAT_D24_UNORM_S8_UINT, VK_COMPARE_OP_LESS); }, nullptr, ""});
     out.push_back({"depth.compare.d32s8_less",

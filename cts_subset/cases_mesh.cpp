@@ -62,6 +62,29 @@ void add_mesh_cases(CaseList& out) {
         out.push_back({std::string("scene.mesh.") + md.name + "_coverage",
                        [=] { return coverage(load_mesh(path, md.yaw, md.pitch), 192); }, check, ""});
     }
+    // Frames big enough for the timings to mean something (the small cases mostly time per-submit overhead).
+    const std::string wuson = model_dir() + "/PLY/Wuson.ply", spider = model_dir() + "/OBJ/spider.obj";
+    out.push_back(
+        {"scene.perf.wuson_shaded_1024", [=] { return shaded(load_mesh(wuson, 0.5f, 0.2f), 1024); }, nullptr, ""});
+    out.push_back(
+        {"scene.perf.spider_shaded_1024", [=] { return shaded(load_mesh(spider, 0.4f, 0.7f), 1024); }, nullptr, ""});
+    out.push_back({"scene.perf.random_triangles_20000_1024",
+                   [] {
+                       Lcg rng{4242};
+                       Draw d;
+                       d.depth_test = d.depth_write = true;
+                       for (int t = 0; t < 20000; ++t) {
+                           float cx = rng.range(-1, 1), cy = rng.range(-1, 1), z = rng.next();
+                           std::array<float, 4> c = {rng.next(), rng.next(), rng.next(), 1};
+                           for (int k = 0; k < 3; ++k)
+                               d.vertices.push_back(
+                                   vtx(cx + rng.range(-0.05f, 0.05f), cy + rng.range(-0.05f, 0.05f), z, 1, c));
+                       }
+                       Scene s = one_draw(d, 1024, 1024);
+                       s.target.depth = VK_FORMAT_D32_SFLOAT;
+                       return s;
+                   },
+                   nullptr, ""});
 }
 
 }  // namespace tilevk::cts

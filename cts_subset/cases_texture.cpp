@@ -31,7 +31,12 @@ void add_texture_cases(CaseList& out) {
             t.mag = t.min = f;
             out.push_back(
                 {std::string("texture.filter.mag_") + fname + (p == TexPattern::kChecker ? "_checker" : "_gradient"),
-                 [=] { return textured(t, 0.0f, 1.0f); }, nullptr, ""});
+                 [=] { return textured(t, 0.0f, 1.0f); },
+                 // Nearest magnification of the checker shows only its two texel values (255 and 255/4 = 63).
+                 f == VK_FILTER_NEAREST && p == TexPattern::kChecker
+                     ? palette_only({rgba8(255, 255, 255, 255), rgba8(63, 63, 63, 255)})
+                     : Check(),
+                 ""});
         }
         for (VkSamplerMipmapMode m : {VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_MIPMAP_MODE_LINEAR}) {
             TextureSpec t;
