@@ -1,5 +1,6 @@
 // What a scene needs from a device: features, format support, sample counts and limits.
 #include "render.hpp"
+#include "vk_names.hpp"
 
 namespace tilevk::cts {
 namespace {
@@ -13,13 +14,15 @@ std::string check_format(const DeviceContext& c, VkFormat f, VkFormatFeatureFlag
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(c.physical, f, &fp);
     if ((fp.optimalTilingFeatures & need) != need)
-        return std::string(what) + " format " + std::to_string(f) + " lacks features " + std::to_string(need);
+        return std::string(what) + " format " + format_name(f) + " lacks optimal-tiling features " +
+               format_features_name(need & ~fp.optimalTilingFeatures);
     VkImageFormatProperties ip;
     if (vkGetPhysicalDeviceImageFormatProperties(c.physical, f, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0,
                                                  &ip) != VK_SUCCESS)
-        return std::string(what) + " format " + std::to_string(f) + " unsupported for usage " + std::to_string(usage);
+        return std::string(what) + " format " + format_name(f) + " unsupported for image usage " +
+               std::to_string(usage);
     if (!(ip.sampleCounts & samples))
-        return std::string(what) + " format " + std::to_string(f) + " lacks " + std::to_string(samples) + " samples";
+        return std::string(what) + " format " + format_name(f) + " lacks " + std::to_string(samples) + " samples";
     return {};
 }
 

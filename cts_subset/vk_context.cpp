@@ -2,10 +2,13 @@
 
 #include <cstring>
 
+#include "vk_names.hpp"
+
 namespace tilevk::cts {
 
 void vk_check(VkResult r, const char* what) {
-    if (r != VK_SUCCESS) throw VkError(std::string(what) + " returned VkResult " + std::to_string(r));
+    if (r != VK_SUCCESS)
+        throw VkError(std::string(what) + " returned " + result_name(r) + " (" + std::to_string(r) + ")");
 }
 
 uint32_t DeviceContext::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const {
