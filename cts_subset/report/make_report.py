@@ -166,8 +166,9 @@ def main():
         px = sum(c["total"] for c in run["cases"])
         same = sum(c["total"] - c["differing"] for c in run["cases"])
         g = geomean([ratio(c) for c in run["cases"]])
+        compared = sum(1 for c in run["cases"] if c["total"])
         md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | {fmt(g)} | "
-                  f"{fmt(100.0 * same / px if px else None, '.4f')} % |")
+                  f"{fmt(100.0 * same / px if px else None, '.4f')} % of {px} px in {compared} compared cases |")
     ns = [c for c in main_run["cases"] if c["status"] == "NotSupported"]
     if ns:
         on_ours = sum(1 for c in ns if c["reason"].startswith(main_run["device_name"]))
