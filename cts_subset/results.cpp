@@ -1,5 +1,6 @@
 #include "results.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -36,7 +37,10 @@ std::string json_escape(const std::string& s) {
 
 namespace {
 
+// JSON has no inf/nan; Python's json module (the report) reads these spellings.
 std::string num(double v) {
+    if (std::isnan(v)) return "NaN";
+    if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;

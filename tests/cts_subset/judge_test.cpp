@@ -2,6 +2,7 @@
 // compare_planes and the checks under test.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -94,6 +95,22 @@ TEST(Writers, PngAndJsonAreWritten) {
     EXPECT_EQ(std::memcmp(sig, "\x89PNG\r\n\x1a\n", 8), 0);
     EXPECT_FALSE(write_png(png, 4, 4, std::vector<uint8_t>(16, 0)));  // too little data: refused
     EXPECT_EQ(json_escape("a\"b\\c\n"), "a\\\"b\\\\c\\u000a");
+    // A NaN depth difference is reported as infinite error, written in a spelling the report can read.
+    Plane a{"depth", VK_FORMAT_D32_SFLOAT, 1, 1, 4, {0, 0, 0xC0, 0x7F}},
+        b{"depth", VK_FORMAT_D32_SFLOAT, 1, 1, 4, {0, 0, 0, 0}};
+    CaseResult r;
+    r.name = "x";
+    r.max_error = compare_planes(a, b).max_error;
+    EXPECT_TRUE(std::isinf(r.max_error));
+    std::string js = ::testing::TempDir() + "/judge_test.json";
+    ASSERT_TRUE(write_json(js, RunInfo{}, {r}, ""));
+    std::string text;
+    for (FILE* f = std::fopen(js.c_str(), "rb"); f; f = nullptr) {
+        char buf[4096];
+        text.assign(buf, std::fread(buf, 1, sizeof buf, f));
+        std::fclose(f);
+    }
+    EXPECT_NE(text.find("\"max_error\": Infinity"), std::string::npos) << text;
 }
 
 }  // namespace
