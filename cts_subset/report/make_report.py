@@ -99,9 +99,36 @@ def time_ratio_chart(run, path):
     plt.close(fig)
 
 
+def stability_chart_long(rows, path):
+    """bench/rast/stability_sweep's format: sweep,param,samples,method,triangles,mismatches,rate."""
+    sweeps = sorted({r["sweep"] for r in rows})
+    fig, axs = plt.subplots(1, len(sweeps), figsize=(4.2 * len(sweeps), 4), squeeze=False)
+    for ax, sweep in zip(axs[0], sweeps):
+        series = {}
+        for r in rows:
+            if r["sweep"] == sweep:
+                key = f"{r['method']} {r['samples']}x"
+                series.setdefault(key, []).append((float(r["param"]), float(r["rate"])))
+        for key, pts in sorted(series.items()):
+            pts.sort()
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=".", label=key)
+        ax.set_title(sweep)
+        ax.set_xlabel("param")
+        if max(float(r["param"]) for r in rows if r["sweep"] == sweep) > 100:
+            ax.set_xscale("log")
+        ax.set_ylabel("mismatch rate vs reference")
+        ax.legend(fontsize=7)
+    fig.suptitle("Stability sweep (bench/rast stability_sweep): where each method departs from the reference")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
 def stability_chart(csv_path, path):
     with open(csv_path, newline="") as f:
         rows = list(csv.reader(f))
+    if {"sweep", "param", "method", "rate"} <= set(rows[0]):
+        return stability_chart_long([dict(zip(rows[0], r)) for r in rows[1:] if r], path)
     header, data = rows[0], [r for r in rows[1:] if r]
     cols = list(zip(*data))
     x = [float(v) for v in cols[0]]

@@ -54,6 +54,18 @@ with tempfile.TemporaryDirectory() as tmp:
             problems.append(f"{png} empty")
         if png not in html:
             problems.append(f"index.html does not show {png}")
+    # bench/rast/stability_sweep's long format.
+    long_sweep = os.path.join(tmp, "long.csv")
+    with open(long_sweep, "w") as f:
+        f.write("sweep,param,samples,method,triangles,mismatches,rate\n")
+        for m, r in [("hier", 0.0), ("float", 0.25)]:
+            for p in [8, 512, 16000]:
+                f.write(f"magnitude,{p},1,{m},100,{int(r * 100)},{r}\n")
+                f.write(f"offset,{p / 16000},4,{m},100,0,0\n")
+    out3 = os.path.join(tmp, "report3")
+    subprocess.run([sys.executable, script, "--out", out3, "--stability", long_sweep, paths[0]], check=True)
+    if not os.path.getsize(os.path.join(out3, "stability.png")):
+        problems.append("long-format sweep not plotted")
     # Without a sweep file the report says so.
     out2 = os.path.join(tmp, "report2")
     subprocess.run([sys.executable, script, "--out", out2, paths[0]], check=True)
