@@ -166,7 +166,10 @@ float half_to_float(uint16_t h) {
     const uint32_t sign = uint32_t(h & 0x8000u) << 16;
     const uint32_t exp = (h >> 10) & 0x1fu;
     const uint32_t man = h & 0x3ffu;
-    if (exp == 0x1f) return bits_float(sign | 0x7f800000u | (man << 13));
+    if (exp == 0x1f) {
+        if (man == 0) return bits_float(sign | 0x7f800000u);
+        return bits_float(sign | 0x7fc00000u | (man << 13));  // VCVTPH2PS quiets signalling NaNs
+    }
     if (exp == 0) {
         // denormal or zero: man * 2^-24, exact in float
         const float v = float(man) * 0x1p-24f;
