@@ -33,6 +33,7 @@ void register_passes(spvtools::Optimizer& opt, const SpecConstants& spec) {
     opt.RegisterPass(spvtools::CreateFreezeSpecConstantValuePass());
     opt.RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass());
     opt.RegisterPass(spvtools::CreateUnifyConstantPass());
+    opt.RegisterPass(spvtools::CreateMergeReturnPass());  // the inliner needs single-return functions
     opt.RegisterPass(spvtools::CreateInlineExhaustivePass());
     opt.RegisterPass(spvtools::CreateEliminateDeadFunctionsPass());
     opt.RegisterPass(spvtools::CreatePrivateToLocalPass());

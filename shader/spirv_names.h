@@ -4,1242 +4,2458 @@
 namespace tilevk::shader::names {
 inline const char* opcode(uint32_t v) {
     switch (v) {
-        case 0: return "OpNop";
-        case 1: return "OpUndef";
-        case 2: return "OpSourceContinued";
-        case 3: return "OpSource";
-        case 4: return "OpSourceExtension";
-        case 5: return "OpName";
-        case 6: return "OpMemberName";
-        case 7: return "OpString";
-        case 8: return "OpLine";
-        case 10: return "OpExtension";
-        case 11: return "OpExtInstImport";
-        case 12: return "OpExtInst";
-        case 14: return "OpMemoryModel";
-        case 15: return "OpEntryPoint";
-        case 16: return "OpExecutionMode";
-        case 17: return "OpCapability";
-        case 19: return "OpTypeVoid";
-        case 20: return "OpTypeBool";
-        case 21: return "OpTypeInt";
-        case 22: return "OpTypeFloat";
-        case 23: return "OpTypeVector";
-        case 24: return "OpTypeMatrix";
-        case 25: return "OpTypeImage";
-        case 26: return "OpTypeSampler";
-        case 27: return "OpTypeSampledImage";
-        case 28: return "OpTypeArray";
-        case 29: return "OpTypeRuntimeArray";
-        case 30: return "OpTypeStruct";
-        case 31: return "OpTypeOpaque";
-        case 32: return "OpTypePointer";
-        case 33: return "OpTypeFunction";
-        case 34: return "OpTypeEvent";
-        case 35: return "OpTypeDeviceEvent";
-        case 36: return "OpTypeReserveId";
-        case 37: return "OpTypeQueue";
-        case 38: return "OpTypePipe";
-        case 39: return "OpTypeForwardPointer";
-        case 41: return "OpConstantTrue";
-        case 42: return "OpConstantFalse";
-        case 43: return "OpConstant";
-        case 44: return "OpConstantComposite";
-        case 45: return "OpConstantSampler";
-        case 46: return "OpConstantNull";
-        case 48: return "OpSpecConstantTrue";
-        case 49: return "OpSpecConstantFalse";
-        case 50: return "OpSpecConstant";
-        case 51: return "OpSpecConstantComposite";
-        case 52: return "OpSpecConstantOp";
-        case 54: return "OpFunction";
-        case 55: return "OpFunctionParameter";
-        case 56: return "OpFunctionEnd";
-        case 57: return "OpFunctionCall";
-        case 59: return "OpVariable";
-        case 60: return "OpImageTexelPointer";
-        case 61: return "OpLoad";
-        case 62: return "OpStore";
-        case 63: return "OpCopyMemory";
-        case 64: return "OpCopyMemorySized";
-        case 65: return "OpAccessChain";
-        case 66: return "OpInBoundsAccessChain";
-        case 67: return "OpPtrAccessChain";
-        case 68: return "OpArrayLength";
-        case 69: return "OpGenericPtrMemSemantics";
-        case 70: return "OpInBoundsPtrAccessChain";
-        case 71: return "OpDecorate";
-        case 72: return "OpMemberDecorate";
-        case 73: return "OpDecorationGroup";
-        case 74: return "OpGroupDecorate";
-        case 75: return "OpGroupMemberDecorate";
-        case 77: return "OpVectorExtractDynamic";
-        case 78: return "OpVectorInsertDynamic";
-        case 79: return "OpVectorShuffle";
-        case 80: return "OpCompositeConstruct";
-        case 81: return "OpCompositeExtract";
-        case 82: return "OpCompositeInsert";
-        case 83: return "OpCopyObject";
-        case 84: return "OpTranspose";
-        case 86: return "OpSampledImage";
-        case 87: return "OpImageSampleImplicitLod";
-        case 88: return "OpImageSampleExplicitLod";
-        case 89: return "OpImageSampleDrefImplicitLod";
-        case 90: return "OpImageSampleDrefExplicitLod";
-        case 91: return "OpImageSampleProjImplicitLod";
-        case 92: return "OpImageSampleProjExplicitLod";
-        case 93: return "OpImageSampleProjDrefImplicitLod";
-        case 94: return "OpImageSampleProjDrefExplicitLod";
-        case 95: return "OpImageFetch";
-        case 96: return "OpImageGather";
-        case 97: return "OpImageDrefGather";
-        case 98: return "OpImageRead";
-        case 99: return "OpImageWrite";
-        case 100: return "OpImage";
-        case 101: return "OpImageQueryFormat";
-        case 102: return "OpImageQueryOrder";
-        case 103: return "OpImageQuerySizeLod";
-        case 104: return "OpImageQuerySize";
-        case 105: return "OpImageQueryLod";
-        case 106: return "OpImageQueryLevels";
-        case 107: return "OpImageQuerySamples";
-        case 109: return "OpConvertFToU";
-        case 110: return "OpConvertFToS";
-        case 111: return "OpConvertSToF";
-        case 112: return "OpConvertUToF";
-        case 113: return "OpUConvert";
-        case 114: return "OpSConvert";
-        case 115: return "OpFConvert";
-        case 116: return "OpQuantizeToF16";
-        case 117: return "OpConvertPtrToU";
-        case 118: return "OpSatConvertSToU";
-        case 119: return "OpSatConvertUToS";
-        case 120: return "OpConvertUToPtr";
-        case 121: return "OpPtrCastToGeneric";
-        case 122: return "OpGenericCastToPtr";
-        case 123: return "OpGenericCastToPtrExplicit";
-        case 124: return "OpBitcast";
-        case 126: return "OpSNegate";
-        case 127: return "OpFNegate";
-        case 128: return "OpIAdd";
-        case 129: return "OpFAdd";
-        case 130: return "OpISub";
-        case 131: return "OpFSub";
-        case 132: return "OpIMul";
-        case 133: return "OpFMul";
-        case 134: return "OpUDiv";
-        case 135: return "OpSDiv";
-        case 136: return "OpFDiv";
-        case 137: return "OpUMod";
-        case 138: return "OpSRem";
-        case 139: return "OpSMod";
-        case 140: return "OpFRem";
-        case 141: return "OpFMod";
-        case 142: return "OpVectorTimesScalar";
-        case 143: return "OpMatrixTimesScalar";
-        case 144: return "OpVectorTimesMatrix";
-        case 145: return "OpMatrixTimesVector";
-        case 146: return "OpMatrixTimesMatrix";
-        case 147: return "OpOuterProduct";
-        case 148: return "OpDot";
-        case 149: return "OpIAddCarry";
-        case 150: return "OpISubBorrow";
-        case 151: return "OpUMulExtended";
-        case 152: return "OpSMulExtended";
-        case 154: return "OpAny";
-        case 155: return "OpAll";
-        case 156: return "OpIsNan";
-        case 157: return "OpIsInf";
-        case 158: return "OpIsFinite";
-        case 159: return "OpIsNormal";
-        case 160: return "OpSignBitSet";
-        case 161: return "OpLessOrGreater";
-        case 162: return "OpOrdered";
-        case 163: return "OpUnordered";
-        case 164: return "OpLogicalEqual";
-        case 165: return "OpLogicalNotEqual";
-        case 166: return "OpLogicalOr";
-        case 167: return "OpLogicalAnd";
-        case 168: return "OpLogicalNot";
-        case 169: return "OpSelect";
-        case 170: return "OpIEqual";
-        case 171: return "OpINotEqual";
-        case 172: return "OpUGreaterThan";
-        case 173: return "OpSGreaterThan";
-        case 174: return "OpUGreaterThanEqual";
-        case 175: return "OpSGreaterThanEqual";
-        case 176: return "OpULessThan";
-        case 177: return "OpSLessThan";
-        case 178: return "OpULessThanEqual";
-        case 179: return "OpSLessThanEqual";
-        case 180: return "OpFOrdEqual";
-        case 181: return "OpFUnordEqual";
-        case 182: return "OpFOrdNotEqual";
-        case 183: return "OpFUnordNotEqual";
-        case 184: return "OpFOrdLessThan";
-        case 185: return "OpFUnordLessThan";
-        case 186: return "OpFOrdGreaterThan";
-        case 187: return "OpFUnordGreaterThan";
-        case 188: return "OpFOrdLessThanEqual";
-        case 189: return "OpFUnordLessThanEqual";
-        case 190: return "OpFOrdGreaterThanEqual";
-        case 191: return "OpFUnordGreaterThanEqual";
-        case 194: return "OpShiftRightLogical";
-        case 195: return "OpShiftRightArithmetic";
-        case 196: return "OpShiftLeftLogical";
-        case 197: return "OpBitwiseOr";
-        case 198: return "OpBitwiseXor";
-        case 199: return "OpBitwiseAnd";
-        case 200: return "OpNot";
-        case 201: return "OpBitFieldInsert";
-        case 202: return "OpBitFieldSExtract";
-        case 203: return "OpBitFieldUExtract";
-        case 204: return "OpBitReverse";
-        case 205: return "OpBitCount";
-        case 207: return "OpDPdx";
-        case 208: return "OpDPdy";
-        case 209: return "OpFwidth";
-        case 210: return "OpDPdxFine";
-        case 211: return "OpDPdyFine";
-        case 212: return "OpFwidthFine";
-        case 213: return "OpDPdxCoarse";
-        case 214: return "OpDPdyCoarse";
-        case 215: return "OpFwidthCoarse";
-        case 218: return "OpEmitVertex";
-        case 219: return "OpEndPrimitive";
-        case 220: return "OpEmitStreamVertex";
-        case 221: return "OpEndStreamPrimitive";
-        case 224: return "OpControlBarrier";
-        case 225: return "OpMemoryBarrier";
-        case 227: return "OpAtomicLoad";
-        case 228: return "OpAtomicStore";
-        case 229: return "OpAtomicExchange";
-        case 230: return "OpAtomicCompareExchange";
-        case 231: return "OpAtomicCompareExchangeWeak";
-        case 232: return "OpAtomicIIncrement";
-        case 233: return "OpAtomicIDecrement";
-        case 234: return "OpAtomicIAdd";
-        case 235: return "OpAtomicISub";
-        case 236: return "OpAtomicSMin";
-        case 237: return "OpAtomicUMin";
-        case 240: return "OpAtomicAnd";
-        case 241: return "OpAtomicOr";
-        case 242: return "OpAtomicXor";
-        case 245: return "OpPhi";
-        case 246: return "OpLoopMerge";
-        case 247: return "OpSelectionMerge";
-        case 248: return "OpLabel";
-        case 249: return "OpBranch";
-        case 250: return "OpBranchConditional";
-        case 251: return "OpSwitch";
-        case 252: return "OpKill";
-        case 253: return "OpReturn";
-        case 254: return "OpReturnValue";
-        case 255: return "OpUnreachable";
-        case 256: return "OpLifetimeStart";
-        case 257: return "OpLifetimeStop";
-        case 259: return "OpGroupAsyncCopy";
-        case 260: return "OpGroupWaitEvents";
-        case 261: return "OpGroupAll";
-        case 262: return "OpGroupAny";
-        case 263: return "OpGroupBroadcast";
-        case 264: return "OpGroupIAdd";
-        case 265: return "OpGroupFAdd";
-        case 266: return "OpGroupFMin";
-        case 267: return "OpGroupUMin";
-        case 268: return "OpGroupSMin";
-        case 274: return "OpReadPipe";
-        case 275: return "OpWritePipe";
-        case 276: return "OpReservedReadPipe";
-        case 277: return "OpReservedWritePipe";
-        case 278: return "OpReserveReadPipePackets";
-        case 279: return "OpReserveWritePipePackets";
-        case 280: return "OpCommitReadPipe";
-        case 281: return "OpCommitWritePipe";
-        case 282: return "OpIsValidReserveId";
-        case 283: return "OpGetNumPipePackets";
-        case 284: return "OpGetMaxPipePackets";
-        case 285: return "OpGroupReserveReadPipePackets";
-        case 286: return "OpGroupReserveWritePipePackets";
-        case 287: return "OpGroupCommitReadPipe";
-        case 288: return "OpGroupCommitWritePipe";
-        case 291: return "OpEnqueueMarker";
-        case 292: return "OpEnqueueKernel";
-        case 293: return "OpGetKernelNDrangeSubGroupCount";
-        case 294: return "OpGetKernelNDrangeMaxSubGroupSize";
-        case 295: return "OpGetKernelWorkGroupSize";
-        case 296: return "OpGetKernelPreferredWorkGroupSizeMultiple";
-        case 297: return "OpRetainEvent";
-        case 298: return "OpReleaseEvent";
-        case 299: return "OpCreateUserEvent";
-        case 300: return "OpIsValidEvent";
-        case 301: return "OpSetUserEventStatus";
-        case 302: return "OpCaptureEventProfilingInfo";
-        case 303: return "OpGetDefaultQueue";
-        case 304: return "OpBuildNDRange";
-        case 305: return "OpImageSparseSampleImplicitLod";
-        case 306: return "OpImageSparseSampleExplicitLod";
-        case 307: return "OpImageSparseSampleDrefImplicitLod";
-        case 308: return "OpImageSparseSampleDrefExplicitLod";
-        case 309: return "OpImageSparseSampleProjImplicitLod";
-        case 310: return "OpImageSparseSampleProjExplicitLod";
-        case 311: return "OpImageSparseSampleProjDrefImplicitLod";
-        case 312: return "OpImageSparseSampleProjDrefExplicitLod";
-        case 313: return "OpImageSparseFetch";
-        case 314: return "OpImageSparseGather";
-        case 315: return "OpImageSparseDrefGather";
-        case 316: return "OpImageSparseTexelsResident";
-        case 317: return "OpNoLine";
-        case 318: return "OpAtomicFlagTestAndSet";
-        case 319: return "OpAtomicFlagClear";
-        case 320: return "OpImageSparseRead";
-        case 321: return "OpSizeOf";
-        case 322: return "OpTypePipeStorage";
-        case 323: return "OpConstantPipeStorage";
-        case 324: return "OpCreatePipeFromPipeStorage";
-        case 325: return "OpGetKernelLocalSizeForSubgroupCount";
-        case 326: return "OpGetKernelMaxNumSubgroups";
-        case 327: return "OpTypeNamedBarrier";
-        case 328: return "OpNamedBarrierInitialize";
-        case 329: return "OpMemoryNamedBarrier";
-        case 330: return "OpModuleProcessed";
-        case 331: return "OpExecutionModeId";
-        case 332: return "OpDecorateId";
-        case 333: return "OpGroupNonUniformElect";
-        case 334: return "OpGroupNonUniformAll";
-        case 335: return "OpGroupNonUniformAny";
-        case 336: return "OpGroupNonUniformAllEqual";
-        case 337: return "OpGroupNonUniformBroadcast";
-        case 338: return "OpGroupNonUniformBroadcastFirst";
-        case 339: return "OpGroupNonUniformBallot";
-        case 340: return "OpGroupNonUniformInverseBallot";
-        case 341: return "OpGroupNonUniformBallotBitExtract";
-        case 342: return "OpGroupNonUniformBallotBitCount";
-        case 343: return "OpGroupNonUniformBallotFindLSB";
-        case 344: return "OpGroupNonUniformBallotFindMSB";
-        case 345: return "OpGroupNonUniformShuffle";
-        case 346: return "OpGroupNonUniformShuffleXor";
-        case 347: return "OpGroupNonUniformShuffleUp";
-        case 348: return "OpGroupNonUniformShuffleDown";
-        case 349: return "OpGroupNonUniformIAdd";
-        case 350: return "OpGroupNonUniformFAdd";
-        case 351: return "OpGroupNonUniformIMul";
-        case 352: return "OpGroupNonUniformFMul";
-        case 353: return "OpGroupNonUniformSMin";
-        case 354: return "OpGroupNonUniformUMin";
-        case 355: return "OpGroupNonUniformFMin";
-        case 359: return "OpGroupNonUniformBitwiseAnd";
-        case 360: return "OpGroupNonUniformBitwiseOr";
-        case 361: return "OpGroupNonUniformBitwiseXor";
-        case 362: return "OpGroupNonUniformLogicalAnd";
-        case 363: return "OpGroupNonUniformLogicalOr";
-        case 364: return "OpGroupNonUniformLogicalXor";
-        case 365: return "OpGroupNonUniformQuadBroadcast";
-        case 366: return "OpGroupNonUniformQuadSwap";
-        case 400: return "OpCopyLogical";
-        case 401: return "OpPtrEqual";
-        case 402: return "OpPtrNotEqual";
-        case 403: return "OpPtrDiff";
-        case 4416: return "OpTerminateInvocation";
-        case 4421: return "OpSubgroupBallotKHR";
-        case 4422: return "OpSubgroupFirstInvocationKHR";
-        case 4428: return "OpSubgroupAllKHR";
-        case 4429: return "OpSubgroupAnyKHR";
-        case 4430: return "OpSubgroupAllEqualKHR";
-        case 4431: return "OpGroupNonUniformRotateKHR";
-        case 4432: return "OpSubgroupReadInvocationKHR";
-        case 4445: return "OpTraceRayKHR";
-        case 4446: return "OpExecuteCallableKHR";
-        case 4447: return "OpConvertUToAccelerationStructureKHR";
-        case 4448: return "OpIgnoreIntersectionKHR";
-        case 4449: return "OpTerminateRayKHR";
-        case 4450: return "OpSDot";
-        case 4451: return "OpUDot";
-        case 4452: return "OpSUDot";
-        case 4453: return "OpSDotAccSat";
-        case 4454: return "OpUDotAccSat";
-        case 4455: return "OpSUDotAccSat";
-        case 4472: return "OpTypeRayQueryKHR";
-        case 4473: return "OpRayQueryInitializeKHR";
-        case 4474: return "OpRayQueryTerminateKHR";
-        case 4475: return "OpRayQueryGenerateIntersectionKHR";
-        case 4476: return "OpRayQueryConfirmIntersectionKHR";
-        case 4477: return "OpRayQueryProceedKHR";
-        case 4479: return "OpRayQueryGetIntersectionTypeKHR";
-        case 5000: return "OpGroupIAddNonUniformAMD";
-        case 5001: return "OpGroupFAddNonUniformAMD";
-        case 5002: return "OpGroupFMinNonUniformAMD";
-        case 5003: return "OpGroupUMinNonUniformAMD";
-        case 5004: return "OpGroupSMinNonUniformAMD";
-        case 5005: return "OpGroupFMaxNonUniformAMD";
-        case 5006: return "OpGroupUMaxNonUniformAMD";
-        case 5007: return "OpGroupSMaxNonUniformAMD";
-        case 5011: return "OpFragmentMaskFetchAMD";
-        case 5012: return "OpFragmentFetchAMD";
-        case 5056: return "OpReadClockKHR";
-        case 5249: return "OpHitObjectRecordHitMotionNV";
-        case 5250: return "OpHitObjectRecordHitWithIndexMotionNV";
-        case 5251: return "OpHitObjectRecordMissMotionNV";
-        case 5252: return "OpHitObjectGetWorldToObjectNV";
-        case 5253: return "OpHitObjectGetObjectToWorldNV";
-        case 5254: return "OpHitObjectGetObjectRayDirectionNV";
-        case 5255: return "OpHitObjectGetObjectRayOriginNV";
-        case 5256: return "OpHitObjectTraceRayMotionNV";
-        case 5257: return "OpHitObjectGetShaderRecordBufferHandleNV";
-        case 5258: return "OpHitObjectGetShaderBindingTableRecordIndexNV";
-        case 5259: return "OpHitObjectRecordEmptyNV";
-        case 5260: return "OpHitObjectTraceRayNV";
-        case 5261: return "OpHitObjectRecordHitNV";
-        case 5262: return "OpHitObjectRecordHitWithIndexNV";
-        case 5263: return "OpHitObjectRecordMissNV";
-        case 5264: return "OpHitObjectExecuteShaderNV";
-        case 5265: return "OpHitObjectGetCurrentTimeNV";
-        case 5266: return "OpHitObjectGetAttributesNV";
-        case 5267: return "OpHitObjectGetHitKindNV";
-        case 5268: return "OpHitObjectGetPrimitiveIndexNV";
-        case 5269: return "OpHitObjectGetGeometryIndexNV";
-        case 5270: return "OpHitObjectGetInstanceIdNV";
-        case 5271: return "OpHitObjectGetInstanceCustomIndexNV";
-        case 5272: return "OpHitObjectGetWorldRayDirectionNV";
-        case 5273: return "OpHitObjectGetWorldRayOriginNV";
-        case 5274: return "OpHitObjectGetRayTMaxNV";
-        case 5275: return "OpHitObjectGetRayTMinNV";
-        case 5276: return "OpHitObjectIsEmptyNV";
-        case 5277: return "OpHitObjectIsHitNV";
-        case 5278: return "OpHitObjectIsMissNV";
-        case 5279: return "OpReorderThreadWithHitObjectNV";
-        case 5280: return "OpReorderThreadWithHintNV";
-        case 5281: return "OpTypeHitObjectNV";
-        case 5283: return "OpImageSampleFootprintNV";
-        case 5294: return "OpEmitMeshTasksEXT";
-        case 5295: return "OpSetMeshOutputsEXT";
-        case 5296: return "OpGroupNonUniformPartitionNV";
-        case 5299: return "OpWritePackedPrimitiveIndices4x8NV";
-        case 5334: return "OpReportIntersectionKHR";
-        case 5335: return "OpIgnoreIntersectionNV";
-        case 5336: return "OpTerminateRayNV";
-        case 5337: return "OpTraceNV";
-        case 5338: return "OpTraceMotionNV";
-        case 5339: return "OpTraceRayMotionNV";
-        case 5341: return "OpTypeAccelerationStructureKHR";
-        case 5344: return "OpExecuteCallableNV";
-        case 5358: return "OpTypeCooperativeMatrixNV";
-        case 5359: return "OpCooperativeMatrixLoadNV";
-        case 5360: return "OpCooperativeMatrixStoreNV";
-        case 5361: return "OpCooperativeMatrixMulAddNV";
-        case 5362: return "OpCooperativeMatrixLengthNV";
-        case 5364: return "OpBeginInvocationInterlockEXT";
-        case 5365: return "OpEndInvocationInterlockEXT";
-        case 5380: return "OpDemoteToHelperInvocation";
-        case 5381: return "OpIsHelperInvocationEXT";
-        case 5391: return "OpConvertUToImageNV";
-        case 5392: return "OpConvertUToSamplerNV";
-        case 5393: return "OpConvertImageToUNV";
-        case 5394: return "OpConvertSamplerToUNV";
-        case 5395: return "OpConvertUToSampledImageNV";
-        case 5396: return "OpConvertSampledImageToUNV";
-        case 5397: return "OpSamplerImageAddressingModeNV";
-        case 5571: return "OpSubgroupShuffleINTEL";
-        case 5572: return "OpSubgroupShuffleDownINTEL";
-        case 5573: return "OpSubgroupShuffleUpINTEL";
-        case 5574: return "OpSubgroupShuffleXorINTEL";
-        case 5575: return "OpSubgroupBlockReadINTEL";
-        case 5576: return "OpSubgroupBlockWriteINTEL";
-        case 5577: return "OpSubgroupImageBlockReadINTEL";
-        case 5578: return "OpSubgroupImageBlockWriteINTEL";
-        case 5580: return "OpSubgroupImageMediaBlockReadINTEL";
-        case 5581: return "OpSubgroupImageMediaBlockWriteINTEL";
-        case 5585: return "OpUCountLeadingZerosINTEL";
-        case 5586: return "OpUCountTrailingZerosINTEL";
-        case 5587: return "OpAbsISubINTEL";
-        case 5588: return "OpAbsUSubINTEL";
-        case 5589: return "OpIAddSatINTEL";
-        case 5590: return "OpUAddSatINTEL";
-        case 5591: return "OpIAverageINTEL";
-        case 5592: return "OpUAverageINTEL";
-        case 5593: return "OpIAverageRoundedINTEL";
-        case 5594: return "OpUAverageRoundedINTEL";
-        case 5595: return "OpISubSatINTEL";
-        case 5596: return "OpUSubSatINTEL";
-        case 5597: return "OpIMul32x16INTEL";
-        case 5598: return "OpUMul32x16INTEL";
-        case 5600: return "OpConstantFunctionPointerINTEL";
-        case 5601: return "OpFunctionPointerCallINTEL";
-        case 5609: return "OpAsmTargetINTEL";
-        case 5610: return "OpAsmINTEL";
-        case 5611: return "OpAsmCallINTEL";
-        case 5614: return "OpAtomicFMinEXT";
-        case 5615: return "OpAtomicFMaxEXT";
-        case 5630: return "OpAssumeTrueKHR";
-        case 5631: return "OpExpectKHR";
-        case 5632: return "OpDecorateString";
-        case 5633: return "OpMemberDecorateString";
-        case 5699: return "OpVmeImageINTEL";
-        case 5700: return "OpTypeVmeImageINTEL";
-        case 5701: return "OpTypeAvcImePayloadINTEL";
-        case 5702: return "OpTypeAvcRefPayloadINTEL";
-        case 5703: return "OpTypeAvcSicPayloadINTEL";
-        case 5704: return "OpTypeAvcMcePayloadINTEL";
-        case 5705: return "OpTypeAvcMceResultINTEL";
-        case 5706: return "OpTypeAvcImeResultINTEL";
-        case 5707: return "OpTypeAvcImeResultSingleReferenceStreamoutINTEL";
-        case 5708: return "OpTypeAvcImeResultDualReferenceStreamoutINTEL";
-        case 5709: return "OpTypeAvcImeSingleReferenceStreaminINTEL";
-        case 5710: return "OpTypeAvcImeDualReferenceStreaminINTEL";
-        case 5711: return "OpTypeAvcRefResultINTEL";
-        case 5712: return "OpTypeAvcSicResultINTEL";
-        case 5713: return "OpSubgroupAvcMceGetDefaultInterBaseMultiReferencePenaltyINTEL";
-        case 5714: return "OpSubgroupAvcMceSetInterBaseMultiReferencePenaltyINTEL";
-        case 5715: return "OpSubgroupAvcMceGetDefaultInterShapePenaltyINTEL";
-        case 5716: return "OpSubgroupAvcMceSetInterShapePenaltyINTEL";
-        case 5717: return "OpSubgroupAvcMceGetDefaultInterDirectionPenaltyINTEL";
-        case 5718: return "OpSubgroupAvcMceSetInterDirectionPenaltyINTEL";
-        case 5719: return "OpSubgroupAvcMceGetDefaultIntraLumaShapePenaltyINTEL";
-        case 5720: return "OpSubgroupAvcMceGetDefaultInterMotionVectorCostTableINTEL";
-        case 5721: return "OpSubgroupAvcMceGetDefaultHighPenaltyCostTableINTEL";
-        case 5722: return "OpSubgroupAvcMceGetDefaultMediumPenaltyCostTableINTEL";
-        case 5723: return "OpSubgroupAvcMceGetDefaultLowPenaltyCostTableINTEL";
-        case 5724: return "OpSubgroupAvcMceSetMotionVectorCostFunctionINTEL";
-        case 5725: return "OpSubgroupAvcMceGetDefaultIntraLumaModePenaltyINTEL";
-        case 5726: return "OpSubgroupAvcMceGetDefaultNonDcLumaIntraPenaltyINTEL";
-        case 5727: return "OpSubgroupAvcMceGetDefaultIntraChromaModeBasePenaltyINTEL";
-        case 5728: return "OpSubgroupAvcMceSetAcOnlyHaarINTEL";
-        case 5729: return "OpSubgroupAvcMceSetSourceInterlacedFieldPolarityINTEL";
-        case 5730: return "OpSubgroupAvcMceSetSingleReferenceInterlacedFieldPolarityINTEL";
-        case 5731: return "OpSubgroupAvcMceSetDualReferenceInterlacedFieldPolaritiesINTEL";
-        case 5732: return "OpSubgroupAvcMceConvertToImePayloadINTEL";
-        case 5733: return "OpSubgroupAvcMceConvertToImeResultINTEL";
-        case 5734: return "OpSubgroupAvcMceConvertToRefPayloadINTEL";
-        case 5735: return "OpSubgroupAvcMceConvertToRefResultINTEL";
-        case 5736: return "OpSubgroupAvcMceConvertToSicPayloadINTEL";
-        case 5737: return "OpSubgroupAvcMceConvertToSicResultINTEL";
-        case 5738: return "OpSubgroupAvcMceGetMotionVectorsINTEL";
-        case 5739: return "OpSubgroupAvcMceGetInterDistortionsINTEL";
-        case 5740: return "OpSubgroupAvcMceGetBestInterDistortionsINTEL";
-        case 5741: return "OpSubgroupAvcMceGetInterMajorShapeINTEL";
-        case 5742: return "OpSubgroupAvcMceGetInterMinorShapeINTEL";
-        case 5743: return "OpSubgroupAvcMceGetInterDirectionsINTEL";
-        case 5744: return "OpSubgroupAvcMceGetInterMotionVectorCountINTEL";
-        case 5745: return "OpSubgroupAvcMceGetInterReferenceIdsINTEL";
-        case 5746: return "OpSubgroupAvcMceGetInterReferenceInterlacedFieldPolaritiesINTEL";
-        case 5747: return "OpSubgroupAvcImeInitializeINTEL";
-        case 5748: return "OpSubgroupAvcImeSetSingleReferenceINTEL";
-        case 5749: return "OpSubgroupAvcImeSetDualReferenceINTEL";
-        case 5750: return "OpSubgroupAvcImeRefWindowSizeINTEL";
-        case 5751: return "OpSubgroupAvcImeAdjustRefOffsetINTEL";
-        case 5752: return "OpSubgroupAvcImeConvertToMcePayloadINTEL";
-        case 5753: return "OpSubgroupAvcImeSetMaxMotionVectorCountINTEL";
-        case 5754: return "OpSubgroupAvcImeSetUnidirectionalMixDisableINTEL";
-        case 5755: return "OpSubgroupAvcImeSetEarlySearchTerminationThresholdINTEL";
-        case 5756: return "OpSubgroupAvcImeSetWeightedSadINTEL";
-        case 5757: return "OpSubgroupAvcImeEvaluateWithSingleReferenceINTEL";
-        case 5758: return "OpSubgroupAvcImeEvaluateWithDualReferenceINTEL";
-        case 5759: return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreaminINTEL";
-        case 5760: return "OpSubgroupAvcImeEvaluateWithDualReferenceStreaminINTEL";
-        case 5761: return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreamoutINTEL";
-        case 5762: return "OpSubgroupAvcImeEvaluateWithDualReferenceStreamoutINTEL";
-        case 5763: return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreaminoutINTEL";
-        case 5764: return "OpSubgroupAvcImeEvaluateWithDualReferenceStreaminoutINTEL";
-        case 5765: return "OpSubgroupAvcImeConvertToMceResultINTEL";
-        case 5766: return "OpSubgroupAvcImeGetSingleReferenceStreaminINTEL";
-        case 5767: return "OpSubgroupAvcImeGetDualReferenceStreaminINTEL";
-        case 5768: return "OpSubgroupAvcImeStripSingleReferenceStreamoutINTEL";
-        case 5769: return "OpSubgroupAvcImeStripDualReferenceStreamoutINTEL";
-        case 5770: return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeMotionVectorsINTEL";
-        case 5771: return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeDistortionsINTEL";
-        case 5772: return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeReferenceIdsINTEL";
-        case 5773: return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeMotionVectorsINTEL";
-        case 5774: return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeDistortionsINTEL";
-        case 5775: return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeReferenceIdsINTEL";
-        case 5776: return "OpSubgroupAvcImeGetBorderReachedINTEL";
-        case 5777: return "OpSubgroupAvcImeGetTruncatedSearchIndicationINTEL";
-        case 5778: return "OpSubgroupAvcImeGetUnidirectionalEarlySearchTerminationINTEL";
-        case 5779: return "OpSubgroupAvcImeGetWeightingPatternMinimumMotionVectorINTEL";
-        case 5780: return "OpSubgroupAvcImeGetWeightingPatternMinimumDistortionINTEL";
-        case 5781: return "OpSubgroupAvcFmeInitializeINTEL";
-        case 5782: return "OpSubgroupAvcBmeInitializeINTEL";
-        case 5783: return "OpSubgroupAvcRefConvertToMcePayloadINTEL";
-        case 5784: return "OpSubgroupAvcRefSetBidirectionalMixDisableINTEL";
-        case 5785: return "OpSubgroupAvcRefSetBilinearFilterEnableINTEL";
-        case 5786: return "OpSubgroupAvcRefEvaluateWithSingleReferenceINTEL";
-        case 5787: return "OpSubgroupAvcRefEvaluateWithDualReferenceINTEL";
-        case 5788: return "OpSubgroupAvcRefEvaluateWithMultiReferenceINTEL";
-        case 5789: return "OpSubgroupAvcRefEvaluateWithMultiReferenceInterlacedINTEL";
-        case 5790: return "OpSubgroupAvcRefConvertToMceResultINTEL";
-        case 5791: return "OpSubgroupAvcSicInitializeINTEL";
-        case 5792: return "OpSubgroupAvcSicConfigureSkcINTEL";
-        case 5793: return "OpSubgroupAvcSicConfigureIpeLumaINTEL";
-        case 5794: return "OpSubgroupAvcSicConfigureIpeLumaChromaINTEL";
-        case 5795: return "OpSubgroupAvcSicGetMotionVectorMaskINTEL";
-        case 5796: return "OpSubgroupAvcSicConvertToMcePayloadINTEL";
-        case 5797: return "OpSubgroupAvcSicSetIntraLumaShapePenaltyINTEL";
-        case 5798: return "OpSubgroupAvcSicSetIntraLumaModeCostFunctionINTEL";
-        case 5799: return "OpSubgroupAvcSicSetIntraChromaModeCostFunctionINTEL";
-        case 5800: return "OpSubgroupAvcSicSetBilinearFilterEnableINTEL";
-        case 5801: return "OpSubgroupAvcSicSetSkcForwardTransformEnableINTEL";
-        case 5802: return "OpSubgroupAvcSicSetBlockBasedRawSkipSadINTEL";
-        case 5803: return "OpSubgroupAvcSicEvaluateIpeINTEL";
-        case 5804: return "OpSubgroupAvcSicEvaluateWithSingleReferenceINTEL";
-        case 5805: return "OpSubgroupAvcSicEvaluateWithDualReferenceINTEL";
-        case 5806: return "OpSubgroupAvcSicEvaluateWithMultiReferenceINTEL";
-        case 5807: return "OpSubgroupAvcSicEvaluateWithMultiReferenceInterlacedINTEL";
-        case 5808: return "OpSubgroupAvcSicConvertToMceResultINTEL";
-        case 5809: return "OpSubgroupAvcSicGetIpeLumaShapeINTEL";
-        case 5810: return "OpSubgroupAvcSicGetBestIpeLumaDistortionINTEL";
-        case 5811: return "OpSubgroupAvcSicGetBestIpeChromaDistortionINTEL";
-        case 5812: return "OpSubgroupAvcSicGetPackedIpeLumaModesINTEL";
-        case 5813: return "OpSubgroupAvcSicGetIpeChromaModeINTEL";
-        case 5814: return "OpSubgroupAvcSicGetPackedSkcLumaCountThresholdINTEL";
-        case 5815: return "OpSubgroupAvcSicGetPackedSkcLumaSumThresholdINTEL";
-        case 5816: return "OpSubgroupAvcSicGetInterRawSadsINTEL";
-        case 5818: return "OpVariableLengthArrayINTEL";
-        case 5819: return "OpSaveMemoryINTEL";
-        case 5820: return "OpRestoreMemoryINTEL";
-        case 5840: return "OpArbitraryFloatSinCosPiINTEL";
-        case 5841: return "OpArbitraryFloatCastINTEL";
-        case 5842: return "OpArbitraryFloatCastFromIntINTEL";
-        case 5843: return "OpArbitraryFloatCastToIntINTEL";
-        case 5846: return "OpArbitraryFloatAddINTEL";
-        case 5847: return "OpArbitraryFloatSubINTEL";
-        case 5848: return "OpArbitraryFloatMulINTEL";
-        case 5849: return "OpArbitraryFloatDivINTEL";
-        case 5850: return "OpArbitraryFloatGTINTEL";
-        case 5851: return "OpArbitraryFloatGEINTEL";
-        case 5852: return "OpArbitraryFloatLTINTEL";
-        case 5853: return "OpArbitraryFloatLEINTEL";
-        case 5854: return "OpArbitraryFloatEQINTEL";
-        case 5855: return "OpArbitraryFloatRecipINTEL";
-        case 5856: return "OpArbitraryFloatRSqrtINTEL";
-        case 5857: return "OpArbitraryFloatCbrtINTEL";
-        case 5858: return "OpArbitraryFloatHypotINTEL";
-        case 5859: return "OpArbitraryFloatSqrtINTEL";
-        case 5860: return "OpArbitraryFloatLogINTEL";
-        case 5861: return "OpArbitraryFloatLog2INTEL";
-        case 5862: return "OpArbitraryFloatLog10INTEL";
-        case 5863: return "OpArbitraryFloatLog1pINTEL";
-        case 5864: return "OpArbitraryFloatExpINTEL";
-        case 5865: return "OpArbitraryFloatExp2INTEL";
-        case 5866: return "OpArbitraryFloatExp10INTEL";
-        case 5867: return "OpArbitraryFloatExpm1INTEL";
-        case 5868: return "OpArbitraryFloatSinINTEL";
-        case 5869: return "OpArbitraryFloatCosINTEL";
-        case 5870: return "OpArbitraryFloatSinCosINTEL";
-        case 5871: return "OpArbitraryFloatSinPiINTEL";
-        case 5872: return "OpArbitraryFloatCosPiINTEL";
-        case 5873: return "OpArbitraryFloatASinINTEL";
-        case 5874: return "OpArbitraryFloatASinPiINTEL";
-        case 5875: return "OpArbitraryFloatACosINTEL";
-        case 5876: return "OpArbitraryFloatACosPiINTEL";
-        case 5877: return "OpArbitraryFloatATanINTEL";
-        case 5878: return "OpArbitraryFloatATanPiINTEL";
-        case 5879: return "OpArbitraryFloatATan2INTEL";
-        case 5880: return "OpArbitraryFloatPowINTEL";
-        case 5881: return "OpArbitraryFloatPowRINTEL";
-        case 5882: return "OpArbitraryFloatPowNINTEL";
-        case 5887: return "OpLoopControlINTEL";
-        case 5911: return "OpAliasDomainDeclINTEL";
-        case 5912: return "OpAliasScopeDeclINTEL";
-        case 5913: return "OpAliasScopeListDeclINTEL";
-        case 5923: return "OpFixedSqrtINTEL";
-        case 5924: return "OpFixedRecipINTEL";
-        case 5925: return "OpFixedRsqrtINTEL";
-        case 5926: return "OpFixedSinINTEL";
-        case 5927: return "OpFixedCosINTEL";
-        case 5928: return "OpFixedSinCosINTEL";
-        case 5929: return "OpFixedSinPiINTEL";
-        case 5930: return "OpFixedCosPiINTEL";
-        case 5931: return "OpFixedSinCosPiINTEL";
-        case 5932: return "OpFixedLogINTEL";
-        case 5933: return "OpFixedExpINTEL";
-        case 5934: return "OpPtrCastToCrossWorkgroupINTEL";
-        case 5938: return "OpCrossWorkgroupCastToPtrINTEL";
-        case 5946: return "OpReadPipeBlockingINTEL";
-        case 5947: return "OpWritePipeBlockingINTEL";
-        case 5949: return "OpFPGARegINTEL";
-        case 6016: return "OpRayQueryGetRayTMinKHR";
-        case 6017: return "OpRayQueryGetRayFlagsKHR";
-        case 6018: return "OpRayQueryGetIntersectionTKHR";
-        case 6019: return "OpRayQueryGetIntersectionInstanceCustomIndexKHR";
-        case 6020: return "OpRayQueryGetIntersectionInstanceIdKHR";
-        case 6021: return "OpRayQueryGetIntersectionInstanceShaderBindingTableRecordOffsetKHR";
-        case 6022: return "OpRayQueryGetIntersectionGeometryIndexKHR";
-        case 6023: return "OpRayQueryGetIntersectionPrimitiveIndexKHR";
-        case 6024: return "OpRayQueryGetIntersectionBarycentricsKHR";
-        case 6025: return "OpRayQueryGetIntersectionFrontFaceKHR";
-        case 6026: return "OpRayQueryGetIntersectionCandidateAABBOpaqueKHR";
-        case 6027: return "OpRayQueryGetIntersectionObjectRayDirectionKHR";
-        case 6028: return "OpRayQueryGetIntersectionObjectRayOriginKHR";
-        case 6029: return "OpRayQueryGetWorldRayDirectionKHR";
-        case 6030: return "OpRayQueryGetWorldRayOriginKHR";
-        case 6031: return "OpRayQueryGetIntersectionObjectToWorldKHR";
-        case 6032: return "OpRayQueryGetIntersectionWorldToObjectKHR";
-        case 6035: return "OpAtomicFAddEXT";
-        case 6086: return "OpTypeBufferSurfaceINTEL";
-        case 6090: return "OpTypeStructContinuedINTEL";
-        case 6091: return "OpConstantCompositeContinuedINTEL";
-        case 6092: return "OpSpecConstantCompositeContinuedINTEL";
-        case 6142: return "OpControlBarrierArriveINTEL";
-        case 6143: return "OpControlBarrierWaitINTEL";
-        case 6401: return "OpGroupIMulKHR";
-        case 6402: return "OpGroupFMulKHR";
-        case 6403: return "OpGroupBitwiseAndKHR";
-        case 6404: return "OpGroupBitwiseOrKHR";
-        case 6405: return "OpGroupBitwiseXorKHR";
-        case 6406: return "OpGroupLogicalAndKHR";
-        case 6407: return "OpGroupLogicalOrKHR";
-        case 6408: return "OpGroupLogicalXorKHR";
-        default: return "unknown";
+        case 0:
+            return "OpNop";
+        case 1:
+            return "OpUndef";
+        case 2:
+            return "OpSourceContinued";
+        case 3:
+            return "OpSource";
+        case 4:
+            return "OpSourceExtension";
+        case 5:
+            return "OpName";
+        case 6:
+            return "OpMemberName";
+        case 7:
+            return "OpString";
+        case 8:
+            return "OpLine";
+        case 10:
+            return "OpExtension";
+        case 11:
+            return "OpExtInstImport";
+        case 12:
+            return "OpExtInst";
+        case 14:
+            return "OpMemoryModel";
+        case 15:
+            return "OpEntryPoint";
+        case 16:
+            return "OpExecutionMode";
+        case 17:
+            return "OpCapability";
+        case 19:
+            return "OpTypeVoid";
+        case 20:
+            return "OpTypeBool";
+        case 21:
+            return "OpTypeInt";
+        case 22:
+            return "OpTypeFloat";
+        case 23:
+            return "OpTypeVector";
+        case 24:
+            return "OpTypeMatrix";
+        case 25:
+            return "OpTypeImage";
+        case 26:
+            return "OpTypeSampler";
+        case 27:
+            return "OpTypeSampledImage";
+        case 28:
+            return "OpTypeArray";
+        case 29:
+            return "OpTypeRuntimeArray";
+        case 30:
+            return "OpTypeStruct";
+        case 31:
+            return "OpTypeOpaque";
+        case 32:
+            return "OpTypePointer";
+        case 33:
+            return "OpTypeFunction";
+        case 34:
+            return "OpTypeEvent";
+        case 35:
+            return "OpTypeDeviceEvent";
+        case 36:
+            return "OpTypeReserveId";
+        case 37:
+            return "OpTypeQueue";
+        case 38:
+            return "OpTypePipe";
+        case 39:
+            return "OpTypeForwardPointer";
+        case 41:
+            return "OpConstantTrue";
+        case 42:
+            return "OpConstantFalse";
+        case 43:
+            return "OpConstant";
+        case 44:
+            return "OpConstantComposite";
+        case 45:
+            return "OpConstantSampler";
+        case 46:
+            return "OpConstantNull";
+        case 48:
+            return "OpSpecConstantTrue";
+        case 49:
+            return "OpSpecConstantFalse";
+        case 50:
+            return "OpSpecConstant";
+        case 51:
+            return "OpSpecConstantComposite";
+        case 52:
+            return "OpSpecConstantOp";
+        case 54:
+            return "OpFunction";
+        case 55:
+            return "OpFunctionParameter";
+        case 56:
+            return "OpFunctionEnd";
+        case 57:
+            return "OpFunctionCall";
+        case 59:
+            return "OpVariable";
+        case 60:
+            return "OpImageTexelPointer";
+        case 61:
+            return "OpLoad";
+        case 62:
+            return "OpStore";
+        case 63:
+            return "OpCopyMemory";
+        case 64:
+            return "OpCopyMemorySized";
+        case 65:
+            return "OpAccessChain";
+        case 66:
+            return "OpInBoundsAccessChain";
+        case 67:
+            return "OpPtrAccessChain";
+        case 68:
+            return "OpArrayLength";
+        case 69:
+            return "OpGenericPtrMemSemantics";
+        case 70:
+            return "OpInBoundsPtrAccessChain";
+        case 71:
+            return "OpDecorate";
+        case 72:
+            return "OpMemberDecorate";
+        case 73:
+            return "OpDecorationGroup";
+        case 74:
+            return "OpGroupDecorate";
+        case 75:
+            return "OpGroupMemberDecorate";
+        case 77:
+            return "OpVectorExtractDynamic";
+        case 78:
+            return "OpVectorInsertDynamic";
+        case 79:
+            return "OpVectorShuffle";
+        case 80:
+            return "OpCompositeConstruct";
+        case 81:
+            return "OpCompositeExtract";
+        case 82:
+            return "OpCompositeInsert";
+        case 83:
+            return "OpCopyObject";
+        case 84:
+            return "OpTranspose";
+        case 86:
+            return "OpSampledImage";
+        case 87:
+            return "OpImageSampleImplicitLod";
+        case 88:
+            return "OpImageSampleExplicitLod";
+        case 89:
+            return "OpImageSampleDrefImplicitLod";
+        case 90:
+            return "OpImageSampleDrefExplicitLod";
+        case 91:
+            return "OpImageSampleProjImplicitLod";
+        case 92:
+            return "OpImageSampleProjExplicitLod";
+        case 93:
+            return "OpImageSampleProjDrefImplicitLod";
+        case 94:
+            return "OpImageSampleProjDrefExplicitLod";
+        case 95:
+            return "OpImageFetch";
+        case 96:
+            return "OpImageGather";
+        case 97:
+            return "OpImageDrefGather";
+        case 98:
+            return "OpImageRead";
+        case 99:
+            return "OpImageWrite";
+        case 100:
+            return "OpImage";
+        case 101:
+            return "OpImageQueryFormat";
+        case 102:
+            return "OpImageQueryOrder";
+        case 103:
+            return "OpImageQuerySizeLod";
+        case 104:
+            return "OpImageQuerySize";
+        case 105:
+            return "OpImageQueryLod";
+        case 106:
+            return "OpImageQueryLevels";
+        case 107:
+            return "OpImageQuerySamples";
+        case 109:
+            return "OpConvertFToU";
+        case 110:
+            return "OpConvertFToS";
+        case 111:
+            return "OpConvertSToF";
+        case 112:
+            return "OpConvertUToF";
+        case 113:
+            return "OpUConvert";
+        case 114:
+            return "OpSConvert";
+        case 115:
+            return "OpFConvert";
+        case 116:
+            return "OpQuantizeToF16";
+        case 117:
+            return "OpConvertPtrToU";
+        case 118:
+            return "OpSatConvertSToU";
+        case 119:
+            return "OpSatConvertUToS";
+        case 120:
+            return "OpConvertUToPtr";
+        case 121:
+            return "OpPtrCastToGeneric";
+        case 122:
+            return "OpGenericCastToPtr";
+        case 123:
+            return "OpGenericCastToPtrExplicit";
+        case 124:
+            return "OpBitcast";
+        case 126:
+            return "OpSNegate";
+        case 127:
+            return "OpFNegate";
+        case 128:
+            return "OpIAdd";
+        case 129:
+            return "OpFAdd";
+        case 130:
+            return "OpISub";
+        case 131:
+            return "OpFSub";
+        case 132:
+            return "OpIMul";
+        case 133:
+            return "OpFMul";
+        case 134:
+            return "OpUDiv";
+        case 135:
+            return "OpSDiv";
+        case 136:
+            return "OpFDiv";
+        case 137:
+            return "OpUMod";
+        case 138:
+            return "OpSRem";
+        case 139:
+            return "OpSMod";
+        case 140:
+            return "OpFRem";
+        case 141:
+            return "OpFMod";
+        case 142:
+            return "OpVectorTimesScalar";
+        case 143:
+            return "OpMatrixTimesScalar";
+        case 144:
+            return "OpVectorTimesMatrix";
+        case 145:
+            return "OpMatrixTimesVector";
+        case 146:
+            return "OpMatrixTimesMatrix";
+        case 147:
+            return "OpOuterProduct";
+        case 148:
+            return "OpDot";
+        case 149:
+            return "OpIAddCarry";
+        case 150:
+            return "OpISubBorrow";
+        case 151:
+            return "OpUMulExtended";
+        case 152:
+            return "OpSMulExtended";
+        case 154:
+            return "OpAny";
+        case 155:
+            return "OpAll";
+        case 156:
+            return "OpIsNan";
+        case 157:
+            return "OpIsInf";
+        case 158:
+            return "OpIsFinite";
+        case 159:
+            return "OpIsNormal";
+        case 160:
+            return "OpSignBitSet";
+        case 161:
+            return "OpLessOrGreater";
+        case 162:
+            return "OpOrdered";
+        case 163:
+            return "OpUnordered";
+        case 164:
+            return "OpLogicalEqual";
+        case 165:
+            return "OpLogicalNotEqual";
+        case 166:
+            return "OpLogicalOr";
+        case 167:
+            return "OpLogicalAnd";
+        case 168:
+            return "OpLogicalNot";
+        case 169:
+            return "OpSelect";
+        case 170:
+            return "OpIEqual";
+        case 171:
+            return "OpINotEqual";
+        case 172:
+            return "OpUGreaterThan";
+        case 173:
+            return "OpSGreaterThan";
+        case 174:
+            return "OpUGreaterThanEqual";
+        case 175:
+            return "OpSGreaterThanEqual";
+        case 176:
+            return "OpULessThan";
+        case 177:
+            return "OpSLessThan";
+        case 178:
+            return "OpULessThanEqual";
+        case 179:
+            return "OpSLessThanEqual";
+        case 180:
+            return "OpFOrdEqual";
+        case 181:
+            return "OpFUnordEqual";
+        case 182:
+            return "OpFOrdNotEqual";
+        case 183:
+            return "OpFUnordNotEqual";
+        case 184:
+            return "OpFOrdLessThan";
+        case 185:
+            return "OpFUnordLessThan";
+        case 186:
+            return "OpFOrdGreaterThan";
+        case 187:
+            return "OpFUnordGreaterThan";
+        case 188:
+            return "OpFOrdLessThanEqual";
+        case 189:
+            return "OpFUnordLessThanEqual";
+        case 190:
+            return "OpFOrdGreaterThanEqual";
+        case 191:
+            return "OpFUnordGreaterThanEqual";
+        case 194:
+            return "OpShiftRightLogical";
+        case 195:
+            return "OpShiftRightArithmetic";
+        case 196:
+            return "OpShiftLeftLogical";
+        case 197:
+            return "OpBitwiseOr";
+        case 198:
+            return "OpBitwiseXor";
+        case 199:
+            return "OpBitwiseAnd";
+        case 200:
+            return "OpNot";
+        case 201:
+            return "OpBitFieldInsert";
+        case 202:
+            return "OpBitFieldSExtract";
+        case 203:
+            return "OpBitFieldUExtract";
+        case 204:
+            return "OpBitReverse";
+        case 205:
+            return "OpBitCount";
+        case 207:
+            return "OpDPdx";
+        case 208:
+            return "OpDPdy";
+        case 209:
+            return "OpFwidth";
+        case 210:
+            return "OpDPdxFine";
+        case 211:
+            return "OpDPdyFine";
+        case 212:
+            return "OpFwidthFine";
+        case 213:
+            return "OpDPdxCoarse";
+        case 214:
+            return "OpDPdyCoarse";
+        case 215:
+            return "OpFwidthCoarse";
+        case 218:
+            return "OpEmitVertex";
+        case 219:
+            return "OpEndPrimitive";
+        case 220:
+            return "OpEmitStreamVertex";
+        case 221:
+            return "OpEndStreamPrimitive";
+        case 224:
+            return "OpControlBarrier";
+        case 225:
+            return "OpMemoryBarrier";
+        case 227:
+            return "OpAtomicLoad";
+        case 228:
+            return "OpAtomicStore";
+        case 229:
+            return "OpAtomicExchange";
+        case 230:
+            return "OpAtomicCompareExchange";
+        case 231:
+            return "OpAtomicCompareExchangeWeak";
+        case 232:
+            return "OpAtomicIIncrement";
+        case 233:
+            return "OpAtomicIDecrement";
+        case 234:
+            return "OpAtomicIAdd";
+        case 235:
+            return "OpAtomicISub";
+        case 236:
+            return "OpAtomicSMin";
+        case 237:
+            return "OpAtomicUMin";
+        case 240:
+            return "OpAtomicAnd";
+        case 241:
+            return "OpAtomicOr";
+        case 242:
+            return "OpAtomicXor";
+        case 245:
+            return "OpPhi";
+        case 246:
+            return "OpLoopMerge";
+        case 247:
+            return "OpSelectionMerge";
+        case 248:
+            return "OpLabel";
+        case 249:
+            return "OpBranch";
+        case 250:
+            return "OpBranchConditional";
+        case 251:
+            return "OpSwitch";
+        case 252:
+            return "OpKill";
+        case 253:
+            return "OpReturn";
+        case 254:
+            return "OpReturnValue";
+        case 255:
+            return "OpUnreachable";
+        case 256:
+            return "OpLifetimeStart";
+        case 257:
+            return "OpLifetimeStop";
+        case 259:
+            return "OpGroupAsyncCopy";
+        case 260:
+            return "OpGroupWaitEvents";
+        case 261:
+            return "OpGroupAll";
+        case 262:
+            return "OpGroupAny";
+        case 263:
+            return "OpGroupBroadcast";
+        case 264:
+            return "OpGroupIAdd";
+        case 265:
+            return "OpGroupFAdd";
+        case 266:
+            return "OpGroupFMin";
+        case 267:
+            return "OpGroupUMin";
+        case 268:
+            return "OpGroupSMin";
+        case 274:
+            return "OpReadPipe";
+        case 275:
+            return "OpWritePipe";
+        case 276:
+            return "OpReservedReadPipe";
+        case 277:
+            return "OpReservedWritePipe";
+        case 278:
+            return "OpReserveReadPipePackets";
+        case 279:
+            return "OpReserveWritePipePackets";
+        case 280:
+            return "OpCommitReadPipe";
+        case 281:
+            return "OpCommitWritePipe";
+        case 282:
+            return "OpIsValidReserveId";
+        case 283:
+            return "OpGetNumPipePackets";
+        case 284:
+            return "OpGetMaxPipePackets";
+        case 285:
+            return "OpGroupReserveReadPipePackets";
+        case 286:
+            return "OpGroupReserveWritePipePackets";
+        case 287:
+            return "OpGroupCommitReadPipe";
+        case 288:
+            return "OpGroupCommitWritePipe";
+        case 291:
+            return "OpEnqueueMarker";
+        case 292:
+            return "OpEnqueueKernel";
+        case 293:
+            return "OpGetKernelNDrangeSubGroupCount";
+        case 294:
+            return "OpGetKernelNDrangeMaxSubGroupSize";
+        case 295:
+            return "OpGetKernelWorkGroupSize";
+        case 296:
+            return "OpGetKernelPreferredWorkGroupSizeMultiple";
+        case 297:
+            return "OpRetainEvent";
+        case 298:
+            return "OpReleaseEvent";
+        case 299:
+            return "OpCreateUserEvent";
+        case 300:
+            return "OpIsValidEvent";
+        case 301:
+            return "OpSetUserEventStatus";
+        case 302:
+            return "OpCaptureEventProfilingInfo";
+        case 303:
+            return "OpGetDefaultQueue";
+        case 304:
+            return "OpBuildNDRange";
+        case 305:
+            return "OpImageSparseSampleImplicitLod";
+        case 306:
+            return "OpImageSparseSampleExplicitLod";
+        case 307:
+            return "OpImageSparseSampleDrefImplicitLod";
+        case 308:
+            return "OpImageSparseSampleDrefExplicitLod";
+        case 309:
+            return "OpImageSparseSampleProjImplicitLod";
+        case 310:
+            return "OpImageSparseSampleProjExplicitLod";
+        case 311:
+            return "OpImageSparseSampleProjDrefImplicitLod";
+        case 312:
+            return "OpImageSparseSampleProjDrefExplicitLod";
+        case 313:
+            return "OpImageSparseFetch";
+        case 314:
+            return "OpImageSparseGather";
+        case 315:
+            return "OpImageSparseDrefGather";
+        case 316:
+            return "OpImageSparseTexelsResident";
+        case 317:
+            return "OpNoLine";
+        case 318:
+            return "OpAtomicFlagTestAndSet";
+        case 319:
+            return "OpAtomicFlagClear";
+        case 320:
+            return "OpImageSparseRead";
+        case 321:
+            return "OpSizeOf";
+        case 322:
+            return "OpTypePipeStorage";
+        case 323:
+            return "OpConstantPipeStorage";
+        case 324:
+            return "OpCreatePipeFromPipeStorage";
+        case 325:
+            return "OpGetKernelLocalSizeForSubgroupCount";
+        case 326:
+            return "OpGetKernelMaxNumSubgroups";
+        case 327:
+            return "OpTypeNamedBarrier";
+        case 328:
+            return "OpNamedBarrierInitialize";
+        case 329:
+            return "OpMemoryNamedBarrier";
+        case 330:
+            return "OpModuleProcessed";
+        case 331:
+            return "OpExecutionModeId";
+        case 332:
+            return "OpDecorateId";
+        case 333:
+            return "OpGroupNonUniformElect";
+        case 334:
+            return "OpGroupNonUniformAll";
+        case 335:
+            return "OpGroupNonUniformAny";
+        case 336:
+            return "OpGroupNonUniformAllEqual";
+        case 337:
+            return "OpGroupNonUniformBroadcast";
+        case 338:
+            return "OpGroupNonUniformBroadcastFirst";
+        case 339:
+            return "OpGroupNonUniformBallot";
+        case 340:
+            return "OpGroupNonUniformInverseBallot";
+        case 341:
+            return "OpGroupNonUniformBallotBitExtract";
+        case 342:
+            return "OpGroupNonUniformBallotBitCount";
+        case 343:
+            return "OpGroupNonUniformBallotFindLSB";
+        case 344:
+            return "OpGroupNonUniformBallotFindMSB";
+        case 345:
+            return "OpGroupNonUniformShuffle";
+        case 346:
+            return "OpGroupNonUniformShuffleXor";
+        case 347:
+            return "OpGroupNonUniformShuffleUp";
+        case 348:
+            return "OpGroupNonUniformShuffleDown";
+        case 349:
+            return "OpGroupNonUniformIAdd";
+        case 350:
+            return "OpGroupNonUniformFAdd";
+        case 351:
+            return "OpGroupNonUniformIMul";
+        case 352:
+            return "OpGroupNonUniformFMul";
+        case 353:
+            return "OpGroupNonUniformSMin";
+        case 354:
+            return "OpGroupNonUniformUMin";
+        case 355:
+            return "OpGroupNonUniformFMin";
+        case 359:
+            return "OpGroupNonUniformBitwiseAnd";
+        case 360:
+            return "OpGroupNonUniformBitwiseOr";
+        case 361:
+            return "OpGroupNonUniformBitwiseXor";
+        case 362:
+            return "OpGroupNonUniformLogicalAnd";
+        case 363:
+            return "OpGroupNonUniformLogicalOr";
+        case 364:
+            return "OpGroupNonUniformLogicalXor";
+        case 365:
+            return "OpGroupNonUniformQuadBroadcast";
+        case 366:
+            return "OpGroupNonUniformQuadSwap";
+        case 400:
+            return "OpCopyLogical";
+        case 401:
+            return "OpPtrEqual";
+        case 402:
+            return "OpPtrNotEqual";
+        case 403:
+            return "OpPtrDiff";
+        case 4416:
+            return "OpTerminateInvocation";
+        case 4421:
+            return "OpSubgroupBallotKHR";
+        case 4422:
+            return "OpSubgroupFirstInvocationKHR";
+        case 4428:
+            return "OpSubgroupAllKHR";
+        case 4429:
+            return "OpSubgroupAnyKHR";
+        case 4430:
+            return "OpSubgroupAllEqualKHR";
+        case 4431:
+            return "OpGroupNonUniformRotateKHR";
+        case 4432:
+            return "OpSubgroupReadInvocationKHR";
+        case 4445:
+            return "OpTraceRayKHR";
+        case 4446:
+            return "OpExecuteCallableKHR";
+        case 4447:
+            return "OpConvertUToAccelerationStructureKHR";
+        case 4448:
+            return "OpIgnoreIntersectionKHR";
+        case 4449:
+            return "OpTerminateRayKHR";
+        case 4450:
+            return "OpSDot";
+        case 4451:
+            return "OpUDot";
+        case 4452:
+            return "OpSUDot";
+        case 4453:
+            return "OpSDotAccSat";
+        case 4454:
+            return "OpUDotAccSat";
+        case 4455:
+            return "OpSUDotAccSat";
+        case 4472:
+            return "OpTypeRayQueryKHR";
+        case 4473:
+            return "OpRayQueryInitializeKHR";
+        case 4474:
+            return "OpRayQueryTerminateKHR";
+        case 4475:
+            return "OpRayQueryGenerateIntersectionKHR";
+        case 4476:
+            return "OpRayQueryConfirmIntersectionKHR";
+        case 4477:
+            return "OpRayQueryProceedKHR";
+        case 4479:
+            return "OpRayQueryGetIntersectionTypeKHR";
+        case 5000:
+            return "OpGroupIAddNonUniformAMD";
+        case 5001:
+            return "OpGroupFAddNonUniformAMD";
+        case 5002:
+            return "OpGroupFMinNonUniformAMD";
+        case 5003:
+            return "OpGroupUMinNonUniformAMD";
+        case 5004:
+            return "OpGroupSMinNonUniformAMD";
+        case 5005:
+            return "OpGroupFMaxNonUniformAMD";
+        case 5006:
+            return "OpGroupUMaxNonUniformAMD";
+        case 5007:
+            return "OpGroupSMaxNonUniformAMD";
+        case 5011:
+            return "OpFragmentMaskFetchAMD";
+        case 5012:
+            return "OpFragmentFetchAMD";
+        case 5056:
+            return "OpReadClockKHR";
+        case 5249:
+            return "OpHitObjectRecordHitMotionNV";
+        case 5250:
+            return "OpHitObjectRecordHitWithIndexMotionNV";
+        case 5251:
+            return "OpHitObjectRecordMissMotionNV";
+        case 5252:
+            return "OpHitObjectGetWorldToObjectNV";
+        case 5253:
+            return "OpHitObjectGetObjectToWorldNV";
+        case 5254:
+            return "OpHitObjectGetObjectRayDirectionNV";
+        case 5255:
+            return "OpHitObjectGetObjectRayOriginNV";
+        case 5256:
+            return "OpHitObjectTraceRayMotionNV";
+        case 5257:
+            return "OpHitObjectGetShaderRecordBufferHandleNV";
+        case 5258:
+            return "OpHitObjectGetShaderBindingTableRecordIndexNV";
+        case 5259:
+            return "OpHitObjectRecordEmptyNV";
+        case 5260:
+            return "OpHitObjectTraceRayNV";
+        case 5261:
+            return "OpHitObjectRecordHitNV";
+        case 5262:
+            return "OpHitObjectRecordHitWithIndexNV";
+        case 5263:
+            return "OpHitObjectRecordMissNV";
+        case 5264:
+            return "OpHitObjectExecuteShaderNV";
+        case 5265:
+            return "OpHitObjectGetCurrentTimeNV";
+        case 5266:
+            return "OpHitObjectGetAttributesNV";
+        case 5267:
+            return "OpHitObjectGetHitKindNV";
+        case 5268:
+            return "OpHitObjectGetPrimitiveIndexNV";
+        case 5269:
+            return "OpHitObjectGetGeometryIndexNV";
+        case 5270:
+            return "OpHitObjectGetInstanceIdNV";
+        case 5271:
+            return "OpHitObjectGetInstanceCustomIndexNV";
+        case 5272:
+            return "OpHitObjectGetWorldRayDirectionNV";
+        case 5273:
+            return "OpHitObjectGetWorldRayOriginNV";
+        case 5274:
+            return "OpHitObjectGetRayTMaxNV";
+        case 5275:
+            return "OpHitObjectGetRayTMinNV";
+        case 5276:
+            return "OpHitObjectIsEmptyNV";
+        case 5277:
+            return "OpHitObjectIsHitNV";
+        case 5278:
+            return "OpHitObjectIsMissNV";
+        case 5279:
+            return "OpReorderThreadWithHitObjectNV";
+        case 5280:
+            return "OpReorderThreadWithHintNV";
+        case 5281:
+            return "OpTypeHitObjectNV";
+        case 5283:
+            return "OpImageSampleFootprintNV";
+        case 5294:
+            return "OpEmitMeshTasksEXT";
+        case 5295:
+            return "OpSetMeshOutputsEXT";
+        case 5296:
+            return "OpGroupNonUniformPartitionNV";
+        case 5299:
+            return "OpWritePackedPrimitiveIndices4x8NV";
+        case 5334:
+            return "OpReportIntersectionKHR";
+        case 5335:
+            return "OpIgnoreIntersectionNV";
+        case 5336:
+            return "OpTerminateRayNV";
+        case 5337:
+            return "OpTraceNV";
+        case 5338:
+            return "OpTraceMotionNV";
+        case 5339:
+            return "OpTraceRayMotionNV";
+        case 5341:
+            return "OpTypeAccelerationStructureKHR";
+        case 5344:
+            return "OpExecuteCallableNV";
+        case 5358:
+            return "OpTypeCooperativeMatrixNV";
+        case 5359:
+            return "OpCooperativeMatrixLoadNV";
+        case 5360:
+            return "OpCooperativeMatrixStoreNV";
+        case 5361:
+            return "OpCooperativeMatrixMulAddNV";
+        case 5362:
+            return "OpCooperativeMatrixLengthNV";
+        case 5364:
+            return "OpBeginInvocationInterlockEXT";
+        case 5365:
+            return "OpEndInvocationInterlockEXT";
+        case 5380:
+            return "OpDemoteToHelperInvocation";
+        case 5381:
+            return "OpIsHelperInvocationEXT";
+        case 5391:
+            return "OpConvertUToImageNV";
+        case 5392:
+            return "OpConvertUToSamplerNV";
+        case 5393:
+            return "OpConvertImageToUNV";
+        case 5394:
+            return "OpConvertSamplerToUNV";
+        case 5395:
+            return "OpConvertUToSampledImageNV";
+        case 5396:
+            return "OpConvertSampledImageToUNV";
+        case 5397:
+            return "OpSamplerImageAddressingModeNV";
+        case 5571:
+            return "OpSubgroupShuffleINTEL";
+        case 5572:
+            return "OpSubgroupShuffleDownINTEL";
+        case 5573:
+            return "OpSubgroupShuffleUpINTEL";
+        case 5574:
+            return "OpSubgroupShuffleXorINTEL";
+        case 5575:
+            return "OpSubgroupBlockReadINTEL";
+        case 5576:
+            return "OpSubgroupBlockWriteINTEL";
+        case 5577:
+            return "OpSubgroupImageBlockReadINTEL";
+        case 5578:
+            return "OpSubgroupImageBlockWriteINTEL";
+        case 5580:
+            return "OpSubgroupImageMediaBlockReadINTEL";
+        case 5581:
+            return "OpSubgroupImageMediaBlockWriteINTEL";
+        case 5585:
+            return "OpUCountLeadingZerosINTEL";
+        case 5586:
+            return "OpUCountTrailingZerosINTEL";
+        case 5587:
+            return "OpAbsISubINTEL";
+        case 5588:
+            return "OpAbsUSubINTEL";
+        case 5589:
+            return "OpIAddSatINTEL";
+        case 5590:
+            return "OpUAddSatINTEL";
+        case 5591:
+            return "OpIAverageINTEL";
+        case 5592:
+            return "OpUAverageINTEL";
+        case 5593:
+            return "OpIAverageRoundedINTEL";
+        case 5594:
+            return "OpUAverageRoundedINTEL";
+        case 5595:
+            return "OpISubSatINTEL";
+        case 5596:
+            return "OpUSubSatINTEL";
+        case 5597:
+            return "OpIMul32x16INTEL";
+        case 5598:
+            return "OpUMul32x16INTEL";
+        case 5600:
+            return "OpConstantFunctionPointerINTEL";
+        case 5601:
+            return "OpFunctionPointerCallINTEL";
+        case 5609:
+            return "OpAsmTargetINTEL";
+        case 5610:
+            return "OpAsmINTEL";
+        case 5611:
+            return "OpAsmCallINTEL";
+        case 5614:
+            return "OpAtomicFMinEXT";
+        case 5615:
+            return "OpAtomicFMaxEXT";
+        case 5630:
+            return "OpAssumeTrueKHR";
+        case 5631:
+            return "OpExpectKHR";
+        case 5632:
+            return "OpDecorateString";
+        case 5633:
+            return "OpMemberDecorateString";
+        case 5699:
+            return "OpVmeImageINTEL";
+        case 5700:
+            return "OpTypeVmeImageINTEL";
+        case 5701:
+            return "OpTypeAvcImePayloadINTEL";
+        case 5702:
+            return "OpTypeAvcRefPayloadINTEL";
+        case 5703:
+            return "OpTypeAvcSicPayloadINTEL";
+        case 5704:
+            return "OpTypeAvcMcePayloadINTEL";
+        case 5705:
+            return "OpTypeAvcMceResultINTEL";
+        case 5706:
+            return "OpTypeAvcImeResultINTEL";
+        case 5707:
+            return "OpTypeAvcImeResultSingleReferenceStreamoutINTEL";
+        case 5708:
+            return "OpTypeAvcImeResultDualReferenceStreamoutINTEL";
+        case 5709:
+            return "OpTypeAvcImeSingleReferenceStreaminINTEL";
+        case 5710:
+            return "OpTypeAvcImeDualReferenceStreaminINTEL";
+        case 5711:
+            return "OpTypeAvcRefResultINTEL";
+        case 5712:
+            return "OpTypeAvcSicResultINTEL";
+        case 5713:
+            return "OpSubgroupAvcMceGetDefaultInterBaseMultiReferencePenaltyINTEL";
+        case 5714:
+            return "OpSubgroupAvcMceSetInterBaseMultiReferencePenaltyINTEL";
+        case 5715:
+            return "OpSubgroupAvcMceGetDefaultInterShapePenaltyINTEL";
+        case 5716:
+            return "OpSubgroupAvcMceSetInterShapePenaltyINTEL";
+        case 5717:
+            return "OpSubgroupAvcMceGetDefaultInterDirectionPenaltyINTEL";
+        case 5718:
+            return "OpSubgroupAvcMceSetInterDirectionPenaltyINTEL";
+        case 5719:
+            return "OpSubgroupAvcMceGetDefaultIntraLumaShapePenaltyINTEL";
+        case 5720:
+            return "OpSubgroupAvcMceGetDefaultInterMotionVectorCostTableINTEL";
+        case 5721:
+            return "OpSubgroupAvcMceGetDefaultHighPenaltyCostTableINTEL";
+        case 5722:
+            return "OpSubgroupAvcMceGetDefaultMediumPenaltyCostTableINTEL";
+        case 5723:
+            return "OpSubgroupAvcMceGetDefaultLowPenaltyCostTableINTEL";
+        case 5724:
+            return "OpSubgroupAvcMceSetMotionVectorCostFunctionINTEL";
+        case 5725:
+            return "OpSubgroupAvcMceGetDefaultIntraLumaModePenaltyINTEL";
+        case 5726:
+            return "OpSubgroupAvcMceGetDefaultNonDcLumaIntraPenaltyINTEL";
+        case 5727:
+            return "OpSubgroupAvcMceGetDefaultIntraChromaModeBasePenaltyINTEL";
+        case 5728:
+            return "OpSubgroupAvcMceSetAcOnlyHaarINTEL";
+        case 5729:
+            return "OpSubgroupAvcMceSetSourceInterlacedFieldPolarityINTEL";
+        case 5730:
+            return "OpSubgroupAvcMceSetSingleReferenceInterlacedFieldPolarityINTEL";
+        case 5731:
+            return "OpSubgroupAvcMceSetDualReferenceInterlacedFieldPolaritiesINTEL";
+        case 5732:
+            return "OpSubgroupAvcMceConvertToImePayloadINTEL";
+        case 5733:
+            return "OpSubgroupAvcMceConvertToImeResultINTEL";
+        case 5734:
+            return "OpSubgroupAvcMceConvertToRefPayloadINTEL";
+        case 5735:
+            return "OpSubgroupAvcMceConvertToRefResultINTEL";
+        case 5736:
+            return "OpSubgroupAvcMceConvertToSicPayloadINTEL";
+        case 5737:
+            return "OpSubgroupAvcMceConvertToSicResultINTEL";
+        case 5738:
+            return "OpSubgroupAvcMceGetMotionVectorsINTEL";
+        case 5739:
+            return "OpSubgroupAvcMceGetInterDistortionsINTEL";
+        case 5740:
+            return "OpSubgroupAvcMceGetBestInterDistortionsINTEL";
+        case 5741:
+            return "OpSubgroupAvcMceGetInterMajorShapeINTEL";
+        case 5742:
+            return "OpSubgroupAvcMceGetInterMinorShapeINTEL";
+        case 5743:
+            return "OpSubgroupAvcMceGetInterDirectionsINTEL";
+        case 5744:
+            return "OpSubgroupAvcMceGetInterMotionVectorCountINTEL";
+        case 5745:
+            return "OpSubgroupAvcMceGetInterReferenceIdsINTEL";
+        case 5746:
+            return "OpSubgroupAvcMceGetInterReferenceInterlacedFieldPolaritiesINTEL";
+        case 5747:
+            return "OpSubgroupAvcImeInitializeINTEL";
+        case 5748:
+            return "OpSubgroupAvcImeSetSingleReferenceINTEL";
+        case 5749:
+            return "OpSubgroupAvcImeSetDualReferenceINTEL";
+        case 5750:
+            return "OpSubgroupAvcImeRefWindowSizeINTEL";
+        case 5751:
+            return "OpSubgroupAvcImeAdjustRefOffsetINTEL";
+        case 5752:
+            return "OpSubgroupAvcImeConvertToMcePayloadINTEL";
+        case 5753:
+            return "OpSubgroupAvcImeSetMaxMotionVectorCountINTEL";
+        case 5754:
+            return "OpSubgroupAvcImeSetUnidirectionalMixDisableINTEL";
+        case 5755:
+            return "OpSubgroupAvcImeSetEarlySearchTerminationThresholdINTEL";
+        case 5756:
+            return "OpSubgroupAvcImeSetWeightedSadINTEL";
+        case 5757:
+            return "OpSubgroupAvcImeEvaluateWithSingleReferenceINTEL";
+        case 5758:
+            return "OpSubgroupAvcImeEvaluateWithDualReferenceINTEL";
+        case 5759:
+            return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreaminINTEL";
+        case 5760:
+            return "OpSubgroupAvcImeEvaluateWithDualReferenceStreaminINTEL";
+        case 5761:
+            return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreamoutINTEL";
+        case 5762:
+            return "OpSubgroupAvcImeEvaluateWithDualReferenceStreamoutINTEL";
+        case 5763:
+            return "OpSubgroupAvcImeEvaluateWithSingleReferenceStreaminoutINTEL";
+        case 5764:
+            return "OpSubgroupAvcImeEvaluateWithDualReferenceStreaminoutINTEL";
+        case 5765:
+            return "OpSubgroupAvcImeConvertToMceResultINTEL";
+        case 5766:
+            return "OpSubgroupAvcImeGetSingleReferenceStreaminINTEL";
+        case 5767:
+            return "OpSubgroupAvcImeGetDualReferenceStreaminINTEL";
+        case 5768:
+            return "OpSubgroupAvcImeStripSingleReferenceStreamoutINTEL";
+        case 5769:
+            return "OpSubgroupAvcImeStripDualReferenceStreamoutINTEL";
+        case 5770:
+            return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeMotionVectorsINTEL";
+        case 5771:
+            return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeDistortionsINTEL";
+        case 5772:
+            return "OpSubgroupAvcImeGetStreamoutSingleReferenceMajorShapeReferenceIdsINTEL";
+        case 5773:
+            return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeMotionVectorsINTEL";
+        case 5774:
+            return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeDistortionsINTEL";
+        case 5775:
+            return "OpSubgroupAvcImeGetStreamoutDualReferenceMajorShapeReferenceIdsINTEL";
+        case 5776:
+            return "OpSubgroupAvcImeGetBorderReachedINTEL";
+        case 5777:
+            return "OpSubgroupAvcImeGetTruncatedSearchIndicationINTEL";
+        case 5778:
+            return "OpSubgroupAvcImeGetUnidirectionalEarlySearchTerminationINTEL";
+        case 5779:
+            return "OpSubgroupAvcImeGetWeightingPatternMinimumMotionVectorINTEL";
+        case 5780:
+            return "OpSubgroupAvcImeGetWeightingPatternMinimumDistortionINTEL";
+        case 5781:
+            return "OpSubgroupAvcFmeInitializeINTEL";
+        case 5782:
+            return "OpSubgroupAvcBmeInitializeINTEL";
+        case 5783:
+            return "OpSubgroupAvcRefConvertToMcePayloadINTEL";
+        case 5784:
+            return "OpSubgroupAvcRefSetBidirectionalMixDisableINTEL";
+        case 5785:
+            return "OpSubgroupAvcRefSetBilinearFilterEnableINTEL";
+        case 5786:
+            return "OpSubgroupAvcRefEvaluateWithSingleReferenceINTEL";
+        case 5787:
+            return "OpSubgroupAvcRefEvaluateWithDualReferenceINTEL";
+        case 5788:
+            return "OpSubgroupAvcRefEvaluateWithMultiReferenceINTEL";
+        case 5789:
+            return "OpSubgroupAvcRefEvaluateWithMultiReferenceInterlacedINTEL";
+        case 5790:
+            return "OpSubgroupAvcRefConvertToMceResultINTEL";
+        case 5791:
+            return "OpSubgroupAvcSicInitializeINTEL";
+        case 5792:
+            return "OpSubgroupAvcSicConfigureSkcINTEL";
+        case 5793:
+            return "OpSubgroupAvcSicConfigureIpeLumaINTEL";
+        case 5794:
+            return "OpSubgroupAvcSicConfigureIpeLumaChromaINTEL";
+        case 5795:
+            return "OpSubgroupAvcSicGetMotionVectorMaskINTEL";
+        case 5796:
+            return "OpSubgroupAvcSicConvertToMcePayloadINTEL";
+        case 5797:
+            return "OpSubgroupAvcSicSetIntraLumaShapePenaltyINTEL";
+        case 5798:
+            return "OpSubgroupAvcSicSetIntraLumaModeCostFunctionINTEL";
+        case 5799:
+            return "OpSubgroupAvcSicSetIntraChromaModeCostFunctionINTEL";
+        case 5800:
+            return "OpSubgroupAvcSicSetBilinearFilterEnableINTEL";
+        case 5801:
+            return "OpSubgroupAvcSicSetSkcForwardTransformEnableINTEL";
+        case 5802:
+            return "OpSubgroupAvcSicSetBlockBasedRawSkipSadINTEL";
+        case 5803:
+            return "OpSubgroupAvcSicEvaluateIpeINTEL";
+        case 5804:
+            return "OpSubgroupAvcSicEvaluateWithSingleReferenceINTEL";
+        case 5805:
+            return "OpSubgroupAvcSicEvaluateWithDualReferenceINTEL";
+        case 5806:
+            return "OpSubgroupAvcSicEvaluateWithMultiReferenceINTEL";
+        case 5807:
+            return "OpSubgroupAvcSicEvaluateWithMultiReferenceInterlacedINTEL";
+        case 5808:
+            return "OpSubgroupAvcSicConvertToMceResultINTEL";
+        case 5809:
+            return "OpSubgroupAvcSicGetIpeLumaShapeINTEL";
+        case 5810:
+            return "OpSubgroupAvcSicGetBestIpeLumaDistortionINTEL";
+        case 5811:
+            return "OpSubgroupAvcSicGetBestIpeChromaDistortionINTEL";
+        case 5812:
+            return "OpSubgroupAvcSicGetPackedIpeLumaModesINTEL";
+        case 5813:
+            return "OpSubgroupAvcSicGetIpeChromaModeINTEL";
+        case 5814:
+            return "OpSubgroupAvcSicGetPackedSkcLumaCountThresholdINTEL";
+        case 5815:
+            return "OpSubgroupAvcSicGetPackedSkcLumaSumThresholdINTEL";
+        case 5816:
+            return "OpSubgroupAvcSicGetInterRawSadsINTEL";
+        case 5818:
+            return "OpVariableLengthArrayINTEL";
+        case 5819:
+            return "OpSaveMemoryINTEL";
+        case 5820:
+            return "OpRestoreMemoryINTEL";
+        case 5840:
+            return "OpArbitraryFloatSinCosPiINTEL";
+        case 5841:
+            return "OpArbitraryFloatCastINTEL";
+        case 5842:
+            return "OpArbitraryFloatCastFromIntINTEL";
+        case 5843:
+            return "OpArbitraryFloatCastToIntINTEL";
+        case 5846:
+            return "OpArbitraryFloatAddINTEL";
+        case 5847:
+            return "OpArbitraryFloatSubINTEL";
+        case 5848:
+            return "OpArbitraryFloatMulINTEL";
+        case 5849:
+            return "OpArbitraryFloatDivINTEL";
+        case 5850:
+            return "OpArbitraryFloatGTINTEL";
+        case 5851:
+            return "OpArbitraryFloatGEINTEL";
+        case 5852:
+            return "OpArbitraryFloatLTINTEL";
+        case 5853:
+            return "OpArbitraryFloatLEINTEL";
+        case 5854:
+            return "OpArbitraryFloatEQINTEL";
+        case 5855:
+            return "OpArbitraryFloatRecipINTEL";
+        case 5856:
+            return "OpArbitraryFloatRSqrtINTEL";
+        case 5857:
+            return "OpArbitraryFloatCbrtINTEL";
+        case 5858:
+            return "OpArbitraryFloatHypotINTEL";
+        case 5859:
+            return "OpArbitraryFloatSqrtINTEL";
+        case 5860:
+            return "OpArbitraryFloatLogINTEL";
+        case 5861:
+            return "OpArbitraryFloatLog2INTEL";
+        case 5862:
+            return "OpArbitraryFloatLog10INTEL";
+        case 5863:
+            return "OpArbitraryFloatLog1pINTEL";
+        case 5864:
+            return "OpArbitraryFloatExpINTEL";
+        case 5865:
+            return "OpArbitraryFloatExp2INTEL";
+        case 5866:
+            return "OpArbitraryFloatExp10INTEL";
+        case 5867:
+            return "OpArbitraryFloatExpm1INTEL";
+        case 5868:
+            return "OpArbitraryFloatSinINTEL";
+        case 5869:
+            return "OpArbitraryFloatCosINTEL";
+        case 5870:
+            return "OpArbitraryFloatSinCosINTEL";
+        case 5871:
+            return "OpArbitraryFloatSinPiINTEL";
+        case 5872:
+            return "OpArbitraryFloatCosPiINTEL";
+        case 5873:
+            return "OpArbitraryFloatASinINTEL";
+        case 5874:
+            return "OpArbitraryFloatASinPiINTEL";
+        case 5875:
+            return "OpArbitraryFloatACosINTEL";
+        case 5876:
+            return "OpArbitraryFloatACosPiINTEL";
+        case 5877:
+            return "OpArbitraryFloatATanINTEL";
+        case 5878:
+            return "OpArbitraryFloatATanPiINTEL";
+        case 5879:
+            return "OpArbitraryFloatATan2INTEL";
+        case 5880:
+            return "OpArbitraryFloatPowINTEL";
+        case 5881:
+            return "OpArbitraryFloatPowRINTEL";
+        case 5882:
+            return "OpArbitraryFloatPowNINTEL";
+        case 5887:
+            return "OpLoopControlINTEL";
+        case 5911:
+            return "OpAliasDomainDeclINTEL";
+        case 5912:
+            return "OpAliasScopeDeclINTEL";
+        case 5913:
+            return "OpAliasScopeListDeclINTEL";
+        case 5923:
+            return "OpFixedSqrtINTEL";
+        case 5924:
+            return "OpFixedRecipINTEL";
+        case 5925:
+            return "OpFixedRsqrtINTEL";
+        case 5926:
+            return "OpFixedSinINTEL";
+        case 5927:
+            return "OpFixedCosINTEL";
+        case 5928:
+            return "OpFixedSinCosINTEL";
+        case 5929:
+            return "OpFixedSinPiINTEL";
+        case 5930:
+            return "OpFixedCosPiINTEL";
+        case 5931:
+            return "OpFixedSinCosPiINTEL";
+        case 5932:
+            return "OpFixedLogINTEL";
+        case 5933:
+            return "OpFixedExpINTEL";
+        case 5934:
+            return "OpPtrCastToCrossWorkgroupINTEL";
+        case 5938:
+            return "OpCrossWorkgroupCastToPtrINTEL";
+        case 5946:
+            return "OpReadPipeBlockingINTEL";
+        case 5947:
+            return "OpWritePipeBlockingINTEL";
+        case 5949:
+            return "OpFPGARegINTEL";
+        case 6016:
+            return "OpRayQueryGetRayTMinKHR";
+        case 6017:
+            return "OpRayQueryGetRayFlagsKHR";
+        case 6018:
+            return "OpRayQueryGetIntersectionTKHR";
+        case 6019:
+            return "OpRayQueryGetIntersectionInstanceCustomIndexKHR";
+        case 6020:
+            return "OpRayQueryGetIntersectionInstanceIdKHR";
+        case 6021:
+            return "OpRayQueryGetIntersectionInstanceShaderBindingTableRecordOffsetKHR";
+        case 6022:
+            return "OpRayQueryGetIntersectionGeometryIndexKHR";
+        case 6023:
+            return "OpRayQueryGetIntersectionPrimitiveIndexKHR";
+        case 6024:
+            return "OpRayQueryGetIntersectionBarycentricsKHR";
+        case 6025:
+            return "OpRayQueryGetIntersectionFrontFaceKHR";
+        case 6026:
+            return "OpRayQueryGetIntersectionCandidateAABBOpaqueKHR";
+        case 6027:
+            return "OpRayQueryGetIntersectionObjectRayDirectionKHR";
+        case 6028:
+            return "OpRayQueryGetIntersectionObjectRayOriginKHR";
+        case 6029:
+            return "OpRayQueryGetWorldRayDirectionKHR";
+        case 6030:
+            return "OpRayQueryGetWorldRayOriginKHR";
+        case 6031:
+            return "OpRayQueryGetIntersectionObjectToWorldKHR";
+        case 6032:
+            return "OpRayQueryGetIntersectionWorldToObjectKHR";
+        case 6035:
+            return "OpAtomicFAddEXT";
+        case 6086:
+            return "OpTypeBufferSurfaceINTEL";
+        case 6090:
+            return "OpTypeStructContinuedINTEL";
+        case 6091:
+            return "OpConstantCompositeContinuedINTEL";
+        case 6092:
+            return "OpSpecConstantCompositeContinuedINTEL";
+        case 6142:
+            return "OpControlBarrierArriveINTEL";
+        case 6143:
+            return "OpControlBarrierWaitINTEL";
+        case 6401:
+            return "OpGroupIMulKHR";
+        case 6402:
+            return "OpGroupFMulKHR";
+        case 6403:
+            return "OpGroupBitwiseAndKHR";
+        case 6404:
+            return "OpGroupBitwiseOrKHR";
+        case 6405:
+            return "OpGroupBitwiseXorKHR";
+        case 6406:
+            return "OpGroupLogicalAndKHR";
+        case 6407:
+            return "OpGroupLogicalOrKHR";
+        case 6408:
+            return "OpGroupLogicalXorKHR";
+        default:
+            return "unknown";
     }
 }
 inline const char* capability(uint32_t v) {
     switch (v) {
-        case 0: return "Matrix";
-        case 1: return "Shader";
-        case 2: return "Geometry";
-        case 3: return "Tessellation";
-        case 4: return "Addresses";
-        case 5: return "Linkage";
-        case 6: return "Kernel";
-        case 7: return "Vector16";
-        case 8: return "Float16Buffer";
-        case 9: return "Float16";
-        case 10: return "Float64";
-        case 11: return "Int64";
-        case 12: return "Int64Atomics";
-        case 13: return "ImageBasic";
-        case 14: return "ImageReadWrite";
-        case 15: return "ImageMipmap";
-        case 17: return "Pipes";
-        case 18: return "Groups";
-        case 19: return "DeviceEnqueue";
-        case 20: return "LiteralSampler";
-        case 21: return "AtomicStorage";
-        case 22: return "Int16";
-        case 23: return "TessellationPointSize";
-        case 24: return "GeometryPointSize";
-        case 25: return "ImageGatherExtended";
-        case 27: return "StorageImageMultisample";
-        case 28: return "UniformBufferArrayDynamicIndexing";
-        case 29: return "SampledImageArrayDynamicIndexing";
-        case 30: return "StorageBufferArrayDynamicIndexing";
-        case 31: return "StorageImageArrayDynamicIndexing";
-        case 32: return "ClipDistance";
-        case 33: return "CullDistance";
-        case 34: return "ImageCubeArray";
-        case 35: return "SampleRateShading";
-        case 36: return "ImageRect";
-        case 37: return "SampledRect";
-        case 38: return "GenericPointer";
-        case 39: return "Int8";
-        case 40: return "InputAttachment";
-        case 41: return "SparseResidency";
-        case 42: return "MinLod";
-        case 43: return "Sampled1D";
-        case 44: return "Image1D";
-        case 45: return "SampledCubeArray";
-        case 46: return "SampledBuffer";
-        case 47: return "ImageBuffer";
-        case 48: return "ImageMSArray";
-        case 49: return "StorageImageExtendedFormats";
-        case 50: return "ImageQuery";
-        case 51: return "DerivativeControl";
-        case 52: return "InterpolationFunction";
-        case 53: return "TransformFeedback";
-        case 54: return "GeometryStreams";
-        case 55: return "StorageImageReadWithoutFormat";
-        case 56: return "StorageImageWriteWithoutFormat";
-        case 57: return "MultiViewport";
-        case 58: return "SubgroupDispatch";
-        case 59: return "NamedBarrier";
-        case 60: return "PipeStorage";
-        case 61: return "GroupNonUniform";
-        case 62: return "GroupNonUniformVote";
-        case 63: return "GroupNonUniformArithmetic";
-        case 64: return "GroupNonUniformBallot";
-        case 65: return "GroupNonUniformShuffle";
-        case 66: return "GroupNonUniformShuffleRelative";
-        case 67: return "GroupNonUniformClustered";
-        case 68: return "GroupNonUniformQuad";
-        case 69: return "ShaderLayer";
-        case 70: return "ShaderViewportIndex";
-        case 71: return "UniformDecoration";
-        case 4165: return "CoreBuiltinsARM";
-        case 4422: return "FragmentShadingRateKHR";
-        case 4423: return "SubgroupBallotKHR";
-        case 4427: return "DrawParameters";
-        case 4428: return "WorkgroupMemoryExplicitLayoutKHR";
-        case 4429: return "WorkgroupMemoryExplicitLayout8BitAccessKHR";
-        case 4430: return "WorkgroupMemoryExplicitLayout16BitAccessKHR";
-        case 4431: return "SubgroupVoteKHR";
-        case 4433: return "StorageBuffer16BitAccess";
-        case 4434: return "StorageUniform16";
-        case 4435: return "StoragePushConstant16";
-        case 4436: return "StorageInputOutput16";
-        case 4437: return "DeviceGroup";
-        case 4439: return "MultiView";
-        case 4441: return "VariablePointersStorageBuffer";
-        case 4442: return "VariablePointers";
-        case 4445: return "AtomicStorageOps";
-        case 4447: return "SampleMaskPostDepthCoverage";
-        case 4448: return "StorageBuffer8BitAccess";
-        case 4449: return "UniformAndStorageBuffer8BitAccess";
-        case 4450: return "StoragePushConstant8";
-        case 4464: return "DenormPreserve";
-        case 4465: return "DenormFlushToZero";
-        case 4466: return "SignedZeroInfNanPreserve";
-        case 4467: return "RoundingModeRTE";
-        case 4468: return "RoundingModeRTZ";
-        case 4471: return "RayQueryProvisionalKHR";
-        case 4472: return "RayQueryKHR";
-        case 4478: return "RayTraversalPrimitiveCullingKHR";
-        case 4479: return "RayTracingKHR";
-        case 5008: return "Float16ImageAMD";
-        case 5009: return "ImageGatherBiasLodAMD";
-        case 5010: return "FragmentMaskAMD";
-        case 5013: return "StencilExportEXT";
-        case 5015: return "ImageReadWriteLodAMD";
-        case 5016: return "Int64ImageEXT";
-        case 5055: return "ShaderClockKHR";
-        case 5249: return "SampleMaskOverrideCoverageNV";
-        case 5251: return "GeometryShaderPassthroughNV";
-        case 5254: return "ShaderViewportIndexLayerEXT";
-        case 5255: return "ShaderViewportMaskNV";
-        case 5259: return "ShaderStereoViewNV";
-        case 5260: return "PerViewAttributesNV";
-        case 5265: return "FragmentFullyCoveredEXT";
-        case 5266: return "MeshShadingNV";
-        case 5282: return "ImageFootprintNV";
-        case 5283: return "MeshShadingEXT";
-        case 5284: return "FragmentBarycentricKHR";
-        case 5288: return "ComputeDerivativeGroupQuadsNV";
-        case 5291: return "FragmentDensityEXT";
-        case 5297: return "GroupNonUniformPartitionedNV";
-        case 5301: return "ShaderNonUniform";
-        case 5302: return "RuntimeDescriptorArray";
-        case 5303: return "InputAttachmentArrayDynamicIndexing";
-        case 5304: return "UniformTexelBufferArrayDynamicIndexing";
-        case 5305: return "StorageTexelBufferArrayDynamicIndexing";
-        case 5306: return "UniformBufferArrayNonUniformIndexing";
-        case 5307: return "SampledImageArrayNonUniformIndexing";
-        case 5308: return "StorageBufferArrayNonUniformIndexing";
-        case 5309: return "StorageImageArrayNonUniformIndexing";
-        case 5310: return "InputAttachmentArrayNonUniformIndexing";
-        case 5311: return "UniformTexelBufferArrayNonUniformIndexing";
-        case 5312: return "StorageTexelBufferArrayNonUniformIndexing";
-        case 5340: return "RayTracingNV";
-        case 5341: return "RayTracingMotionBlurNV";
-        case 5345: return "VulkanMemoryModel";
-        case 5346: return "VulkanMemoryModelDeviceScope";
-        case 5347: return "PhysicalStorageBufferAddresses";
-        case 5350: return "ComputeDerivativeGroupLinearNV";
-        case 5353: return "RayTracingProvisionalKHR";
-        case 5357: return "CooperativeMatrixNV";
-        case 5363: return "FragmentShaderSampleInterlockEXT";
-        case 5372: return "FragmentShaderShadingRateInterlockEXT";
-        case 5373: return "ShaderSMBuiltinsNV";
-        case 5378: return "FragmentShaderPixelInterlockEXT";
-        case 5379: return "DemoteToHelperInvocation";
-        case 5381: return "RayTracingOpacityMicromapEXT";
-        case 5383: return "ShaderInvocationReorderNV";
-        case 5390: return "BindlessTextureNV";
-        case 5568: return "SubgroupShuffleINTEL";
-        case 5569: return "SubgroupBufferBlockIOINTEL";
-        case 5570: return "SubgroupImageBlockIOINTEL";
-        case 5579: return "SubgroupImageMediaBlockIOINTEL";
-        case 5582: return "RoundToInfinityINTEL";
-        case 5583: return "FloatingPointModeINTEL";
-        case 5584: return "IntegerFunctions2INTEL";
-        case 5603: return "FunctionPointersINTEL";
-        case 5604: return "IndirectReferencesINTEL";
-        case 5606: return "AsmINTEL";
-        case 5612: return "AtomicFloat32MinMaxEXT";
-        case 5613: return "AtomicFloat64MinMaxEXT";
-        case 5616: return "AtomicFloat16MinMaxEXT";
-        case 5617: return "VectorComputeINTEL";
-        case 5619: return "VectorAnyINTEL";
-        case 5629: return "ExpectAssumeKHR";
-        case 5696: return "SubgroupAvcMotionEstimationINTEL";
-        case 5697: return "SubgroupAvcMotionEstimationIntraINTEL";
-        case 5698: return "SubgroupAvcMotionEstimationChromaINTEL";
-        case 5817: return "VariableLengthArrayINTEL";
-        case 5821: return "FunctionFloatControlINTEL";
-        case 5824: return "FPGAMemoryAttributesINTEL";
-        case 5837: return "FPFastMathModeINTEL";
-        case 5844: return "ArbitraryPrecisionIntegersINTEL";
-        case 5845: return "ArbitraryPrecisionFloatingPointINTEL";
-        case 5886: return "UnstructuredLoopControlsINTEL";
-        case 5888: return "FPGALoopControlsINTEL";
-        case 5892: return "KernelAttributesINTEL";
-        case 5897: return "FPGAKernelAttributesINTEL";
-        case 5898: return "FPGAMemoryAccessesINTEL";
-        case 5904: return "FPGAClusterAttributesINTEL";
-        case 5906: return "LoopFuseINTEL";
-        case 5908: return "FPGADSPControlINTEL";
-        case 5910: return "MemoryAccessAliasingINTEL";
-        case 5916: return "FPGAInvocationPipeliningAttributesINTEL";
-        case 5920: return "FPGABufferLocationINTEL";
-        case 5922: return "ArbitraryPrecisionFixedPointINTEL";
-        case 5935: return "USMStorageClassesINTEL";
-        case 5939: return "RuntimeAlignedAttributeINTEL";
-        case 5943: return "IOPipesINTEL";
-        case 5945: return "BlockingPipesINTEL";
-        case 5948: return "FPGARegINTEL";
-        case 6016: return "DotProductInputAll";
-        case 6017: return "DotProductInput4x8Bit";
-        case 6018: return "DotProductInput4x8BitPacked";
-        case 6019: return "DotProduct";
-        case 6020: return "RayCullMaskKHR";
-        case 6025: return "BitInstructions";
-        case 6026: return "GroupNonUniformRotateKHR";
-        case 6033: return "AtomicFloat32AddEXT";
-        case 6034: return "AtomicFloat64AddEXT";
-        case 6089: return "LongConstantCompositeINTEL";
-        case 6094: return "OptNoneINTEL";
-        case 6095: return "AtomicFloat16AddEXT";
-        case 6114: return "DebugInfoModuleINTEL";
-        case 6141: return "SplitBarrierINTEL";
-        case 6400: return "GroupUniformArithmeticKHR";
-        default: return "unknown";
+        case 0:
+            return "Matrix";
+        case 1:
+            return "Shader";
+        case 2:
+            return "Geometry";
+        case 3:
+            return "Tessellation";
+        case 4:
+            return "Addresses";
+        case 5:
+            return "Linkage";
+        case 6:
+            return "Kernel";
+        case 7:
+            return "Vector16";
+        case 8:
+            return "Float16Buffer";
+        case 9:
+            return "Float16";
+        case 10:
+            return "Float64";
+        case 11:
+            return "Int64";
+        case 12:
+            return "Int64Atomics";
+        case 13:
+            return "ImageBasic";
+        case 14:
+            return "ImageReadWrite";
+        case 15:
+            return "ImageMipmap";
+        case 17:
+            return "Pipes";
+        case 18:
+            return "Groups";
+        case 19:
+            return "DeviceEnqueue";
+        case 20:
+            return "LiteralSampler";
+        case 21:
+            return "AtomicStorage";
+        case 22:
+            return "Int16";
+        case 23:
+            return "TessellationPointSize";
+        case 24:
+            return "GeometryPointSize";
+        case 25:
+            return "ImageGatherExtended";
+        case 27:
+            return "StorageImageMultisample";
+        case 28:
+            return "UniformBufferArrayDynamicIndexing";
+        case 29:
+            return "SampledImageArrayDynamicIndexing";
+        case 30:
+            return "StorageBufferArrayDynamicIndexing";
+        case 31:
+            return "StorageImageArrayDynamicIndexing";
+        case 32:
+            return "ClipDistance";
+        case 33:
+            return "CullDistance";
+        case 34:
+            return "ImageCubeArray";
+        case 35:
+            return "SampleRateShading";
+        case 36:
+            return "ImageRect";
+        case 37:
+            return "SampledRect";
+        case 38:
+            return "GenericPointer";
+        case 39:
+            return "Int8";
+        case 40:
+            return "InputAttachment";
+        case 41:
+            return "SparseResidency";
+        case 42:
+            return "MinLod";
+        case 43:
+            return "Sampled1D";
+        case 44:
+            return "Image1D";
+        case 45:
+            return "SampledCubeArray";
+        case 46:
+            return "SampledBuffer";
+        case 47:
+            return "ImageBuffer";
+        case 48:
+            return "ImageMSArray";
+        case 49:
+            return "StorageImageExtendedFormats";
+        case 50:
+            return "ImageQuery";
+        case 51:
+            return "DerivativeControl";
+        case 52:
+            return "InterpolationFunction";
+        case 53:
+            return "TransformFeedback";
+        case 54:
+            return "GeometryStreams";
+        case 55:
+            return "StorageImageReadWithoutFormat";
+        case 56:
+            return "StorageImageWriteWithoutFormat";
+        case 57:
+            return "MultiViewport";
+        case 58:
+            return "SubgroupDispatch";
+        case 59:
+            return "NamedBarrier";
+        case 60:
+            return "PipeStorage";
+        case 61:
+            return "GroupNonUniform";
+        case 62:
+            return "GroupNonUniformVote";
+        case 63:
+            return "GroupNonUniformArithmetic";
+        case 64:
+            return "GroupNonUniformBallot";
+        case 65:
+            return "GroupNonUniformShuffle";
+        case 66:
+            return "GroupNonUniformShuffleRelative";
+        case 67:
+            return "GroupNonUniformClustered";
+        case 68:
+            return "GroupNonUniformQuad";
+        case 69:
+            return "ShaderLayer";
+        case 70:
+            return "ShaderViewportIndex";
+        case 71:
+            return "UniformDecoration";
+        case 4165:
+            return "CoreBuiltinsARM";
+        case 4422:
+            return "FragmentShadingRateKHR";
+        case 4423:
+            return "SubgroupBallotKHR";
+        case 4427:
+            return "DrawParameters";
+        case 4428:
+            return "WorkgroupMemoryExplicitLayoutKHR";
+        case 4429:
+            return "WorkgroupMemoryExplicitLayout8BitAccessKHR";
+        case 4430:
+            return "WorkgroupMemoryExplicitLayout16BitAccessKHR";
+        case 4431:
+            return "SubgroupVoteKHR";
+        case 4433:
+            return "StorageBuffer16BitAccess";
+        case 4434:
+            return "StorageUniform16";
+        case 4435:
+            return "StoragePushConstant16";
+        case 4436:
+            return "StorageInputOutput16";
+        case 4437:
+            return "DeviceGroup";
+        case 4439:
+            return "MultiView";
+        case 4441:
+            return "VariablePointersStorageBuffer";
+        case 4442:
+            return "VariablePointers";
+        case 4445:
+            return "AtomicStorageOps";
+        case 4447:
+            return "SampleMaskPostDepthCoverage";
+        case 4448:
+            return "StorageBuffer8BitAccess";
+        case 4449:
+            return "UniformAndStorageBuffer8BitAccess";
+        case 4450:
+            return "StoragePushConstant8";
+        case 4464:
+            return "DenormPreserve";
+        case 4465:
+            return "DenormFlushToZero";
+        case 4466:
+            return "SignedZeroInfNanPreserve";
+        case 4467:
+            return "RoundingModeRTE";
+        case 4468:
+            return "RoundingModeRTZ";
+        case 4471:
+            return "RayQueryProvisionalKHR";
+        case 4472:
+            return "RayQueryKHR";
+        case 4478:
+            return "RayTraversalPrimitiveCullingKHR";
+        case 4479:
+            return "RayTracingKHR";
+        case 5008:
+            return "Float16ImageAMD";
+        case 5009:
+            return "ImageGatherBiasLodAMD";
+        case 5010:
+            return "FragmentMaskAMD";
+        case 5013:
+            return "StencilExportEXT";
+        case 5015:
+            return "ImageReadWriteLodAMD";
+        case 5016:
+            return "Int64ImageEXT";
+        case 5055:
+            return "ShaderClockKHR";
+        case 5249:
+            return "SampleMaskOverrideCoverageNV";
+        case 5251:
+            return "GeometryShaderPassthroughNV";
+        case 5254:
+            return "ShaderViewportIndexLayerEXT";
+        case 5255:
+            return "ShaderViewportMaskNV";
+        case 5259:
+            return "ShaderStereoViewNV";
+        case 5260:
+            return "PerViewAttributesNV";
+        case 5265:
+            return "FragmentFullyCoveredEXT";
+        case 5266:
+            return "MeshShadingNV";
+        case 5282:
+            return "ImageFootprintNV";
+        case 5283:
+            return "MeshShadingEXT";
+        case 5284:
+            return "FragmentBarycentricKHR";
+        case 5288:
+            return "ComputeDerivativeGroupQuadsNV";
+        case 5291:
+            return "FragmentDensityEXT";
+        case 5297:
+            return "GroupNonUniformPartitionedNV";
+        case 5301:
+            return "ShaderNonUniform";
+        case 5302:
+            return "RuntimeDescriptorArray";
+        case 5303:
+            return "InputAttachmentArrayDynamicIndexing";
+        case 5304:
+            return "UniformTexelBufferArrayDynamicIndexing";
+        case 5305:
+            return "StorageTexelBufferArrayDynamicIndexing";
+        case 5306:
+            return "UniformBufferArrayNonUniformIndexing";
+        case 5307:
+            return "SampledImageArrayNonUniformIndexing";
+        case 5308:
+            return "StorageBufferArrayNonUniformIndexing";
+        case 5309:
+            return "StorageImageArrayNonUniformIndexing";
+        case 5310:
+            return "InputAttachmentArrayNonUniformIndexing";
+        case 5311:
+            return "UniformTexelBufferArrayNonUniformIndexing";
+        case 5312:
+            return "StorageTexelBufferArrayNonUniformIndexing";
+        case 5340:
+            return "RayTracingNV";
+        case 5341:
+            return "RayTracingMotionBlurNV";
+        case 5345:
+            return "VulkanMemoryModel";
+        case 5346:
+            return "VulkanMemoryModelDeviceScope";
+        case 5347:
+            return "PhysicalStorageBufferAddresses";
+        case 5350:
+            return "ComputeDerivativeGroupLinearNV";
+        case 5353:
+            return "RayTracingProvisionalKHR";
+        case 5357:
+            return "CooperativeMatrixNV";
+        case 5363:
+            return "FragmentShaderSampleInterlockEXT";
+        case 5372:
+            return "FragmentShaderShadingRateInterlockEXT";
+        case 5373:
+            return "ShaderSMBuiltinsNV";
+        case 5378:
+            return "FragmentShaderPixelInterlockEXT";
+        case 5379:
+            return "DemoteToHelperInvocation";
+        case 5381:
+            return "RayTracingOpacityMicromapEXT";
+        case 5383:
+            return "ShaderInvocationReorderNV";
+        case 5390:
+            return "BindlessTextureNV";
+        case 5568:
+            return "SubgroupShuffleINTEL";
+        case 5569:
+            return "SubgroupBufferBlockIOINTEL";
+        case 5570:
+            return "SubgroupImageBlockIOINTEL";
+        case 5579:
+            return "SubgroupImageMediaBlockIOINTEL";
+        case 5582:
+            return "RoundToInfinityINTEL";
+        case 5583:
+            return "FloatingPointModeINTEL";
+        case 5584:
+            return "IntegerFunctions2INTEL";
+        case 5603:
+            return "FunctionPointersINTEL";
+        case 5604:
+            return "IndirectReferencesINTEL";
+        case 5606:
+            return "AsmINTEL";
+        case 5612:
+            return "AtomicFloat32MinMaxEXT";
+        case 5613:
+            return "AtomicFloat64MinMaxEXT";
+        case 5616:
+            return "AtomicFloat16MinMaxEXT";
+        case 5617:
+            return "VectorComputeINTEL";
+        case 5619:
+            return "VectorAnyINTEL";
+        case 5629:
+            return "ExpectAssumeKHR";
+        case 5696:
+            return "SubgroupAvcMotionEstimationINTEL";
+        case 5697:
+            return "SubgroupAvcMotionEstimationIntraINTEL";
+        case 5698:
+            return "SubgroupAvcMotionEstimationChromaINTEL";
+        case 5817:
+            return "VariableLengthArrayINTEL";
+        case 5821:
+            return "FunctionFloatControlINTEL";
+        case 5824:
+            return "FPGAMemoryAttributesINTEL";
+        case 5837:
+            return "FPFastMathModeINTEL";
+        case 5844:
+            return "ArbitraryPrecisionIntegersINTEL";
+        case 5845:
+            return "ArbitraryPrecisionFloatingPointINTEL";
+        case 5886:
+            return "UnstructuredLoopControlsINTEL";
+        case 5888:
+            return "FPGALoopControlsINTEL";
+        case 5892:
+            return "KernelAttributesINTEL";
+        case 5897:
+            return "FPGAKernelAttributesINTEL";
+        case 5898:
+            return "FPGAMemoryAccessesINTEL";
+        case 5904:
+            return "FPGAClusterAttributesINTEL";
+        case 5906:
+            return "LoopFuseINTEL";
+        case 5908:
+            return "FPGADSPControlINTEL";
+        case 5910:
+            return "MemoryAccessAliasingINTEL";
+        case 5916:
+            return "FPGAInvocationPipeliningAttributesINTEL";
+        case 5920:
+            return "FPGABufferLocationINTEL";
+        case 5922:
+            return "ArbitraryPrecisionFixedPointINTEL";
+        case 5935:
+            return "USMStorageClassesINTEL";
+        case 5939:
+            return "RuntimeAlignedAttributeINTEL";
+        case 5943:
+            return "IOPipesINTEL";
+        case 5945:
+            return "BlockingPipesINTEL";
+        case 5948:
+            return "FPGARegINTEL";
+        case 6016:
+            return "DotProductInputAll";
+        case 6017:
+            return "DotProductInput4x8Bit";
+        case 6018:
+            return "DotProductInput4x8BitPacked";
+        case 6019:
+            return "DotProduct";
+        case 6020:
+            return "RayCullMaskKHR";
+        case 6025:
+            return "BitInstructions";
+        case 6026:
+            return "GroupNonUniformRotateKHR";
+        case 6033:
+            return "AtomicFloat32AddEXT";
+        case 6034:
+            return "AtomicFloat64AddEXT";
+        case 6089:
+            return "LongConstantCompositeINTEL";
+        case 6094:
+            return "OptNoneINTEL";
+        case 6095:
+            return "AtomicFloat16AddEXT";
+        case 6114:
+            return "DebugInfoModuleINTEL";
+        case 6141:
+            return "SplitBarrierINTEL";
+        case 6400:
+            return "GroupUniformArithmeticKHR";
+        default:
+            return "unknown";
     }
 }
 inline const char* builtin(uint32_t v) {
     switch (v) {
-        case 0: return "Position";
-        case 1: return "PointSize";
-        case 3: return "ClipDistance";
-        case 4: return "CullDistance";
-        case 5: return "VertexId";
-        case 6: return "InstanceId";
-        case 7: return "PrimitiveId";
-        case 8: return "InvocationId";
-        case 9: return "Layer";
-        case 10: return "ViewportIndex";
-        case 11: return "TessLevelOuter";
-        case 12: return "TessLevelInner";
-        case 13: return "TessCoord";
-        case 14: return "PatchVertices";
-        case 15: return "FragCoord";
-        case 16: return "PointCoord";
-        case 17: return "FrontFacing";
-        case 18: return "SampleId";
-        case 19: return "SamplePosition";
-        case 20: return "SampleMask";
-        case 22: return "FragDepth";
-        case 23: return "HelperInvocation";
-        case 24: return "NumWorkgroups";
-        case 25: return "WorkgroupSize";
-        case 26: return "WorkgroupId";
-        case 27: return "LocalInvocationId";
-        case 28: return "GlobalInvocationId";
-        case 29: return "LocalInvocationIndex";
-        case 30: return "WorkDim";
-        case 31: return "GlobalSize";
-        case 32: return "EnqueuedWorkgroupSize";
-        case 33: return "GlobalOffset";
-        case 34: return "GlobalLinearId";
-        case 36: return "SubgroupSize";
-        case 37: return "SubgroupMaxSize";
-        case 38: return "NumSubgroups";
-        case 39: return "NumEnqueuedSubgroups";
-        case 40: return "SubgroupId";
-        case 41: return "SubgroupLocalInvocationId";
-        case 42: return "VertexIndex";
-        case 43: return "InstanceIndex";
-        case 4160: return "CoreIDARM";
-        case 4161: return "CoreCountARM";
-        case 4162: return "CoreMaxIDARM";
-        case 4163: return "WarpIDARM";
-        case 4164: return "WarpMaxIDARM";
-        case 4416: return "SubgroupEqMask";
-        case 4417: return "SubgroupGeMask";
-        case 4418: return "SubgroupGtMask";
-        case 4419: return "SubgroupLeMask";
-        case 4420: return "SubgroupLtMask";
-        case 4424: return "BaseVertex";
-        case 4425: return "BaseInstance";
-        case 4426: return "DrawIndex";
-        case 4432: return "PrimitiveShadingRateKHR";
-        case 4438: return "DeviceIndex";
-        case 4440: return "ViewIndex";
-        case 4444: return "ShadingRateKHR";
-        case 4992: return "BaryCoordNoPerspAMD";
-        case 4993: return "BaryCoordNoPerspCentroidAMD";
-        case 4994: return "BaryCoordNoPerspSampleAMD";
-        case 4995: return "BaryCoordSmoothAMD";
-        case 4996: return "BaryCoordSmoothCentroidAMD";
-        case 4997: return "BaryCoordSmoothSampleAMD";
-        case 4998: return "BaryCoordPullModelAMD";
-        case 5014: return "FragStencilRefEXT";
-        case 5253: return "ViewportMaskNV";
-        case 5257: return "SecondaryPositionNV";
-        case 5258: return "SecondaryViewportMaskNV";
-        case 5261: return "PositionPerViewNV";
-        case 5262: return "ViewportMaskPerViewNV";
-        case 5264: return "FullyCoveredEXT";
-        case 5274: return "TaskCountNV";
-        case 5275: return "PrimitiveCountNV";
-        case 5276: return "PrimitiveIndicesNV";
-        case 5277: return "ClipDistancePerViewNV";
-        case 5278: return "CullDistancePerViewNV";
-        case 5279: return "LayerPerViewNV";
-        case 5280: return "MeshViewCountNV";
-        case 5281: return "MeshViewIndicesNV";
-        case 5286: return "BaryCoordKHR";
-        case 5287: return "BaryCoordNoPerspKHR";
-        case 5292: return "FragSizeEXT";
-        case 5293: return "FragInvocationCountEXT";
-        case 5294: return "PrimitivePointIndicesEXT";
-        case 5295: return "PrimitiveLineIndicesEXT";
-        case 5296: return "PrimitiveTriangleIndicesEXT";
-        case 5299: return "CullPrimitiveEXT";
-        case 5319: return "LaunchIdKHR";
-        case 5320: return "LaunchSizeKHR";
-        case 5321: return "WorldRayOriginKHR";
-        case 5322: return "WorldRayDirectionKHR";
-        case 5323: return "ObjectRayOriginKHR";
-        case 5324: return "ObjectRayDirectionKHR";
-        case 5325: return "RayTminKHR";
-        case 5326: return "RayTmaxKHR";
-        case 5327: return "InstanceCustomIndexKHR";
-        case 5330: return "ObjectToWorldKHR";
-        case 5331: return "WorldToObjectKHR";
-        case 5332: return "HitTNV";
-        case 5333: return "HitKindKHR";
-        case 5334: return "CurrentRayTimeNV";
-        case 5351: return "IncomingRayFlagsKHR";
-        case 5352: return "RayGeometryIndexKHR";
-        case 5374: return "WarpsPerSMNV";
-        case 5375: return "SMCountNV";
-        case 5376: return "WarpIDNV";
-        case 5377: return "SMIDNV";
-        case 6021: return "CullMaskKHR";
-        default: return "unknown";
+        case 0:
+            return "Position";
+        case 1:
+            return "PointSize";
+        case 3:
+            return "ClipDistance";
+        case 4:
+            return "CullDistance";
+        case 5:
+            return "VertexId";
+        case 6:
+            return "InstanceId";
+        case 7:
+            return "PrimitiveId";
+        case 8:
+            return "InvocationId";
+        case 9:
+            return "Layer";
+        case 10:
+            return "ViewportIndex";
+        case 11:
+            return "TessLevelOuter";
+        case 12:
+            return "TessLevelInner";
+        case 13:
+            return "TessCoord";
+        case 14:
+            return "PatchVertices";
+        case 15:
+            return "FragCoord";
+        case 16:
+            return "PointCoord";
+        case 17:
+            return "FrontFacing";
+        case 18:
+            return "SampleId";
+        case 19:
+            return "SamplePosition";
+        case 20:
+            return "SampleMask";
+        case 22:
+            return "FragDepth";
+        case 23:
+            return "HelperInvocation";
+        case 24:
+            return "NumWorkgroups";
+        case 25:
+            return "WorkgroupSize";
+        case 26:
+            return "WorkgroupId";
+        case 27:
+            return "LocalInvocationId";
+        case 28:
+            return "GlobalInvocationId";
+        case 29:
+            return "LocalInvocationIndex";
+        case 30:
+            return "WorkDim";
+        case 31:
+            return "GlobalSize";
+        case 32:
+            return "EnqueuedWorkgroupSize";
+        case 33:
+            return "GlobalOffset";
+        case 34:
+            return "GlobalLinearId";
+        case 36:
+            return "SubgroupSize";
+        case 37:
+            return "SubgroupMaxSize";
+        case 38:
+            return "NumSubgroups";
+        case 39:
+            return "NumEnqueuedSubgroups";
+        case 40:
+            return "SubgroupId";
+        case 41:
+            return "SubgroupLocalInvocationId";
+        case 42:
+            return "VertexIndex";
+        case 43:
+            return "InstanceIndex";
+        case 4160:
+            return "CoreIDARM";
+        case 4161:
+            return "CoreCountARM";
+        case 4162:
+            return "CoreMaxIDARM";
+        case 4163:
+            return "WarpIDARM";
+        case 4164:
+            return "WarpMaxIDARM";
+        case 4416:
+            return "SubgroupEqMask";
+        case 4417:
+            return "SubgroupGeMask";
+        case 4418:
+            return "SubgroupGtMask";
+        case 4419:
+            return "SubgroupLeMask";
+        case 4420:
+            return "SubgroupLtMask";
+        case 4424:
+            return "BaseVertex";
+        case 4425:
+            return "BaseInstance";
+        case 4426:
+            return "DrawIndex";
+        case 4432:
+            return "PrimitiveShadingRateKHR";
+        case 4438:
+            return "DeviceIndex";
+        case 4440:
+            return "ViewIndex";
+        case 4444:
+            return "ShadingRateKHR";
+        case 4992:
+            return "BaryCoordNoPerspAMD";
+        case 4993:
+            return "BaryCoordNoPerspCentroidAMD";
+        case 4994:
+            return "BaryCoordNoPerspSampleAMD";
+        case 4995:
+            return "BaryCoordSmoothAMD";
+        case 4996:
+            return "BaryCoordSmoothCentroidAMD";
+        case 4997:
+            return "BaryCoordSmoothSampleAMD";
+        case 4998:
+            return "BaryCoordPullModelAMD";
+        case 5014:
+            return "FragStencilRefEXT";
+        case 5253:
+            return "ViewportMaskNV";
+        case 5257:
+            return "SecondaryPositionNV";
+        case 5258:
+            return "SecondaryViewportMaskNV";
+        case 5261:
+            return "PositionPerViewNV";
+        case 5262:
+            return "ViewportMaskPerViewNV";
+        case 5264:
+            return "FullyCoveredEXT";
+        case 5274:
+            return "TaskCountNV";
+        case 5275:
+            return "PrimitiveCountNV";
+        case 5276:
+            return "PrimitiveIndicesNV";
+        case 5277:
+            return "ClipDistancePerViewNV";
+        case 5278:
+            return "CullDistancePerViewNV";
+        case 5279:
+            return "LayerPerViewNV";
+        case 5280:
+            return "MeshViewCountNV";
+        case 5281:
+            return "MeshViewIndicesNV";
+        case 5286:
+            return "BaryCoordKHR";
+        case 5287:
+            return "BaryCoordNoPerspKHR";
+        case 5292:
+            return "FragSizeEXT";
+        case 5293:
+            return "FragInvocationCountEXT";
+        case 5294:
+            return "PrimitivePointIndicesEXT";
+        case 5295:
+            return "PrimitiveLineIndicesEXT";
+        case 5296:
+            return "PrimitiveTriangleIndicesEXT";
+        case 5299:
+            return "CullPrimitiveEXT";
+        case 5319:
+            return "LaunchIdKHR";
+        case 5320:
+            return "LaunchSizeKHR";
+        case 5321:
+            return "WorldRayOriginKHR";
+        case 5322:
+            return "WorldRayDirectionKHR";
+        case 5323:
+            return "ObjectRayOriginKHR";
+        case 5324:
+            return "ObjectRayDirectionKHR";
+        case 5325:
+            return "RayTminKHR";
+        case 5326:
+            return "RayTmaxKHR";
+        case 5327:
+            return "InstanceCustomIndexKHR";
+        case 5330:
+            return "ObjectToWorldKHR";
+        case 5331:
+            return "WorldToObjectKHR";
+        case 5332:
+            return "HitTNV";
+        case 5333:
+            return "HitKindKHR";
+        case 5334:
+            return "CurrentRayTimeNV";
+        case 5351:
+            return "IncomingRayFlagsKHR";
+        case 5352:
+            return "RayGeometryIndexKHR";
+        case 5374:
+            return "WarpsPerSMNV";
+        case 5375:
+            return "SMCountNV";
+        case 5376:
+            return "WarpIDNV";
+        case 5377:
+            return "SMIDNV";
+        case 6021:
+            return "CullMaskKHR";
+        default:
+            return "unknown";
     }
 }
 inline const char* storage_class(uint32_t v) {
     switch (v) {
-        case 0: return "UniformConstant";
-        case 1: return "Input";
-        case 2: return "Uniform";
-        case 3: return "Output";
-        case 4: return "Workgroup";
-        case 5: return "CrossWorkgroup";
-        case 6: return "Private";
-        case 7: return "Function";
-        case 8: return "Generic";
-        case 9: return "PushConstant";
-        case 10: return "AtomicCounter";
-        case 11: return "Image";
-        case 12: return "StorageBuffer";
-        case 5328: return "CallableDataKHR";
-        case 5329: return "IncomingCallableDataKHR";
-        case 5338: return "RayPayloadKHR";
-        case 5339: return "HitAttributeKHR";
-        case 5342: return "IncomingRayPayloadKHR";
-        case 5343: return "ShaderRecordBufferKHR";
-        case 5349: return "PhysicalStorageBuffer";
-        case 5385: return "HitObjectAttributeNV";
-        case 5402: return "TaskPayloadWorkgroupEXT";
-        case 5605: return "CodeSectionINTEL";
-        case 5936: return "DeviceOnlyINTEL";
-        case 5937: return "HostOnlyINTEL";
-        default: return "unknown";
+        case 0:
+            return "UniformConstant";
+        case 1:
+            return "Input";
+        case 2:
+            return "Uniform";
+        case 3:
+            return "Output";
+        case 4:
+            return "Workgroup";
+        case 5:
+            return "CrossWorkgroup";
+        case 6:
+            return "Private";
+        case 7:
+            return "Function";
+        case 8:
+            return "Generic";
+        case 9:
+            return "PushConstant";
+        case 10:
+            return "AtomicCounter";
+        case 11:
+            return "Image";
+        case 12:
+            return "StorageBuffer";
+        case 5328:
+            return "CallableDataKHR";
+        case 5329:
+            return "IncomingCallableDataKHR";
+        case 5338:
+            return "RayPayloadKHR";
+        case 5339:
+            return "HitAttributeKHR";
+        case 5342:
+            return "IncomingRayPayloadKHR";
+        case 5343:
+            return "ShaderRecordBufferKHR";
+        case 5349:
+            return "PhysicalStorageBuffer";
+        case 5385:
+            return "HitObjectAttributeNV";
+        case 5402:
+            return "TaskPayloadWorkgroupEXT";
+        case 5605:
+            return "CodeSectionINTEL";
+        case 5936:
+            return "DeviceOnlyINTEL";
+        case 5937:
+            return "HostOnlyINTEL";
+        default:
+            return "unknown";
     }
 }
 inline const char* execution_mode(uint32_t v) {
     switch (v) {
-        case 0: return "Invocations";
-        case 1: return "SpacingEqual";
-        case 2: return "SpacingFractionalEven";
-        case 3: return "SpacingFractionalOdd";
-        case 4: return "VertexOrderCw";
-        case 5: return "VertexOrderCcw";
-        case 6: return "PixelCenterInteger";
-        case 7: return "OriginUpperLeft";
-        case 8: return "OriginLowerLeft";
-        case 9: return "EarlyFragmentTests";
-        case 10: return "PointMode";
-        case 11: return "Xfb";
-        case 12: return "DepthReplacing";
-        case 14: return "DepthGreater";
-        case 15: return "DepthLess";
-        case 16: return "DepthUnchanged";
-        case 17: return "LocalSize";
-        case 18: return "LocalSizeHint";
-        case 19: return "InputPoints";
-        case 20: return "InputLines";
-        case 21: return "InputLinesAdjacency";
-        case 22: return "Triangles";
-        case 23: return "InputTrianglesAdjacency";
-        case 24: return "Quads";
-        case 25: return "Isolines";
-        case 26: return "OutputVertices";
-        case 27: return "OutputPoints";
-        case 28: return "OutputLineStrip";
-        case 29: return "OutputTriangleStrip";
-        case 30: return "VecTypeHint";
-        case 31: return "ContractionOff";
-        case 33: return "Initializer";
-        case 34: return "Finalizer";
-        case 35: return "SubgroupSize";
-        case 36: return "SubgroupsPerWorkgroup";
-        case 37: return "SubgroupsPerWorkgroupId";
-        case 38: return "LocalSizeId";
-        case 39: return "LocalSizeHintId";
-        case 4421: return "SubgroupUniformControlFlowKHR";
-        case 4446: return "PostDepthCoverage";
-        case 4459: return "DenormPreserve";
-        case 4460: return "DenormFlushToZero";
-        case 4461: return "SignedZeroInfNanPreserve";
-        case 4462: return "RoundingModeRTE";
-        case 4463: return "RoundingModeRTZ";
-        case 5017: return "EarlyAndLateFragmentTestsAMD";
-        case 5027: return "StencilRefReplacingEXT";
-        case 5079: return "StencilRefUnchangedFrontAMD";
-        case 5080: return "StencilRefGreaterFrontAMD";
-        case 5081: return "StencilRefLessFrontAMD";
-        case 5082: return "StencilRefUnchangedBackAMD";
-        case 5083: return "StencilRefGreaterBackAMD";
-        case 5084: return "StencilRefLessBackAMD";
-        case 5269: return "OutputLinesEXT";
-        case 5270: return "OutputPrimitivesEXT";
-        case 5289: return "DerivativeGroupQuadsNV";
-        case 5290: return "DerivativeGroupLinearNV";
-        case 5298: return "OutputTrianglesEXT";
-        case 5366: return "PixelInterlockOrderedEXT";
-        case 5367: return "PixelInterlockUnorderedEXT";
-        case 5368: return "SampleInterlockOrderedEXT";
-        case 5369: return "SampleInterlockUnorderedEXT";
-        case 5370: return "ShadingRateInterlockOrderedEXT";
-        case 5371: return "ShadingRateInterlockUnorderedEXT";
-        case 5618: return "SharedLocalMemorySizeINTEL";
-        case 5620: return "RoundingModeRTPINTEL";
-        case 5621: return "RoundingModeRTNINTEL";
-        case 5622: return "FloatingPointModeALTINTEL";
-        case 5623: return "FloatingPointModeIEEEINTEL";
-        case 5893: return "MaxWorkgroupSizeINTEL";
-        case 5894: return "MaxWorkDimINTEL";
-        case 5895: return "NoGlobalOffsetINTEL";
-        case 5896: return "NumSIMDWorkitemsINTEL";
-        case 5903: return "SchedulerTargetFmaxMhzINTEL";
-        case 6154: return "StreamingInterfaceINTEL";
-        case 6417: return "NamedBarrierCountINTEL";
-        default: return "unknown";
+        case 0:
+            return "Invocations";
+        case 1:
+            return "SpacingEqual";
+        case 2:
+            return "SpacingFractionalEven";
+        case 3:
+            return "SpacingFractionalOdd";
+        case 4:
+            return "VertexOrderCw";
+        case 5:
+            return "VertexOrderCcw";
+        case 6:
+            return "PixelCenterInteger";
+        case 7:
+            return "OriginUpperLeft";
+        case 8:
+            return "OriginLowerLeft";
+        case 9:
+            return "EarlyFragmentTests";
+        case 10:
+            return "PointMode";
+        case 11:
+            return "Xfb";
+        case 12:
+            return "DepthReplacing";
+        case 14:
+            return "DepthGreater";
+        case 15:
+            return "DepthLess";
+        case 16:
+            return "DepthUnchanged";
+        case 17:
+            return "LocalSize";
+        case 18:
+            return "LocalSizeHint";
+        case 19:
+            return "InputPoints";
+        case 20:
+            return "InputLines";
+        case 21:
+            return "InputLinesAdjacency";
+        case 22:
+            return "Triangles";
+        case 23:
+            return "InputTrianglesAdjacency";
+        case 24:
+            return "Quads";
+        case 25:
+            return "Isolines";
+        case 26:
+            return "OutputVertices";
+        case 27:
+            return "OutputPoints";
+        case 28:
+            return "OutputLineStrip";
+        case 29:
+            return "OutputTriangleStrip";
+        case 30:
+            return "VecTypeHint";
+        case 31:
+            return "ContractionOff";
+        case 33:
+            return "Initializer";
+        case 34:
+            return "Finalizer";
+        case 35:
+            return "SubgroupSize";
+        case 36:
+            return "SubgroupsPerWorkgroup";
+        case 37:
+            return "SubgroupsPerWorkgroupId";
+        case 38:
+            return "LocalSizeId";
+        case 39:
+            return "LocalSizeHintId";
+        case 4421:
+            return "SubgroupUniformControlFlowKHR";
+        case 4446:
+            return "PostDepthCoverage";
+        case 4459:
+            return "DenormPreserve";
+        case 4460:
+            return "DenormFlushToZero";
+        case 4461:
+            return "SignedZeroInfNanPreserve";
+        case 4462:
+            return "RoundingModeRTE";
+        case 4463:
+            return "RoundingModeRTZ";
+        case 5017:
+            return "EarlyAndLateFragmentTestsAMD";
+        case 5027:
+            return "StencilRefReplacingEXT";
+        case 5079:
+            return "StencilRefUnchangedFrontAMD";
+        case 5080:
+            return "StencilRefGreaterFrontAMD";
+        case 5081:
+            return "StencilRefLessFrontAMD";
+        case 5082:
+            return "StencilRefUnchangedBackAMD";
+        case 5083:
+            return "StencilRefGreaterBackAMD";
+        case 5084:
+            return "StencilRefLessBackAMD";
+        case 5269:
+            return "OutputLinesEXT";
+        case 5270:
+            return "OutputPrimitivesEXT";
+        case 5289:
+            return "DerivativeGroupQuadsNV";
+        case 5290:
+            return "DerivativeGroupLinearNV";
+        case 5298:
+            return "OutputTrianglesEXT";
+        case 5366:
+            return "PixelInterlockOrderedEXT";
+        case 5367:
+            return "PixelInterlockUnorderedEXT";
+        case 5368:
+            return "SampleInterlockOrderedEXT";
+        case 5369:
+            return "SampleInterlockUnorderedEXT";
+        case 5370:
+            return "ShadingRateInterlockOrderedEXT";
+        case 5371:
+            return "ShadingRateInterlockUnorderedEXT";
+        case 5618:
+            return "SharedLocalMemorySizeINTEL";
+        case 5620:
+            return "RoundingModeRTPINTEL";
+        case 5621:
+            return "RoundingModeRTNINTEL";
+        case 5622:
+            return "FloatingPointModeALTINTEL";
+        case 5623:
+            return "FloatingPointModeIEEEINTEL";
+        case 5893:
+            return "MaxWorkgroupSizeINTEL";
+        case 5894:
+            return "MaxWorkDimINTEL";
+        case 5895:
+            return "NoGlobalOffsetINTEL";
+        case 5896:
+            return "NumSIMDWorkitemsINTEL";
+        case 5903:
+            return "SchedulerTargetFmaxMhzINTEL";
+        case 6154:
+            return "StreamingInterfaceINTEL";
+        case 6417:
+            return "NamedBarrierCountINTEL";
+        default:
+            return "unknown";
     }
 }
 inline const char* decoration(uint32_t v) {
     switch (v) {
-        case 0: return "RelaxedPrecision";
-        case 1: return "SpecId";
-        case 2: return "Block";
-        case 3: return "BufferBlock";
-        case 4: return "RowMajor";
-        case 5: return "ColMajor";
-        case 6: return "ArrayStride";
-        case 7: return "MatrixStride";
-        case 8: return "GLSLShared";
-        case 9: return "GLSLPacked";
-        case 10: return "CPacked";
-        case 11: return "BuiltIn";
-        case 13: return "NoPerspective";
-        case 14: return "Flat";
-        case 15: return "Patch";
-        case 16: return "Centroid";
-        case 17: return "Sample";
-        case 18: return "Invariant";
-        case 19: return "Restrict";
-        case 20: return "Aliased";
-        case 21: return "Volatile";
-        case 22: return "Constant";
-        case 23: return "Coherent";
-        case 24: return "NonWritable";
-        case 25: return "NonReadable";
-        case 26: return "Uniform";
-        case 27: return "UniformId";
-        case 28: return "SaturatedConversion";
-        case 29: return "Stream";
-        case 30: return "Location";
-        case 31: return "Component";
-        case 32: return "Index";
-        case 33: return "Binding";
-        case 34: return "DescriptorSet";
-        case 35: return "Offset";
-        case 36: return "XfbBuffer";
-        case 37: return "XfbStride";
-        case 38: return "FuncParamAttr";
-        case 39: return "FPRoundingMode";
-        case 40: return "FPFastMathMode";
-        case 41: return "LinkageAttributes";
-        case 42: return "NoContraction";
-        case 43: return "InputAttachmentIndex";
-        case 44: return "Alignment";
-        case 45: return "MaxByteOffset";
-        case 46: return "AlignmentId";
-        case 47: return "MaxByteOffsetId";
-        case 4469: return "NoSignedWrap";
-        case 4470: return "NoUnsignedWrap";
-        case 4999: return "ExplicitInterpAMD";
-        case 5248: return "OverrideCoverageNV";
-        case 5250: return "PassthroughNV";
-        case 5252: return "ViewportRelativeNV";
-        case 5256: return "SecondaryViewportRelativeNV";
-        case 5271: return "PerPrimitiveEXT";
-        case 5272: return "PerViewNV";
-        case 5273: return "PerTaskNV";
-        case 5285: return "PerVertexKHR";
-        case 5300: return "NonUniform";
-        case 5355: return "RestrictPointer";
-        case 5356: return "AliasedPointer";
-        case 5386: return "HitObjectShaderRecordBufferNV";
-        case 5398: return "BindlessSamplerNV";
-        case 5399: return "BindlessImageNV";
-        case 5400: return "BoundSamplerNV";
-        case 5401: return "BoundImageNV";
-        case 5599: return "SIMTCallINTEL";
-        case 5602: return "ReferencedIndirectlyINTEL";
-        case 5607: return "ClobberINTEL";
-        case 5608: return "SideEffectsINTEL";
-        case 5624: return "VectorComputeVariableINTEL";
-        case 5625: return "FuncParamIOKindINTEL";
-        case 5626: return "VectorComputeFunctionINTEL";
-        case 5627: return "StackCallINTEL";
-        case 5628: return "GlobalVariableOffsetINTEL";
-        case 5634: return "CounterBuffer";
-        case 5635: return "HlslSemanticGOOGLE";
-        case 5636: return "UserTypeGOOGLE";
-        case 5822: return "FunctionRoundingModeINTEL";
-        case 5823: return "FunctionDenormModeINTEL";
-        case 5825: return "RegisterINTEL";
-        case 5826: return "MemoryINTEL";
-        case 5827: return "NumbanksINTEL";
-        case 5828: return "BankwidthINTEL";
-        case 5829: return "MaxPrivateCopiesINTEL";
-        case 5830: return "SinglepumpINTEL";
-        case 5831: return "DoublepumpINTEL";
-        case 5832: return "MaxReplicatesINTEL";
-        case 5833: return "SimpleDualPortINTEL";
-        case 5834: return "MergeINTEL";
-        case 5835: return "BankBitsINTEL";
-        case 5836: return "ForcePow2DepthINTEL";
-        case 5899: return "BurstCoalesceINTEL";
-        case 5900: return "CacheSizeINTEL";
-        case 5901: return "DontStaticallyCoalesceINTEL";
-        case 5902: return "PrefetchINTEL";
-        case 5905: return "StallEnableINTEL";
-        case 5907: return "FuseLoopsInFunctionINTEL";
-        case 5909: return "MathOpDSPModeINTEL";
-        case 5914: return "AliasScopeINTEL";
-        case 5915: return "NoAliasINTEL";
-        case 5917: return "InitiationIntervalINTEL";
-        case 5918: return "MaxConcurrencyINTEL";
-        case 5919: return "PipelineEnableINTEL";
-        case 5921: return "BufferLocationINTEL";
-        case 5944: return "IOPipeStorageINTEL";
-        case 6080: return "FunctionFloatingPointModeINTEL";
-        case 6085: return "SingleElementVectorINTEL";
-        case 6087: return "VectorComputeCallableFunctionINTEL";
-        case 6140: return "MediaBlockIOINTEL";
-        default: return "unknown";
+        case 0:
+            return "RelaxedPrecision";
+        case 1:
+            return "SpecId";
+        case 2:
+            return "Block";
+        case 3:
+            return "BufferBlock";
+        case 4:
+            return "RowMajor";
+        case 5:
+            return "ColMajor";
+        case 6:
+            return "ArrayStride";
+        case 7:
+            return "MatrixStride";
+        case 8:
+            return "GLSLShared";
+        case 9:
+            return "GLSLPacked";
+        case 10:
+            return "CPacked";
+        case 11:
+            return "BuiltIn";
+        case 13:
+            return "NoPerspective";
+        case 14:
+            return "Flat";
+        case 15:
+            return "Patch";
+        case 16:
+            return "Centroid";
+        case 17:
+            return "Sample";
+        case 18:
+            return "Invariant";
+        case 19:
+            return "Restrict";
+        case 20:
+            return "Aliased";
+        case 21:
+            return "Volatile";
+        case 22:
+            return "Constant";
+        case 23:
+            return "Coherent";
+        case 24:
+            return "NonWritable";
+        case 25:
+            return "NonReadable";
+        case 26:
+            return "Uniform";
+        case 27:
+            return "UniformId";
+        case 28:
+            return "SaturatedConversion";
+        case 29:
+            return "Stream";
+        case 30:
+            return "Location";
+        case 31:
+            return "Component";
+        case 32:
+            return "Index";
+        case 33:
+            return "Binding";
+        case 34:
+            return "DescriptorSet";
+        case 35:
+            return "Offset";
+        case 36:
+            return "XfbBuffer";
+        case 37:
+            return "XfbStride";
+        case 38:
+            return "FuncParamAttr";
+        case 39:
+            return "FPRoundingMode";
+        case 40:
+            return "FPFastMathMode";
+        case 41:
+            return "LinkageAttributes";
+        case 42:
+            return "NoContraction";
+        case 43:
+            return "InputAttachmentIndex";
+        case 44:
+            return "Alignment";
+        case 45:
+            return "MaxByteOffset";
+        case 46:
+            return "AlignmentId";
+        case 47:
+            return "MaxByteOffsetId";
+        case 4469:
+            return "NoSignedWrap";
+        case 4470:
+            return "NoUnsignedWrap";
+        case 4999:
+            return "ExplicitInterpAMD";
+        case 5248:
+            return "OverrideCoverageNV";
+        case 5250:
+            return "PassthroughNV";
+        case 5252:
+            return "ViewportRelativeNV";
+        case 5256:
+            return "SecondaryViewportRelativeNV";
+        case 5271:
+            return "PerPrimitiveEXT";
+        case 5272:
+            return "PerViewNV";
+        case 5273:
+            return "PerTaskNV";
+        case 5285:
+            return "PerVertexKHR";
+        case 5300:
+            return "NonUniform";
+        case 5355:
+            return "RestrictPointer";
+        case 5356:
+            return "AliasedPointer";
+        case 5386:
+            return "HitObjectShaderRecordBufferNV";
+        case 5398:
+            return "BindlessSamplerNV";
+        case 5399:
+            return "BindlessImageNV";
+        case 5400:
+            return "BoundSamplerNV";
+        case 5401:
+            return "BoundImageNV";
+        case 5599:
+            return "SIMTCallINTEL";
+        case 5602:
+            return "ReferencedIndirectlyINTEL";
+        case 5607:
+            return "ClobberINTEL";
+        case 5608:
+            return "SideEffectsINTEL";
+        case 5624:
+            return "VectorComputeVariableINTEL";
+        case 5625:
+            return "FuncParamIOKindINTEL";
+        case 5626:
+            return "VectorComputeFunctionINTEL";
+        case 5627:
+            return "StackCallINTEL";
+        case 5628:
+            return "GlobalVariableOffsetINTEL";
+        case 5634:
+            return "CounterBuffer";
+        case 5635:
+            return "HlslSemanticGOOGLE";
+        case 5636:
+            return "UserTypeGOOGLE";
+        case 5822:
+            return "FunctionRoundingModeINTEL";
+        case 5823:
+            return "FunctionDenormModeINTEL";
+        case 5825:
+            return "RegisterINTEL";
+        case 5826:
+            return "MemoryINTEL";
+        case 5827:
+            return "NumbanksINTEL";
+        case 5828:
+            return "BankwidthINTEL";
+        case 5829:
+            return "MaxPrivateCopiesINTEL";
+        case 5830:
+            return "SinglepumpINTEL";
+        case 5831:
+            return "DoublepumpINTEL";
+        case 5832:
+            return "MaxReplicatesINTEL";
+        case 5833:
+            return "SimpleDualPortINTEL";
+        case 5834:
+            return "MergeINTEL";
+        case 5835:
+            return "BankBitsINTEL";
+        case 5836:
+            return "ForcePow2DepthINTEL";
+        case 5899:
+            return "BurstCoalesceINTEL";
+        case 5900:
+            return "CacheSizeINTEL";
+        case 5901:
+            return "DontStaticallyCoalesceINTEL";
+        case 5902:
+            return "PrefetchINTEL";
+        case 5905:
+            return "StallEnableINTEL";
+        case 5907:
+            return "FuseLoopsInFunctionINTEL";
+        case 5909:
+            return "MathOpDSPModeINTEL";
+        case 5914:
+            return "AliasScopeINTEL";
+        case 5915:
+            return "NoAliasINTEL";
+        case 5917:
+            return "InitiationIntervalINTEL";
+        case 5918:
+            return "MaxConcurrencyINTEL";
+        case 5919:
+            return "PipelineEnableINTEL";
+        case 5921:
+            return "BufferLocationINTEL";
+        case 5944:
+            return "IOPipeStorageINTEL";
+        case 6080:
+            return "FunctionFloatingPointModeINTEL";
+        case 6085:
+            return "SingleElementVectorINTEL";
+        case 6087:
+            return "VectorComputeCallableFunctionINTEL";
+        case 6140:
+            return "MediaBlockIOINTEL";
+        default:
+            return "unknown";
     }
 }
 }  // namespace tilevk::shader::names

@@ -476,9 +476,7 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                         p.base = local_words;
                         p.limit = local_words + t.flat;
                         local_words += t.flat;
-                        if (in.n > 4) {  // initializer
-                            fail("unsupported variable initializer on a module-scope variable");
-                        }
+                        if (in.n > 4) private_inits_.push_back({uint32_t(pointers_.size()), in[4]});
                         if (sc != spv::StorageClass::Private &&
                             std::find(entry_iface.begin(), entry_iface.end(), id) != entry_iface.end()) {
                             // interface variable: record copies in/out
@@ -657,7 +655,6 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
             if (local_words > (1u << 20)) fail("too much variable memory");
             pointers_.push_back(p);
             vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
-            if (in.n > 4) fail("unsupported function variable initializer");
         } else if (!blocks.empty()) {
             Block& b = blocks.back();
             b.end = k + 1;
@@ -676,8 +673,6 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
             fail("instruction outside a block");
         }
     }
-    for (; k < ins.size(); ++k)
-        if (ins[k].op == spv::Op::OpFunction) fail("function calls are not supported (a function was not inlined)");
     p_.local_words = local_words;
     if (blocks.empty()) fail("entry point has no body");
     for (auto& b : blocks)
@@ -730,6 +725,9 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
         }
     }
 
+    // Module-scope initializers run first, for every lane.
+    cur_mask_ = konst(~0u);
+    for (auto& [ptr, init] : private_inits_) store(pointers_[ptr], pointers_[ptr].type, reg(init), 0);
     for (uint32_t oi = 0; oi < order.size(); ++oi) {
         Block& b = blocks[order[oi]];
         size_t skip_at = p_.code.size();

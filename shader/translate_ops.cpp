@@ -609,6 +609,11 @@ void Translator::op(const Instr& in) {
             emit(SOp::Not, def(), p_.reg_live);
             return;
         // memory
+        case spv::Op::OpVariable: {  // function variable (memory assigned in translate.cpp); initializer
+            const Value& v = val(in[2]);
+            if (in.n > 4) store(pointers_[size_t(v.ptr)], pointers_[size_t(v.ptr)].type, reg(in[4]), 0);
+            return;
+        }
         case spv::Op::OpAccessChain:
         case spv::Op::OpInBoundsAccessChain: {
             const Value& b = val(in[3]);

@@ -164,6 +164,7 @@ class Translator {
     std::vector<uint32_t> store_masks_;  // per block: mask for side effects
     uint32_t store_mask_ = kNoReg;
     bool buffer_written_ = false;
+    std::vector<std::pair<uint32_t, uint32_t>> private_inits_;  // (pointer index, initializer id)
 };
 
 }  // namespace tilevk::shader

@@ -58,12 +58,11 @@ SetupStatus Scene::bin(Prim& prim) {
         any = true;
         ++stats_.bin_cmds;
     } else {
-        TilePlane scratch[Prim::kMaxPlanes];
         for (int32_t ty = ty0; ty <= ty1; ++ty) {
             for (int32_t tx = tx0; tx <= tx1; ++tx) {
                 int n = 0;
                 const TileGeom geom{tx * T, ty * T, T, config_.samples};
-                const TileClass cls = tile_setup(prim, geom, scratch, &n);
+                const TileClass cls = tile_setup(prim, geom, nullptr, &n);
                 if (cls == TileClass::kReject) continue;
                 // A whole tile must also lie inside the framebuffer (box planes guarantee it, see setup.cpp).
                 const bool whole = cls == TileClass::kWhole;
@@ -95,7 +94,16 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
         const TileGeom geom{tx * T, ty * T, T, config_.samples};
         TileScratch& s = scratch[worker];
         consumer.begin_tile(worker, info);
-        for (const BinCmd& cmd : bins_[index]) {
+        const std::vector<BinCmd>& bin = bins_[index];
+        for (size_t i = 0; i < bin.size(); ++i) {
+            const BinCmd& cmd = bin[i];
+            // Primitives are read in API order with gaps: fetch the hot lines of one two commands ahead.
+            if (i + 2 < bin.size()) {
+                const char* next = reinterpret_cast<const char*>(&prims_[bin[i + 2].prim]);
+                __builtin_prefetch(next);
+                __builtin_prefetch(next + 64);
+                __builtin_prefetch(next + 128);
+            }
             const Prim& prim = prims_[cmd.prim];
             raster_prim_in_tile(method, prim, geom, cmd.flags & kBinWholeTile, &s);
             if (s.blocks.empty() && s.full.empty()) continue;

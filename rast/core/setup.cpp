@@ -38,10 +38,12 @@ uint16_t limit_mask(uint16_t mask, int samples) {
 }
 
 // Clips the fixed-point pixel box [px0,px1]x[py0,py1] (inclusive) against clip ∩ fb and appends box planes
-// on every side where the clip cut the box or force_min/force_max ask for one. Triangles never cover a sample left
-// of/above their vertices (E >= 0 is the closed triangle; outside it E <= -1, so E + bias <= 0), so their min sides
-// need no plane; at 1x a sample at X == maxX can be on the closed triangle, and lavapipe's bbox (maxX-1)>>8 excludes
-// it, so the max sides get a plane. At 4x every sample of pixel ((maxX-1)>>8)+1 has X >= maxX + 32: no plane. Sample X
+// on every side where the clip cut the box or force_min/force_max ask for one. Triangles need none of their own:
+// outside the closed triangle some E <= -1, so E + bias <= 0 (min sides); on the max sides, the only closed-triangle
+// points with X == maxX are the rightmost vertex or a vertical right edge, and the top-left rule excludes both (the
+// lower/right edge through them has no bias and E == 0 there), so lavapipe's (maxX-1)>>8 cuts nothing the edges keep.
+// At 4x every sample of pixel ((maxX-1)>>8)+1 has X >= maxX + 32. The method-equivalence tests (whose reference uses
+// the box as loop bounds) check this argument on a million triangles. Sample X
 // of pixel px satisfies px*256 <= X < px*256 + 256, hence "px >= x0" is "X - x0*256 + 1 > 0" and "px <= x1" is
 // "(x1+1)*256 - X > 0".
 SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const PrimCommon& common, int samples,
@@ -60,10 +62,31 @@ SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const
     if (x1 < px1 || force_max) out->planes[n++] = {(int64_t{x1} + 1) * kFixedOne, -1, 0};
     if (y1 < py1 || force_max) out->planes[n++] = {(int64_t{y1} + 1) * kFixedOne, 0, -1};
     out->num_planes = static_cast<uint8_t>(n);
+    compute_pixel_planes(samples, out);
     return SetupStatus::kAccepted;
 }
 
 }  // namespace
+
+void compute_pixel_planes(int samples, Prim* prim) {
+    for (int k = 0; k < prim->num_planes; ++k) {
+        const EdgePlane& p = prim->planes[k];
+        PixelPlane& q = prim->pix[k];
+        q.a = p.a, q.b = p.b;
+        // Sample 0 at 1x sits on the lattice (offset 0); at 4x at kSamplePos4x[0].
+        int64_t cs[4];
+        for (int s = 0; s < samples; ++s) {
+            const int64_t sx = samples == 1 ? 0 : kSamplePos4x[s][0], sy = samples == 1 ? 0 : kSamplePos4x[s][1];
+            cs[s] = ceil_shift(p.c + p.a * sx + p.b * sy, kSubpixelBits);  // ceil((c + a*sx + b*sy) / 256)
+        }
+        q.c0 = cs[0];
+        q.dlo = q.dhi = 0;
+        for (int s = 0; s < 4; ++s) {
+            q.d[s] = s < samples ? static_cast<int32_t>(cs[s] - cs[0]) : 0;
+            q.dlo = std::min(q.dlo, q.d[s]), q.dhi = std::max(q.dhi, q.d[s]);
+        }
+    }
+}
 
 SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out) {
     const float offset = triangle_snap_offset(samples);
@@ -109,7 +132,7 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
     const int32_t miny = std::min({vy[0], vy[1], vy[2]}), maxy = std::max({vy[0], vy[1], vy[2]});
     return finish_box(minx >> kSubpixelBits, miny >> kSubpixelBits, (maxx - 1) >> kSubpixelBits,
                       (maxy - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/false,
-                      /*force_max=*/samples == 1, out);
+                      /*force_max=*/false, out);
 }
 
 SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out) {

@@ -10,17 +10,30 @@ namespace tilevk::rast {
 // Planes: shape planes first (3 for triangles, up to 4 for convex/box), then up to 4 whole-pixel box planes that
 // bound coverage to the inclusive pixel box [x0,x1] x [y0,y1] (bbox ∩ clip ∩ framebuffer). Box planes are added
 // only on sides where the clipped box may be tighter than what the shape implies (see finish_box in setup.cpp).
+// A plane in pixel units (see tile_kernels.h): with d[s] the sample offsets, the plane at pixel (px, py) and sample s
+// is > 0 iff c0 + d[s] + a*px + b*py > 0, where c0 + d[s] = ceil((c + a*sx_s + b*sy_s) / 256). Precomputed once per
+// primitive so that a tile costs one 64-bit multiply-add per plane and no division. |c0| < 2^39, |d| < 2^24.
+struct PixelPlane {
+    int64_t c0;
+    int32_t a, b;
+    int32_t d[4];
+    int32_t dlo, dhi;  // min and max of d[] over the samples
+};
+
+// Hot fields first (read per tile by hier/bbox); the 64-bit planes and floats (reference/float methods, setup)
+// come last so the rasterizer's cache lines hold only what it needs.
 struct Prim {
     static constexpr int kMaxPlanes = 8;
-    EdgePlane planes[kMaxPlanes];
+    int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // inclusive pixel box
+    uint32_t payload = 0;
+    uint16_t sample_mask = 0;  // already limited to the sample count
     uint8_t num_planes = 0;
     uint8_t num_shape_planes = 0;
     bool front_facing = true;
     bool is_triangle = false;
-    uint16_t sample_mask = 0;  // already limited to the sample count
-    uint32_t payload = 0;
-    int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // inclusive pixel box
-    float fx[3] = {}, fy[3] = {};            // float window coords in plane order (float method only)
+    PixelPlane pix[kMaxPlanes];
+    EdgePlane planes[kMaxPlanes];  // 64-bit fixed-point planes (the reference evaluates the shape planes directly)
+    float fx[3] = {}, fy[3] = {};  // float window coords in plane order (float method only)
 };
 
 enum BinCmdFlags : uint32_t { kBinPartial = 0, kBinWholeTile = 1 };
@@ -34,5 +47,8 @@ struct BinCmd {
 SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out);
 SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out);
 SetupStatus setup_box(const BoxInput& in, int samples, const ClipRect& fb, Prim* out);
+
+// Fills prim->pix from prim->planes for the sample count (called by the setup functions).
+void compute_pixel_planes(int samples, Prim* prim);
 
 }  // namespace tilevk::rast

@@ -23,27 +23,33 @@
 namespace tilevk::rast {
 
 struct TilePlane {
-    int32_t c[4];    // ceil(C_s/256) at the tile origin pixel, per sample (only c[0] at 1x)
-    int32_t a, b;    // pixel steps
-    int32_t lo, hi;  // min and max of c[] over samples
+    int32_t c[4];                  // value at the tile origin pixel, per sample (only c[0] at 1x)
+    int32_t a, b;                  // pixel steps
+    int32_t lo, hi;                // min and max of c[] over samples
+    alignas(32) int32_t step[16];  // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
 };
 
 // Lane i of a 16-lane block grid: column i&3, row i>>2.
 inline constexpr int32_t kLaneCol[16] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
 inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
 
-// Classifies the 4x4 grid of sub-blocks of size `step` at tile-relative origin (ox, oy) against one plane:
+// Fills p->step (once per plane per tile; every level reuses it scaled by a shift).
+inline void fill_step_table(TilePlane* p) {
+    for (int i = 0; i < 16; ++i) p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
+}
+
+// Classifies the 4x4 grid of sub-blocks of size 2^shift at tile-relative origin (ox, oy) against one plane:
 // bit i of *reject: the plane's maximum over sub-block i is <= 0; bit i of *accept: its minimum is > 0.
-// Corner value = base + a*step*col + b*step*row (one vector add over the step table), where base includes the
-// extreme-corner offset (step-1)*(max(a,0)+max(b,0)) (reject) or (step-1)*(min(a,0)+min(b,0)) (accept).
-inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject,
+// Corner value = base + (step[i] << shift) (one vector add over the step table), where base includes the extreme
+// corner offset (2^shift - 1)*(max(a,0)+max(b,0)) (reject) or (2^shift - 1)*(min(a,0)+min(b,0)) (accept).
+inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
                               uint32_t* accept) {
-    const int32_t origin = p.a * ox + p.b * oy;
-    const int32_t hi = p.hi + origin + (step - 1) * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
-    const int32_t lo = p.lo + origin + (step - 1) * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
+    const int32_t origin = p.a * ox + p.b * oy, ext = (1 << shift) - 1;
+    const int32_t hi = p.hi + origin + ext * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
+    const int32_t lo = p.lo + origin + ext * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
     uint32_t rej = 0, acc = 0;
     for (int i = 0; i < 16; ++i) {
-        const int32_t off = p.a * step * kLaneCol[i] + p.b * step * kLaneRow[i];
+        const int32_t off = p.step[i] * (1 << shift);
         rej |= static_cast<uint32_t>(hi + off <= 0) << i;
         acc |= static_cast<uint32_t>(lo + off > 0) << i;
     }
@@ -52,14 +58,13 @@ inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int32_
 
 // Pixel mask of a 4x4 block at tile-relative (ox, oy) for sample s: bit (y*4+x) set iff c[s] + a*(ox+x) +
 // b*(oy+y) > 0 for every plane.
-inline uint32_t mask4x4_scalar(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
-        const TilePlane& p = planes[k];
+        const TilePlane& p = *planes[k];
         const int32_t base = p.c[s] + p.a * ox + p.b * oy;
         uint32_t bits = 0;
-        for (int i = 0; i < 16; ++i)
-            bits |= static_cast<uint32_t>(base + p.a * kLaneCol[i] + p.b * kLaneRow[i] > 0) << i;
+        for (int i = 0; i < 16; ++i) bits |= static_cast<uint32_t>(base + p.step[i] > 0) << i;
         m &= bits;
     }
     return m;
@@ -75,37 +80,28 @@ inline uint32_t positive_bits(__m256i v0, __m256i v1) {
     return m0 | (m1 << 8);
 }
 
-// Step table a*col + b*row for the 16 lanes, scaled by `step`: two registers (rows 0-1, rows 2-3).
-inline void step_table(int32_t a, int32_t b, __m256i* t0, __m256i* t1) {
-    const __m256i col = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
-    const __m256i row = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
-    const __m256i va = _mm256_set1_epi32(a), vb = _mm256_set1_epi32(b);
-    *t0 = _mm256_add_epi32(_mm256_mullo_epi32(va, col), _mm256_mullo_epi32(vb, row));
-    *t1 = _mm256_add_epi32(*t0, _mm256_set1_epi32(2 * b));
-}
-
 }  // namespace avx2
 
-inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject,
-                            uint32_t* accept) {
-    const int32_t origin = p.a * ox + p.b * oy;
-    const int32_t hi = p.hi + origin + (step - 1) * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
-    const int32_t lo = p.lo + origin + (step - 1) * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
-    __m256i t0, t1;
-    avx2::step_table(p.a * step, p.b * step, &t0, &t1);
+inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
+    const int32_t origin = p.a * ox + p.b * oy, ext = (1 << shift) - 1;
+    const int32_t hi = p.hi + origin + ext * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
+    const int32_t lo = p.lo + origin + ext * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
+    const __m128i sh = _mm_cvtsi32_si128(shift);
+    const __m256i t0 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.step)), sh);
+    const __m256i t1 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8)), sh);
     const __m256i vhi = _mm256_set1_epi32(hi), vlo = _mm256_set1_epi32(lo);
     // reject: hi + off <= 0  <=>  !(hi + off > 0)
     *reject = ~avx2::positive_bits(_mm256_add_epi32(vhi, t0), _mm256_add_epi32(vhi, t1)) & 0xFFFF;
     *accept = avx2::positive_bits(_mm256_add_epi32(vlo, t0), _mm256_add_epi32(vlo, t1));
 }
 
-inline uint32_t mask4x4_avx2(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+inline uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
-        const TilePlane& p = planes[k];
-        __m256i t0, t1;
-        avx2::step_table(p.a, p.b, &t0, &t1);
+        const TilePlane& p = *planes[k];
         const __m256i base = _mm256_set1_epi32(p.c[s] + p.a * ox + p.b * oy);
+        const __m256i t0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step));
+        const __m256i t1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8));
         m &= avx2::positive_bits(_mm256_add_epi32(base, t0), _mm256_add_epi32(base, t1));
     }
     return m;
@@ -113,15 +109,15 @@ inline uint32_t mask4x4_avx2(const TilePlane* planes, int n, int s, int32_t ox, 
 #endif
 
 // The kernels the rasterizer uses: AVX2 when built with it, else the scalar twin.
-inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int32_t step, uint32_t* reject, uint32_t* accept) {
+inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
 #if TILEVK_SIMD_AVX2
-    classify16_avx2(p, ox, oy, step, reject, accept);
+    classify16_avx2(p, ox, oy, shift, reject, accept);
 #else
-    classify16_scalar(p, ox, oy, step, reject, accept);
+    classify16_scalar(p, ox, oy, shift, reject, accept);
 #endif
 }
 
-inline uint32_t mask4x4(const TilePlane* planes, int n, int s, int32_t ox, int32_t oy) {
+inline uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
 #if TILEVK_SIMD_AVX2
     return mask4x4_avx2(planes, n, s, ox, oy);
 #else

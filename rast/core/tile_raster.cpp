@@ -36,25 +36,26 @@ void push_full4(TileScratch* out, int32_t x, int32_t y, int samples, uint16_t sa
 
 // --- hier: 64 -> 16 -> 4 -----------------------------------------------------------------------------------------
 
+using PlaneList = const TilePlane* const*;
+
 // A 4x4 block at tile-relative (ox, oy) known not to be rejected by the level above.
-void hier_block4(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, int32_t ox, int32_t oy,
+void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
                  TileScratch* out) {
     uint32_t masks[4];
     for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(planes, n, s, ox, oy);
     push_block(out, t.x0 + ox, t.y0 + oy, masks, t.samples, prim.sample_mask);
 }
 
-// Classifies the 4x4 grid of sub-blocks of size `step` at (ox, oy) over the live planes; lanes outside `side`
-// sub-blocks per row/column are ignored. Returns masks of rejected-by-none and accepted-by-all lanes; per plane,
-// acc[k] says which lanes that plane accepts (so it can be dropped inside them).
-void classify_grid(const TilePlane* planes, int n, int32_t ox, int32_t oy, int32_t step, int side, uint32_t* live,
-                   uint32_t* full, uint32_t* acc) {
-    uint32_t valid = 0;
-    for (int r = 0; r < side; ++r) valid |= ((1u << side) - 1u) << (4 * r);
+// Classifies the 4x4 grid of sub-blocks of size 2^shift at (ox, oy) over the live planes; lanes outside `side`
+// sub-blocks per row/column are ignored. Returns the lanes rejected by no plane and those accepted by all; per
+// plane, acc[k] says which lanes that plane accepts (so it can be dropped inside them).
+void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift, int side, uint32_t* live, uint32_t* full,
+                   uint32_t* acc) {
+    const uint32_t valid = side == 4 ? 0xFFFFu : side == 2 ? 0x33u : 0x1u;
     uint32_t rej_any = 0, acc_all = valid;
     for (int k = 0; k < n; ++k) {
         uint32_t rej, a;
-        classify16(planes[k], ox, oy, step, &rej, &a);
+        classify16(*planes[k], ox, oy, shift, &rej, &a);
         rej_any |= rej;
         acc_all &= a;
         acc[k] = a;
@@ -64,7 +65,7 @@ void classify_grid(const TilePlane* planes, int n, int32_t ox, int32_t oy, int32
 }
 
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
-int drop_accepted(const TilePlane* planes, int n, const uint32_t* acc, int lane, TilePlane* kept) {
+int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane, const TilePlane** kept) {
     int m = 0;
     for (int k = 0; k < n; ++k)
         if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
@@ -72,78 +73,66 @@ int drop_accepted(const TilePlane* planes, int n, const uint32_t* acc, int lane,
 }
 
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, accept whole ones, mask the partial ones.
-void hier_block16(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, int32_t ox, int32_t oy,
+void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
                   TileScratch* out) {
     uint32_t live, full, acc[Prim::kMaxPlanes];
-    classify_grid(planes, n, ox, oy, 4, 4, &live, &full, acc);
+    classify_grid(planes, n, ox, oy, 2, 4, &live, &full, acc);
     for (uint32_t m = live; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int32_t bx = ox + 4 * (lane & 3), by = oy + 4 * (lane >> 2);
         if ((full >> lane) & 1u) {
             push_full4(out, t.x0 + bx, t.y0 + by, t.samples, prim.sample_mask);
         } else {
-            TilePlane kept[Prim::kMaxPlanes];
+            const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, n, acc, lane, kept);
             hier_block4(prim, t, kept, k, bx, by, out);
         }
     }
 }
 
-void raster_hier(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, TileScratch* out) {
-    // Small-primitive fast paths: a box inside one aligned 4x4 block or one aligned 16x16 block skips the levels
-    // above it (the box bounds all coverage, so nothing outside it can be missed).
-    const int32_t rx0 = std::max(prim.x0, t.x0) - t.x0, rx1 = std::min(prim.x1, t.x0 + t.size - 1) - t.x0;
-    const int32_t ry0 = std::max(prim.y0, t.y0) - t.y0, ry1 = std::min(prim.y1, t.y0 + t.size - 1) - t.y0;
-    if ((rx0 >> 2) == (rx1 >> 2) && (ry0 >> 2) == (ry1 >> 2)) {
-        hier_block4(prim, t, planes, n, rx0 & ~3, ry0 & ~3, out);
-        return;
-    }
-    if ((rx0 >> 4) == (rx1 >> 4) && (ry0 >> 4) == (ry1 >> 4)) {
-        hier_block16(prim, t, planes, n, rx0 & ~15, ry0 & ~15, out);
-        return;
-    }
-    if (t.size == 16) {
-        hier_block16(prim, t, planes, n, 0, 0, out);
-        return;
-    }
+// Box ∩ tile in tile-relative pixels (inclusive).
+struct RelBox {
+    int32_t x0, y0, x1, y1;
+};
+RelBox rel_box(const Prim& prim, const TileGeom& t) {
+    return {std::max(prim.x0, t.x0) - t.x0, std::max(prim.y0, t.y0) - t.y0, std::min(prim.x1, t.x0 + t.size - 1) - t.x0,
+            std::min(prim.y1, t.y0 + t.size - 1) - t.y0};
+}
+
+// Every 4x4 block of the box, masked directly (no classification).
+void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r, TileScratch* out) {
+    for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
+        for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
+}
+
+void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
+    // Small-primitive fast paths: a box spanning at most 2x2 4x4-blocks is masked directly; one inside an aligned
+    // 16x16 block starts the descent there (the box bounds all coverage, so nothing outside it can be missed).
+    const RelBox r = rel_box(prim, t);
+    if ((r.x1 >> 2) - (r.x0 >> 2) <= 1 && (r.y1 >> 2) - (r.y0 >> 2) <= 1)
+        return scan_blocks(prim, t, planes, n, r, out);
+    if ((r.x0 >> 4) == (r.x1 >> 4) && (r.y0 >> 4) == (r.y1 >> 4))
+        return hier_block16(prim, t, planes, n, r.x0 & ~15, r.y0 & ~15, out);
+    if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, out);
     uint32_t live, full, acc[Prim::kMaxPlanes];
-    classify_grid(planes, n, 0, 0, 16, t.size / 16, &live, &full, acc);
+    classify_grid(planes, n, 0, 0, 4, t.size / 16, &live, &full, acc);
     for (uint32_t m = live; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int32_t bx = 16 * (lane & 3), by = 16 * (lane >> 2);
         if ((full >> lane) & 1u) {
             out->full.push_back({t.x0 + bx, t.y0 + by, 16});
         } else {
-            TilePlane kept[Prim::kMaxPlanes];
+            const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, n, acc, lane, kept);
             hier_block16(prim, t, kept, k, bx, by, out);
         }
     }
 }
 
-// --- bbox: every 4x4 block of box ∩ tile, planes stepped incrementally in 32 bits ---------------------------------
+// --- bbox: every 4x4 block of box ∩ tile, all live planes evaluated in 32 bits (Giesen-style scan) --------------
 
-void raster_bbox(const Prim& prim, const TileGeom& t, const TilePlane* planes, int n, TileScratch* out) {
-    const int32_t rx0 = (std::max(prim.x0, t.x0) - t.x0) & ~3, rx1 = std::min(prim.x1, t.x0 + t.size - 1) - t.x0;
-    const int32_t ry0 = (std::max(prim.y0, t.y0) - t.y0) & ~3, ry1 = std::min(prim.y1, t.y0 + t.size - 1) - t.y0;
-    // Row-start planes: c at (rx0, y); stepping a block right adds 4a, down adds 4b.
-    TilePlane row[Prim::kMaxPlanes], cur[Prim::kMaxPlanes];
-    for (int k = 0; k < n; ++k) {
-        row[k] = planes[k];
-        for (int s = 0; s < t.samples; ++s) row[k].c[s] += planes[k].a * rx0 + planes[k].b * ry0;
-    }
-    for (int32_t by = ry0; by <= ry1; by += 4) {
-        for (int k = 0; k < n; ++k) cur[k] = row[k];
-        for (int32_t bx = rx0; bx <= rx1; bx += 4) {
-            uint32_t masks[4];
-            for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(cur, n, s, 0, 0);
-            push_block(out, t.x0 + bx, t.y0 + by, masks, t.samples, prim.sample_mask);
-            for (int k = 0; k < n; ++k)
-                for (int s = 0; s < t.samples; ++s) cur[k].c[s] += 4 * cur[k].a;
-        }
-        for (int k = 0; k < n; ++k)
-            for (int s = 0; s < t.samples; ++s) row[k].c[s] += 4 * row[k].b;
-    }
+void raster_bbox(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
+    scan_blocks(prim, t, planes, n, rel_box(prim, t), out);
 }
 
 // --- reference: per pixel, per sample, 64-bit, shape planes only, box as loop bounds ------------------------------
@@ -219,25 +208,24 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
     int n = 0;
     const int64_t span = tile.size - 1;
     for (int k = 0; k < prim.num_planes; ++k) {
-        const EdgePlane& p = prim.planes[k];
-        TilePlane tp;
-        tp.a = p.a, tp.b = p.b;
-        int64_t lo = INT64_MAX, hi = INT64_MIN;
-        for (int s = 0; s < tile.samples; ++s) {
-            int32_t sx, sy;
-            sample_offset(tile.samples, s, &sx, &sy);
-            // C_s = c + a*X + b*Y at the tile origin pixel's sample s; c[s] = ceil(C_s / 256).
-            const int64_t X = int64_t{tile.x0} * kFixedOne + sx, Y = int64_t{tile.y0} * kFixedOne + sy;
-            const int64_t c = ceil_shift(p.c + p.a * X + p.b * Y, kSubpixelBits);
-            lo = std::min(lo, c), hi = std::max(hi, c);
-            tp.c[s] = static_cast<int32_t>(c);  // only kept (and then in range) if the plane is live, below
-        }
+        const PixelPlane& p = prim.pix[k];
+        // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^39 + 2^38: 64-bit).
+        const int64_t c = p.c0 + int64_t{p.a} * tile.x0 + int64_t{p.b} * tile.y0;
+        const int64_t lo = c + p.dlo, hi = c + p.dhi;
         const int64_t min_v = lo + span * (int64_t{std::min(p.a, 0)} + std::min(p.b, 0));
         const int64_t max_v = hi + span * (int64_t{std::max(p.a, 0)} + std::max(p.b, 0));
         if (max_v <= 0) return TileClass::kReject;
         if (min_v > 0) continue;  // trivially inside the whole tile: drop
+        if (!out) {
+            ++n;
+            continue;
+        }
+        // Live plane: every value over the tile is in (-2^30, 2^30] (tile_kernels.h), so 32 bits hold them.
+        TilePlane& tp = out[n++];
+        tp.a = p.a, tp.b = p.b;
         tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
-        out[n++] = tp;
+        for (int s = 0; s < 4; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);
+        fill_step_table(&tp);
     }
     *num_out = n;
     return n == 0 ? TileClass::kWhole : TileClass::kPartial;
@@ -255,15 +243,17 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     TilePlane planes[Prim::kMaxPlanes];
     int n = 0;
     const TileClass cls = tile_setup(prim, tile, planes, &n);
+    const TilePlane* list[Prim::kMaxPlanes];
+    for (int k = 0; k < n; ++k) list[k] = &planes[k];
     if (cls == TileClass::kReject) return;
     if (cls == TileClass::kWhole && method == Method::kHier) {
         scratch->full.push_back({tile.x0, tile.y0, tile.size});
         return;
     }
     if (method == Method::kHier)
-        raster_hier(prim, tile, planes, n, scratch);
+        raster_hier(prim, tile, list, n, scratch);
     else
-        raster_bbox(prim, tile, planes, n, scratch);
+        raster_bbox(prim, tile, list, n, scratch);
 }
 
 }  // namespace tilevk::rast

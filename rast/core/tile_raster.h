@@ -22,7 +22,8 @@ enum class TileClass { kReject, kWhole, kPartial };
 
 // Evaluates every plane of `prim` for the tile in 64-bit (the only 64-bit step of the rasterizer), rejects the tile
 // if a plane is <= 0 over all of it, drops planes that are > 0 over all of it, and writes the others as 32-bit
-// TilePlanes (see tile_kernels.h for the proof). kWhole: no plane left and the tile lies inside the prim's box.
+// TilePlanes (see tile_kernels.h for the proof); out may be null to classify only (binning). kWhole: no plane left and
+// the tile lies inside the prim's box.
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
 
 struct TileScratch {

@@ -119,7 +119,8 @@ uint16_t float_to_half_rne(float f) {
     const uint16_t sign = uint16_t((u >> 16) & 0x8000u);
     const uint32_t exp = (u >> 23) & 0xffu;
     const uint32_t man = u & 0x7fffffu;
-    if (exp == 0xff) return uint16_t(sign | (man ? 0x7e00u : 0x7c00u));
+    // NaN as VCVTPS2PH (what _mesa_float_to_half uses on F16C CPUs): quiet, top payload bits kept
+    if (exp == 0xff) return uint16_t(sign | (man ? (0x7e00u | (man >> 13)) : 0x7c00u));
     const int e = int(exp) - 127;
     if (exp == 0) return sign;     // float denormals are far below half's range
     uint32_t m = 0x800000u | man;  // 24-bit significand, value = m * 2^(e-23)

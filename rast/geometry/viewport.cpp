@@ -83,4 +83,10 @@ uint32_t compute_clipmask(const ClipMaskConfig& cfg, const float c[4]) {
     return m;
 }
 
+uint32_t prepare_vertex(const ClipMaskConfig& cm, const ViewportConfig& vp, float* record) {
+    const uint32_t mask = compute_clipmask(cm, record);
+    viewport_transform(vp, record, record + 4);
+    return mask;
+}
+
 }  // namespace tilevk::rast::geometry

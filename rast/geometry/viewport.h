@@ -57,4 +57,9 @@ struct ClipMaskConfig {
 
 uint32_t compute_clipmask(const ClipMaskConfig& cfg, const float clip[4]);
 
+// What lavapipe's vertex JIT does after the vertex shader, for every vertex (clipped or not): clip mask from the
+// clip position, then the viewport transform into the record's window lanes (vertex.h layout). Surviving
+// original vertices of a clipped triangle keep these window coordinates; only new ones are made in C.
+uint32_t prepare_vertex(const ClipMaskConfig& cm, const ViewportConfig& vp, float* record);
+
 }  // namespace tilevk::rast::geometry

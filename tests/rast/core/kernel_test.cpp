@@ -28,6 +28,7 @@ TilePlane random_plane(std::mt19937_64& rng) {
         lo = std::min<int64_t>(lo, p.c[s]), hi = std::max<int64_t>(hi, p.c[s]);
     }
     p.lo = static_cast<int32_t>(lo), p.hi = static_cast<int32_t>(hi);
+    fill_step_table(&p);
     return p;
 }
 
@@ -39,21 +40,22 @@ TEST(Kernels, ScalarAndAvx2Agree) {
     uint64_t nonzero = 0, partial = 0;
     for (int iter = 0; iter < 200000; ++iter) {
         TilePlane planes[4];
+        const TilePlane* list[4] = {&planes[0], &planes[1], &planes[2], &planes[3]};
         const int n = 1 + iter % 4;
         for (int k = 0; k < n; ++k) planes[k] = random_plane(rng);
-        const int step = (iter & 1) ? 16 : 4;
+        const int shift = (iter & 1) ? 4 : 2;
         const int32_t ox = (iter & 1) ? 0 : 16 * ((iter >> 1) & 3), oy = (iter & 1) ? 0 : 16 * ((iter >> 3) & 3);
         for (int k = 0; k < n; ++k) {
             uint32_t r1, a1, r2, a2;
-            classify16_scalar(planes[k], ox, oy, step, &r1, &a1);
-            classify16_avx2(planes[k], ox, oy, step, &r2, &a2);
+            classify16_scalar(planes[k], ox, oy, shift, &r1, &a1);
+            classify16_avx2(planes[k], ox, oy, shift, &r2, &a2);
             ASSERT_EQ(r1, r2) << iter;
             ASSERT_EQ(a1, a2) << iter;
             partial += (r1 | a1) != 0xFFFF;
         }
         const int32_t bx = 4 * ((iter >> 2) & 15), by = 4 * ((iter >> 6) & 15);
         for (int s = 0; s < 4; ++s) {
-            const uint32_t m1 = mask4x4_scalar(planes, n, s, bx, by), m2 = mask4x4_avx2(planes, n, s, bx, by);
+            const uint32_t m1 = mask4x4_scalar(list, n, s, bx, by), m2 = mask4x4_avx2(list, n, s, bx, by);
             ASSERT_EQ(m1, m2) << iter;
             nonzero += m1 != 0 && m1 != 0xFFFF;
         }
@@ -68,13 +70,14 @@ TEST(Kernels, ScalarMatchesDefinition) {
     std::mt19937_64 rng(77);
     for (int iter = 0; iter < 50000; ++iter) {
         TilePlane p = random_plane(rng);
+        const TilePlane* list[1] = {&p};
         const int32_t ox = 4 * (iter % 16), oy = 4 * ((iter / 16) % 16);
         for (int s = 0; s < 4; ++s) {
             uint32_t expect = 0;
             for (int i = 0; i < 16; ++i)
                 if (int64_t{p.c[s]} + int64_t{p.a} * (ox + (i & 3)) + int64_t{p.b} * (oy + (i >> 2)) > 0)
                     expect |= 1u << i;
-            ASSERT_EQ(mask4x4_scalar(&p, 1, s, ox, oy), expect);
+            ASSERT_EQ(mask4x4_scalar(list, 1, s, ox, oy), expect);
         }
     }
 }

@@ -77,7 +77,9 @@ TEST(FragmentColor, ClearFloatToUbyte) {
     EXPECT_EQ(float_to_ubyte_clear(0.5f), 128);
 }
 
-static double exact_srgb_encode(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055; }
+static double exact_srgb_encode(double x) {
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+}
 
 TEST(FragmentColor, SrgbRoundTripAndAccuracyOnThisCpu) {
     for (bool fused : {true, false}) {
@@ -119,8 +121,8 @@ TEST(FragmentColor, HwRsqrtIsTheApproximation) {
 
 #if defined(__x86_64__)
 __attribute__((target("f16c"))) static uint16_t hw_half(float f, bool rz) {
-    const __m128i r = rz ? _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_ZERO)
-                         : _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT);
+    const __m128i r =
+        rz ? _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_ZERO) : _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT);
     return uint16_t(_mm_extract_epi16(r, 0));
 }
 __attribute__((target("f16c"))) static float hw_float(uint16_t h) {

@@ -80,8 +80,8 @@ TEST(FragmentInterp, PlaneMatchesOperationOrderAndDoubleBound) {
                     fused_differs += out_f[l] != out_u[l];
                     // Error bound: each result is within a few ulps of the exact value (2 roundings each op).
                     const double exact = double(p.a0) + double(p.dadx) * px + double(p.dady) * py;
-                    const double mag = std::fabs(double(p.a0)) + std::fabs(double(p.dadx) * px) +
-                                       std::fabs(double(p.dady) * py);
+                    const double mag =
+                        std::fabs(double(p.a0)) + std::fabs(double(p.dadx) * px) + std::fabs(double(p.dady) * py);
                     const double bound = mag * 4.0 * 0x1p-24;
                     ASSERT_LE(std::fabs(double(out_f[l]) - exact), bound);
                     ASSERT_LE(std::fabs(double(out_u[l]) - exact), bound);
