@@ -1,0 +1,86 @@
+// A conformance case: a dEQP-style name, a scene builder and an optional independent check.
+// Case groups are generated from small tables in cases_<group>.cpp; helpers for building scenes live here.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "judge.hpp"
+#include "scene.hpp"
+
+namespace tilevk::cts {
+
+struct Case {
+    std::string name;
+    std::function<Scene()> scene;  // built lazily: mesh cases load files only when they run
+    Check check;                   // optional; applied to both devices' planes
+    std::string note;              // e.g. "bgra-linear-path": deliberately hits lavapipe's linear rasterizer
+};
+using CaseList = std::vector<Case>;
+
+void add_api_cases(CaseList& out);
+void add_primitive_cases(CaseList& out);
+void add_fill_rule_cases(CaseList& out);
+void add_culling_cases(CaseList& out);
+void add_interpolation_cases(CaseList& out);
+void add_multisample_cases(CaseList& out);
+void add_depth_cases(CaseList& out);
+void add_stencil_cases(CaseList& out);
+void add_blend_cases(CaseList& out);
+void add_viewport_cases(CaseList& out);
+void add_texture_cases(CaseList& out);
+void add_mesh_cases(CaseList& out);
+CaseList all_cases();
+
+// --- scene helpers ---
+inline Vertex vtx(float x, float y, float z = 0.0f, float w = 1.0f, std::array<float, 4> c = {1, 1, 1, 1}) {
+    Vertex v;
+    v.pos[0] = x * w;  // positions are given in NDC; w scales them into clip space
+    v.pos[1] = y * w;
+    v.pos[2] = z * w;
+    v.pos[3] = w;
+    for (int i = 0; i < 4; ++i) v.color[i] = c[i];
+    return v;
+}
+inline Vertex vtxc(float x, float y, std::array<float, 4> c) {
+    return vtx(x, y, 0.0f, 1.0f, c);
+}
+
+inline Scene one_draw(Draw d, uint32_t w = 64, uint32_t h = 64) {
+    Scene s;
+    s.target.width = w;
+    s.target.height = h;
+    s.draws.push_back(std::move(d));
+    return s;
+}
+
+// ONE,ONE additive blending, used by the coverage-counting checks.
+inline VkPipelineColorBlendAttachmentState additive() {
+    return {VK_TRUE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_OP_ADD,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_OP_ADD,
+            0xF};
+}
+
+// An RGBA8 word as read back (R in the low byte).
+constexpr uint32_t rgba8(uint32_t r, uint32_t g, uint32_t b, uint32_t a) {
+    return r | g << 8 | b << 16 | a << 24;
+}
+
+// A deterministic pseudo-random generator for random-primitive cases (identical on every platform).
+struct Lcg {
+    uint32_t s;
+    float next() {  // in [0,1)
+        s = s * 1664525u + 1013904223u;
+        return float(s >> 8) * (1.0f / 16777216.0f);
+    }
+    float range(float a, float b) { return a + (b - a) * next(); }
+};
+
+}  // namespace tilevk::cts

@@ -1,0 +1,22 @@
+#include "case.hpp"
+
+namespace tilevk::cts {
+
+CaseList all_cases() {
+    CaseList out;
+    add_api_cases(out);
+    add_primitive_cases(out);
+    add_fill_rule_cases(out);
+    add_culling_cases(out);
+    add_interpolation_cases(out);
+    add_multisample_cases(out);
+    add_depth_cases(out);
+    add_stencil_cases(out);
+    add_blend_cases(out);
+    add_viewport_cases(out);
+    add_texture_cases(out);
+    add_mesh_cases(out);
+    return out;
+}
+
+}  // namespace tilevk::cts

@@ -1,0 +1,93 @@
+// texture.*: magnification and minification filters, mip selection and blending, and the wrap modes.
+#include "case.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+// A quad showing the texture with coordinates [u0,u1] x [v0,v1], optionally with a perspective tilt.
+Scene textured(TextureSpec t, float u0, float u1, float x_scale = 1.0f, bool projected = false, uint32_t size = 64) {
+    Draw d;
+    d.frag = Frag::kTexture;
+    d.texture = t;
+    float s = x_scale;
+    float wl = 1.0f, wr = projected ? 3.0f : 1.0f;
+    Vertex a = vtx(-s, -s, 0, wl), b = vtx(s, -s, 0, wr), c = vtx(s, s, 0, wr), e = vtx(-s, s, 0, wl);
+    a.uv[0] = u0, a.uv[1] = u0;
+    b.uv[0] = u1, b.uv[1] = u0;
+    c.uv[0] = u1, c.uv[1] = u1;
+    e.uv[0] = u0, e.uv[1] = u1;
+    d.vertices = {a, b, c, a, c, e};
+    return one_draw(d, size, size);
+}
+
+}  // namespace
+
+void add_texture_cases(CaseList& out) {
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+        const char* fname = f == VK_FILTER_NEAREST ? "nearest" : "linear";
+        for (TexPattern p : {TexPattern::kChecker, TexPattern::kGradient}) {
+            TextureSpec t;
+            t.pattern = p;
+            t.mag = t.min = f;
+            out.push_back(
+                {std::string("texture.filter.mag_") + fname + (p == TexPattern::kChecker ? "_checker" : "_gradient"),
+                 [=] { return textured(t, 0.0f, 1.0f); },
+                 // Nearest magnification of the checker shows only its two texel values (255 and 255/4 = 63).
+                 f == VK_FILTER_NEAREST && p == TexPattern::kChecker
+                     ? palette_only({rgba8(255, 255, 255, 255), rgba8(63, 63, 63, 255)})
+                     : Check(),
+                 ""});
+        }
+        for (VkSamplerMipmapMode m : {VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_MIPMAP_MODE_LINEAR}) {
+            TextureSpec t;
+            t.width = t.height = 128;
+            t.mip_levels = 8;
+            t.min = t.mag = f;
+            t.mip_mode = m;
+            std::string mname = m == VK_SAMPLER_MIPMAP_MODE_NEAREST ? "nearest" : "linear";
+            out.push_back({std::string("texture.mipmap.min_") + fname + "_mip_" + mname,
+                           [=] { return textured(t, 0.0f, 1.0f, 0.4f); }, nullptr, ""});
+            out.push_back({std::string("texture.mipmap.min_") + fname + "_mip_" + mname + "_projected",
+                           [=] { return textured(t, 0.0f, 4.0f, 1.0f, true); }, nullptr, ""});
+        }
+    }
+    struct Wrap {
+        const char* name;
+        VkSamplerAddressMode mode;
+    };
+    const Wrap wraps[] = {{"repeat", VK_SAMPLER_ADDRESS_MODE_REPEAT},
+                          {"mirrored_repeat", VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT},
+                          {"clamp_to_edge", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE},
+                          {"clamp_to_border", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER}};
+    for (const Wrap& w : wraps)
+        for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+            TextureSpec t;
+            t.pattern = TexPattern::kGradient;
+            t.width = t.height = 8;
+            t.wrap = w.mode;
+            t.mag = t.min = f;
+            t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+            out.push_back({std::string("texture.wrap.") + w.name + (f == VK_FILTER_NEAREST ? "_nearest" : "_linear"),
+                           [=] { return textured(t, -1.25f, 2.5f); }, nullptr, ""});
+        }
+    // The same textured rectangle on B8G8R8A8 without depth: lavapipe's linear path (notes §8) may shade it.
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+        TextureSpec t;
+        t.mag = t.min = f;
+        out.push_back(
+            {std::string("texture.filter.mag_") + (f == VK_FILTER_NEAREST ? "nearest" : "linear") + "_bgra_linear",
+             [=] {
+                 Scene s = textured(t, 0.0f, 1.0f);
+                 s.target.color = VK_FORMAT_B8G8R8A8_UNORM;
+                 return s;
+             },
+             nullptr, "bgra-linear-path"});
+    }
+    TextureSpec lod0;
+    lod0.width = lod0.height = 64;
+    lod0.mip_levels = 7;
+    lod0.max_lod = 0.0f;
+    out.push_back({"texture.mipmap.max_lod_0", [=] { return textured(lod0, 0.0f, 1.0f, 0.3f); }, nullptr, ""});
+}
+
+}  // namespace tilevk::cts

@@ -1,0 +1,51 @@
+// Judging: byte comparison against the reference device, and independent checks that need no reference.
+// Everything here is pure (no device), so tests/cts_subset can exercise it on hand-made planes.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace tilevk::cts {
+
+struct PlaneDiff {
+    std::string plane;
+    uint64_t differing = 0;  // pixels with any differing byte
+    uint64_t total = 0;
+    double max_error = 0;  // largest per-channel difference in the format's units (unorm8 steps, D16 steps, ...)
+    std::string problem;   // non-empty when the planes cannot be compared (size/format mismatch)
+};
+
+PlaneDiff compare_planes(const Plane& ours, const Plane& ref);
+
+// RGBA8 visualisation of a plane (depth/stencil become grey) and of the differences (red where they differ).
+std::vector<uint8_t> to_rgba8(const Plane& p);
+std::vector<uint8_t> diff_rgba8(const Plane& ours, const Plane& ref);
+
+// An independent check returns an empty string on success, else what is wrong (first offending pixel first).
+using Check = std::function<std::string(const std::vector<Plane>& planes)>;
+
+// Channel `ch` of an RGBA8 colour plane counts coverage in unorm8 steps (additive ONE,ONE blending of 1/255):
+// every pixel must be 0 or 1 (no pixel drawn twice), and pixels inside `must_cover` (x0,y0,x1,y1; empty = none)
+// must be exactly 1 (no pixel missed).
+Check exactly_once(int ch, int x0 = 0, int y0 = 0, int x1 = 0, int y1 = 0);
+// Every pixel's channel `ch` count is even: a ray through a closed (watertight) mesh crosses it an even number of
+// times, so with culling off every pixel is covered an even number of times.
+Check even_coverage(int ch);
+// Every pixel of the colour plane is one of `palette` (RGBA8 words, R in the low byte).
+Check palette_only(std::vector<uint32_t> palette);
+// The colour plane at (x,y) is exactly `rgba`.
+Check pixel_is(int x, int y, uint32_t rgba);
+// All checks in order; the first failure wins.
+Check all_of(std::vector<Check> checks);
+
+// Hook for rast/'s reference coverage method (when the rast branch lands): if set, it is run on every case's
+// scene and our planes, and a non-empty answer fails the case.
+using CoverageOracle = std::function<std::string(const Scene& scene, const std::vector<Plane>& ours)>;
+void set_coverage_oracle(CoverageOracle oracle);
+const CoverageOracle& coverage_oracle();
+
+}  // namespace tilevk::cts

@@ -1,0 +1,289 @@
+// tilevk-cts: runs the conformance subset on two Vulkan devices in one process and compares their images.
+#include <fnmatch.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "case.hpp"
+#include "png_writer.hpp"
+#include "render.hpp"
+#include "results.hpp"
+
+using namespace tilevk::cts;
+
+namespace {
+
+struct Options {
+    bool list = false;
+    std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
+    bool device_is_prefix = true, png_all = false, selftest_perturb = false;
+    int timing = 0;
+};
+
+void usage() {
+    std::puts(
+        "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
+        "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
+        "                  [--selftest-perturb]\n"
+        "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
+        "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
+        "  --selftest-perturb flips one bit of the device-under-test's read-back (proves the comparison).\n"
+        "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
+        "  VK_ICD_FILENAMES defaults to this build's tilevk_icd.json and lavapipe's manifest.");
+}
+
+bool parse(int argc, char** argv, Options& o) {
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&](std::string& dst) {
+            if (i + 1 >= argc) return false;
+            dst = argv[++i];
+            return true;
+        };
+        std::string n;
+        if (a == "--list")
+            o.list = true;
+        else if (a == "--filter") {
+            if (!value(o.filter)) return false;
+        } else if (a == "--device") {
+            if (!value(o.device)) return false;
+            o.device_is_prefix = false;
+        } else if (a == "--ref") {
+            if (!value(o.ref)) return false;
+        } else if (a == "--log") {
+            if (!value(o.log)) return false;
+        } else if (a == "--junit") {
+            if (!value(o.junit)) return false;
+        } else if (a == "--json") {
+            if (!value(o.json)) return false;
+        } else if (a == "--png-dir") {
+            if (!value(o.png_dir)) return false;
+        } else if (a == "--png-all")
+            o.png_all = true;
+        else if (a == "--selftest-perturb")
+            o.selftest_perturb = true;
+        else if (a == "--start-after") {
+            if (!value(o.start_after)) return false;
+        } else if (a == "--timing") {
+            if (!value(n)) return false;
+            char* end = nullptr;
+            long v = std::strtol(n.c_str(), &end, 10);
+            if (*end || v < 0 || v > 10000) return false;
+            o.timing = int(v);
+        } else
+            return false;
+    }
+    return true;
+}
+
+bool file_exists(const std::string& p) {
+    struct stat st;
+    return stat(p.c_str(), &st) == 0;
+}
+
+// The loader finds both drivers through VK_ICD_FILENAMES; default to this build's manifest plus lavapipe's.
+std::string set_icd_filenames() {
+    if (const char* env = std::getenv("VK_ICD_FILENAMES"); env && *env) return env;
+    std::string list;
+    for (std::string p : {std::string(TILEVK_BUILD_ROOT) + "/tilevk_icd.json", std::string(TILEVK_LVP_ICD)})
+        if (file_exists(p)) list += (list.empty() ? "" : ":") + p;
+    if (!list.empty()) setenv("VK_ICD_FILENAMES", list.c_str(), 1);
+    return list;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return -1;
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string file_safe(std::string s) {
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+    return s;
+}
+
+void save_pngs(const std::string& dir, const std::string& name, const std::vector<Plane>& ours,
+               const std::vector<Plane>& ref) {
+    mkdir(dir.c_str(), 0755);
+    for (size_t i = 0; i < ours.size() && i < ref.size(); ++i) {
+        std::string base = dir + "/" + file_safe(name) + "." + ours[i].name;
+        write_png(base + ".ours.png", ours[i].width, ours[i].height, to_rgba8(ours[i]));
+        write_png(base + ".ref.png", ref[i].width, ref[i].height, to_rgba8(ref[i]));
+        write_png(base + ".diff.png", ours[i].width, ours[i].height, diff_rgba8(ours[i], ref[i]));
+    }
+}
+
+CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string& ours_missing, const DeviceContext& ref,
+                    const Options& o) {
+    CaseResult r;
+    r.name = c.name;
+    r.note = c.note;
+    r.check = c.check ? "pending" : "none";
+    auto fail = [&](std::string why) {
+        r.status = Status::kFail;
+        r.reason = std::move(why);
+        return r;
+    };
+    Scene scene;
+    try {
+        scene = c.scene();
+    } catch (const std::exception& e) {
+        r.status = Status::kNotSupported;
+        r.reason = std::string("test data unavailable: ") + e.what();
+        return r;
+    }
+    if (!ours) {
+        // Still time the reference, so the report shows lavapipe's side while tilevk is missing.
+        if (unsupported(ref, scene).empty()) {
+            try {
+                RenderResult b = render(ref, scene, o.timing);
+                r.ref_ms = median(b.frame_ms);
+                r.ref_pipeline_ms = b.pipeline_ms;
+            } catch (const std::exception&) {
+            }
+        }
+        return fail(ours_missing);
+    }
+    if (auto why = unsupported(*ours, scene); !why.empty()) {
+        r.status = Status::kNotSupported;
+        r.reason = ours->name + ": " + why;
+        return r;
+    }
+    if (auto why = unsupported(ref, scene); !why.empty()) {
+        r.status = Status::kNotSupported;
+        r.reason = ref.name + ": " + why;
+        return r;
+    }
+    RenderResult a, b;
+    try {
+        a = render(*ours, scene, o.timing);
+    } catch (const std::exception& e) {
+        return fail(ours->name + ": " + e.what());
+    }
+    try {
+        b = render(ref, scene, o.timing);
+    } catch (const std::exception& e) {
+        return fail("reference " + ref.name + ": " + e.what());
+    }
+    // Harness self-test: one changed bit in our first plane must be caught by every comparison path.
+    if (o.selftest_perturb && !a.planes.empty() && !a.planes[0].data.empty()) a.planes[0].data[0] ^= 1;
+    r.ours_ms = median(a.frame_ms);
+    r.ref_ms = median(b.frame_ms);
+    r.ours_pipeline_ms = a.pipeline_ms;
+    r.ref_pipeline_ms = b.pipeline_ms;
+    std::string why;
+    if (a.planes.size() != b.planes.size()) why = "different number of read-back planes";
+    for (size_t i = 0; i < a.planes.size() && i < b.planes.size(); ++i) {
+        PlaneDiff d = compare_planes(a.planes[i], b.planes[i]);
+        if (!d.problem.empty() && why.empty()) why = d.problem;
+        r.differing += d.differing;
+        r.total += d.total;
+        r.max_error = std::max(r.max_error, d.max_error);
+        if (d.differing && why.empty()) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "%s: %llu of %llu pixels differ from the reference, max error %g",
+                          d.plane.c_str(), static_cast<unsigned long long>(d.differing),
+                          static_cast<unsigned long long>(d.total), d.max_error);
+            why = buf;
+        }
+    }
+    if (c.check) {
+        std::string ca = c.check(a.planes), cb = c.check(b.planes);
+        r.check = ca.empty() && cb.empty() ? "ok" : !ca.empty() ? ca : "reference: " + cb;
+        if (why.empty() && !ca.empty()) why = "independent check: " + ca;
+        if (why.empty() && !cb.empty()) why = "independent check failed on the reference: " + cb;
+    }
+    if (const CoverageOracle& oracle = coverage_oracle(); oracle && why.empty()) {
+        if (auto e = oracle(scene, a.planes); !e.empty()) why = "coverage oracle: " + e;
+    }
+    if (!o.png_dir.empty() && (!why.empty() || o.png_all)) save_pngs(o.png_dir, c.name, a.planes, b.planes);
+    if (!why.empty()) return fail(why);
+    return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    if (!parse(argc, argv, o)) {
+        usage();
+        return 2;
+    }
+    CaseList cases;
+    for (Case& c : all_cases())
+        if (fnmatch(o.filter.c_str(), c.name.c_str(), 0) == 0) cases.push_back(std::move(c));
+    if (!o.start_after.empty()) {
+        auto it = std::find_if(cases.begin(), cases.end(), [&](const Case& c) { return c.name == o.start_after; });
+        if (it != cases.end()) cases.erase(cases.begin(), it + 1);
+    }
+    if (o.list) {
+        for (const Case& c : cases)
+            std::printf("%s%s\n", c.name.c_str(), c.note.empty() ? "" : ("  [" + c.note + "]").c_str());
+        return 0;
+    }
+
+    RunInfo info;
+    info.device = o.device;
+    info.ref = o.ref;
+    info.timing_reps = o.timing;
+    info.icd_filenames = set_icd_filenames();
+    if (const char* m = std::getenv("TILEVK_RAST")) info.rast_method = m;
+    auto env = [](const char* k) {
+        const char* v = std::getenv(k);
+        return std::string(v ? v : "unset");
+    };
+    info.threads = "LP_NUM_THREADS=" + env("LP_NUM_THREADS") + " TILEVK_THREADS=" + env("TILEVK_THREADS");
+
+    std::unique_ptr<Instance> instance;
+    try {
+        instance = std::make_unique<Instance>();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tilevk-cts: %s\n", e.what());
+        return 3;
+    }
+    DeviceContext ref, ours;
+    std::string why;
+    if (!instance->open(o.ref, false, ref, why)) {
+        std::fprintf(stderr, "tilevk-cts: reference device unavailable: %s\n", why.c_str());
+        return 3;
+    }
+    std::string ours_missing;
+    bool have_ours = instance->open(o.device, o.device_is_prefix, ours, ours_missing);
+    info.device_found = have_ours;
+    info.device_name = have_ours ? ours.name : "(absent) " + o.device;
+    info.ref_name = ref.name;
+    std::printf("tilevk-cts: %zu cases, device '%s' vs reference '%s'\n", cases.size(), info.device_name.c_str(),
+                ref.name.c_str());
+    if (!have_ours) std::printf("tilevk-cts: device under test unavailable: %s\n", ours_missing.c_str());
+
+    std::vector<CaseResult> results;
+    int fails = 0;
+    for (size_t i = 0; i < cases.size(); ++i) {
+        if (!o.json.empty()) write_json(o.json, info, results, cases[i].name);  // survives a driver crash
+        auto t0 = std::chrono::steady_clock::now();
+        CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o);
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        fails += r.status == Status::kFail;
+        std::printf("[%3zu/%zu] %-58s %s%s%s\n", i + 1, cases.size(), r.name.c_str(), status_name(r.status),
+                    r.reason.empty() ? "" : ": ", r.reason.substr(0, 160).c_str());
+        std::fflush(stdout);
+        results.push_back(std::move(r));
+    }
+    if (!o.json.empty()) write_json(o.json, info, results, "");
+    if (!o.junit.empty()) write_junit(o.junit, info, results);
+    if (!o.log.empty()) write_log(o.log, info, results);
+    size_t ns =
+        std::count_if(results.begin(), results.end(), [](auto& r) { return r.status == Status::kNotSupported; });
+    std::printf("tilevk-cts: %zu passed, %d failed, %zu not supported\n", results.size() - fails - ns, fails, ns);
+    Instance::close(ours);
+    Instance::close(ref);
+    return fails ? 1 : 0;
+}

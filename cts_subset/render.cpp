@@ -1,0 +1,544 @@
+#include "render.hpp"
+
+#include <chrono>
+#include <cstring>
+#include <functional>
+
+#include "glsl.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+bool has_stencil(VkFormat f) {
+    return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
+           f == VK_FORMAT_S8_UINT;
+}
+bool has_depth(VkFormat f) {
+    return f != VK_FORMAT_S8_UINT && f != VK_FORMAT_UNDEFINED;
+}
+uint32_t depth_copy_bytes(VkFormat f) {
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4;
+}
+
+// Destroys what was created, in reverse order, whether the scene finished or threw.
+struct Cleanup {
+    std::vector<std::function<void()>> steps;
+    ~Cleanup() {
+        for (auto it = steps.rbegin(); it != steps.rend(); ++it) (*it)();
+    }
+    void add(std::function<void()> f) { steps.push_back(std::move(f)); }
+};
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* mapped = nullptr;
+};
+
+Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBufferUsageFlags usage) {
+    Buffer b;
+    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    ci.size = size;
+    ci.usage = usage;
+    vk_check(vkCreateBuffer(c.device, &ci, nullptr, &b.buffer), "vkCreateBuffer");
+    VkDevice dev = c.device;
+    gc.add([dev, buf = b.buffer] { vkDestroyBuffer(dev, buf, nullptr); });
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(c.device, b.buffer, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex =
+        c.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    vk_check(vkAllocateMemory(c.device, &ai, nullptr, &b.memory), "vkAllocateMemory");
+    gc.add([dev, mem = b.memory] { vkFreeMemory(dev, mem, nullptr); });
+    vk_check(vkBindBufferMemory(c.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
+    vk_check(vkMapMemory(c.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+    return b;
+}
+
+VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
+                   VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = format;
+    ci.extent = {w, h, 1};
+    ci.mipLevels = mips;
+    ci.arrayLayers = 1;
+    ci.samples = samples;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = usage;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage img;
+    vk_check(vkCreateImage(c.device, &ci, nullptr, &img), "vkCreateImage");
+    VkDevice dev = c.device;
+    gc.add([dev, img] { vkDestroyImage(dev, img, nullptr); });
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(c.device, img, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = c.memory_type(req.memoryTypeBits, 0);
+    VkDeviceMemory mem;
+    vk_check(vkAllocateMemory(c.device, &ai, nullptr, &mem), "vkAllocateMemory(image)");
+    gc.add([dev, mem] { vkFreeMemory(dev, mem, nullptr); });
+    vk_check(vkBindImageMemory(c.device, img, mem, 0), "vkBindImageMemory");
+    return img;
+}
+
+VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
+                      uint32_t mips) {
+    VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    ci.image = img;
+    ci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    ci.format = f;
+    ci.subresourceRange = {aspect, 0, mips, 0, 1};
+    VkImageView v;
+    vk_check(vkCreateImageView(c.device, &ci, nullptr, &v), "vkCreateImageView");
+    VkDevice dev = c.device;
+    gc.add([dev, v] { vkDestroyImageView(dev, v, nullptr); });
+    return v;
+}
+
+void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_t mips, VkImageLayout from,
+             VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
+             VkPipelineStageFlags dst_stage) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = img;
+    b.subresourceRange = {aspect, 0, mips, 0, 1};
+    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+// Texel of mip `level` at (x,y): every level has its own tint so that mip selection shows in the image.
+void texel(const TextureSpec& t, uint32_t level, uint32_t x, uint32_t y, uint32_t w, uint32_t h, uint8_t out[4]) {
+    static const uint8_t kTint[8][3] = {{255, 255, 255}, {255, 64, 64},  {64, 255, 64},  {64, 64, 255},
+                                        {255, 255, 64},  {255, 64, 255}, {64, 255, 255}, {128, 128, 128}};
+    const uint8_t* tint = kTint[level % 8];
+    if (t.pattern == TexPattern::kChecker) {
+        bool on = ((x / std::max(1u, w / 4)) + (y / std::max(1u, h / 4))) % 2 == 0;
+        for (int i = 0; i < 3; ++i) out[i] = on ? tint[i] : static_cast<uint8_t>(tint[i] / 4);
+    } else {
+        out[0] = static_cast<uint8_t>(x * 255 / std::max(1u, w - 1) * tint[0] / 255);
+        out[1] = static_cast<uint8_t>(y * 255 / std::max(1u, h - 1) * tint[1] / 255);
+        out[2] = static_cast<uint8_t>((x + y) * 127 / std::max(1u, w + h - 2) * tint[2] / 255);
+    }
+    out[3] = 255;
+}
+
+struct Texture {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    Buffer staging;
+    std::vector<VkBufferImageCopy> copies;
+    uint32_t mips = 1;
+};
+
+Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
+    Texture tex;
+    tex.mips = t.mip_levels;
+    VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;
+    tex.image = make_image(c, gc, f, t.width, t.height, t.mip_levels, VK_SAMPLE_COUNT_1_BIT,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    tex.view = make_view(c, gc, tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT, t.mip_levels);
+    VkDeviceSize total = 0;
+    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
+         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2))
+        total += VkDeviceSize(w) * h * 4;
+    tex.staging = make_buffer(c, gc, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
+    VkDeviceSize offset = 0;
+    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
+         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2)) {
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x) texel(t, l, x, y, w, h, bytes + offset + (VkDeviceSize(y) * w + x) * 4);
+        VkBufferImageCopy r{};
+        r.bufferOffset = offset;
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
+        r.imageExtent = {w, h, 1};
+        tex.copies.push_back(r);
+        offset += VkDeviceSize(w) * h * 4;
+    }
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = t.mag;
+    si.minFilter = t.min;
+    si.mipmapMode = t.mip_mode;
+    si.addressModeU = si.addressModeV = si.addressModeW = t.wrap;
+    si.maxLod = t.max_lod;
+    si.borderColor = t.border;
+    vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");
+    VkDevice dev = c.device;
+    gc.add([dev, s = tex.sampler] { vkDestroySampler(dev, s, nullptr); });
+    return tex;
+}
+
+VkShaderModule make_module(const DeviceContext& c, Cleanup& gc, const std::vector<uint32_t>& spirv) {
+    VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    ci.codeSize = spirv.size() * 4;
+    ci.pCode = spirv.data();
+    VkShaderModule m;
+    vk_check(vkCreateShaderModule(c.device, &ci, nullptr, &m), "vkCreateShaderModule");
+    VkDevice dev = c.device;
+    gc.add([dev, m] { vkDestroyShaderModule(dev, m, nullptr); });
+    return m;
+}
+
+VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,
+                         VkPipelineLayout layout, double& pipeline_ms) {
+    VkShaderModule vs = make_module(c, gc, compile_glsl(Stage::kVertex, vertex_source(d)));
+    VkShaderModule fs = make_module(c, gc, compile_glsl(Stage::kFragment, fragment_source(d)));
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vs;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fs;
+    stages[1].pName = "main";
+
+    VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attrs[4] = {
+        {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, pos)},
+        {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+        {3, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, point_size)},
+    };
+    VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vi.vertexBindingDescriptionCount = 1;
+    vi.pVertexBindingDescriptions = &binding;
+    vi.vertexAttributeDescriptionCount = 4;
+    vi.pVertexAttributeDescriptions = attrs;
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = d.topology;
+
+    const Target& t = s.target;
+    VkViewport vp = d.viewport.value_or(VkViewport{0, 0, float(t.width), float(t.height), 0, 1});
+    VkRect2D sc = d.scissor.value_or(VkRect2D{{0, 0}, {t.width, t.height}});
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &vp;
+    vps.scissorCount = 1;
+    vps.pScissors = &sc;
+
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.depthClampEnable = d.depth_clamp;
+    rs.polygonMode = d.polygon_mode;
+    rs.cullMode = d.cull;
+    rs.frontFace = d.front_face;
+    rs.depthBiasEnable = d.depth_bias;
+    rs.depthBiasConstantFactor = d.bias_constant;
+    rs.depthBiasSlopeFactor = d.bias_slope;
+    rs.depthBiasClamp = d.bias_clamp;
+    rs.lineWidth = d.line_width;
+
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = t.samples;
+    VkSampleMask mask = d.sample_mask;
+    ms.pSampleMask = &mask;
+    ms.alphaToCoverageEnable = d.alpha_to_coverage;
+
+    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    ds.depthTestEnable = d.depth_test;
+    ds.depthWriteEnable = d.depth_write;
+    ds.depthCompareOp = d.depth_op;
+    ds.stencilTestEnable = d.stencil_test;
+    ds.front = d.stencil_front;
+    ds.back = d.stencil_back;
+    ds.maxDepthBounds = 1.0f;
+
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = t.color != VK_FORMAT_UNDEFINED ? 1 : 0;
+    cb.pAttachments = &d.blend;
+    std::memcpy(cb.blendConstants, d.blend_constants, sizeof cb.blendConstants);
+
+    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    ci.stageCount = 2;
+    ci.pStages = stages;
+    ci.pVertexInputState = &vi;
+    ci.pInputAssemblyState = &ia;
+    ci.pViewportState = &vps;
+    ci.pRasterizationState = &rs;
+    ci.pMultisampleState = &ms;
+    ci.pDepthStencilState = t.depth != VK_FORMAT_UNDEFINED ? &ds : nullptr;
+    ci.pColorBlendState = &cb;
+    ci.layout = layout;
+    ci.renderPass = rp;
+    VkPipeline p;
+    auto t0 = Clock::now();
+    vk_check(vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p), "vkCreateGraphicsPipelines");
+    pipeline_ms += ms_since(t0);
+    VkDevice dev = c.device;
+    gc.add([dev, p] { vkDestroyPipeline(dev, p, nullptr); });
+    return p;
+}
+
+VkRenderPass make_render_pass(const DeviceContext& c, Cleanup& gc, const Target& t) {
+    std::vector<VkAttachmentDescription> att;
+    VkAttachmentReference color_ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference depth_ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference resolve_ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    bool resolve = t.samples != VK_SAMPLE_COUNT_1_BIT && t.color != VK_FORMAT_UNDEFINED;
+    if (t.color != VK_FORMAT_UNDEFINED) {
+        color_ref.attachment = uint32_t(att.size());
+        att.push_back({0, t.color, t.samples, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                       resolve ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE,
+                       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+                       resolve ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL});
+    }
+    if (t.depth != VK_FORMAT_UNDEFINED) {
+        depth_ref.attachment = uint32_t(att.size());
+        att.push_back({0, t.depth, t.samples, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
+                       VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL});
+    }
+    if (resolve) {
+        resolve_ref.attachment = uint32_t(att.size());
+        att.push_back({0, t.color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE,
+                       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL});
+    }
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = t.color != VK_FORMAT_UNDEFINED ? 1 : 0;
+    sub.pColorAttachments = &color_ref;
+    sub.pResolveAttachments = resolve ? &resolve_ref : nullptr;
+    sub.pDepthStencilAttachment = t.depth != VK_FORMAT_UNDEFINED ? &depth_ref : nullptr;
+    // The copies after the pass wait for every attachment write.
+    VkSubpassDependency dep{0,
+                            VK_SUBPASS_EXTERNAL,
+                            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                            VK_PIPELINE_STAGE_TRANSFER_BIT,
+                            VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                            VK_ACCESS_TRANSFER_READ_BIT,
+                            0};
+    VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    ci.attachmentCount = uint32_t(att.size());
+    ci.pAttachments = att.data();
+    ci.subpassCount = 1;
+    ci.pSubpasses = &sub;
+    ci.dependencyCount = 1;
+    ci.pDependencies = &dep;
+    VkRenderPass rp;
+    vk_check(vkCreateRenderPass(c.device, &ci, nullptr, &rp), "vkCreateRenderPass");
+    VkDevice dev = c.device;
+    gc.add([dev, rp] { vkDestroyRenderPass(dev, rp, nullptr); });
+    return rp;
+}
+
+struct Readback {
+    VkImage image;
+    VkImageAspectFlags aspect;
+    Plane plane;
+    Buffer buffer;
+};
+
+}  // namespace
+
+RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
+    Cleanup gc;
+    VkDevice dev = c.device;
+    const Target& t = s.target;
+    RenderResult out;
+
+    // Vertices of every draw, back to back.
+    size_t nverts = 0;
+    for (const Draw& d : s.draws) nverts += d.vertices.size();
+    Buffer vb = make_buffer(c, gc, std::max<size_t>(1, nverts) * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    size_t at = 0;
+    for (const Draw& d : s.draws) {
+        std::memcpy(static_cast<uint8_t*>(vb.mapped) + at * sizeof(Vertex), d.vertices.data(),
+                    d.vertices.size() * sizeof(Vertex));
+        at += d.vertices.size();
+    }
+
+    // Attachments, in render-pass order.
+    std::vector<VkImageView> views;
+    std::vector<Readback> reads;
+    const VkImageUsageFlags copy_src = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    bool resolve = t.samples != VK_SAMPLE_COUNT_1_BIT && t.color != VK_FORMAT_UNDEFINED;
+    if (t.color != VK_FORMAT_UNDEFINED) {
+        VkImage img = make_image(c, gc, t.color, t.width, t.height, 1, t.samples,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (resolve ? 0 : copy_src));
+        views.push_back(make_view(c, gc, img, t.color, VK_IMAGE_ASPECT_COLOR_BIT, 1));
+        if (!resolve) reads.push_back({img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, 4}, {}});
+    }
+    VkImage depth_img = VK_NULL_HANDLE;
+    if (t.depth != VK_FORMAT_UNDEFINED) {
+        depth_img = make_image(c, gc, t.depth, t.width, t.height, 1, t.samples,
+                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | copy_src);
+        VkImageAspectFlags aspects = (has_depth(t.depth) ? VK_IMAGE_ASPECT_DEPTH_BIT : 0) |
+                                     (has_stencil(t.depth) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+        views.push_back(make_view(c, gc, depth_img, t.depth, aspects, 1));
+    }
+    if (resolve) {
+        VkImage img = make_image(c, gc, t.color, t.width, t.height, 1, VK_SAMPLE_COUNT_1_BIT,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | copy_src);
+        views.push_back(make_view(c, gc, img, t.color, VK_IMAGE_ASPECT_COLOR_BIT, 1));
+        reads.insert(reads.begin(), {img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, 4}, {}});
+    }
+    // Multisampled depth cannot be copied to a buffer; only single-sampled depth/stencil is judged.
+    if (depth_img && t.samples == VK_SAMPLE_COUNT_1_BIT) {
+        if (has_depth(t.depth))
+            reads.push_back({depth_img,
+                             VK_IMAGE_ASPECT_DEPTH_BIT,
+                             {"depth", t.depth, t.width, t.height, depth_copy_bytes(t.depth)},
+                             {}});
+        if (has_stencil(t.depth))
+            reads.push_back({depth_img, VK_IMAGE_ASPECT_STENCIL_BIT, {"stencil", t.depth, t.width, t.height, 1}, {}});
+    }
+    for (Readback& r : reads)
+        r.buffer = make_buffer(c, gc, VkDeviceSize(t.width) * t.height * r.plane.texel_bytes,
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+
+    VkRenderPass rp = make_render_pass(c, gc, t);
+    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fci.renderPass = rp;
+    fci.attachmentCount = uint32_t(views.size());
+    fci.pAttachments = views.data();
+    fci.width = t.width;
+    fci.height = t.height;
+    fci.layers = 1;
+    VkFramebuffer fb;
+    vk_check(vkCreateFramebuffer(dev, &fci, nullptr, &fb), "vkCreateFramebuffer");
+    gc.add([dev, fb] { vkDestroyFramebuffer(dev, fb, nullptr); });
+
+    // Per-draw texture, descriptor set and pipeline.
+    VkDescriptorSetLayoutBinding dslb{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                      nullptr};
+    VkDescriptorSetLayoutCreateInfo dslci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    dslci.bindingCount = 1;
+    dslci.pBindings = &dslb;
+    VkDescriptorSetLayout dsl;
+    vk_check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &dsl), "vkCreateDescriptorSetLayout");
+    gc.add([dev, dsl] { vkDestroyDescriptorSetLayout(dev, dsl, nullptr); });
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 1;
+    plci.pSetLayouts = &dsl;
+    VkPipelineLayout layout;
+    vk_check(vkCreatePipelineLayout(dev, &plci, nullptr, &layout), "vkCreatePipelineLayout");
+    gc.add([dev, layout] { vkDestroyPipelineLayout(dev, layout, nullptr); });
+
+    uint32_t ntex = 0;
+    for (const Draw& d : s.draws) ntex += d.texture ? 1 : 0;
+    VkDescriptorPool dpool = VK_NULL_HANDLE;
+    if (ntex) {
+        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ntex};
+        VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        dpci.maxSets = ntex;
+        dpci.poolSizeCount = 1;
+        dpci.pPoolSizes = &size;
+        vk_check(vkCreateDescriptorPool(dev, &dpci, nullptr, &dpool), "vkCreateDescriptorPool");
+        gc.add([dev, dpool] { vkDestroyDescriptorPool(dev, dpool, nullptr); });
+    }
+    std::vector<VkPipeline> pipes;
+    std::vector<Texture> textures(s.draws.size());
+    std::vector<VkDescriptorSet> sets(s.draws.size(), VK_NULL_HANDLE);
+    for (size_t i = 0; i < s.draws.size(); ++i) {
+        const Draw& d = s.draws[i];
+        pipes.push_back(make_pipeline(c, gc, s, d, rp, layout, out.pipeline_ms));
+        if (!d.texture) continue;
+        textures[i] = make_texture(c, gc, *d.texture);
+        VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        dsai.descriptorPool = dpool;
+        dsai.descriptorSetCount = 1;
+        dsai.pSetLayouts = &dsl;
+        vk_check(vkAllocateDescriptorSets(dev, &dsai, &sets[i]), "vkAllocateDescriptorSets");
+        VkDescriptorImageInfo ii{textures[i].sampler, textures[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = sets[i];
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        w.pImageInfo = &ii;
+        vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+    }
+
+    // One command buffer: uploads, the pass, the read-back copies.
+    VkCommandBufferAllocateInfo cbai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cbai.commandPool = c.pool;
+    cbai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cbai.commandBufferCount = 1;
+    VkCommandBuffer cb;
+    vk_check(vkAllocateCommandBuffers(dev, &cbai, &cb), "vkAllocateCommandBuffers");
+    gc.add([dev, pool = c.pool, cb] { vkFreeCommandBuffers(dev, pool, 1, &cb); });
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    vk_check(vkBeginCommandBuffer(cb, &bi), "vkBeginCommandBuffer");
+    for (Texture& tex : textures) {
+        if (!tex.image) continue;
+        barrier(cb, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, tex.mips, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        vkCmdCopyBufferToImage(cb, tex.staging.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(tex.copies.size()), tex.copies.data());
+        barrier(cb, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, tex.mips, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
+                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    }
+    VkClearValue clears[3];
+    uint32_t nclear = 0;
+    if (t.color != VK_FORMAT_UNDEFINED) std::memcpy(clears[nclear++].color.float32, t.clear_color, 16);
+    if (t.depth != VK_FORMAT_UNDEFINED) clears[nclear++].depthStencil = {t.clear_depth, t.clear_stencil};
+    if (resolve) clears[nclear++] = clears[0];
+    VkRenderPassBeginInfo rpbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rpbi.renderPass = rp;
+    rpbi.framebuffer = fb;
+    rpbi.renderArea = {{0, 0}, {t.width, t.height}};
+    rpbi.clearValueCount = nclear;
+    rpbi.pClearValues = clears;
+    vkCmdBeginRenderPass(cb, &rpbi, VK_SUBPASS_CONTENTS_INLINE);
+    VkDeviceSize first = 0;
+    for (size_t i = 0; i < s.draws.size(); ++i) {
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes[i]);
+        if (sets[i]) vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i], 0, nullptr);
+        VkDeviceSize offset = first * sizeof(Vertex);
+        vkCmdBindVertexBuffers(cb, 0, 1, &vb.buffer, &offset);
+        if (!s.draws[i].vertices.empty()) vkCmdDraw(cb, uint32_t(s.draws[i].vertices.size()), 1, 0, 0);
+        first += s.draws[i].vertices.size();
+    }
+    vkCmdEndRenderPass(cb);
+    for (Readback& r : reads) {
+        VkBufferImageCopy region{};
+        region.imageSubresource = {r.aspect, 0, 0, 1};
+        region.imageExtent = {t.width, t.height, 1};
+        vkCmdCopyImageToBuffer(cb, r.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.buffer.buffer, 1, &region);
+    }
+    VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                            VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0,
+                         nullptr);
+    vk_check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+
+    VkFenceCreateInfo fci2{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    vk_check(vkCreateFence(dev, &fci2, nullptr, &fence), "vkCreateFence");
+    gc.add([dev, fence] { vkDestroyFence(dev, fence, nullptr); });
+    auto run_once = [&]() {
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cb;
+        auto t0 = Clock::now();
+        vk_check(vkQueueSubmit(c.queue, 1, &si, fence), "vkQueueSubmit");
+        vk_check(vkWaitForFences(dev, 1, &fence, VK_TRUE, 60ull * 1000 * 1000 * 1000), "vkWaitForFences");
+        double ms = ms_since(t0);
+        vk_check(vkResetFences(dev, 1, &fence), "vkResetFences");
+        return ms;
+    };
+    run_once();
+    for (Readback& r : reads) {
+        r.plane.data.resize(size_t(t.width) * t.height * r.plane.texel_bytes);
+        std::memcpy(r.plane.data.data(), r.buffer.mapped, r.plane.data.size());
+        out.planes.push_back(std::move(r.plane));
+    }
+    for (int i = 0; i < timing_reps; ++i) out.frame_ms.push_back(run_once());
+    return out;
+}
+
+}  // namespace tilevk::cts

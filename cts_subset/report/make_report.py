@@ -1,0 +1,262 @@
+#!/usr/bin/python3
+"""Builds report/index.html and report/summary.md from tilevk-cts --json result files.
+
+Each results file is one run of the conformance subset (tilevk against lavapipe), possibly with a different
+rasterization method (TILEVK_RAST); the first file is the main run whose per-case table is shown. Charts: speed
+against accuracy (one point per run, lavapipe at 1.0 / 100 %), time ratio per case, and the stability sweep CSV
+from bench/rast's stability_sweep when given. Standard library plus matplotlib (Debian's /usr/bin/python3).
+"""
+import argparse
+import csv
+import html
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def load(path):
+    with open(path) as f:
+        run = json.load(f)
+    run["path"] = path
+    run["label"] = run.get("rast_method") or "default"
+    return run
+
+
+def exact_pct(c):
+    return 100.0 * (c["total"] - c["differing"]) / c["total"] if c["total"] else None
+
+
+def ratio(c):
+    if c.get("ours_ms", -1) > 0 and c.get("ref_ms", -1) > 0:
+        return c["ours_ms"] / c["ref_ms"]
+    return None
+
+
+def geomean(xs):
+    xs = [x for x in xs if x and x > 0]
+    return math.exp(sum(math.log(x) for x in xs) / len(xs)) if xs else None
+
+
+def counts(run):
+    n = {"Pass": 0, "Fail": 0, "NotSupported": 0}
+    for c in run["cases"]:
+        n[c["status"]] = n.get(c["status"], 0) + 1
+    return n
+
+
+def fmt(v, spec=".3g", none="–"):
+    return none if v is None else format(v, spec)
+
+
+def speed_accuracy_chart(runs, path):
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.scatter([1.0], [100.0], marker="*", s=160, color="black", label="lavapipe (reference)")
+    missing = []
+    for run in runs:
+        g = geomean([ratio(c) for c in run["cases"]])
+        n = len(run["cases"])
+        acc = 100.0 * counts(run)["Pass"] / n if n else 0.0
+        if g is None:
+            missing.append(run["label"])
+            continue
+        ax.scatter([g], [acc], s=60, label=f"tilevk {run['label']}")
+        ax.annotate(run["label"], (g, acc), textcoords="offset points", xytext=(6, 4))
+    if missing:
+        ax.text(0.02, 0.02, "no timings (nothing drawn): " + ", ".join(missing), transform=ax.transAxes, fontsize=8)
+    xs = [1.0] + [g for g in (geomean([ratio(c) for c in r["cases"]]) for r in runs) if g]
+    ax.set_xscale("log")
+    ax.set_xlim(min(xs) / 2, max(xs) * 2)
+    ax.set_xlabel("time / lavapipe time (geometric mean over cases, lower is faster)")
+    ax.set_ylabel("cases byte-exact with lavapipe (%)")
+    ax.set_ylim(-5, 105)
+    ax.set_title("Speed against accuracy")
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def time_ratio_chart(run, path):
+    pairs = sorted(((ratio(c), c["name"]) for c in run["cases"] if ratio(c)), reverse=True)
+    fig, ax = plt.subplots(figsize=(10, 4.5))
+    if pairs:
+        ax.bar(range(len(pairs)), [p[0] for p in pairs], width=1.0, color="tab:blue")
+        ax.axhline(1.0, color="black", linewidth=0.8)
+        ax.set_yscale("log")
+        ax.set_xlabel(f"case (sorted, {len(pairs)} timed)")
+    else:
+        ax.text(0.5, 0.5, "no case was timed on both devices", ha="center", va="center", transform=ax.transAxes)
+    ax.set_ylabel("tilevk time / lavapipe time")
+    ax.set_title(f"Frame time ratio per case ({run['label']})")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def stability_chart_long(rows, path):
+    """bench/rast/stability_sweep's format: sweep,param,samples,method,triangles,mismatches,rate."""
+    sweeps = sorted({r["sweep"] for r in rows})
+    fig, axs = plt.subplots(1, len(sweeps), figsize=(4.2 * len(sweeps), 4), squeeze=False)
+    for ax, sweep in zip(axs[0], sweeps):
+        series = {}
+        for r in rows:
+            if r["sweep"] == sweep:
+                key = f"{r['method']} {r['samples']}x"
+                series.setdefault(key, []).append((float(r["param"]), float(r["rate"])))
+        for key, pts in sorted(series.items()):
+            pts.sort()
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=".", label=key)
+        ax.set_title(sweep)
+        ax.set_xlabel("param")
+        if max(float(r["param"]) for r in rows if r["sweep"] == sweep) > 100:
+            ax.set_xscale("log")
+        ax.set_ylabel("mismatch rate vs reference")
+        ax.legend(fontsize=7)
+    fig.suptitle("Stability sweep (bench/rast stability_sweep): where each method departs from the reference")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def stability_chart(csv_path, path):
+    with open(csv_path, newline="") as f:
+        rows = list(csv.reader(f))
+    if {"sweep", "param", "method", "rate"} <= set(rows[0]):
+        return stability_chart_long([dict(zip(rows[0], r)) for r in rows[1:] if r], path)
+    header, data = rows[0], [r for r in rows[1:] if r]
+    cols = list(zip(*data))
+    x = [float(v) for v in cols[0]]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, col in zip(header[1:], cols[1:]):
+        try:
+            ax.plot(x, [float(v) for v in col], marker=".", label=name)
+        except ValueError:
+            continue  # a non-numeric column (labels): not plotted
+    ax.set_xlabel(header[0])
+    ax.set_ylabel("value")
+    ax.set_title("Stability sweep (bench/rast stability_sweep)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--out", required=True, help="output folder (index.html, summary.md, *.png)")
+    ap.add_argument("--stability", help="stability sweep CSV (optional)")
+    ap.add_argument("--title", default="tilevk conformance subset")
+    ap.add_argument("results", nargs="+", help="tilevk-cts --json files; the first is the main run")
+    a = ap.parse_args()
+    runs = []
+    for p in a.results:
+        try:
+            runs.append(load(p))
+        except (OSError, ValueError) as e:
+            print(f"make_report: cannot read {p}: {e}", file=sys.stderr)
+            return 1
+    os.makedirs(a.out, exist_ok=True)
+    main_run = runs[0]
+    speed_accuracy_chart(runs, os.path.join(a.out, "speed_accuracy.png"))
+    time_ratio_chart(main_run, os.path.join(a.out, "time_ratio.png"))
+    have_sweep = bool(a.stability) and os.path.exists(a.stability)
+    if have_sweep:
+        try:
+            stability_chart(a.stability, os.path.join(a.out, "stability.png"))
+        except (OSError, ValueError, IndexError) as e:
+            have_sweep = False
+            print(f"make_report: stability sweep unreadable: {e}", file=sys.stderr)
+
+    # --- summary.md ---
+    md = [f"# {a.title}", ""]
+    md.append(f"Device under test: **{main_run['device_name']}**; reference: **{main_run['ref_name']}**; "
+              f"{main_run['threads']}; timing repetitions: {main_run['timing_reps']}.")
+    md.append("")
+    if not main_run.get("device_found", True):
+        md += ["**The tilevk device was not available (or cannot draw yet): every case fails with the driver's "
+               "reason below. This is the honest state of the driver, not a harness fault.**", ""]
+    for run in runs:
+        if not run.get("complete", True):
+            md += [f"**Run `{run['label']}` did not finish: the runner stopped (crash?) while running "
+                   f"`{run.get('running')}`; later cases are missing.**", ""]
+    md += ["## Runs", "", "| run (TILEVK_RAST) | passed | failed | not supported | geomean time ratio | exact pixels |",
+           "|---|---|---|---|---|---|"]
+    for run in runs:
+        n = counts(run)
+        tot = len(run["cases"])
+        px = sum(c["total"] for c in run["cases"])
+        same = sum(c["total"] - c["differing"] for c in run["cases"])
+        g = geomean([ratio(c) for c in run["cases"]])
+        compared = sum(1 for c in run["cases"] if c["total"])
+        md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | {fmt(g)} | "
+                  f"{fmt(100.0 * same / px if px else None, '.4f')} % of {px} px in {compared} compared cases |")
+    ns = [c for c in main_run["cases"] if c["status"] == "NotSupported"]
+    if ns:
+        on_ours = sum(1 for c in ns if c["reason"].startswith(main_run["device_name"]))
+        md += ["", f"NotSupported: {on_ours} of {len(ns)} because the device under test lacks a feature or format "
+               f"(a gap in tilevk, not a pass), {len(ns) - on_ours} because the reference lacks it."]
+    pipe = [(c["ours_pipeline_ms"], c["ref_pipeline_ms"]) for c in main_run["cases"]
+            if c.get("ours_pipeline_ms", -1) > 0 and c.get("ref_pipeline_ms", -1) > 0]
+    md.append("")
+    if pipe:
+        md.append(f"Pipeline creation (sum over cases): tilevk {sum(p[0] for p in pipe):.1f} ms, "
+                  f"lavapipe {sum(p[1] for p in pipe):.1f} ms.")
+    else:
+        md.append("Pipeline creation time: not measured (no case created pipelines on both devices).")
+    md.append("")
+    md.append("Stability sweep: " + ("see stability.png." if have_sweep else "not available "
+                                      "(bench/rast's stability_sweep did not produce a CSV)."))
+    md += ["", "## Cases (main run)", "",
+           "| case | status | exact % | max err | tilevk ms | lavapipe ms | ratio | pipeline ms (t/l) | reason |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for c in main_run["cases"]:
+        pm = (f"{c['ours_pipeline_ms']:.2f}/{c['ref_pipeline_ms']:.2f}"
+              if c.get("ours_pipeline_ms", -1) >= 0 and c.get("ref_pipeline_ms", -1) >= 0 else "–")
+        ours_ms = c["ours_ms"] if c.get("ours_ms", -1) >= 0 else None
+        ref_ms = c["ref_ms"] if c.get("ref_ms", -1) >= 0 else None
+        note = f" [{c['note']}]" if c.get("note") else ""
+        md.append(f"| {c['name']}{note} | {c['status']} | {fmt(exact_pct(c), '.3f')} | {fmt(c['max_error'] if c['total'] else None, 'g')} | "
+                  f"{fmt(ours_ms)} | {fmt(ref_ms)} | {fmt(ratio(c))} | {pm} | "
+                  f"{c['reason'].replace('|', '/')} |")
+    with open(os.path.join(a.out, "summary.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+
+    # --- index.html ---
+    esc = html.escape
+    h = [f"<!doctype html><html><head><meta charset='utf-8'><title>{esc(a.title)}</title>",
+         "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;font-size:13px}"
+         "td,th{border:1px solid #ccc;padding:2px 6px}.Pass{background:#dfd}.Fail{background:#fdd}"
+         ".NotSupported{background:#eee}</style></head><body>", f"<h1>{esc(a.title)}</h1>"]
+    intro = [line for line in md[2:] if not line.startswith("## Cases")]
+    cut = intro.index("## Runs") if "## Runs" in intro else len(intro)
+    h += [f"<p>{esc(line).replace('**', '')}</p>" for line in intro[:cut] if line]
+    h.append("<h2>Runs</h2><table><tr><th>run</th><th>passed</th><th>failed</th><th>not supported</th>"
+             "<th>geomean time ratio</th></tr>")
+    for run in runs:
+        n = counts(run)
+        h.append(f"<tr><td>{esc(run['label'])}</td><td>{n['Pass']}/{len(run['cases'])}</td><td>{n['Fail']}</td>"
+                 f"<td>{n['NotSupported']}</td><td>{fmt(geomean([ratio(c) for c in run['cases']]))}</td></tr>")
+    h.append("</table>")
+    h += [f"<p>{esc(line)}</p>" for line in intro[cut:] if line and not line.startswith("|") and line != "## Runs"]
+    h.append("<h2>Charts</h2><img src='speed_accuracy.png'> <img src='time_ratio.png'>")
+    h.append("<img src='stability.png'>" if have_sweep else "<p>Stability sweep: not available.</p>")
+    h.append("<h2>Cases (main run)</h2><table><tr><th>case</th><th>status</th><th>exact %</th><th>max err</th>"
+             "<th>tilevk ms</th><th>lavapipe ms</th><th>ratio</th><th>pipeline ms (t/l)</th><th>reason</th></tr>")
+    for line in md[md.index("## Cases (main run)") + 4:]:
+        cells = [x.strip() for x in line.strip("|").split("|")]
+        h.append(f"<tr class='{esc(cells[1])}'>" + "".join(f"<td>{esc(x)}</td>" for x in cells) + "</tr>")
+    h.append("</table></body></html>")
+    with open(os.path.join(a.out, "index.html"), "w") as f:
+        f.write("\n".join(h) + "\n")
+    print(f"make_report: wrote {a.out}/index.html and summary.md ({len(main_run['cases'])} cases, {len(runs)} runs)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,88 @@
+// What a scene needs from a device: features, format support, sample counts and limits.
+#include "render.hpp"
+#include "vk_names.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+bool uses_src1(VkBlendFactor f) {
+    return f >= VK_BLEND_FACTOR_SRC1_COLOR && f <= VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA;
+}
+
+std::string check_format(const DeviceContext& c, VkFormat f, VkFormatFeatureFlags need, VkImageUsageFlags usage,
+                         VkSampleCountFlagBits samples, const char* what) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(c.physical, f, &fp);
+    if ((fp.optimalTilingFeatures & need) != need)
+        return std::string(what) + " format " + format_name(f) + " lacks optimal-tiling features " +
+               format_features_name(need & ~fp.optimalTilingFeatures);
+    VkImageFormatProperties ip;
+    if (vkGetPhysicalDeviceImageFormatProperties(c.physical, f, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0,
+                                                 &ip) != VK_SUCCESS)
+        return std::string(what) + " format " + format_name(f) + " unsupported for image usage " +
+               std::to_string(usage);
+    if (!(ip.sampleCounts & samples))
+        return std::string(what) + " format " + format_name(f) + " lacks " + std::to_string(samples) + " samples";
+    return {};
+}
+
+}  // namespace
+
+std::string unsupported(const DeviceContext& c, const Scene& s) {
+    const Target& t = s.target;
+    const VkPhysicalDeviceFeatures& f = c.features;
+    const VkPhysicalDeviceLimits& lim = c.props.limits;
+    if (t.width > lim.maxImageDimension2D || t.height > lim.maxImageDimension2D)
+        return "maxImageDimension2D " + std::to_string(lim.maxImageDimension2D);
+    bool any_blend = false;
+    for (const Draw& d : s.draws) any_blend |= d.blend.blendEnable == VK_TRUE;
+    if (t.color != VK_FORMAT_UNDEFINED) {
+        VkFormatFeatureFlags need = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT |
+                                    (any_blend ? VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT : 0);
+        auto e = check_format(c, t.color, need, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, t.samples, "colour");
+        if (!e.empty()) return e;
+    }
+    if (t.depth != VK_FORMAT_UNDEFINED) {
+        auto e = check_format(c, t.depth, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, t.samples, "depth/stencil");
+        if (!e.empty()) return e;
+    }
+    for (const Draw& d : s.draws) {
+        if (d.line_width != 1.0f && !f.wideLines) return "feature wideLines";
+        if (d.line_width < lim.lineWidthRange[0] || d.line_width > lim.lineWidthRange[1])
+            return "lineWidthRange excludes " + std::to_string(d.line_width);
+        bool points = d.topology == VK_PRIMITIVE_TOPOLOGY_POINT_LIST || d.polygon_mode == VK_POLYGON_MODE_POINT;
+        for (const Vertex& v : d.vertices) {
+            if (!points) break;
+            if (v.point_size != 1.0f && !f.largePoints) return "feature largePoints";
+            if (v.point_size > lim.pointSizeRange[1]) return "pointSizeRange excludes " + std::to_string(v.point_size);
+        }
+        if (d.polygon_mode != VK_POLYGON_MODE_FILL && !f.fillModeNonSolid) return "feature fillModeNonSolid";
+        if (d.depth_clamp && !f.depthClamp) return "feature depthClamp";
+        if (d.depth_bias && d.bias_clamp != 0.0f && !f.depthBiasClamp) return "feature depthBiasClamp";
+        const auto& b = d.blend;
+        if (b.blendEnable && !f.dualSrcBlend &&
+            (uses_src1(b.srcColorBlendFactor) || uses_src1(b.dstColorBlendFactor) || uses_src1(b.srcAlphaBlendFactor) ||
+             uses_src1(b.dstAlphaBlendFactor)))
+            return "feature dualSrcBlend";
+        if (d.texture) {
+            VkFormatFeatureFlags need = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+            if (d.texture->mag == VK_FILTER_LINEAR || d.texture->min == VK_FILTER_LINEAR ||
+                d.texture->mip_mode == VK_SAMPLER_MIPMAP_MODE_LINEAR)
+                need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+            auto e = check_format(c, VK_FORMAT_R8G8B8A8_UNORM, need, VK_IMAGE_USAGE_SAMPLED_BIT, VK_SAMPLE_COUNT_1_BIT,
+                                  "texture");
+            if (!e.empty()) return e;
+        }
+        if (d.viewport) {
+            const VkViewport& v = *d.viewport;
+            if (v.width > lim.maxViewportDimensions[0] || v.height > lim.maxViewportDimensions[1] ||
+                v.x < lim.viewportBoundsRange[0] || v.x + v.width > lim.viewportBoundsRange[1] ||
+                v.y < lim.viewportBoundsRange[0] || v.y + v.height > lim.viewportBoundsRange[1])
+                return "viewport outside maxViewportDimensions/viewportBoundsRange";
+        }
+    }
+    return {};
+}
+
+}  // namespace tilevk::cts

@@ -1,0 +1,96 @@
+// A scene is the whole description of one conformance case's frame: a render target and a list of draws.
+// Cases build scenes from tables; render.cpp turns a scene into identical Vulkan commands on each device.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tilevk::cts {
+
+struct Vertex {
+    float pos[4] = {0, 0, 0, 1};
+    float color[4] = {1, 1, 1, 1};
+    float uv[2] = {0, 0};
+    float point_size = 1.0f;
+};
+
+enum class Interp { kSmooth, kFlat, kNoPerspective };
+// kCount writes exactly 1/255 to every channel (one unorm8 increment under ONE,ONE blending);
+// kFacing writes 1/255 to red for front faces and to green for back faces.
+enum class Frag { kColor, kTexture, kCount, kFacing };
+enum class TexPattern { kChecker, kGradient };
+
+struct TextureSpec {
+    uint32_t width = 16, height = 16, mip_levels = 1;
+    TexPattern pattern = TexPattern::kChecker;
+    VkFilter mag = VK_FILTER_NEAREST, min = VK_FILTER_NEAREST;
+    VkSamplerMipmapMode mip_mode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    VkSamplerAddressMode wrap = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
+    float max_lod = 16.0f;
+};
+
+struct Draw {
+    VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    std::vector<Vertex> vertices;
+    VkCullModeFlags cull = VK_CULL_MODE_NONE;
+    VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;
+    float line_width = 1.0f;
+    Interp interp = Interp::kSmooth;
+    Frag frag = Frag::kColor;
+    std::optional<TextureSpec> texture;
+    // Colour output.
+    VkPipelineColorBlendAttachmentState blend = {VK_FALSE,
+                                                 VK_BLEND_FACTOR_ONE,
+                                                 VK_BLEND_FACTOR_ZERO,
+                                                 VK_BLEND_OP_ADD,
+                                                 VK_BLEND_FACTOR_ONE,
+                                                 VK_BLEND_FACTOR_ZERO,
+                                                 VK_BLEND_OP_ADD,
+                                                 0xF};
+    float blend_constants[4] = {0, 0, 0, 0};
+    // Depth and stencil.
+    bool depth_test = false, depth_write = false;
+    VkCompareOp depth_op = VK_COMPARE_OP_LESS;
+    bool depth_clamp = false;
+    bool depth_bias = false;
+    float bias_constant = 0, bias_slope = 0, bias_clamp = 0;
+    bool stencil_test = false;
+    VkStencilOpState stencil_front = {}, stencil_back = {};
+    // Multisample state (the sample count comes from the target).
+    uint32_t sample_mask = 0xFFFFFFFFu;
+    bool alpha_to_coverage = false;
+    // Viewport and scissor; unset means the whole target.
+    std::optional<VkViewport> viewport;
+    std::optional<VkRect2D> scissor;
+};
+
+struct Target {
+    uint32_t width = 64, height = 64;
+    VkFormat color = VK_FORMAT_R8G8B8A8_UNORM;  // VK_FORMAT_UNDEFINED: depth-only
+    VkFormat depth = VK_FORMAT_UNDEFINED;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // > 1: the colour is resolved before read-back
+    float clear_color[4] = {0, 0, 0, 0};
+    float clear_depth = 1.0f;
+    uint32_t clear_stencil = 0;
+};
+
+struct Scene {
+    Target target;
+    std::vector<Draw> draws;
+};
+
+// One read-back plane: colour, depth or stencil, tightly packed rows.
+struct Plane {
+    std::string name;  // "color", "depth", "stencil"
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0, height = 0, texel_bytes = 0;
+    std::vector<uint8_t> data;
+};
+
+}  // namespace tilevk::cts

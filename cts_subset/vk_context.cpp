@@ -1,0 +1,119 @@
+#include "vk_context.hpp"
+
+#include <cstring>
+
+#include "vk_names.hpp"
+
+namespace tilevk::cts {
+
+void vk_check(VkResult r, const char* what) {
+    if (r != VK_SUCCESS)
+        throw VkError(std::string(what) + " returned " + result_name(r) + " (" + std::to_string(r) + ")");
+}
+
+uint32_t DeviceContext::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const {
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        if ((bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    }
+    throw VkError("no memory type with flags " + std::to_string(flags) + " in bits " + std::to_string(bits));
+}
+
+Instance::Instance() {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "tilevk-cts";
+    app.apiVersion = VK_API_VERSION_1_0;
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pApplicationInfo = &app;
+    vk_check(vkCreateInstance(&ci, nullptr, &instance_), "vkCreateInstance");
+    uint32_t n = 0;
+    vk_check(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
+    physicals_.resize(n);
+    vk_check(vkEnumeratePhysicalDevices(instance_, &n, physicals_.data()), "vkEnumeratePhysicalDevices");
+    physicals_.resize(n);
+}
+
+Instance::~Instance() {
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+std::vector<std::string> Instance::device_names() const {
+    std::vector<std::string> names;
+    for (VkPhysicalDevice p : physicals_) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(p, &props);
+        names.emplace_back(props.deviceName);
+    }
+    return names;
+}
+
+bool Instance::open(const std::string& substring, bool prefix, DeviceContext& out, std::string& reason) const {
+    std::string seen;
+    for (VkPhysicalDevice p : physicals_) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(p, &props);
+        std::string name = props.deviceName;
+        seen += (seen.empty() ? "" : ", ") + ("'" + name + "'");
+        bool match = prefix ? name.rfind(substring, 0) == 0 : name.find(substring) != std::string::npos;
+        if (!match) continue;
+        out = DeviceContext{};
+        out.physical = p;
+        out.props = props;
+        out.name = name;
+        vkGetPhysicalDeviceFeatures(p, &out.features);
+        vkGetPhysicalDeviceMemoryProperties(p, &out.memory);
+        uint32_t nq = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(p, &nq, nullptr);
+        std::vector<VkQueueFamilyProperties> qf(nq);
+        vkGetPhysicalDeviceQueueFamilyProperties(p, &nq, qf.data());
+        uint32_t family = UINT32_MAX;
+        for (uint32_t i = 0; i < nq; ++i) {
+            if (qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
+                family = i;
+                break;
+            }
+        }
+        if (family == UINT32_MAX) {
+            reason = "device '" + name + "' has no graphics queue family";
+            return false;
+        }
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qci.queueFamilyIndex = family;
+        qci.queueCount = 1;
+        qci.pQueuePriorities = &priority;
+        // Enable every feature the device offers so that cases can ask for what they need.
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &qci;
+        dci.pEnabledFeatures = &out.features;
+        try {
+            vk_check(vkCreateDevice(p, &dci, nullptr, &out.device), ("vkCreateDevice on '" + name + "'").c_str());
+            out.queue_family = family;
+            vkGetDeviceQueue(out.device, family, 0, &out.queue);
+            VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+            pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+            pci.queueFamilyIndex = family;
+            vk_check(vkCreateCommandPool(out.device, &pci, nullptr, &out.pool), "vkCreateCommandPool");
+        } catch (const VkError& e) {
+            reason = e.what();
+            close(out);
+            return false;
+        }
+        return true;
+    }
+    reason = "no Vulkan device named " + std::string(prefix ? "'" + substring + "...'" : "'*" + substring + "*'") +
+             " (found: " + (seen.empty() ? "none" : seen) + ")";
+    return false;
+}
+
+void Instance::close(DeviceContext& ctx) {
+    if (ctx.device) {
+        vkDeviceWaitIdle(ctx.device);
+        if (ctx.pool) vkDestroyCommandPool(ctx.device, ctx.pool, nullptr);
+        vkDestroyDevice(ctx.device, nullptr);
+    }
+    ctx.device = VK_NULL_HANDLE;
+    ctx.pool = VK_NULL_HANDLE;
+}
+
+}  // namespace tilevk::cts

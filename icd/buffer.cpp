@@ -1,0 +1,45 @@
+#include "buffer.h"
+
+#include "device.h"
+#include "entrypoints.h"
+
+namespace tilevk::icd {
+
+// Buffer alignment: covers min{Uniform,Storage,Texel}BufferOffsetAlignment (16) and 16-byte vector loads.
+constexpr VkDeviceSize kBufferAlignment = 16;
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateBuffer(VkDevice device, const VkBufferCreateInfo* pCreateInfo,
+                                                const VkAllocationCallbacks* pAllocator, VkBuffer* pBuffer) {
+    Device* dev = from_handle<Device>(device);
+    if (pCreateInfo->flags != 0) {
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateBuffer: sparse buffers (flags 0x%x) are not supported",
+                    pCreateInfo->flags);
+    }
+    Buffer* buf = create_object<Buffer>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (buf == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateBuffer: out of host memory");
+    buf->size = pCreateInfo->size;
+    buf->usage = pCreateInfo->usage;
+    *pBuffer = to_handle(buf);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyBuffer(VkDevice, VkBuffer buffer, const VkAllocationCallbacks*) {
+    destroy_object(from_handle<Buffer>(buffer));
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetBufferMemoryRequirements(VkDevice, VkBuffer buffer, VkMemoryRequirements* pReqs) {
+    Buffer* buf = from_handle<Buffer>(buffer);
+    pReqs->size = (buf->size + kBufferAlignment - 1) & ~(kBufferAlignment - 1);
+    pReqs->alignment = kBufferAlignment;
+    pReqs->memoryTypeBits = 1;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory(VkDevice, VkBuffer buffer, VkDeviceMemory memory,
+                                                    VkDeviceSize memoryOffset) {
+    Buffer* buf = from_handle<Buffer>(buffer);
+    buf->memory = from_handle<DeviceMemory>(memory);
+    buf->memory_offset = memoryOffset;
+    return VK_SUCCESS;
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,19 @@
+// VkBuffer: a range of device memory.
+#pragma once
+#include "memory.h"
+
+namespace tilevk::icd {
+
+struct Buffer : NonDispatchableObject {
+    using Handle = VkBuffer;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_BUFFER;
+    Buffer() : NonDispatchableObject(kType) {}
+    VkDeviceSize size = 0;
+    VkBufferUsageFlags usage = 0;
+    DeviceMemory* memory = nullptr;
+    VkDeviceSize memory_offset = 0;
+
+    uint8_t* data() const { return memory->data + memory_offset; }
+};
+
+}  // namespace tilevk::icd

@@ -1,0 +1,386 @@
+// vkCmd*: every command is recorded as a plain struct (commands.h); execution happens at vkQueueSubmit.
+#include "command_buffer.h"
+
+#include "buffer.h"
+#include "descriptor_pool.h"
+#include "entrypoints.h"
+#include "framebuffer.h"
+#include "image.h"
+#include "pipeline.h"
+#include "render_pass.h"
+#include "sync.h"
+
+namespace tilevk::icd {
+namespace {
+
+CommandBuffer* cb_of(VkCommandBuffer h) {
+    return from_handle<CommandBuffer>(h);
+}
+
+// Copies an array of handles into the arena as object pointers.
+template <class T>
+T* const* objects(CommandBuffer* cb, const typename T::Handle* handles, uint32_t count) {
+    if (count == 0) return nullptr;
+    auto** out = static_cast<T**>(cb->arena.allocate(sizeof(T*) * count, alignof(T*)));
+    if (out == nullptr) {
+        cb->out_of_memory();
+        return nullptr;
+    }
+    for (uint32_t i = 0; i < count; ++i) out[i] = from_handle<T>(handles[i]);
+    return out;
+}
+
+}  // namespace
+
+// ---- transfer ------------------------------------------------------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBuffer(VkCommandBuffer commandBuffer, VkBuffer srcBuffer, VkBuffer dstBuffer,
+                                             uint32_t regionCount, const VkBufferCopy* pRegions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdCopyBuffer>()) {
+        c->src = from_handle<Buffer>(srcBuffer);
+        c->dst = from_handle<Buffer>(dstBuffer);
+        c->count = regionCount;
+        c->regions = cb->copy(pRegions, regionCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyImage(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
+                                            VkImage dstImage, VkImageLayout, uint32_t regionCount,
+                                            const VkImageCopy* pRegions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdCopyImage>()) {
+        c->src = from_handle<Image>(srcImage);
+        c->dst = from_handle<Image>(dstImage);
+        c->count = regionCount;
+        c->regions = cb->copy(pRegions, regionCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBufferToImage(VkCommandBuffer commandBuffer, VkBuffer srcBuffer, VkImage dstImage,
+                                                    VkImageLayout, uint32_t regionCount,
+                                                    const VkBufferImageCopy* pRegions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdCopyBufferToImage>()) {
+        c->src = from_handle<Buffer>(srcBuffer);
+        c->dst = from_handle<Image>(dstImage);
+        c->count = regionCount;
+        c->regions = cb->copy(pRegions, regionCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyImageToBuffer(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
+                                                    VkBuffer dstBuffer, uint32_t regionCount,
+                                                    const VkBufferImageCopy* pRegions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdCopyImageToBuffer>()) {
+        c->src = from_handle<Image>(srcImage);
+        c->dst = from_handle<Buffer>(dstBuffer);
+        c->count = regionCount;
+        c->regions = cb->copy(pRegions, regionCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdUpdateBuffer(VkCommandBuffer commandBuffer, VkBuffer dstBuffer,
+                                               VkDeviceSize dstOffset, VkDeviceSize dataSize, const void* pData) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdUpdateBuffer>()) {
+        c->dst = from_handle<Buffer>(dstBuffer);
+        c->offset = dstOffset;
+        c->size = dataSize;
+        c->data = cb->copy(static_cast<const uint8_t*>(pData), size_t(dataSize));
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdFillBuffer(VkCommandBuffer commandBuffer, VkBuffer dstBuffer, VkDeviceSize dstOffset,
+                                             VkDeviceSize size, uint32_t data) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdFillBuffer>()) {
+        c->dst = from_handle<Buffer>(dstBuffer);
+        c->offset = dstOffset;
+        c->size = size;
+        c->data = data;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdClearColorImage(VkCommandBuffer commandBuffer, VkImage image, VkImageLayout,
+                                                  const VkClearColorValue* pColor, uint32_t rangeCount,
+                                                  const VkImageSubresourceRange* pRanges) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdClearColorImage>()) {
+        c->image = from_handle<Image>(image);
+        c->color = *pColor;
+        c->count = rangeCount;
+        c->ranges = cb->copy(pRanges, rangeCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdClearDepthStencilImage(VkCommandBuffer commandBuffer, VkImage image, VkImageLayout,
+                                                         const VkClearDepthStencilValue* pDepthStencil,
+                                                         uint32_t rangeCount, const VkImageSubresourceRange* pRanges) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdClearDepthStencilImage>()) {
+        c->image = from_handle<Image>(image);
+        c->value = *pDepthStencil;
+        c->count = rangeCount;
+        c->ranges = cb->copy(pRanges, rangeCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdResolveImage(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
+                                               VkImage dstImage, VkImageLayout, uint32_t regionCount,
+                                               const VkImageResolve* pRegions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdResolveImage>()) {
+        c->src = from_handle<Image>(srcImage);
+        c->dst = from_handle<Image>(dstImage);
+        c->count = regionCount;
+        c->regions = cb->copy(pRegions, regionCount);
+    }
+}
+
+// ---- synchronisation -----------------------------------------------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdPipelineBarrier(VkCommandBuffer commandBuffer, VkPipelineStageFlags srcStageMask,
+                                                  VkPipelineStageFlags dstStageMask, VkDependencyFlags, uint32_t,
+                                                  const VkMemoryBarrier*, uint32_t, const VkBufferMemoryBarrier*,
+                                                  uint32_t, const VkImageMemoryBarrier*) {
+    // Layout transitions are no-ops: tilevk has one layout for every VkImageLayout.
+    if (auto* c = cb_of(commandBuffer)->append<CmdPipelineBarrier>()) {
+        c->src_stages = srcStageMask;
+        c->dst_stages = dstStageMask;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetEvent(VkCommandBuffer commandBuffer, VkEvent event, VkPipelineStageFlags) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetEvent>()) c->event = from_handle<Event>(event);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdResetEvent(VkCommandBuffer commandBuffer, VkEvent event, VkPipelineStageFlags) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdResetEvent>()) c->event = from_handle<Event>(event);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdWaitEvents(VkCommandBuffer commandBuffer, uint32_t eventCount, const VkEvent* pEvents,
+                                             VkPipelineStageFlags, VkPipelineStageFlags, uint32_t,
+                                             const VkMemoryBarrier*, uint32_t, const VkBufferMemoryBarrier*, uint32_t,
+                                             const VkImageMemoryBarrier*) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdWaitEvents>()) {
+        c->count = eventCount;
+        c->events = objects<Event>(cb, pEvents, eventCount);
+    }
+}
+
+// ---- render passes -------------------------------------------------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginRenderPass(VkCommandBuffer commandBuffer,
+                                                  const VkRenderPassBeginInfo* pRenderPassBegin, VkSubpassContents) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdBeginRenderPass>()) {
+        c->render_pass = from_handle<RenderPass>(pRenderPassBegin->renderPass);
+        c->framebuffer = from_handle<Framebuffer>(pRenderPassBegin->framebuffer);
+        c->area = pRenderPassBegin->renderArea;
+        c->clear_count = pRenderPassBegin->clearValueCount;
+        c->clears = cb->copy(pRenderPassBegin->pClearValues, pRenderPassBegin->clearValueCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdNextSubpass(VkCommandBuffer commandBuffer, VkSubpassContents) {
+    cb_of(commandBuffer)->append<CmdNextSubpass>();
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdEndRenderPass(VkCommandBuffer commandBuffer) {
+    cb_of(commandBuffer)->append<CmdEndRenderPass>();
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdClearAttachments(VkCommandBuffer commandBuffer, uint32_t attachmentCount,
+                                                   const VkClearAttachment* pAttachments, uint32_t rectCount,
+                                                   const VkClearRect* pRects) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdClearAttachments>()) {
+        c->attachment_count = attachmentCount;
+        c->attachments = cb->copy(pAttachments, attachmentCount);
+        c->rect_count = rectCount;
+        c->rects = cb->copy(pRects, rectCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdExecuteCommands(VkCommandBuffer commandBuffer, uint32_t commandBufferCount,
+                                                  const VkCommandBuffer* pCommandBuffers) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdExecuteCommands>()) {
+        c->count = commandBufferCount;
+        c->buffers = objects<CommandBuffer>(cb, pCommandBuffers, commandBufferCount);
+    }
+}
+
+// ---- state and draws -----------------------------------------------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBindPipeline(VkCommandBuffer commandBuffer, VkPipelineBindPoint bindPoint,
+                                               VkPipeline pipeline) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdBindPipeline>()) {
+        c->bind_point = bindPoint;
+        c->pipeline = from_handle<Pipeline>(pipeline);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBindDescriptorSets(VkCommandBuffer commandBuffer, VkPipelineBindPoint bindPoint,
+                                                     VkPipelineLayout layout, uint32_t firstSet,
+                                                     uint32_t descriptorSetCount, const VkDescriptorSet* pSets,
+                                                     uint32_t dynamicOffsetCount, const uint32_t* pDynamicOffsets) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdBindDescriptorSets>()) {
+        c->bind_point = bindPoint;
+        c->layout = from_handle<PipelineLayout>(layout);
+        c->first_set = firstSet;
+        c->set_count = descriptorSetCount;
+        c->sets = objects<DescriptorSet>(cb, pSets, descriptorSetCount);
+        c->dynamic_offset_count = dynamicOffsetCount;
+        c->dynamic_offsets = cb->copy(pDynamicOffsets, dynamicOffsetCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBindVertexBuffers(VkCommandBuffer commandBuffer, uint32_t firstBinding,
+                                                    uint32_t bindingCount, const VkBuffer* pBuffers,
+                                                    const VkDeviceSize* pOffsets) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdBindVertexBuffers>()) {
+        c->first_binding = firstBinding;
+        c->count = bindingCount;
+        c->buffers = objects<Buffer>(cb, pBuffers, bindingCount);
+        c->offsets = cb->copy(pOffsets, bindingCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBindIndexBuffer(VkCommandBuffer commandBuffer, VkBuffer buffer, VkDeviceSize offset,
+                                                  VkIndexType indexType) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdBindIndexBuffer>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+        c->index_type = indexType;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdPushConstants(VkCommandBuffer commandBuffer, VkPipelineLayout layout,
+                                                VkShaderStageFlags stageFlags, uint32_t offset, uint32_t size,
+                                                const void* pValues) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdPushConstants>()) {
+        c->layout = from_handle<PipelineLayout>(layout);
+        c->stages = stageFlags;
+        c->offset = offset;
+        c->size = size;
+        c->values = cb->copy(static_cast<const uint8_t*>(pValues), size);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetViewport(VkCommandBuffer commandBuffer, uint32_t firstViewport,
+                                              uint32_t viewportCount, const VkViewport* pViewports) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdSetViewport>()) {
+        c->first = firstViewport;
+        c->count = viewportCount;
+        c->viewports = cb->copy(pViewports, viewportCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetScissor(VkCommandBuffer commandBuffer, uint32_t firstScissor,
+                                             uint32_t scissorCount, const VkRect2D* pScissors) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdSetScissor>()) {
+        c->first = firstScissor;
+        c->count = scissorCount;
+        c->scissors = cb->copy(pScissors, scissorCount);
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineWidth(VkCommandBuffer commandBuffer, float lineWidth) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetLineWidth>()) c->width = lineWidth;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBias(VkCommandBuffer commandBuffer, float constantFactor, float clamp,
+                                               float slopeFactor) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetDepthBias>()) {
+        c->constant_factor = constantFactor;
+        c->clamp = clamp;
+        c->slope_factor = slopeFactor;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetBlendConstants(VkCommandBuffer commandBuffer, const float blendConstants[4]) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetBlendConstants>()) {
+        for (int i = 0; i < 4; ++i) c->constants[i] = blendConstants[i];
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBounds(VkCommandBuffer commandBuffer, float minDepthBounds,
+                                                 float maxDepthBounds) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetDepthBounds>()) {
+        c->min = minDepthBounds;
+        c->max = maxDepthBounds;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilCompareMask(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
+                                                        uint32_t compareMask) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilCompareMask>()) {
+        c->faces = faceMask;
+        c->value = compareMask;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilWriteMask(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
+                                                      uint32_t writeMask) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilWriteMask>()) {
+        c->faces = faceMask;
+        c->value = writeMask;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilReference(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
+                                                      uint32_t reference) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilReference>()) {
+        c->faces = faceMask;
+        c->value = reference;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDraw(VkCommandBuffer commandBuffer, uint32_t vertexCount, uint32_t instanceCount,
+                                       uint32_t firstVertex, uint32_t firstInstance) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDraw>()) {
+        c->vertex_count = vertexCount;
+        c->instance_count = instanceCount;
+        c->first_vertex = firstVertex;
+        c->first_instance = firstInstance;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexed(VkCommandBuffer commandBuffer, uint32_t indexCount,
+                                              uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
+                                              uint32_t firstInstance) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDrawIndexed>()) {
+        c->index_count = indexCount;
+        c->instance_count = instanceCount;
+        c->first_index = firstIndex;
+        c->vertex_offset = vertexOffset;
+        c->first_instance = firstInstance;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndirect(VkCommandBuffer commandBuffer, VkBuffer buffer, VkDeviceSize offset,
+                                               uint32_t drawCount, uint32_t stride) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDrawIndirect>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+        c->draw_count = drawCount;
+        c->stride = stride;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexedIndirect(VkCommandBuffer commandBuffer, VkBuffer buffer,
+                                                      VkDeviceSize offset, uint32_t drawCount, uint32_t stride) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDrawIndexedIndirect>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+        c->draw_count = drawCount;
+        c->stride = stride;
+    }
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,70 @@
+// VkCommandPool and VkCommandBuffer: recording into an arena of plain command structs (commands.h).
+#pragma once
+#include <vector>
+
+#include "arena.h"
+#include "commands.h"
+#include "object.h"
+
+namespace tilevk::icd {
+
+struct Device;
+struct CommandBuffer;
+
+struct CommandPool : NonDispatchableObject {
+    using Handle = VkCommandPool;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_COMMAND_POOL;
+    CommandPool() : NonDispatchableObject(kType) {}
+    Device* device = nullptr;
+    VkCommandPoolCreateFlags flags = 0;
+    std::vector<CommandBuffer*> buffers;
+};
+
+struct CommandBuffer : DispatchableObject {
+    using Handle = VkCommandBuffer;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_COMMAND_BUFFER;
+    CommandBuffer() : DispatchableObject(kType) {}
+
+    enum class State : uint8_t { kInitial, kRecording, kExecutable };
+    CommandPool* pool = nullptr;
+    VkCommandBufferLevel level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    VkCommandBufferUsageFlags usage = 0;
+    State state = State::kInitial;
+    VkResult record_result = VK_SUCCESS;  // first allocation failure while recording, reported by vkEnd
+    Arena arena;
+    Cmd* first = nullptr;
+    Cmd* last = nullptr;
+
+    // Appends a zeroed command of type T, or returns nullptr (and remembers the failure) when out of memory.
+    template <class T>
+    T* append() {
+        void* mem = arena.allocate(sizeof(T), alignof(T));
+        if (mem == nullptr) {
+            out_of_memory();
+            return nullptr;
+        }
+        std::memset(mem, 0, sizeof(T));
+        T* cmd = static_cast<T*>(mem);
+        cmd->type = T::kType;
+        cmd->next = nullptr;
+        if (last != nullptr)
+            last->next = cmd;
+        else
+            first = cmd;
+        last = cmd;
+        return cmd;
+    }
+    // Copies an array into the arena; nullptr for an empty array or on failure (then record_result is set).
+    template <class T>
+    const T* copy(const T* src, size_t count) {
+        if (count == 0) return nullptr;
+        const T* dst = arena.copy_array(src, count);
+        if (dst == nullptr) out_of_memory();
+        return dst;
+    }
+    void out_of_memory();
+    void reset();
+};
+TILEVK_ASSERT_DISPATCHABLE(CommandBuffer);
+
+}  // namespace tilevk::icd

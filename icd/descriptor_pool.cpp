@@ -1,0 +1,179 @@
+#include "descriptor_pool.h"
+
+#include <algorithm>
+
+#include "buffer.h"
+#include "device.h"
+#include "entrypoints.h"
+#include "image_view.h"
+#include "sampler.h"
+
+namespace tilevk::icd {
+namespace {
+
+void free_set(DescriptorSet* set) {
+    destroy_object(set);
+}
+
+// Slot of array element `element` of `binding`, following Vulkan's rule that an update running past the end of a
+// binding continues into the next binding(s) in binding order.
+Descriptor* slot_of(DescriptorSet* set, uint32_t binding, uint32_t element) {
+    const LayoutBinding* b = set->layout->find(binding);
+    if (b == nullptr) return nullptr;
+    uint32_t slot = b->first_slot + element;
+    return slot < set->slots.size() ? &set->slots[slot] : nullptr;
+}
+
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorPool(VkDevice device, const VkDescriptorPoolCreateInfo* ci,
+                                                        const VkAllocationCallbacks* pAllocator,
+                                                        VkDescriptorPool* pDescriptorPool) {
+    Device* dev = from_handle<Device>(device);
+    auto* pool =
+        create_object<DescriptorPool>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (pool == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDescriptorPool: out of host memory");
+    pool->flags = ci->flags;
+    pool->max_sets = ci->maxSets;
+    *pDescriptorPool = to_handle(pool);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_ResetDescriptorPool(VkDevice, VkDescriptorPool descriptorPool,
+                                                       VkDescriptorPoolResetFlags) {
+    DescriptorPool* pool = from_handle<DescriptorPool>(descriptorPool);
+    for (DescriptorSet* set : pool->sets) free_set(set);
+    pool->sets.clear();
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyDescriptorPool(VkDevice device, VkDescriptorPool descriptorPool,
+                                                     const VkAllocationCallbacks*) {
+    DescriptorPool* pool = from_handle<DescriptorPool>(descriptorPool);
+    if (pool == nullptr) return;
+    tvk_ResetDescriptorPool(device, descriptorPool, 0);
+    destroy_object(pool);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const VkDescriptorSetAllocateInfo* ai,
+                                                          VkDescriptorSet* pDescriptorSets) {
+    DescriptorPool* pool = from_handle<DescriptorPool>(ai->descriptorPool);
+    for (uint32_t i = 0; i < ai->descriptorSetCount; ++i) pDescriptorSets[i] = VK_NULL_HANDLE;
+    for (uint32_t i = 0; i < ai->descriptorSetCount; ++i) {
+        const DescriptorSetLayout* layout = from_handle<DescriptorSetLayout>(ai->pSetLayouts[i]);
+        DescriptorSet* set = create_object<DescriptorSet>(pool->allocator, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+        bool ok = set != nullptr;
+        if (ok) {
+            set->pool = pool;
+            set->layout = layout;
+            try {
+                set->slots.resize(layout->slot_count);
+                pool->sets.push_back(set);
+            } catch (const std::bad_alloc&) {
+                destroy_object(set);
+                ok = false;
+            }
+        }
+        if (!ok) {
+            // All or nothing: free what this call allocated.
+            VkDescriptorSet done[1];
+            for (uint32_t j = 0; j < i; ++j) {
+                done[0] = pDescriptorSets[j];
+                DescriptorSet* s = from_handle<DescriptorSet>(done[0]);
+                pool->sets.erase(std::find(pool->sets.begin(), pool->sets.end(), s));
+                free_set(s);
+                pDescriptorSets[j] = VK_NULL_HANDLE;
+            }
+            return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateDescriptorSets: out of host memory");
+        }
+        for (const LayoutBinding& b : layout->bindings) {
+            for (uint32_t j = 0; j < b.count; ++j) {
+                Descriptor& d = set->slots[b.first_slot + j];
+                d.type = b.type;
+                if (!b.immutable_samplers.empty()) d.sampler = b.immutable_samplers[j];
+            }
+        }
+        pDescriptorSets[i] = to_handle(set);
+    }
+    (void)device;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_FreeDescriptorSets(VkDevice, VkDescriptorPool descriptorPool, uint32_t count,
+                                                      const VkDescriptorSet* pDescriptorSets) {
+    DescriptorPool* pool = from_handle<DescriptorPool>(descriptorPool);
+    for (uint32_t i = 0; i < count; ++i) {
+        DescriptorSet* set = from_handle<DescriptorSet>(pDescriptorSets[i]);
+        if (set == nullptr) continue;
+        auto it = std::find(pool->sets.begin(), pool->sets.end(), set);
+        if (it != pool->sets.end()) pool->sets.erase(it);
+        free_set(set);
+    }
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCount, const VkWriteDescriptorSet* writes,
+                                                    uint32_t copyCount, const VkCopyDescriptorSet* copies) {
+    for (uint32_t i = 0; i < writeCount; ++i) {
+        const VkWriteDescriptorSet& w = writes[i];
+        DescriptorSet* set = from_handle<DescriptorSet>(w.dstSet);
+        for (uint32_t j = 0; j < w.descriptorCount; ++j) {
+            Descriptor* d = slot_of(set, w.dstBinding, w.dstArrayElement + j);
+            if (d == nullptr) {
+                log_error("vkUpdateDescriptorSets: binding %u element %u is outside the set", w.dstBinding,
+                          w.dstArrayElement + j);
+                break;
+            }
+            d->type = w.descriptorType;
+            switch (w.descriptorType) {
+                case VK_DESCRIPTOR_TYPE_SAMPLER:
+                case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+                case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+                case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+                case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT: {
+                    const VkDescriptorImageInfo& ii = w.pImageInfo[j];
+                    const bool has_sampler = w.descriptorType == VK_DESCRIPTOR_TYPE_SAMPLER ||
+                                             w.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+                    // Immutable samplers stay; otherwise the written sampler is used.
+                    const LayoutBinding* b = set->layout->find(w.dstBinding);
+                    if (has_sampler && (b == nullptr || b->immutable_samplers.empty())) {
+                        d->sampler = from_handle<Sampler>(ii.sampler);
+                    }
+                    if (w.descriptorType != VK_DESCRIPTOR_TYPE_SAMPLER) {
+                        d->image_view = from_handle<ImageView>(ii.imageView);
+                        d->image_layout = ii.imageLayout;
+                    }
+                    break;
+                }
+                case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+                case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+                    d->buffer_view = w.pTexelBufferView[j];
+                    break;
+                default: {
+                    const VkDescriptorBufferInfo& bi = w.pBufferInfo[j];
+                    d->buffer = from_handle<Buffer>(bi.buffer);
+                    d->offset = bi.offset;
+                    d->range =
+                        bi.range == VK_WHOLE_SIZE && d->buffer != nullptr ? d->buffer->size - bi.offset : bi.range;
+                    break;
+                }
+            }
+        }
+    }
+    for (uint32_t i = 0; i < copyCount; ++i) {
+        const VkCopyDescriptorSet& c = copies[i];
+        DescriptorSet* src = from_handle<DescriptorSet>(c.srcSet);
+        DescriptorSet* dst = from_handle<DescriptorSet>(c.dstSet);
+        for (uint32_t j = 0; j < c.descriptorCount; ++j) {
+            Descriptor* s = slot_of(src, c.srcBinding, c.srcArrayElement + j);
+            Descriptor* d = slot_of(dst, c.dstBinding, c.dstArrayElement + j);
+            if (s == nullptr || d == nullptr) {
+                log_error("vkUpdateDescriptorSets: copy %u runs outside a set", i);
+                break;
+            }
+            *d = *s;
+        }
+    }
+}
+
+}  // namespace tilevk::icd

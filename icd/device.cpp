@@ -1,0 +1,64 @@
+#include "device.h"
+
+#include "entrypoints.h"
+#include "physical_device.h"
+
+namespace tilevk::icd {
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice, const VkDeviceCreateInfo* pCreateInfo,
+                                                const VkAllocationCallbacks* pAllocator, VkDevice* pDevice) {
+    PhysicalDevice* pd = from_handle<PhysicalDevice>(physicalDevice);
+    for (uint32_t i = 0; i < pCreateInfo->enabledExtensionCount; ++i) {
+        return fail(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateDevice: device extension '%s' is not supported",
+                    pCreateInfo->ppEnabledExtensionNames[i]);
+    }
+    for (uint32_t i = 0; i < pCreateInfo->queueCreateInfoCount; ++i) {
+        const VkDeviceQueueCreateInfo& q = pCreateInfo->pQueueCreateInfos[i];
+        if (q.queueFamilyIndex != 0 || q.queueCount != 1) {
+            return fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateDevice: only queue family 0 with one queue exists");
+        }
+    }
+    if (pCreateInfo->pEnabledFeatures != nullptr) {
+        // VkPhysicalDeviceFeatures is an array of VkBool32: compare member by member.
+        const auto* want = reinterpret_cast<const VkBool32*>(pCreateInfo->pEnabledFeatures);
+        const auto* have = reinterpret_cast<const VkBool32*>(&pd->features);
+        for (size_t i = 0; i < sizeof(VkPhysicalDeviceFeatures) / sizeof(VkBool32); ++i) {
+            if (want[i] && !have[i]) {
+                return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                            "vkCreateDevice: feature #%zu of VkPhysicalDeviceFeatures is not supported", i);
+            }
+        }
+    }
+    const VkAllocationCallbacks& a = pick_allocator(pAllocator, &pd->allocator);
+    Device* dev = create_object<Device>(a, VK_SYSTEM_ALLOCATION_SCOPE_DEVICE);
+    if (dev == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDevice: out of host memory");
+    dev->physical_device = pd;
+    if (pCreateInfo->pEnabledFeatures != nullptr) dev->enabled_features = *pCreateInfo->pEnabledFeatures;
+    dev->queue = create_object<Queue>(a, VK_SYSTEM_ALLOCATION_SCOPE_DEVICE);
+    if (dev->queue == nullptr) {
+        destroy_object(dev);
+        return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDevice: out of host memory");
+    }
+    dev->queue->device = dev;
+    *pDevice = to_handle(dev);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyDevice(VkDevice device, const VkAllocationCallbacks*) {
+    Device* dev = from_handle<Device>(device);
+    if (dev == nullptr) return;
+    destroy_object(dev->queue);
+    destroy_object(dev);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceQueue(VkDevice device, uint32_t, uint32_t, VkQueue* pQueue) {
+    *pQueue = to_handle(from_handle<Device>(device)->queue);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_DeviceWaitIdle(VkDevice device) {
+    // Submissions execute synchronously inside vkQueueSubmit; taking the queue lock waits for one in flight.
+    std::lock_guard<std::mutex> lock(from_handle<Device>(device)->queue->submit_mutex);
+    return VK_SUCCESS;
+}
+
+}  // namespace tilevk::icd

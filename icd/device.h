@@ -1,0 +1,31 @@
+// VkDevice and its single VkQueue.
+#pragma once
+#include <mutex>
+
+#include "object.h"
+
+namespace tilevk::icd {
+
+struct PhysicalDevice;
+struct Device;
+
+struct Queue : DispatchableObject {
+    using Handle = VkQueue;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_QUEUE;
+    Queue() : DispatchableObject(kType) {}
+    Device* device = nullptr;
+    std::mutex submit_mutex;  // vkQueueSubmit executes command buffers in order, one submission at a time
+};
+TILEVK_ASSERT_DISPATCHABLE(Queue);
+
+struct Device : DispatchableObject {
+    using Handle = VkDevice;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_DEVICE;
+    Device() : DispatchableObject(kType) {}
+    PhysicalDevice* physical_device = nullptr;
+    Queue* queue = nullptr;
+    VkPhysicalDeviceFeatures enabled_features{};
+};
+TILEVK_ASSERT_DISPATCHABLE(Device);
+
+}  // namespace tilevk::icd

@@ -1,0 +1,188 @@
+// The command interpreter: walks a command buffer's list and runs each command. Render-pass load/clear and
+// resolve run here; draw commands need the render path and are reported, not faked.
+#include "execute.h"
+
+#include "framebuffer.h"
+#include "image.h"
+#include "render_pass.h"
+#include "sync.h"
+
+namespace tilevk::icd {
+namespace {
+
+VkRect2D clip_to_view(const VkRect2D& area, const ImageView& v) {
+    // The render area lies inside the framebuffer, which lies inside every attachment: no clipping needed beyond
+    // the view's level size, which guards against invalid input.
+    const uint32_t w = v.image->level_width(v.range.baseMipLevel), h = v.image->level_height(v.range.baseMipLevel);
+    VkRect2D r = area;
+    if (r.offset.x < 0 || r.offset.y < 0 || uint32_t(r.offset.x) >= w || uint32_t(r.offset.y) >= h) return {};
+    r.extent.width = std::min(r.extent.width, w - uint32_t(r.offset.x));
+    r.extent.height = std::min(r.extent.height, h - uint32_t(r.offset.y));
+    return r;
+}
+
+// Applies the load ops of attachments first used in subpass `sp`.
+void load_attachments(ExecState& st, uint32_t sp) {
+    const RenderPass& rp = *st.render_pass;
+    for (uint32_t a = 0; a < rp.attachments.size(); ++a) {
+        if (rp.first_use[a] != sp || a >= st.framebuffer->attachments.size()) continue;
+        const VkAttachmentDescription& d = rp.attachments[a];
+        const ImageView& v = *st.framebuffer->attachments[a];
+        const VkRect2D rect = clip_to_view(st.area, v);
+        const uint32_t layers = std::min(v.range.layerCount, st.framebuffer->layers);
+        if (v.format->aspects & VK_IMAGE_ASPECT_COLOR_BIT) {
+            if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) {
+                clear_color_rect(*v.image, v.range.baseMipLevel, v.range.baseArrayLayer, layers, rect,
+                                 st.clears[a].color);
+            }
+            continue;
+        }
+        VkImageAspectFlags aspects = 0;
+        if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_DEPTH_BIT;
+        if (d.stencilLoadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_STENCIL_BIT;
+        if (aspects != 0) {
+            clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, v.range.baseArrayLayer, layers, rect, aspects,
+                                     st.clears[a].depthStencil);
+        }
+    }
+}
+
+// Resolves the subpass's colour attachments into its resolve attachments over the render area.
+void resolve_attachments(ExecState& st, uint32_t sp) {
+    const Subpass& s = st.render_pass->subpasses[sp];
+    for (size_t i = 0; i < s.resolves.size(); ++i) {
+        uint32_t src_a = s.colors[i].attachment, dst_a = s.resolves[i].attachment;
+        if (src_a == VK_ATTACHMENT_UNUSED || dst_a == VK_ATTACHMENT_UNUSED) continue;
+        const ImageView& src = *st.framebuffer->attachments[src_a];
+        const ImageView& dst = *st.framebuffer->attachments[dst_a];
+        if (!can_resolve(*src.format)) {
+            log_error("render pass resolve: format %d is not implemented; attachment %u not resolved",
+                      int(src.format->format), dst_a);
+            continue;
+        }
+        const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
+        const uint32_t layers = std::min(src.range.layerCount, st.framebuffer->layers);
+        for (uint32_t l = 0; l < layers; ++l) {
+            resolve_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, rect.offset, *dst.image,
+                         dst.range.baseMipLevel, dst.range.baseArrayLayer + l, rect.offset, rect.extent);
+        }
+    }
+}
+
+void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
+    if (st.render_pass == nullptr) return;
+    const Subpass& s = st.render_pass->subpasses[st.subpass];
+    for (uint32_t i = 0; i < c.attachment_count; ++i) {
+        const VkClearAttachment& ca = c.attachments[i];
+        uint32_t a = VK_ATTACHMENT_UNUSED;
+        if (ca.aspectMask & VK_IMAGE_ASPECT_COLOR_BIT) {
+            if (ca.colorAttachment < s.colors.size()) a = s.colors[ca.colorAttachment].attachment;
+        } else {
+            a = s.depth_stencil.attachment;
+        }
+        if (a == VK_ATTACHMENT_UNUSED) continue;
+        const ImageView& v = *st.framebuffer->attachments[a];
+        for (uint32_t r = 0; r < c.rect_count; ++r) {
+            const VkClearRect& cr = c.rects[r];
+            const VkRect2D rect = clip_to_view(cr.rect, v);
+            const uint32_t base = v.range.baseArrayLayer + cr.baseArrayLayer;
+            if (ca.aspectMask & VK_IMAGE_ASPECT_COLOR_BIT) {
+                clear_color_rect(*v.image, v.range.baseMipLevel, base, cr.layerCount, rect, ca.clearValue.color);
+            } else {
+                clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, base, cr.layerCount, rect, ca.aspectMask,
+                                         ca.clearValue.depthStencil);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
+    for (Cmd* cmd = cb->first; cmd != nullptr; cmd = cmd->next) {
+        switch (cmd->type) {
+            case CmdType::kCopyBuffer:
+                exec_copy_buffer(*static_cast<CmdCopyBuffer*>(cmd));
+                break;
+            case CmdType::kCopyImage:
+                exec_copy_image(*static_cast<CmdCopyImage*>(cmd));
+                break;
+            case CmdType::kCopyBufferToImage:
+                exec_copy_buffer_to_image(*static_cast<CmdCopyBufferToImage*>(cmd));
+                break;
+            case CmdType::kCopyImageToBuffer:
+                exec_copy_image_to_buffer(*static_cast<CmdCopyImageToBuffer*>(cmd));
+                break;
+            case CmdType::kUpdateBuffer:
+                exec_update_buffer(*static_cast<CmdUpdateBuffer*>(cmd));
+                break;
+            case CmdType::kFillBuffer:
+                exec_fill_buffer(*static_cast<CmdFillBuffer*>(cmd));
+                break;
+            case CmdType::kClearColorImage:
+                exec_clear_color_image(*static_cast<CmdClearColorImage*>(cmd));
+                break;
+            case CmdType::kClearDepthStencilImage:
+                exec_clear_depth_stencil_image(*static_cast<CmdClearDepthStencilImage*>(cmd));
+                break;
+            case CmdType::kResolveImage:
+                exec_resolve_image(*static_cast<CmdResolveImage*>(cmd));
+                break;
+            // Execution is serial and in order, so barriers have nothing left to order.
+            case CmdType::kPipelineBarrier:
+                break;
+            case CmdType::kSetEvent:
+                static_cast<CmdSetEvent*>(cmd)->event->set.store(true);
+                break;
+            case CmdType::kResetEvent:
+                static_cast<CmdResetEvent*>(cmd)->event->set.store(false);
+                break;
+            // Device-side sets happened earlier in this serial stream; host sets must precede the submission.
+            case CmdType::kWaitEvents:
+                break;
+            case CmdType::kBeginRenderPass: {
+                auto* c = static_cast<CmdBeginRenderPass*>(cmd);
+                st.render_pass = c->render_pass;
+                st.framebuffer = c->framebuffer;
+                st.area = c->area;
+                st.clears = c->clears;
+                st.subpass = 0;
+                load_attachments(st, 0);
+                break;
+            }
+            case CmdType::kNextSubpass:
+                if (st.render_pass == nullptr) break;
+                resolve_attachments(st, st.subpass);
+                ++st.subpass;
+                load_attachments(st, st.subpass);
+                break;
+            case CmdType::kEndRenderPass:
+                if (st.render_pass == nullptr) break;
+                resolve_attachments(st, st.subpass);
+                st.render_pass = nullptr;
+                st.framebuffer = nullptr;
+                break;
+            case CmdType::kClearAttachments:
+                clear_attachments(st, *static_cast<CmdClearAttachments*>(cmd));
+                break;
+            case CmdType::kExecuteCommands: {
+                auto* c = static_cast<CmdExecuteCommands*>(cmd);
+                for (uint32_t i = 0; i < c->count; ++i) execute_command_buffer(c->buffers[i], st);
+                break;
+            }
+            case CmdType::kDraw:
+            case CmdType::kDrawIndexed:
+            case CmdType::kDrawIndirect:
+            case CmdType::kDrawIndexedIndirect:
+                if (!st.draw_warned) {
+                    log_error("vkQueueSubmit: draw commands were not executed: the render path is not connected");
+                    st.draw_warned = true;
+                }
+                break;
+            default:  // state commands: consumed by the render path
+                break;
+        }
+    }
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,243 @@
+// Transfer commands: copies, clears, fills, updates and resolves on tilevk's plain linear layout (image.h).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "buffer.h"
+#include "clear_pack.h"
+#include "execute.h"
+#include "image.h"
+
+namespace tilevk::icd {
+namespace {
+
+uint32_t resolve_count(const Image& img, uint32_t base, uint32_t count, bool layers) {
+    uint32_t total = layers ? img.array_layers : img.mip_levels;
+    return count == (layers ? VK_REMAINING_ARRAY_LAYERS : VK_REMAINING_MIP_LEVELS) ? total - base : count;
+}
+
+VkRect2D full_rect(const Image& img, uint32_t level) {
+    return {{0, 0}, {img.level_width(level), img.level_height(level)}};
+}
+
+// Copies one row of `width` texels of `aspect` between a buffer (packed aspect texels) and an image row.
+void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, uint8_t* buffer_row, uint32_t width,
+              bool to_image) {
+    const FormatInfo& f = *img.format;
+    const uint32_t bytes = buffer_texel_bytes(f, aspect);
+    if (bytes == f.texel_bytes) {
+        if (to_image)
+            std::memcpy(image_row, buffer_row, size_t(width) * bytes);
+        else
+            std::memcpy(buffer_row, image_row, size_t(width) * bytes);
+        return;
+    }
+    // One aspect of an interleaved depth/stencil texel.
+    const uint32_t off = aspect_offset(f, aspect);
+    for (uint32_t x = 0; x < width; ++x) {
+        uint8_t* t = image_row + size_t(x) * f.texel_bytes + off;
+        if (to_image)
+            std::memcpy(t, buffer_row + size_t(x) * bytes, bytes);
+        else
+            std::memcpy(buffer_row + size_t(x) * bytes, t, bytes);
+    }
+}
+
+void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r, bool to_image) {
+    const VkImageSubresourceLayers& s = r.imageSubresource;
+    const uint32_t bytes = buffer_texel_bytes(*img.format, s.aspectMask);
+    const uint64_t row_len = r.bufferRowLength ? r.bufferRowLength : r.imageExtent.width;
+    const uint64_t img_height = r.bufferImageHeight ? r.bufferImageHeight : r.imageExtent.height;
+    const uint32_t layers = resolve_count(img, s.baseArrayLayer, s.layerCount, true);
+    for (uint32_t l = 0; l < layers; ++l) {
+        for (uint32_t y = 0; y < r.imageExtent.height; ++y) {
+            // texel (x, y, layer l) of the region is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
+            uint8_t* brow = buf.data() + r.bufferOffset + ((l * img_height + y) * row_len) * bytes;
+            uint8_t* irow =
+                img.texel(s.mipLevel, s.baseArrayLayer + l, uint32_t(r.imageOffset.x), uint32_t(r.imageOffset.y) + y);
+            copy_row(img, s.aspectMask, irow, brow, r.imageExtent.width, to_image);
+        }
+    }
+}
+
+// rne(fl(x * 255)) clamped to [0, 255], as the fragment output conversion (cvtps2dq, saturating packs).
+uint8_t unorm8_from_float(float x) {
+    float scaled = x * 255.0f;
+    if (!(scaled > 0.0f)) return 0;
+    if (scaled >= 255.0f) return 255;
+    return uint8_t(std::nearbyint(scaled));
+}
+
+}  // namespace
+
+void exec_copy_buffer(const CmdCopyBuffer& c) {
+    for (uint32_t i = 0; i < c.count; ++i) {
+        const VkBufferCopy& r = c.regions[i];
+        std::memmove(c.dst->data() + r.dstOffset, c.src->data() + r.srcOffset, size_t(r.size));
+    }
+}
+
+void exec_copy_image(const CmdCopyImage& c) {
+    for (uint32_t i = 0; i < c.count; ++i) {
+        const VkImageCopy& r = c.regions[i];
+        const VkImageAspectFlags aspect = r.srcSubresource.aspectMask;
+        const uint32_t layers =
+            resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        const FormatInfo& f = *c.src->format;
+        const bool whole_texel = buffer_texel_bytes(f, aspect) == f.texel_bytes;
+        const uint32_t off = aspect_offset(f, aspect), bytes = buffer_texel_bytes(f, aspect);
+        for (uint32_t l = 0; l < layers; ++l) {
+            for (uint32_t y = 0; y < r.extent.height; ++y) {
+                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + l,
+                                                uint32_t(r.srcOffset.x), uint32_t(r.srcOffset.y) + y);
+                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer + l,
+                                          uint32_t(r.dstOffset.x), uint32_t(r.dstOffset.y) + y);
+                const size_t texels = size_t(r.extent.width) * c.src->samples;
+                if (whole_texel) {
+                    std::memmove(d, s, texels * f.texel_bytes);  // formats are size-compatible: a raw copy
+                } else {
+                    for (size_t x = 0; x < texels; ++x) {
+                        std::memmove(d + x * f.texel_bytes + off, s + x * f.texel_bytes + off, bytes);
+                    }
+                }
+            }
+        }
+    }
+}
+
+void exec_copy_buffer_to_image(const CmdCopyBufferToImage& c) {
+    for (uint32_t i = 0; i < c.count; ++i) copy_buffer_image(*c.src, *c.dst, c.regions[i], true);
+}
+
+void exec_copy_image_to_buffer(const CmdCopyImageToBuffer& c) {
+    for (uint32_t i = 0; i < c.count; ++i) copy_buffer_image(*c.dst, *c.src, c.regions[i], false);
+}
+
+void exec_update_buffer(const CmdUpdateBuffer& c) {
+    if (c.data != nullptr) std::memcpy(c.dst->data() + c.offset, c.data, size_t(c.size));
+}
+
+void exec_fill_buffer(const CmdFillBuffer& c) {
+    // VK_WHOLE_SIZE fills to the end of the buffer, rounded down to a multiple of 4 bytes.
+    VkDeviceSize size = c.size == VK_WHOLE_SIZE ? (c.dst->size - c.offset) & ~VkDeviceSize(3) : c.size;
+    uint8_t* p = c.dst->data() + c.offset;
+    for (VkDeviceSize i = 0; i + 4 <= size; i += 4) std::memcpy(p + i, &c.data, 4);
+}
+
+void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D& rect, const uint8_t* texel,
+               uint32_t byte_offset, uint32_t byte_count) {
+    const uint32_t tb = img.format->texel_bytes;
+    const size_t texels = size_t(rect.extent.width) * img.samples;
+    for (uint32_t y = 0; y < rect.extent.height; ++y) {
+        uint8_t* row = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y) + y);
+        for (size_t x = 0; x < texels; ++x) std::memcpy(row + x * tb + byte_offset, texel + byte_offset, byte_count);
+    }
+}
+
+void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
+                      const VkClearColorValue& color) {
+    uint8_t texel[16] = {};
+    pack_clear_color(*img.format, color, texel);
+    for (uint32_t l = 0; l < layer_count; ++l)
+        fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->texel_bytes);
+}
+
+void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
+                              const VkRect2D& rect, VkImageAspectFlags aspects, const VkClearDepthStencilValue& v) {
+    const FormatInfo& f = *img.format;
+    uint8_t texel[16] = {};
+    pack_clear_depth(f, v.depth, texel);
+    texel[aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT)] = f.pack == PackKind::kD32FS8 ? uint8_t(v.stencil) : texel[0];
+    for (uint32_t l = 0; l < layer_count; ++l) {
+        if ((aspects & VK_IMAGE_ASPECT_DEPTH_BIT) && (f.aspects & VK_IMAGE_ASPECT_DEPTH_BIT)) {
+            fill_rect(img, level, base_layer + l, rect, texel, 0, buffer_texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT));
+        }
+        if ((aspects & VK_IMAGE_ASPECT_STENCIL_BIT) && (f.aspects & VK_IMAGE_ASPECT_STENCIL_BIT)) {
+            fill_rect(img, level, base_layer + l, rect, texel, aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT), 1);
+        }
+    }
+}
+
+void exec_clear_color_image(const CmdClearColorImage& c) {
+    for (uint32_t i = 0; i < c.count; ++i) {
+        const VkImageSubresourceRange& r = c.ranges[i];
+        const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
+        const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
+        for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
+            clear_color_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), c.color);
+        }
+    }
+}
+
+void exec_clear_depth_stencil_image(const CmdClearDepthStencilImage& c) {
+    for (uint32_t i = 0; i < c.count; ++i) {
+        const VkImageSubresourceRange& r = c.ranges[i];
+        const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
+        const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
+        for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
+            clear_depth_stencil_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), r.aspectMask,
+                                     c.value);
+        }
+    }
+}
+
+bool can_resolve(const FormatInfo& f) {
+    return f.pack == PackKind::kUnorm8 || f.pack == PackKind::kFloat32;
+}
+
+// lavapipe resolves with util_blitter's MSAA-resolve shader (NEAREST, notes §3):
+//   sum = 0; for s in 0..3: sum = fl(sum + texel_s)   with texel_s = fl(float(u8) * fl(1/255)) for UNORM8
+//   out = fl(sum * 0.25f); UNORM8 stores rne(fl(out * 255)), FLOAT32 stores out.
+void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOffset2D src_offset, const Image& dst,
+                  uint32_t dst_level, uint32_t dst_layer, VkOffset2D dst_offset, VkExtent2D extent) {
+    const FormatInfo& f = *src.format;
+    const uint32_t samples = src.samples;
+    const float inv_samples = 1.0f / float(samples);
+    for (uint32_t y = 0; y < extent.height; ++y) {
+        const uint8_t* s = src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y) + y);
+        uint8_t* d = dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y) + y);
+        for (uint32_t x = 0; x < extent.width; ++x) {
+            const uint8_t* px = s + size_t(x) * samples * f.texel_bytes;
+            uint8_t* out = d + size_t(x) * f.texel_bytes;
+            for (uint32_t ch = 0; ch < f.channels; ++ch) {
+                float sum = 0.0f;
+                for (uint32_t k = 0; k < samples; ++k) {
+                    const uint8_t* t = px + size_t(k) * f.texel_bytes;
+                    float v;
+                    if (f.pack == PackKind::kUnorm8) {
+                        v = float(t[ch]) * (1.0f / 255.0f);
+                    } else {
+                        std::memcpy(&v, t + 4 * ch, 4);
+                    }
+                    sum = sum + v;
+                }
+                float avg = sum * inv_samples;
+                if (f.pack == PackKind::kUnorm8)
+                    out[ch] = unorm8_from_float(avg);
+                else
+                    std::memcpy(out + 4 * ch, &avg, 4);
+            }
+        }
+    }
+}
+
+void exec_resolve_image(const CmdResolveImage& c) {
+    for (uint32_t i = 0; i < c.count; ++i) {
+        const VkImageResolve& r = c.regions[i];
+        if (!can_resolve(*c.src->format)) {
+            log_error("vkCmdResolveImage: resolving format %d is not implemented; region skipped",
+                      int(c.src->format->format));
+            continue;
+        }
+        const uint32_t layers =
+            resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        for (uint32_t l = 0; l < layers; ++l) {
+            resolve_rect(*c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + l,
+                         {r.srcOffset.x, r.srcOffset.y}, *c.dst, r.dstSubresource.mipLevel,
+                         r.dstSubresource.baseArrayLayer + l, {r.dstOffset.x, r.dstOffset.y},
+                         {r.extent.width, r.extent.height});
+        }
+    }
+}
+
+}  // namespace tilevk::icd

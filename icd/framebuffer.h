@@ -1,0 +1,17 @@
+// VkFramebuffer: attachment views and size.
+#pragma once
+#include <vector>
+
+#include "image_view.h"
+
+namespace tilevk::icd {
+
+struct Framebuffer : NonDispatchableObject {
+    using Handle = VkFramebuffer;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_FRAMEBUFFER;
+    Framebuffer() : NonDispatchableObject(kType) {}
+    std::vector<ImageView*> attachments;
+    uint32_t width = 0, height = 0, layers = 0;
+};
+
+}  // namespace tilevk::icd

@@ -1,0 +1,50 @@
+// VkImage with tilevk's one plain linear layout, used for both OPTIMAL and LINEAR tiling:
+//   level-major; inside a level, array layers one after another; inside a layer, rows of `row_pitch` bytes;
+//   inside a row, pixels; inside a pixel, its samples one after another (sample s of pixel x at (x*samples+s)).
+//   Texel (x, y, layer, level, sample) is at  level_offset[level] + layer*layer_pitch[level] + y*row_pitch[level]
+//                                              + (x*samples + sample)*texel_bytes.
+// Levels start on 64-byte boundaries; rows are packed (no row padding).
+#pragma once
+#include "formats.h"
+#include "memory.h"
+#include "physical_device.h"
+
+namespace tilevk::icd {
+
+struct ImageLayout {
+    VkDeviceSize level_offset[kMaxMipLevels] = {};
+    VkDeviceSize row_pitch[kMaxMipLevels] = {};
+    VkDeviceSize layer_pitch[kMaxMipLevels] = {};
+    VkDeviceSize size = 0;
+};
+
+struct Image : NonDispatchableObject {
+    using Handle = VkImage;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_IMAGE;
+    Image() : NonDispatchableObject(kType) {}
+
+    const FormatInfo* format = nullptr;
+    VkExtent3D extent{};
+    uint32_t mip_levels = 1;
+    uint32_t array_layers = 1;
+    uint32_t samples = 1;
+    VkImageTiling tiling = VK_IMAGE_TILING_OPTIMAL;
+    VkImageUsageFlags usage = 0;
+    ImageLayout layout;
+    DeviceMemory* memory = nullptr;
+    VkDeviceSize memory_offset = 0;
+
+    uint32_t level_width(uint32_t level) const { return extent.width >> level ? extent.width >> level : 1; }
+    uint32_t level_height(uint32_t level) const { return extent.height >> level ? extent.height >> level : 1; }
+    // Address of sample 0 of texel (x, y) of a subresource.
+    uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
+        return memory->data + memory_offset + layout.level_offset[level] + layer * layout.layer_pitch[level] +
+               y * layout.row_pitch[level] + VkDeviceSize(x) * samples * format->texel_bytes;
+    }
+};
+
+// Computes the layout described above.
+ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_t levels, uint32_t layers,
+                                 uint32_t samples);
+
+}  // namespace tilevk::icd

@@ -1,0 +1,42 @@
+#include "image_view.h"
+
+#include "device.h"
+#include "entrypoints.h"
+
+namespace tilevk::icd {
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImageViewCreateInfo* ci,
+                                                   const VkAllocationCallbacks* pAllocator, VkImageView* pView) {
+    Device* dev = from_handle<Device>(device);
+    Image* img = from_handle<Image>(ci->image);
+    if (ci->viewType != VK_IMAGE_VIEW_TYPE_2D && ci->viewType != VK_IMAGE_VIEW_TYPE_2D_ARRAY) {
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImageView: view type %d is not implemented (2D only)",
+                    int(ci->viewType));
+    }
+    const FormatInfo* f = find_format(ci->format);
+    if (f == nullptr || f->aspects == 0) {
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImageView: format %d is not supported", int(ci->format));
+    }
+    ImageView* view =
+        create_object<ImageView>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (view == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateImageView: out of host memory");
+    view->image = img;
+    view->format = f;
+    view->view_type = ci->viewType;
+    view->components = ci->components;
+    view->range = ci->subresourceRange;
+    if (view->range.levelCount == VK_REMAINING_MIP_LEVELS) {
+        view->range.levelCount = img->mip_levels - view->range.baseMipLevel;
+    }
+    if (view->range.layerCount == VK_REMAINING_ARRAY_LAYERS) {
+        view->range.layerCount = img->array_layers - view->range.baseArrayLayer;
+    }
+    *pView = to_handle(view);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyImageView(VkDevice, VkImageView imageView, const VkAllocationCallbacks*) {
+    destroy_object(from_handle<ImageView>(imageView));
+}
+
+}  // namespace tilevk::icd

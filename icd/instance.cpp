@@ -1,0 +1,76 @@
+#include "instance.h"
+
+#include <cstring>
+
+#include "entrypoints.h"
+
+namespace tilevk::icd {
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceExtensionProperties(const char* pLayerName,
+                                                                        uint32_t* pPropertyCount,
+                                                                        VkExtensionProperties*) {
+    if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
+    *pPropertyCount = 0;  // tilevk implements no instance extension
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceLayerProperties(uint32_t* pPropertyCount, VkLayerProperties*) {
+    *pPropertyCount = 0;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pCreateInfo,
+                                                  const VkAllocationCallbacks* pAllocator, VkInstance* pInstance) {
+    for (uint32_t i = 0; i < pCreateInfo->enabledLayerCount; ++i) {
+        return fail(VK_ERROR_LAYER_NOT_PRESENT, "vkCreateInstance: layer '%s' is not provided by tilevk",
+                    pCreateInfo->ppEnabledLayerNames[i]);
+    }
+    for (uint32_t i = 0; i < pCreateInfo->enabledExtensionCount; ++i) {
+        return fail(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateInstance: instance extension '%s' is not supported",
+                    pCreateInfo->ppEnabledExtensionNames[i]);
+    }
+    uint32_t app_version = VK_API_VERSION_1_0;
+    if (pCreateInfo->pApplicationInfo != nullptr && pCreateInfo->pApplicationInfo->apiVersion != 0) {
+        app_version = pCreateInfo->pApplicationInfo->apiVersion;
+    }
+    // A Vulkan 1.0 implementation must refuse a higher requested version (1.1+ drivers accept any version).
+    if (VK_API_VERSION_MINOR(kApiVersion) == 0 && VK_API_VERSION_MAJOR(app_version) == 1 &&
+        VK_API_VERSION_MINOR(app_version) > 0) {
+        return fail(VK_ERROR_INCOMPATIBLE_DRIVER, "vkCreateInstance: apiVersion %u.%u requested, tilevk is Vulkan 1.0",
+                    VK_API_VERSION_MAJOR(app_version), VK_API_VERSION_MINOR(app_version));
+    }
+    const VkAllocationCallbacks& a = pick_allocator(pAllocator, nullptr);
+    Instance* inst = create_object<Instance>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
+    if (inst == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateInstance: out of host memory");
+    inst->app_api_version = app_version;
+    inst->physical_device = create_object<PhysicalDevice>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
+    if (inst->physical_device == nullptr) {
+        destroy_object(inst);
+        return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateInstance: out of host memory");
+    }
+    inst->physical_device->instance = inst;
+    *pInstance = to_handle(inst);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyInstance(VkInstance instance, const VkAllocationCallbacks*) {
+    Instance* inst = from_handle<Instance>(instance);
+    if (inst == nullptr) return;
+    destroy_object(inst->physical_device);
+    destroy_object(inst);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumeratePhysicalDevices(VkInstance instance, uint32_t* pPhysicalDeviceCount,
+                                                            VkPhysicalDevice* pPhysicalDevices) {
+    Instance* inst = from_handle<Instance>(instance);
+    if (pPhysicalDevices == nullptr) {
+        *pPhysicalDeviceCount = 1;
+        return VK_SUCCESS;
+    }
+    if (*pPhysicalDeviceCount < 1) return VK_INCOMPLETE;
+    pPhysicalDevices[0] = to_handle(inst->physical_device);
+    *pPhysicalDeviceCount = 1;
+    return VK_SUCCESS;
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,77 @@
+#include "memory.h"
+
+#include <cstdlib>
+
+#include "device.h"
+#include "entrypoints.h"
+#include "physical_device.h"
+
+namespace tilevk::icd {
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemoryAllocateInfo* pAllocateInfo,
+                                                  const VkAllocationCallbacks* pAllocator, VkDeviceMemory* pMemory) {
+    Device* dev = from_handle<Device>(device);
+    if (pAllocateInfo->memoryTypeIndex != 0) {
+        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: memory type %u does not exist",
+                    pAllocateInfo->memoryTypeIndex);
+    }
+    VkDeviceSize size = pAllocateInfo->allocationSize;
+    if (size > dev->physical_device->memory.memoryHeaps[0].size) {
+        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: %llu bytes exceed the heap",
+                    (unsigned long long)size);
+    }
+    DeviceMemory* mem =
+        create_object<DeviceMemory>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (mem == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateMemory: out of host memory");
+    // Device memory is not host memory in Vulkan's sense: it does not go through the allocation callbacks.
+    void* p = nullptr;
+    if (posix_memalign(&p, kMemoryAlignment, size_t((size + kMemoryAlignment - 1) & ~(kMemoryAlignment - 1))) != 0) {
+        destroy_object(mem);
+        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: cannot allocate %llu bytes",
+                    (unsigned long long)size);
+    }
+    mem->data = static_cast<uint8_t*>(p);
+    mem->size = size;
+    *pMemory = to_handle(mem);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_FreeMemory(VkDevice, VkDeviceMemory memory, const VkAllocationCallbacks*) {
+    DeviceMemory* mem = from_handle<DeviceMemory>(memory);
+    if (mem == nullptr) return;
+    free(mem->data);
+    destroy_object(mem);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_MapMemory(VkDevice, VkDeviceMemory memory, VkDeviceSize offset, VkDeviceSize,
+                                             VkMemoryMapFlags, void** ppData) {
+    DeviceMemory* mem = from_handle<DeviceMemory>(memory);
+    if (offset > mem->size) {
+        *ppData = nullptr;
+        return fail(VK_ERROR_MEMORY_MAP_FAILED, "vkMapMemory: offset %llu is past the allocation",
+                    (unsigned long long)offset);
+    }
+    mem->mapped = true;
+    *ppData = mem->data + offset;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_UnmapMemory(VkDevice, VkDeviceMemory memory) {
+    from_handle<DeviceMemory>(memory)->mapped = false;
+}
+
+// The only memory type is host-coherent: flushes and invalidations have nothing to do.
+VKAPI_ATTR VkResult VKAPI_CALL tvk_FlushMappedMemoryRanges(VkDevice, uint32_t, const VkMappedMemoryRange*) {
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_InvalidateMappedMemoryRanges(VkDevice, uint32_t, const VkMappedMemoryRange*) {
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceMemoryCommitment(VkDevice, VkDeviceMemory memory,
+                                                         VkDeviceSize* pCommittedMemoryInBytes) {
+    *pCommittedMemoryInBytes = from_handle<DeviceMemory>(memory)->size;
+}
+
+}  // namespace tilevk::icd

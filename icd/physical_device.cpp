@@ -1,0 +1,248 @@
+#include "physical_device.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "entrypoints.h"
+#include "formats.h"
+#include "instance.h"
+
+namespace tilevk::icd {
+namespace {
+
+// Limits: the Vulkan 1.0 required minimums for everything the render path has yet to prove, and tilevk's own
+// values where they come from its design (16384 = the 15.8 fixed-point range, 8 sub-pixel bits, 1x/4x MSAA).
+VkPhysicalDeviceLimits make_limits() {
+    VkPhysicalDeviceLimits l{};
+    l.maxImageDimension1D = kMaxImageDimension;
+    l.maxImageDimension2D = kMaxImageDimension;
+    l.maxImageDimension3D = 256;
+    l.maxImageDimensionCube = 4096;
+    l.maxImageArrayLayers = kMaxArrayLayers;
+    l.maxTexelBufferElements = 65536;
+    l.maxUniformBufferRange = 16384;
+    l.maxStorageBufferRange = 1u << 27;
+    l.maxPushConstantsSize = 128;
+    l.maxMemoryAllocationCount = 4096;
+    l.maxSamplerAllocationCount = 4000;
+    l.bufferImageGranularity = 1;  // linear and optimal resources share one plain layout: no aliasing hazard
+    l.sparseAddressSpaceSize = 0;
+    l.maxBoundDescriptorSets = 4;
+    l.maxPerStageDescriptorSamplers = 16;
+    l.maxPerStageDescriptorUniformBuffers = 12;
+    l.maxPerStageDescriptorStorageBuffers = 4;
+    l.maxPerStageDescriptorSampledImages = 16;
+    l.maxPerStageDescriptorStorageImages = 4;
+    l.maxPerStageDescriptorInputAttachments = 4;
+    l.maxPerStageResources = 128;
+    l.maxDescriptorSetSamplers = 96;
+    l.maxDescriptorSetUniformBuffers = 72;
+    l.maxDescriptorSetUniformBuffersDynamic = 8;
+    l.maxDescriptorSetStorageBuffers = 24;
+    l.maxDescriptorSetStorageBuffersDynamic = 4;
+    l.maxDescriptorSetSampledImages = 96;
+    l.maxDescriptorSetStorageImages = 24;
+    l.maxDescriptorSetInputAttachments = 4;
+    l.maxVertexInputAttributes = 16;
+    l.maxVertexInputBindings = 16;
+    l.maxVertexInputAttributeOffset = 2047;
+    l.maxVertexInputBindingStride = 2048;
+    l.maxVertexOutputComponents = 64;
+    l.maxFragmentInputComponents = 64;
+    l.maxFragmentOutputAttachments = 4;
+    l.maxFragmentDualSrcAttachments = 0;  // dualSrcBlend is off
+    l.maxFragmentCombinedOutputResources = 4;
+    l.maxComputeSharedMemorySize = 16384;
+    l.maxComputeWorkGroupCount[0] = l.maxComputeWorkGroupCount[1] = l.maxComputeWorkGroupCount[2] = 65535;
+    l.maxComputeWorkGroupInvocations = 128;
+    l.maxComputeWorkGroupSize[0] = 128;
+    l.maxComputeWorkGroupSize[1] = 128;
+    l.maxComputeWorkGroupSize[2] = 64;
+    l.subPixelPrecisionBits = 8;  // 15.8 fixed point, as lavapipe
+    l.subTexelPrecisionBits = 4;
+    l.mipmapPrecisionBits = 4;
+    l.maxDrawIndexedIndexValue = (1u << 24) - 1;  // fullDrawIndexUint32 is off
+    l.maxDrawIndirectCount = 1;                   // multiDrawIndirect is off
+    l.maxSamplerLodBias = 2.0f;
+    l.maxSamplerAnisotropy = 1.0f;
+    l.maxViewports = 1;
+    l.maxViewportDimensions[0] = l.maxViewportDimensions[1] = kMaxImageDimension;
+    // viewportBoundsRange must hold [-2*maxViewportDimension, 2*maxViewportDimension - 1].
+    l.viewportBoundsRange[0] = -2.0f * kMaxImageDimension;
+    l.viewportBoundsRange[1] = 2.0f * kMaxImageDimension - 1.0f;
+    l.viewportSubPixelBits = 0;
+    l.minMemoryMapAlignment = 64;
+    l.minTexelBufferOffsetAlignment = 16;
+    l.minUniformBufferOffsetAlignment = 16;
+    l.minStorageBufferOffsetAlignment = 16;
+    l.minTexelOffset = -8;
+    l.maxTexelOffset = 7;
+    l.minTexelGatherOffset = 0;
+    l.maxTexelGatherOffset = 0;
+    l.minInterpolationOffset = -0.5f;
+    l.maxInterpolationOffset = 0.4375f;
+    l.subPixelInterpolationOffsetBits = 4;
+    l.maxFramebufferWidth = kMaxImageDimension;
+    l.maxFramebufferHeight = kMaxImageDimension;
+    l.maxFramebufferLayers = 256;
+    l.framebufferColorSampleCounts = kSampleCounts;
+    l.framebufferDepthSampleCounts = kSampleCounts;
+    l.framebufferStencilSampleCounts = kSampleCounts;
+    l.framebufferNoAttachmentsSampleCounts = kSampleCounts;
+    l.maxColorAttachments = 4;
+    l.sampledImageColorSampleCounts = kSampleCounts;
+    l.sampledImageIntegerSampleCounts = VK_SAMPLE_COUNT_1_BIT;
+    l.sampledImageDepthSampleCounts = kSampleCounts;
+    l.sampledImageStencilSampleCounts = kSampleCounts;
+    l.storageImageSampleCounts = VK_SAMPLE_COUNT_1_BIT;
+    l.maxSampleMaskWords = 1;
+    l.timestampComputeAndGraphics = VK_FALSE;
+    l.timestampPeriod = 1.0f;
+    l.maxClipDistances = 0;  // shaderClipDistance is off
+    l.maxCullDistances = 0;
+    l.maxCombinedClipAndCullDistances = 0;
+    l.discreteQueuePriorities = 2;
+    l.pointSizeRange[0] = l.pointSizeRange[1] = 1.0f;  // largePoints is off
+    l.lineWidthRange[0] = l.lineWidthRange[1] = 1.0f;  // wideLines is off
+    l.pointSizeGranularity = 0.0f;
+    l.lineWidthGranularity = 0.0f;
+    l.strictLines = VK_FALSE;
+    l.standardSampleLocations = VK_TRUE;  // lavapipe's 4x positions are the standard ones
+    l.optimalBufferCopyOffsetAlignment = 1;
+    l.optimalBufferCopyRowPitchAlignment = 1;
+    l.nonCoherentAtomSize = 1;
+    return l;
+}
+
+VkDeviceSize heap_size() {
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    VkDeviceSize total = pages > 0 && page > 0 ? VkDeviceSize(pages) * VkDeviceSize(page) : (1ull << 32);
+    return total / 2;  // leave the other half to the application and the system
+}
+
+}  // namespace
+
+PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
+    properties.apiVersion = kApiVersion;
+    properties.driverVersion = VK_MAKE_VERSION(0, 1, 0);
+    properties.vendorID = 0;  // a CPU driver has no PCI vendor and tilevk has no Khronos vendor id
+    properties.deviceID = 1;
+    properties.deviceType = VK_PHYSICAL_DEVICE_TYPE_CPU;
+    snprintf(properties.deviceName, sizeof properties.deviceName, "tilevk (binned Larrabee-style rasterizer)");
+    static const uint8_t kUuid[VK_UUID_SIZE] = {'t', 'i', 'l', 'e', 'v', 'k', 0, 1, 0, 0, 0, 0, 0, 0, 0, 1};
+    std::memcpy(properties.pipelineCacheUUID, kUuid, VK_UUID_SIZE);
+    properties.limits = make_limits();
+    properties.sparseProperties = {};
+
+    // Features: everything off until the render path proves it (see icd/README.md).
+    features = {};
+
+    memory.memoryTypeCount = 1;
+    memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                          VK_MEMORY_PROPERTY_HOST_COHERENT_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    memory.memoryTypes[0].heapIndex = 0;
+    memory.memoryHeapCount = 1;
+    memory.memoryHeaps[0].size = heap_size();
+    memory.memoryHeaps[0].flags = VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceProperties(VkPhysicalDevice physicalDevice,
+                                                           VkPhysicalDeviceProperties* pProperties) {
+    *pProperties = from_handle<PhysicalDevice>(physicalDevice)->properties;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFeatures(VkPhysicalDevice physicalDevice,
+                                                         VkPhysicalDeviceFeatures* pFeatures) {
+    *pFeatures = from_handle<PhysicalDevice>(physicalDevice)->features;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceMemoryProperties(VkPhysicalDevice physicalDevice,
+                                                                 VkPhysicalDeviceMemoryProperties* pMemoryProperties) {
+    *pMemoryProperties = from_handle<PhysicalDevice>(physicalDevice)->memory;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceQueueFamilyProperties(VkPhysicalDevice, uint32_t* pCount,
+                                                                      VkQueueFamilyProperties* pProps) {
+    if (pProps == nullptr) {
+        *pCount = 1;
+        return;
+    }
+    if (*pCount == 0) return;
+    // No compute: tilevk does not dispatch compute shaders, so it does not claim the bit.
+    pProps[0].queueFlags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_TRANSFER_BIT;
+    pProps[0].queueCount = 1;
+    pProps[0].timestampValidBits = 0;
+    pProps[0].minImageTransferGranularity = {1, 1, 1};
+    *pCount = 1;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFormatProperties(VkPhysicalDevice, VkFormat format,
+                                                                 VkFormatProperties* pFormatProperties) {
+    const FormatInfo* f = find_format(format);
+    *pFormatProperties = {};
+    if (f == nullptr) return;
+    pFormatProperties->linearTilingFeatures = f->linear_features;
+    pFormatProperties->optimalTilingFeatures = f->optimal_features;
+    pFormatProperties->bufferFeatures = f->buffer_features;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhysicalDevice, VkFormat format,
+                                                                          VkImageType type, VkImageTiling tiling,
+                                                                          VkImageUsageFlags usage,
+                                                                          VkImageCreateFlags flags,
+                                                                          VkImageFormatProperties* pProps) {
+    *pProps = {};
+    const FormatInfo* f = find_format(format);
+    if (f == nullptr || f->aspects == 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (type != VK_IMAGE_TYPE_2D) return VK_ERROR_FORMAT_NOT_SUPPORTED;  // only 2D images are implemented
+    if (flags != 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;                // no cube/mutable/sparse/alias images
+    VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? f->optimal_features
+                                : tiling == VK_IMAGE_TILING_LINEAR ? f->linear_features
+                                                                   : 0;
+    VkFormatFeatureFlags need = 0;
+    if (usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) need |= VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+    if (usage & VK_IMAGE_USAGE_TRANSFER_DST_BIT) need |= VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+    if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    // Sampling, storage and input attachments need the shader path, which is not there yet.
+    if (usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT)) {
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    }
+    if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
+    pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
+    pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
+    const bool attachment =
+        (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f)
+                               ? kSampleCounts
+                               : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
+    pProps->maxResourceSize = 1ull << 31;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceSparseImageFormatProperties(VkPhysicalDevice, VkFormat, VkImageType,
+                                                                            VkSampleCountFlagBits, VkImageUsageFlags,
+                                                                            VkImageTiling, uint32_t* pPropertyCount,
+                                                                            VkSparseImageFormatProperties*) {
+    *pPropertyCount = 0;  // no sparse resources
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceExtensionProperties(VkPhysicalDevice, const char* pLayerName,
+                                                                      uint32_t* pPropertyCount,
+                                                                      VkExtensionProperties*) {
+    if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
+    *pPropertyCount = 0;  // no device extension is implemented
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceLayerProperties(VkPhysicalDevice, uint32_t* pPropertyCount,
+                                                                  VkLayerProperties*) {
+    *pPropertyCount = 0;
+    return VK_SUCCESS;
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,26 @@
+#include "sampler.h"
+
+#include "device.h"
+#include "entrypoints.h"
+
+namespace tilevk::icd {
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSampler(VkDevice device, const VkSamplerCreateInfo* ci,
+                                                 const VkAllocationCallbacks* pAllocator, VkSampler* pSampler) {
+    Device* dev = from_handle<Device>(device);
+    if (ci->anisotropyEnable) {
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateSampler: samplerAnisotropy is not supported");
+    }
+    Sampler* s = create_object<Sampler>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (s == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateSampler: out of host memory");
+    s->info = *ci;
+    s->info.pNext = nullptr;
+    *pSampler = to_handle(s);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroySampler(VkDevice, VkSampler sampler, const VkAllocationCallbacks*) {
+    destroy_object(from_handle<Sampler>(sampler));
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,14 @@
+// VkSampler: the create info, kept for the shader path's texture sampling.
+#pragma once
+#include "object.h"
+
+namespace tilevk::icd {
+
+struct Sampler : NonDispatchableObject {
+    using Handle = VkSampler;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_SAMPLER;
+    Sampler() : NonDispatchableObject(kType) {}
+    VkSamplerCreateInfo info{};  // pNext cleared: tilevk knows no sampler extension structs
+};
+
+}  // namespace tilevk::icd

@@ -1,0 +1,247 @@
+#include "rast/geometry/clip.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace tilevk::rast::geometry {
+namespace {
+
+// draw_context.c planes; plane 4 becomes (0,0,1,0) with clip_halfz (draw_pt_post_vs.c).
+constexpr float kPlanes[6][4] = {
+    {-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {0, 0, -1, 1},
+};
+
+bool is_inf_or_nan(float f) {
+    return !std::isfinite(f);
+}
+
+// LINTERP(T, OUT, IN) = OUT + T*(IN - OUT), each operation rounded to float.
+void interp4(float* dst, float t, const float* in, const float* out) {
+    for (int i = 0; i < 4; ++i) {
+        const float d = in[i] - out[i];
+        const float m = t * d;
+        dst[i] = out[i] + m;
+    }
+}
+
+bool has_flat(const VertexLayout& l) {
+    for (uint32_t i = 0; i < l.num_attribs; ++i)
+        if (l.interp[i] == Interp::kFlat) return true;
+    return false;
+}
+
+void copy_flat(const VertexLayout& l, float* dst, const float* src) {
+    for (uint32_t i = 0; i < l.num_attribs; ++i)
+        if (l.interp[i] == Interp::kFlat) std::memcpy(dst + kAttribOffset + 4 * i, attrib(src, i), 16);
+}
+
+// draw_pipe_clip.c interp(): dst = out + t*(in - out) in clip space, window coords in C, attributes by mode.
+void interp(const ClipConfig& cfg, float* dst, float t, const float* out, const float* in) {
+    interp4(dst + kClipPosOffset, t, clip_pos(in), clip_pos(out));
+    viewport_transform_c(cfg.vp, dst + kClipPosOffset, dst + kWinPosOffset);
+    bool any_linear = false;
+    for (uint32_t i = 0; i < cfg.layout.num_attribs; ++i) {
+        float* d = dst + kAttribOffset + 4 * i;
+        switch (cfg.layout.interp[i]) {
+            case Interp::kPerspective:
+                interp4(d, t, attrib(in, i), attrib(out, i));
+                break;
+            case Interp::kNoPerspective:
+                any_linear = true;
+                break;
+            case Interp::kFlat:
+                std::memcpy(d, attrib(out, i), 16);
+                break;  // never read unless copied over
+        }
+    }
+    if (!any_linear) return;
+    // Screen-space t for noperspective attributes: first of x, y where the endpoints differ in clip space;
+    // coordinates divided by w with a real division; otherwise the 3D t.
+    float t_nopersp = t;
+    const float* ci = clip_pos(in);
+    const float* co = clip_pos(out);
+    const float* cd = dst + kClipPosOffset;
+    for (int k = 0; k < 2; ++k) {
+        if (ci[k] != co[k]) {
+            const float in_coord = ci[k] / ci[3];
+            const float out_coord = co[k] / co[3];
+            const float dst_coord = cd[k] / cd[3];
+            t_nopersp = (dst_coord - out_coord) / (in_coord - out_coord);
+            break;
+        }
+    }
+    for (uint32_t i = 0; i < cfg.layout.num_attribs; ++i)
+        if (cfg.layout.interp[i] == Interp::kNoPerspective)
+            interp4(dst + kAttribOffset + 4 * i, t_nopersp, attrib(in, i), attrib(out, i));
+}
+
+}  // namespace
+
+float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz) {
+    const float* p = kPlanes[plane];
+    const float p4w = (plane == 4 && clip_halfz) ? 0.0f : p[3];
+    // dot4: ((a0*b0 + a1*b1) + a2*b2) + a3*b3, every product and sum rounded
+    const float m0 = c[0] * p[0], m1 = c[1] * p[1], m2 = c[2] * p[2], m3 = c[3] * p4w;
+    const float s01 = m0 + m1;
+    const float s012 = s01 + m2;
+    return s012 + m3;
+}
+
+uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,
+                       uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out) {
+    uint32_t clipmask = m0 | m1 | m2;
+    if (clipmask == 0) {
+        out[0] = {{v0, v1, v2}};
+        return 1;
+    }
+    if ((m0 & m1 & m2) != 0) return 0;
+    clipmask &= 0x3Fu;  // only the six frustum planes exist here (no user clip planes)
+
+    const uint32_t stride = vertex_floats(cfg.layout);
+    const float* a[kMaxClippedVertices];
+    const float* b[kMaxClippedVertices];
+    const float** inlist = a;
+    const float** outlist = b;
+    uint32_t tmpnr = 0;
+    uint32_t n = 3;
+    inlist[0] = v0;
+    inlist[1] = v1;
+    inlist[2] = v2;
+
+    while (clipmask && n >= 3) {
+        const uint32_t plane = static_cast<uint32_t>(__builtin_ctz(clipmask));
+        clipmask &= ~(1u << plane);
+        const float* vert_prev = inlist[0];
+        float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz);
+        if (is_inf_or_nan(dp_prev)) return 0;
+        if (n >= kMaxClippedVertices) return 0;
+        inlist[n] = inlist[0];  // close the polygon without rotating it
+        uint32_t outcount = 0;
+        for (uint32_t i = 1; i <= n; ++i) {
+            const float* vert = inlist[i];
+            const float dp = clip_plane_distance(clip_pos(vert), plane, cfg.clip_halfz);
+            if (is_inf_or_nan(dp)) return 0;
+            bool different_sign;
+            if (dp_prev >= 0.0f) {
+                if (outcount >= kMaxClippedVertices) return 0;
+                outlist[outcount++] = vert_prev;
+                different_sign = dp < 0.0f;
+            } else {
+                different_sign = !(dp < 0.0f);
+            }
+            if (different_sign) {
+                if (tmpnr >= kClipScratchVertices) return 0;
+                float* nv = scratch + static_cast<size_t>(stride) * tmpnr++;
+                if (outcount >= kMaxClippedVertices) return 0;
+                outlist[outcount++] = nv;
+                const float denom = dp - dp_prev;
+                // Interpolate from the vertex nearer the plane so |t| <= 0.5.
+                if (dp < 0.0f) {  // going out
+                    if (-dp < dp_prev) {
+                        interp(cfg, nv, dp / denom, vert, vert_prev);
+                    } else {
+                        interp(cfg, nv, -dp_prev / denom, vert_prev, vert);
+                    }
+                } else {  // coming back in
+                    if (-dp_prev < dp) {
+                        interp(cfg, nv, -dp_prev / denom, vert_prev, vert);
+                    } else {
+                        interp(cfg, nv, dp / denom, vert, vert_prev);
+                    }
+                }
+            }
+            vert_prev = vert;
+            dp_prev = dp;
+        }
+        const float** tmp = inlist;
+        inlist = outlist;
+        outlist = tmp;
+        n = outcount;
+    }
+    if (n < 3) return 0;
+
+    const float* provoking = cfg.flatshade_first ? v0 : v2;
+    if (has_flat(cfg.layout) && inlist[0] != provoking) {
+        if (tmpnr >= kClipScratchVertices) return 0;
+        float* dup = scratch + static_cast<size_t>(stride) * tmpnr++;
+        std::memcpy(dup, inlist[0], sizeof(float) * stride);
+        copy_flat(cfg.layout, dup, provoking);
+        inlist[0] = dup;
+    }
+    // emit_poly: a fan around inlist[0] in the provoking-vertex order
+    uint32_t count = 0;
+    for (uint32_t i = 2; i < n; ++i) {
+        if (cfg.flatshade_first) {
+            out[count++] = {{inlist[0], inlist[i - 1], inlist[i]}};
+        } else {
+            out[count++] = {{inlist[i - 1], inlist[i], inlist[0]}};
+        }
+    }
+    return count;
+}
+
+bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t m0, uint32_t m1, float* scratch,
+               const float** out0, const float** out1) {
+    const uint32_t mask = m0 | m1;
+    *out0 = v0;
+    *out1 = v1;
+    if (mask == 0) return true;
+    if ((m0 & m1) != 0) return false;
+    uint32_t clipmask = mask & 0x3Fu;
+    float t0 = 0.0f, t1 = 0.0f;
+    while (clipmask) {
+        const uint32_t plane = static_cast<uint32_t>(__builtin_ctz(clipmask));
+        const float dp0 = clip_plane_distance(clip_pos(v0), plane, cfg.clip_halfz);
+        const float dp1 = clip_plane_distance(clip_pos(v1), plane, cfg.clip_halfz);
+        if (is_inf_or_nan(dp0) || is_inf_or_nan(dp1)) return false;
+        if (dp1 < 0.0f) {
+            const float t = dp1 / (dp1 - dp0);
+            t1 = t1 > t ? t1 : t;  // MAX2
+        }
+        if (dp0 < 0.0f) {
+            const float t = dp0 / (dp0 - dp1);
+            t0 = t0 > t ? t0 : t;
+        }
+        if (t0 + t1 >= 1.0f) return false;
+        clipmask &= ~(1u << plane);
+    }
+    const uint32_t stride = vertex_floats(cfg.layout);
+    const float* provoking = cfg.flatshade_first ? v0 : v1;
+    if (m0) {
+        float* nv = scratch;
+        interp(cfg, nv, t0, v0, v1);
+        copy_flat(cfg.layout, nv, provoking);
+        *out0 = nv;
+    }
+    if (m1) {
+        float* nv = scratch + stride;
+        interp(cfg, nv, t1, v1, v0);
+        copy_flat(cfg.layout, nv, provoking);
+        *out1 = nv;
+    }
+    return true;
+}
+
+bool clip_point_keep(const float c[4], uint32_t mask) {
+    if (mask == 0) return true;
+    if ((mask & 0xFFFFFFF0u) != 0) return false;
+    return !(c[3] <= 0.0f || is_inf_or_nan(c[0]) || is_inf_or_nan(c[1]));
+}
+
+bool float_cull_keep(const FloatCull& c, const float* w0, const float* w1, const float* w2) {
+    const float ex = w0[0] - w2[0];
+    const float ey = w0[1] - w2[1];
+    const float fx = w1[0] - w2[0];
+    const float fy = w1[1] - w2[1];
+    const float p = ex * fy;
+    const float q = ey * fx;
+    const float det = p - q;
+    if (det != 0.0f) {  // NaN included
+        const bool ccw = det < 0.0f;
+        const bool front = ccw == c.front_ccw;
+        return front ? !c.cull_front : !c.cull_back;
+    }
+    return !c.cull_back;  // zero area counts as back-facing
+}
+
+}  // namespace tilevk::rast::geometry

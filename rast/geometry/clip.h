@@ -1,0 +1,65 @@
+// draw's clipper and float cull (draw_pipe_clip.c do_clip_tri / do_clip_line / clip_point_guard_xy,
+// draw_pipe_cull.c cull_tri), reproduced operation by operation.
+#pragma once
+
+#include <cstdint>
+
+#include "rast/geometry/vertex.h"
+#include "rast/geometry/viewport.h"
+
+namespace tilevk::rast::geometry {
+
+// Most vertices a clipped triangle can have (draw: MAX_CLIPPED_VERTICES with 6 planes + 8 user planes).
+inline constexpr uint32_t kMaxClippedVertices = 2 * (6 + 8) + 1;
+// Scratch vertices one clip_triangle call may create (new intersections plus the flat-attribute copy).
+inline constexpr uint32_t kClipScratchVertices = kMaxClippedVertices + 1;
+// Most triangles one clipped triangle turns into.
+inline constexpr uint32_t kMaxClippedTriangles = kMaxClippedVertices - 2;
+
+struct ClipConfig {
+    VertexLayout layout;
+    Viewport vp;                  // draw->viewports[0]: new vertices are transformed with it in C
+    bool clip_halfz = true;       // plane 4 is z >= 0 (else z + w >= 0)
+    bool flatshade_first = true;  // Vulkan's provoking vertex = first
+};
+
+struct ClippedTriangle {
+    const float* v[3];  // vertex records (inputs or scratch)
+};
+
+// Clips one triangle whose vertices have clip masks m0..m2 (compute_clipmask). Returns the number of triangles
+// written to out[] (capacity kMaxClippedTriangles):
+//   m0|m1|m2 == 0 -> 1, the input triangle untouched (no re-ordering);
+//   m0&m1&m2 != 0 -> 0 (trivially outside);
+//   otherwise Sutherland-Hodgman over the set bits in bit order; a NaN/Inf plane distance discards everything;
+//   emitted as a fan (p0, p[i-1], p[i]) with flatshade_first, else (p[i-1], p[i], p0). This re-ordering also
+//   happens when nothing was cut. With flat attributes, p0 (when it is not the original provoking vertex) is
+//   copied into scratch and given the provoking vertex's flat attributes.
+// `scratch` holds kClipScratchVertices records of vertex_floats(layout) floats each. Output pointers refer to
+// the inputs or to scratch, so scratch must outlive the use of out[].
+uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,
+                       uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out);
+
+// Line clip (do_clip_line: parametric t0/t1 per plane, discard when t0 + t1 >= 1). Returns false when discarded.
+// A clipped end is replaced by a scratch vertex (scratch: 2 records) with the provoking vertex's flat attributes.
+bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t m0, uint32_t m1, float* scratch,
+               const float** out0, const float** out1);
+
+// Points (lavapipe: single viewport -> clip_point_guard_xy): kept if the mask is 0; with only x/y bits kept unless
+// w <= 0 or x/y is NaN/Inf; any z bit drops the point.
+bool clip_point_keep(const float clip[4], uint32_t mask);
+
+// draw_pipe_cull.c: det = fl(fl(ex*fy) - fl(ey*fx)), e = v0-v2, f = v1-v2 over window x, y. det < 0 is "ccw".
+// det == 0 counts as back-facing; NaN det is a non-ccw (cw) triangle. Runs only on the pipeline path (a batch
+// with any clipped vertex) and only when a cull mode is set. Returns true when the triangle survives.
+struct FloatCull {
+    bool cull_front = false;
+    bool cull_back = false;
+    bool front_ccw = true;  // VK_FRONT_FACE_COUNTER_CLOCKWISE
+};
+bool float_cull_keep(const FloatCull& c, const float* w0, const float* w1, const float* w2);
+
+// Plane distance as draw computes it: dot4 in C, left to right, no FMA (exposed for tests).
+float clip_plane_distance(const float clip[4], uint32_t plane, bool clip_halfz);
+
+}  // namespace tilevk::rast::geometry

@@ -1,0 +1,65 @@
+// Clip mask and viewport transform (draw_llvm.c generate_clipmask / generate_viewport, lvp_execute.c
+// get_viewport_xform / set_viewport_depth_xform, draw_context.c identity_viewport).
+#pragma once
+
+#include <cstdint>
+
+namespace tilevk::rast::geometry {
+
+struct Viewport {
+    float scale[3];
+    float translate[3];
+};
+
+// lavapipe: scale.x = fl(0.5f*width), translate.x = fl(scale.x + x) (same for y);
+// z with clip_halfz (Vulkan): scale = (float)(f - n), translate = (float)n in double;
+// without halfz (VK_EXT_depth_clip_control negativeOneToOne): scale = (float)(0.5*(f-n)), translate =
+// (float)(0.5*(n+f)).
+Viewport make_viewport(float x, float y, float width, float height, float min_depth, float max_depth,
+                       bool clip_halfz = true);
+
+// draw->identity_viewport: exactly one viewport with scale (1,1,1) and translate (0,0,0). lavapipe then bypasses
+// the viewport entirely: the window position is the raw clip position, w not inverted (quirk, notes §1).
+bool is_identity_viewport(const Viewport& vp);
+
+// The JIT's FMA decision: lavapipe's LLVM fuses fmuladd when the host CPU has FMA. Default: this host's answer.
+bool host_has_fma();
+
+struct ViewportConfig {
+    Viewport vp;
+    bool fused = true;    // fmuladd fused (host FMA) or mul+add
+    bool bypass = false;  // identity-viewport bypass (set from is_identity_viewport by the caller)
+};
+
+// Unclipped vertices (the JIT path): oow = 1.0f/w; win = fmuladd(fl(x*oow), scale, translate) for x, y, z; win.w = oow.
+// Bypass: win = clip (x, y, z, w) unchanged.
+void viewport_transform(const ViewportConfig& cfg, const float clip[4], float win[4]);
+
+// Vertices made by the clipper (draw_pipe_clip.c interp(), C without FMA): win = fl(fl(fl(x*oow)*s)+t).
+// The clipper does this even when the viewport is bypassed (it reads draw->viewports[] directly).
+void viewport_transform_c(const Viewport& vp, const float clip[4], float win[4]);
+
+// Clip mask bits (generate_clipmask, unordered compares: NaN sets the bit).
+enum ClipBits : uint32_t {
+    kClipRight = 1u << 0,   // x > w
+    kClipLeft = 1u << 1,    // x + w < 0
+    kClipBottom = 1u << 2,  // y > w
+    kClipTop = 1u << 3,     // y + w < 0
+    kClipNear = 1u << 4,    // halfz: z < 0; else z + w < 0
+    kClipFar = 1u << 5,     // z > w
+};
+
+struct ClipMaskConfig {
+    bool clip_xy = true;     // always on in lavapipe (no guard band outside linear mode)
+    bool clip_z = true;      // depth_clip_near = !depthClampEnable (or VK_EXT_depth_clip_enable)
+    bool clip_halfz = true;  // Vulkan [0,1] depth
+};
+
+uint32_t compute_clipmask(const ClipMaskConfig& cfg, const float clip[4]);
+
+// What lavapipe's vertex JIT does after the vertex shader, for every vertex (clipped or not): clip mask from the
+// clip position, then the viewport transform into the record's window lanes (vertex.h layout). Surviving
+// original vertices of a clipped triangle keep these window coordinates; only new ones are made in C.
+uint32_t prepare_vertex(const ClipMaskConfig& cm, const ViewportConfig& vp, float* record);
+
+}  // namespace tilevk::rast::geometry

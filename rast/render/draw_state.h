@@ -1,0 +1,80 @@
+// Everything one draw needs, as plain data: the pipeline's fixed-function state, its shader programs, and the
+// draw's dynamic bindings. The driver (icd/) fills these from Vulkan objects; nothing here knows Vulkan.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rast/core/primitive.h"
+#include "rast/fragment/blend.h"
+#include "rast/fragment/depth_stencil.h"
+#include "rast/geometry/planes.h"
+#include "rast/geometry/primitive_assembly.h"
+#include "rast/geometry/vertex_fetch.h"
+#include "rast/render/targets.h"
+#include "shader/program.h"
+
+namespace tilevk::rast::render {
+
+struct ViewportRect {
+    float x = 0, y = 0, width = 0, height = 0, min_depth = 0, max_depth = 1;
+};
+
+// The pipeline's state. Lives at least until the render pass that uses it has ended (Renderer::end).
+struct PipelineState {
+    const shader::Program* vertex = nullptr;
+    const shader::Program* fragment = nullptr;  // may be null: no colour output, depth/stencil only
+
+    // Vertex input: attribute i reads `attribs[i]` for shader input location `attrib_locations[i]`.
+    std::vector<geometry::VertexAttribDesc> attribs;
+    std::vector<uint32_t> attrib_locations;
+    struct Binding {
+        uint32_t stride = 0;
+        geometry::InputRate rate = geometry::InputRate::kVertex;
+    };
+    std::vector<Binding> bindings;  // indexed by binding number
+
+    geometry::Topology topology = geometry::Topology::kTriangleList;
+    bool primitive_restart = false;
+
+    // Rasterization.
+    CullMode cull = CullMode::kNone;
+    bool front_ccw = true;
+    bool depth_clamp = false;
+    bool depth_bias_enable = false;
+    geometry::DepthBias depth_bias;  // factors; format fields are filled by the renderer from the target
+    float line_width = 1.0f;
+
+    // Multisample.
+    int samples = 1;
+    uint32_t sample_mask = 0xffffffffu;
+    bool alpha_to_coverage = false;
+
+    fragment::DepthStencilState depth_stencil;  // min/max_depth are filled from the viewport by the renderer
+    fragment::BlendAttachment blend[kMaxColorTargets];
+    float blend_constants[4] = {0, 0, 0, 0};
+
+    ViewportRect viewport;
+    ClipRect scissor = {0, 0, 16384, 16384};
+};
+
+// A bound vertex buffer: `data` points at the buffer's bytes from the bind offset, `size` bytes remain.
+struct VertexBufferBinding {
+    const uint8_t* data = nullptr;
+    uint32_t size = 0;
+};
+
+struct DrawCall {
+    bool indexed = false;
+    uint32_t count = 0;  // vertexCount / indexCount
+    uint32_t instance_count = 1;
+    uint32_t first = 0;  // firstVertex / firstIndex
+    int32_t vertex_offset = 0;
+    uint32_t first_instance = 0;
+    const uint8_t* index_data = nullptr;              // from the bind offset
+    uint32_t index_bytes = 0;                         // bytes available from index_data
+    uint32_t index_size = 4;                          // 2 or 4
+    std::vector<VertexBufferBinding> vertex_buffers;  // indexed by binding number
+};
+
+}  // namespace tilevk::rast::render

@@ -1,0 +1,293 @@
+// Per 4x4 block: interpolate -> (early depth/stencil) -> fragment shader -> alpha to coverage -> (late
+// depth/stencil) -> blend and write, per sample plane. Orders and formulas are lavapipe's (notes §3–§5).
+#include "rast/render/fragment_stage.h"
+
+#include <bit>
+#include <cstring>
+
+#include "rast/fragment/blend.h"
+#include "rast/fragment/block.h"
+#include "rast/fragment/interp.h"
+#include "rast/fragment/msaa.h"
+#include "shader/program.h"
+
+namespace tilevk::rast::render {
+
+struct FragmentStage::Worker {
+    shader::Scratch scratch;
+    shader::FragmentBlock block;
+};
+
+namespace {
+
+using fragment::kBlockLanes;
+
+fragment::Plane plane_of(const float* p, int c) {
+    // AttribPlane layout: a0[4], dadx[4], dady[4]
+    return {p[4 + c], p[8 + c], p[c]};
+}
+
+uint32_t bits_of(float f) {
+    return std::bit_cast<uint32_t>(f);
+}
+
+// Raster-order coverage (bit y*4+x) of the pixels of a block that exist in the framebuffer.
+uint16_t inside_mask(int32_t x, int32_t y, int32_t width, int32_t height) {
+    uint16_t m = 0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            if (x + i < width && y + j < height) m |= uint16_t(1u << (j * 4 + i));
+    return m;
+}
+
+void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                        fragment::DepthStencilBlock& zs) {
+    const size_t bytes = depth_bytes(t.format);
+    for (int l = 0; l < kBlockLanes; ++l) {
+        zs.depth[l] = 0;
+        zs.stencil[l] = 0;
+        if (!(lanes & (1u << l))) continue;
+        const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
+        if (t.depth) {
+            const uint8_t* src =
+                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes;
+            uint32_t v = 0;
+            std::memcpy(&v, src, bytes);
+            zs.depth[l] = v;
+        }
+        if (t.stencil)
+            zs.stencil[l] = t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px];
+    }
+}
+
+void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                         const fragment::DepthStencilBlock& zs) {
+    const size_t bytes = depth_bytes(t.format);
+    for (int l = 0; l < kBlockLanes; ++l) {
+        if (!(lanes & (1u << l))) continue;
+        const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
+        if (t.depth)
+            std::memcpy(
+                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes,
+                &zs.depth[l], bytes);
+        if (t.stencil)
+            t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px] = zs.stencil[l];
+    }
+}
+
+}  // namespace
+
+FragmentStage::FragmentStage() = default;
+FragmentStage::~FragmentStage() = default;
+
+void FragmentStage::prepare(const Framebuffer& fb, const std::deque<DrawRecord>& draws,
+                            const std::vector<PrimRecord>& prims, const std::vector<float>& planes, bool fused,
+                            unsigned workers) {
+    fb_ = fb;
+    draws_ = &draws;
+    prims_ = &prims;
+    planes_ = &planes;
+    fused_ = fused;
+    while (workers_.size() < workers) workers_.push_back(std::make_unique<Worker>());
+}
+
+void FragmentStage::begin_tile(unsigned, const TileInfo&) {}
+void FragmentStage::end_tile(unsigned, const TileInfo&) {}
+
+void FragmentStage::primitive(unsigned worker, const TileInfo&, const PrimCoverage& cov) {
+    const PrimRecord& prim = (*prims_)[cov.payload];
+    const DrawRecord& draw = (*draws_)[prim.draw];
+    Worker& w = *workers_[worker];
+    auto one_block = [&](int32_t x, int32_t y, const uint16_t masks[4]) {
+        if (prim.kind == PrimKind::kClear)
+            clear_block(draw.clear, x, y, masks);
+        else
+            shade_block(w, draw, prim, cov.front_facing, x, y, masks);
+    };
+    for (size_t i = 0; i < cov.num_blocks; ++i) one_block(cov.blocks[i].x, cov.blocks[i].y, cov.blocks[i].mask);
+    for (size_t i = 0; i < cov.num_full; ++i) {
+        const FullBlock& f = cov.full[i];
+        for (int32_t by = f.y; by < f.y + f.size; by += 4)
+            for (int32_t bx = f.x; bx < f.x + f.size; bx += 4) {
+                const uint16_t inside = inside_mask(bx, by, fb_.width, fb_.height);
+                uint16_t masks[4];
+                for (int s = 0; s < 4; ++s) masks[s] = (cov.sample_mask >> s) & 1 ? inside : 0;
+                one_block(bx, by, masks);
+            }
+    }
+}
+
+void FragmentStage::clear_block(const ClearRecord& clear, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    for (int s = 0; s < fb_.samples; ++s) {
+        const uint16_t m = raster_masks[s];
+        if (!m) continue;
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                if (!(m & (1u << (j * 4 + i)))) continue;
+                const size_t px = size_t(x + i), py = size_t(y + j);
+                for (uint32_t c = 0; c < fb_.num_color; ++c) {
+                    const ColorTarget& t = fb_.color[c];
+                    if (!t.data || !(clear.color_mask & (1u << c))) continue;
+                    const size_t bytes = fragment::format_info(t.format).bytes;
+                    std::memcpy(t.data + size_t(s) * t.sample_stride + py * t.row_pitch + px * bytes,
+                                clear.color_bytes[c], bytes);
+                }
+                const DepthStencilTarget& ds = fb_.depth_stencil;
+                if (clear.clear_depth && ds.depth) {
+                    const size_t bytes = depth_bytes(ds.format);
+                    std::memcpy(ds.depth + size_t(s) * ds.depth_sample_stride + py * ds.depth_row_pitch + px * bytes,
+                                &clear.depth_bits, bytes);
+                }
+                if (clear.clear_stencil && ds.stencil)
+                    ds.stencil[size_t(s) * ds.stencil_sample_stride + py * ds.stencil_row_pitch + px] = clear.stencil;
+            }
+    }
+}
+
+void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
+                                int32_t y, const uint16_t raster_masks[4]) {
+    const PipelineState& pipe = *draw.pipe;
+    const int samples = fb_.samples;
+    const float* planes = planes_->data() + prim.plane_base;
+    const float depth_offset = planes[kPlaneFloats];
+
+    // Coverage per sample in shader lane order.
+    uint16_t cover[4] = {0, 0, 0, 0};
+    for (int s = 0; s < samples; ++s) cover[s] = fragment::raster_to_lanes(raster_masks[s]);
+    uint16_t any = 0;
+    for (int s = 0; s < samples; ++s) any |= cover[s];
+    if (!any) return;
+
+    // Depth per sample: 1x at the pixel centre (plane origin), 4x at each sample position.
+    float z[4][kBlockLanes];
+    const fragment::Plane zplane = plane_of(planes, 2);
+    const bool depth_active = draw.depth_mode != 0;
+    if (depth_active)
+        for (int s = 0; s < samples; ++s)
+            fragment::eval_depth(zplane, depth_offset, x, y, fragment::plane_offset(samples, samples > 1 ? s : -1),
+                                 fused_, z[s]);
+
+    const DepthStencilTarget& dst = fb_.depth_stencil;
+    fragment::DepthStencilBlock zs[4];
+    const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
+    const bool early_write = draw.depth_mode & fragment::kEarlyDepthWrite;
+    uint16_t pass[4] = {cover[0], cover[1], cover[2], cover[3]};
+    if (depth_active) {
+        for (int s = 0; s < samples; ++s) {
+            load_depth_stencil(dst, s, x, y, cover[s], zs[s]);
+            if (early) {
+                pass[s] = fragment::depth_stencil_test(draw.depth_stencil, dst.format, front_facing, z[s], cover[s],
+                                                       zs[s], early_write);
+                if (early_write) store_depth_stencil(dst, s, x, y, cover[s], zs[s]);
+            }
+        }
+    }
+    uint16_t shade_lanes = 0;
+    for (int s = 0; s < samples; ++s) shade_lanes |= pass[s];
+    if (!shade_lanes) return;
+
+    // Fragment shader inputs.
+    shader::FragmentBlock& b = w.block;
+    const shader::Program* fs = pipe.fragment;
+    uint16_t live = shade_lanes;
+    if (fs) {
+        b.cover_mask = shade_lanes;
+        b.front_facing = front_facing ? 1u : 0u;
+        b.sample_id = 0;
+        const fragment::EvalOffset centre = fragment::plane_offset(samples, -1);
+        float wlanes[kBlockLanes], tmp[kBlockLanes], out[kBlockLanes];
+        fragment::eval_plane(plane_of(planes, 3), x, y, centre, fused_, wlanes);
+        const shader::ProgramInterface& iface = fs->interface();
+        if (iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord)) {
+            float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
+            fragment::frag_coord_xy(x, y, fragment::frag_coord_offset(samples, -1), fx, fy);
+            fragment::eval_depth(zplane, depth_offset, x, y, centre, fused_, fz);
+            for (int l = 0; l < kBlockLanes; ++l) {
+                b.frag_coord[0][l] = bits_of(fx[l]);
+                b.frag_coord[1][l] = bits_of(fy[l]);
+                b.frag_coord[2][l] = bits_of(fz[l]);
+                b.frag_coord[3][l] = bits_of(wlanes[l]);
+            }
+        }
+        if (iface.builtins_read & shader::bit(shader::BuiltIn::SampleMask))
+            for (int l = 0; l < kBlockLanes; ++l) {
+                uint32_t m = 0;
+                for (int s = 0; s < samples; ++s) m |= ((cover[s] >> l) & 1u) << s;
+                b.sample_mask_in[l] = m;
+            }
+        const float* attribs = planes + kPrimHeaderFloats;
+        const size_t num_slots = draw.varyings.slot_location.size();
+        for (size_t slot = 0; slot < num_slots; ++slot) {
+            const uint32_t loc = draw.varyings.slot_location[slot];
+            const float* p = attribs + slot * kPlaneFloats;
+            const geometry::Interp interp = draw.varyings.slot_interp[slot];
+            for (int c = 0; c < 4; ++c) {
+                if (interp == geometry::Interp::kFlat) {
+                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(p[c]);
+                    continue;
+                }
+                fragment::eval_plane(plane_of(p, c), x, y, centre, fused_, tmp);
+                if (interp == geometry::Interp::kPerspective) {
+                    fragment::perspective_divide(tmp, wlanes, out);
+                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(out[l]);
+                } else {
+                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(tmp[l]);
+                }
+            }
+        }
+        fs->run_fragment(draw.bindings, b, w.scratch);
+        live = static_cast<uint16_t>(b.live_mask & shade_lanes);
+        if (iface.writes_frag_depth && depth_active)
+            for (int s = 0; s < samples; ++s)
+                for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&z[s][l], &b.frag_depth[l], 4);
+    }
+
+    // Per-sample survivors of the shader, alpha to coverage and the shader's sample mask.
+    uint16_t final_mask[4];
+    for (int s = 0; s < samples; ++s) final_mask[s] = pass[s] & live;
+    if (fs && pipe.alpha_to_coverage) {
+        float alpha[kBlockLanes];
+        for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&alpha[l], &b.outputs[0][3][l], 4);
+        if (samples > 1)
+            fragment::alpha_to_coverage_4x(alpha, final_mask);
+        else
+            final_mask[0] = fragment::alpha_to_coverage_1x(alpha, final_mask[0]);
+    }
+    if (fs && (fs->interface().builtins_written & shader::bit(shader::BuiltIn::SampleMask)))
+        for (int s = 0; s < samples; ++s)
+            for (int l = 0; l < kBlockLanes; ++l)
+                if (!((b.sample_mask[l] >> s) & 1u)) final_mask[s] &= uint16_t(~(1u << l));
+
+    // Late depth/stencil: lanes that failed the early test re-run it so their stencil fail ops apply.
+    if (depth_active && !(early && early_write)) {
+        for (int s = 0; s < samples; ++s) {
+            const uint16_t test_lanes =
+                early ? static_cast<uint16_t>((cover[s] & ~pass[s]) | final_mask[s]) : final_mask[s];
+            if (!test_lanes) continue;
+            const uint16_t late_pass = fragment::depth_stencil_test(draw.depth_stencil, dst.format, front_facing, z[s],
+                                                                    test_lanes, zs[s], true);
+            store_depth_stencil(dst, s, x, y, test_lanes, zs[s]);
+            final_mask[s] &= late_pass;
+        }
+    }
+    if (!fs) return;
+
+    // Blend and write each colour target, per sample plane.
+    fragment::BlendOptions opt;
+    opt.fused = fused_;
+    float src[4][kBlockLanes];
+    for (uint32_t c = 0; c < fb_.num_color && c < shader::kMaxColorOutputs; ++c) {
+        const ColorTarget& t = fb_.color[c];
+        if (!t.data) continue;
+        for (int ch = 0; ch < 4; ++ch) std::memcpy(src[ch], b.outputs[c][ch], sizeof(float) * kBlockLanes);
+        const size_t bytes = fragment::format_info(t.format).bytes;
+        for (int s = 0; s < samples; ++s) {
+            if (!final_mask[s]) continue;
+            uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
+            fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
+                                  t.row_pitch, opt);
+        }
+    }
+}
+
+}  // namespace tilevk::rast::render

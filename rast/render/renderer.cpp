@@ -1,0 +1,297 @@
+// The primitive stage of a draw: assembly -> vertex shading -> clipping / float cull -> setup -> binning.
+#include "rast/render/renderer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "rast/core/fixed_point.h"
+#include "rast/geometry/clip.h"
+#include "rast/geometry/viewport.h"
+#include "rast/render/fragment_stage.h"
+
+namespace tilevk::rast::render {
+namespace {
+
+// Scenes are flushed (rendered) past this many primitives, so memory stays bounded on huge draws.
+constexpr size_t kMaxScenePrims = size_t{1} << 20;
+
+// Record slot per fragment-shader input location, with the interpolation the fragment shader asks for.
+VaryingMap make_varyings(const shader::Program* fs) {
+    VaryingMap map;
+    if (!fs) return map;
+    for (const shader::IoVariable& v : fs->interface().inputs) {
+        if (std::find(map.slot_location.begin(), map.slot_location.end(), v.location) != map.slot_location.end())
+            continue;
+        map.slot_location.push_back(v.location);
+        geometry::Interp interp = geometry::Interp::kPerspective;
+        if (v.interpolation == shader::Interpolation::Flat || v.type != shader::ScalarType::Float)
+            interp = geometry::Interp::kFlat;
+        else if (v.interpolation == shader::Interpolation::NoPerspective)
+            interp = geometry::Interp::kNoPerspective;
+        map.slot_interp.push_back(interp);
+    }
+    return map;
+}
+
+fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
+    fragment::ShaderDepthTraits t;
+    if (!fs) return t;
+    const shader::ProgramInterface& i = fs->interface();
+    t.early_fragment_tests = i.early_fragment_tests;
+    t.writes_depth = i.writes_frag_depth;
+    t.uses_discard = i.uses_discard;
+    t.writes_sample_mask = i.builtins_written & shader::bit(shader::BuiltIn::SampleMask);
+    for (const shader::DescriptorUse& d : i.descriptors) t.writes_memory |= d.written;
+    return t;
+}
+
+// lavapipe's orientation decision, from the same snapped coordinates rast/core uses: area > 0 is "ccw".
+// Needed before plane setup because a cw triangle's planes are computed from (v0, v2, v1).
+bool snapped_ccw(const float* w0, const float* w1, const float* w2, int samples) {
+    const float off = triangle_snap_offset(samples);
+    int32_t x[3], y[3];
+    const float* w[3] = {w0, w1, w2};
+    for (int i = 0; i < 3; ++i)
+        if (!snap_triangle_coord(w[i][0], off, &x[i]) || !snap_triangle_coord(w[i][1], off, &y[i])) return true;
+    const int64_t area = int64_t{x[0] - x[1]} * (y[2] - y[0]) - int64_t{x[2] - x[0]} * (y[0] - y[1]);
+    return area > 0;
+}
+
+}  // namespace
+
+bool Renderer::fused() {
+    static const bool value = geometry::host_has_fma();
+    return value;
+}
+
+Renderer::Renderer(ThreadPool& pool, Method method) : pool_(pool), method_(method) {
+    for (unsigned i = 0; i < pool_.num_workers(); ++i) scratch_.push_back(std::make_unique<shader::Scratch>());
+    fragment_ = std::make_unique<FragmentStage>();
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::begin(const Framebuffer& fb) {
+    fb_ = fb;
+    SceneConfig cfg;
+    cfg.width = fb.width;
+    cfg.height = fb.height;
+    cfg.samples = fb.samples;
+    cfg.method = method_;
+    if (!scene_ || scene_->config().width != cfg.width || scene_->config().height != cfg.height ||
+        scene_->config().samples != cfg.samples)
+        scene_ = std::make_unique<Scene>(cfg);
+    scene_->reset();
+    draws_.clear();
+    prims_.clear();
+    planes_.clear();
+}
+
+void Renderer::end() {
+    flush();
+}
+
+void Renderer::flush() {
+    if (!prims_.empty()) {
+        fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
+        scene_->rasterize(*fragment_, pool_);
+    }
+    scene_->reset();
+    // Draw records stay referenced by nothing once the scene is rendered.
+    draws_.clear();
+    prims_.clear();
+    planes_.clear();
+}
+
+void Renderer::clear(const ClipRect& rect, const ClearRecord& clear) {
+    DrawRecord& rec = draws_.emplace_back();
+    rec.is_clear = true;
+    rec.clear = clear;
+    BoxInput box;
+    box.x0 = rect.x0 * kFixedOne;
+    box.y0 = rect.y0 * kFixedOne;
+    box.x1 = rect.x1 * kFixedOne;
+    box.y1 = rect.y1 * kFixedOne;
+    box.common.clip = rect;
+    box.common.sample_mask = 0xF;
+    box.common.payload = static_cast<uint32_t>(prims_.size());
+    if (scene_->add_box(box) == SetupStatus::kAccepted)
+        prims_.push_back({static_cast<uint32_t>(draws_.size() - 1), 0, PrimKind::kClear});
+}
+
+std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings) {
+    if (!pipe.vertex) return "draw without a vertex shader";
+    if (pipe.samples != fb_.samples) return "pipeline sample count differs from the framebuffer's";
+    if (pipe.topology != geometry::Topology::kTriangleList && pipe.topology != geometry::Topology::kTriangleStrip &&
+        pipe.topology != geometry::Topology::kTriangleFan)
+        return "point and line topologies are not rasterized yet";
+    if (call.count == 0 || call.instance_count == 0) return {};
+    if (prims_.size() >= kMaxScenePrims) flush();
+
+    const uint32_t draw_index = static_cast<uint32_t>(draws_.size());
+    DrawRecord& rec = draws_.emplace_back();
+    rec.pipe = &pipe;
+    rec.bindings = bindings;
+    rec.push_constants.assign(bindings.push_constants.begin(), bindings.push_constants.end());
+    rec.bindings.push_constants = rec.push_constants;
+    rec.varyings = make_varyings(pipe.fragment);
+    rec.depth_stencil = pipe.depth_stencil;
+    rec.depth_stencil.min_depth = std::min(pipe.viewport.min_depth, pipe.viewport.max_depth);
+    rec.depth_stencil.max_depth = std::max(pipe.viewport.min_depth, pipe.viewport.max_depth);
+    rec.depth_stencil.depth_clamp = pipe.depth_clamp;
+    if (!fb_.depth_stencil.depth) rec.depth_stencil.depth_test = rec.depth_stencil.depth_write = false;
+    if (!fb_.depth_stencil.stencil) rec.depth_stencil.stencil_test = false;
+    rec.depth_mode =
+        fragment::choose_depth_mode(rec.depth_stencil, depth_traits(pipe.fragment), pipe.alpha_to_coverage);
+
+    // Primitive assembly once for all instances.
+    geometry::IndexSource src;
+    if (call.indexed) {
+        src.indices = call.index_data;
+        src.index_size = call.index_size;
+        src.index_count_total = call.index_size ? call.index_bytes / call.index_size : 0;
+        src.vertex_offset = call.vertex_offset;
+        src.primitive_restart = pipe.primitive_restart;
+    }
+    src.first = call.first;
+    src.count = call.count;
+    assembled_.resize(geometry::assembled_index_capacity(pipe.topology, call.count));
+    const uint32_t num_prims =
+        geometry::assemble_primitives(src, pipe.topology, true, assembled_.data(), assembled_.size());
+    const uint32_t verts_per_prim = geometry::vertices_per_primitive(pipe.topology);
+    unique_.assign(assembled_.begin(), assembled_.begin() + size_t(num_prims) * verts_per_prim);
+    std::sort(unique_.begin(), unique_.end());
+    unique_.erase(std::unique(unique_.begin(), unique_.end()), unique_.end());
+
+    VertexInputState input;
+    input.attribs = pipe.attribs;
+    input.locations = pipe.attrib_locations;
+    input.buffers.resize(pipe.bindings.size());
+    for (size_t b = 0; b < pipe.bindings.size(); ++b) {
+        geometry::VertexBufferView& vb = input.buffers[b];
+        vb.stride = pipe.bindings[b].stride;
+        vb.rate = pipe.bindings[b].rate;
+        if (b < call.vertex_buffers.size()) {
+            vb.data = call.vertex_buffers[b].data;
+            vb.size = call.vertex_buffers[b].size;
+        }
+    }
+
+    VertexStageConfig vcfg;
+    vcfg.program = pipe.vertex;
+    vcfg.bindings = &rec.bindings;
+    vcfg.input = &input;
+    vcfg.varyings = &rec.varyings;
+    const ViewportRect& v = pipe.viewport;
+    vcfg.viewport.vp = geometry::make_viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth);
+    vcfg.viewport.fused = fused();
+    vcfg.viewport.bypass = geometry::is_identity_viewport(vcfg.viewport.vp);
+    vcfg.clip.clip_z = !pipe.depth_clamp;
+    vcfg.first_instance = call.first_instance;
+    vcfg.base_vertex = call.indexed ? static_cast<uint32_t>(call.vertex_offset) : call.first;
+
+    const geometry::VertexLayout layout = rec.varyings.layout();
+    geometry::ClipConfig ccfg;
+    ccfg.layout = layout;
+    ccfg.vp = vcfg.viewport.vp;
+    clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
+    attrib_planes_.resize(layout.num_attribs);
+    geometry::FloatCull fcull;
+    fcull.cull_front = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kFront);
+    fcull.cull_back = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kBack);
+    fcull.front_ccw = pipe.front_ccw;
+    const bool any_cull = pipe.cull != CullMode::kNone;
+
+    for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
+        vcfg.instance = inst;
+        shade_vertices(vcfg, unique_, *scratch_[0], &shaded_);
+        // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
+        // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
+        // batch boundaries for draws of more than one draw-module batch).
+        const bool pipeline_path =
+            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
+        auto slot = [&](uint32_t index) {
+            return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
+        };
+        for (uint32_t p = 0; p < num_prims; ++p) {
+            const uint32_t* ids = assembled_.data() + size_t(p) * 3;
+            const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
+            const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
+            const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
+            if (!pipeline_path) {
+                add_triangle(draw_index, rec, v0, v1, v2);
+                continue;
+            }
+            geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
+            const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
+            for (uint32_t t = 0; t < n; ++t) {
+                const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
+                if (any_cull &&
+                    !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
+                    continue;
+                add_triangle(draw_index, rec, a, b, c);
+            }
+        }
+    }
+    return {};
+}
+
+void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2) {
+    const PipelineState& pipe = *rec.pipe;
+    TriangleInput tri;
+    const float* w[3] = {geometry::win_pos(v0), geometry::win_pos(v1), geometry::win_pos(v2)};
+    for (int i = 0; i < 3; ++i) {
+        tri.x[i] = w[i][0];
+        tri.y[i] = w[i][1];
+    }
+    tri.cull = pipe.cull;
+    tri.front_ccw = pipe.front_ccw;
+    tri.flatshade_first = true;
+    tri.common.clip = {std::max(pipe.scissor.x0, 0), std::max(pipe.scissor.y0, 0), pipe.scissor.x1, pipe.scissor.y1};
+    // The viewport rectangle also bounds coverage (lp_setup_set_viewports draw_regions[0], notes §2).
+    const ViewportRect& v = pipe.viewport;
+    const float sx = 0.5f * v.width, tx = sx + v.x;
+    const float sy = std::fabs(0.5f * v.height), ty = 0.5f * v.height + v.y;
+    const ClipRect vp_rect = {static_cast<int32_t>(tx - sx + 0.499f), static_cast<int32_t>(ty - sy + 0.499f),
+                              static_cast<int32_t>(2 * sx + (tx - sx) - 0.501f) + 1,
+                              static_cast<int32_t>(2 * sy + (ty - sy) - 0.501f) + 1};
+    tri.common.clip = {std::max(tri.common.clip.x0, vp_rect.x0), std::max(tri.common.clip.y0, vp_rect.y0),
+                       std::min(tri.common.clip.x1, vp_rect.x1), std::min(tri.common.clip.y1, vp_rect.y1)};
+    tri.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
+    tri.common.payload = static_cast<uint32_t>(prims_.size());
+    if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
+
+    // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
+    const bool ccw = snapped_ccw(w[0], w[1], w[2], fb_.samples);
+    const float* o1 = ccw ? v1 : v2;
+    const float* o2 = ccw ? v2 : v1;
+    geometry::PlaneSetupConfig pcfg;
+    pcfg.layout = rec.varyings.layout();
+    pcfg.multisample = fb_.samples > 1;
+    pcfg.flatshade_first = true;
+    if (pipe.depth_bias_enable) {
+        pcfg.bias = pipe.depth_bias;
+        const fragment::DepthFormat df =
+            fb_.depth_stencil.depth ? fb_.depth_stencil.format : fragment::DepthFormat::None;
+        pcfg.bias.float_depth = df == fragment::DepthFormat::D32F;
+        pcfg.bias.unorm_bits = df == fragment::DepthFormat::D16 ? 16 : 24;
+    } else {
+        pcfg.bias = {};
+    }
+    geometry::TrianglePlanes tp;
+    geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
+
+    PrimRecord pr;
+    pr.draw = draw;
+    pr.plane_base = static_cast<uint32_t>(planes_.size());
+    pr.kind = PrimKind::kTriangle;
+    prims_.push_back(pr);
+    const size_t base = planes_.size();
+    planes_.resize(base + kPrimHeaderFloats + size_t(kPlaneFloats) * pcfg.layout.num_attribs);
+    float* dst = planes_.data() + base;
+    std::memcpy(dst, &tp.pos, sizeof(float) * kPlaneFloats);
+    dst[kPlaneFloats] = tp.depth_offset;
+    std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
+}
+
+}  // namespace tilevk::rast::render

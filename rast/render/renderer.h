@@ -1,0 +1,62 @@
+// The renderer: one render pass at a time. Draws are shaded and set up as they arrive, binned into 64x64 tiles
+// in API order, and rendered tile-parallel when the pass ends (or when the scene grows too large).
+//
+//   Renderer r(pool);
+//   r.begin(framebuffer);
+//   r.draw(pipeline, call, bindings);   // vertex stage, primitive assembly, clipping, setup, binning
+//   r.clear(rect, values);               // vkCmdClearAttachments, ordered with the draws
+//   r.end();                             // tiles -> fragment stage -> targets
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rast/core/method.h"
+#include "rast/core/scene.h"
+#include "rast/core/thread_pool.h"
+#include "rast/render/draw_state.h"
+#include "rast/render/scene_records.h"
+#include "rast/render/targets.h"
+
+namespace tilevk::rast::render {
+
+class FragmentStage;
+
+class Renderer {
+  public:
+    explicit Renderer(ThreadPool& pool, Method method = method_from_env());
+    ~Renderer();
+
+    void begin(const Framebuffer& fb);
+    // Returns an empty string on success, else why the draw could not be rendered (nothing was drawn).
+    std::string draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings);
+    // Clears `rect` (pixels, half-open) of the targets named in `clear`.
+    void clear(const ClipRect& rect, const ClearRecord& clear);
+    void end();
+
+    // Whether lavapipe's viewport/interpolation fmuladds are fused (host FMA) — one decision for the process.
+    static bool fused();
+
+  private:
+    void flush();
+    void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
+
+    ThreadPool& pool_;
+    Method method_;
+    Framebuffer fb_;
+    std::unique_ptr<Scene> scene_;
+    std::deque<DrawRecord> draws_;
+    std::vector<PrimRecord> prims_;
+    std::vector<float> planes_;
+    std::unique_ptr<FragmentStage> fragment_;
+    std::vector<std::unique_ptr<shader::Scratch>> scratch_;  // per worker
+    // Per-draw temporaries, kept to reuse their memory.
+    std::vector<uint32_t> assembled_, unique_;
+    ShadedVertices shaded_;
+    std::vector<float> clip_scratch_;
+    std::vector<geometry::AttribPlane> attrib_planes_;
+};
+
+}  // namespace tilevk::rast::render

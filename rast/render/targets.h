@@ -1,0 +1,45 @@
+// Render targets as the render core sees them: plain memory with a format, pitches and sample planes.
+// Sample s of pixel (x, y) lives at data + s*sample_stride + y*row_pitch + x*bytes_per_pixel.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "rast/fragment/color.h"
+#include "rast/fragment/depth_stencil.h"
+
+namespace tilevk::rast::render {
+
+inline constexpr int kMaxColorTargets = 8;
+
+struct ColorTarget {
+    uint8_t* data = nullptr;  // null: attachment unused (VK_ATTACHMENT_UNUSED)
+    fragment::ColorFormat format = fragment::ColorFormat::R8G8B8A8_UNORM;
+    size_t row_pitch = 0;
+    size_t sample_stride = 0;
+};
+
+// Depth in one plane (D16: 2 bytes, D32F: 4 bytes per sample) and stencil in its own 8-bit plane.
+struct DepthStencilTarget {
+    uint8_t* depth = nullptr;  // null: no depth aspect
+    fragment::DepthFormat format = fragment::DepthFormat::None;
+    size_t depth_row_pitch = 0;
+    size_t depth_sample_stride = 0;
+    uint8_t* stencil = nullptr;  // null: no stencil aspect
+    size_t stencil_row_pitch = 0;
+    size_t stencil_sample_stride = 0;
+};
+
+struct Framebuffer {
+    int32_t width = 0, height = 0;  // pixels, 1..16384
+    int samples = 1;                // 1 or 4
+    ColorTarget color[kMaxColorTargets];
+    uint32_t num_color = 0;
+    DepthStencilTarget depth_stencil;
+};
+
+inline size_t depth_bytes(fragment::DepthFormat f) {
+    return f == fragment::DepthFormat::D16 ? 2 : (f == fragment::DepthFormat::None ? 0 : 4);
+}
+
+}  // namespace tilevk::rast::render

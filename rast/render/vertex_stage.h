@@ -1,0 +1,57 @@
+// Vertex stage of a draw: fetch attributes, run the vertex shader 16 vertices at a time, and leave one geometry
+// record per shaded vertex (clip position, window position, the varyings the fragment shader reads).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rast/geometry/vertex.h"
+#include "rast/geometry/vertex_fetch.h"
+#include "rast/geometry/viewport.h"
+#include "shader/program.h"
+
+namespace tilevk::rast::render {
+
+// Where the vertex shader's inputs come from: one attribute per shader input location.
+struct VertexInputState {
+    std::vector<geometry::VertexAttribDesc> attribs;  // indexed like `locations`
+    std::vector<uint32_t> locations;                  // shader input location of attribs[i]
+    std::vector<geometry::VertexBufferView> buffers;  // indexed by binding
+};
+
+// How vertex-shader outputs become geometry records: record attribute slot i carries VS output location
+// `slot_location[i]` (the fragment shader's input at that location), interpolated as `slot_interp[i]`.
+struct VaryingMap {
+    std::vector<uint32_t> slot_location;
+    std::vector<geometry::Interp> slot_interp;
+    geometry::VertexLayout layout() const { return {static_cast<uint32_t>(slot_location.size()), slot_interp.data()}; }
+};
+
+// The shaded vertices of one draw instance.
+struct ShadedVertices {
+    uint32_t floats_per_vertex = 0;
+    std::vector<float> records;      // floats_per_vertex per vertex (geometry record layout)
+    std::vector<uint32_t> clipmask;  // per vertex
+    std::vector<float> point_size;   // per vertex (1.0 when the shader does not write it)
+    const float* record(uint32_t i) const { return records.data() + size_t(i) * floats_per_vertex; }
+};
+
+struct VertexStageConfig {
+    const shader::Program* program = nullptr;
+    const shader::Bindings* bindings = nullptr;
+    const VertexInputState* input = nullptr;
+    const VaryingMap* varyings = nullptr;
+    geometry::ViewportConfig viewport;
+    geometry::ClipMaskConfig clip;
+    uint32_t first_instance = 0;
+    uint32_t instance = 0;  // instance id within the draw (InstanceIndex = first_instance + instance)
+    uint32_t base_vertex = 0;
+};
+
+// Shades the vertices whose indices are `indices` (any order, may repeat); vertex k of the result belongs to
+// indices[k]. Runs the shader in batches of shader::kLanes on the calling thread with `scratch`.
+void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indices, shader::Scratch& scratch,
+                    ShadedVertices* out);
+
+}  // namespace tilevk::rast::render

@@ -1,0 +1,243 @@
+// Internal SIMD program: pre-decoded instructions over SoA registers (each register = kLanes 32-bit words).
+// Booleans and execution masks are 0 / 0xFFFFFFFF per lane, so masks, bools and select share one representation.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shader/program.h"
+
+namespace tilevk::shader {
+
+enum class Op : uint16_t {
+    // moves and selects
+    Mov,        // d = a
+    Select,     // d = c ? a : b  (c is a mask register)
+    MaskedMov,  // d = c ? a : d
+    // float
+    FAdd,
+    FSub,
+    FMul,
+    FDiv,
+    FNeg,
+    FAbs,
+    FMin,
+    FMax,
+    FMod,
+    FRem,
+    Fma,
+    FOrdEq,
+    FOrdNe,
+    FOrdLt,
+    FOrdLe,
+    FOrdGt,
+    FOrdGe,
+    FUnordEq,
+    FUnordNe,
+    FUnordLt,
+    FUnordLe,
+    FUnordGt,
+    FUnordGe,
+    IsNan,
+    IsInf,
+    // integer
+    IAdd,
+    ISub,
+    IMul,
+    SDiv,
+    UDiv,
+    SRem,
+    SMod,
+    UMod,
+    INeg,
+    And,
+    Or,
+    Xor,
+    Not,
+    Shl,
+    ShrL,
+    ShrA,
+    IEq,
+    INe,
+    SLt,
+    SLe,
+    SGt,
+    SGe,
+    ULt,
+    ULe,
+    UGt,
+    UGe,
+    SMin,
+    SMax,
+    UMin,
+    UMax,
+    SAbs,
+    SSign,
+    BitCount,
+    BitReverse,
+    FindLsb,
+    FindSMsb,
+    FindUMsb,
+    BfeS,
+    BfeU,
+    Bfi,  // bitfield extract (a, offset b, count c) / insert (imm = index of count register)
+    // conversions
+    F2S,
+    F2U,
+    S2F,
+    U2F,
+    // GLSL.std.450 (scalar lanes)
+    Floor,
+    Ceil,
+    Trunc,
+    Round,
+    RoundEven,
+    Fract,
+    FSign,
+    Sqrt,
+    InvSqrt,
+    Exp,
+    Exp2,
+    Log,
+    Log2,
+    Pow,
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Atan2,
+    Sinh,
+    Cosh,
+    Tanh,
+    Asinh,
+    Acosh,
+    Atanh,
+    FClamp,
+    Step,
+    SmoothStep,
+    Ldexp,
+    PackHalf2x16,
+    UnpackHalf2x16Lo,
+    UnpackHalf2x16Hi,
+    PackUnorm4x8,
+    UnpackUnorm4x8,
+    PackSnorm4x8,
+    UnpackSnorm4x8,
+    PackUnorm2x16,
+    UnpackUnorm2x16,
+    PackSnorm2x16,
+    UnpackSnorm2x16,
+    // derivatives (fine per quad / coarse per quad)
+    DdxFine,
+    DdyFine,
+    DdxCoarse,
+    DdyCoarse,
+    // memory
+    LoadLocal,   // d = local[(imm + clamp(a)) lane]; b = size limit (words) of the variable
+    StoreLocal,  // local[(imm + clamp(a))] = b under mask c; size limit in extra
+    LoadBuf,     // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
+    StoreBuf,    // buffer(slot imm + elem a)[byte offset b] = c under mask extra
+    // images: d..d+3 = result; a = handle, b = first coordinate register, c = lod/bias register or kNoReg
+    Sample,     // imm: SampleFlags; extra: dref/offset unused
+    Fetch,      // texelFetch: integer coords at b, lod at c
+    QuerySize,  // textureSize: d.. = size at lod a (imm = components)
+    QueryLevels,
+    // control
+    Jump,        // pc = imm
+    JumpIfNone,  // if no lane of a is set: pc = imm
+    JumpIfAny,   // if any lane of a is set: pc = imm
+    Kill,        // live &= ~a (OpKill / demote); the kill register is d
+    Halt,
+};
+
+enum SampleFlags : uint32_t {
+    kSampleImplicitLod = 1,  // derivative-based LOD (fragment only)
+    kSampleExplicitLod = 2,  // c holds the LOD
+    kSampleBias = 4,         // c holds a bias added to the implicit LOD
+    kSampleArray = 8,        // coordinates have a layer component
+    kSampleProj = 16,        // divide by the last coordinate
+    kSampleGrad = 32,        // n..n+3: dx.xy, dy.xy registers
+    kSample1D = 64,          // 1D image: one coordinate (plus layer)
+};
+
+constexpr uint32_t kNoReg = 0xFFFFFFFFu;
+
+struct Inst {
+    Op op;
+    uint16_t pad = 0;
+    uint32_t d = kNoReg, a = kNoReg, b = kNoReg, c = kNoReg;
+    uint32_t imm = 0;
+    uint32_t extra = 0;
+    uint32_t n = 0;  // LoadLocal/StoreLocal: end word of the variable; LoadBuf/StoreBuf: descriptor array size
+};
+
+// Where an input/output variable's words are copied from/to at the start/end of a run.
+enum class IoSlot : uint8_t {
+    Input,
+    Output,
+    Position,
+    PointSize,
+    ClipDistance,
+    CullDistance,
+    VertexIndex,
+    InstanceIndex,
+    BaseVertex,
+    BaseInstance,
+    DrawIndex,
+    FragCoord,
+    FrontFacing,
+    PointCoord,
+    FragDepth,
+    SampleMask,
+    SampleMaskIn,
+    SampleId,
+    HelperInvocation,
+};
+struct IoCopy {
+    IoSlot slot;
+    uint32_t index;  // location*4+component, or builtin component
+    uint32_t word;   // local memory word
+};
+
+// A descriptor binding the program reads: resolved once per run into the scratch table.
+struct SlotBinding {
+    uint32_t set, binding, count;
+};
+
+struct ProgramImpl {
+    uint64_t serial = 0;  // unique per program (scratch re-initializes its constants when it changes)
+    Stage stage = Stage::Vertex;
+    std::vector<Inst> code;
+    uint32_t num_regs = 0;
+    std::vector<uint32_t> const_regs;  // register index, value pairs... stored as (reg, value)
+    uint32_t local_words = 0;          // SoA local memory words (each kLanes wide)
+    std::vector<IoCopy> io_in, io_out;
+    std::vector<SlotBinding> slots;  // slot 0 is the push-constant block
+    uint32_t num_slots = 1;          // total resolved descriptors
+    // registers with fixed meaning
+    uint32_t reg_entry_mask = 0;  // lanes that run (vertex: lanes < count; fragment: all 16)
+    uint32_t reg_live = 0;        // lanes not killed (fragment: covered and not discarded)
+};
+
+// Per-thread working memory.
+struct Scratch::Impl {
+    std::vector<uint32_t> regs;
+    std::vector<uint32_t> local;
+    std::vector<const Descriptor*> slots;
+    uint64_t last = 0;  // serial of the program the registers were prepared for
+};
+
+// Interpret the program (exec.cpp).
+void execute(const ProgramImpl& p, Scratch::Impl& s);
+
+// Translate optimized, valid SPIR-V into `out`. Returns an empty string or an error message.
+std::string translate(const std::vector<uint32_t>& spirv, Stage stage, std::string_view entry, ProgramImpl& out,
+                      ProgramInterface& iface);
+
+// Run one image instruction (texture.cpp). regs = register file base (register r = regs + r * kLanes).
+void exec_image(const Inst& in, uint32_t* regs, const Descriptor* const* slots, uint32_t num_slots);
+
+}  // namespace tilevk::shader

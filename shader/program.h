@@ -1,0 +1,302 @@
+// tilevk::shader — the program interface rast/ and icd/ code against.
+//
+// A Program is a SPIR-V vertex or fragment entry point translated into an internal SIMD program that runs
+// kLanes invocations at once, structure-of-arrays: every value is kLanes 32-bit words, one instruction covers all
+// lanes, control flow is carried by per-lane execution masks. shader/ knows SPIR-V, never Vulkan.
+//
+// Fragment lanes cover a 4x4 pixel block with the four 2x2 quads kept together:
+//   quad = (y >> 1) * 2 + (x >> 1)          x, y in 0..3 inside the block
+//   lane = quad * 4 + (y & 1) * 2 + (x & 1)
+// Derivatives are fine and per quad (like llvmpipe): dFdx = right - left within each row of the quad,
+// dFdy = bottom - top within each column. The Coarse variants use the quad's top row / left column.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tilevk::shader {
+
+constexpr int kLanes = 16;
+constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
+constexpr int kMaxLocations = 32;    // stage input/output locations (vec4 slots)
+constexpr int kMaxColorOutputs = 8;  // fragment output locations
+constexpr int kMaxClipDistances = 8;
+constexpr int kMaxMipLevels = 16;
+
+// Lane index of pixel (x, y) of a 4x4 block, x, y in 0..3.
+constexpr int lane_of(int x, int y) {
+    return ((y >> 1) * 2 + (x >> 1)) * 4 + (y & 1) * 2 + (x & 1);
+}
+constexpr int lane_x(int lane) {
+    return ((lane >> 2) & 1) * 2 + (lane & 1);
+}
+constexpr int lane_y(int lane) {
+    return ((lane >> 3) & 1) * 2 + ((lane >> 1) & 1);
+}
+
+enum class Stage : uint8_t { Vertex, Fragment };
+
+// ---------------------------------------------------------------------------------------------------------------
+// Creation
+// ---------------------------------------------------------------------------------------------------------------
+
+// One specialization constant: SpecId and its raw value (1 word for 32-bit types and bool (0/1), 2 for 64-bit).
+struct SpecConstant {
+    uint32_t id = 0;
+    std::vector<uint32_t> words;
+};
+using SpecConstants = std::vector<SpecConstant>;
+
+class Program;
+
+// Program::create's result: a program, or an error message naming what is wrong or unsupported
+// (e.g. "unsupported opcode OpImageGather", "unsupported capability Geometry", "invalid SPIR-V: ...").
+struct Result {
+    std::shared_ptr<const Program> program;  // null on error
+    std::string error;
+    double create_ms = 0;  // wall time spent in Program::create
+    explicit operator bool() const { return program != nullptr; }
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Reflection
+// ---------------------------------------------------------------------------------------------------------------
+
+enum class ScalarType : uint8_t { Float, Int, Uint };
+enum class Interpolation : uint8_t { Smooth, Flat, NoPerspective };
+
+// A user stage input or output, one per (location, component range). Arrays/matrices occupy consecutive
+// locations and are reported one entry per location.
+struct IoVariable {
+    uint32_t location = 0;
+    uint32_t component = 0;   // first component (Component decoration)
+    uint32_t components = 4;  // 1..4
+    ScalarType type = ScalarType::Float;
+    Interpolation interpolation = Interpolation::Smooth;
+    bool centroid = false;
+    bool sample = false;
+};
+
+// Built-in variables, as bits of ProgramInterface::builtins_read / builtins_written.
+enum class BuiltIn : uint32_t {
+    Position = 1u << 0,
+    PointSize = 1u << 1,
+    ClipDistance = 1u << 2,
+    CullDistance = 1u << 3,
+    VertexIndex = 1u << 4,
+    InstanceIndex = 1u << 5,
+    BaseVertex = 1u << 6,
+    BaseInstance = 1u << 7,
+    DrawIndex = 1u << 8,
+    FragCoord = 1u << 9,
+    FrontFacing = 1u << 10,
+    PointCoord = 1u << 11,
+    FragDepth = 1u << 12,
+    SampleMask = 1u << 13,
+    SampleId = 1u << 14,
+    SamplePosition = 1u << 15,
+    HelperInvocation = 1u << 16,
+};
+constexpr uint32_t bit(BuiltIn b) {
+    return static_cast<uint32_t>(b);
+}
+
+enum class DescriptorKind : uint8_t {
+    UniformBuffer,
+    StorageBuffer,
+    CombinedImageSampler,
+    SampledImage,
+    Sampler,
+    StorageImage,  // reported for completeness; image load/store is not supported yet (creation fails)
+};
+
+struct DescriptorUse {
+    uint32_t set = 0;
+    uint32_t binding = 0;
+    DescriptorKind kind = DescriptorKind::UniformBuffer;
+    uint32_t array_size = 1;  // 1 for non-arrays
+    bool written = false;     // storage buffer stored to
+};
+
+struct ProgramInterface {
+    Stage stage = Stage::Vertex;
+    std::string entry;
+    std::vector<IoVariable> inputs;   // sorted by location, component
+    std::vector<IoVariable> outputs;  // sorted by location, component
+    uint32_t builtins_read = 0;       // BuiltIn bits
+    uint32_t builtins_written = 0;    // BuiltIn bits
+    uint32_t clip_distances = 0;      // array sizes of ClipDistance / CullDistance outputs
+    uint32_t cull_distances = 0;
+    uint32_t push_constant_size = 0;         // bytes the shader may read (highest offset + size)
+    std::vector<DescriptorUse> descriptors;  // sorted by set, binding
+    bool uses_discard = false;               // OpKill / OpDemoteToHelperInvocation
+    bool writes_frag_depth = false;
+    bool uses_derivatives = false;      // dFdx & co, or implicit-LOD sampling
+    bool early_fragment_tests = false;  // ExecutionMode EarlyFragmentTests
+    bool depth_replacing = false;
+    bool origin_upper_left = true;
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Resources the driver fills (plain data, no Vulkan types)
+// ---------------------------------------------------------------------------------------------------------------
+
+struct BufferView {
+    const void* data = nullptr;  // readable bytes
+    void* writable = nullptr;    // same bytes when the shader may write (storage buffers), else null
+    uint64_t size = 0;           // bytes; accesses at or past size read 0 / are dropped
+};
+
+enum class Format : uint8_t {
+    Undefined,
+    RGBA8_UNORM,
+    RGBA8_SRGB,
+    BGRA8_UNORM,
+    BGRA8_SRGB,
+    R8_UNORM,
+    RG8_UNORM,
+    RGBA16F,
+    R32F,
+    RG32F,
+    RGBA32F,
+};
+
+struct ImageLevel {
+    uint64_t offset = 0;       // bytes from ImageView::base to texel (0,0) of layer 0
+    uint64_t row_pitch = 0;    // bytes
+    uint64_t layer_pitch = 0;  // bytes between array layers (or depth slices)
+};
+
+struct ImageView {
+    const uint8_t* base = nullptr;
+    Format format = Format::Undefined;
+    uint32_t width = 0, height = 0, depth = 1;  // of level 0 of the view
+    uint32_t levels = 1;                        // mip levels in the view
+    uint32_t layers = 1;                        // array layers in the view
+    std::array<ImageLevel, kMaxMipLevels> level{};
+};
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class MipmapMode : uint8_t { Nearest, Linear };
+enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder, MirrorClampToEdge };
+enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
+
+struct SamplerState {
+    Filter mag_filter = Filter::Nearest;
+    Filter min_filter = Filter::Nearest;
+    MipmapMode mipmap_mode = MipmapMode::Nearest;
+    AddressMode address_u = AddressMode::Repeat;
+    AddressMode address_v = AddressMode::Repeat;
+    AddressMode address_w = AddressMode::Repeat;
+    float mip_lod_bias = 0.0f;
+    float min_lod = 0.0f;
+    float max_lod = 1000.0f;
+    BorderColor border = BorderColor::TransparentBlack;  // int and float borders read the same bits for 0/1
+    bool unnormalized = false;
+};
+
+// What one (set, binding, array element) holds. Unused members stay null.
+struct Descriptor {
+    BufferView buffer;                      // uniform / storage buffers (offset and range already applied)
+    const ImageView* image = nullptr;       // sampled images and combined image samplers
+    const SamplerState* sampler = nullptr;  // samplers and combined image samplers
+};
+
+// The resources one draw binds. The driver fills it; the program looks descriptors up once per run.
+// A missing descriptor reads as zero (buffers) / transparent black (images), never crashes.
+class Bindings {
+  public:
+    void set(uint32_t set, uint32_t binding, uint32_t element, const Descriptor& d);
+    const Descriptor* find(uint32_t set, uint32_t binding, uint32_t element) const;
+    void clear() { entries_.clear(); }
+    std::span<const std::byte> push_constants;  // the push-constant bytes (reads past the end give 0)
+
+  private:
+    struct Entry {
+        uint32_t set, binding, element;
+        Descriptor d;
+    };
+    std::vector<Entry> entries_;
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Execution: structure-of-arrays batches. All values are 32-bit words (floats stored by bit pattern).
+// ---------------------------------------------------------------------------------------------------------------
+
+using Lanes = uint32_t[kLanes];
+
+// Up to 16 vertices. Lanes >= count execute on garbage-free zeros and their results are to be ignored.
+struct alignas(64) VertexBatch {
+    uint32_t count = kLanes;
+    uint32_t base_vertex = 0, base_instance = 0, draw_index = 0;
+    alignas(64) Lanes vertex_index{};               // VertexIndex (already includes the vertex offset / base vertex)
+    alignas(64) Lanes instance_index{};             // InstanceIndex (includes firstInstance)
+    alignas(64) Lanes inputs[kMaxLocations][4]{};   // vertex attributes, [location][component][lane]
+    alignas(64) Lanes outputs[kMaxLocations][4]{};  // varyings, [location][component][lane]
+    alignas(64) Lanes position[4]{};                // gl_Position x, y, z, w (float bits)
+    alignas(64) Lanes point_size{};                 // float bits; 1.0 when not written
+    alignas(64) Lanes clip_distance[kMaxClipDistances]{};
+    alignas(64) Lanes cull_distance[kMaxClipDistances]{};
+};
+
+// One 4x4 pixel block (see the lane layout above). The rasterizer interpolates the inputs per lane.
+struct alignas(64) FragmentBlock {
+    uint32_t cover_mask = kAllLanes;               // in: covered lanes; the other lanes of the block are helper lanes
+    uint32_t live_mask = 0;                        // out: cover_mask minus lanes that were discarded (demoted)
+    uint32_t front_facing = 1;                     // in: 1 for a front-facing primitive (same for the whole block)
+    uint32_t sample_id = 0;                        // in: for sample shading
+    alignas(64) Lanes frag_coord[4]{};             // in: x, y (pixel centre, e.g. 10.5), z, 1/w (float bits)
+    alignas(64) Lanes sample_mask_in{};            // in: gl_SampleMaskIn[0]
+    alignas(64) Lanes point_coord[2]{};            // in: gl_PointCoord
+    alignas(64) Lanes inputs[kMaxLocations][4]{};  // in: interpolated varyings
+    alignas(64) Lanes outputs[kMaxColorOutputs][4]{};  // out: colour outputs, [location][component][lane]
+    alignas(64) Lanes frag_depth{};                    // out: gl_FragDepth (float bits) when written
+    alignas(64) Lanes sample_mask{};                   // out: gl_SampleMask[0] when written
+};
+
+// Per-thread working memory (registers, local variables). Reuse one per thread; it grows on demand.
+class Scratch {
+  public:
+    Scratch();
+    ~Scratch();
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    struct Impl;
+    Impl* impl() { return impl_.get(); }
+
+  private:
+    std::unique_ptr<Impl> impl_;
+};
+
+struct ProgramImpl;  // internal: the translated SIMD program
+
+class Program {
+  public:
+    // Validates (SPIRV-Tools), specializes, legalizes and translates `spirv`. Never crashes on bad input.
+    static Result create(std::span<const uint32_t> spirv, Stage stage, std::string_view entry = "main",
+                         const SpecConstants& spec = {});
+
+    const ProgramInterface& interface() const { return interface_; }
+
+    // Runs one batch. Thread-safe (the Program is immutable); each thread needs its own Scratch.
+    void run_vertex(const Bindings& bindings, VertexBatch& batch, Scratch& scratch) const;
+    void run_fragment(const Bindings& bindings, FragmentBlock& block, Scratch& scratch) const;
+
+    // Internal, for tests and benchmarks: number of SIMD instructions after translation.
+    size_t instruction_count() const;
+
+    ~Program();
+    Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface);
+
+  private:
+    std::unique_ptr<ProgramImpl> impl_;
+    ProgramInterface interface_;
+};
+
+}  // namespace tilevk::shader

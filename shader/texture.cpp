@@ -1,0 +1,326 @@
+// Image instructions: texture()/textureLod()/textureGrad()/texelFetch()/textureSize()/textureQueryLevels().
+// Follows the Vulkan spec's filtering equations in float arithmetic (see README.md for how this differs from
+// llvmpipe's fixed-point 8-bit filtering). Every access is bounds-checked; a missing descriptor reads zero.
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "shader/ir.h"
+
+namespace tilevk::shader {
+
+namespace {
+
+using Vec4 = std::array<float, 4>;
+
+float srgb_to_linear(uint32_t c) {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            double v = i / 255.0;
+            t[i] = float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+        }
+        return t;
+    }();
+    return table[c & 0xff];
+}
+
+float half_to_float(uint16_t h) {
+    uint32_t s = (h >> 15) & 1, e = (h >> 10) & 31, m = h & 1023;
+    float v;
+    if (e == 0)
+        v = std::ldexp(float(m), -24);
+    else if (e == 31)
+        v = m ? NAN : INFINITY;
+    else
+        v = std::ldexp(float(m | 1024), int(e) - 25);
+    return s ? -v : v;
+}
+
+uint32_t texel_size(Format f) {
+    switch (f) {
+        case Format::R8_UNORM:
+            return 1;
+        case Format::RG8_UNORM:
+            return 2;
+        case Format::RGBA8_UNORM:
+        case Format::RGBA8_SRGB:
+        case Format::BGRA8_UNORM:
+        case Format::BGRA8_SRGB:
+        case Format::R32F:
+            return 4;
+        case Format::RGBA16F:
+        case Format::RG32F:
+            return 8;
+        case Format::RGBA32F:
+            return 16;
+        default:
+            return 0;
+    }
+}
+
+// unorm8: c / 255
+Vec4 decode(Format f, const uint8_t* p) {
+    auto un = [](uint8_t c) { return float(c) / 255.0f; };
+    float v[4];
+    switch (f) {
+        case Format::RGBA8_UNORM:
+            return {un(p[0]), un(p[1]), un(p[2]), un(p[3])};
+        case Format::BGRA8_UNORM:
+            return {un(p[2]), un(p[1]), un(p[0]), un(p[3])};
+        case Format::RGBA8_SRGB:
+            return {srgb_to_linear(p[0]), srgb_to_linear(p[1]), srgb_to_linear(p[2]), un(p[3])};
+        case Format::BGRA8_SRGB:
+            return {srgb_to_linear(p[2]), srgb_to_linear(p[1]), srgb_to_linear(p[0]), un(p[3])};
+        case Format::R8_UNORM:
+            return {un(p[0]), 0.0f, 0.0f, 1.0f};
+        case Format::RG8_UNORM:
+            return {un(p[0]), un(p[1]), 0.0f, 1.0f};
+        case Format::RGBA16F: {
+            uint16_t h[4];
+            std::memcpy(h, p, 8);
+            return {half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2]), half_to_float(h[3])};
+        }
+        case Format::R32F:
+            std::memcpy(v, p, 4);
+            return {v[0], 0.0f, 0.0f, 1.0f};
+        case Format::RG32F:
+            std::memcpy(v, p, 8);
+            return {v[0], v[1], 0.0f, 1.0f};
+        case Format::RGBA32F:
+            std::memcpy(v, p, 16);
+            return {v[0], v[1], v[2], v[3]};
+        default:
+            return {0, 0, 0, 0};
+    }
+}
+
+Vec4 border_color(BorderColor b) {
+    switch (b) {
+        case BorderColor::OpaqueBlack:
+            return {0, 0, 0, 1};
+        case BorderColor::OpaqueWhite:
+            return {1, 1, 1, 1};
+        default:
+            return {0, 0, 0, 0};
+    }
+}
+
+// Texel index after addressing; -1 means "border".
+int32_t wrap(int32_t i, int32_t size, AddressMode m) {
+    switch (m) {
+        case AddressMode::Repeat: {
+            int32_t r = i % size;
+            return r < 0 ? r + size : r;
+        }
+        case AddressMode::MirroredRepeat: {
+            int32_t r = i % (2 * size);
+            if (r < 0) r += 2 * size;
+            return r >= size ? 2 * size - 1 - r : r;
+        }
+        case AddressMode::ClampToEdge:
+            return std::clamp(i, 0, size - 1);
+        case AddressMode::ClampToBorder:
+            return i < 0 || i >= size ? -1 : i;
+        case AddressMode::MirrorClampToEdge:
+            return std::clamp(i >= 0 ? i : -(1 + i), 0, size - 1);
+    }
+    return 0;
+}
+
+// Float texel coordinate -> int without overflow (NaN -> 0).
+int32_t safe_floor(float u) {
+    if (!(u == u)) return 0;
+    u = std::clamp(u, -16777216.0f, 16777216.0f);
+    return int32_t(std::floor(u));
+}
+
+struct Level {
+    const uint8_t* base;  // layer already applied
+    uint64_t row_pitch;
+    int32_t w, h;
+    uint32_t bpp;
+    uint64_t bytes;  // readable bytes from base
+};
+
+Vec4 texel(const ImageView& img, const Level& lv, int32_t x, int32_t y) {
+    uint64_t off = uint64_t(y) * lv.row_pitch + uint64_t(x) * lv.bpp;
+    return decode(img.format, lv.base + off);
+}
+
+Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
+                  bool linear, bool one_d) {
+    const ImageLevel& il = img.level[level];
+    Level lv;
+    lv.w = int32_t(std::max(1u, img.width >> level));
+    lv.h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
+    lv.bpp = texel_size(img.format);
+    lv.row_pitch = il.row_pitch;
+    lv.base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
+    Vec4 border = border_color(smp.border);
+    // unnormalized: coordinates are already in texels
+    float u = smp.unnormalized ? s : s * float(lv.w);
+    float v = smp.unnormalized ? t : t * float(lv.h);
+    auto fetch = [&](int32_t x, int32_t y) -> Vec4 {
+        int32_t wx = wrap(x, lv.w, smp.address_u);
+        int32_t wy = one_d ? 0 : wrap(y, lv.h, smp.address_v);
+        if (wx < 0 || wy < 0) return border;
+        return texel(img, lv, wx, wy);
+    };
+    if (!linear) return fetch(safe_floor(u), safe_floor(v));
+    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint
+    float uu = u - 0.5f, vv = v - 0.5f;
+    int32_t i0 = safe_floor(uu), j0 = one_d ? 0 : safe_floor(vv);
+    float a = (uu == uu) ? uu - std::floor(uu) : 0.0f;
+    float b = one_d ? 0.0f : ((vv == vv) ? vv - std::floor(vv) : 0.0f);
+    Vec4 t00 = fetch(i0, j0), t10 = fetch(i0 + 1, j0), t01 = fetch(i0, j0 + 1), t11 = fetch(i0 + 1, j0 + 1);
+    Vec4 r;
+    for (int c = 0; c < 4; ++c)
+        r[c] = (1 - a) * (1 - b) * t00[c] + a * (1 - b) * t10[c] + (1 - a) * b * t01[c] + a * b * t11[c];
+    return r;
+}
+
+bool image_ok(const ImageView* img) {
+    return img && img->base && texel_size(img->format) && img->width && img->height && img->levels &&
+           img->levels <= kMaxMipLevels && img->layers;
+}
+
+}  // namespace
+
+void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
+    auto reg = [&](uint32_t r) { return R + size_t(r) * kLanes; };
+    auto fl = [&](uint32_t r, int l) { return std::bit_cast<float>(reg(r)[l]); };
+    const uint32_t* h = reg(in.a);
+    uint32_t* d[4] = {reg(in.d), nullptr, nullptr, nullptr};
+    auto image_of = [&](int l) -> const ImageView* {
+        uint32_t s = h[l] & 0xFFFF;
+        return s < num_slots && slots[s] && image_ok(slots[s]->image) ? slots[s]->image : nullptr;
+    };
+
+    if (in.op == Op::QueryLevels) {
+        for (int l = 0; l < kLanes; ++l) {
+            const ImageView* img = image_of(l);
+            d[0][l] = img ? img->levels : 0;
+        }
+        return;
+    }
+    if (in.op == Op::QuerySize) {
+        const uint32_t* lod = reg(in.b);
+        for (int l = 0; l < kLanes; ++l) {
+            const ImageView* img = image_of(l);
+            uint32_t lv = lod[l];
+            uint32_t vals[3] = {0, 0, 0};
+            if (img && lv < img->levels) {
+                vals[0] = std::max(1u, img->width >> lv);
+                int k = 1;
+                if (!(in.imm & kSample1D)) vals[k++] = std::max(1u, img->height >> lv);
+                if (in.imm & kSampleArray) vals[k++] = img->layers;
+            }
+            for (uint32_t c = 0; c < in.extra && c < 3; ++c) reg(in.d + c)[l] = vals[c];
+        }
+        return;
+    }
+    for (int c = 1; c < 4; ++c) d[c] = reg(in.d + c);
+    bool one_d = in.imm & kSample1D;
+    bool arrayed = in.imm & kSampleArray;
+    uint32_t layer_comp = one_d ? 1 : 2;
+
+    if (in.op == Op::Fetch) {
+        const uint32_t* lod = reg(in.c);
+        for (int l = 0; l < kLanes; ++l) {
+            Vec4 r{0, 0, 0, 0};
+            const ImageView* img = image_of(l);
+            int32_t x = int32_t(reg(in.b)[l]);
+            int32_t y = one_d ? 0 : int32_t(reg(in.b + 1)[l]);
+            int32_t layer = arrayed ? int32_t(reg(in.b + layer_comp)[l]) : 0;
+            uint32_t lv = lod[l];
+            if (img && lv < img->levels) {
+                int32_t w = int32_t(std::max(1u, img->width >> lv)), hh = int32_t(std::max(1u, img->height >> lv));
+                if (one_d) hh = 1;
+                if (x >= 0 && y >= 0 && x < w && y < hh && layer >= 0 && uint32_t(layer) < img->layers) {
+                    const ImageLevel& il = img->level[lv];
+                    r = decode(img->format, img->base + il.offset + uint64_t(layer) * il.layer_pitch +
+                                                uint64_t(y) * il.row_pitch + uint64_t(x) * texel_size(img->format));
+                }
+            }
+            for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
+        }
+        return;
+    }
+
+    // Sample: coordinates (projected if asked).
+    float s[kLanes], t[kLanes], layer_f[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        float q = (in.imm & kSampleProj) ? fl(in.b + in.extra - 1, l) : 1.0f;
+        s[l] = fl(in.b, l);
+        t[l] = one_d ? 0.0f : fl(in.b + 1, l);
+        layer_f[l] = arrayed ? fl(in.b + layer_comp, l) : 0.0f;
+        if (in.imm & kSampleProj) {
+            s[l] = s[l] / q;
+            t[l] = t[l] / q;
+        }
+    }
+    for (int l = 0; l < kLanes; ++l) {
+        Vec4 r{0, 0, 0, 0};
+        const ImageView* img = image_of(l);
+        uint32_t ss = h[l] >> 16;
+        const SamplerState* smp = ss < num_slots && slots[ss] ? slots[ss]->sampler : nullptr;
+        if (img && smp) {
+            float w0 = float(img->width), h0 = one_d ? 1.0f : float(img->height);
+            float lambda;
+            if (smp->unnormalized) {
+                lambda = 0.0f;
+            } else if (in.imm & kSampleExplicitLod) {
+                lambda = fl(in.c, l);
+            } else {
+                // rho = max(|d(s,t)/dx|, |d(s,t)/dy|) in texels; lambda = log2(rho)
+                float dsdx, dtdx, dsdy, dtdy;
+                if (in.imm & kSampleGrad) {
+                    dsdx = fl(in.n, l), dtdx = fl(in.n + 1, l), dsdy = fl(in.n + 2, l), dtdy = fl(in.n + 3, l);
+                } else {
+                    // implicit: one LOD per 2x2 quad from the quad's top-left pixel (coarse derivatives)
+                    int q = l & ~3;
+                    dsdx = s[q + 1] - s[q], dtdx = t[q + 1] - t[q];
+                    dsdy = s[q + 2] - s[q], dtdy = t[q + 2] - t[q];
+                }
+                dsdx *= w0, dsdy *= w0, dtdx *= h0, dtdy *= h0;
+                float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
+                lambda = std::log2(std::max(rx, ry));
+                if (in.imm & kSampleBias) lambda += fl(in.c, l);
+            }
+            if (!smp->unnormalized) lambda += smp->mip_lod_bias;
+            if (!(lambda == lambda)) lambda = 0.0f;
+            lambda = std::min(std::max(lambda, smp->min_lod), smp->max_lod);
+            bool mag = lambda <= 0.0f;
+            bool linear = (mag ? smp->mag_filter : smp->min_filter) == Filter::Linear;
+            uint32_t max_level = img->levels - 1;
+            float lyr =
+                std::nearbyint(std::clamp(layer_f[l] == layer_f[l] ? layer_f[l] : 0.0f, 0.0f, float(img->layers - 1)));
+            uint32_t layer = uint32_t(lyr);
+            if (smp->unnormalized || mag) {
+                r = sample_level(*img, *smp, 0, layer, s[l], t[l], linear, one_d);
+            } else if (smp->mipmap_mode == MipmapMode::Nearest) {
+                // d = ceil(lambda + 0.5) - 1, clamped to the view's levels
+                float dl = std::ceil(lambda + 0.5f) - 1.0f;
+                uint32_t lv = uint32_t(std::clamp(dl, 0.0f, float(max_level)));
+                r = sample_level(*img, *smp, lv, layer, s[l], t[l], linear, one_d);
+            } else {
+                float fl0 = std::floor(lambda);
+                uint32_t lo = uint32_t(std::clamp(fl0, 0.0f, float(max_level)));
+                uint32_t hi = std::min(lo + 1, max_level);
+                float frac = lambda - fl0;
+                Vec4 a = sample_level(*img, *smp, lo, layer, s[l], t[l], linear, one_d);
+                if (hi != lo && frac > 0.0f) {
+                    Vec4 b = sample_level(*img, *smp, hi, layer, s[l], t[l], linear, one_d);
+                    for (int c = 0; c < 4; ++c) a[c] = a[c] * (1.0f - frac) + b[c] * frac;
+                }
+                r = a;
+            }
+        }
+        for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
+    }
+}
+
+}  // namespace tilevk::shader

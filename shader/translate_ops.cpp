@@ -1,0 +1,998 @@
+// One SPIR-V instruction -> SIMD instructions: arithmetic, composites, memory, GLSL.std.450, images.
+#include <bit>
+#include <cmath>
+
+#include <spirv/unified1/GLSL.std.450.h>
+
+#include "shader/spirv_names.h"
+#include "shader/translator.h"
+
+namespace tilevk::shader {
+
+using SOp = tilevk::shader::Op;
+
+namespace {
+std::string opname(spv::Op op) {
+    return names::opcode(uint32_t(op));
+}
+}  // namespace
+
+// ---- memory ---------------------------------------------------------------------------------------------------
+
+Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_t n) {
+    Pointer p = base;
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t id = idx[i];
+        uint32_t cv = 0;
+        bool is_const = const_of(id, cv);
+        if (!is_const && val(id).reg == kNoReg) fail("invalid access chain index");
+        if (p.in_array) {  // descriptor array element
+            if (is_const)
+                p.elem_const = cv;
+            else
+                p.elem = reg(id);
+            p.in_array = false;
+            p.type = type(p.type).elem;
+            continue;
+        }
+        const Type& t = type(p.type);
+        auto add_dyn = [&](uint32_t stride) {
+            uint32_t scaled = stride == 1 ? reg(id) : emit1(SOp::IMul, reg(id), konst(stride));
+            p.dyn = p.dyn == kNoReg ? scaled : emit1(SOp::IAdd, p.dyn, scaled);
+        };
+        if (p.space == Space::Local) {
+            if (t.kind == Type::Struct) {
+                if (!is_const || cv >= t.members.size()) fail("invalid struct index");
+                for (uint32_t m = 0; m < cv; ++m) p.offset += type(t.members[m]).flat;
+                p.type = t.members[cv];
+            } else if (t.kind == Type::Array || t.kind == Type::Vector || t.kind == Type::Matrix) {
+                uint32_t stride = type(t.elem).flat;
+                if (is_const)
+                    p.offset += std::min(cv, t.count - 1) * stride;
+                else
+                    add_dyn(stride);
+                p.type = t.elem;
+            } else {
+                fail("access chain into a non-composite");
+            }
+            continue;
+        }
+        // Buffer layout (std140/std430 as decorated).
+        if (t.kind == Type::Struct) {
+            if (!is_const || cv >= t.members.size()) fail("invalid struct index");
+            auto it = member_deco_.find({p.type, cv});
+            if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+            p.offset += uint32_t(it->second.offset);
+            p.matrix_stride = uint32_t(it->second.matrix_stride);
+            p.row_major = it->second.row_major;
+            p.vec_stride = 4;
+            p.type = t.members[cv];
+        } else if (t.kind == Type::Array || t.kind == Type::RuntimeArray) {
+            uint32_t stride = uint32_t(deco_[p.type].array_stride);
+            if (stride == 0) fail("buffer array without ArrayStride");
+            // a huge constant index stays in bounds of uint32 arithmetic; the executor rejects it
+            if (is_const)
+                p.offset += uint32_t(std::min<uint64_t>(uint64_t(cv) * stride, 0x7fffffffu));
+            else
+                add_dyn(stride);
+            p.type = t.elem;
+        } else if (t.kind == Type::Matrix) {
+            uint32_t col_stride = p.row_major ? 4 : p.matrix_stride;
+            if (is_const)
+                p.offset += std::min(cv, t.count) * col_stride;
+            else
+                add_dyn(col_stride);
+            p.vec_stride = p.row_major ? p.matrix_stride : 4;
+            p.type = t.elem;
+        } else if (t.kind == Type::Vector) {
+            if (is_const)
+                p.offset += std::min(cv, t.count) * p.vec_stride;
+            else
+                add_dyn(p.vec_stride);
+            p.type = t.elem;
+        } else {
+            fail("access chain into a non-composite");
+        }
+    }
+    return p;
+}
+
+void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
+    const Type& t = type(ty);
+    uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Local) {
+        for (uint32_t i = 0; i < t.flat; ++i)
+            emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, p.base + p.offset + off + i).n = p.limit;
+        return;
+    }
+    if (p.space == Space::Handle) {
+        if (p.in_array) fail("load of a whole descriptor array");
+        uint32_t shift = t.kind == Type::Sampler ? 16 : 0;
+        bool both = t.kind == Type::SampledImage;
+        if (p.elem == kNoReg) {
+            uint32_t s = std::min(p.base + p.elem_const, p.base + p.limit - 1);
+            emit(SOp::Mov, dst, konst(both ? (s | s << 16) : s << shift));
+        } else {
+            // clamp the element to the array (robust indexing)
+            uint32_t e = emit1(SOp::UMin, p.elem, konst(p.limit - 1));
+            uint32_t s = emit1(SOp::IAdd, e, konst(p.base));
+            if (both)
+                emit(SOp::Or, dst, s, emit1(SOp::Shl, s, konst(16)));
+            else if (shift)
+                emit(SOp::Shl, dst, s, konst(16));
+            else
+                emit(SOp::Mov, dst, s);
+        }
+        return;
+    }
+    uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+    auto scalar = [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
+        emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
+    };
+    switch (t.kind) {
+        case Type::Bool:
+        case Type::Int:
+        case Type::Float:
+            scalar(dst, off, ty);
+            break;
+        case Type::Vector:
+            for (uint32_t i = 0; i < t.count; ++i) scalar(dst + i, off + i * p.vec_stride, t.elem);
+            break;
+        case Type::Matrix: {
+            const Type& col = type(t.elem);
+            for (uint32_t c = 0; c < t.count; ++c)
+                for (uint32_t r = 0; r < col.count; ++r) {
+                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
+                    scalar(dst + c * col.count + r, off + o, col.elem);
+                }
+            break;
+        }
+        case Type::Array: {
+            uint32_t stride = uint32_t(deco_[ty].array_stride);
+            if (!stride) fail("buffer array without ArrayStride");
+            Pointer q = p;
+            q.vec_stride = 4;
+            for (uint32_t i = 0; i < t.count; ++i) load(q, t.elem, dst + i * type(t.elem).flat, off + i * stride);
+            break;
+        }
+        case Type::Struct: {
+            uint32_t at = 0;
+            for (uint32_t m = 0; m < t.members.size(); ++m) {
+                auto it = member_deco_.find({ty, m});
+                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+                Pointer q = p;
+                q.matrix_stride = uint32_t(it->second.matrix_stride);
+                q.row_major = it->second.row_major;
+                q.vec_stride = 4;
+                load(q, t.members[m], dst + at, off + uint32_t(it->second.offset));
+                at += type(t.members[m]).flat;
+            }
+            break;
+        }
+        default:
+            fail("unsupported load type");
+    }
+}
+
+void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off) {
+    const Type& t = type(ty);
+    uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Local) {
+        for (uint32_t i = 0; i < t.flat; ++i)
+            emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, p.base + p.offset + off + i).n = p.limit;
+        return;
+    }
+    if (p.space == Space::Handle) fail("store to an image or sampler variable");
+    if (!p.writable) fail("store to a read-only buffer");
+    buffer_written_ = true;
+    if (store_mask_ == kNoReg) {
+        store_mask_ = stage_ == Stage::Fragment ? emit1(SOp::And, cur_mask_, p_.reg_live) : cur_mask_;
+    }
+    uint32_t mask = store_mask_;
+    uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+    auto scalar = [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
+        uint32_t v = s;
+        if (type(sty).kind == Type::Bool) v = emit1(SOp::And, s, konst(1));
+        emit(SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
+    };
+    switch (t.kind) {
+        case Type::Bool:
+        case Type::Int:
+        case Type::Float:
+            scalar(src, off, ty);
+            break;
+        case Type::Vector:
+            for (uint32_t i = 0; i < t.count; ++i) scalar(src + i, off + i * p.vec_stride, t.elem);
+            break;
+        case Type::Matrix: {
+            const Type& col = type(t.elem);
+            for (uint32_t c = 0; c < t.count; ++c)
+                for (uint32_t r = 0; r < col.count; ++r) {
+                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
+                    scalar(src + c * col.count + r, off + o, col.elem);
+                }
+            break;
+        }
+        case Type::Array: {
+            uint32_t stride = uint32_t(deco_[ty].array_stride);
+            if (!stride) fail("buffer array without ArrayStride");
+            Pointer q = p;
+            q.vec_stride = 4;
+            for (uint32_t i = 0; i < t.count; ++i) store(q, t.elem, src + i * type(t.elem).flat, off + i * stride);
+            break;
+        }
+        case Type::Struct: {
+            uint32_t at = 0;
+            for (uint32_t m = 0; m < t.members.size(); ++m) {
+                auto it = member_deco_.find({ty, m});
+                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+                Pointer q = p;
+                q.matrix_stride = uint32_t(it->second.matrix_stride);
+                q.row_major = it->second.row_major;
+                q.vec_stride = 4;
+                store(q, t.members[m], src + at, off + uint32_t(it->second.offset));
+                at += type(t.members[m]).flat;
+            }
+            break;
+        }
+        default:
+            fail("unsupported store type");
+    }
+}
+
+// ---- instructions ---------------------------------------------------------------------------------------------
+
+void Translator::op(const Instr& in) {
+    // New value helpers: result type in[1], result id in[2].
+    auto def = [&](uint32_t n = 0) {
+        uint32_t f = n ? n : std::max(1u, type(in[1]).flat);
+        uint32_t r = alloc(f);
+        vals_[in[2]] = Value{r, in[1]};
+        return r;
+    };
+    auto alias = [&](uint32_t r) { vals_[in[2]] = Value{r, in[1]}; };
+    auto flat_of = [&](uint32_t id) { return std::max(1u, type(val(id).type).flat); };
+    auto unary = [&](SOp o) {
+        uint32_t a = reg(in[3]);
+        uint32_t d = def();
+        for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(o, d + i, a + i);
+    };
+    // Binary: operands may be a vector and a scalar (broadcast) for the ops that allow it.
+    auto binary = [&](SOp o) {
+        uint32_t a = reg(in[3]), b = reg(in[4]);
+        uint32_t fa = flat_of(in[3]), fb = flat_of(in[4]);
+        uint32_t d = def();
+        for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(o, d + i, a + (fa > 1 ? i : 0), b + (fb > 1 ? i : 0));
+    };
+    auto swapped = [&](SOp o) {  // a > b  ==  b < a
+        uint32_t a = reg(in[3]), b = reg(in[4]);
+        uint32_t d = def();
+        for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(o, d + i, b + i, a + i);
+    };
+    // dot product: ((a0*b0 + a1*b1) + a2*b2) + a3*b3  (mul then add, left to right, as NIR's fsum after fmul)
+    auto dot = [&](uint32_t a, uint32_t b, uint32_t n) {
+        uint32_t s = emit1(SOp::FMul, a, b);
+        for (uint32_t i = 1; i < n; ++i) s = emit1(SOp::FAdd, s, emit1(SOp::FMul, a + i, b + i));
+        return s;
+    };
+
+    switch (in.op) {
+        case spv::Op::OpNop:
+        case spv::Op::OpLine:
+        case spv::Op::OpNoLine:
+        case spv::Op::OpName:
+        case spv::Op::OpSelectionMerge:
+        case spv::Op::OpLoopMerge:
+        case spv::Op::OpMemoryBarrier:
+            return;
+
+        // float arithmetic
+        case spv::Op::OpFAdd:
+            return binary(SOp::FAdd);
+        case spv::Op::OpFSub:
+            return binary(SOp::FSub);
+        case spv::Op::OpFMul:
+            return binary(SOp::FMul);
+        case spv::Op::OpFDiv:
+            return binary(SOp::FDiv);
+        case spv::Op::OpFRem:
+            return binary(SOp::FRem);
+        case spv::Op::OpFMod:
+            return binary(SOp::FMod);
+        case spv::Op::OpFNegate:
+            return unary(SOp::FNeg);
+        case spv::Op::OpVectorTimesScalar:
+        case spv::Op::OpMatrixTimesScalar:
+            return binary(SOp::FMul);
+        // integer arithmetic
+        case spv::Op::OpIAdd:
+            return binary(SOp::IAdd);
+        case spv::Op::OpISub:
+            return binary(SOp::ISub);
+        case spv::Op::OpIMul:
+            return binary(SOp::IMul);
+        case spv::Op::OpSDiv:
+            return binary(SOp::SDiv);
+        case spv::Op::OpUDiv:
+            return binary(SOp::UDiv);
+        case spv::Op::OpSRem:
+            return binary(SOp::SRem);
+        case spv::Op::OpSMod:
+            return binary(SOp::SMod);
+        case spv::Op::OpUMod:
+            return binary(SOp::UMod);
+        case spv::Op::OpSNegate:
+            return unary(SOp::INeg);
+        case spv::Op::OpBitwiseAnd:
+        case spv::Op::OpLogicalAnd:
+            return binary(SOp::And);
+        case spv::Op::OpBitwiseOr:
+        case spv::Op::OpLogicalOr:
+            return binary(SOp::Or);
+        case spv::Op::OpBitwiseXor:
+        case spv::Op::OpLogicalNotEqual:
+            return binary(SOp::Xor);
+        case spv::Op::OpLogicalEqual:
+            return binary(SOp::IEq);
+        case spv::Op::OpNot:
+        case spv::Op::OpLogicalNot:
+            return unary(SOp::Not);
+        case spv::Op::OpShiftLeftLogical:
+            return binary(SOp::Shl);
+        case spv::Op::OpShiftRightLogical:
+            return binary(SOp::ShrL);
+        case spv::Op::OpShiftRightArithmetic:
+            return binary(SOp::ShrA);
+        case spv::Op::OpBitCount:
+            return unary(SOp::BitCount);
+        case spv::Op::OpBitReverse:
+            return unary(SOp::BitReverse);
+        case spv::Op::OpBitFieldSExtract:
+        case spv::Op::OpBitFieldUExtract: {
+            uint32_t a = reg(in[3]), off = reg(in[4]), cnt = reg(in[5]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < type(in[1]).flat; ++i)
+                emit(in.op == spv::Op::OpBitFieldSExtract ? SOp::BfeS : SOp::BfeU, d + i, a + i, off, cnt);
+            return;
+        }
+        case spv::Op::OpBitFieldInsert: {
+            uint32_t a = reg(in[3]), ins = reg(in[4]), off = reg(in[5]), cnt = reg(in[6]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(SOp::Bfi, d + i, a + i, ins + i, off, cnt);
+            return;
+        }
+        // comparisons
+        case spv::Op::OpIEqual:
+            return binary(SOp::IEq);
+        case spv::Op::OpINotEqual:
+            return binary(SOp::INe);
+        case spv::Op::OpSLessThan:
+            return binary(SOp::SLt);
+        case spv::Op::OpSLessThanEqual:
+            return binary(SOp::SLe);
+        case spv::Op::OpSGreaterThan:
+            return swapped(SOp::SLt);
+        case spv::Op::OpSGreaterThanEqual:
+            return swapped(SOp::SLe);
+        case spv::Op::OpULessThan:
+            return binary(SOp::ULt);
+        case spv::Op::OpULessThanEqual:
+            return binary(SOp::ULe);
+        case spv::Op::OpUGreaterThan:
+            return swapped(SOp::ULt);
+        case spv::Op::OpUGreaterThanEqual:
+            return swapped(SOp::ULe);
+        case spv::Op::OpFOrdEqual:
+            return binary(SOp::FOrdEq);
+        case spv::Op::OpFOrdNotEqual:
+            return binary(SOp::FOrdNe);
+        case spv::Op::OpFOrdLessThan:
+            return binary(SOp::FOrdLt);
+        case spv::Op::OpFOrdLessThanEqual:
+            return binary(SOp::FOrdLe);
+        case spv::Op::OpFOrdGreaterThan:
+            return swapped(SOp::FOrdLt);
+        case spv::Op::OpFOrdGreaterThanEqual:
+            return swapped(SOp::FOrdLe);
+        case spv::Op::OpFUnordEqual:
+            return binary(SOp::FUnordEq);
+        case spv::Op::OpFUnordNotEqual:
+            return binary(SOp::FUnordNe);
+        case spv::Op::OpFUnordLessThan:
+            return binary(SOp::FUnordLt);
+        case spv::Op::OpFUnordLessThanEqual:
+            return binary(SOp::FUnordLe);
+        case spv::Op::OpFUnordGreaterThan:
+            return swapped(SOp::FUnordLt);
+        case spv::Op::OpFUnordGreaterThanEqual:
+            return swapped(SOp::FUnordLe);
+        case spv::Op::OpIsNan:
+            return unary(SOp::IsNan);
+        case spv::Op::OpIsInf:
+            return unary(SOp::IsInf);
+        case spv::Op::OpAny:
+        case spv::Op::OpAll: {
+            uint32_t a = reg(in[3]);
+            uint32_t n = flat_of(in[3]);
+            uint32_t r = a;
+            for (uint32_t i = 1; i < n; ++i) r = emit1(in.op == spv::Op::OpAny ? SOp::Or : SOp::And, r, a + i);
+            emit(SOp::Mov, def(), r);
+            return;
+        }
+        case spv::Op::OpSelect: {
+            uint32_t c = reg(in[3]), a = reg(in[4]), b = reg(in[5]);
+            bool scalar_c = flat_of(in[3]) == 1;
+            uint32_t d = def();
+            for (uint32_t i = 0; i < type(in[1]).flat; ++i)
+                emit(SOp::Select, d + i, a + i, b + i, c + (scalar_c ? 0 : i));
+            return;
+        }
+        // conversions
+        case spv::Op::OpConvertFToS:
+            return unary(SOp::F2S);
+        case spv::Op::OpConvertFToU:
+            return unary(SOp::F2U);
+        case spv::Op::OpConvertSToF:
+            return unary(SOp::S2F);
+        case spv::Op::OpConvertUToF:
+            return unary(SOp::U2F);
+        case spv::Op::OpBitcast:
+        case spv::Op::OpCopyObject:
+        case spv::Op::OpUConvert:
+        case spv::Op::OpSConvert:
+        case spv::Op::OpFConvert: {
+            if (flat_of(in[3]) != std::max(1u, type(in[1]).flat)) fail(opname(in.op) + " between different sizes");
+            const Value& v = val(in[3]);
+            if (v.is_phi)
+                unary(SOp::Mov);
+            else if (v.ptr >= 0)
+                vals_[in[2]] = Value{kNoReg, in[1], v.ptr};
+            else
+                alias(v.reg);
+            return;
+        }
+        // composites
+        case spv::Op::OpCompositeExtract: {
+            const Value& v = val(in[3]);
+            uint32_t t;
+            uint32_t off = flat_index(v.type, in.w + 4, in.n - 4, &t);
+            if (v.is_phi) {
+                uint32_t d = def();
+                for (uint32_t i = 0; i < std::max(1u, type(in[1]).flat); ++i) emit(SOp::Mov, d + i, v.reg + off + i);
+            } else {
+                alias(v.reg + off);
+            }
+            return;
+        }
+        case spv::Op::OpCompositeInsert: {
+            const Value& obj = val(in[3]);
+            const Value& comp = val(in[4]);
+            uint32_t t;
+            uint32_t off = flat_index(comp.type, in.w + 5, in.n - 5, &t);
+            uint32_t n = type(in[1]).flat;
+            uint32_t objr = obj.reg, compr = comp.reg, objn = type(obj.type).flat;
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Mov, d + i, compr + i);
+            for (uint32_t i = 0; i < objn; ++i) emit(SOp::Mov, d + off + i, objr + i);
+            return;
+        }
+        case spv::Op::OpCompositeConstruct: {
+            uint32_t d = def();
+            uint32_t at = 0;
+            for (size_t k = 3; k < in.n; ++k) {
+                uint32_t r = reg(in[k]);
+                uint32_t f = flat_of(in[k]);
+                for (uint32_t i = 0; i < f; ++i) emit(SOp::Mov, d + at + i, r + i);
+                at += f;
+            }
+            return;
+        }
+        case spv::Op::OpVectorShuffle: {
+            uint32_t a = reg(in[3]), b = reg(in[4]);
+            uint32_t na = flat_of(in[3]);
+            uint32_t d = def();
+            for (size_t k = 5; k < in.n; ++k) {
+                uint32_t s = in[k];
+                uint32_t src = s == 0xFFFFFFFFu ? zero_ : s < na ? a + s : b + (s - na);
+                emit(SOp::Mov, d + uint32_t(k - 5), src);
+            }
+            return;
+        }
+        case spv::Op::OpVectorExtractDynamic: {
+            uint32_t v = reg(in[3]), idx = reg(in[4]);
+            uint32_t n = flat_of(in[3]);
+            uint32_t d = def();
+            emit(SOp::Mov, d, v);  // out-of-range index reads component 0 (undefined in SPIR-V)
+            for (uint32_t i = 1; i < n; ++i) emit(SOp::Select, d, v + i, d, emit1(SOp::IEq, idx, konst(i)));
+            return;
+        }
+        case spv::Op::OpVectorInsertDynamic: {
+            uint32_t v = reg(in[3]), c = reg(in[4]), idx = reg(in[5]);
+            uint32_t n = flat_of(in[3]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Select, d + i, c, v + i, emit1(SOp::IEq, idx, konst(i)));
+            return;
+        }
+        case spv::Op::OpTranspose: {
+            const Type& rt = type(in[1]);
+            uint32_t rows = type(rt.elem).count, cols = rt.count;  // result: cols columns of rows
+            uint32_t m = reg(in[3]);
+            uint32_t d = def();
+            for (uint32_t c = 0; c < cols; ++c)
+                for (uint32_t r = 0; r < rows; ++r) emit(SOp::Mov, d + c * rows + r, m + r * cols + c);
+            return;
+        }
+        case spv::Op::OpDot: {
+            uint32_t s = dot(reg(in[3]), reg(in[4]), flat_of(in[3]));
+            alias(s);
+            return;
+        }
+        case spv::Op::OpMatrixTimesVector: {
+            // r = sum_i col_i * v_i, accumulated column by column: ((c0*v0 + c1*v1) + c2*v2) ...
+            const Type& mt = type(val(in[3]).type);
+            uint32_t rows = type(mt.elem).count, cols = mt.count;
+            uint32_t m = reg(in[3]), v = reg(in[4]);
+            uint32_t d = def();
+            for (uint32_t r = 0; r < rows; ++r) {
+                uint32_t s = emit1(SOp::FMul, m + r, v);
+                for (uint32_t c = 1; c < cols; ++c) s = emit1(SOp::FAdd, s, emit1(SOp::FMul, m + c * rows + r, v + c));
+                emit(SOp::Mov, d + r, s);
+            }
+            return;
+        }
+        case spv::Op::OpVectorTimesMatrix: {
+            const Type& mt = type(val(in[4]).type);
+            uint32_t rows = type(mt.elem).count, cols = mt.count;
+            uint32_t v = reg(in[3]), m = reg(in[4]);
+            uint32_t d = def();
+            for (uint32_t c = 0; c < cols; ++c) emit(SOp::Mov, d + c, dot(v, m + c * rows, rows));
+            return;
+        }
+        case spv::Op::OpMatrixTimesMatrix: {
+            const Type& lt = type(val(in[3]).type);
+            const Type& rt = type(val(in[4]).type);
+            uint32_t rows = type(lt.elem).count, inner = lt.count, cols = rt.count;
+            uint32_t a = reg(in[3]), b = reg(in[4]);
+            uint32_t d = def();
+            for (uint32_t c = 0; c < cols; ++c)
+                for (uint32_t r = 0; r < rows; ++r) {
+                    uint32_t s = emit1(SOp::FMul, a + r, b + c * inner);
+                    for (uint32_t k = 1; k < inner; ++k)
+                        s = emit1(SOp::FAdd, s, emit1(SOp::FMul, a + k * rows + r, b + c * inner + k));
+                    emit(SOp::Mov, d + c * rows + r, s);
+                }
+            return;
+        }
+        case spv::Op::OpOuterProduct: {
+            uint32_t a = reg(in[3]), b = reg(in[4]);
+            uint32_t rows = flat_of(in[3]), cols = flat_of(in[4]);
+            uint32_t d = def();
+            for (uint32_t c = 0; c < cols; ++c)
+                for (uint32_t r = 0; r < rows; ++r) emit(SOp::FMul, d + c * rows + r, a + r, b + c);
+            return;
+        }
+        // derivatives
+        case spv::Op::OpDPdx:
+        case spv::Op::OpDPdxFine:
+        case spv::Op::OpDPdy:
+        case spv::Op::OpDPdyFine:
+        case spv::Op::OpDPdxCoarse:
+        case spv::Op::OpDPdyCoarse:
+        case spv::Op::OpFwidth:
+        case spv::Op::OpFwidthFine:
+        case spv::Op::OpFwidthCoarse: {
+            if (stage_ != Stage::Fragment) fail(opname(in.op) + " outside a fragment shader");
+            iface_.uses_derivatives = true;
+            bool coarse =
+                in.op == spv::Op::OpDPdxCoarse || in.op == spv::Op::OpDPdyCoarse || in.op == spv::Op::OpFwidthCoarse;
+            SOp dx = coarse ? SOp::DdxCoarse : SOp::DdxFine, dy = coarse ? SOp::DdyCoarse : SOp::DdyFine;
+            uint32_t a = reg(in[3]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < type(in[1]).flat; ++i) {
+                if (in.op == spv::Op::OpDPdx || in.op == spv::Op::OpDPdxFine || in.op == spv::Op::OpDPdxCoarse)
+                    emit(dx, d + i, a + i);
+                else if (in.op == spv::Op::OpDPdy || in.op == spv::Op::OpDPdyFine || in.op == spv::Op::OpDPdyCoarse)
+                    emit(dy, d + i, a + i);
+                else
+                    emit(SOp::FAdd, d + i, emit1(SOp::FAbs, emit1(dx, a + i)), emit1(SOp::FAbs, emit1(dy, a + i)));
+            }
+            return;
+        }
+        case spv::Op::OpDemoteToHelperInvocation:
+            if (stage_ != Stage::Fragment) fail("demote outside a fragment shader");
+            iface_.uses_discard = true;
+            emit(SOp::Kill, p_.reg_live, cur_mask_);
+            store_mask_ = kNoReg;
+            return;
+        case spv::Op::OpIsHelperInvocationEXT:
+            emit(SOp::Not, def(), p_.reg_live);
+            return;
+        // memory
+        case spv::Op::OpVariable: {  // function variable (memory assigned in translate.cpp); initializer
+            const Value& v = val(in[2]);
+            if (in.n > 4) store(pointers_[size_t(v.ptr)], pointers_[size_t(v.ptr)].type, reg(in[4]), 0);
+            return;
+        }
+        case spv::Op::OpAccessChain:
+        case spv::Op::OpInBoundsAccessChain: {
+            const Value& b = val(in[3]);
+            if (b.ptr < 0) fail("access chain base is not a pointer");
+            Pointer p = access_chain(pointers_[size_t(b.ptr)], in.w + 4, in.n - 4);
+            pointers_.push_back(p);
+            vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
+            return;
+        }
+        case spv::Op::OpLoad: {
+            const Value& pv = val(in[3]);
+            if (pv.ptr < 0) fail("load from a non-pointer");
+            Pointer p = pointers_[size_t(pv.ptr)];
+            if (p.space == Space::Buffer && p.base == 0) {
+                iface_.push_constant_size = std::max(iface_.push_constant_size, p.offset + 4 * type(in[1]).flat);
+            }
+            uint32_t d = def();
+            load(p, in[1], d, 0);
+            return;
+        }
+        case spv::Op::OpStore: {
+            const Value& pv = val(in[1]);
+            if (pv.ptr < 0) fail("store to a non-pointer");
+            Pointer p = pointers_[size_t(pv.ptr)];
+            store(p, p.type, reg(in[2]), 0);
+            return;
+        }
+        case spv::Op::OpCopyMemory: {
+            const Value& dv = val(in[1]);
+            const Value& sv = val(in[2]);
+            if (dv.ptr < 0 || sv.ptr < 0) fail("OpCopyMemory on non-pointers");
+            Pointer dp = pointers_[size_t(dv.ptr)], sp = pointers_[size_t(sv.ptr)];
+            uint32_t tmp = alloc(std::max(1u, type(sp.type).flat));
+            load(sp, sp.type, tmp, 0);
+            store(dp, dp.type, tmp, 0);
+            return;
+        }
+        // images
+        case spv::Op::OpSampledImage:
+            emit(SOp::Or, def(), reg(in[3]), reg(in[4]));
+            return;
+        case spv::Op::OpImage:
+            emit(SOp::And, def(), reg(in[3]), konst(0xFFFF));
+            return;
+        case spv::Op::OpImageSampleImplicitLod:
+        case spv::Op::OpImageSampleExplicitLod:
+        case spv::Op::OpImageSampleProjImplicitLod:
+        case spv::Op::OpImageSampleProjExplicitLod:
+        case spv::Op::OpImageFetch: {
+            const Type& it =
+                type(type(val(in[3]).type).kind == Type::SampledImage ? type(val(in[3]).type).elem : val(in[3]).type);
+            if (type(it.elem).kind != Type::Float) fail("unsupported integer image sampling");
+            uint32_t flags = 0;
+            if (it.arrayed) flags |= kSampleArray;
+            if (spv::Dim(it.dim) == spv::Dim::Dim1D) flags |= kSample1D;
+            bool proj =
+                in.op == spv::Op::OpImageSampleProjImplicitLod || in.op == spv::Op::OpImageSampleProjExplicitLod;
+            if (proj) flags |= kSampleProj;
+            uint32_t lod = kNoReg, grad = 0;
+            uint32_t operands = in.n > 5 ? in[5] : 0;
+            size_t at = 6;
+            if (operands & uint32_t(spv::ImageOperandsMask::Bias)) {
+                flags |= kSampleBias;
+                lod = reg(in[at++]);
+            }
+            if (operands & uint32_t(spv::ImageOperandsMask::Lod)) {
+                flags |= kSampleExplicitLod;
+                lod = reg(in[at++]);
+            }
+            if (operands & uint32_t(spv::ImageOperandsMask::Grad)) {
+                flags |= kSampleGrad;
+                uint32_t gx = reg(in[at++]), gy = reg(in[at++]);
+                uint32_t nc = (flags & kSample1D) ? 1 : 2;
+                grad = alloc(4);
+                for (uint32_t i = 0; i < 2; ++i) {
+                    emit(SOp::Mov, grad + i, i < nc ? gx + i : zero_);
+                    emit(SOp::Mov, grad + 2 + i, i < nc ? gy + i : zero_);
+                }
+            }
+            uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
+                                                  spv::ImageOperandsMask::Grad);
+            if (other) fail("unsupported image operands (offsets, min lod, sample) in " + opname(in.op));
+            if (in.op == spv::Op::OpImageSampleImplicitLod || in.op == spv::Op::OpImageSampleProjImplicitLod) {
+                if (stage_ != Stage::Fragment) fail("implicit-LOD sampling outside a fragment shader");
+                flags |= kSampleImplicitLod;
+                iface_.uses_derivatives = true;
+            }
+            uint32_t d = def(4);
+            if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+            uint32_t ncoord = flat_of(in[4]);
+            emit(in.op == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, d, reg(in[3]), reg(in[4]),
+                 lod == kNoReg ? zero_ : lod, flags, ncoord)
+                .n = grad;
+            return;
+        }
+        case spv::Op::OpImageQuerySizeLod:
+        case spv::Op::OpImageQuerySize: {
+            const Type& it = type(val(in[3]).type);
+            uint32_t flags = (it.arrayed ? kSampleArray : 0) | (spv::Dim(it.dim) == spv::Dim::Dim1D ? kSample1D : 0);
+            uint32_t lod = in.op == spv::Op::OpImageQuerySizeLod ? reg(in[4]) : zero_;
+            emit(SOp::QuerySize, def(), reg(in[3]), lod, kNoReg, flags, std::max(1u, type(in[1]).flat));
+            return;
+        }
+        case spv::Op::OpImageQueryLevels:
+            emit(SOp::QueryLevels, def(), reg(in[3]));
+            return;
+        case spv::Op::OpExtInst:
+            break;
+        case spv::Op::OpFunctionCall:
+            fail("unsupported opcode OpFunctionCall (function was not inlined)");
+        default:
+            fail("unsupported opcode " + opname(in.op));
+    }
+
+    // GLSL.std.450
+    if (in[3] != glsl_ext_ || glsl_ext_ == 0) fail("unsupported extended instruction set call");
+    uint32_t e = in[4];
+    auto arg = [&](int i) { return reg(in[5 + i]); };
+    auto argn = [&](int i) { return flat_of(in[5 + i]); };
+    uint32_t n = std::max(1u, type(in[1]).flat);
+    auto map1 = [&](SOp o) {
+        uint32_t a = arg(0), d = def();
+        for (uint32_t i = 0; i < n; ++i) emit(o, d + i, a + i);
+    };
+    auto map2 = [&](SOp o) {
+        uint32_t a = arg(0), b = arg(1), d = def();
+        uint32_t fb = argn(1);
+        for (uint32_t i = 0; i < n; ++i) emit(o, d + i, a + i, b + (fb > 1 ? i : 0));
+    };
+    auto map3 = [&](SOp o) {
+        uint32_t a = arg(0), b = arg(1), c = arg(2), d = def();
+        uint32_t fa = argn(0), fb = argn(1), fc = argn(2);
+        for (uint32_t i = 0; i < n; ++i)
+            emit(o, d + i, a + (fa > 1 ? i : 0), b + (fb > 1 ? i : 0), c + (fc > 1 ? i : 0));
+    };
+    switch (e) {
+        case GLSLstd450Round:
+            return map1(SOp::Round);
+        case GLSLstd450RoundEven:
+            return map1(SOp::RoundEven);
+        case GLSLstd450Trunc:
+            return map1(SOp::Trunc);
+        case GLSLstd450FAbs:
+            return map1(SOp::FAbs);
+        case GLSLstd450SAbs:
+            return map1(SOp::SAbs);
+        case GLSLstd450FSign:
+            return map1(SOp::FSign);
+        case GLSLstd450SSign:
+            return map1(SOp::SSign);
+        case GLSLstd450Floor:
+            return map1(SOp::Floor);
+        case GLSLstd450Ceil:
+            return map1(SOp::Ceil);
+        case GLSLstd450Fract:
+            return map1(SOp::Fract);
+        case GLSLstd450Radians:
+        case GLSLstd450Degrees: {
+            // radians(x) = x * (pi/180) with the constant rounded to float
+            float k = e == GLSLstd450Radians ? float(M_PI / 180.0) : float(180.0 / M_PI);
+            uint32_t a = arg(0), d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FMul, d + i, a + i, konstf(k));
+            return;
+        }
+        case GLSLstd450Sin:
+            return map1(SOp::Sin);
+        case GLSLstd450Cos:
+            return map1(SOp::Cos);
+        case GLSLstd450Tan:
+            return map1(SOp::Tan);
+        case GLSLstd450Asin:
+            return map1(SOp::Asin);
+        case GLSLstd450Acos:
+            return map1(SOp::Acos);
+        case GLSLstd450Atan:
+            return map1(SOp::Atan);
+        case GLSLstd450Sinh:
+            return map1(SOp::Sinh);
+        case GLSLstd450Cosh:
+            return map1(SOp::Cosh);
+        case GLSLstd450Tanh:
+            return map1(SOp::Tanh);
+        case GLSLstd450Asinh:
+            return map1(SOp::Asinh);
+        case GLSLstd450Acosh:
+            return map1(SOp::Acosh);
+        case GLSLstd450Atanh:
+            return map1(SOp::Atanh);
+        case GLSLstd450Atan2:
+            return map2(SOp::Atan2);
+        case GLSLstd450Pow:
+            return map2(SOp::Pow);
+        case GLSLstd450Exp:
+            return map1(SOp::Exp);
+        case GLSLstd450Log:
+            return map1(SOp::Log);
+        case GLSLstd450Exp2:
+            return map1(SOp::Exp2);
+        case GLSLstd450Log2:
+            return map1(SOp::Log2);
+        case GLSLstd450Sqrt:
+            return map1(SOp::Sqrt);
+        case GLSLstd450InverseSqrt:
+            return map1(SOp::InvSqrt);
+        case GLSLstd450FMin:
+        case GLSLstd450NMin:
+            return map2(SOp::FMin);
+        case GLSLstd450FMax:
+        case GLSLstd450NMax:
+            return map2(SOp::FMax);
+        case GLSLstd450UMin:
+            return map2(SOp::UMin);
+        case GLSLstd450SMin:
+            return map2(SOp::SMin);
+        case GLSLstd450UMax:
+            return map2(SOp::UMax);
+        case GLSLstd450SMax:
+            return map2(SOp::SMax);
+        case GLSLstd450FClamp:
+        case GLSLstd450NClamp:
+            return map3(SOp::FClamp);
+        case GLSLstd450UClamp:
+        case GLSLstd450SClamp: {
+            bool s = e == GLSLstd450SClamp;
+            uint32_t a = arg(0), lo = arg(1), hi = arg(2), d = def();
+            uint32_t fl = argn(1), fh = argn(2);
+            for (uint32_t i = 0; i < n; ++i)
+                emit(s ? SOp::SMin : SOp::UMin, d + i, emit1(s ? SOp::SMax : SOp::UMax, a + i, lo + (fl > 1 ? i : 0)),
+                     hi + (fh > 1 ? i : 0));
+            return;
+        }
+        case GLSLstd450FMix: {
+            // mix(x, y, a) = x * (1 - a) + y * a  (see README: lavapipe lowers flrp; this is the exact-maths form)
+            uint32_t x = arg(0), y = arg(1), a = arg(2), d = def();
+            uint32_t fa = argn(2);
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t ai = a + (fa > 1 ? i : 0);
+                uint32_t l = emit1(SOp::FMul, x + i, emit1(SOp::FSub, konstf(1.0f), ai));
+                emit(SOp::FAdd, d + i, l, emit1(SOp::FMul, y + i, ai));
+            }
+            return;
+        }
+        case GLSLstd450Step: {
+            uint32_t edge = arg(0), x = arg(1), d = def();
+            uint32_t fe = argn(0);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Step, d + i, edge + (fe > 1 ? i : 0), x + i);
+            return;
+        }
+        case GLSLstd450SmoothStep:
+            return map3(SOp::SmoothStep);
+        case GLSLstd450Fma: {
+            // lavapipe lowers ffma to fmul + fadd (lower_ffma32): not fused
+            uint32_t a = arg(0), b = arg(1), c = arg(2), d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FAdd, d + i, emit1(SOp::FMul, a + i, b + i), c + i);
+            return;
+        }
+        case GLSLstd450Ldexp:
+            return map2(SOp::Ldexp);
+        case GLSLstd450PackHalf2x16:
+            emit(SOp::PackHalf2x16, def(), arg(0), arg(0) + 1);
+            return;
+        case GLSLstd450UnpackHalf2x16: {
+            uint32_t d = def();
+            emit(SOp::UnpackHalf2x16Lo, d, arg(0));
+            emit(SOp::UnpackHalf2x16Hi, d + 1, arg(0));
+            return;
+        }
+        case GLSLstd450PackUnorm4x8:
+        case GLSLstd450PackSnorm4x8:
+            emit(e == GLSLstd450PackUnorm4x8 ? SOp::PackUnorm4x8 : SOp::PackSnorm4x8, def(), arg(0));
+            return;
+        case GLSLstd450PackUnorm2x16:
+        case GLSLstd450PackSnorm2x16:
+            emit(e == GLSLstd450PackUnorm2x16 ? SOp::PackUnorm2x16 : SOp::PackSnorm2x16, def(), arg(0));
+            return;
+        case GLSLstd450UnpackUnorm4x8:
+        case GLSLstd450UnpackSnorm4x8: {
+            uint32_t d = def();
+            for (uint32_t i = 0; i < 4; ++i)
+                emit(e == GLSLstd450UnpackUnorm4x8 ? SOp::UnpackUnorm4x8 : SOp::UnpackSnorm4x8, d + i, arg(0), kNoReg,
+                     kNoReg, i);
+            return;
+        }
+        case GLSLstd450UnpackUnorm2x16:
+        case GLSLstd450UnpackSnorm2x16: {
+            uint32_t d = def();
+            for (uint32_t i = 0; i < 2; ++i)
+                emit(e == GLSLstd450UnpackUnorm2x16 ? SOp::UnpackUnorm2x16 : SOp::UnpackSnorm2x16, d + i, arg(0),
+                     kNoReg, kNoReg, i);
+            return;
+        }
+        case GLSLstd450Length: {
+            uint32_t a = arg(0);
+            alias(emit1(SOp::Sqrt, dot(a, a, argn(0))));
+            return;
+        }
+        case GLSLstd450Distance: {
+            uint32_t a = arg(0), b = arg(1), m = argn(0);
+            uint32_t t = alloc(m);
+            for (uint32_t i = 0; i < m; ++i) emit(SOp::FSub, t + i, a + i, b + i);
+            alias(emit1(SOp::Sqrt, dot(t, t, m)));
+            return;
+        }
+        case GLSLstd450Normalize: {
+            // normalize(v) = v * inversesqrt(dot(v, v))
+            uint32_t a = arg(0);
+            uint32_t r = emit1(SOp::InvSqrt, dot(a, a, n));
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FMul, d + i, a + i, r);
+            return;
+        }
+        case GLSLstd450Cross: {
+            // cross(a, b) = a.yzx * b.zxy - a.zxy * b.yzx
+            uint32_t a = arg(0), b = arg(1), d = def();
+            const int y[3] = {1, 2, 0}, z[3] = {2, 0, 1};
+            for (int i = 0; i < 3; ++i)
+                emit(SOp::FSub, d + i, emit1(SOp::FMul, a + y[i], b + z[i]), emit1(SOp::FMul, a + z[i], b + y[i]));
+            return;
+        }
+        case GLSLstd450FaceForward: {
+            // faceforward(N, I, Nref) = dot(Nref, I) < 0 ? N : -N
+            uint32_t nn = arg(0), ii = arg(1), nr = arg(2);
+            uint32_t lt = emit1(SOp::FOrdLt, dot(nr, ii, n), zero_);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Select, d + i, nn + i, emit1(SOp::FNeg, nn + i), lt);
+            return;
+        }
+        case GLSLstd450Reflect: {
+            // reflect(I, N) = I - (2 * dot(N, I)) * N
+            uint32_t ii = arg(0), nn = arg(1);
+            uint32_t k = emit1(SOp::FMul, konstf(2.0f), dot(nn, ii, n));
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FSub, d + i, ii + i, emit1(SOp::FMul, k, nn + i));
+            return;
+        }
+        case GLSLstd450Refract: {
+            // k = 1 - eta^2 (1 - dot(N,I)^2); k < 0 ? 0 : eta*I - (eta*dot(N,I) + sqrt(k)) * N
+            uint32_t ii = arg(0), nn = arg(1), eta = arg(2);
+            uint32_t ni = dot(nn, ii, n);
+            uint32_t k = emit1(
+                SOp::FSub, konstf(1.0f),
+                emit1(SOp::FMul, emit1(SOp::FMul, eta, eta), emit1(SOp::FSub, konstf(1.0f), emit1(SOp::FMul, ni, ni))));
+            uint32_t neg = emit1(SOp::FOrdLt, k, zero_);
+            uint32_t s = emit1(SOp::FAdd, emit1(SOp::FMul, eta, ni), emit1(SOp::Sqrt, k));
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t r = emit1(SOp::FSub, emit1(SOp::FMul, eta, ii + i), emit1(SOp::FMul, s, nn + i));
+                emit(SOp::Select, d + i, zero_, r, neg);
+            }
+            return;
+        }
+        case GLSLstd450FindILsb:
+            return map1(SOp::FindLsb);
+        case GLSLstd450FindSMsb:
+            return map1(SOp::FindSMsb);
+        case GLSLstd450FindUMsb:
+            return map1(SOp::FindUMsb);
+        case GLSLstd450Determinant: {
+            const Type& mt = type(val(in[5]).type);
+            uint32_t m = arg(0);
+            auto at = [&](uint32_t c, uint32_t r) { return m + c * mt.count + r; };
+            auto mul = [&](uint32_t a, uint32_t b) { return emit1(SOp::FMul, a, b); };
+            auto sub = [&](uint32_t a, uint32_t b) { return emit1(SOp::FSub, a, b); };
+            auto det2 = [&](uint32_t a, uint32_t b, uint32_t c, uint32_t d) { return sub(mul(a, d), mul(b, c)); };
+            if (mt.count == 2) {
+                alias(det2(at(0, 0), at(1, 0), at(0, 1), at(1, 1)));
+            } else if (mt.count == 3) {
+                uint32_t a = mul(at(0, 0), det2(at(1, 1), at(2, 1), at(1, 2), at(2, 2)));
+                uint32_t b = mul(at(1, 0), det2(at(0, 1), at(2, 1), at(0, 2), at(2, 2)));
+                uint32_t c = mul(at(2, 0), det2(at(0, 1), at(1, 1), at(0, 2), at(1, 2)));
+                alias(emit1(SOp::FAdd, sub(a, b), c));
+            } else {
+                fail("unsupported GLSL.std.450 Determinant of a 4x4 matrix");
+            }
+            return;
+        }
+        default:
+            fail("unsupported GLSL.std.450 instruction " + std::to_string(e));
+    }
+}
+
+}  // namespace tilevk::shader

@@ -1,0 +1,170 @@
+// SPIR-V -> SIMD program translator state, shared by translate.cpp (module, types, interface, control flow)
+// and translate_ops.cpp (one SPIR-V instruction at a time).
+#pragma once
+
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#define SPV_ENABLE_UTILITY_CODE
+#include <spirv/unified1/spirv.hpp11>
+
+#include "shader/ir.h"
+
+namespace tilevk::shader {
+
+struct TranslateError {
+    std::string message;
+};
+
+struct Type {
+    enum Kind {
+        Void,
+        Bool,
+        Int,
+        Float,
+        Vector,
+        Matrix,
+        Array,
+        RuntimeArray,
+        Struct,
+        Pointer,
+        Function,
+        Image,
+        Sampler,
+        SampledImage
+    } kind = Void;
+    bool is_signed = false;
+    uint32_t elem = 0;   // component / column / element / pointee / image type
+    uint32_t count = 0;  // vector size, columns, array length
+    std::vector<uint32_t> members;
+    spv::StorageClass storage = spv::StorageClass::Function;
+    uint32_t flat = 0;  // number of 32-bit scalars when flattened (registers a value of this type occupies)
+    uint32_t dim = 0, arrayed = 0, ms = 0, sampled = 0;  // images
+};
+
+struct Decorations {
+    int location = -1, component = 0, builtin = -1;
+    bool flat = false, noperspective = false, centroid = false, sample = false;
+    int set = -1, binding = -1, offset = -1, array_stride = 0, matrix_stride = 0;
+    bool row_major = false, block = false, buffer_block = false, non_writable = false;
+};
+
+enum class Space : uint8_t { Local, Buffer, Handle };
+
+struct Pointer {
+    Space space = Space::Local;
+    uint32_t type = 0;       // pointee type
+    uint32_t base = 0;       // Local: first word; Buffer/Handle: first descriptor slot
+    uint32_t limit = 0;      // Local: one past the variable's last word; Buffer/Handle: array size
+    uint32_t dyn = kNoReg;   // dynamic offset register (words / bytes), kNoReg = none
+    uint32_t offset = 0;     // constant offset (words / bytes)
+    uint32_t elem = kNoReg;  // Buffer/Handle: dynamic descriptor array element register
+    uint32_t elem_const = 0;
+    bool in_array = false;  // Buffer/Handle: still pointing at the descriptor array itself
+    // buffer layout of what is pointed at
+    uint32_t vec_stride = 4, matrix_stride = 16;
+    bool row_major = false;
+    bool writable = false;
+};
+
+struct Value {
+    uint32_t reg = kNoReg;  // first register (flat layout)
+    uint32_t type = 0;
+    int ptr = -1;  // index into Translator::pointers
+    bool is_phi = false;
+};
+
+struct Block {
+    uint32_t label = 0;
+    size_t first = 0, end = 0;  // instruction index range (after OpLabel, up to and including terminator)
+    uint32_t merge = 0, cont = 0;
+    std::vector<uint32_t> succ;
+    uint32_t mask = kNoReg;
+    int order = -1;
+    size_t code = 0;  // code position of the block's first instruction
+};
+
+struct Instr {
+    spv::Op op;
+    const uint32_t* w;  // w[0] = word count | opcode
+    uint32_t n;
+    uint32_t operator[](size_t i) const { return w[i]; }
+};
+
+class Translator {
+  public:
+    Translator(Stage stage, ProgramImpl& out, ProgramInterface& iface) : stage_(stage), p_(out), iface_(iface) {}
+    void run(const std::vector<uint32_t>& words, std::string_view entry);
+
+    // translate_ops.cpp
+    void op(const Instr& in);
+
+    [[noreturn]] static void fail(const std::string& m) { throw TranslateError{m}; }
+
+    // registers and emission
+    uint32_t alloc(uint32_t n = 1) {
+        uint32_t r = p_.num_regs;
+        p_.num_regs += n;
+        return r;
+    }
+    uint32_t konst(uint32_t v);
+    uint32_t konstf(float f);
+    Inst& emit(Op op, uint32_t d, uint32_t a = kNoReg, uint32_t b = kNoReg, uint32_t c = kNoReg, uint32_t imm = 0,
+               uint32_t extra = 0) {
+        Inst in{op, 0, d, a, b, c, imm, extra};
+        p_.code.push_back(in);
+        return p_.code.back();
+    }
+    uint32_t emit1(Op op, uint32_t a = kNoReg, uint32_t b = kNoReg, uint32_t c = kNoReg) {
+        uint32_t d = alloc();
+        emit(op, d, a, b, c);
+        return d;
+    }
+
+    const Type& type(uint32_t id) const;
+    Value& val(uint32_t id);
+    uint32_t reg(uint32_t id) { return val(id).reg; }
+    uint32_t component_type(uint32_t t) const;  // scalar type of a scalar/vector/matrix
+    uint32_t flat_index(uint32_t t, const uint32_t* idx, size_t n, uint32_t* out_type) const;
+
+    // memory
+    void load(const Pointer& p, uint32_t type, uint32_t dst, uint32_t const_extra);
+    void store(const Pointer& p, uint32_t type, uint32_t src, uint32_t const_extra);
+    Pointer access_chain(const Pointer& base, const uint32_t* idx, size_t n);
+
+    Stage stage_;
+    ProgramImpl& p_;
+    ProgramInterface& iface_;
+    uint32_t bound_ = 0;
+    std::vector<Type> types_;
+    std::vector<uint8_t> is_type_;
+    std::vector<Decorations> deco_;
+    std::map<std::pair<uint32_t, uint32_t>, Decorations> member_deco_;
+    std::vector<Value> vals_;
+    std::vector<Pointer> pointers_;
+    std::unordered_map<uint32_t, uint32_t> const_regs_;  // value -> register
+    std::unordered_map<uint32_t, uint32_t> reg_value_;   // constant register -> value
+    bool const_of(uint32_t id, uint32_t& v) const {
+        if (id >= bound_ || vals_[id].reg == kNoReg) return false;
+        auto it = reg_value_.find(vals_[id].reg);
+        if (it == reg_value_.end()) return false;
+        v = it->second;
+        return true;
+    }
+    void set_const(uint32_t reg, uint32_t v) {
+        p_.const_regs.push_back(reg);
+        p_.const_regs.push_back(v);
+        reg_value_[reg] = v;
+    }
+    uint32_t glsl_ext_ = 0;
+    uint32_t cur_mask_ = kNoReg;  // mask register of the block being translated
+    uint32_t zero_ = kNoReg;
+    std::vector<uint32_t> store_masks_;  // per block: mask for side effects
+    uint32_t store_mask_ = kNoReg;
+    bool buffer_written_ = false;
+    std::vector<std::pair<uint32_t, uint32_t>> private_inits_;  // (pointer index, initializer id)
+};
+
+}  // namespace tilevk::shader

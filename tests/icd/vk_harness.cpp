@@ -1,0 +1,222 @@
+#include "vk_harness.h"
+
+#include <cstdio>
+#include <cstring>
+
+namespace tilevk::test {
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                          VkDebugUtilsMessageTypeFlagsEXT type,
+                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    // Only warnings and errors count; informational messages (the loader's search log, the layer's "active"
+    // banner) are not findings.
+    (void)type;
+    if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+    auto* m = static_cast<Messages*>(user);
+    m->count.fetch_add(1);
+    if (m->texts.size() < 20) m->texts.emplace_back(data->pMessage != nullptr ? data->pMessage : "(no text)");
+    fprintf(stderr, "validation: %s\n", data->pMessage != nullptr ? data->pMessage : "(no text)");
+    return VK_FALSE;
+}
+
+}  // namespace
+
+Harness::Harness(bool validation) {
+    const char* layers[] = {"VK_LAYER_KHRONOS_validation"};
+    const char* exts[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    // Every warning and error, of every type (validation, performance, general: the loader's own warnings too).
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mci.pfnUserCallback = on_message;
+    mci.pUserData = &messages_;
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "tilevk-icd-test";
+    app.apiVersion = VK_API_VERSION_1_0;
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pNext = &mci;  // also catches messages from vkCreateInstance/vkDestroyInstance
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = validation ? 1 : 0;
+    ci.ppEnabledLayerNames = layers;
+    ci.enabledExtensionCount = 1;
+    ci.ppEnabledExtensionNames = exts;
+    if (vkCreateInstance(&ci, nullptr, &instance_) != VK_SUCCESS) {
+        instance_ = VK_NULL_HANDLE;
+        return;
+    }
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    if (create == nullptr || create(instance_, &mci, nullptr, &messenger_) != VK_SUCCESS) messenger_ = VK_NULL_HANDLE;
+}
+
+Harness::~Harness() {
+    if (instance_ == VK_NULL_HANDLE) return;
+    if (messenger_ != VK_NULL_HANDLE) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        destroy(instance_, messenger_, nullptr);
+    }
+    vkDestroyInstance(instance_, nullptr);
+}
+
+std::string Harness::message_report() const {
+    std::string s;
+    for (const std::string& t : messages_.texts) s += t + "\n";
+    return s;
+}
+
+std::vector<VkPhysicalDevice> Harness::physical_devices() const {
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+    std::vector<VkPhysicalDevice> pds(n);
+    vkEnumeratePhysicalDevices(instance_, &n, pds.data());
+    pds.resize(n);
+    return pds;
+}
+
+VkPhysicalDevice Harness::find_device(const char* prefix) const {
+    for (VkPhysicalDevice pd : physical_devices()) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        if (std::strncmp(p.deviceName, prefix, std::strlen(prefix)) == 0) return pd;
+    }
+    return VK_NULL_HANDLE;
+}
+
+Device::Device(VkPhysicalDevice pd) : pd_(pd) {
+    float prio = 1.0f;
+    VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    q.queueFamilyIndex = 0;
+    q.queueCount = 1;
+    q.pQueuePriorities = &prio;
+    VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    ci.queueCreateInfoCount = 1;
+    ci.pQueueCreateInfos = &q;
+    if (vkCreateDevice(pd, &ci, nullptr, &device_) != VK_SUCCESS) {
+        device_ = VK_NULL_HANDLE;
+        return;
+    }
+    vkGetDeviceQueue(device_, 0, 0, &queue_);
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pci.queueFamilyIndex = 0;
+    vkCreateCommandPool(device_, &pci, nullptr, &pool_);
+}
+
+Device::~Device() {
+    if (device_ == VK_NULL_HANDLE) return;
+    vkDestroyCommandPool(device_, pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+}
+
+uint32_t Device::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const {
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(pd_, &mp);
+    for (uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
+        if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    }
+    return ~0u;
+}
+
+Device::Buffer Device::make_buffer(VkDeviceSize size) {
+    Buffer b;
+    b.size = size;
+    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    ci.size = size;
+    ci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    vkCreateBuffer(device_, &ci, nullptr, &b.buffer);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device_, b.buffer, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex =
+        memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    vkAllocateMemory(device_, &ai, nullptr, &b.memory);
+    vkBindBufferMemory(device_, b.buffer, b.memory, 0);
+    vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.map);
+    return b;
+}
+
+void Device::destroy(Buffer& b) {
+    vkUnmapMemory(device_, b.memory);
+    vkDestroyBuffer(device_, b.buffer, nullptr);
+    vkFreeMemory(device_, b.memory, nullptr);
+    b = {};
+}
+
+Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
+                                 VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
+    Image img;
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = format;
+    ci.extent = {width, height, 1};
+    ci.mipLevels = levels;
+    ci.arrayLayers = layers;
+    ci.samples = samples;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = usage;
+    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (vkCreateImage(device_, &ci, nullptr, &img.image) != VK_SUCCESS) return {};
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device_, img.image, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = memory_type(req.memoryTypeBits, 0);
+    vkAllocateMemory(device_, &ai, nullptr, &img.memory);
+    vkBindImageMemory(device_, img.image, img.memory, 0);
+    return img;
+}
+
+void Device::destroy(Image& i) {
+    vkDestroyImage(device_, i.image, nullptr);
+    vkFreeMemory(device_, i.memory, nullptr);
+    i = {};
+}
+
+void Device::run(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb;
+    vkAllocateCommandBuffers(device_, &ai, &cb);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cb, &bi);
+    record(cb);
+    vkEndCommandBuffer(cb);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    vkCreateFence(device_, &fci, nullptr, &fence);
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cb;
+    vkQueueSubmit(queue_, 1, &si, fence);
+    vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+    vkDestroyFence(device_, fence, nullptr);
+    vkFreeCommandBuffers(device_, pool_, 1, &cb);
+}
+
+void transition(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspects, VkImageLayout from, VkImageLayout to,
+                uint32_t levels, uint32_t layers) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspects, 0, levels, 0, layers};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                         1, &b);
+}
+
+}  // namespace tilevk::test

@@ -1,0 +1,76 @@
+// Test harness for the loader-level ICD tests: an instance with VK_LAYER_KHRONOS_validation and a debug-utils
+// messenger that counts every message, and small helpers to make buffers/images and run one command buffer.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tilevk::test {
+
+struct Messages {
+    std::atomic<int> count{0};
+    std::vector<std::string> texts;  // for the failure report
+};
+
+class Harness {
+  public:
+    // Creates the instance (Vulkan 1.0, validation + debug utils). ok() tells whether it worked.
+    explicit Harness(bool validation = true);
+    ~Harness();
+    bool ok() const { return instance_ != VK_NULL_HANDLE; }
+    VkInstance instance() const { return instance_; }
+    int message_count() const { return messages_.count.load(); }
+    std::string message_report() const;
+    std::vector<VkPhysicalDevice> physical_devices() const;
+    // The device whose name starts with `prefix`, or VK_NULL_HANDLE.
+    VkPhysicalDevice find_device(const char* prefix) const;
+
+  private:
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    Messages messages_;
+};
+
+// A logical device with its queue, a command pool, and helpers.
+class Device {
+  public:
+    explicit Device(VkPhysicalDevice pd);
+    ~Device();
+    VkDevice device() const { return device_; }
+    VkPhysicalDevice physical() const { return pd_; }
+    bool ok() const { return device_ != VK_NULL_HANDLE; }
+
+    struct Buffer {
+        VkBuffer buffer = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        void* map = nullptr;
+        VkDeviceSize size = 0;
+    };
+    struct Image {
+        VkImage image = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+    };
+    Buffer make_buffer(VkDeviceSize size);  // TRANSFER_SRC|DST, host visible and coherent, mapped
+    void destroy(Buffer& b);
+    Image make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
+                     VkSampleCountFlagBits samples, VkImageUsageFlags usage);
+    void destroy(Image& i);
+    // Records with `record`, submits with a fence and waits.
+    void run(const std::function<void(VkCommandBuffer)>& record);
+
+  private:
+    uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
+    VkPhysicalDevice pd_;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+};
+
+// Whole-image layout transition (UNDEFINED or anything -> `to`), for the validation layer's benefit.
+void transition(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspects, VkImageLayout from, VkImageLayout to,
+                uint32_t levels = VK_REMAINING_MIP_LEVELS, uint32_t layers = VK_REMAINING_ARRAY_LAYERS);
+
+}  // namespace tilevk::test

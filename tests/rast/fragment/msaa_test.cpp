@@ -1,0 +1,151 @@
+// Alpha to coverage, sample mask, resolve and clear packing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+#include "rast/fragment/msaa.h"
+
+using namespace tilevk::rast::fragment;
+
+TEST(FragmentMsaa, AlphaToCoverageThresholds) {
+    float alpha[16];
+    const float values[16] = {0.0f, 0.2f,  0.25f, 0.26f,    0.5f,    0.51f,   0.75f,      0.76f,
+                              1.0f, -1.0f, NAN,   INFINITY, 0.0001f, 0.7499f, 0.2500001f, 2.0f};
+    std::memcpy(alpha, values, sizeof alpha);
+    uint16_t masks[4] = {0xffff, 0xffff, 0xffff, 0xffff};
+    alpha_to_coverage_4x(alpha, masks);
+    for (int l = 0; l < 16; ++l)
+        for (int s = 0; s < 4; ++s) {
+            // sample s survives iff alpha > s/4 (strict; NaN never)
+            const bool want = alpha[l] > double(s) / 4.0;
+            EXPECT_EQ(bool(masks[s] & (1u << l)), want) << "lane " << l << " sample " << s;
+        }
+    const uint16_t m1 = alpha_to_coverage_1x(alpha, 0xffff);
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(bool(m1 & (1u << l)), alpha[l] > 0.5) << l;
+    EXPECT_EQ(alpha_to_coverage_1x(alpha, 0), 0);
+}
+
+TEST(FragmentMsaa, SampleMask) {
+    uint16_t m[4] = {0x1111, 0x2222, 0x4444, 0x8888};
+    apply_sample_mask(0x5, m);
+    EXPECT_EQ(m[0], 0x1111);
+    EXPECT_EQ(m[1], 0);
+    EXPECT_EQ(m[2], 0x4444);
+    EXPECT_EQ(m[3], 0);
+    EXPECT_EQ(any_sample(m), 0x5555);
+}
+
+TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
+    // Exhaustive over pairs of sample values with the other two fixed, plus random quadruples.
+    std::mt19937 rng(1);
+    const float k = float(1.0 / 255.0);
+    auto check = [&](const uint8_t v[4]) {
+        uint8_t px[4][4];
+        for (int s = 0; s < 4; ++s)
+            for (int c = 0; c < 4; ++c) px[s][c] = uint8_t(v[s] ^ (c * 37));
+        const uint8_t* p[4] = {px[0], px[1], px[2], px[3]};
+        uint8_t out[4];
+        ASSERT_TRUE(resolve_pixel(ColorFormat::R8G8B8A8_UNORM, p, out, true));
+        for (int c = 0; c < 4; ++c) {
+            volatile float sum = 0.0f;
+            for (int s = 0; s < 4; ++s) {
+                volatile float t = float(px[s][c]) * k;
+                sum = sum + t;
+            }
+            volatile float avg = sum * 0.25f;
+            volatile float sc = avg * 255.0f;
+            ASSERT_EQ(out[c], uint8_t(std::nearbyint(sc))) << int(v[0]) << " " << int(v[1]);
+            // and it is the integer average to within one code (it differs from (sum+2)/4 sometimes)
+            const int isum = px[0][c] + px[1][c] + px[2][c] + px[3][c];
+            ASSERT_LE(std::abs(int(out[c]) * 4 - isum), 4);
+        }
+    };
+    for (int a = 0; a < 256; ++a)
+        for (int b = 0; b < 256; ++b) {
+            const uint8_t v[4] = {uint8_t(a), uint8_t(b), 17, 200};
+            check(v);
+        }
+    for (int i = 0; i < 100000; ++i) {
+        const uint8_t v[4] = {uint8_t(rng()), uint8_t(rng()), uint8_t(rng()), uint8_t(rng())};
+        check(v);
+    }
+}
+
+TEST(FragmentMsaa, ResolveFloatFormats) {
+    const float s[4] = {1.0f, 2.0f, 1e-8f, 3.0f};
+    const uint8_t* p[4];
+    float px[4];
+    std::memcpy(px, s, sizeof px);
+    for (int i = 0; i < 4; ++i) p[i] = reinterpret_cast<const uint8_t*>(&px[i]);
+    float out;
+    ASSERT_TRUE(resolve_pixel(ColorFormat::R32_SFLOAT, p, reinterpret_cast<uint8_t*>(&out), true));
+    volatile float sum = 0.0f;
+    for (float v : s) sum = sum + v;
+    EXPECT_EQ(out, sum * 0.25f);
+    // rect walker uses the sample stride
+    float img[4][2] = {{1, 2}, {3, 4}, {5, 6}, {7, 8}};
+    float dst[2];
+    resolve_rect(ColorFormat::R32_SFLOAT, reinterpret_cast<const uint8_t*>(img), 8, 8, reinterpret_cast<uint8_t*>(dst),
+                 8, 2, 1, true);
+    EXPECT_EQ(dst[0], 4.0f);
+    EXPECT_EQ(dst[1], 5.0f);
+}
+
+TEST(FragmentMsaa, ClearColorPacking) {
+    uint8_t out[16];
+    const float c[4] = {0.5f, 1.0f, -0.2f, 0.25f};
+    ASSERT_TRUE(pack_clear_color(ColorFormat::B8G8R8A8_UNORM, c, out));
+    EXPECT_EQ(out[0], 0);    // B
+    EXPECT_EQ(out[1], 255);  // G
+    EXPECT_EQ(out[2], float_to_ubyte_clear(0.5f));
+    EXPECT_EQ(out[3], float_to_ubyte_clear(0.25f));
+    ASSERT_TRUE(pack_clear_color(ColorFormat::R32G32_SFLOAT, c, out));
+    float f[2];
+    std::memcpy(f, out, 8);
+    EXPECT_EQ(f[0], 0.5f);
+    EXPECT_EQ(f[1], 1.0f);
+    EXPECT_FALSE(pack_clear_color(ColorFormat::R8G8B8A8_SRGB, c, out));
+}
+
+TEST(FragmentMsaa, ClearDepthPacking) {
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> d(0.0, 1.0);
+    for (int i = 0; i < 100000; ++i) {
+        const double z = d(rng);
+        // lrint(z * 65535) in double: nearest, ties to even
+        const double t = z * 65535.0;
+        const double fl = std::floor(t);
+        const double want = (t - fl > 0.5 || (t - fl == 0.5 && std::fmod(fl, 2.0) != 0.0)) ? fl + 1 : fl;
+        ASSERT_EQ(pack_clear_depth(DepthFormat::D16, z), uint32_t(want));
+    }
+    EXPECT_EQ(pack_clear_depth(DepthFormat::D16, 1.0), 0xffffu);
+    EXPECT_EQ(pack_clear_depth(DepthFormat::D16, 2.0), 0xffffu);
+    EXPECT_EQ(pack_clear_depth(DepthFormat::D16, -1.0), 0u);
+    EXPECT_EQ(pack_clear_depth(DepthFormat::X8D24, 1.0), 0xffffffu);
+    EXPECT_EQ(pack_clear_depth(DepthFormat::X8D24, 0.5), 8388608u);  // 8388607.5 -> even
+    float h = 0.3f;
+    uint32_t hb;
+    std::memcpy(&hb, &h, 4);
+    EXPECT_EQ(pack_clear_depth(DepthFormat::D32F, 0.3), hb);
+}
+
+#if defined(__x86_64__)
+__attribute__((target("f16c"))) static uint16_t hw_half_rne(float f) {
+    return uint16_t(_mm_extract_epi16(_mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
+}
+TEST(FragmentMsaa, HalfRneMatchesF16c) {
+    if (!__builtin_cpu_supports("f16c")) GTEST_SKIP() << "no F16C";
+    for (uint64_t u = 0; u <= 0xffffffffull; u += 241) {
+        float f;
+        const uint32_t b = uint32_t(u);
+        std::memcpy(&f, &b, 4);
+        ASSERT_EQ(float_to_half_rne(f), hw_half_rne(f)) << std::hex << b;
+    }
+}
+#endif

@@ -1,0 +1,253 @@
+// Sampling: texelFetch, nearest/linear, address modes, explicit and derivative-based LOD, formats.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "glsl.h"
+
+using namespace tilevk::shader;
+using tilevk::shader::test::make_program;
+
+namespace {
+float f(uint32_t x) {
+    return std::bit_cast<float>(x);
+}
+uint32_t u(float x) {
+    return std::bit_cast<uint32_t>(x);
+}
+
+// An RGBA8 image 8x8 with a full mip chain; texel (x, y) of level L = (x*16+L, y*16, 40*L, 255).
+struct TestImage {
+    std::vector<uint8_t> bytes;
+    ImageView view;
+    explicit TestImage(Format fmt = Format::RGBA8_UNORM, uint32_t w = 8, uint32_t h = 8) {
+        view.format = fmt;
+        view.width = w, view.height = h;
+        uint32_t lw = w, lh = h, off = 0, level = 0;
+        for (;; ++level) {
+            view.level[level] = ImageLevel{off, uint64_t(lw) * 4, uint64_t(lw) * lh * 4};
+            off += lw * lh * 4;
+            if (lw == 1 && lh == 1) break;
+            lw = std::max(1u, lw / 2), lh = std::max(1u, lh / 2);
+        }
+        view.levels = level + 1;
+        bytes.resize(off);
+        for (uint32_t L = 0; L < view.levels; ++L) {
+            uint32_t ww = std::max(1u, w >> L), hh = std::max(1u, h >> L);
+            for (uint32_t y = 0; y < hh; ++y)
+                for (uint32_t x = 0; x < ww; ++x) {
+                    uint8_t* p = bytes.data() + view.level[L].offset + (y * ww + x) * 4;
+                    p[0] = uint8_t(x * 16 + L), p[1] = uint8_t(y * 16), p[2] = uint8_t(40 * L), p[3] = 255;
+                }
+        }
+        view.base = bytes.data();
+    }
+    float texel(uint32_t L, int x, int y, int c) const {
+        uint32_t ww = std::max(1u, view.width >> L);
+        return float(bytes[view.level[L].offset + (uint32_t(y) * ww + uint32_t(x)) * 4 + uint32_t(c)]) / 255.0f;
+    }
+};
+
+struct FsTex {
+    std::shared_ptr<const Program> prog;
+    FragmentBlock block;
+    Scratch scratch;
+    Bindings bindings;
+    explicit FsTex(const std::string& body,
+                   const std::string& decls = "layout(set=0, binding=0) uniform sampler2D tex;\n") {
+        prog = make_program(Stage::Fragment,
+                            "#version 450\nlayout(location=0) in vec4 v;\n"
+                            "layout(location=0) out vec4 color;\n" +
+                                decls + "void main() {\n" + body + "\n}\n");
+    }
+    void run() {
+        ASSERT_TRUE(prog);
+        prog->run_fragment(bindings, block, scratch);
+    }
+    float out(int l, int c) const { return f(block.outputs[0][c][l]); }
+};
+
+}  // namespace
+
+TEST(ShaderTexture, TexelFetchAndBounds) {
+    TestImage img;
+    SamplerState smp;
+    FsTex r("color = texelFetch(tex, ivec2(v.xy), int(v.z));");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u(float(l % 9));  // x; 8 is out of bounds at level 0
+        r.block.inputs[0][1][l] = u(float(l / 4));
+        r.block.inputs[0][2][l] = u(float(l % 3));  // level
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        int x = l % 9, y = l / 4, L = l % 3;
+        int w = 8 >> L;
+        bool in = x < w && y < w;
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(r.out(l, c), in ? img.texel(uint32_t(L), x, y, c) : 0.0f) << l;
+    }
+    ASSERT_EQ(r.prog->interface().descriptors.size(), 1u);
+    EXPECT_EQ(r.prog->interface().descriptors[0].kind, DescriptorKind::CombinedImageSampler);
+}
+
+TEST(ShaderTexture, NearestAddressModes) {
+    TestImage img;
+    const AddressMode modes[] = {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge,
+                                 AddressMode::ClampToBorder};
+    // coordinates in texels (u * 8): expected texel index per mode, computed by hand from the Vulkan rules
+    const float coords[] = {1.25f, -0.3f, 0.5f, 9.7f};
+    const int expect[4][4] = {
+        // u=1.25 -> i=10 ; u=-0.3 -> i=-3 ; u=0.5 -> 4 ; u=9.7 -> i=77
+        {2, 5, 4, 5},     // repeat: 10 mod 8 = 2, -3 mod 8 = 5, 77 mod 8 = 5
+        {5, 2, 4, 2},     // mirrored: 10 -> 15-10 = 5; -3 -> 2; 77 mod 16 = 13 -> 15-13 = 2
+        {7, 0, 4, 7},     // clamp
+        {-1, -1, 4, -1},  // border
+    };
+    for (int m = 0; m < 4; ++m) {
+        SamplerState smp;
+        smp.address_u = smp.address_v = modes[m];
+        smp.border = BorderColor::OpaqueWhite;
+        FsTex r("color = textureLod(tex, v.xy, 0.0);");
+        r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+        for (int l = 0; l < kLanes; ++l) {
+            r.block.inputs[0][0][l] = u(coords[l % 4]);
+            r.block.inputs[0][1][l] = u(0.3f);  // y texel 2
+        }
+        r.run();
+        for (int l = 0; l < 4; ++l) {
+            int x = expect[m][l];
+            for (int c = 0; c < 4; ++c) {
+                float e = x < 0 ? 1.0f : img.texel(0, x, 2, c);
+                EXPECT_EQ(r.out(l, c), e) << "mode " << m << " lane " << l << " c " << c;
+            }
+        }
+    }
+}
+
+TEST(ShaderTexture, BilinearFiltering) {
+    TestImage img;
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u(0.05f + 0.06f * float(l));
+        r.block.inputs[0][1][l] = u(0.9f - 0.05f * float(l));
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        float s = 0.05f + 0.06f * float(l), t = 0.9f - 0.05f * float(l);
+        float uu = s * 8.0f - 0.5f, vv = t * 8.0f - 0.5f;
+        int i0 = int(std::floor(uu)), j0 = int(std::floor(vv));
+        float a = uu - std::floor(uu), b = vv - std::floor(vv);
+        auto cl = [](int i) { return std::min(std::max(i, 0), 7); };
+        for (int c = 0; c < 4; ++c) {
+            float t00 = img.texel(0, cl(i0), cl(j0), c), t10 = img.texel(0, cl(i0 + 1), cl(j0), c);
+            float t01 = img.texel(0, cl(i0), cl(j0 + 1), c), t11 = img.texel(0, cl(i0 + 1), cl(j0 + 1), c);
+            float e = (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
+            EXPECT_EQ(r.out(l, c), e) << l << " " << c;
+        }
+    }
+}
+
+TEST(ShaderTexture, ImplicitLodFromDerivatives) {
+    TestImage img;
+    SamplerState smp;
+    smp.min_filter = Filter::Nearest;
+    smp.mipmap_mode = MipmapMode::Nearest;
+    // v.xy = pixel * (k / 8): k texels per pixel -> lambda = log2(k)
+    FsTex r("color = texture(tex, v.xy);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
+        for (int l = 0; l < kLanes; ++l) {
+            r.block.inputs[0][0][l] = u((float(lane_x(l)) + 0.5f) * k / 8.0f);
+            r.block.inputs[0][1][l] = u((float(lane_y(l)) + 0.5f) * k / 8.0f);
+        }
+        r.run();
+        uint32_t level = uint32_t(std::log2(k));
+        for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), float(40 * level) / 255.0f) << "k " << k;
+    }
+    EXPECT_TRUE(r.prog->interface().uses_derivatives);
+}
+
+TEST(ShaderTexture, TrilinearBetweenLevels) {
+    TestImage img;
+    SamplerState smp;
+    smp.mipmap_mode = MipmapMode::Linear;
+    FsTex r("color = textureLod(tex, vec2(0.01, 0.01), v.x);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(0.25f * float(l));
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        float lambda = 0.25f * float(l);
+        float e;
+        if (lambda <= 0.0f) {
+            e = img.texel(0, 0, 0, 2);
+        } else {
+            int lo = std::min(int(std::floor(lambda)), 3), hi = std::min(lo + 1, 3);
+            float fr = lambda - std::floor(lambda);
+            float a = img.texel(uint32_t(lo), 0, 0, 2), b = img.texel(uint32_t(hi), 0, 0, 2);
+            e = (hi != lo && fr > 0.0f) ? a * (1.0f - fr) + b * fr : a;
+        }
+        EXPECT_EQ(r.out(l, 2), e) << l;
+    }
+}
+
+TEST(ShaderTexture, SrgbAndFloatFormats) {
+    TestImage srgb(Format::RGBA8_SRGB, 4, 4);
+    SamplerState smp;
+    FsTex r("color = texelFetch(tex, ivec2(v.xy), 0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &srgb.view, &smp});
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u(float(l % 4));
+        r.block.inputs[0][1][l] = u(float(l / 4));
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        double c = double(uint8_t((l % 4) * 16)) / 255.0;
+        double lin = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        EXPECT_EQ(r.out(l, 0), float(lin));
+        EXPECT_EQ(r.out(l, 3), 1.0f);  // alpha is linear
+    }
+    // RGBA32F
+    std::vector<float> texels(4 * 4 * 4);
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = float(i) * 0.125f - 3.0f;
+    ImageView fv;
+    fv.base = reinterpret_cast<const uint8_t*>(texels.data());
+    fv.format = Format::RGBA32F;
+    fv.width = fv.height = 4;
+    fv.level[0] = ImageLevel{0, 64, 256};
+    r.bindings.set(0, 0, 0, Descriptor{{}, &fv, &smp});
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(r.out(l, c), texels[size_t((l / 4) * 16 + (l % 4) * 4 + c)]);
+}
+
+TEST(ShaderTexture, SeparateImageAndSampler) {
+    TestImage img;
+    SamplerState smp;
+    FsTex r("color = textureLod(sampler2D(t, s), v.xy, 0.0) + vec4(float(textureSize(sampler2D(t, s), 1).x));",
+            "layout(set=0, binding=0) uniform texture2D t;\nlayout(set=0, binding=1) uniform sampler s;\n");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, nullptr});
+    r.bindings.set(0, 1, 0, Descriptor{{}, nullptr, &smp});
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u((float(l % 8) + 0.5f) / 8.0f);
+        r.block.inputs[0][1][l] = u(0.5f / 8.0f);
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), img.texel(0, l % 8, 0, 0) + 4.0f);
+    const auto& d = r.prog->interface().descriptors;
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_EQ(d[0].kind, DescriptorKind::SampledImage);
+    EXPECT_EQ(d[1].kind, DescriptorKind::Sampler);
+}
+
+TEST(ShaderTexture, MissingImageReadsZero) {
+    FsTex r("color = texture(tex, v.xy) + vec4(1.0);");
+    r.run();
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), 1.0f);
+}
