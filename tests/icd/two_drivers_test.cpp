@@ -178,6 +178,19 @@ TEST(TwoDrivers, TilevkRefusesWhatItLacks) {
     ci.enabledExtensionCount = 1;
     ci.ppEnabledExtensionNames = &ext;
     EXPECT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_ERROR_EXTENSION_NOT_PRESENT);
+
+    // Unimplemented pieces fail honestly: no proc address for commands tilevk cannot run, and pipeline creation
+    // reports an error instead of returning a pipeline that would draw nothing.
+    ci.enabledExtensionCount = 0;
+    ASSERT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_SUCCESS);
+    EXPECT_EQ(vkGetDeviceProcAddr(dev, "vkCmdBlitImage"), nullptr);
+    EXPECT_EQ(vkGetDeviceProcAddr(dev, "vkCreateQueryPool"), nullptr);
+    EXPECT_NE(vkGetDeviceProcAddr(dev, "vkCmdCopyBuffer"), nullptr);
+    VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    VkPipeline pipe = reinterpret_cast<VkPipeline>(uintptr_t(1));
+    EXPECT_EQ(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe), VK_ERROR_INITIALIZATION_FAILED);
+    EXPECT_EQ(pipe, VK_NULL_HANDLE);
+    vkDestroyDevice(dev, nullptr);
 }
 
 }  // namespace
