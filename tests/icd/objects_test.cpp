@@ -173,6 +173,65 @@ TEST_P(Objects, ResubmitAndSecondary) {
     dev_->destroy(buf);
 }
 
+// Writes a LINEAR image through the mapped memory at vkGetImageSubresourceLayout's offsets and pitches, then
+// reads it back with vkCmdCopyImageToBuffer: the reported layout must be the real one.
+TEST_P(Objects, LinearImageSubresourceLayoutIsTheRealLayout) {
+    VkDevice d = dev_->device();
+    const uint32_t w = 7, h = 5;
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = VK_FORMAT_R8G8B8A8_UNORM;
+    ci.extent = {w, h, 1};
+    ci.mipLevels = 1;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_LINEAR;
+    ci.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ci.initialLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+    VkImage img;
+    ASSERT_EQ(vkCreateImage(d, &ci, nullptr, &img), VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(d, img, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(dev_->physical(), &mp);
+    uint32_t type = 0;
+    while (type < mp.memoryTypeCount &&
+           !((req.memoryTypeBits & (1u << type)) &&
+             (mp.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) &&
+             (mp.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT))) {
+        ++type;
+    }
+    ASSERT_LT(type, mp.memoryTypeCount);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = type;
+    VkDeviceMemory mem;
+    ASSERT_EQ(vkAllocateMemory(d, &ai, nullptr, &mem), VK_SUCCESS);
+    ASSERT_EQ(vkBindImageMemory(d, img, mem, 0), VK_SUCCESS);
+    VkImageSubresource sub{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
+    VkSubresourceLayout lay;
+    vkGetImageSubresourceLayout(d, img, &sub, &lay);
+    ASSERT_GE(lay.rowPitch, w * 4u);
+    uint8_t* p = nullptr;
+    ASSERT_EQ(vkMapMemory(d, mem, 0, VK_WHOLE_SIZE, 0, reinterpret_cast<void**>(&p)), VK_SUCCESS);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w * 4; ++x) p[lay.offset + y * lay.rowPitch + x] = uint8_t(y * 40 + x);
+    vkUnmapMemory(d, mem);
+    Device::Buffer buf = dev_->make_buffer(w * h * 4);
+    dev_->run([&](VkCommandBuffer cb) {
+        transition(cb, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PREINITIALIZED,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy r{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {w, h, 1}};
+        vkCmdCopyImageToBuffer(cb, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, 1, &r);
+    });
+    const uint8_t* got = static_cast<const uint8_t*>(buf.map);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w * 4; ++x) ASSERT_EQ(got[y * w * 4 + x], uint8_t(y * 40 + x)) << x << "," << y;
+    dev_->destroy(buf);
+    vkDestroyImage(d, img, nullptr);
+    vkFreeMemory(d, mem, nullptr);
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDrivers, Objects, ::testing::Values("tilevk", "llvmpipe"));
 
 // An application asking for Vulkan 1.3 still gets tilevk (the loader clamps the version for a 1.0 driver), and the
