@@ -194,7 +194,9 @@ def main():
         same = sum(c["total"] - c["differing"] for c in run["cases"])
         g = geomean([ratio(c) for c in run["cases"]])
         compared = sum(1 for c in run["cases"] if c["total"])
-        md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | {fmt(g)} | "
+        timed = sum(1 for c in run["cases"] if ratio(c))
+        md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | "
+                  f"{fmt(g)} over {timed} timed cases | "
                   f"{fmt(100.0 * same / px if px else None, '.4f')} % of {px} px in {compared} compared cases |")
     ns = [c for c in main_run["cases"] if c["status"] == "NotSupported"]
     if ns:
