@@ -3,12 +3,14 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "case.hpp"
 #include "png_writer.hpp"
@@ -24,12 +26,14 @@ struct Options {
     std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
     bool device_is_prefix = true, png_all = false, selftest_perturb = false;
     int timing = 0;
+    int case_timeout = 300;  // seconds; a hung driver ends the process (run_one.sh resumes after the case)
 };
 
 void usage() {
     std::puts(
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
+        "                  [--case-timeout SECONDS (default 300)]\n"
         "                  [--selftest-perturb]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
@@ -70,6 +74,12 @@ bool parse(int argc, char** argv, Options& o) {
             o.selftest_perturb = true;
         else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
+        } else if (a == "--case-timeout") {
+            if (!value(n)) return false;
+            char* end = nullptr;
+            long v = std::strtol(n.c_str(), &end, 10);
+            if (*end || v < 1 || v > 86400) return false;
+            o.case_timeout = int(v);
         } else if (a == "--timing") {
             if (!value(n)) return false;
             char* end = nullptr;
@@ -264,11 +274,30 @@ int main(int argc, char** argv) {
                 ref.name.c_str());
     if (!have_ours) std::printf("tilevk-cts: device under test unavailable: %s\n", ours_missing.c_str());
 
+    // Watchdog: a driver that hangs inside a case must not hang the whole run. The JSON written before the case
+    // names it as running, so run_one.sh records it as failed and resumes after it.
+    std::atomic<int64_t> case_started{0};
+    std::atomic<bool> done{false};
+    std::thread watchdog([&] {
+        while (!done) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            int64_t t = case_started.load();
+            int64_t now =
+                std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now().time_since_epoch())
+                    .count();
+            if (t && now - t > o.case_timeout) {
+                std::fprintf(stderr, "tilevk-cts: case timed out after %d s; exiting\n", o.case_timeout);
+                std::fflush(stdout);
+                std::_Exit(124);
+            }
+        }
+    });
     std::vector<CaseResult> results;
     int fails = 0;
     for (size_t i = 0; i < cases.size(); ++i) {
         if (!o.json.empty()) write_json(o.json, info, results, cases[i].name);  // survives a driver crash
         auto t0 = std::chrono::steady_clock::now();
+        case_started = std::chrono::duration_cast<std::chrono::seconds>(t0.time_since_epoch()).count();
         CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         fails += r.status == Status::kFail;
@@ -277,6 +306,8 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         results.push_back(std::move(r));
     }
+    done = true;
+    watchdog.join();
     if (!o.json.empty()) write_json(o.json, info, results, "");
     if (!o.junit.empty()) write_junit(o.junit, info, results);
     if (!o.log.empty()) write_log(o.log, info, results);
