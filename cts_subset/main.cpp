@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "case.hpp"
+#include "glsl.hpp"
 #include "png_writer.hpp"
 #include "render.hpp"
 #include "results.hpp"
@@ -149,6 +150,15 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         r.status = Status::kNotSupported;
         r.reason = std::string("test data unavailable: ") + e.what();
         return r;
+    }
+    // Shaders are compiled here first, so a GLSL mistake is blamed on the harness, not on either driver.
+    try {
+        for (const Draw& d : scene.draws) {
+            compile_glsl(Stage::kVertex, vertex_source(d));
+            compile_glsl(Stage::kFragment, fragment_source(d));
+        }
+    } catch (const std::exception& e) {
+        return fail(std::string("harness: ") + e.what());
     }
     if (!ours) {
         // Still time the reference, so the report shows lavapipe's side while tilevk is missing.
