@@ -182,16 +182,37 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         r.reason = ref.name + ": " + why;
         return r;
     }
+    // Both frames are built and run once for the images; then timed alternately (ours, ref, ours, ...) so that
+    // load from elsewhere on the machine falls on both sides alike.
     RenderResult a, b;
+    std::unique_ptr<Frame> fa, fb;
     try {
-        a = render(*ours, scene, o.timing);
+        fa = std::make_unique<Frame>(*ours, scene);
+        fa->submit();
+        a.planes = fa->planes();
+        a.pipeline_ms = fa->pipeline_ms();
     } catch (const std::exception& e) {
         return fail(ours->name + ": " + e.what());
     }
     try {
-        b = render(ref, scene, o.timing);
+        fb = std::make_unique<Frame>(ref, scene);
+        fb->submit();
+        b.planes = fb->planes();
+        b.pipeline_ms = fb->pipeline_ms();
     } catch (const std::exception& e) {
         return fail("reference " + ref.name + ": " + e.what());
+    }
+    for (int i = 0; i < o.timing; ++i) {
+        try {
+            a.frame_ms.push_back(fa->submit());
+        } catch (const std::exception& e) {
+            return fail(ours->name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
+        }
+        try {
+            b.frame_ms.push_back(fb->submit());
+        } catch (const std::exception& e) {
+            return fail("reference " + ref.name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
+        }
     }
     // Harness self-test: one changed bit in our first plane must be caught by every comparison path.
     if (o.selftest_perturb && !a.planes.empty() && !a.planes[0].data.empty()) a.planes[0].data[0] ^= 1;
