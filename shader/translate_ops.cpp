@@ -127,7 +127,14 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
     }
     uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
     auto scalar = [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
-        emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        if (p.dyn == kNoReg && p.elem == kNoReg) {
+            if (p.elem_const < p.limit)
+                emit(SOp::LoadBufUniform, d, kNoReg, kNoReg, kNoReg, p.base + p.elem_const, p.offset + byte_off);
+            else
+                emit(SOp::Mov, d, zero_);
+        } else {
+            emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        }
         if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
     };
     switch (t.kind) {
