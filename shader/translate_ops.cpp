@@ -72,7 +72,7 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
             if (stride == 0) fail("buffer array without ArrayStride");
             // a huge constant index stays in bounds of uint32 arithmetic; the executor rejects it
             if (is_const)
-                p.offset += uint32_t(std::min<uint64_t>(uint64_t(cv) * stride, 0x7fffffffu));
+                p.offset = uint32_t(std::min<uint64_t>(p.offset + uint64_t(cv) * stride, 0x7fffffffu));
             else
                 add_dyn(stride);
             p.type = t.elem;
