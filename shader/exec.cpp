@@ -541,6 +541,18 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 }
                 break;
             }
+            case Op::LoadLocalFixed: {
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
+                LANES d[l] = m[l];
+                break;
+            }
+            case Op::StoreLocalFixed: {
+                uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
+                const uint32_t* __restrict b = B, * __restrict c = C;
+                LANES m[l] = (c[l] & b[l]) | (~c[l] & m[l]);
+                break;
+            }
             case Op::LoadBuf: {
                 uint32_t* __restrict d = D;
                 const uint32_t* __restrict a = A, * __restrict b = B;

@@ -136,11 +136,13 @@ enum class Op : uint16_t {
     DdxCoarse,
     DdyCoarse,
     // memory
-    LoadLocal,       // d = local[(imm + clamp(a)) lane]; b = size limit (words) of the variable
-    StoreLocal,      // local[(imm + clamp(a))] = b under mask c; size limit in extra
-    LoadBuf,         // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
-    LoadBufUniform,  // d = buffer(slot imm)[byte offset extra] for every lane
-    StoreBuf,        // buffer(slot imm + elem a)[byte offset b] = c under mask extra
+    LoadLocal,        // d = local[(imm + clamp(a)) lane]; b = size limit (words) of the variable
+    StoreLocal,       // local[(imm + clamp(a))] = b under mask c; size limit in extra
+    LoadLocalFixed,   // d = local[imm] (constant word: a plain 16-lane copy)
+    StoreLocalFixed,  // local[imm] = b under mask c
+    LoadBuf,          // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
+    LoadBufUniform,   // d = buffer(slot imm)[byte offset extra] for every lane
+    StoreBuf,         // buffer(slot imm + elem a)[byte offset b] = c under mask extra
     // images: d..d+3 = result; a = handle, b = first coordinate register, c = lod/bias register or kNoReg
     Sample,     // imm: SampleFlags; extra: dref/offset unused
     Fetch,      // texelFetch: integer coords at b, lod at c

@@ -101,8 +101,13 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Local) {
-        for (uint32_t i = 0; i < t.flat; ++i)
-            emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, p.base + p.offset + off + i).n = p.limit;
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::LoadLocalFixed, dst + i, kNoReg, kNoReg, kNoReg, w);
+            else
+                emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, w).n = p.limit;
+        }
         return;
     }
     if (p.space == Space::Handle) {
@@ -186,8 +191,13 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Local) {
-        for (uint32_t i = 0; i < t.flat; ++i)
-            emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, p.base + p.offset + off + i).n = p.limit;
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::StoreLocalFixed, kNoReg, kNoReg, src + i, cur_mask_, w);
+            else
+                emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, w).n = p.limit;
+        }
         return;
     }
     if (p.space == Space::Handle) fail("store to an image or sampler variable");
