@@ -164,6 +164,8 @@ enum SampleFlags : uint32_t {
     kSampleProj = 16,        // divide by the last coordinate
     kSampleGrad = 32,        // n..n+3: dx.xy, dy.xy registers
     kSample1D = 64,          // 1D image: one coordinate (plus layer)
+    kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
+    kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
 };
 
 constexpr uint32_t kNoReg = 0xFFFFFFFFu;
