@@ -40,6 +40,7 @@ struct Extra {
     VkFrontFace front = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     bool restart = false;
     const std::vector<uint32_t>* indices = nullptr;
+    float vp[4] = {0, 0, kSize, kSize};  // x, y, width, height
 };
 
 #define VK_OK(x)                                      \
@@ -186,7 +187,7 @@ class Lavapipe {
             if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format &&
                 p.bias.constant_factor == b.constant_factor && p.bias.slope_factor == b.slope_factor &&
                 p.bias.clamp == b.clamp && p.x.depth_clamp == x.depth_clamp && p.x.cull == x.cull &&
-                p.x.front == x.front && p.x.restart == x.restart)
+                p.x.front == x.front && p.x.restart == x.restart && std::memcmp(p.x.vp, x.vp, sizeof(x.vp)) == 0)
                 return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
@@ -202,7 +203,7 @@ class Lavapipe {
         VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
         ia.topology = topo;
         ia.primitiveRestartEnable = x.restart;
-        VkViewport vp{0, 0, kSize, kSize, 0, 1};
+        VkViewport vp{x.vp[0], x.vp[1], x.vp[2], x.vp[3], 0, 1};
         VkRect2D sc{{0, 0}, {kSize, kSize}};
         VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
         vps.viewportCount = vps.scissorCount = 1;
@@ -375,7 +376,17 @@ struct ModelExtra {
     bool clip_z = true;  // !depthClampEnable
     bool cull_front = false, cull_back = false;
     bool front_ccw = true;
+    float vp[4] = {0, 0, kSize, kSize};
 };
+
+Viewport model_viewport(const ModelExtra& mx) {
+    return make_viewport(mx.vp[0], mx.vp[1], mx.vp[2], mx.vp[3], 0, 1);
+}
+
+// Every primitive is limited to the viewport's whole-pixel rectangle (and the framebuffer).
+bool in_rect(const PixelRect& r, int px, int py) {
+    return px >= r.x0 && px < r.x1 && py >= r.y0 && py < r.y1;
+}
 
 std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fma, bool wrong_divide = false,
                            const DepthBias* bias = nullptr, const ModelExtra& mx = ModelExtra{}) {
@@ -388,7 +399,8 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
     for (const auto& v : verts) pipeline_path = pipeline_path || compute_clipmask(cm, v.pos) != 0;
     const FloatCull fcull{mx.cull_front, mx.cull_back, mx.front_ccw};
     ViewportConfig vc;
-    vc.vp = make_viewport(0, 0, kSize, kSize, 0, 1);
+    vc.vp = model_viewport(mx);
+    const PixelRect rect = viewport_pixel_rect(vc.vp);
     vc.fused = fma;
     ClipConfig cc;
     cc.layout = {3, kModes};
@@ -434,6 +446,7 @@ std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, bool fm
             setup_triangle_planes(pc, v[0], v[1], v[2], &tp, ap);
             for (int py = 0; py < kSize; ++py)
                 for (int px = 0; px < kSize; ++px) {
+                    if (!in_rect(rect, px, py)) continue;
                     bool in = true;
                     for (int e = 0; e < 3; ++e) {
                         const int j = (e + 1) % 3;
@@ -493,8 +506,10 @@ struct ModelState {
     ViewportConfig vc;
     ClipConfig cc;
     std::vector<float> scratch = std::vector<float>(kClipScratchVertices * kFloats);
-    explicit ModelState(bool fma) {
-        vc.vp = make_viewport(0, 0, kSize, kSize, 0, 1);
+    PixelRect rect;
+    ModelState(bool fma, const ModelExtra& mx) {
+        vc.vp = model_viewport(mx);
+        rect = viewport_pixel_rect(vc.vp);
         vc.fused = fma;
         cc.layout = {3, kModes};
         cc.vp = vc.vp;
@@ -507,9 +522,9 @@ struct ModelState {
 };
 
 std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, bool fma, float width,
-                                 bool bresenham = false) {
+                                 bool bresenham = false, const ModelExtra& mx = ModelExtra{}) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
-    ModelState st(fma);
+    ModelState st(fma, mx);
     LineSetupConfig lc;
     lc.layout = st.cc.layout;
     lc.width = width;
@@ -525,7 +540,7 @@ std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, b
         if (setup_line(lc, a, b, &ls, ap) != PrimSetupStatus::kOk) continue;
         for (int py = 0; py < kSize; ++py)
             for (int px = 0; px < kSize; ++px) {
-                bool in = true;
+                bool in = in_rect(st.rect, px, py);
                 for (const auto& pl : ls.planes)
                     in = in && pl.c + int64_t{pl.a} * (px * 256) + int64_t{pl.b} * (py * 256) > 0;
                 if (in) shade(img, px, py, ls.pos, ap[mode & 3], mode, fma);
@@ -536,9 +551,10 @@ std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, b
 
 // col_format: the colour bytes of each InVertex are an element of this format, converted by vertex_fetch.
 std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, bool fma,
-                                  VertexFormat col_format = VertexFormat::kR32G32B32A32Float) {
+                                  VertexFormat col_format = VertexFormat::kR32G32B32A32Float,
+                                  const ModelExtra& mx = ModelExtra{}) {
     std::vector<uint8_t> img(kSize * kSize * 4, 0);
-    ModelState st(fma);
+    ModelState st(fma, mx);
     PointSetupConfig pc;
     pc.layout = st.cc.layout;
     for (const auto& raw : verts) {
@@ -553,7 +569,8 @@ std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, 
         if (setup_point(pc, r, v.col[3] * 8.0f, &ps, ap) != PrimSetupStatus::kOk) continue;
         for (int py = 0; py < kSize; ++py)
             for (int px = 0; px < kSize; ++px)
-                if (ps.x0 <= px * 256 && px * 256 < ps.x1 && ps.y0 <= py * 256 && py * 256 < ps.y1)
+                if (in_rect(st.rect, px, py) && ps.x0 <= px * 256 && px * 256 < ps.x1 && ps.y0 <= py * 256 &&
+                    py * 256 < ps.y1)
                     shade(img, px, py, ps.pos, ap[mode & 3], mode, fma);
     }
     return img;
@@ -962,4 +979,49 @@ TEST(LavapipeCrossCheck, StripsFansAndRestartOrders) {
     std::printf("strips/fans: %d lit pixels compared; last-vertex order differs in %d channels\n", lit, wrong_diff);
     EXPECT_GT(wrong_diff, 0);
     EXPECT_GT(lit, 5000);
+}
+
+TEST(LavapipeCrossCheck, FractionalViewportLimitsEveryPrimitive) {
+    // A fractional viewport smaller than the target: clipped triangles and lines, and points (never x/y clipped,
+    // limited only by the viewport's whole-pixel rectangle).
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const bool fma = host_has_fma();
+    const float vps[3][4] = {{10.25f, 5.75f, 40.5f, 30.25f}, {3.6f, 50.4f, 52.3f, -41.7f}, {0.5f, 0.5f, 62, 62}};
+    int lit = 0;
+    for (const auto& vpv : vps) {
+        Extra x;
+        ModelExtra mx;
+        std::memcpy(x.vp, vpv, sizeof(x.vp));
+        std::memcpy(mx.vp, vpv, sizeof(mx.vp));
+        for (int s = 0; s < 6; ++s) {
+            std::vector<InVertex> sc;
+            for (int k = 0; k < 12; ++k) {
+                const float w = 0.5f + 2.0f * u(rng);
+                sc.push_back(iv((u(rng) * 3.0f - 1.5f) * w, (u(rng) * 3.0f - 1.5f) * w, 0.5f * w, w, u(rng), u(rng),
+                                u(rng), u(rng)));
+            }
+            for (int mode : {0, 4}) {
+                int first;
+                auto got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false,
+                                      VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+                EXPECT_EQ(count_diff(got, model(sc, mode, fma, false, nullptr, mx), &first), 0)
+                    << "triangles vp " << vpv[0] << " scene " << s << " mode " << mode << " pixel " << first / 4;
+                for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+                got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 2.0f, false, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                 nullptr, x);
+                EXPECT_EQ(count_diff(got, model_lines(sc, mode, fma, 2.0f, false, mx), &first), 0)
+                    << "lines vp " << vpv[0] << " scene " << s << " mode " << mode << " pixel " << first / 4;
+                got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                 nullptr, x);
+                EXPECT_EQ(count_diff(got, model_points(sc, mode, fma, VertexFormat::kR32G32B32A32Float, mx), &first), 0)
+                    << "points vp " << vpv[0] << " scene " << s << " mode " << mode << " pixel " << first / 4;
+                for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
+            }
+        }
+    }
+    std::printf("fractional viewports: %d lit pixels compared\n", lit);
+    EXPECT_GT(lit, 2000);
 }
