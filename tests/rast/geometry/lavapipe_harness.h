@@ -9,9 +9,10 @@
 #include <cstring>
 #include <vector>
 
+#include "kXcheck_frag.spv.h"
+#include "kXcheck_noflat_frag.spv.h"
+#include "kXcheck_vert.spv.h"
 #include "rast/geometry/planes.h"
-#include "xcheck_frag.spv.h"
-#include "xcheck_vert.spv.h"
 
 namespace xcheck {
 
@@ -33,6 +34,7 @@ struct Extra {
     bool restart = false;
     const std::vector<uint32_t>* indices = nullptr;
     float vp[4] = {0, 0, kSize, kSize};  // x, y, width, height
+    bool no_flat = false;                // fragment shader without a flat input (smooth colour only)
 };
 
 #define VK_OK(x)                                      \
@@ -179,12 +181,13 @@ class Lavapipe {
             if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format &&
                 p.bias.constant_factor == b.constant_factor && p.bias.slope_factor == b.slope_factor &&
                 p.bias.clamp == b.clamp && p.x.depth_clamp == x.depth_clamp && p.x.cull == x.cull &&
-                p.x.front == x.front && p.x.restart == x.restart && std::memcmp(p.x.vp, x.vp, sizeof(x.vp)) == 0)
+                p.x.front == x.front && p.x.restart == x.restart && std::memcmp(p.x.vp, x.vp, sizeof(x.vp)) == 0 &&
+                p.x.no_flat == x.no_flat)
                 return p.pipe;
         VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
         st[0].stage = VK_SHADER_STAGE_VERTEX_BIT, st[0].module = vs_, st[0].pName = "main";
-        st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT, st[1].module = fs_, st[1].pName = "main";
+        st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT, st[1].module = x.no_flat ? fs_noflat_ : fs_, st[1].pName = "main";
         VkVertexInputBindingDescription bind{0, sizeof(InVertex), VK_VERTEX_INPUT_RATE_VERTEX};
         VkVertexInputAttributeDescription attrs[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 0, col_format, 16}};
         VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -309,6 +312,9 @@ class Lavapipe {
         smi.codeSize = sizeof(kXcheck_frag);
         smi.pCode = kXcheck_frag;
         if (vkCreateShaderModule(dev_, &smi, nullptr, &fs_) != VK_SUCCESS) return false;
+        smi.codeSize = sizeof(kXcheck_noflat_frag);
+        smi.pCode = kXcheck_noflat_frag;
+        if (vkCreateShaderModule(dev_, &smi, nullptr, &fs_noflat_) != VK_SUCCESS) return false;
         VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
         VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
         li.pushConstantRangeCount = 1;
@@ -336,7 +342,7 @@ class Lavapipe {
     VkRenderPass pass_ = VK_NULL_HANDLE;
     VkFramebuffer fb_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkShaderModule vs_ = VK_NULL_HANDLE, fs_ = VK_NULL_HANDLE;
+    VkShaderModule vs_ = VK_NULL_HANDLE, fs_ = VK_NULL_HANDLE, fs_noflat_ = VK_NULL_HANDLE;
     struct Pipe {
         VkPrimitiveTopology topo;
         float width;

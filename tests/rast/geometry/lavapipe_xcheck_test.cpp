@@ -414,3 +414,61 @@ TEST(LavapipeCrossCheck, FractionalViewportLimitsEveryPrimitive) {
     std::printf("fractional viewports: %d lit pixels compared\n", lit);
     EXPECT_GT(lit, 2000);
 }
+
+TEST(LavapipeCrossCheck, NineVertexTriangleListQuirk) {
+    // notes §8: a non-indexed, unclipped TRIANGLE_LIST draw of exactly 9 vertices without flat inputs whose third
+    // triangle has three equal window y values is swallowed by lp_setup_analyse_triangles (unless the first six
+    // vertices form its "aero" rectangle). Check what lavapipe really does.
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    std::vector<InVertex> sc = {
+        iv(-0.9f, -0.9f, 0.5f, 1, 1, 0, 0), iv(0.5f, -0.8f, 0.5f, 1, 0, 1, 0), iv(-0.7f, 0.6f, 0.5f, 1, 0, 0, 1),
+        iv(0.1f, 0.1f, 0.5f, 1, 1, 1, 0),   iv(0.9f, 0.2f, 0.5f, 1, 0, 1, 1),  iv(0.3f, 0.9f, 0.5f, 1, 1, 0, 1),
+        iv(-0.5f, 0.5f, 0.5f, 1, 1, 1, 1),  iv(0.0f, 0.5f, 0.5f, 1, 1, 1, 1),  iv(0.5f, 0.5f, 0.5f, 1, 1, 1, 1)};
+    Extra x;
+    x.no_flat = true;
+    auto lit_count = [](const std::vector<uint8_t>& img) {
+        int n = 0;
+        for (size_t i = 3; i < img.size(); i += 4) n += img[i] != 0;
+        return n;
+    };
+    const auto nine =
+        lvp.render(sc, 0, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+    // the same first two triangles with a non-degenerate third: everything drawn
+    auto sc2 = sc;
+    sc2[8].pos[1] = 0.6f;
+    const auto control =
+        lvp.render(sc2, 0, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+    // with a flat input in the shader the analysis is off
+    const auto flat = lvp.render(sc, 0);
+    std::printf("9-vertex quirk: lit pixels %d (quirk case), %d (control), %d (shader with a flat input)\n",
+                lit_count(nine), lit_count(control), lit_count(flat));
+    EXPECT_EQ(lit_count(nine), 0);
+    EXPECT_GT(lit_count(control), 100);
+    EXPECT_GT(lit_count(flat), 100);
+    EXPECT_EQ(quirk_for(sc), NineVertexQuirk::kSwallowed);
+    EXPECT_EQ(quirk_for(sc2), NineVertexQuirk::kNone);
+    EXPECT_EQ(quirk_for(sc, false, true), NineVertexQuirk::kNone);
+    // 10 vertices: draw trims the incomplete triangle first, so the quirk still applies
+    auto ten = sc;
+    ten.push_back(iv(0, 0, 0.5f, 1, 1, 1, 1));
+    EXPECT_EQ(lit_count(lvp.render(ten, 0, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   nullptr, x)),
+              0);
+    EXPECT_EQ(quirk_for(ten), NineVertexQuirk::kSwallowed);
+    // a clipped vertex sends the batch down draw's pipeline path: no analysis, everything drawn
+    auto clipped = sc;
+    clipped[0].pos[0] = -1.5f;
+    EXPECT_GT(lit_count(lvp.render(clipped, 0, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false,
+                                   VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x)),
+              100);
+    EXPECT_EQ(quirk_for(clipped), NineVertexQuirk::kNone);
+    // indexed draws go through draw_elements: no analysis
+    std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    Extra xi = x;
+    xi.indices = &idx;
+    EXPECT_GT(lit_count(lvp.render(sc, 0, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   nullptr, xi)),
+              100);
+    EXPECT_EQ(quirk_for(sc, true), NineVertexQuirk::kNone);
+}

@@ -10,6 +10,7 @@
 
 #include "lavapipe_harness.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/planes.h"
 #include "rast/geometry/primitive_assembly.h"
@@ -267,6 +268,22 @@ inline std::vector<std::vector<InVertex>> make_scenes() {
         scenes.push_back(sc);
     }
     return scenes;
+}
+
+// The library's quirk predicate fed from the model's vertex pipeline.
+inline NineVertexQuirk quirk_for(const std::vector<InVertex>& v, bool indexed = false, bool flat = false) {
+    ModelState st(host_has_fma(), ModelExtra{});
+    TriangleListBatch b;
+    b.vertex_count = static_cast<uint32_t>(v.size());
+    b.indexed = indexed;
+    b.fs_has_flat_input = flat;
+    float xy[12][2] = {};
+    for (size_t i = 0; i < v.size(); ++i) {
+        float r[kFloats];
+        b.any_vertex_clipped = b.any_vertex_clipped || st.record(v[i], r) != 0;
+        if (i < 12) xy[i][0] = r[4], xy[i][1] = r[5];
+    }
+    return nine_vertex_quirk(b, xy);
 }
 
 inline int count_diff(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int* first) {
