@@ -35,6 +35,7 @@ struct Extra {
     const std::vector<uint32_t>* indices = nullptr;
     float vp[4] = {0, 0, kSize, kSize};  // x, y, width, height
     bool no_flat = false;                // fragment shader without a flat input (smooth colour only)
+    int samples = 1;                     // 1, or 4 (rendered at 4x and resolved by the render pass)
 };
 
 #define VK_OK(x)                                      \
@@ -116,13 +117,13 @@ class Lavapipe {
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         VK_OK(vkResetCommandBuffer(cmd_, 0));
         VK_OK(vkBeginCommandBuffer(cmd_, &bi));
-        VkClearValue clear{};
+        VkClearValue clear[2] = {};
         VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-        rp.renderPass = pass_;
-        rp.framebuffer = fb_;
+        rp.renderPass = extra.samples == 4 ? pass_ms_ : pass_;
+        rp.framebuffer = extra.samples == 4 ? fb_ms_ : fb_;
         rp.renderArea.extent = {kSize, kSize};
-        rp.clearValueCount = 1;
-        rp.pClearValues = &clear;
+        rp.clearValueCount = extra.samples == 4 ? 2 : 1;
+        rp.pClearValues = clear;
         vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
         vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
         VkDeviceSize off = 0;
@@ -219,7 +220,7 @@ class Lavapipe {
         ls.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
         if (bresenham) rs.pNext = &ls;
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        ms.rasterizationSamples = x.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
         VkPipelineColorBlendAttachmentState cba{};
         cba.colorWriteMask = 0xF;
         VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -235,7 +236,7 @@ class Lavapipe {
         gi.pMultisampleState = &ms;
         gi.pColorBlendState = &cb;
         gi.layout = layout_;
-        gi.renderPass = pass_;
+        gi.renderPass = x.samples == 4 ? pass_ms_ : pass_;
         VkPipeline pipe = VK_NULL_HANDLE;
         if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
         pipes_.push_back({topo, line_width, bresenham, col_format, b, x, pipe});
@@ -305,6 +306,35 @@ class Lavapipe {
         fi.width = fi.height = kSize;
         fi.layers = 1;
         if (vkCreateFramebuffer(dev_, &fi, nullptr, &fb_) != VK_SUCCESS) return false;
+        // 4x: a multisampled colour attachment resolved into image_ at the end of the subpass
+        ii.samples = VK_SAMPLE_COUNT_4_BIT;
+        ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        VkImage ms_image;
+        if (vkCreateImage(dev_, &ii, nullptr, &ms_image) != VK_SUCCESS) return false;
+        vkGetImageMemoryRequirements(dev_, ms_image, &mr);
+        ai.allocationSize = mr.size;
+        ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
+        VkDeviceMemory mm;
+        if (vkAllocateMemory(dev_, &ai, nullptr, &mm) != VK_SUCCESS) return false;
+        vkBindImageMemory(dev_, ms_image, mm, 0);
+        vi.image = ms_image;
+        VkImageView ms_view;
+        if (vkCreateImageView(dev_, &vi, nullptr, &ms_view) != VK_SUCCESS) return false;
+        VkAttachmentDescription atts[2] = {att, att};
+        atts[0].samples = VK_SAMPLE_COUNT_4_BIT;
+        atts[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        atts[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        atts[1].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        VkAttachmentReference resolve_ref{1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+        sub.pResolveAttachments = &resolve_ref;
+        rpi.attachmentCount = 2;
+        rpi.pAttachments = atts;
+        if (vkCreateRenderPass(dev_, &rpi, nullptr, &pass_ms_) != VK_SUCCESS) return false;
+        VkImageView ms_views[2] = {ms_view, view};
+        fi.renderPass = pass_ms_;
+        fi.attachmentCount = 2;
+        fi.pAttachments = ms_views;
+        if (vkCreateFramebuffer(dev_, &fi, nullptr, &fb_ms_) != VK_SUCCESS) return false;
         VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
         smi.codeSize = sizeof(kXcheck_vert);
         smi.pCode = kXcheck_vert;
@@ -341,6 +371,8 @@ class Lavapipe {
     VkImage image_ = VK_NULL_HANDLE;
     VkRenderPass pass_ = VK_NULL_HANDLE;
     VkFramebuffer fb_ = VK_NULL_HANDLE;
+    VkRenderPass pass_ms_ = VK_NULL_HANDLE;
+    VkFramebuffer fb_ms_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkShaderModule vs_ = VK_NULL_HANDLE, fs_ = VK_NULL_HANDLE, fs_noflat_ = VK_NULL_HANDLE;
     struct Pipe {

@@ -39,6 +39,7 @@ struct ModelExtra {
     bool cull_front = false, cull_back = false;
     bool front_ccw = true;
     float vp[4] = {0, 0, kSize, kSize};
+    int samples = 1;  // 1 or 4 (then resolved as lavapipe's blitter does)
 };
 
 inline Viewport model_viewport(const ModelExtra& mx) {
@@ -70,6 +71,11 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
     PlaneSetupConfig pc;
     pc.layout = cc.layout;
     if (bias) pc.bias = *bias;  // no depth attachment: lavapipe's default mrd is D24's
+    const bool msaa = mx.samples > 1;
+    pc.multisample = msaa;
+    const float snap_off = msaa ? 0.0f : 0.5f;
+    constexpr int kPos4x[4][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};  // lp_sample_pos_4x in 1/256 px
+    std::vector<uint8_t> img4(msaa ? kSize * kSize * 16 : 0, 0);
     std::vector<float> scratch(kClipScratchVertices * kFloats);
     auto mad = [fma](float a, float b, float c) { return fma ? std::fma(a, b, c) : a * b + c; };
     for (size_t t = 0; t + 2 < verts.size(); t += 3) {
@@ -90,8 +96,8 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
             // snap: rne(fl(x - 0.5) * 256)
             int64_t X[3], Y[3];
             for (int k = 0; k < 3; ++k) {
-                X[k] = static_cast<int64_t>(std::nearbyint((v[k][4] - 0.5f) * 256.0f));
-                Y[k] = static_cast<int64_t>(std::nearbyint((v[k][5] - 0.5f) * 256.0f));
+                X[k] = static_cast<int64_t>(std::nearbyint((v[k][4] - snap_off) * 256.0f));
+                Y[k] = static_cast<int64_t>(std::nearbyint((v[k][5] - snap_off) * 256.0f));
             }
             const int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
             if (area == 0) continue;
@@ -109,22 +115,39 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
             for (int py = 0; py < kSize; ++py)
                 for (int px = 0; px < kSize; ++px) {
                     if (!in_rect(rect, px, py)) continue;
-                    bool in = true;
-                    for (int e = 0; e < 3; ++e) {
-                        const int j = (e + 1) % 3;
-                        const int64_t dy = Y[e] - Y[j], dx = X[e] - X[j];
-                        const int64_t bias = (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
-                        in = in && dy * (X[e] - px * 256) - dx * (Y[e] - py * 256) + bias > 0;
+                    // coverage per sample: E_i = DY*(x_i - X) - DX*(y_i - Y) + bias > 0 at the sample's fixed point
+                    unsigned cover = 0;
+                    for (int smp = 0; smp < mx.samples; ++smp) {
+                        const int64_t sx = px * 256 + (msaa ? kPos4x[smp][0] : 0);
+                        const int64_t sy = py * 256 + (msaa ? kPos4x[smp][1] : 0);
+                        bool in = true;
+                        for (int e = 0; e < 3; ++e) {
+                            const int j = (e + 1) % 3;
+                            const int64_t dy = Y[e] - Y[j], dx = X[e] - X[j];
+                            const int64_t bias = (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
+                            in = in && dy * (X[e] - sx) - dx * (Y[e] - sy) + bias > 0;
+                        }
+                        if (in) cover |= 1u << smp;
                     }
-                    if (!in) continue;
-                    const float fx = static_cast<float>(px), fy = static_cast<float>(py);
+                    if (!cover) continue;
+                    // MSAA planes have their origin at the pixel corner; the shader evaluates at the centre
+                    const float fx = static_cast<float>(px) + (msaa ? 0.5f : 0.0f);
+                    const float fy = static_cast<float>(py) + (msaa ? 0.5f : 0.0f);
+                    auto put = [&](int c, uint8_t value) {
+                        if (!msaa) {
+                            img[(py * kSize + px) * 4 + c] = value;
+                            return;
+                        }
+                        for (int smp = 0; smp < 4; ++smp)
+                            if (cover & (1u << smp)) img4[((py * kSize + px) * 4 + smp) * 4 + c] = value;
+                    };
                     if (mode & 8) {
                         // gl_FragCoord.z = fmuladd(dzdy, py, fmuladd(dzdx, px, z0)) + offset (plain add)
                         const float zi = mad(tp.pos.dady[2], fy, mad(tp.pos.dadx[2], fx, tp.pos.a0[2]));
                         const float z = zi + tp.depth_offset;
                         const float big = z * 65536.0f, mid = z * 256.0f, huge = z * 16777216.0f;
                         const float ch[4] = {big - std::floor(big), mid - std::floor(mid), z, huge - std::floor(huge)};
-                        for (int c = 0; c < 4; ++c) img[(py * kSize + px) * 4 + c] = to_unorm8(ch[c]);
+                        for (int c = 0; c < 4; ++c) put(c, to_unorm8(ch[c]));
                         continue;
                     }
                     const AttribPlane& a = ap[mode & 3];
@@ -137,10 +160,20 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
                             const float big = val * 65536.0f;  // exact
                             val = big - std::floor(big);
                         }
-                        img[(py * kSize + px) * 4 + c] = to_unorm8(val);
+                        put(c, to_unorm8(val));
                     }
                 }
         }
+    }
+    if (msaa) {
+        // resolve (notes §3): sum of fl(u8 * fl(1/255)) in sample order, * 0.25, back with rne(x*255)
+        const float inv255 = static_cast<float>(1.0 / 255.0);
+        for (int p = 0; p < kSize * kSize; ++p)
+            for (int c = 0; c < 4; ++c) {
+                float sum = 0.0f;
+                for (int smp = 0; smp < 4; ++smp) sum = sum + static_cast<float>(img4[(p * 4 + smp) * 4 + c]) * inv255;
+                img[p * 4 + c] = to_unorm8(sum * 0.25f);
+            }
     }
     return img;
 }
