@@ -179,10 +179,43 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
 }
 
 // Fragment evaluation (notes §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w plane).
-inline void shade(std::vector<uint8_t>& img, int px, int py, const AttribPlane& pos, const AttribPlane& a, int mode,
+// Colour target with per-sample storage; resolve() is lavapipe's blitter resolve (notes §3).
+struct Target {
+    int samples;
+    std::vector<uint8_t> px;  // [pixel][sample][channel]
+    explicit Target(int s) : samples(s), px(static_cast<size_t>(kSize) * kSize * 4 * s, 0) {}
+    void put(int x, int y, unsigned cover, int c, uint8_t v) {
+        for (int smp = 0; smp < samples; ++smp)
+            if (cover & (1u << smp)) px[((y * kSize + x) * samples + smp) * 4 + c] = v;
+    }
+    std::vector<uint8_t> resolve() const {
+        if (samples == 1) return px;
+        std::vector<uint8_t> out(kSize * kSize * 4);
+        const float inv255 = static_cast<float>(1.0 / 255.0);
+        for (int p = 0; p < kSize * kSize; ++p)
+            for (int c = 0; c < 4; ++c) {
+                float sum = 0.0f;
+                for (int smp = 0; smp < 4; ++smp) sum = sum + static_cast<float>(px[(p * 4 + smp) * 4 + c]) * inv255;
+                out[p * 4 + c] = to_unorm8(sum * 0.25f);
+            }
+        return out;
+    }
+};
+
+// Fixed-point sample positions: the pixel's integer point at 1x, lp_sample_pos_4x at 4x.
+inline void sample_point(int samples, int px, int py, int smp, int64_t* x, int64_t* y) {
+    constexpr int kPos[4][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
+    *x = px * 256 + (samples > 1 ? kPos[smp][0] : 0);
+    *y = py * 256 + (samples > 1 ? kPos[smp][1] : 0);
+}
+
+// Fragment evaluation (notes §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w plane);
+// in MSAA the shader evaluates at the pixel centre (px + 0.5).
+inline void shade(Target& t, int px, int py, unsigned cover, const AttribPlane& pos, const AttribPlane& a, int mode,
                   bool fma) {
     auto mad = [fma](float x, float y, float z) { return fma ? std::fma(x, y, z) : x * y + z; };
-    const float fx = static_cast<float>(px), fy = static_cast<float>(py);
+    const float off = t.samples > 1 ? 0.5f : 0.0f;
+    const float fx = static_cast<float>(px) + off, fy = static_cast<float>(py) + off;
     const float oow = mad(pos.dady[3], fy, mad(pos.dadx[3], fx, pos.a0[3]));
     const float rw = 1.0f / oow;
     for (int c = 0; c < 4; ++c) {
@@ -192,7 +225,7 @@ inline void shade(std::vector<uint8_t>& img, int px, int py, const AttribPlane& 
             const float big = val * 65536.0f;  // exact
             val = big - std::floor(big);
         }
-        img[(py * kSize + px) * 4 + c] = to_unorm8(val);
+        t.put(px, py, cover, c, to_unorm8(val));
     }
 }
 
@@ -218,11 +251,12 @@ struct ModelState {
 
 inline std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int mode, bool fma, float width,
                                         bool bresenham = false, const ModelExtra& mx = ModelExtra{}) {
-    std::vector<uint8_t> img(kSize * kSize * 4, 0);
+    Target img(mx.samples);
     ModelState st(fma, mx);
     LineSetupConfig lc;
     lc.layout = st.cc.layout;
     lc.width = width;
+    lc.multisample = mx.samples > 1;
     lc.mode = bresenham ? LineMode::kBresenham : LineMode::kRectangular;
     for (size_t i = 0; i + 1 < verts.size(); i += 2) {
         float r0[kFloats], r1[kFloats];
@@ -235,23 +269,30 @@ inline std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int 
         if (setup_line(lc, a, b, &ls, ap) != PrimSetupStatus::kOk) continue;
         for (int py = 0; py < kSize; ++py)
             for (int px = 0; px < kSize; ++px) {
-                bool in = in_rect(st.rect, px, py);
-                for (const auto& pl : ls.planes)
-                    in = in && pl.c + int64_t{pl.a} * (px * 256) + int64_t{pl.b} * (py * 256) > 0;
-                if (in) shade(img, px, py, ls.pos, ap[mode & 3], mode, fma);
+                if (!in_rect(st.rect, px, py)) continue;
+                unsigned cover = 0;
+                for (int smp = 0; smp < mx.samples; ++smp) {
+                    int64_t X, Y;
+                    sample_point(mx.samples, px, py, smp, &X, &Y);
+                    bool in = true;
+                    for (const auto& pl : ls.planes) in = in && pl.c + pl.a * X + pl.b * Y > 0;
+                    if (in) cover |= 1u << smp;
+                }
+                if (cover) shade(img, px, py, cover, ls.pos, ap[mode & 3], mode, fma);
             }
     }
-    return img;
+    return img.resolve();
 }
 
 // col_format: the colour bytes of each InVertex are an element of this format, converted by vertex_fetch.
 inline std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, bool fma,
                                          VertexFormat col_format = VertexFormat::kR32G32B32A32Float,
                                          const ModelExtra& mx = ModelExtra{}) {
-    std::vector<uint8_t> img(kSize * kSize * 4, 0);
+    Target img(mx.samples);
     ModelState st(fma, mx);
     PointSetupConfig pc;
     pc.layout = st.cc.layout;
+    pc.multisample = mx.samples > 1;
     for (const auto& raw : verts) {
         InVertex v = raw;
         const FetchedAttrib f = convert_element(col_format, reinterpret_cast<const uint8_t*>(raw.col));
@@ -263,12 +304,18 @@ inline std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int
         AttribPlane ap[3];
         if (setup_point(pc, r, v.col[3] * 8.0f, &ps, ap) != PrimSetupStatus::kOk) continue;
         for (int py = 0; py < kSize; ++py)
-            for (int px = 0; px < kSize; ++px)
-                if (in_rect(st.rect, px, py) && ps.x0 <= px * 256 && px * 256 < ps.x1 && ps.y0 <= py * 256 &&
-                    py * 256 < ps.y1)
-                    shade(img, px, py, ps.pos, ap[mode & 3], mode, fma);
+            for (int px = 0; px < kSize; ++px) {
+                if (!in_rect(st.rect, px, py)) continue;
+                unsigned cover = 0;
+                for (int smp = 0; smp < mx.samples; ++smp) {
+                    int64_t X, Y;
+                    sample_point(mx.samples, px, py, smp, &X, &Y);
+                    if (ps.x0 <= X && X < ps.x1 && ps.y0 <= Y && Y < ps.y1) cover |= 1u << smp;
+                }
+                if (cover) shade(img, px, py, cover, ps.pos, ap[mode & 3], mode, fma);
+            }
     }
-    return img;
+    return img.resolve();
 }
 
 inline InVertex iv(float x, float y, float z, float w, float r, float g, float b, float a = 1.0f) {
