@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rast/geometry/clip.h"
+#include "rast/geometry/fp_env.h"
 #include "rast/geometry/viewport.h"
 
 using namespace tilevk::rast::geometry;
@@ -435,4 +436,23 @@ TEST(Viewport, PixelRectRounding) {
     // garbage never traps
     r = viewport_pixel_rect(Viewport{{NAN, 1e30f, 1}, {0, 0, 0}});
     EXPECT_EQ(r.x0, INT32_MIN);
+}
+
+TEST(FpEnv, FlushesDenormalsInsideTheGuardOnly) {
+    volatile float tiny = 1e-38f;  // normal
+    volatile float sub = 1e-40f;   // subnormal
+    volatile float scale = 1e-3f;
+    EXPECT_NE(tiny * scale, 0.0f);  // default environment: a subnormal result
+    {
+        ScopedFlushDenormals guard;
+        EXPECT_EQ(tiny * scale, 0.0f);  // FTZ: subnormal results flush to zero
+        EXPECT_EQ(sub + 0.0f, 0.0f);    // DAZ: subnormal inputs read as zero
+        // the clipper under FTZ: a plane distance that would be subnormal is 0 (inside), as in lavapipe
+        // (w - x with both normal but a subnormal difference)
+        const float c[4] = {2e-38f, 0.0f, 0.5f, 2.1e-38f};
+        EXPECT_EQ(clip_plane_distance(c, 0, true), 0.0f);
+    }
+    const float c[4] = {2e-38f, 0.0f, 0.5f, 2.1e-38f};
+    EXPECT_GT(clip_plane_distance(c, 0, true), 0.0f);
+    EXPECT_NE(sub + 0.0f, 0.0f);
 }
