@@ -589,3 +589,32 @@ TEST(LavapipeCrossCheck, FloatCullOnlyOnDrawsPipelinePath) {
     }
     EXPECT_GT(differing_rules, 0) << "the sliver does not exercise the batch rule";
 }
+
+TEST(LavapipeCrossCheck, IdentityViewportBypassesTheDivide) {
+    // Viewport (-1, -1, 2, 2), depth [0, 1]: scale (1,1,1), translate (0,0,0) -> draw bypasses the viewport and the
+    // divide by w. Its pixel rectangle is just pixel (0, 0): (int)(-1 + 0.499) = 0 .. (int)(2 - 1 - 0.501) = 0.
+    Lavapipe lvp;
+    if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
+    const bool fma = host_has_fma();
+    Extra x;
+    ModelExtra mx;
+    const float vp[4] = {-1, -1, 2, 2};
+    std::memcpy(x.vp, vp, sizeof(vp));
+    std::memcpy(mx.vp, vp, sizeof(vp));
+    ASSERT_TRUE(is_identity_viewport(model_viewport(mx)));
+    // raw clip (0,0) (2,0) (0,2) covers pixel (0,0)'s centre only without the divide by w = 4
+    const std::vector<InVertex> sc = {iv(0, 0, 0.5f, 4, 0.9f, 0.1f, 0.3f), iv(2, 0, 0.5f, 4, 0.2f, 0.8f, 0.5f),
+                                      iv(0, 2, 0.5f, 4, 0.4f, 0.4f, 0.9f)};
+    for (int mode : {0, 1, 4}) {
+        const auto got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, false,
+                                    VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
+        int first;
+        EXPECT_EQ(count_diff(got, model(sc, mode, fma, false, nullptr, mx), &first), 0)
+            << "mode " << mode << " pixel " << first / 4;
+        EXPECT_NE(got[0], 0) << "pixel (0,0) should be drawn when the divide is bypassed";
+        // with a viewport transform (divide by w = 4) the triangle would miss pixel (0,0)'s centre
+        ModelExtra divided = mx;
+        divided.vp[2] = 2.0000002f;  // not identity any more
+        EXPECT_EQ(model(sc, mode, fma, false, nullptr, divided)[0], 0);
+    }
+}

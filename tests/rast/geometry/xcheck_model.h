@@ -63,6 +63,7 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
     const FloatCull fcull{mx.cull_front, mx.cull_back, mx.front_ccw};
     ViewportConfig vc;
     vc.vp = model_viewport(mx);
+    vc.bypass = is_identity_viewport(vc.vp);  // lavapipe's identity-viewport quirk
     const PixelRect rect = viewport_pixel_rect(vc.vp);
     vc.fused = fma;
     ClipConfig cc;
@@ -237,6 +238,7 @@ struct ModelState {
     PixelRect rect;
     ModelState(bool fma, const ModelExtra& mx) {
         vc.vp = model_viewport(mx);
+        vc.bypass = is_identity_viewport(vc.vp);
         rect = viewport_pixel_rect(vc.vp);
         vc.fused = fma;
         cc.layout = {3, kModes};
