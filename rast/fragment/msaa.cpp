@@ -16,10 +16,19 @@ inline int mem_to_rgba(const FormatInfo& fi, int i) {
 }
 }  // namespace
 
+namespace {
+// lp_build_cmp(GREATER) is fcmp ugt under DAZ: NaN passes, a denormal alpha counts as zero.
+inline bool ugt_daz(float a, float ref) {
+    if (std::isnan(a)) return true;
+    if (a != 0.0f && std::fabs(a) < 0x1p-126f) a = 0.0f;
+    return a > ref;
+}
+}  // namespace
+
 uint16_t alpha_to_coverage_1x(const float alpha[kBlockLanes], uint16_t lane_mask) {
     uint16_t out = 0;
     for (int l = 0; l < kBlockLanes; ++l)
-        if ((lane_mask & (1u << l)) && alpha[l] > 0.5f) out |= uint16_t(1u << l);
+        if ((lane_mask & (1u << l)) && ugt_daz(alpha[l], 0.5f)) out |= uint16_t(1u << l);
     return out;
 }
 
@@ -29,7 +38,7 @@ void alpha_to_coverage_4x(const float alpha[kBlockLanes], uint16_t sample_masks[
         const float ref = float(0.25 * s);
         uint16_t keep = 0;
         for (int l = 0; l < kBlockLanes; ++l)
-            if (alpha[l] > ref) keep |= uint16_t(1u << l);
+            if (ugt_daz(alpha[l], ref)) keep |= uint16_t(1u << l);
         sample_masks[s] &= keep;
     }
 }

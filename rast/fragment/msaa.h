@@ -4,7 +4,8 @@
 //                    context's sample_mask is read only when key->multisample; at 1x lavapipe ignores it)
 //   alpha to coverage on the raw float shader alpha of colour output 0:
 //                    1x: a lane survives iff alpha > 0.5;  4x: sample s survives iff alpha > s * 0.25
-//                    (NaN kills everything; no dithering)
+//                    (unordered compare under DAZ: NaN keeps every sample, a denormal alpha counts as 0;
+//                    no dithering)
 //   resolve          vkCmdResolveImage and render-pass resolves run u_blitter's MSAA resolve shader:
 //                    sum = 0; sum = fl(sum + texel_s) for s = 0..3 in order; out = fl(sum * 0.25f); then the normal
 //                    colour output conversion of the destination format (UNORM8: rne(fl(out*255)), half: toward 0)

@@ -547,6 +547,9 @@ struct PassSpec {
     VkFormat format = VK_FORMAT_UNDEFINED;
     bool depth_clamp = false;
     float min_depth = 0.0f, max_depth = 1.0f;
+    bool per_pixel_color = false;  // colour pass: one colour per pixel (no sample shading) instead of per sample
+    bool alpha_to_coverage = false;
+    uint32_t sample_mask = 0xf;
 };
 
 // Runs one pass and returns the readback (depth aspect, or the resolved colour image).
@@ -620,8 +623,9 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     VkPipelineLayout pl;
     VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
     VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
-    VkShaderModule fs = spec.depth ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
-                                   : make_shader(v, kSampleColorFrag, sizeof kSampleColorFrag);
+    VkShaderModule fs = spec.depth             ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
+                        : spec.per_pixel_color ? make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag)
+                                               : make_shader(v, kSampleColorFrag, sizeof kSampleColorFrag);
     VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                              {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
     st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -647,8 +651,11 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     rs.depthClampEnable = spec.depth_clamp;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = samples;
-    ms.sampleShadingEnable = !spec.depth;
+    ms.sampleShadingEnable = !spec.depth && !spec.per_pixel_color;
     ms.minSampleShading = 1.0f;
+    const VkSampleMask smask = spec.sample_mask;
+    ms.pSampleMask = &smask;
+    ms.alphaToCoverageEnable = spec.alpha_to_coverage;
     VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     dss.depthTestEnable = VK_TRUE;
     dss.depthWriteEnable = VK_TRUE;
@@ -846,5 +853,61 @@ TEST(FragmentLavapipe, ResolveMatchesLavapipe) {
                               << int(got[p * fi.bytes]);
         }
         EXPECT_EQ(bad, 0) << int(f);
+    }
+}
+
+TEST(FragmentLavapipe, AlphaToCoverageAndSampleMaskMatchLavapipe) {
+    Lvp v;
+    if (!v.init()) GTEST_SKIP() << "lavapipe not available (set VK_ICD_FILENAMES)";
+    std::mt19937 rng(21);
+    std::vector<float> c(size_t(kW) * kH * 4);
+    for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+        for (int ch = 0; ch < 3; ++ch) c[p * 4 + ch] = float(rng() % 1000001) / 1000000.0f;
+        const uint32_t r = rng() % 100;
+        // alphas on and around the thresholds 0, 0.25, 0.5, 0.75, plus NaN and out-of-range values
+        const float th[4] = {0.0f, 0.25f, 0.5f, 0.75f};
+        if (r < 40)
+            c[p * 4 + 3] = std::nextafter(th[r % 4], (r & 4) ? 2.0f : -2.0f);
+        else if (r < 60)
+            c[p * 4 + 3] = th[r % 4];
+        else if (r < 63)
+            c[p * 4 + 3] = NAN;
+        else if (r < 66)
+            c[p * 4 + 3] = 1.5f;
+        else
+            c[p * 4 + 3] = float(rng() % 1001) / 1000.0f;
+    }
+    for (uint32_t smask : {0xfu, 0xbu}) {
+        for (bool a2c : {true, false}) {
+            PassSpec spec;
+            spec.format = VK_FORMAT_R8G8B8A8_UNORM;
+            spec.per_pixel_color = true;
+            spec.alpha_to_coverage = a2c;
+            spec.sample_mask = smask;
+            const std::vector<uint8_t> got = run_pass(v, spec, c, 4);
+            int bad = 0;
+            for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+                // model: every sample covered; sample mask; alpha to coverage on the raw alpha; the covered samples
+                // store the pixel's colour, the others keep the clear value 0; then resolve.
+                float alpha[16] = {};
+                alpha[0] = c[p * 4 + 3];
+                uint16_t m[4] = {1, 1, 1, 1};
+                apply_sample_mask(smask, m);
+                if (a2c) alpha_to_coverage_4x(alpha, m);
+                uint8_t sp[4][4] = {};
+                const BlendAttachment off;
+                const float k[4] = {};
+                for (int s = 0; s < 4; ++s)
+                    if (m[s] & 1) blend_pixel(off, ColorFormat::R8G8B8A8_UNORM, k, &c[p * 4], sp[s]);
+                const uint8_t* ptr[4] = {sp[0], sp[1], sp[2], sp[3]};
+                uint8_t want[4];
+                resolve_pixel(ColorFormat::R8G8B8A8_UNORM, ptr, want, true);
+                if (std::memcmp(want, &got[p * 4], 4) != 0 && bad++ < 3)
+                    ADD_FAILURE() << "smask " << smask << " a2c " << a2c << " alpha " << c[p * 4 + 3] << " want "
+                                  << int(want[0]) << "," << int(want[3]) << " lavapipe " << int(got[p * 4]) << ","
+                                  << int(got[p * 4 + 3]);
+            }
+            EXPECT_EQ(bad, 0) << smask << " " << a2c;
+        }
     }
 }

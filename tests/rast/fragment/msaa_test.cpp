@@ -22,12 +22,18 @@ TEST(FragmentMsaa, AlphaToCoverageThresholds) {
     alpha_to_coverage_4x(alpha, masks);
     for (int l = 0; l < 16; ++l)
         for (int s = 0; s < 4; ++s) {
-            // sample s survives iff alpha > s/4 (strict; NaN never)
-            const bool want = alpha[l] > double(s) / 4.0;
+            // sample s survives iff alpha > s/4 (strict; unordered: NaN always survives)
+            const bool want = std::isnan(alpha[l]) || alpha[l] > double(s) / 4.0;
             EXPECT_EQ(bool(masks[s] & (1u << l)), want) << "lane " << l << " sample " << s;
         }
     const uint16_t m1 = alpha_to_coverage_1x(alpha, 0xffff);
-    for (int l = 0; l < 16; ++l) EXPECT_EQ(bool(m1 & (1u << l)), alpha[l] > 0.5) << l;
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(bool(m1 & (1u << l)), std::isnan(alpha[l]) || alpha[l] > 0.5) << l;
+    // DAZ: a denormal alpha is zero, so it fails even the s = 0 threshold
+    float tiny[16];
+    for (float& t : tiny) t = 1e-42f;
+    uint16_t mt[4] = {0xffff, 0xffff, 0xffff, 0xffff};
+    alpha_to_coverage_4x(tiny, mt);
+    EXPECT_EQ(mt[0], 0);
     EXPECT_EQ(alpha_to_coverage_1x(alpha, 0), 0);
 }
 
