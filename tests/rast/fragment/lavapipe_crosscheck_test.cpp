@@ -911,3 +911,270 @@ TEST(FragmentLavapipe, AlphaToCoverageAndSampleMaskMatchLavapipe) {
         }
     }
 }
+
+namespace {
+
+VkStencilOpState to_vk(const StencilFace& f) {
+    VkStencilOpState s{};
+    s.failOp = VkStencilOp(f.fail_op);
+    s.passOp = VkStencilOp(f.pass_op);
+    s.depthFailOp = VkStencilOp(f.depth_fail_op);
+    s.compareOp = VkCompareOp(f.compare_op);
+    s.compareMask = f.compare_mask;
+    s.writeMask = f.write_mask;
+    s.reference = f.reference;
+    return s;
+}
+
+// D24S8 pass: initial depth/stencil from buffers, gl_FragDepth from `z`, returns (depth words, stencil bytes).
+void run_stencil_pass(const Lvp& v, const DepthStencilState& st, bool front, const std::vector<uint32_t>& d0,
+                      const std::vector<uint8_t>& s0, const std::vector<float>& z, std::vector<uint32_t>& d1,
+                      std::vector<uint8_t>& s1) {
+    const VkFormat vf = VK_FORMAT_D24_UNORM_S8_UINT;
+    const VkImageAspectFlags both = VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    Img img = make_image(
+        v, vf, VK_SAMPLE_COUNT_1_BIT,
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        both);
+    VkAttachmentDescription att{};
+    att.format = vf;
+    att.samples = VK_SAMPLE_COUNT_1_BIT;
+    att.loadOp = att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    att.storeOp = att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att.initialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    att.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkAttachmentReference r0{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.pDepthStencilAttachment = &r0;
+    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rpi.attachmentCount = 1;
+    rpi.pAttachments = &att;
+    rpi.subpassCount = 1;
+    rpi.pSubpasses = &sub;
+    VkRenderPass rp;
+    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
+    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fbi.renderPass = rp;
+    fbi.attachmentCount = 1;
+    fbi.pAttachments = &img.view;
+    fbi.width = kW;
+    fbi.height = kH;
+    fbi.layers = 1;
+    VkFramebuffer fb;
+    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    dli.bindingCount = 1;
+    dli.pBindings = &b0;
+    VkDescriptorSetLayout dsl;
+    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
+    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &dsl;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+    VkPipelineLayout pl;
+    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
+    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
+    VkShaderModule fs = make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag);
+    VkPipelineShaderStageCreateInfo stg[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                              {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stg[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stg[0].module = vs;
+    stg[0].pName = "main";
+    stg[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stg[1].module = fs;
+    stg[1].pName = "main";
+    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
+    VkRect2D sc{{0, 0}, {kW, kH}};
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &vp;
+    vps.scissorCount = 1;
+    vps.pScissors = &sc;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_NONE;
+    // The full-screen triangle has negative Vulkan area: it is front-facing with CLOCKWISE.
+    rs.frontFace = front ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    dss.depthTestEnable = st.depth_test;
+    dss.depthWriteEnable = st.depth_write;
+    dss.depthCompareOp = VkCompareOp(st.depth_compare);
+    dss.stencilTestEnable = st.stencil_test;
+    dss.front = to_vk(st.front);
+    dss.back = to_vk(st.back);
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    gpi.stageCount = 2;
+    gpi.pStages = stg;
+    gpi.pVertexInputState = &vin;
+    gpi.pInputAssemblyState = &ia;
+    gpi.pViewportState = &vps;
+    gpi.pRasterizationState = &rs;
+    gpi.pMultisampleState = &ms;
+    gpi.pDepthStencilState = &dss;
+    gpi.pColorBlendState = &cb;
+    gpi.layout = pl;
+    gpi.renderPass = rp;
+    VkPipeline pipe;
+    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpi.maxSets = 1;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    VkDescriptorPool dp;
+    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = dp;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &dsl;
+    VkDescriptorSet ds;
+    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+    const size_t n = size_t(kW) * kH;
+    Buffer ssbo = make_buffer(v, n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::memcpy(ssbo.map, z.data(), n * 4);
+    Buffer xfer = make_buffer(v, n * 5, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    std::memcpy(xfer.map, d0.data(), n * 4);
+    std::memcpy(static_cast<uint8_t*>(xfer.map) + n * 4, s0.data(), n);
+    VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = ds;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &dbi;
+    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
+
+    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cai.commandPool = v.pool;
+    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
+    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VKC(vkBeginCommandBuffer(cmd, &cbi));
+    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    bar.image = img.img;
+    bar.subresourceRange = {both, 0, 1, 0, 1};
+    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &bar);
+    VkBufferImageCopy bic[2]{};
+    bic[0].imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    bic[0].imageExtent = {kW, kH, 1};
+    bic[1] = bic[0];
+    bic[1].imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+    bic[1].bufferOffset = n * 4;
+    vkCmdCopyBufferToImage(cmd, xfer.buf, img.img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 2, bic);
+    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.newLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    bar.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 0, nullptr,
+                         0, nullptr, 1, &bar);
+    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rbi.renderPass = rp;
+    rbi.framebuffer = fb;
+    rbi.renderArea = sc;
+    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
+    const uint32_t width = kW;
+    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+    vkCmdCopyImageToBuffer(cmd, img.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 2, bic);
+    VKC(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
+    VKC(vkQueueWaitIdle(v.queue));
+    d1.resize(n);
+    s1.resize(n);
+    std::memcpy(d1.data(), xfer.map, n * 4);
+    std::memcpy(s1.data(), static_cast<uint8_t*>(xfer.map) + n * 4, n);
+
+    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
+    free_buffer(v, ssbo);
+    free_buffer(v, xfer);
+    vkDestroyDescriptorPool(v.dev, dp, nullptr);
+    vkDestroyPipeline(v.dev, pipe, nullptr);
+    vkDestroyShaderModule(v.dev, vs, nullptr);
+    vkDestroyShaderModule(v.dev, fs, nullptr);
+    vkDestroyPipelineLayout(v.dev, pl, nullptr);
+    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
+    vkDestroyFramebuffer(v.dev, fb, nullptr);
+    vkDestroyRenderPass(v.dev, rp, nullptr);
+    free_image(v, img);
+}
+
+}  // namespace
+
+TEST(FragmentLavapipe, StencilAndDepthTestMatchLavapipe) {
+    Lvp v;
+    if (!v.init()) GTEST_SKIP() << "lavapipe not available (set VK_ICD_FILENAMES)";
+    std::mt19937 rng(5150);
+    const size_t n = size_t(kW) * kH;
+    int total_bad = 0, depth_changed = 0, stencil_changed = 0;
+    for (int iter = 0; iter < 24; ++iter) {
+        DepthStencilState st;
+        st.depth_test = iter % 4 != 3;
+        st.depth_write = iter % 3 != 2;
+        st.depth_compare = CompareOp(rng() % 8);
+        st.stencil_test = iter % 6 != 5;
+        for (StencilFace* f : {&st.front, &st.back}) {
+            f->fail_op = StencilOp(rng() % 8);
+            f->pass_op = StencilOp(rng() % 8);
+            f->depth_fail_op = StencilOp(rng() % 8);
+            f->compare_op = CompareOp(rng() % 8);
+            f->compare_mask = uint8_t(rng());
+            f->write_mask = uint8_t(rng());
+            f->reference = uint8_t(rng() % 4 == 0 ? 0 : (rng() % 4 == 0 ? 255 : rng()));
+        }
+        const bool front = iter % 2 == 0;
+        std::vector<uint32_t> d0(n), d1;
+        std::vector<uint8_t> s0(n), s1;
+        std::vector<float> z(n);
+        for (size_t i = 0; i < n; ++i) {
+            d0[i] = uint32_t(rng() % 0x1000000u);
+            // stencil near the 0/255 edges and the reference, so clamps and wraps happen
+            const uint32_t r = rng() % 4;
+            s0[i] = uint8_t(r == 0 ? rng() % 3 : r == 1 ? 253 + rng() % 3 : r == 2 ? st.front.reference : rng());
+            // depth equal to the stored value a quarter of the time
+            z[i] = rng() % 4 == 0 ? float(double(d0[i]) / 16777215.0) : float(rng() % 1000001) / 1000000.0f;
+        }
+        run_stencil_pass(v, st, front, d0, s0, z, d1, s1);
+        int bad = 0;
+        for (size_t i = 0; i < n; ++i) {
+            DepthStencilBlock b{};
+            b.depth[0] = d0[i];
+            b.stencil[0] = s0[i];
+            float zz[16] = {z[i]};
+            depth_stencil_test(st, DepthFormat::X8D24, front, zz, 1, b);
+            depth_changed += (d1[i] & 0xffffffu) != d0[i];
+            stencil_changed += s1[i] != s0[i];
+            if (((d1[i] & 0xffffffu) != b.depth[0] || s1[i] != b.stencil[0]) && bad++ < 3)
+                ADD_FAILURE() << "iter " << iter << " px " << i << " z " << z[i] << " d0 " << d0[i] << " s0 "
+                              << int(s0[i]) << " want " << b.depth[0] << "/" << int(b.stencil[0]) << " lavapipe "
+                              << (d1[i] & 0xffffffu) << "/" << int(s1[i]);
+        }
+        total_bad += bad;
+    }
+    EXPECT_EQ(total_bad, 0);
+    // the draws did something
+    EXPECT_GT(depth_changed, 10000);
+    EXPECT_GT(stencil_changed, 10000);
+}
