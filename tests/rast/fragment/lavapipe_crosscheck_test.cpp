@@ -15,8 +15,11 @@
 #include "buffer_color_frag.h"
 #include "buffer_depth_frag.h"
 #include "fullscreen_vert.h"
+#include "interp_frag.h"
+#include "interp_vert.h"
 #include "rast/fragment/blend.h"
 #include "rast/fragment/depth_stencil.h"
+#include "rast/fragment/interp.h"
 #include "rast/fragment/msaa.h"
 #include "sample_color_frag.h"
 
@@ -550,11 +553,14 @@ struct PassSpec {
     bool per_pixel_color = false;  // colour pass: one colour per pixel (no sample shading) instead of per sample
     bool alpha_to_coverage = false;
     uint32_t sample_mask = 0xf;
+    bool interp = false;  // interp.vert/interp.frag with vertex data in the buffer, `samples` samples
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
 };
 
 // Runs one pass and returns the readback (depth aspect, or the resolved colour image).
 std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vector<float>& data, uint32_t bpp) {
-    const VkSampleCountFlagBits samples = spec.depth ? VK_SAMPLE_COUNT_1_BIT : VK_SAMPLE_COUNT_4_BIT;
+    const VkSampleCountFlagBits samples = spec.depth ? VK_SAMPLE_COUNT_1_BIT : spec.samples;
+    const bool resolve = !spec.depth && samples != VK_SAMPLE_COUNT_1_BIT;
     const VkImageAspectFlags aspect = spec.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
     Img target =
         make_image(v, spec.format, samples,
@@ -562,7 +568,7 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                    aspect);
     Img resolved;
-    if (!spec.depth)
+    if (resolve)
         resolved = make_image(v, spec.format, VK_SAMPLE_COUNT_1_BIT,
                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, aspect);
 
@@ -588,10 +594,10 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     } else {
         sub.colorAttachmentCount = 1;
         sub.pColorAttachments = &r0;
-        sub.pResolveAttachments = &r1;
+        if (resolve) sub.pResolveAttachments = &r1;
     }
     VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rpi.attachmentCount = spec.depth ? 1 : 2;
+    rpi.attachmentCount = resolve ? 2 : 1;
     rpi.pAttachments = att;
     rpi.subpassCount = 1;
     rpi.pSubpasses = &sub;
@@ -608,7 +614,8 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     VkFramebuffer fb;
     VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
 
-    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                    VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, nullptr};
     VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     dli.bindingCount = 1;
     dli.pBindings = &b0;
@@ -622,8 +629,10 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     pli.pPushConstantRanges = &pcr;
     VkPipelineLayout pl;
     VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
-    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
-    VkShaderModule fs = spec.depth             ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
+    VkShaderModule vs = spec.interp ? make_shader(v, kInterpVert, sizeof kInterpVert)
+                                    : make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
+    VkShaderModule fs = spec.interp            ? make_shader(v, kInterpFrag, sizeof kInterpFrag)
+                        : spec.depth           ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
                         : spec.per_pixel_color ? make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag)
                                                : make_shader(v, kSampleColorFrag, sizeof kSampleColorFrag);
     VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
@@ -651,7 +660,7 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     rs.depthClampEnable = spec.depth_clamp;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = samples;
-    ms.sampleShadingEnable = !spec.depth && !spec.per_pixel_color;
+    ms.sampleShadingEnable = !spec.depth && !spec.per_pixel_color && !spec.interp;
     ms.minSampleShading = 1.0f;
     const VkSampleMask smask = spec.sample_mask;
     ms.pSampleMask = &smask;
@@ -729,8 +738,8 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     VkBufferImageCopy bic{};
     bic.imageSubresource = {aspect, 0, 0, 1};
     bic.imageExtent = {kW, kH, 1};
-    vkCmdCopyImageToBuffer(cmd, spec.depth ? target.img : resolved.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf,
-                           1, &bic);
+    vkCmdCopyImageToBuffer(cmd, resolve ? resolved.img : target.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1,
+                           &bic);
     VKC(vkEndCommandBuffer(cmd));
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
@@ -752,7 +761,7 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     vkDestroyFramebuffer(v.dev, fb, nullptr);
     vkDestroyRenderPass(v.dev, rp, nullptr);
     free_image(v, target);
-    if (!spec.depth) free_image(v, resolved);
+    if (resolve) free_image(v, resolved);
     return out;
 }
 
@@ -1177,4 +1186,125 @@ TEST(FragmentLavapipe, StencilAndDepthTestMatchLavapipe) {
     // the draws did something
     EXPECT_GT(depth_changed, 5000);
     EXPECT_GT(stencil_changed, 5000);
+}
+
+// Interpolation: a triangle inside the viewport (no clipping), planes set up with the notes' §4 formulas in the
+// test, evaluated by eval_plane / perspective_divide, compared with lavapipe's RGBA32F output at 1x and 4x.
+namespace {
+
+struct SetupPlane {
+    // lp_state_setup.c emit_tri_coef with unfused float ops; v are the re-ordered window positions.
+    static Plane make(const float vx[3], const float vy[3], const float a[3], float pc) {
+        volatile float x0c = vx[0] - pc, y0c = vy[0] - pc;
+        volatile float dx01 = vx[0] - vx[1], dy01 = vy[0] - vy[1];
+        volatile float dx20 = vx[2] - vx[0], dy20 = vy[2] - vy[0];
+        volatile float m1 = dx01 * dy20, m2 = dy01 * dx20;
+        volatile float area = m1 - m2;
+        volatile float ooa = 1.0f / area;
+        volatile float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
+        volatile float da01 = a[0] - a[1], da20 = a[2] - a[0];
+        volatile float t1 = da01 * dy20o, t2 = da20 * dy01o;
+        volatile float dadx = t1 - t2;
+        volatile float t3 = da20 * dx01o, t4 = da01 * dx20o;
+        volatile float dady = t3 - t4;
+        volatile float u1 = dadx * x0c, u2 = dady * y0c;
+        volatile float s = u1 + u2;
+        volatile float a0 = a[0] - s;
+        return Plane{dadx, dady, a0};
+    }
+};
+
+}  // namespace
+
+TEST(FragmentLavapipe, InterpolationMatchesLavapipe) {
+    Lvp v;
+    if (!v.init()) GTEST_SKIP() << "lavapipe not available (set VK_ICD_FILENAMES)";
+    std::mt19937 rng(31337);
+    int fused_only = 0;
+    for (int iter = 0; iter < 6; ++iter) {
+        const bool msaa = iter % 2 == 1;
+        // NDC corners of the lower-left half of the viewport: window (0,0), (64,0), (0,64) exactly.
+        const float ndc[3][2] = {{-1, -1}, {1, -1}, {-1, 1}};
+        const float ws[3] = {float(1 << (rng() % 3)), float(1 << (rng() % 3)), float(1 << (rng() % 3))};
+        float attr_s[3][2], attr_l[3][2];
+        std::vector<float> data;
+        for (int i = 0; i < 3; ++i) {
+            for (int c = 0; c < 2; ++c) {
+                attr_s[i][c] = float(int(rng() % 20001) - 10000) / 997.0f;
+                attr_l[i][c] = float(int(rng() % 20001) - 10000) / 991.0f;
+            }
+            const float w = ws[i];
+            const float pos[4] = {ndc[i][0] * w, ndc[i][1] * w, 0.5f * w, w};
+            data.insert(data.end(), pos, pos + 4);
+            data.insert(data.end(), {attr_s[i][0], attr_s[i][1], 0.0f, 0.0f});
+            data.insert(data.end(), {attr_l[i][0], attr_l[i][1], 0.0f, 0.0f});
+        }
+        PassSpec spec;
+        spec.interp = true;
+        spec.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        spec.samples = msaa ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+        const std::vector<uint8_t> got = run_pass(v, spec, data, 16);
+
+        // Setup model: window coords are exact; the triangle is clockwise in lavapipe's fixed-point test, so the
+        // flatshade_first re-order (v0, v2, v1) applies.
+        const int order[3] = {0, 2, 1};
+        float vx[3], vy[3], oow[3], as[2][3], al[2][3];
+        for (int k = 0; k < 3; ++k) {
+            const int i = order[k];
+            vx[k] = (ndc[i][0] + 1.0f) * 32.0f;
+            vy[k] = (ndc[i][1] + 1.0f) * 32.0f;
+            oow[k] = 1.0f / ws[i];
+            for (int c = 0; c < 2; ++c) {
+                volatile float pa = attr_s[i][c] * oow[k];  // perspective inputs are pre-multiplied by 1/w
+                as[c][k] = pa;
+                al[c][k] = attr_l[i][c];
+            }
+        }
+        const float pc = msaa ? 0.0f : 0.5f;
+        const Plane pw = SetupPlane::make(vx, vy, oow, pc);
+        Plane ps[2], plin[2];
+        for (int c = 0; c < 2; ++c) {
+            ps[c] = SetupPlane::make(vx, vy, as[c], pc);
+            plin[c] = SetupPlane::make(vx, vy, al[c], pc);
+        }
+        int bad = 0, compared = 0;
+        for (int by = 0; by < int(kH); by += 4)
+            for (int bx = 0; bx < int(kW); bx += 4) {
+                float want[2][4][16];  // [fused?][channel][lane]
+                for (int f = 0; f < 2; ++f) {
+                    const EvalOffset off = plane_offset(msaa ? 4 : 1, -1);
+                    float w[16], a[16];
+                    eval_plane(pw, bx, by, off, f == 0, w);
+                    for (int c = 0; c < 2; ++c) {
+                        eval_plane(ps[c], bx, by, off, f == 0, a);
+                        perspective_divide(a, w, want[f][c]);
+                        eval_plane(plin[c], bx, by, off, f == 0, want[f][2 + c]);
+                    }
+                }
+                for (int l = 0; l < 16; ++l) {
+                    const int x = bx + lane_x(l), y = by + lane_y(l);
+                    if (x + y + 2 > 62) continue;  // strictly inside the triangle: every sample covered
+                    ++compared;
+                    const float* g = reinterpret_cast<const float*>(&got[(size_t(y) * kW + x) * 16]);
+                    for (int c = 0; c < 4; ++c) {
+                        float e[2];
+                        for (int f = 0; f < 2; ++f) {
+                            e[f] = want[f][c][l];
+                            if (msaa) {  // four identical samples through the resolve shader
+                                volatile float s = 0.0f;
+                                for (int k = 0; k < 4; ++k) s = s + e[f];
+                                e[f] = s * 0.25f;
+                            }
+                        }
+                        fused_only += e[0] != e[1];
+                        if (std::memcmp(&g[c], &e[0], 4) != 0 && bad++ < 3)
+                            ADD_FAILURE() << "iter " << iter << " (" << x << "," << y << ") c" << c << " want " << e[0]
+                                          << " lavapipe " << g[c];
+                    }
+                }
+            }
+        EXPECT_EQ(bad, 0) << iter;
+        EXPECT_GT(compared, 1500);
+    }
+    EXPECT_GT(fused_only, 0);  // the data distinguishes fused from unfused evaluation
 }
