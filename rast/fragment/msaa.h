@@ -9,7 +9,7 @@
 //   resolve          vkCmdResolveImage and render-pass resolves run u_blitter's MSAA resolve shader:
 //                    sum = 0; sum = fl(sum + texel_s) for s = 0..3 in order; out = fl(sum * 0.25f); then the normal
 //                    colour output conversion of the destination format (UNORM8: rne(fl(out*255)), half: toward 0)
-//   clears           util_format_pack_rgba: UNORM8 float_to_ubyte, floats as is, half round-to-nearest-even;
+//   clears           util_format_pack_rgba: UNORM8 float_to_ubyte, sRGB table encoder, floats as is, half toward 0;
 //                    depth util_pack_z in double: D16 lrint(z*65535), D24 lrint(z*16777215), D32F (float)z
 #pragma once
 
@@ -43,12 +43,12 @@ bool resolve_pixel(ColorFormat f, const uint8_t* const samples[kMaxSamples], uin
 void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_t src_pitch, uint8_t* dst,
                   size_t dst_pitch, int w, int h, bool fused);
 
-// Clear colour packed into the stored bytes of one pixel (out must hold format_info(f).bytes).
-// Returns false for sRGB (lavapipe packs it with util_format_linear_float_to_srgb_8unorm's table; not modelled).
+// Clear colour packed into the stored bytes of one pixel (out must hold format_info(f).bytes). Always true.
+// sRGB RGB channels use util_format_linear_float_to_srgb_8unorm (table + linear interpolation), alpha float_to_ubyte.
 bool pack_clear_color(ColorFormat f, const float rgba[4], uint8_t* out);
+// The sRGB clear encoder alone (exposed for tests).
+uint8_t srgb_clear_encode(float x);
 // util_pack_z: the stored depth bits of a depth clear value.
 uint32_t pack_clear_depth(DepthFormat f, double z);
-// IEEE float -> half, round to nearest even (util's _mesa_float_to_half).
-uint16_t float_to_half_rne(float f);
 
 }  // namespace tilevk::rast::fragment

@@ -555,6 +555,8 @@ struct PassSpec {
     uint32_t sample_mask = 0xf;
     bool interp = false;  // interp.vert/interp.frag with vertex data in the buffer, `samples` samples
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+    bool no_draw = false;  // only the render pass clear
+    float clear[4] = {};   // colour clear value
 };
 
 // Runs one pass and returns the readback (depth aspect, or the resolved colour image).
@@ -722,6 +724,7 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     VKC(vkBeginCommandBuffer(cmd, &cbi));
     VkClearValue clear{};
+    std::memcpy(clear.color.float32, spec.clear, 16);
     VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     rbi.renderPass = rp;
     rbi.framebuffer = fb;
@@ -733,7 +736,7 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
     const uint32_t width = kW;
     vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
+    if (!spec.no_draw) vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRenderPass(cmd);
     VkBufferImageCopy bic{};
     bic.imageSubresource = {aspect, 0, 0, 1};
@@ -1307,4 +1310,38 @@ TEST(FragmentLavapipe, InterpolationMatchesLavapipe) {
         EXPECT_GT(compared, 1500);
     }
     EXPECT_GT(fused_only, 0);  // the data distinguishes fused from unfused evaluation
+}
+
+TEST(FragmentLavapipe, ClearPackingMatchesLavapipe) {
+    Lvp v;
+    if (!v.init()) GTEST_SKIP() << "lavapipe not available (set VK_ICD_FILENAMES)";
+    std::mt19937 rng(606);
+    const ColorFormat formats[] = {ColorFormat::R8G8B8A8_UNORM, ColorFormat::B8G8R8A8_SRGB, ColorFormat::R8G8B8A8_SRGB,
+                                   ColorFormat::R16G16B16A16_SFLOAT};
+    for (ColorFormat f : formats) {
+        const FormatInfo fi = format_info(f);
+        for (int iter = 0; iter < 8; ++iter) {
+            PassSpec spec;
+            spec.format = to_vk(f);
+            spec.samples = VK_SAMPLE_COUNT_1_BIT;
+            spec.per_pixel_color = true;
+            spec.no_draw = true;
+            for (float& c : spec.clear) c = float(int(rng() % 1200001) - 100000) / 1000000.0f;
+            if (iter == 0) {
+                spec.clear[0] = 0.0031308f;
+                spec.clear[1] = 0.5f / 255.0f;
+                spec.clear[2] = 1e-5f;
+                spec.clear[3] = 127.5f / 255.0f;
+            }
+            const std::vector<float> dummy(4, 0.0f);
+            const std::vector<uint8_t> got = run_pass(v, spec, dummy, fi.bytes);
+            uint8_t want[16];
+            ASSERT_TRUE(pack_clear_color(f, spec.clear, want));
+            EXPECT_EQ(std::memcmp(want, got.data(), fi.bytes), 0)
+                << "format " << int(f) << " clear " << spec.clear[0] << "," << spec.clear[1] << "," << spec.clear[2]
+                << "," << spec.clear[3] << " want " << int(want[0]) << "," << int(want[1]) << "," << int(want[2]) << ","
+                << int(want[3]) << " lavapipe " << int(got[0]) << "," << int(got[1]) << "," << int(got[2]) << ","
+                << int(got[3]);
+        }
+    }
 }

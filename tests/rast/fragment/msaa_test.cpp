@@ -5,10 +5,6 @@
 #include <cstring>
 #include <random>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include "rast/fragment/msaa.h"
 
 using namespace tilevk::rast::fragment;
@@ -116,7 +112,25 @@ TEST(FragmentMsaa, ClearColorPacking) {
     std::memcpy(f, out, 8);
     EXPECT_EQ(f[0], 0.5f);
     EXPECT_EQ(f[1], 1.0f);
-    EXPECT_FALSE(pack_clear_color(ColorFormat::R8G8B8A8_SRGB, c, out));
+    ASSERT_TRUE(pack_clear_color(ColorFormat::R8G8B8A8_SRGB, c, out));
+    EXPECT_EQ(out[1], 255);
+    EXPECT_EQ(out[2], 0);
+    EXPECT_EQ(out[3], float_to_ubyte_clear(0.25f));  // alpha is linear
+}
+
+TEST(FragmentMsaa, SrgbClearEncoderAccuracy) {
+    // The table encoder (rygorous' fp32 -> sRGB8) is within 0.6 of the exact curve for every float in [0, 1],
+    // and clamps NaN / negatives to 0 and >= 1 to 255.
+    for (uint32_t u = 0; u <= 0x3f800000u; u += 37) {
+        float x;
+        std::memcpy(&x, &u, 4);
+        const double e = (x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(double(x), 1 / 2.4) - 0.055) * 255.0;
+        ASSERT_LE(std::fabs(srgb_clear_encode(x) - e), 0.6) << x;
+    }
+    EXPECT_EQ(srgb_clear_encode(NAN), 0);
+    EXPECT_EQ(srgb_clear_encode(-1.0f), 0);
+    EXPECT_EQ(srgb_clear_encode(1.0f), 255);
+    EXPECT_EQ(srgb_clear_encode(5.0f), 255);
 }
 
 TEST(FragmentMsaa, ClearDepthPacking) {
@@ -140,18 +154,3 @@ TEST(FragmentMsaa, ClearDepthPacking) {
     std::memcpy(&hb, &h, 4);
     EXPECT_EQ(pack_clear_depth(DepthFormat::D32F, 0.3), hb);
 }
-
-#if defined(__x86_64__)
-__attribute__((target("f16c"))) static uint16_t hw_half_rne(float f) {
-    return uint16_t(_mm_extract_epi16(_mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
-}
-TEST(FragmentMsaa, HalfRneMatchesF16c) {
-    if (!__builtin_cpu_supports("f16c")) GTEST_SKIP() << "no F16C";
-    for (uint64_t u = 0; u <= 0xffffffffull; u += 241) {
-        float f;
-        const uint32_t b = uint32_t(u);
-        std::memcpy(&f, &b, 4);
-        ASSERT_EQ(float_to_half_rne(f), hw_half_rne(f)) << std::hex << b;
-    }
-}
-#endif
