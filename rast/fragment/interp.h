@@ -10,7 +10,7 @@
 //
 // Offsets: at 1x the setup plane origin is pixel (0,0)'s centre, so px, py are the integer pixel coordinates.
 // At 4x the origin is the pixel corner: the shader adds 0.5 (centre) or the sample position (sample-qualified
-// inputs, per-sample depth). Centroid interpolation is not implemented here.
+// inputs, per-sample depth) or the centroid offsets below.
 #pragma once
 
 #include <cstdint>

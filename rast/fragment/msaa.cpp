@@ -43,7 +43,12 @@ void alpha_to_coverage_4x(const float alpha[kBlockLanes], uint16_t sample_masks[
     }
 }
 
-void apply_sample_mask(uint32_t sample_mask, uint16_t sample_masks[kMaxSamples]) {
+void apply_sample_mask(uint32_t sample_mask, int samples, uint16_t sample_masks[kMaxSamples]) {
+    if (sample_mask == 0) {  // rasterizer discard
+        for (int s = 0; s < kMaxSamples; ++s) sample_masks[s] = 0;
+        return;
+    }
+    if (samples <= 1) return;  // ignored at 1x
     for (int s = 0; s < kMaxSamples; ++s)
         if (!(sample_mask & (1u << s))) sample_masks[s] = 0;
 }

@@ -1,7 +1,8 @@
 // Multisample coverage adjustments, resolves and clear-value packing, as lavapipe does them.
 //
-//   sample mask      ANDed into each sample's coverage before the shader, 4x only (lp_state_fs.c: the jit
-//                    context's sample_mask is read only when key->multisample; at 1x lavapipe ignores it)
+//   sample mask      a mask word of 0 discards every primitive (llvmpipe's rasterizer_discard, lp_state_derived.c);
+//                    otherwise ANDed into each sample's coverage at 4x and IGNORED at 1x (the jit reads it only when
+//                    key->multisample): at 1x a mask of 0x2 still draws. Both verified against lavapipe.
 //   alpha to coverage on the raw float shader alpha of colour output 0:
 //                    1x: a lane survives iff alpha > 0.5;  4x: sample s survives iff alpha > s * 0.25
 //                    (unordered compare under DAZ: NaN keeps every sample, a denormal alpha counts as 0;
@@ -26,8 +27,8 @@ namespace tilevk::rast::fragment {
 uint16_t alpha_to_coverage_1x(const float alpha[kBlockLanes], uint16_t lane_mask);
 // 4x: clears sample s of a lane unless alpha > s*0.25. sample_masks[s] is in lane order.
 void alpha_to_coverage_4x(const float alpha[kBlockLanes], uint16_t sample_masks[kMaxSamples]);
-// 4x: sample_masks[s] &= (sample_mask bit s set ? 0xffff : 0).
-void apply_sample_mask(uint32_t sample_mask, uint16_t sample_masks[kMaxSamples]);
+// sample_mask == 0: all masks cleared. Else at 4x sample_masks[s] &= (bit s ? 0xffff : 0); at 1x unchanged.
+void apply_sample_mask(uint32_t sample_mask, int samples, uint16_t sample_masks[kMaxSamples]);
 // Lanes covered by at least one sample (the fragment shader's execution mask at 4x).
 uint16_t any_sample(const uint16_t sample_masks[kMaxSamples]);
 

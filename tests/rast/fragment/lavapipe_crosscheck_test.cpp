@@ -904,7 +904,7 @@ TEST(FragmentLavapipe, AlphaToCoverageAndSampleMaskMatchLavapipe) {
                 float alpha[16] = {};
                 alpha[0] = c[p * 4 + 3];
                 uint16_t m[4] = {1, 1, 1, 1};
-                apply_sample_mask(smask, m);
+                apply_sample_mask(smask, 4, m);
                 if (a2c) alpha_to_coverage_4x(alpha, m);
                 uint8_t sp[4][4] = {};
                 const BlendAttachment off;
@@ -1343,5 +1343,47 @@ TEST(FragmentLavapipe, ClearPackingMatchesLavapipe) {
                 << int(want[3]) << " lavapipe " << int(got[0]) << "," << int(got[1]) << "," << int(got[2]) << ","
                 << int(got[3]);
         }
+    }
+}
+
+TEST(FragmentLavapipe, SingleSampleMaskAndHalfAlphaThreshold) {
+    Lvp v;
+    if (!v.init()) GTEST_SKIP() << "lavapipe not available (set VK_ICD_FILENAMES)";
+    std::mt19937 rng(8);
+    std::vector<float> c(size_t(kW) * kH * 4);
+    for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+        for (int ch = 0; ch < 3; ++ch) c[p * 4 + ch] = float(rng() % 1000) / 999.0f;
+        const uint32_t r = rng() % 10;
+        c[p * 4 + 3] = r == 0   ? 0.5f
+                       : r == 1 ? std::nextafter(0.5f, 1.0f)
+                       : r == 2 ? NAN
+                                : float(rng() % 1001) / 1000.0f;
+    }
+    for (int variant = 0; variant < 6; ++variant) {
+        const bool a2c = variant & 1;
+        // bit 0 clear still draws at 1x; only an all-zero mask discards
+        const uint32_t smask = variant < 2 ? 1u : variant < 4 ? 0xfffffffeu : 0u;
+        PassSpec spec;
+        spec.format = VK_FORMAT_R8G8B8A8_UNORM;
+        spec.samples = VK_SAMPLE_COUNT_1_BIT;
+        spec.per_pixel_color = true;
+        spec.alpha_to_coverage = a2c;
+        spec.sample_mask = smask;
+        const std::vector<uint8_t> got = run_pass(v, spec, c, 4);
+        int bad = 0;
+        for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+            float alpha[16] = {c[p * 4 + 3]};
+            uint16_t m[4] = {1, 0, 0, 0};
+            apply_sample_mask(smask, 1, m);
+            const bool live = m[0] && (!a2c || (alpha_to_coverage_1x(alpha, 1) & 1));
+            uint8_t want[4] = {0, 0, 0, 0};
+            const BlendAttachment off;
+            const float k[4] = {};
+            if (live) blend_pixel(off, ColorFormat::R8G8B8A8_UNORM, k, &c[p * 4], want);
+            if (std::memcmp(want, &got[p * 4], 4) != 0 && bad++ < 3)
+                ADD_FAILURE() << "a2c " << a2c << " alpha " << c[p * 4 + 3] << " want " << int(want[0]) << " lavapipe "
+                              << int(got[p * 4]);
+        }
+        EXPECT_EQ(bad, 0) << a2c;
     }
 }

@@ -35,12 +35,17 @@ TEST(FragmentMsaa, AlphaToCoverageThresholds) {
 
 TEST(FragmentMsaa, SampleMask) {
     uint16_t m[4] = {0x1111, 0x2222, 0x4444, 0x8888};
-    apply_sample_mask(0x5, m);
+    apply_sample_mask(0x5, 4, m);
     EXPECT_EQ(m[0], 0x1111);
     EXPECT_EQ(m[1], 0);
     EXPECT_EQ(m[2], 0x4444);
     EXPECT_EQ(m[3], 0);
     EXPECT_EQ(any_sample(m), 0x5555);
+    uint16_t one[4] = {0xffff, 0, 0, 0};
+    apply_sample_mask(0x2, 1, one);  // 1x ignores the mask ...
+    EXPECT_EQ(one[0], 0xffff);
+    apply_sample_mask(0, 1, one);  // ... unless it is entirely zero
+    EXPECT_EQ(one[0], 0);
 }
 
 TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
