@@ -60,7 +60,8 @@ void eval_plane_per_lane(const Plane& p, int block_x, int block_y, const float o
 // are the masks when the shader runs, i.e. after early depth/stencil. At 1x centroid is the plain centre.
 void centroid_offsets(const uint16_t sample_masks[kMaxSamples], float ox[kBlockLanes], float oy[kBlockLanes]);
 
-// Perspective correction: out = fl(a * fl(1.0f / w)).  w is the 1/w plane value (gl_FragCoord.w).
+// Perspective correction: out = fl(a * fl(1.0f / w)).  w is the 1/w plane value (gl_FragCoord.w). lavapipe takes
+// w at the pixel centre (plane_offset(samples, -1)) even for sample-qualified inputs (source reading).
 void perspective_divide(const float a[kBlockLanes], const float w[kBlockLanes], float out[kBlockLanes]);
 
 // Flat inputs: the provoking vertex's value in every lane.
