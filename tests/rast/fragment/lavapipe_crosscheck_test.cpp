@@ -382,6 +382,9 @@ std::vector<uint8_t> render(const Lvp& v, ColorFormat f, const BlendAttachment& 
 float random_src(std::mt19937& rng, ChannelKind kind) {
     const uint32_t r = rng() % 1000;
     if (kind == ChannelKind::Float32 || kind == ChannelKind::Half) return float(int(rng() % 40001) - 20000) / 7919.0f;
+    if (r < 5) return INFINITY;  // the 8-wide conversion clamps +Inf to 1 (the 4-wide one would give 0)
+    if (r < 8) return NAN;
+    if (r < 10) return 3e9f;
     if (r < 30) return -0.25f;
     if (r < 60) return 1.5f;
     return float(rng() % 1000001) / 1000000.0f;
