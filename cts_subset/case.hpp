@@ -56,6 +56,12 @@ inline Scene one_draw(Draw d, uint32_t w = 64, uint32_t h = 64) {
     return s;
 }
 
+// The analytic coverage check of the scene `make` builds (built again when the check runs, so that mesh files are
+// read only by cases that run). 1/64 px keeps clear of 8-bit sub-pixel snapping (at most 1/256 px).
+inline Check band_of(std::function<Scene()> make, float margin = 1.0f / 64.0f) {
+    return [make, margin](const std::vector<Plane>& planes) { return coverage_band(make(), margin)(planes); };
+}
+
 // ONE,ONE additive blending, used by the coverage-counting checks.
 inline VkPipelineColorBlendAttachmentState additive() {
     return {VK_TRUE,

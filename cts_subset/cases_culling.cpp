@@ -62,6 +62,7 @@ void add_culling_cases(CaseList& out) {
                 std::vector<Check> checks;
                 if (c.mode & VK_CULL_MODE_FRONT_BIT) checks.push_back(channel_zero(0, "front"));
                 if (c.mode & VK_CULL_MODE_BACK_BIT) checks.push_back(channel_zero(1, "back"));
+                if (c.mode == VK_CULL_MODE_NONE) checks.push_back(band_of(scene));  // nothing culled: all drawn
                 out.push_back({std::string("rasterization.culling.") + c.name + "_" + f.name + "_" + t.name, scene,
                                checks.empty() ? Check() : all_of(checks), ""});
             }

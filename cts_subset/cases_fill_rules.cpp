@@ -73,16 +73,16 @@ void add_fill_rule_cases(CaseList& out) {
     const std::string g = "rasterization.fill_rules.";
     const int S = int(kSize);
     // Quads whose corners are off pixel centres, on screen: each pixel at most once.
-    out.push_back(
-        {g + "basic_quad", [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false)); }, exactly_once(0), ""});
-    out.push_back({g + "basic_quad_reverse", [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, true)); },
-                   exactly_once(0), ""});
+    auto basic = [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false)); };
+    out.push_back({g + "basic_quad", basic, all_of({exactly_once(0), band_of(basic)}), ""});
+    auto reverse = [] { return one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, true)); };
+    out.push_back({g + "basic_quad_reverse", reverse, all_of({exactly_once(0), band_of(reverse)}), ""});
     out.push_back({g + "clipped_full", [] { return one_draw(quad(-1.5f, -1.5f, 1.5f, 1.5f, false)); },
                    exactly_once(0, 0, 0, S, S), ""});
     out.push_back(
         {g + "clipped_partly", [] { return one_draw(quad(-0.3f, -1.6f, 1.7f, 0.45f, false)); }, exactly_once(0), ""});
-    out.push_back({g + "projected", [] { return one_draw(quad(-0.8f, -0.7f, 0.6f, 0.9f, false, 1.0f, 3.0f)); },
-                   exactly_once(0), ""});
+    auto projected = [] { return one_draw(quad(-0.8f, -0.7f, 0.6f, 0.9f, false, 1.0f, 3.0f)); };
+    out.push_back({g + "projected", projected, all_of({exactly_once(0), band_of(projected)}), ""});
     out.push_back({g + "basic_quad_bgra_linear",
                    [] {
                        Scene s = one_draw(quad(-0.53f, -0.61f, 0.47f, 0.39f, false));

@@ -42,7 +42,12 @@ void add_interpolation_cases(CaseList& out) {
                 }
                 return one_draw(d);
             };
-            Check check = m.interp == Interp::kFlat ? palette_only(palette) : Check();
+            // Every vertex colour is non-zero, so coverage shows against the zero clear in every mode.
+            bool filled = t.topo != VK_PRIMITIVE_TOPOLOGY_LINE_LIST && t.topo != VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
+            Check band = filled ? band_of(scene) : Check();
+            Check check = m.interp == Interp::kFlat
+                              ? (filled ? all_of({palette_only(palette), band}) : palette_only(palette))
+                              : band;
             out.push_back({std::string("rasterization.interpolation.") + m.name + "_" + t.name, scene, check, ""});
         }
 }

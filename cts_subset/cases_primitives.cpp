@@ -45,8 +45,12 @@ void add_primitive_cases(CaseList& out) {
     for (const Row& r : rows)
         for (uint32_t seed = 1; seed <= 2; ++seed) {
             std::string name = std::string("rasterization.primitives.") + r.name + (seed == 1 ? "" : "_seed2");
-            out.push_back({name, [=] { return random_primitives(r.topo, r.count, seed * 7919, r.line_width, r.psize); },
-                           palette_only({0, rgba8(255, 255, 255, 255)}), ""});
+            auto make = [=] { return random_primitives(r.topo, r.count, seed * 7919, r.line_width, r.psize); };
+            bool filled = r.topo == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST ||
+                          r.topo == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP ||
+                          r.topo == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
+            Check palette = palette_only({0, rgba8(255, 255, 255, 255)});
+            out.push_back({name, make, filled ? all_of({palette, band_of(make)}) : palette, ""});
         }
 }
 

@@ -1,6 +1,7 @@
 #include "judge.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -167,6 +168,67 @@ Check all_of(std::vector<Check> checks) {
     return [checks](const std::vector<Plane>& planes) -> std::string {
         for (const Check& c : checks)
             if (auto e = c(planes); !e.empty()) return e;
+        return {};
+    };
+}
+
+Check coverage_band(const Scene& scene, float margin) {
+    // Window-space triangles, from each draw's topology.
+    std::vector<std::array<double, 2>> tri;
+    const double w = scene.target.width, h = scene.target.height;
+    for (const Draw& d : scene.draws) {
+        auto win = [&](size_t i) {
+            const Vertex& v = d.vertices[i];
+            return std::array<double, 2>{(v.pos[0] / v.pos[3] + 1.0) * w / 2, (v.pos[1] / v.pos[3] + 1.0) * h / 2};
+        };
+        size_t n = d.vertices.size();
+        for (size_t i = 0; i + 2 < n;) {
+            if (d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST) {
+                for (size_t k = 0; k < 3; ++k) tri.push_back(win(i + k));
+                i += 3;
+            } else if (d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP) {
+                for (size_t k = 0; k < 3; ++k) tri.push_back(win(i + k));
+                i += 1;
+            } else {  // fan
+                tri.push_back(win(0));
+                tri.push_back(win(i + 1));
+                tri.push_back(win(i + 2));
+                i += 1;
+            }
+        }
+    }
+    uint32_t clear = 0;
+    for (int c = 0; c < 4; ++c)
+        clear |= uint32_t(std::lround(std::clamp(scene.target.clear_color[c], 0.0f, 1.0f) * 255.0f)) << (8 * c);
+    return [tri, clear, margin](const std::vector<Plane>& planes) -> std::string {
+        const Plane* p = find_color(planes);
+        if (!p) return "coverage_band: no RGBA8 colour plane";
+        for (uint32_t y = 0; y < p->height; ++y)
+            for (uint32_t x = 0; x < p->width; ++x) {
+                double cx = x + 0.5, cy = y + 0.5;
+                bool inside = false, near = false;
+                for (size_t t = 0; t + 2 < tri.size(); t += 3) {
+                    // Signed distances of the centre to the three edges, oriented so that inside is positive.
+                    double area = (tri[t + 1][0] - tri[t][0]) * (tri[t + 2][1] - tri[t][1]) -
+                                  (tri[t + 2][0] - tri[t][0]) * (tri[t + 1][1] - tri[t][1]);
+                    if (area == 0) continue;
+                    double dmin = INFINITY;
+                    for (int e = 0; e < 3; ++e) {
+                        const auto& a = tri[t + e];
+                        const auto& b = tri[t + (e + 1) % 3];
+                        double ex = b[0] - a[0], ey = b[1] - a[1];
+                        double len = std::hypot(ex, ey);
+                        double dist = (ex * (cy - a[1]) - ey * (cx - a[0])) / len * (area > 0 ? 1 : -1);
+                        dmin = std::min(dmin, dist);
+                    }
+                    inside |= dmin > margin;
+                    near |= dmin > -margin;
+                }
+                uint32_t v;
+                std::memcpy(&v, &p->data[(size_t(y) * p->width + x) * 4], 4);
+                if (inside && v == clear) return "pixel " + at(x, y) + " lies inside a triangle but was not drawn";
+                if (!near && v != clear) return "pixel " + at(x, y) + " lies outside every triangle but was drawn";
+            }
         return {};
     };
 }

@@ -39,6 +39,11 @@ Check even_coverage(int ch);
 Check palette_only(std::vector<uint32_t> palette);
 // The colour plane at (x,y) is exactly `rgba`.
 Check pixel_is(int x, int y, uint32_t rgba);
+// Analytic coverage, as the CTS triangle verifier does with its fuzz band: every pixel whose centre lies inside some
+// triangle of the scene by more than `margin` pixels must differ from the clear colour, and every pixel farther than
+// `margin` outside all of them must equal it. Needs filled triangle topologies, no culling, the full-target
+// viewport, and positions inside the clip volume (window x = (x/w + 1) * width / 2).
+Check coverage_band(const Scene& scene, float margin);
 // All checks in order; the first failure wins.
 Check all_of(std::vector<Check> checks);
 

@@ -3,14 +3,17 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "case.hpp"
+#include "glsl.hpp"
 #include "png_writer.hpp"
 #include "render.hpp"
 #include "results.hpp"
@@ -24,12 +27,14 @@ struct Options {
     std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
     bool device_is_prefix = true, png_all = false, selftest_perturb = false;
     int timing = 0;
+    int case_timeout = 300;  // seconds; a hung driver ends the process (run_one.sh resumes after the case)
 };
 
 void usage() {
     std::puts(
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
+        "                  [--case-timeout SECONDS (default 300)]\n"
         "                  [--selftest-perturb]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
@@ -70,6 +75,12 @@ bool parse(int argc, char** argv, Options& o) {
             o.selftest_perturb = true;
         else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
+        } else if (a == "--case-timeout") {
+            if (!value(n)) return false;
+            char* end = nullptr;
+            long v = std::strtol(n.c_str(), &end, 10);
+            if (*end || v < 1 || v > 86400) return false;
+            o.case_timeout = int(v);
         } else if (a == "--timing") {
             if (!value(n)) return false;
             char* end = nullptr;
@@ -140,6 +151,15 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         r.reason = std::string("test data unavailable: ") + e.what();
         return r;
     }
+    // Shaders are compiled here first, so a GLSL mistake is blamed on the harness, not on either driver.
+    try {
+        for (const Draw& d : scene.draws) {
+            compile_glsl(Stage::kVertex, vertex_source(d));
+            compile_glsl(Stage::kFragment, fragment_source(d));
+        }
+    } catch (const std::exception& e) {
+        return fail(std::string("harness: ") + e.what());
+    }
     if (!ours) {
         // Still time the reference, so the report shows lavapipe's side while tilevk is missing.
         if (unsupported(ref, scene).empty()) {
@@ -162,16 +182,37 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         r.reason = ref.name + ": " + why;
         return r;
     }
+    // Both frames are built and run once for the images; then timed alternately (ours, ref, ours, ...) so that
+    // load from elsewhere on the machine falls on both sides alike.
     RenderResult a, b;
+    std::unique_ptr<Frame> fa, fb;
     try {
-        a = render(*ours, scene, o.timing);
+        fa = std::make_unique<Frame>(*ours, scene);
+        fa->submit();
+        a.planes = fa->planes();
+        a.pipeline_ms = fa->pipeline_ms();
     } catch (const std::exception& e) {
         return fail(ours->name + ": " + e.what());
     }
     try {
-        b = render(ref, scene, o.timing);
+        fb = std::make_unique<Frame>(ref, scene);
+        fb->submit();
+        b.planes = fb->planes();
+        b.pipeline_ms = fb->pipeline_ms();
     } catch (const std::exception& e) {
         return fail("reference " + ref.name + ": " + e.what());
+    }
+    for (int i = 0; i < o.timing; ++i) {
+        try {
+            a.frame_ms.push_back(fa->submit());
+        } catch (const std::exception& e) {
+            return fail(ours->name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
+        }
+        try {
+            b.frame_ms.push_back(fb->submit());
+        } catch (const std::exception& e) {
+            return fail("reference " + ref.name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
+        }
     }
     // Harness self-test: one changed bit in our first plane must be caught by every comparison path.
     if (o.selftest_perturb && !a.planes.empty() && !a.planes[0].data.empty()) a.planes[0].data[0] ^= 1;
@@ -264,11 +305,30 @@ int main(int argc, char** argv) {
                 ref.name.c_str());
     if (!have_ours) std::printf("tilevk-cts: device under test unavailable: %s\n", ours_missing.c_str());
 
+    // Watchdog: a driver that hangs inside a case must not hang the whole run. The JSON written before the case
+    // names it as running, so run_one.sh records it as failed and resumes after it.
+    std::atomic<int64_t> case_started{0};
+    std::atomic<bool> done{false};
+    std::thread watchdog([&] {
+        while (!done) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            int64_t t = case_started.load();
+            int64_t now =
+                std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now().time_since_epoch())
+                    .count();
+            if (t && now - t > o.case_timeout) {
+                std::fprintf(stderr, "tilevk-cts: case timed out after %d s; exiting\n", o.case_timeout);
+                std::fflush(stdout);
+                std::_Exit(124);
+            }
+        }
+    });
     std::vector<CaseResult> results;
     int fails = 0;
     for (size_t i = 0; i < cases.size(); ++i) {
         if (!o.json.empty()) write_json(o.json, info, results, cases[i].name);  // survives a driver crash
         auto t0 = std::chrono::steady_clock::now();
+        case_started = std::chrono::duration_cast<std::chrono::seconds>(t0.time_since_epoch()).count();
         CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         fails += r.status == Status::kFail;
@@ -277,6 +337,8 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         results.push_back(std::move(r));
     }
+    done = true;
+    watchdog.join();
     if (!o.json.empty()) write_json(o.json, info, results, "");
     if (!o.junit.empty()) write_junit(o.junit, info, results);
     if (!o.log.empty()) write_log(o.log, info, results);

@@ -343,11 +343,32 @@ struct Readback {
 
 }  // namespace
 
-RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
-    Cleanup gc;
+struct Frame::Impl {
+    Cleanup gc;  // first member: destroyed last, after the queue is idle
+    const DeviceContext* c = nullptr;
+    VkCommandBuffer cb = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    std::vector<Readback> reads;
+    double pipeline_ms = 0;
+    ~Impl() {
+        if (c) vkQueueWaitIdle(c->queue);
+    }
+};
+
+Frame::~Frame() = default;
+double Frame::pipeline_ms() const {
+    return impl_->pipeline_ms;
+}
+
+Frame::Frame(const DeviceContext& c, const Scene& s) : impl_(std::make_unique<Impl>()) {
+    impl_->c = &c;
+    Cleanup& gc = impl_->gc;
+    auto& reads = impl_->reads;
     VkDevice dev = c.device;
     const Target& t = s.target;
-    RenderResult out;
+    struct {
+        double& pipeline_ms;
+    } out{impl_->pipeline_ms};
 
     // Vertices of every draw, back to back.
     size_t nverts = 0;
@@ -362,7 +383,6 @@ RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
 
     // Attachments, in render-pass order.
     std::vector<VkImageView> views;
-    std::vector<Readback> reads;
     const VkImageUsageFlags copy_src = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     bool resolve = t.samples != VK_SAMPLE_COUNT_1_BIT && t.color != VK_FORMAT_UNDEFINED;
     if (t.color != VK_FORMAT_UNDEFINED) {
@@ -520,24 +540,41 @@ RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
     VkFence fence;
     vk_check(vkCreateFence(dev, &fci2, nullptr, &fence), "vkCreateFence");
     gc.add([dev, fence] { vkDestroyFence(dev, fence, nullptr); });
-    auto run_once = [&]() {
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &cb;
-        auto t0 = Clock::now();
-        vk_check(vkQueueSubmit(c.queue, 1, &si, fence), "vkQueueSubmit");
-        vk_check(vkWaitForFences(dev, 1, &fence, VK_TRUE, 60ull * 1000 * 1000 * 1000), "vkWaitForFences");
-        double ms = ms_since(t0);
-        vk_check(vkResetFences(dev, 1, &fence), "vkResetFences");
-        return ms;
-    };
-    run_once();
-    for (Readback& r : reads) {
-        r.plane.data.resize(size_t(t.width) * t.height * r.plane.texel_bytes);
-        std::memcpy(r.plane.data.data(), r.buffer.mapped, r.plane.data.size());
-        out.planes.push_back(std::move(r.plane));
+    impl_->cb = cb;
+    impl_->fence = fence;
+}
+
+double Frame::submit() {
+    const DeviceContext& c = *impl_->c;
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &impl_->cb;
+    auto t0 = Clock::now();
+    vk_check(vkQueueSubmit(c.queue, 1, &si, impl_->fence), "vkQueueSubmit");
+    vk_check(vkWaitForFences(c.device, 1, &impl_->fence, VK_TRUE, 60ull * 1000 * 1000 * 1000), "vkWaitForFences");
+    double ms = ms_since(t0);
+    vk_check(vkResetFences(c.device, 1, &impl_->fence), "vkResetFences");
+    return ms;
+}
+
+std::vector<Plane> Frame::planes() const {
+    std::vector<Plane> out;
+    for (const Readback& r : impl_->reads) {
+        Plane p = r.plane;
+        p.data.resize(size_t(p.width) * p.height * p.texel_bytes);
+        std::memcpy(p.data.data(), r.buffer.mapped, p.data.size());
+        out.push_back(std::move(p));
     }
-    for (int i = 0; i < timing_reps; ++i) out.frame_ms.push_back(run_once());
+    return out;
+}
+
+RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
+    Frame f(c, s);
+    RenderResult out;
+    f.submit();
+    out.planes = f.planes();
+    out.pipeline_ms = f.pipeline_ms();
+    for (int i = 0; i < timing_reps; ++i) out.frame_ms.push_back(f.submit());
     return out;
 }
 

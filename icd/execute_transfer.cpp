@@ -20,6 +20,31 @@ VkRect2D full_rect(const Image& img, uint32_t level) {
     return {{0, 0}, {img.level_width(level), img.level_height(level)}};
 }
 
+// Invalid commands (out-of-range regions, unbound memory) must not crash the process: every region is checked
+// before it is touched and skipped with a message otherwise.
+bool buffer_ok(const Buffer* b, VkDeviceSize offset, VkDeviceSize size, const char* what) {
+    const bool ok = b != nullptr && b->memory != nullptr && offset <= b->size && size <= b->size - offset &&
+                    b->memory_offset <= b->memory->size && b->size <= b->memory->size - b->memory_offset;
+    if (!ok)
+        log_error("%s: buffer range [%llu, +%llu) is outside the buffer or its memory; skipped", what,
+                  (unsigned long long)offset, (unsigned long long)size);
+    return ok;
+}
+
+bool image_ok(const Image* img, uint32_t level, uint32_t base_layer, uint32_t layers, int32_t x, int32_t y, uint32_t w,
+              uint32_t h, const char* what) {
+    bool ok = img != nullptr && img->memory != nullptr && level < img->mip_levels && base_layer < img->array_layers &&
+              layers <= img->array_layers - base_layer && x >= 0 && y >= 0 && img->memory_offset <= img->memory->size &&
+              img->layout.size <= img->memory->size - img->memory_offset;
+    if (ok) {
+        ok = uint64_t(x) + w <= img->level_width(level) && uint64_t(y) + h <= img->level_height(level);
+    }
+    if (!ok)
+        log_error("%s: image region (level %u, layers %u+%u, %d,%d %ux%u) is outside the image; skipped", what, level,
+                  base_layer, layers, x, y, w, h);
+    return ok;
+}
+
 // Copies one row of `width` texels of `aspect` between a buffer (packed aspect texels) and an image row.
 void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, uint8_t* buffer_row, uint32_t width,
               bool to_image) {
@@ -49,6 +74,16 @@ void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r
     const uint64_t row_len = r.bufferRowLength ? r.bufferRowLength : r.imageExtent.width;
     const uint64_t img_height = r.bufferImageHeight ? r.bufferImageHeight : r.imageExtent.height;
     const uint32_t layers = resolve_count(img, s.baseArrayLayer, s.layerCount, true);
+    const char* what = to_image ? "vkCmdCopyBufferToImage" : "vkCmdCopyImageToBuffer";
+    if (r.imageExtent.width == 0 || r.imageExtent.height == 0 || layers == 0) return;
+    if (!image_ok(&img, s.mipLevel, s.baseArrayLayer, layers, r.imageOffset.x, r.imageOffset.y, r.imageExtent.width,
+                  r.imageExtent.height, what)) {
+        return;
+    }
+    // the last texel read or written: ((layers-1)*imageHeight + height-1)*rowLength + width texels past bufferOffset
+    const uint64_t span =
+        ((uint64_t(layers - 1) * img_height + (r.imageExtent.height - 1)) * row_len + r.imageExtent.width) * bytes;
+    if (!buffer_ok(&buf, r.bufferOffset, span, what)) return;
     for (uint32_t l = 0; l < layers; ++l) {
         for (uint32_t y = 0; y < r.imageExtent.height; ++y) {
             // texel (x, y, layer l) of the region is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
@@ -73,17 +108,29 @@ uint8_t unorm8_from_float(float x) {
 void exec_copy_buffer(const CmdCopyBuffer& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkBufferCopy& r = c.regions[i];
+        if (!buffer_ok(c.src, r.srcOffset, r.size, "vkCmdCopyBuffer") ||
+            !buffer_ok(c.dst, r.dstOffset, r.size, "vkCmdCopyBuffer")) {
+            continue;
+        }
         std::memmove(c.dst->data() + r.dstOffset, c.src->data() + r.srcOffset, size_t(r.size));
     }
 }
 
 void exec_copy_image(const CmdCopyImage& c) {
+    if (c.src == nullptr || c.dst == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageCopy& r = c.regions[i];
         const VkImageAspectFlags aspect = r.srcSubresource.aspectMask;
         const uint32_t layers =
             resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
         const FormatInfo& f = *c.src->format;
+        if (!image_ok(c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer, layers, r.srcOffset.x,
+                      r.srcOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
+            !image_ok(c.dst, r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer, layers, r.dstOffset.x,
+                      r.dstOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
+            c.dst->samples != c.src->samples || c.dst->format->texel_bytes != f.texel_bytes) {
+            continue;
+        }
         const bool whole_texel = buffer_texel_bytes(f, aspect) == f.texel_bytes;
         const uint32_t off = aspect_offset(f, aspect), bytes = buffer_texel_bytes(f, aspect);
         for (uint32_t l = 0; l < layers; ++l) {
@@ -106,26 +153,35 @@ void exec_copy_image(const CmdCopyImage& c) {
 }
 
 void exec_copy_buffer_to_image(const CmdCopyBufferToImage& c) {
+    if (c.src == nullptr || c.dst == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) copy_buffer_image(*c.src, *c.dst, c.regions[i], true);
 }
 
 void exec_copy_image_to_buffer(const CmdCopyImageToBuffer& c) {
+    if (c.src == nullptr || c.dst == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) copy_buffer_image(*c.dst, *c.src, c.regions[i], false);
 }
 
 void exec_update_buffer(const CmdUpdateBuffer& c) {
-    if (c.data != nullptr) std::memcpy(c.dst->data() + c.offset, c.data, size_t(c.size));
+    if (c.data != nullptr && buffer_ok(c.dst, c.offset, c.size, "vkCmdUpdateBuffer"))
+        std::memcpy(c.dst->data() + c.offset, c.data, size_t(c.size));
 }
 
 void exec_fill_buffer(const CmdFillBuffer& c) {
     // VK_WHOLE_SIZE fills to the end of the buffer, rounded down to a multiple of 4 bytes.
+    if (!buffer_ok(c.dst, c.offset, 0, "vkCmdFillBuffer")) return;
     VkDeviceSize size = c.size == VK_WHOLE_SIZE ? (c.dst->size - c.offset) & ~VkDeviceSize(3) : c.size;
+    if (!buffer_ok(c.dst, c.offset, size, "vkCmdFillBuffer")) return;
     uint8_t* p = c.dst->data() + c.offset;
     for (VkDeviceSize i = 0; i + 4 <= size; i += 4) std::memcpy(p + i, &c.data, 4);
 }
 
 void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D& rect, const uint8_t* texel,
                uint32_t byte_offset, uint32_t byte_count) {
+    if (!image_ok(&img, level, layer, 1, rect.offset.x, rect.offset.y, rect.extent.width, rect.extent.height,
+                  "clear")) {
+        return;
+    }
     const uint32_t tb = img.format->texel_bytes;
     const size_t texels = size_t(rect.extent.width) * img.samples;
     for (uint32_t y = 0; y < rect.extent.height; ++y) {
@@ -159,22 +215,26 @@ void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_la
 }
 
 void exec_clear_color_image(const CmdClearColorImage& c) {
+    if (c.image == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageSubresourceRange& r = c.ranges[i];
         const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
         const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
         for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
+            if (!image_ok(c.image, m, r.baseArrayLayer, layers, 0, 0, 0, 0, "vkCmdClearColorImage")) break;
             clear_color_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), c.color);
         }
     }
 }
 
 void exec_clear_depth_stencil_image(const CmdClearDepthStencilImage& c) {
+    if (c.image == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageSubresourceRange& r = c.ranges[i];
         const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
         const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
         for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
+            if (!image_ok(c.image, m, r.baseArrayLayer, layers, 0, 0, 0, 0, "vkCmdClearDepthStencilImage")) break;
             clear_depth_stencil_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), r.aspectMask,
                                      c.value);
         }
@@ -190,6 +250,10 @@ bool can_resolve(const FormatInfo& f) {
 //   out = fl(sum * 0.25f); UNORM8 stores rne(fl(out * 255)), FLOAT32 stores out.
 void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOffset2D src_offset, const Image& dst,
                   uint32_t dst_level, uint32_t dst_layer, VkOffset2D dst_offset, VkExtent2D extent) {
+    if (!image_ok(&src, src_level, src_layer, 1, src_offset.x, src_offset.y, extent.width, extent.height, "resolve") ||
+        !image_ok(&dst, dst_level, dst_layer, 1, dst_offset.x, dst_offset.y, extent.width, extent.height, "resolve")) {
+        return;
+    }
     const FormatInfo& f = *src.format;
     const uint32_t samples = src.samples;
     const float inv_samples = 1.0f / float(samples);
@@ -222,6 +286,7 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
 }
 
 void exec_resolve_image(const CmdResolveImage& c) {
+    if (c.src == nullptr || c.dst == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageResolve& r = c.regions[i];
         if (!can_resolve(*c.src->format)) {
@@ -231,6 +296,13 @@ void exec_resolve_image(const CmdResolveImage& c) {
         }
         const uint32_t layers =
             resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        if (!image_ok(c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer, layers, r.srcOffset.x,
+                      r.srcOffset.y, r.extent.width, r.extent.height, "vkCmdResolveImage") ||
+            !image_ok(c.dst, r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer, layers, r.dstOffset.x,
+                      r.dstOffset.y, r.extent.width, r.extent.height, "vkCmdResolveImage") ||
+            c.dst->format->texel_bytes != c.src->format->texel_bytes || c.dst->samples != 1) {
+            continue;
+        }
         for (uint32_t l = 0; l < layers; ++l) {
             resolve_rect(*c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + l,
                          {r.srcOffset.x, r.srcOffset.y}, *c.dst, r.dstSubresource.mipLevel,

@@ -2,6 +2,7 @@
 
 #include "device.h"
 #include "entrypoints.h"
+#include "physical_device.h"
 
 namespace tilevk::icd {
 
@@ -42,6 +43,16 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     }
     if (ci->samples != VK_SAMPLE_COUNT_1_BIT && ci->samples != VK_SAMPLE_COUNT_4_BIT) {
         return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: %u samples (only 1 and 4)", unsigned(ci->samples));
+    }
+    // Anything vkGetPhysicalDeviceImageFormatProperties refuses (usage, tiling) is refused here too.
+    VkImageFormatProperties props;
+    if (tvk_GetPhysicalDeviceImageFormatProperties(to_handle(dev->physical_device), ci->format, ci->imageType,
+                                                   ci->tiling, ci->usage, ci->flags, &props) != VK_SUCCESS ||
+        ci->mipLevels > props.maxMipLevels || ci->arrayLayers > props.maxArrayLayers ||
+        (ci->samples & props.sampleCounts) == 0) {
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                    "vkCreateImage: format %d, tiling %d, usage 0x%x, %u levels, %u layers, %u samples unsupported",
+                    int(ci->format), int(ci->tiling), ci->usage, ci->mipLevels, ci->arrayLayers, unsigned(ci->samples));
     }
     if (ci->samples != VK_SAMPLE_COUNT_1_BIT && (!format_supports_msaa(*f) || ci->tiling != VK_IMAGE_TILING_OPTIMAL)) {
         return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: format %d cannot be multisampled in tilevk",

@@ -33,12 +33,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pC
     if (pCreateInfo->pApplicationInfo != nullptr && pCreateInfo->pApplicationInfo->apiVersion != 0) {
         app_version = pCreateInfo->pApplicationInfo->apiVersion;
     }
-    // A Vulkan 1.0 implementation must refuse a higher requested version (1.1+ drivers accept any version).
-    if (VK_API_VERSION_MINOR(kApiVersion) == 0 && VK_API_VERSION_MAJOR(app_version) == 1 &&
-        VK_API_VERSION_MINOR(app_version) > 0) {
-        return fail(VK_ERROR_INCOMPATIBLE_DRIVER, "vkCreateInstance: apiVersion %u.%u requested, tilevk is Vulkan 1.0",
-                    VK_API_VERSION_MAJOR(app_version), VK_API_VERSION_MINOR(app_version));
-    }
+    // No apiVersion check here: from loader interface 5 on (the least tilevk negotiates) the loader validates the
+    // application's apiVersion, and a 1.0 driver must accept any version it passes (LoaderDriverInterface.md, v5).
     const VkAllocationCallbacks& a = pick_allocator(pAllocator, nullptr);
     Instance* inst = create_object<Instance>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
     if (inst == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateInstance: out of host memory");

@@ -72,6 +72,13 @@ inline float round_even(float x) {
 inline uint32_t mask(bool b) {
     return b ? ~0u : 0u;
 }
+// fmin/fmax semantics (a NaN operand yields the other one), in a form GCC vectorizes
+inline float min_f(float a, float b) {
+    return (a < b || b != b) ? a : b;
+}
+inline float max_f(float a, float b) {
+    return (a > b || b != b) ? a : b;
+}
 
 // Quad neighbours: lane = quad*4 + (y&1)*2 + (x&1)
 inline int left(int l) {
@@ -103,60 +110,60 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
 #define SA reinterpret_cast<const i32a*>(A)
 #define SB reinterpret_cast<const i32a*>(B)
 #define SC reinterpret_cast<const i32a*>(C)
-#define U1(expr)               \
-    {                          \
-        uint32_t* d = D;       \
-        const uint32_t* a = A; \
-        LANES d[l] = (expr);   \
-    }                          \
+#define U1(expr)                          \
+    {                                     \
+        uint32_t* __restrict d = D;       \
+        const uint32_t* __restrict a = A; \
+        LANES d[l] = (expr);              \
+    }                                     \
     break;
-#define F1(expr)             \
-    {                        \
-        f32a* d = FD;        \
-        const f32a* a = FA;  \
-        LANES d[l] = (expr); \
-    }                        \
-    break;
-#define F2(expr)                     \
-    {                                \
-        f32a* d = FD;                \
-        const f32a *a = FA, *b = FB; \
-        LANES d[l] = (expr);         \
-    }                                \
-    break;
-#define FCMP(expr)                   \
-    {                                \
-        uint32_t* d = D;             \
-        const f32a *a = FA, *b = FB; \
-        LANES d[l] = mask(expr);     \
-    }                                \
-    break;
-#define U2(expr)                       \
+#define F1(expr)                       \
     {                                  \
-        uint32_t* d = D;               \
-        const uint32_t *a = A, *b = B; \
+        f32a* __restrict d = FD;       \
+        const f32a* __restrict a = FA; \
         LANES d[l] = (expr);           \
     }                                  \
     break;
-#define S2(expr)                     \
-    {                                \
-        uint32_t* d = D;             \
-        const i32a *a = SA, *b = SB; \
-        LANES d[l] = uint32_t(expr); \
-    }                                \
+#define F2(expr)                                            \
+    {                                                       \
+        f32a* __restrict d = FD;                            \
+        const f32a* __restrict a = FA, * __restrict b = FB; \
+        LANES d[l] = (expr);                                \
+    }                                                       \
+    break;
+#define FCMP(expr)                                          \
+    {                                                       \
+        uint32_t* __restrict d = D;                         \
+        const f32a* __restrict a = FA, * __restrict b = FB; \
+        LANES d[l] = mask(expr);                            \
+    }                                                       \
+    break;
+#define U2(expr)                                              \
+    {                                                         \
+        uint32_t* __restrict d = D;                           \
+        const uint32_t* __restrict a = A, * __restrict b = B; \
+        LANES d[l] = (expr);                                  \
+    }                                                         \
+    break;
+#define S2(expr)                                            \
+    {                                                       \
+        uint32_t* __restrict d = D;                         \
+        const i32a* __restrict a = SA, * __restrict b = SB; \
+        LANES d[l] = uint32_t(expr);                        \
+    }                                                       \
     break;
         switch (in.op) {
             case Op::Mov:
                 U1(a[l])
             case Op::Select: {
-                uint32_t* d = D;
-                const uint32_t *a = A, *b = B, *c = C;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A, * __restrict b = B, * __restrict c = C;
                 LANES d[l] = (c[l] & a[l]) | (~c[l] & b[l]);
                 break;
             }
             case Op::MaskedMov: {
-                uint32_t* d = D;
-                const uint32_t *a = A, *c = C;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A, * __restrict c = C;
                 LANES d[l] = (c[l] & a[l]) | (~c[l] & d[l]);
                 break;
             }
@@ -173,17 +180,17 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             case Op::FAbs:
                 U1(a[l] & 0x7fffffffu)
             case Op::FMin:
-                F2(std::fmin(a[l], b[l]))
+                F2(min_f(a[l], b[l]))
             case Op::FMax:
-                F2(std::fmax(a[l], b[l]))
+                F2(max_f(a[l], b[l]))
             // mod(x, y) = x - y * floor(x / y)
             case Op::FMod:
                 F2(a[l] - b[l] * std::floor(a[l] / b[l]))
             case Op::FRem:
                 F2(std::fmod(a[l], b[l]))
             case Op::Fma: {
-                f32a* d = FD;
-                const f32a *a = FA, *b = FB, *c = FC;
+                f32a* __restrict d = FD;
+                const f32a* __restrict a = FA, * __restrict b = FB, * __restrict c = FC;
                 LANES d[l] = std::fma(a[l], b[l], c[l]);
                 break;
             }
@@ -232,8 +239,8 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 S2(b[l] == 0 || b[l] == -1 ? 0 : a[l] % b[l])
             case Op::SMod: {
                 // result has the sign of b
-                uint32_t* d = D;
-                const i32a *a = SA, *b = SB;
+                uint32_t* __restrict d = D;
+                const i32a* __restrict a = SA, * __restrict b = SB;
                 LANES {
                     int32_t r = (b[l] == 0 || b[l] == -1) ? 0 : a[l] % b[l];
                     if (r != 0 && ((r < 0) != (b[l] < 0))) r += b[l];
@@ -292,8 +299,8 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             case Op::BitCount:
                 U1(uint32_t(std::popcount(a[l])))
             case Op::BitReverse: {
-                uint32_t* d = D;
-                const uint32_t* a = A;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A;
                 LANES {
                     uint32_t x = a[l], r = 0;
                     for (int i = 0; i < 32; ++i) r |= ((x >> i) & 1u) << (31 - i);
@@ -306,8 +313,8 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             case Op::FindUMsb:
                 U1(a[l] ? uint32_t(31 - std::countl_zero(a[l])) : ~0u)
             case Op::FindSMsb: {
-                uint32_t* d = D;
-                const uint32_t* a = A;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A;
                 LANES {
                     uint32_t x = int32_t(a[l]) < 0 ? ~a[l] : a[l];
                     d[l] = x ? uint32_t(31 - std::countl_zero(x)) : ~0u;
@@ -316,8 +323,8 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             }
             case Op::BfeU:
             case Op::BfeS: {
-                uint32_t* d = D;
-                const uint32_t *a = A, *b = B, *c = C;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A, * __restrict b = B, * __restrict c = C;
                 bool sgn = in.op == Op::BfeS;
                 LANES {
                     uint32_t off = b[l] & 31, cnt = std::min(c[l], 32u - off);
@@ -333,7 +340,7 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             }
             case Op::Bfi: {
                 // d = base with bits [off, off+count) replaced by insert's low bits; operands a, b, c, count in n
-                uint32_t* d = D;
+                uint32_t* __restrict d = D;
                 const uint32_t *a = A, *b = B, *c = C, *n = R + size_t(in.imm) * kLanes;
                 LANES {
                     uint32_t off = c[l] & 31, cnt = std::min(n[l], 32u - off);
@@ -343,26 +350,26 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 break;
             }
             case Op::F2S: {
-                uint32_t* d = D;
-                const f32a* a = FA;
+                uint32_t* __restrict d = D;
+                const f32a* __restrict a = FA;
                 LANES d[l] = uint32_t(f2s(a[l]));
                 break;
             }
             case Op::F2U: {
-                uint32_t* d = D;
-                const f32a* a = FA;
+                uint32_t* __restrict d = D;
+                const f32a* __restrict a = FA;
                 LANES d[l] = f2u(a[l]);
                 break;
             }
             case Op::S2F: {
-                f32a* d = FD;
+                f32a* __restrict d = FD;
                 const i32a* a = SA;
                 LANES d[l] = float(a[l]);
                 break;
             }
             case Op::U2F: {
-                f32a* d = FD;
-                const uint32_t* a = A;
+                f32a* __restrict d = FD;
+                const uint32_t* __restrict a = A;
                 LANES d[l] = float(a[l]);
                 break;
             }
@@ -423,52 +430,52 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 F1(std::atanh(a[l]))
             case Op::FClamp: {
                 // clamp(x, lo, hi) = min(max(x, lo), hi)
-                f32a* d = FD;
-                const f32a *a = FA, *b = FB, *c = FC;
-                LANES d[l] = std::fmin(std::fmax(a[l], b[l]), c[l]);
+                f32a* __restrict d = FD;
+                const f32a* __restrict a = FA, * __restrict b = FB, * __restrict c = FC;
+                LANES d[l] = min_f(max_f(a[l], b[l]), c[l]);
                 break;
             }
             case Op::Step:
                 F2(b[l] < a[l] ? 0.0f : 1.0f)  // step(edge a, x b)
             case Op::SmoothStep: {
                 // t = clamp((x - e0) / (e1 - e0), 0, 1); t * t * (3 - 2 * t)
-                f32a* d = FD;
-                const f32a *a = FA, *b = FB, *c = FC;
+                f32a* __restrict d = FD;
+                const f32a* __restrict a = FA, * __restrict b = FB, * __restrict c = FC;
                 LANES {
-                    float t = std::fmin(std::fmax((c[l] - a[l]) / (b[l] - a[l]), 0.0f), 1.0f);
+                    float t = min_f(max_f((c[l] - a[l]) / (b[l] - a[l]), 0.0f), 1.0f);
                     d[l] = t * t * (3.0f - 2.0f * t);
                 }
                 break;
             }
             case Op::Ldexp: {
-                f32a* d = FD;
-                const f32a* a = FA;
+                f32a* __restrict d = FD;
+                const f32a* __restrict a = FA;
                 const i32a* b = SB;
                 LANES d[l] = std::ldexp(a[l], std::clamp(b[l], -300, 300));
                 break;
             }
             case Op::PackHalf2x16: {
-                uint32_t* d = D;
-                const f32a *a = FA, *b = FB;
+                uint32_t* __restrict d = D;
+                const f32a* __restrict a = FA, * __restrict b = FB;
                 LANES d[l] = float_to_half(a[l]) | (float_to_half(b[l]) << 16);
                 break;
             }
             case Op::UnpackHalf2x16Lo: {
-                f32a* d = FD;
-                const uint32_t* a = A;
+                f32a* __restrict d = FD;
+                const uint32_t* __restrict a = A;
                 LANES d[l] = half_to_float(a[l] & 0xffff);
                 break;
             }
             case Op::UnpackHalf2x16Hi: {
-                f32a* d = FD;
-                const uint32_t* a = A;
+                f32a* __restrict d = FD;
+                const uint32_t* __restrict a = A;
                 LANES d[l] = half_to_float(a[l] >> 16);
                 break;
             }
             case Op::PackUnorm4x8:
             case Op::PackSnorm4x8: {
                 // unorm: round(clamp(c, 0, 1) * 255); snorm: round(clamp(c, -1, 1) * 127)
-                uint32_t* d = D;
+                uint32_t* __restrict d = D;
                 bool sn = in.op == Op::PackSnorm4x8;
                 LANES {
                     uint32_t r = 0;
@@ -484,7 +491,7 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             }
             case Op::PackUnorm2x16:
             case Op::PackSnorm2x16: {
-                uint32_t* d = D;
+                uint32_t* __restrict d = D;
                 bool sn = in.op == Op::PackSnorm2x16;
                 LANES {
                     uint32_t r = 0;
@@ -518,8 +525,8 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
             case Op::DdyCoarse:
                 F1(a[(l & ~3) + 2] - a[l & ~3])
             case Op::LoadLocal: {
-                uint32_t* d = D;
-                const uint32_t* a = A;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A;
                 LANES {
                     uint64_t w = std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1);  // clamp to the variable
                     d[l] = M[w * kLanes + l];
@@ -527,16 +534,28 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 break;
             }
             case Op::StoreLocal: {
-                const uint32_t *a = A, *b = B, *c = C;
+                const uint32_t* __restrict a = A, * __restrict b = B, * __restrict c = C;
                 LANES {
                     uint64_t w = std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1);
                     if (c[l]) M[w * kLanes + l] = b[l];
                 }
                 break;
             }
+            case Op::LoadLocalFixed: {
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
+                LANES d[l] = m[l];
+                break;
+            }
+            case Op::StoreLocalFixed: {
+                uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
+                const uint32_t* __restrict b = B, * __restrict c = C;
+                LANES m[l] = (c[l] & b[l]) | (~c[l] & m[l]);
+                break;
+            }
             case Op::LoadBuf: {
-                uint32_t* d = D;
-                const uint32_t *a = A, *b = B;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A, * __restrict b = B;
                 LANES {
                     uint32_t v = 0;
                     if (a[l] < in.n && in.imm + a[l] < num_slots) {
@@ -547,6 +566,19 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                     }
                     d[l] = v;
                 }
+                break;
+            }
+            case Op::LoadBufUniform: {
+                // constant element and offset: one bounds-checked read, broadcast
+                uint32_t v = 0;
+                if (in.imm < num_slots) {
+                    const Descriptor* desc = slots[in.imm];
+                    uint64_t off = in.extra;
+                    if (desc && desc->buffer.data && off + 4 <= desc->buffer.size)
+                        std::memcpy(&v, static_cast<const uint8_t*>(desc->buffer.data) + off, 4);
+                }
+                uint32_t* __restrict d = D;
+                LANES d[l] = v;
                 break;
             }
             case Op::StoreBuf: {
@@ -570,22 +602,22 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 pc = in.imm;
                 break;
             case Op::JumpIfNone: {
-                const uint32_t* a = A;
+                const uint32_t* __restrict a = A;
                 uint32_t any = 0;
                 LANES any |= a[l];
                 if (!any) pc = in.imm;
                 break;
             }
             case Op::JumpIfAny: {
-                const uint32_t* a = A;
+                const uint32_t* __restrict a = A;
                 uint32_t any = 0;
                 LANES any |= a[l];
                 if (any) pc = in.imm;
                 break;
             }
             case Op::Kill: {
-                uint32_t* d = D;
-                const uint32_t* a = A;
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A;
                 LANES d[l] &= ~a[l];
                 break;
             }
@@ -605,8 +637,10 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
             for (int l = 0; l < kLanes; ++l) s.regs[size_t(p.const_regs[i]) * kLanes + l] = p.const_regs[i + 1];
         s.last = p.serial;
     }
-    s.local.assign(size_t(std::max(1u, p.local_words)) * kLanes, 0);
-    s.slots.assign(p.num_slots, nullptr);
+    size_t words = size_t(std::max(1u, p.local_words)) * kLanes;
+    if (s.local.size() < words) s.local.resize(words);
+    std::memset(s.local.data(), 0, words * 4);  // variables start at zero, so results never depend on history
+    if (s.slots.size() != p.num_slots) s.slots.resize(p.num_slots);
     push.buffer.data = bindings.push_constants.data();
     push.buffer.size = bindings.push_constants.size();
     s.slots[0] = &push;

@@ -136,10 +136,13 @@ enum class Op : uint16_t {
     DdxCoarse,
     DdyCoarse,
     // memory
-    LoadLocal,   // d = local[(imm + clamp(a)) lane]; b = size limit (words) of the variable
-    StoreLocal,  // local[(imm + clamp(a))] = b under mask c; size limit in extra
-    LoadBuf,     // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
-    StoreBuf,    // buffer(slot imm + elem a)[byte offset b] = c under mask extra
+    LoadLocal,        // d = local[(imm + clamp(a)) lane]; b = size limit (words) of the variable
+    StoreLocal,       // local[(imm + clamp(a))] = b under mask c; size limit in extra
+    LoadLocalFixed,   // d = local[imm] (constant word: a plain 16-lane copy)
+    StoreLocalFixed,  // local[imm] = b under mask c
+    LoadBuf,          // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
+    LoadBufUniform,   // d = buffer(slot imm)[byte offset extra] for every lane
+    StoreBuf,         // buffer(slot imm + elem a)[byte offset b] = c under mask extra
     // images: d..d+3 = result; a = handle, b = first coordinate register, c = lod/bias register or kNoReg
     Sample,     // imm: SampleFlags; extra: dref/offset unused
     Fetch,      // texelFetch: integer coords at b, lod at c
@@ -161,6 +164,8 @@ enum SampleFlags : uint32_t {
     kSampleProj = 16,        // divide by the last coordinate
     kSampleGrad = 32,        // n..n+3: dx.xy, dy.xy registers
     kSample1D = 64,          // 1D image: one coordinate (plus layer)
+    kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
+    kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
 };
 
 constexpr uint32_t kNoReg = 0xFFFFFFFFu;

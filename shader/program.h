@@ -165,6 +165,8 @@ enum class Format : uint8_t {
     R32F,
     RG32F,
     RGBA32F,
+    D16_UNORM,  // depth: sampled as (d, 0, 0, 1)
+    D32_SFLOAT,
 };
 
 struct ImageLevel {
@@ -186,6 +188,8 @@ enum class Filter : uint8_t { Nearest, Linear };
 enum class MipmapMode : uint8_t { Nearest, Linear };
 enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder, MirrorClampToEdge };
 enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
+// Same order as VkCompareOp.
+enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
 
 struct SamplerState {
     Filter mag_filter = Filter::Nearest;
@@ -199,6 +203,8 @@ struct SamplerState {
     float max_lod = 1000.0f;
     BorderColor border = BorderColor::TransparentBlack;  // int and float borders read the same bits for 0/1
     bool unnormalized = false;
+    bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
+    CompareOp compare_op = CompareOp::Never;
 };
 
 // What one (set, binding, array element) holds. Unused members stay null.

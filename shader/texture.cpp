@@ -56,6 +56,10 @@ uint32_t texel_size(Format f) {
             return 8;
         case Format::RGBA32F:
             return 16;
+        case Format::D16_UNORM:
+            return 2;
+        case Format::D32_SFLOAT:
+            return 4;
         default:
             return 0;
     }
@@ -92,6 +96,14 @@ Vec4 decode(Format f, const uint8_t* p) {
         case Format::RGBA32F:
             std::memcpy(v, p, 16);
             return {v[0], v[1], v[2], v[3]};
+        case Format::D16_UNORM: {
+            uint16_t x;
+            std::memcpy(&x, p, 2);
+            return {float(x) / 65535.0f, 0.0f, 0.0f, 1.0f};
+        }
+        case Format::D32_SFLOAT:
+            std::memcpy(v, p, 4);
+            return {v[0], 0.0f, 0.0f, 1.0f};
         default:
             return {0, 0, 0, 0};
     }
@@ -150,8 +162,36 @@ Vec4 texel(const ImageView& img, const Level& lv, int32_t x, int32_t y) {
     return decode(img.format, lv.base + off);
 }
 
+bool compare(CompareOp op, float ref, float d) {
+    switch (op) {
+        case CompareOp::Never:
+            return false;
+        case CompareOp::Less:
+            return ref < d;
+        case CompareOp::Equal:
+            return ref == d;
+        case CompareOp::LessOrEqual:
+            return ref <= d;
+        case CompareOp::Greater:
+            return ref > d;
+        case CompareOp::NotEqual:
+            return ref != d;
+        case CompareOp::GreaterOrEqual:
+            return ref >= d;
+        case CompareOp::Always:
+            return true;
+    }
+    return false;
+}
+
+struct SampleArgs {
+    int32_t off_x = 0, off_y = 0;  // constant texel offsets
+    bool dref = false;             // depth compare against `ref`: each texel becomes 0 or 1 before filtering
+    float ref = 0.0f;
+};
+
 Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
-                  bool linear, bool one_d) {
+                  bool linear, bool one_d, const SampleArgs& args) {
     const ImageLevel& il = img.level[level];
     Level lv;
     lv.w = int32_t(std::max(1u, img.width >> level));
@@ -164,10 +204,11 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     float u = smp.unnormalized ? s : s * float(lv.w);
     float v = smp.unnormalized ? t : t * float(lv.h);
     auto fetch = [&](int32_t x, int32_t y) -> Vec4 {
-        int32_t wx = wrap(x, lv.w, smp.address_u);
-        int32_t wy = one_d ? 0 : wrap(y, lv.h, smp.address_v);
-        if (wx < 0 || wy < 0) return border;
-        return texel(img, lv, wx, wy);
+        int32_t wx = wrap(x + args.off_x, lv.w, smp.address_u);
+        int32_t wy = one_d ? 0 : wrap(y + args.off_y, lv.h, smp.address_v);
+        Vec4 c = (wx < 0 || wy < 0) ? border : texel(img, lv, wx, wy);
+        if (args.dref) return {compare(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
+        return c;
     };
     if (!linear) return fetch(safe_floor(u), safe_floor(v));
     // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint
@@ -226,14 +267,20 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
     bool one_d = in.imm & kSample1D;
     bool arrayed = in.imm & kSampleArray;
     uint32_t layer_comp = one_d ? 1 : 2;
+    bool has_offset = in.imm & kSampleOffset;
+    int32_t off_x = has_offset ? int32_t(int8_t(uint8_t(in.imm >> 16))) : 0;
+    int32_t off_y = has_offset ? int32_t(int8_t(uint8_t(in.imm >> 24))) : 0;
+    bool dref = in.imm & kSampleDref;
+    // register run: coordinates [, q for projection] [, depth reference]
+    uint32_t q_reg = in.b + in.extra - 1 - (dref ? 1 : 0);
 
     if (in.op == Op::Fetch) {
         const uint32_t* lod = reg(in.c);
         for (int l = 0; l < kLanes; ++l) {
             Vec4 r{0, 0, 0, 0};
             const ImageView* img = image_of(l);
-            int32_t x = int32_t(reg(in.b)[l]);
-            int32_t y = one_d ? 0 : int32_t(reg(in.b + 1)[l]);
+            int32_t x = int32_t(reg(in.b)[l]) + off_x;
+            int32_t y = one_d ? 0 : int32_t(reg(in.b + 1)[l]) + off_y;
             int32_t layer = arrayed ? int32_t(reg(in.b + layer_comp)[l]) : 0;
             uint32_t lv = lod[l];
             if (img && lv < img->levels) {
@@ -253,7 +300,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
     // Sample: coordinates (projected if asked).
     float s[kLanes], t[kLanes], layer_f[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-        float q = (in.imm & kSampleProj) ? fl(in.b + in.extra - 1, l) : 1.0f;
+        float q = (in.imm & kSampleProj) ? fl(q_reg, l) : 1.0f;
         s[l] = fl(in.b, l);
         t[l] = one_d ? 0.0f : fl(in.b + 1, l);
         layer_f[l] = arrayed ? fl(in.b + layer_comp, l) : 0.0f;
@@ -267,6 +314,14 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
         const ImageView* img = image_of(l);
         uint32_t ss = h[l] >> 16;
         const SamplerState* smp = ss < num_slots && slots[ss] ? slots[ss]->sampler : nullptr;
+        SampleArgs args;
+        args.off_x = off_x, args.off_y = off_y;
+        if (dref && smp) {
+            args.dref = smp->compare_enable;
+            args.ref = fl(in.b + in.extra - 1, l);
+            if (in.imm & kSampleProj) args.ref = args.ref / fl(q_reg, l);
+            if (img && img->format == Format::D16_UNORM) args.ref = std::clamp(args.ref, 0.0f, 1.0f);
+        }
         if (img && smp) {
             float w0 = float(img->width), h0 = one_d ? 1.0f : float(img->height);
             float lambda;
@@ -300,20 +355,20 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                 std::nearbyint(std::clamp(layer_f[l] == layer_f[l] ? layer_f[l] : 0.0f, 0.0f, float(img->layers - 1)));
             uint32_t layer = uint32_t(lyr);
             if (smp->unnormalized || mag) {
-                r = sample_level(*img, *smp, 0, layer, s[l], t[l], linear, one_d);
+                r = sample_level(*img, *smp, 0, layer, s[l], t[l], linear, one_d, args);
             } else if (smp->mipmap_mode == MipmapMode::Nearest) {
                 // d = ceil(lambda + 0.5) - 1, clamped to the view's levels
                 float dl = std::ceil(lambda + 0.5f) - 1.0f;
                 uint32_t lv = uint32_t(std::clamp(dl, 0.0f, float(max_level)));
-                r = sample_level(*img, *smp, lv, layer, s[l], t[l], linear, one_d);
+                r = sample_level(*img, *smp, lv, layer, s[l], t[l], linear, one_d, args);
             } else {
                 float fl0 = std::floor(lambda);
                 uint32_t lo = uint32_t(std::clamp(fl0, 0.0f, float(max_level)));
                 uint32_t hi = std::min(lo + 1, max_level);
                 float frac = lambda - fl0;
-                Vec4 a = sample_level(*img, *smp, lo, layer, s[l], t[l], linear, one_d);
+                Vec4 a = sample_level(*img, *smp, lo, layer, s[l], t[l], linear, one_d, args);
                 if (hi != lo && frac > 0.0f) {
-                    Vec4 b = sample_level(*img, *smp, hi, layer, s[l], t[l], linear, one_d);
+                    Vec4 b = sample_level(*img, *smp, hi, layer, s[l], t[l], linear, one_d, args);
                     for (int c = 0; c < 4; ++c) a[c] = a[c] * (1.0f - frac) + b[c] * frac;
                 }
                 r = a;

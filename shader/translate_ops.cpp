@@ -72,7 +72,7 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
             if (stride == 0) fail("buffer array without ArrayStride");
             // a huge constant index stays in bounds of uint32 arithmetic; the executor rejects it
             if (is_const)
-                p.offset += uint32_t(std::min<uint64_t>(uint64_t(cv) * stride, 0x7fffffffu));
+                p.offset = uint32_t(std::min<uint64_t>(p.offset + uint64_t(cv) * stride, 0x7fffffffu));
             else
                 add_dyn(stride);
             p.type = t.elem;
@@ -101,8 +101,13 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Local) {
-        for (uint32_t i = 0; i < t.flat; ++i)
-            emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, p.base + p.offset + off + i).n = p.limit;
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::LoadLocalFixed, dst + i, kNoReg, kNoReg, kNoReg, w);
+            else
+                emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, w).n = p.limit;
+        }
         return;
     }
     if (p.space == Space::Handle) {
@@ -127,7 +132,14 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
     }
     uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
     auto scalar = [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
-        emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        if (p.dyn == kNoReg && p.elem == kNoReg) {
+            if (p.elem_const < p.limit)
+                emit(SOp::LoadBufUniform, d, kNoReg, kNoReg, kNoReg, p.base + p.elem_const, p.offset + byte_off);
+            else
+                emit(SOp::Mov, d, zero_);
+        } else {
+            emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        }
         if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
     };
     switch (t.kind) {
@@ -179,8 +191,13 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Local) {
-        for (uint32_t i = 0; i < t.flat; ++i)
-            emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, p.base + p.offset + off + i).n = p.limit;
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::StoreLocalFixed, kNoReg, kNoReg, src + i, cur_mask_, w);
+            else
+                emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, w).n = p.limit;
+        }
         return;
     }
     if (p.space == Space::Handle) fail("store to an image or sampler variable");
@@ -662,19 +679,32 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpImageSampleExplicitLod:
         case spv::Op::OpImageSampleProjImplicitLod:
         case spv::Op::OpImageSampleProjExplicitLod:
-        case spv::Op::OpImageFetch: {
+        case spv::Op::OpImageFetch:
+        case spv::Op::OpImageSampleDrefImplicitLod:
+        case spv::Op::OpImageSampleDrefExplicitLod:
+        case spv::Op::OpImageSampleProjDrefImplicitLod:
+        case spv::Op::OpImageSampleProjDrefExplicitLod: {
             const Type& it =
                 type(type(val(in[3]).type).kind == Type::SampledImage ? type(val(in[3]).type).elem : val(in[3]).type);
             if (type(it.elem).kind != Type::Float) fail("unsupported integer image sampling");
             uint32_t flags = 0;
             if (it.arrayed) flags |= kSampleArray;
             if (spv::Dim(it.dim) == spv::Dim::Dim1D) flags |= kSample1D;
-            bool proj =
-                in.op == spv::Op::OpImageSampleProjImplicitLod || in.op == spv::Op::OpImageSampleProjExplicitLod;
+            const spv::Op o = in.op;
+            bool dref = o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleDrefExplicitLod ||
+                        o == spv::Op::OpImageSampleProjDrefImplicitLod ||
+                        o == spv::Op::OpImageSampleProjDrefExplicitLod;
+            bool proj = o == spv::Op::OpImageSampleProjImplicitLod || o == spv::Op::OpImageSampleProjExplicitLod ||
+                        o == spv::Op::OpImageSampleProjDrefImplicitLod ||
+                        o == spv::Op::OpImageSampleProjDrefExplicitLod;
+            bool implicit = o == spv::Op::OpImageSampleImplicitLod || o == spv::Op::OpImageSampleProjImplicitLod ||
+                            o == spv::Op::OpImageSampleDrefImplicitLod ||
+                            o == spv::Op::OpImageSampleProjDrefImplicitLod;
             if (proj) flags |= kSampleProj;
             uint32_t lod = kNoReg, grad = 0;
-            uint32_t operands = in.n > 5 ? in[5] : 0;
-            size_t at = 6;
+            size_t first_op = dref ? 6 : 5;  // the Dref variants carry the reference before the image operands
+            uint32_t operands = in.n > first_op ? in[first_op] : 0;
+            size_t at = first_op + 1;
             if (operands & uint32_t(spv::ImageOperandsMask::Bias)) {
                 flags |= kSampleBias;
                 lod = reg(in[at++]);
@@ -693,18 +723,44 @@ void Translator::op(const Instr& in) {
                     emit(SOp::Mov, grad + 2 + i, i < nc ? gy + i : zero_);
                 }
             }
+            if (operands & uint32_t(spv::ImageOperandsMask::ConstOffset)) {
+                const Value& ov = val(in[at++]);
+                uint32_t nc = std::max(1u, type(ov.type).flat);
+                int32_t off[2] = {0, 0};
+                for (uint32_t i = 0; i < nc && i < 2; ++i) {
+                    auto found = reg_value_.find(ov.reg + i);
+                    if (found == reg_value_.end()) fail("texel offset is not a constant");
+                    off[i] = int32_t(found->second);
+                    if (off[i] < -128 || off[i] > 127) fail("texel offset out of range");
+                }
+                flags |= kSampleOffset | (uint32_t(uint8_t(int8_t(off[0]))) << 16) |
+                         (uint32_t(uint8_t(int8_t(off[1]))) << 24);
+            }
             uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
-                                                  spv::ImageOperandsMask::Grad);
-            if (other) fail("unsupported image operands (offsets, min lod, sample) in " + opname(in.op));
-            if (in.op == spv::Op::OpImageSampleImplicitLod || in.op == spv::Op::OpImageSampleProjImplicitLod) {
+                                                  spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset);
+            if (other) fail("unsupported image operands (dynamic offsets, min lod, sample) in " + opname(o));
+            if (implicit) {
                 if (stage_ != Stage::Fragment) fail("implicit-LOD sampling outside a fragment shader");
                 flags |= kSampleImplicitLod;
                 iface_.uses_derivatives = true;
             }
-            uint32_t d = def(4);
-            if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
             uint32_t ncoord = flat_of(in[4]);
-            emit(in.op == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, d, reg(in[3]), reg(in[4]),
+            uint32_t coords = reg(in[4]);
+            uint32_t d;
+            if (dref) {
+                // coordinates followed by the reference in one register run; the result is a scalar
+                flags |= kSampleDref;
+                coords = alloc(ncoord + 1);
+                for (uint32_t i = 0; i < ncoord; ++i) emit(SOp::Mov, coords + i, reg(in[4]) + i);
+                emit(SOp::Mov, coords + ncoord, reg(in[5]));
+                ++ncoord;
+                d = alloc(4);
+                vals_[in[2]] = Value{d, in[1]};
+            } else {
+                if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+                d = def(4);
+            }
+            emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, d, reg(in[3]), coords,
                  lod == kNoReg ? zero_ : lod, flags, ncoord)
                 .n = grad;
             return;

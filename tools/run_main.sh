@@ -6,7 +6,7 @@
 #   TILEVK_CTS_TIMING   timed repetitions of each case's frame on each device (default 5)
 #   TILEVK_RAST_METHODS rasterization methods compared once tilevk draws (default "reference bbox hier float")
 #   TILEVK_CTS_FILTER   case glob (default all)
-#   TILEVK_SWEEP_TRIANGLES triangles per point of bench/rast's stability_sweep, when built (default 300)
+#   TILEVK_SWEEP_TRIANGLES triangles per point of bench/rast's stability_sweep, when built (default 1000)
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(cd "$1" && pwd)"
@@ -47,7 +47,7 @@ fi
 sweep_args=()
 sweep="$build/bench/rast/stability_sweep"
 if [[ -x "$sweep" ]]; then
-    if timeout 900 "$sweep" "$out/stability_sweep.csv" "${TILEVK_SWEEP_TRIANGLES:-300}" && [[ -s "$out/stability_sweep.csv" ]]; then
+    if timeout 900 "$sweep" "$out/stability_sweep.csv" "${TILEVK_SWEEP_TRIANGLES:-1000}" && [[ -s "$out/stability_sweep.csv" ]]; then
         sweep_args=(--stability "$out/stability_sweep.csv")
     fi
 fi

@@ -177,6 +177,9 @@ def main():
     md = [f"# {a.title}", ""]
     md.append(f"Device under test: **{main_run['device_name']}**; reference: **{main_run['ref_name']}**; "
               f"{main_run['threads']}; timing repetitions: {main_run['timing_reps']}.")
+    md += ["", "Times are medians of the timed repetitions, the two devices alternating; a frame is one submit of "
+           "the case's command buffer to its fence (uploads, the pass, read-back copies). Most cases are 64x64, so "
+           "their times are dominated by per-submit overhead; `scene.perf.*` (1024x1024) measure rasterization."]
     md.append("")
     if not main_run.get("device_found", True):
         md += ["**The tilevk device was not available (or cannot draw yet): every case fails with the driver's "
@@ -194,7 +197,9 @@ def main():
         same = sum(c["total"] - c["differing"] for c in run["cases"])
         g = geomean([ratio(c) for c in run["cases"]])
         compared = sum(1 for c in run["cases"] if c["total"])
-        md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | {fmt(g)} | "
+        timed = sum(1 for c in run["cases"] if ratio(c))
+        md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | "
+                  f"{fmt(g)} over {timed} timed cases | "
                   f"{fmt(100.0 * same / px if px else None, '.4f')} % of {px} px in {compared} compared cases |")
     ns = [c for c in main_run["cases"] if c["status"] == "NotSupported"]
     if ns:

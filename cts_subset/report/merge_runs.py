@@ -37,7 +37,7 @@ def main():
             merged["cases"].append({"name": run["running"], "status": "Fail", "note": "", "differing": 0,
                                     "total": 0, "max_error": 0, "check": "none", "ours_ms": -1, "ref_ms": -1,
                                     "ours_pipeline_ms": -1, "ref_pipeline_ms": -1, "seconds": 0,
-                                    "reason": "the runner process died in this case (driver crash)"})
+                                    "reason": "the runner process died in this case (driver crash, or hung past --case-timeout)"})
     if merged is None and fallback:
         merged = all_failed(*fallback)
     if merged is None:

@@ -18,7 +18,8 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
 }
 
 // Appends a 4x4 block from per-sample masks after ANDing the primitive's sample mask; drops empty blocks.
-[[gnu::always_inline]] inline void push_block(TileScratch* out, int32_t x, int32_t y, const uint32_t* masks, int samples, uint16_t sample_mask) {
+[[gnu::always_inline]] inline void push_block(TileScratch* out, int32_t x, int32_t y, const uint32_t* masks,
+                                              int samples, uint16_t sample_mask) {
     Block4& b = out->blocks[out->num_blocks];
     b.x = x, b.y = y;
     uint32_t any = 0;
@@ -29,26 +30,27 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
     out->num_blocks += any != 0;  // the slot is reused when empty
 }
 
-[[gnu::always_inline]] inline void push_full(TileScratch* out, int32_t x, int32_t y, int32_t size) { out->full[out->num_full++] = {x, y, size}; }
+[[gnu::always_inline]] inline void push_full(TileScratch* out, int32_t x, int32_t y, int32_t size) {
+    out->full[out->num_full++] = {x, y, size};
+}
 
 // --- hier: 64 -> 16 -> 4 -----------------------------------------------------------------------------------------
 
 using PlaneList = const TilePlane* const*;
 
 // A 4x4 block at tile-relative (ox, oy) known not to be rejected by the level above.
-[[gnu::always_inline]] inline void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
-                 TileScratch* out) {
+[[gnu::always_inline]] inline void hier_block4(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox,
+                                               int32_t oy, TileScratch* out) {
     uint32_t masks[4];
     for (int s = 0; s < t.samples; ++s) masks[s] = mask4x4(planes, n, s, ox, oy);
     push_block(out, t.x0 + ox, t.y0 + oy, masks, t.samples, prim.sample_mask);
 }
 
-// Classifies the 4x4 grid of sub-blocks of size 2^shift at (ox, oy) over the live planes; lanes outside `side`
-// sub-blocks per row/column are ignored. Returns the lanes rejected by no plane and those accepted by all; per
-// plane, acc[k] says which lanes that plane accepts (so it can be dropped inside them).
-[[gnu::always_inline]] inline void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift, int side, uint32_t* live, uint32_t* full,
-                   uint32_t* acc) {
-    const uint32_t valid = side == 4 ? 0xFFFFu : side == 2 ? 0x33u : 0x1u;
+// Classifies the 4x4 grid of sub-blocks of size 2^shift at (ox, oy) over the live planes; only lanes in `valid`
+// are considered (sub-blocks that meet the primitive's box inside the tile). Returns the lanes rejected by no plane
+// and those accepted by all; per plane, acc[k] says which lanes that plane accepts (so it can be dropped there).
+[[gnu::always_inline]] inline void classify_grid(PlaneList planes, int n, int32_t ox, int32_t oy, int shift,
+                                                 uint32_t valid, uint32_t* live, uint32_t* full, uint32_t* acc) {
     uint32_t rej_any = 0, acc_all = valid;
     for (int k = 0; k < n; ++k) {
         uint32_t rej, a;
@@ -61,8 +63,23 @@ using PlaneList = const TilePlane* const*;
     *full = *live & acc_all;
 }
 
+// Lanes of a 4x4 grid of 2^shift blocks at (ox, oy) whose block meets the tile-relative box [x0,x1]x[y0,y1].
+uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    uint32_t cols = 0, rows = 0;
+    for (int i = 0; i < 4; ++i) {
+        const int32_t bx = ox + (i << shift), by = oy + (i << shift), e = (1 << shift) - 1;
+        cols |= static_cast<uint32_t>(bx <= x1 && bx + e >= x0) << i;
+        rows |= static_cast<uint32_t>(by <= y1 && by + e >= y0) << i;
+    }
+    uint32_t m = 0;
+    for (int r = 0; r < 4; ++r)
+        if ((rows >> r) & 1u) m |= cols << (4 * r);
+    return m;
+}
+
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
-[[gnu::always_inline]] inline int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane, const TilePlane** kept) {
+[[gnu::always_inline]] inline int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane,
+                                                const TilePlane** kept) {
     int m = 0;
     for (int k = 0; k < n; ++k)
         if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
@@ -70,10 +87,10 @@ using PlaneList = const TilePlane* const*;
 }
 
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, accept whole ones, mask the partial ones.
-void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
+void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
     uint32_t live, full, acc[Prim::kMaxPlanes];
-    classify_grid(planes, n, ox, oy, 2, 4, &live, &full, acc);
+    classify_grid(planes, n, ox, oy, 2, valid, &live, &full, acc);
     for (uint32_t m = live; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int32_t bx = ox + 4 * (lane & 3), by = oy + 4 * (lane >> 2);
@@ -103,16 +120,20 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
 }
 
 void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
-    // Small-primitive fast paths: a box spanning at most 2x2 4x4-blocks is masked directly; one inside an aligned
-    // 16x16 block starts the descent there (the box bounds all coverage, so nothing outside it can be missed).
+    // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
+    // at most six 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
+    // them gets a single 4-px level at its own (4-aligned, not 16-aligned) origin. Values up to 12 px past the tile
+    // edge stay within 2^30 + 12*2^24.
     const RelBox r = rel_box(prim, t);
-    if ((r.x1 >> 2) - (r.x0 >> 2) <= 1 && (r.y1 >> 2) - (r.y0 >> 2) <= 1)
-        return scan_blocks(prim, t, planes, n, r, out);
-    if ((r.x0 >> 4) == (r.x1 >> 4) && (r.y0 >> 4) == (r.y1 >> 4))
-        return hier_block16(prim, t, planes, n, r.x0 & ~15, r.y0 & ~15, out);
-    if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, out);
+    const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
+    if ((bw + 1) * (bh + 1) <= 6) return scan_blocks(prim, t, planes, n, r, out);
+    if (bw <= 3 && bh <= 3) {
+        const int32_t ox = r.x0 & ~3, oy = r.y0 & ~3;
+        return hier_block16(prim, t, planes, n, ox, oy, lanes_in_box(ox, oy, 2, r.x0, r.y0, r.x1, r.y1), out);
+    }
+    if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, lanes_in_box(0, 0, 2, r.x0, r.y0, r.x1, r.y1), out);
     uint32_t live, full, acc[Prim::kMaxPlanes];
-    classify_grid(planes, n, 0, 0, 4, t.size / 16, &live, &full, acc);
+    classify_grid(planes, n, 0, 0, 4, lanes_in_box(0, 0, 4, r.x0, r.y0, r.x1, r.y1), &live, &full, acc);
     for (uint32_t m = live; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int32_t bx = 16 * (lane & 3), by = 16 * (lane >> 2);
@@ -121,7 +142,7 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
         } else {
             const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, n, acc, lane, kept);
-            hier_block16(prim, t, kept, k, bx, by, out);
+            hier_block16(prim, t, kept, k, bx, by, lanes_in_box(bx, by, 2, r.x0, r.y0, r.x1, r.y1), out);
         }
     }
 }

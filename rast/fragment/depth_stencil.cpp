@@ -98,10 +98,12 @@ bool compare(CompareOp op, uint32_t a, uint32_t b) {
 }
 
 bool compare_float(CompareOp op, float a, float b) {
-    // lp_build_compare: ordered predicates (false on NaN) except NOTEQUAL, which is unordered-or-not-equal.
+    // lp_build_compare uses LLVM's UNORDERED predicates (ult, ueq, une, ...): any NaN operand makes every
+    // comparison except NEVER true.
     // Compares run under DAZ: denormal operands compare as zero.
     if (a != 0.0f && std::fabs(a) < 0x1p-126f) a = 0.0f;
     if (b != 0.0f && std::fabs(b) < 0x1p-126f) b = 0.0f;
+    if (std::isnan(a) || std::isnan(b)) return op != CompareOp::Never;
     switch (op) {
         case CompareOp::Never:
             return false;

@@ -76,7 +76,7 @@ uint32_t depth_to_stored(float z, DepthFormat f);
 float stored_to_depth(uint32_t bits, DepthFormat f);
 
 bool compare(CompareOp op, uint32_t a, uint32_t b);  // unsigned integer compare: a OP b
-bool compare_float(CompareOp op, float a, float b);  // ordered compares, NotEqual unordered (une)
+bool compare_float(CompareOp op, float a, float b);  // unordered compares (NaN -> true), denormals as zero
 
 uint8_t apply_stencil_op(StencilOp op, uint8_t value, uint8_t reference);
 

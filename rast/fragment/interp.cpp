@@ -32,6 +32,34 @@ void eval_plane(const Plane& p, int block_x, int block_y, EvalOffset off, bool f
     }
 }
 
+void eval_plane_per_lane(const Plane& p, int block_x, int block_y, const float ox[kBlockLanes],
+                         const float oy[kBlockLanes], bool fused, float out[kBlockLanes]) {
+    const float bx = float(block_x), by = float(block_y);
+    for (int l = 0; l < kBlockLanes; ++l) {
+        const float px = (float(lane_x(l)) + bx) + ox[l];
+        const float py = (float(lane_y(l)) + by) + oy[l];
+        const float a = fmuladd(p.dadx, px, p.a0, fused);
+        out[l] = fmuladd(p.dady, py, a, fused);
+    }
+}
+
+void centroid_offsets(const uint16_t sample_masks[kMaxSamples], float ox[kBlockLanes], float oy[kBlockLanes]) {
+    for (int l = 0; l < kBlockLanes; ++l) {
+        const uint16_t bit = uint16_t(1u << l);
+        ox[l] = oy[l] = 0.5f;
+        bool all = true;
+        for (int s = kMaxSamples - 1; s >= 0; --s) {  // lowest covered sample wins
+            if (sample_masks[s] & bit) {
+                ox[l] = kSamplePos4x[s][0];
+                oy[l] = kSamplePos4x[s][1];
+            } else {
+                all = false;
+            }
+        }
+        if (all) ox[l] = oy[l] = 0.5f;
+    }
+}
+
 void perspective_divide(const float a[kBlockLanes], const float w[kBlockLanes], float out[kBlockLanes]) {
     for (int l = 0; l < kBlockLanes; ++l) {
         // a * (1/w): a reciprocal then a multiply, never a/w

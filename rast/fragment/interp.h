@@ -10,7 +10,7 @@
 //
 // Offsets: at 1x the setup plane origin is pixel (0,0)'s centre, so px, py are the integer pixel coordinates.
 // At 4x the origin is the pixel corner: the shader adds 0.5 (centre) or the sample position (sample-qualified
-// inputs, per-sample depth). Centroid interpolation is not implemented here.
+// inputs, per-sample depth) or the centroid offsets below.
 #pragma once
 
 #include <cstdint>
@@ -51,7 +51,17 @@ void lane_coords(int block_x, int block_y, EvalOffset off, float px[kBlockLanes]
 // a = fmuladd(dady, py, fmuladd(dadx, px, a0)) per lane; `fused` selects a true FMA (lavapipe on FMA CPUs).
 void eval_plane(const Plane& p, int block_x, int block_y, EvalOffset off, bool fused, float out[kBlockLanes]);
 
-// Perspective correction: out = fl(a * fl(1.0f / w)).  w is the 1/w plane value (gl_FragCoord.w).
+// Per-lane offsets variant (centroid): px = fl(fl(lane_x + block_x) + ox[lane]).
+void eval_plane_per_lane(const Plane& p, int block_x, int block_y, const float ox[kBlockLanes],
+                         const float oy[kBlockLanes], bool fused, float out[kBlockLanes]);
+
+// 4x centroid offsets (lp_bld_interp.c calc_centroid_offsets): a lane whose samples are all covered, or none, uses
+// the centre (0.5, 0.5); otherwise the position of its lowest-numbered covered sample. `sample_masks` (lane order)
+// are the masks when the shader runs, i.e. after early depth/stencil. At 1x centroid is the plain centre.
+void centroid_offsets(const uint16_t sample_masks[kMaxSamples], float ox[kBlockLanes], float oy[kBlockLanes]);
+
+// Perspective correction: out = fl(a * fl(1.0f / w)).  w is the 1/w plane value (gl_FragCoord.w). lavapipe takes
+// w at the pixel centre (plane_offset(samples, -1)) even for sample-qualified inputs (source reading).
 void perspective_divide(const float a[kBlockLanes], const float w[kBlockLanes], float out[kBlockLanes]);
 
 // Flat inputs: the provoking vertex's value in every lane.

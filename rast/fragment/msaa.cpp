@@ -16,10 +16,19 @@ inline int mem_to_rgba(const FormatInfo& fi, int i) {
 }
 }  // namespace
 
+namespace {
+// lp_build_cmp(GREATER) is fcmp ugt under DAZ: NaN passes, a denormal alpha counts as zero.
+inline bool ugt_daz(float a, float ref) {
+    if (std::isnan(a)) return true;
+    if (a != 0.0f && std::fabs(a) < 0x1p-126f) a = 0.0f;
+    return a > ref;
+}
+}  // namespace
+
 uint16_t alpha_to_coverage_1x(const float alpha[kBlockLanes], uint16_t lane_mask) {
     uint16_t out = 0;
     for (int l = 0; l < kBlockLanes; ++l)
-        if ((lane_mask & (1u << l)) && alpha[l] > 0.5f) out |= uint16_t(1u << l);
+        if ((lane_mask & (1u << l)) && ugt_daz(alpha[l], 0.5f)) out |= uint16_t(1u << l);
     return out;
 }
 
@@ -29,12 +38,17 @@ void alpha_to_coverage_4x(const float alpha[kBlockLanes], uint16_t sample_masks[
         const float ref = float(0.25 * s);
         uint16_t keep = 0;
         for (int l = 0; l < kBlockLanes; ++l)
-            if (alpha[l] > ref) keep |= uint16_t(1u << l);
+            if (ugt_daz(alpha[l], ref)) keep |= uint16_t(1u << l);
         sample_masks[s] &= keep;
     }
 }
 
-void apply_sample_mask(uint32_t sample_mask, uint16_t sample_masks[kMaxSamples]) {
+void apply_sample_mask(uint32_t sample_mask, int samples, uint16_t sample_masks[kMaxSamples]) {
+    if (sample_mask == 0) {  // rasterizer discard
+        for (int s = 0; s < kMaxSamples; ++s) sample_masks[s] = 0;
+        return;
+    }
+    if (samples <= 1) return;  // ignored at 1x
     for (int s = 0; s < kMaxSamples; ++s)
         if (!(sample_mask & (1u << s))) sample_masks[s] = 0;
 }
@@ -114,43 +128,71 @@ void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_
     }
 }
 
-uint16_t float_to_half_rne(float f) {
-    const uint32_t u = float_bits(f);
-    const uint16_t sign = uint16_t((u >> 16) & 0x8000u);
-    const uint32_t exp = (u >> 23) & 0xffu;
-    const uint32_t man = u & 0x7fffffu;
-    // NaN as VCVTPS2PH (what _mesa_float_to_half uses on F16C CPUs): quiet, top payload bits kept
-    if (exp == 0xff) return uint16_t(sign | (man ? (0x7e00u | (man >> 13)) : 0x7c00u));
-    const int e = int(exp) - 127;
-    if (exp == 0) return sign;     // float denormals are far below half's range
-    uint32_t m = 0x800000u | man;  // 24-bit significand, value = m * 2^(e-23)
-    int shift;                     // bits to drop to reach the half's precision
-    uint32_t biased;
-    if (e >= -14) {
-        shift = 13;
-        biased = uint32_t(e + 15);
-    } else {
-        shift = 13 + (-14 - e);
-        biased = 0;
-        if (shift > 25) return sign;
-    }
-    uint32_t q = m >> shift;
-    const uint32_t rem = m & ((1u << shift) - 1);
-    const uint32_t half = 1u << (shift - 1);
-    if (rem > half || (rem == half && (q & 1))) ++q;
-    uint32_t h;
-    if (biased == 0) {
-        h = q;  // denormal; a carry into bit 10 yields the smallest normal correctly
-    } else {
-        // q has the implicit bit at 10; a carry to bit 11 bumps the exponent
-        if (q & 0x800u) {
-            q >>= 1;
-            ++biased;
+namespace {
+
+// util_format_linear_float_to_srgb_8unorm's 104-entry table: per bucket (13 exponents x 8 mantissa-top values) a
+// least-squares line through srgb(x)*255 + 0.5 over every 32nd float of the bucket, as (bias << 16) | scale.
+// Mesa generates it offline (format_srgb.py); we recompute it once with the same double arithmetic.
+const uint32_t* srgb_clear_table() {
+    static const auto table = [] {
+        struct T {
+            uint32_t v[104];
+        } t{};
+        const int numexp = 13, mantissa_msb = 3, stepshift = 5, mantshift = 12;
+        const int nbuckets = numexp << mantissa_msb;
+        const int bucketsize = (1 << (23 - mantissa_msb)) >> stepshift;
+        double sum_aa = double(bucketsize), sum_ab = 0.0, sum_bb = 0.0;
+        for (int i = 0; i < bucketsize; ++i) {
+            const int j = (i << stepshift) >> mantshift;
+            sum_ab += j;
+            sum_bb += double(j) * j;
         }
-        if (biased >= 31) return uint16_t(sign | 0x7c00u);
-        h = (biased << 10) | (q & 0x3ffu);
-    }
-    return uint16_t(sign | h);
+        const double inv_det = 1.0 / (sum_aa * sum_bb - sum_ab * sum_ab);
+        for (int bucket = 0; bucket < nbuckets; ++bucket) {
+            const uint32_t start =
+                (uint32_t(127 - numexp) << 23) + uint32_t(bucket) * uint32_t(bucketsize << stepshift);
+            double sum_a = 0.0, sum_b = 0.0;
+            for (int i = 0; i < bucketsize; ++i) {
+                const int j = (i << stepshift) >> mantshift;
+                const uint32_t fint = start + uint32_t(i << stepshift);
+                float ff;
+                std::memcpy(&ff, &fint, 4);
+                const double x = ff;
+                const double srgb = x >= 0.0031308 ? 1.055 * std::pow(x, 0.41666666) - 0.055 : 12.92 * x;
+                const double val = srgb * 255.0 + 0.5;
+                sum_a += val;
+                sum_b += j * val;
+            }
+            const double a = inv_det * (sum_bb * sum_a - sum_ab * sum_b);
+            const double b = inv_det * (sum_aa * sum_b - sum_ab * sum_a);
+            const int int_a = int(a * 65536.0 / 512.0 + 0.5);
+            const int int_b = int(b * 65536.0 + 0.5);
+            t.v[bucket] = (uint32_t(int_a) << 16) + uint32_t(int_b);
+        }
+        return t;
+    }();
+    return table.v;
+}
+
+// Clamp to [2^-13, 1 - ulp] (NaN -> 2^-13), look up the bucket, interpolate with the next 8 mantissa bits.
+uint8_t linear_to_srgb8_clear(float x) {
+    const uint32_t almost_one = 0x3f7fffffu, min_bits = uint32_t(127 - 13) << 23;
+    float minval, one;
+    std::memcpy(&minval, &min_bits, 4);
+    std::memcpy(&one, &almost_one, 4);
+    if (!(x > minval)) x = minval;
+    if (x > one) x = one;
+    const uint32_t u = float_bits(x);
+    const uint32_t tab = srgb_clear_table()[(u - min_bits) >> 20];
+    const uint32_t bias = (tab >> 16) << 9, scale = tab & 0xffffu;
+    const uint32_t t = (u >> 12) & 0xffu;
+    return uint8_t((bias + scale * t) >> 16);
+}
+
+}  // namespace
+
+uint8_t srgb_clear_encode(float x) {
+    return linear_to_srgb8_clear(x);
 }
 
 bool pack_clear_color(ColorFormat f, const float rgba[4], uint8_t* out) {
@@ -162,10 +204,10 @@ bool pack_clear_color(ColorFormat f, const float rgba[4], uint8_t* out) {
                 out[i] = float_to_ubyte_clear(rgba[c]);
                 break;
             case ChannelKind::Srgb8:
-                out[i] = 0;
+                out[i] = c == 3 ? float_to_ubyte_clear(rgba[c]) : linear_to_srgb8_clear(rgba[c]);
                 break;
             case ChannelKind::Half: {
-                const uint16_t h = float_to_half_rne(rgba[c]);
+                const uint16_t h = float_to_half_rz(rgba[c]);  // _mesa_float_to_float16_rtz
                 std::memcpy(out + 2 * i, &h, 2);
                 break;
             }
@@ -174,7 +216,7 @@ bool pack_clear_color(ColorFormat f, const float rgba[4], uint8_t* out) {
                 break;
         }
     }
-    return fi.kind != ChannelKind::Srgb8;
+    return true;
 }
 
 uint32_t pack_clear_depth(DepthFormat f, double z) {

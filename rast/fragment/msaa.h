@@ -1,14 +1,16 @@
 // Multisample coverage adjustments, resolves and clear-value packing, as lavapipe does them.
 //
-//   sample mask      ANDed into each sample's coverage before the shader, 4x only (lp_state_fs.c: the jit
-//                    context's sample_mask is read only when key->multisample; at 1x lavapipe ignores it)
+//   sample mask      a mask word of 0 discards every primitive (llvmpipe's rasterizer_discard, lp_state_derived.c);
+//                    otherwise ANDed into each sample's coverage at 4x and IGNORED at 1x (the jit reads it only when
+//                    key->multisample): at 1x a mask of 0x2 still draws. Both verified against lavapipe.
 //   alpha to coverage on the raw float shader alpha of colour output 0:
 //                    1x: a lane survives iff alpha > 0.5;  4x: sample s survives iff alpha > s * 0.25
-//                    (NaN kills everything; no dithering)
+//                    (unordered compare under DAZ: NaN keeps every sample, a denormal alpha counts as 0;
+//                    no dithering)
 //   resolve          vkCmdResolveImage and render-pass resolves run u_blitter's MSAA resolve shader:
 //                    sum = 0; sum = fl(sum + texel_s) for s = 0..3 in order; out = fl(sum * 0.25f); then the normal
 //                    colour output conversion of the destination format (UNORM8: rne(fl(out*255)), half: toward 0)
-//   clears           util_format_pack_rgba: UNORM8 float_to_ubyte, floats as is, half round-to-nearest-even;
+//   clears           util_format_pack_rgba: UNORM8 float_to_ubyte, sRGB table encoder, floats as is, half toward 0;
 //                    depth util_pack_z in double: D16 lrint(z*65535), D24 lrint(z*16777215), D32F (float)z
 #pragma once
 
@@ -25,8 +27,8 @@ namespace tilevk::rast::fragment {
 uint16_t alpha_to_coverage_1x(const float alpha[kBlockLanes], uint16_t lane_mask);
 // 4x: clears sample s of a lane unless alpha > s*0.25. sample_masks[s] is in lane order.
 void alpha_to_coverage_4x(const float alpha[kBlockLanes], uint16_t sample_masks[kMaxSamples]);
-// 4x: sample_masks[s] &= (sample_mask bit s set ? 0xffff : 0).
-void apply_sample_mask(uint32_t sample_mask, uint16_t sample_masks[kMaxSamples]);
+// sample_mask == 0: all masks cleared. Else at 4x sample_masks[s] &= (bit s ? 0xffff : 0); at 1x unchanged.
+void apply_sample_mask(uint32_t sample_mask, int samples, uint16_t sample_masks[kMaxSamples]);
 // Lanes covered by at least one sample (the fragment shader's execution mask at 4x).
 uint16_t any_sample(const uint16_t sample_masks[kMaxSamples]);
 
@@ -42,12 +44,12 @@ bool resolve_pixel(ColorFormat f, const uint8_t* const samples[kMaxSamples], uin
 void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_t src_pitch, uint8_t* dst,
                   size_t dst_pitch, int w, int h, bool fused);
 
-// Clear colour packed into the stored bytes of one pixel (out must hold format_info(f).bytes).
-// Returns false for sRGB (lavapipe packs it with util_format_linear_float_to_srgb_8unorm's table; not modelled).
+// Clear colour packed into the stored bytes of one pixel (out must hold format_info(f).bytes). Always true.
+// sRGB RGB channels use util_format_linear_float_to_srgb_8unorm (table + linear interpolation), alpha float_to_ubyte.
 bool pack_clear_color(ColorFormat f, const float rgba[4], uint8_t* out);
+// The sRGB clear encoder alone (exposed for tests).
+uint8_t srgb_clear_encode(float x);
 // util_pack_z: the stored depth bits of a depth clear value.
 uint32_t pack_clear_depth(DepthFormat f, double z);
-// IEEE float -> half, round to nearest even (util's _mesa_float_to_half).
-uint16_t float_to_half_rne(float f);
 
 }  // namespace tilevk::rast::fragment

@@ -1,5 +1,6 @@
 #include "rast/geometry/viewport.h"
 
+#include <climits>
 #include <cmath>
 
 namespace tilevk::rast::geometry {
@@ -27,6 +28,32 @@ Viewport make_viewport(float x, float y, float width, float height, float min_de
 bool is_identity_viewport(const Viewport& vp) {
     return vp.scale[0] == 1.0f && vp.scale[1] == 1.0f && vp.scale[2] == 1.0f && vp.translate[0] == 0.0f &&
            vp.translate[1] == 0.0f && vp.translate[2] == 0.0f;
+}
+
+namespace {
+int32_t cvtt(float f) {
+    if (!(f > -2147483904.0f && f < 2147483648.0f)) return INT32_MIN;
+    return static_cast<int32_t>(f);
+}
+}  // namespace
+
+PixelRect viewport_pixel_rect(const Viewport& vp) {
+    const float half_height = std::fabs(vp.scale[1]);
+    const float x0 = vp.translate[0] - vp.scale[0];
+    const float y0 = vp.translate[1] - half_height;
+    PixelRect r;
+    r.x0 = cvtt(x0 + 0.499f);
+    const float xw = vp.scale[0] * 2.0f;
+    const float xe = xw + x0;
+    r.x1 = cvtt(xe - 0.501f);
+    r.y0 = cvtt(y0 + 0.499f);
+    const float yh = half_height * 2.0f;
+    const float ye = yh + y0;
+    r.y1 = cvtt(ye - 0.501f);
+    // inclusive -> half-open, saturating
+    r.x1 = r.x1 == INT32_MAX ? r.x1 : r.x1 + 1;
+    r.y1 = r.y1 == INT32_MAX ? r.y1 : r.y1 + 1;
+    return r;
 }
 
 bool host_has_fma() {

@@ -22,6 +22,16 @@ Viewport make_viewport(float x, float y, float width, float height, float min_de
 // the viewport entirely: the window position is the raw clip position, w not inverted (quirk, notes §1).
 bool is_identity_viewport(const Viewport& vp);
 
+// The whole-pixel rectangle llvmpipe derives from viewport 0 (lp_setup.c lp_setup_set_viewports, "vpwh") and
+// intersects with every primitive's draw region (lavapipe sets point_tri_clip): with sy = |scale.y|,
+//   x0 = (int)(fl(tx - sx) + 0.499f)   x1 = (int)(fl(fl(sx*2) + fl(tx - sx)) - 0.501f)   (inclusive, truncation)
+// Returned half-open: [x0, x1 + 1) x [y0, y1 + 1). It matters for points (never x/y clipped) and fractional
+// viewports. Non-finite or out-of-int values convert like cvttss2si (INT32_MIN).
+struct PixelRect {
+    int32_t x0, y0, x1, y1;
+};
+PixelRect viewport_pixel_rect(const Viewport& vp);
+
 // The JIT's FMA decision: lavapipe's LLVM fuses fmuladd when the host CPU has FMA. Default: this host's answer.
 bool host_has_fma();
 

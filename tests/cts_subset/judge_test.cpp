@@ -84,6 +84,38 @@ TEST(Checks, EvenCoverageAndPalette) {
     EXPECT_NE(all_of({palette_only({0u}), pixel_is(0, 0, 0)})({q}), "");
 }
 
+TEST(Checks, CoverageBandAgainstAHandDrawnRectangle) {
+    // Two triangles covering window x in [2,6), y in [1,5) of an 8x8 target: NDC = window / 4 - 1.
+    Scene s;
+    s.target.width = s.target.height = 8;
+    Draw d;
+    auto v = [](float wx, float wy) {
+        Vertex r;
+        r.pos[0] = wx / 4 - 1;
+        r.pos[1] = wy / 4 - 1;
+        return r;
+    };
+    d.vertices = {v(2, 1), v(6, 1), v(6, 5), v(2, 1), v(6, 5), v(2, 5)};
+    s.draws.push_back(d);
+    Plane p = rgba_plane(8, 8, 0);
+    for (int y = 1; y < 5; ++y)
+        for (int x = 2; x < 6; ++x) p.data[(y * 8 + x) * 4] = 255;  // pixel centres x+0.5 in [2,6): drawn
+    EXPECT_EQ(coverage_band(s, 1.0f / 64)({p}), "");
+    Plane hole = p;
+    hole.data[(2 * 8 + 4) * 4] = 0;  // centre (4.5,2.5): 0.7 px from the diagonal
+    EXPECT_NE(coverage_band(s, 1.0f / 64)({hole}).find("(4,2) lies inside"), std::string::npos);
+    Plane extra = p;
+    extra.data[(6 * 8 + 1) * 4] = 9;
+    EXPECT_NE(coverage_band(s, 1.0f / 64)({extra}).find("(1,6) lies outside"), std::string::npos);
+    // A strip of the same four corners covers the same pixels.
+    s.draws[0].topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    s.draws[0].vertices = {v(2, 1), v(6, 1), v(2, 5), v(6, 5)};
+    EXPECT_EQ(coverage_band(s, 1.0f / 64)({p}), "");
+    Plane hole2 = p;  // (4,2) sits on this split's diagonal; (3,2) is 0.7 px inside the first triangle
+    hole2.data[(2 * 8 + 3) * 4] = 0;
+    EXPECT_NE(coverage_band(s, 1.0f / 64)({hole2}).find("(3,2) lies inside"), std::string::npos);
+}
+
 TEST(Writers, PngAndJsonAreWritten) {
     std::string png = ::testing::TempDir() + "/judge_test.png";
     ASSERT_TRUE(write_png(png, 2, 2, std::vector<uint8_t>(16, 128)));

@@ -178,6 +178,52 @@ TEST(TwoDrivers, TilevkRefusesWhatItLacks) {
     ci.enabledExtensionCount = 1;
     ci.ppEnabledExtensionNames = &ext;
     EXPECT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_ERROR_EXTENSION_NOT_PRESENT);
+
+    // Unimplemented pieces fail honestly: no proc address for commands tilevk cannot run, and pipeline creation
+    // reports an error instead of returning a pipeline that would draw nothing.
+    ci.enabledExtensionCount = 0;
+    ASSERT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_SUCCESS);
+    EXPECT_EQ(vkGetDeviceProcAddr(dev, "vkCmdBlitImage"), nullptr);
+    EXPECT_EQ(vkGetDeviceProcAddr(dev, "vkCreateQueryPool"), nullptr);
+    EXPECT_NE(vkGetDeviceProcAddr(dev, "vkCmdCopyBuffer"), nullptr);
+    VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    VkPipeline pipe = reinterpret_cast<VkPipeline>(uintptr_t(1));
+    EXPECT_EQ(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe), VK_ERROR_INITIALIZATION_FAILED);
+    EXPECT_EQ(pipe, VK_NULL_HANDLE);
+    vkDestroyDevice(dev, nullptr);
+}
+
+// Out-of-range regions (invalid usage, so no validation layer) are skipped with a message, never a crash.
+TEST(TwoDrivers, TilevkSkipsOutOfRangeRegions) {
+    Harness h(/*validation=*/false);
+    ASSERT_TRUE(h.ok());
+    VkPhysicalDevice pd = h.find_device("tilevk");
+    ASSERT_NE(pd, VK_NULL_HANDLE);
+    Device dev(pd);
+    ASSERT_TRUE(dev.ok());
+    Device::Buffer buf = dev.make_buffer(64);
+    std::memset(buf.map, 0x11, 64);
+    Device::Image img = dev.make_image(VK_FORMAT_R8G8B8A8_UNORM, 4, 4, 1, 1, VK_SAMPLE_COUNT_1_BIT,
+                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    dev.run([&](VkCommandBuffer cb) {
+        VkBufferCopy r{60, 0, 16};
+        vkCmdCopyBuffer(cb, buf.buffer, buf.buffer, 1, &r);
+        vkCmdFillBuffer(cb, buf.buffer, 128, 8, 0x22222222u);
+        const uint32_t x = 0x33333333u;
+        vkCmdUpdateBuffer(cb, buf.buffer, 64, 4, &x);
+        VkBufferImageCopy bic{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {2, 2, 0}, {4, 4, 1}};
+        vkCmdCopyBufferToImage(cb, buf.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &bic);
+        VkBufferImageCopy big{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {4, 4, 1}};
+        big.bufferRowLength = 1000;  // reads far past the 64-byte buffer
+        vkCmdCopyBufferToImage(cb, buf.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &big);
+        VkClearColorValue c{};
+        VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 3, 1, 0, 1};  // level 3 does not exist
+        vkCmdClearColorImage(cb, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &c, 1, &range);
+    });
+    const uint8_t* p = static_cast<const uint8_t*>(buf.map);
+    for (int i = 0; i < 64; ++i) ASSERT_EQ(p[i], 0x11) << i;
+    dev.destroy(img);
+    dev.destroy(buf);
 }
 
 }  // namespace

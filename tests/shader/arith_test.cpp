@@ -239,3 +239,73 @@ TEST(ShaderArith, SpecializationConstants) {
     EXPECT_EQ(f(vb.position[0][0]), 2.0f);
     EXPECT_EQ(f(vb.position[1][0]), 2.0f);
 }
+
+TEST(ShaderArith, InterfaceBlocksArraysAndClipDistance) {
+    auto prog = make_program(Stage::Vertex, R"(#version 450
+        layout(location=0) in vec2 p;
+        layout(location=3) in mat2 m;                 // locations 3, 4
+        layout(location=1) out Block { vec3 n; flat int id; } ob;   // locations 1, 2
+        layout(location=5) out float arr[2];          // locations 5, 6
+        layout(location=7, component=2) out vec2 zw;
+        out gl_PerVertex { vec4 gl_Position; float gl_ClipDistance[2]; };
+        void main() {
+            gl_Position = vec4(p, 0.0, 1.0);
+            gl_ClipDistance[0] = p.x; gl_ClipDistance[1] = -p.y;
+            ob.n = vec3(m[0], m[1].y); ob.id = gl_VertexIndex * 2;
+            arr[0] = m[1].x; arr[1] = 4.0;
+            zw = p.yx;
+        })");
+    ASSERT_TRUE(prog);
+    VertexBatch vb;
+    for (int l = 0; l < kLanes; ++l) {
+        vb.inputs[0][0][l] = u(float(l)), vb.inputs[0][1][l] = u(float(-l) * 0.5f);
+        for (int c = 0; c < 2; ++c) {
+            vb.inputs[3][c][l] = u(float(l * 10 + c));
+            vb.inputs[4][c][l] = u(float(l * 100 + c));
+        }
+        vb.vertex_index[l] = uint32_t(l + 3);
+    }
+    Scratch s;
+    prog->run_vertex(Bindings{}, vb, s);
+    for (int l = 0; l < kLanes; ++l) {
+        EXPECT_EQ(f(vb.clip_distance[0][l]), float(l));
+        EXPECT_EQ(f(vb.clip_distance[1][l]), float(l) * 0.5f);
+        EXPECT_EQ(f(vb.outputs[1][0][l]), float(l * 10));
+        EXPECT_EQ(f(vb.outputs[1][1][l]), float(l * 10 + 1));
+        EXPECT_EQ(f(vb.outputs[1][2][l]), float(l * 100 + 1));
+        EXPECT_EQ(vb.outputs[2][0][l], uint32_t((l + 3) * 2));
+        EXPECT_EQ(f(vb.outputs[5][0][l]), float(l * 100));
+        EXPECT_EQ(f(vb.outputs[6][0][l]), 4.0f);
+        EXPECT_EQ(f(vb.outputs[7][2][l]), float(-l) * 0.5f);
+        EXPECT_EQ(f(vb.outputs[7][3][l]), float(l));
+    }
+    const auto& io = prog->interface();
+    EXPECT_EQ(io.clip_distances, 2u);
+    EXPECT_TRUE(io.builtins_written & bit(BuiltIn::ClipDistance));
+    ASSERT_EQ(io.outputs.size(), 5u);
+    EXPECT_EQ(io.outputs[1].location, 2u);
+    EXPECT_EQ(io.outputs[1].interpolation, Interpolation::Flat);
+    EXPECT_EQ(io.outputs[4].location, 7u);
+    EXPECT_EQ(io.outputs[4].component, 2u);
+    ASSERT_EQ(io.inputs.size(), 3u);  // p, m column 0, m column 1
+}
+
+TEST(ShaderArith, MultipleFragmentOutputsAndSampleMask) {
+    auto prog = make_program(Stage::Fragment, R"(#version 450
+        layout(location=0) in vec4 v;
+        layout(location=0) out vec4 c0;
+        layout(location=2) out uvec2 c2;
+        void main() { c0 = v * 2.0; c2 = uvec2(7u, uint(v.x)); gl_SampleMask[0] = 5; })");
+    ASSERT_TRUE(prog);
+    FragmentBlock fb;
+    for (int l = 0; l < kLanes; ++l) fb.inputs[0][0][l] = u(float(l));
+    Scratch s;
+    prog->run_fragment(Bindings{}, fb, s);
+    for (int l = 0; l < kLanes; ++l) {
+        EXPECT_EQ(f(fb.outputs[0][0][l]), 2.0f * float(l));
+        EXPECT_EQ(fb.outputs[2][0][l], 7u);
+        EXPECT_EQ(fb.outputs[2][1][l], uint32_t(l));
+        EXPECT_EQ(fb.sample_mask[l], 5u);
+    }
+    EXPECT_EQ(prog->interface().outputs[1].type, ScalarType::Uint);
+}

@@ -251,3 +251,43 @@ TEST(ShaderTexture, MissingImageReadsZero) {
     r.run();
     for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), 1.0f);
 }
+
+TEST(ShaderTexture, ShadowCompareAndOffsets) {
+    // 4x4 D32 depth image: depth(x, y) = (x + 4y) / 16
+    std::vector<float> depth(16);
+    for (int i = 0; i < 16; ++i) depth[size_t(i)] = float(i) / 16.0f;
+    ImageView dv;
+    dv.base = reinterpret_cast<const uint8_t*>(depth.data());
+    dv.format = Format::D32_SFLOAT;
+    dv.width = dv.height = 4;
+    dv.level[0] = ImageLevel{0, 16, 64};
+    SamplerState smp;
+    smp.compare_enable = true;
+    smp.compare_op = CompareOp::Less;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    FsTex r(
+        "color = vec4(textureLod(shadow, vec3(v.xy, v.z), 0.0), texelFetchOffset(plain, ivec2(v.xy * 4.0), 0, "
+        "ivec2(1, -1)).x, textureLodOffset(plain, v.xy, 0.0, ivec2(-1, 2)).x, 0.0);",
+        "layout(set=0, binding=0) uniform sampler2DShadow shadow;\n"
+        "layout(set=0, binding=1) uniform sampler2D plain;\n");
+    SamplerState plain_smp;  // nearest, repeat
+    r.bindings.set(0, 0, 0, Descriptor{{}, &dv, &smp});
+    r.bindings.set(0, 1, 0, Descriptor{{}, &dv, &plain_smp});
+    for (int l = 0; l < kLanes; ++l) {
+        int x = l % 4, y = l / 4;
+        r.block.inputs[0][0][l] = u((float(x) + 0.5f) / 4.0f);
+        r.block.inputs[0][1][l] = u((float(y) + 0.5f) / 4.0f);
+        r.block.inputs[0][2][l] = u(0.4f);  // reference
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        int x = l % 4, y = l / 4;
+        float d = float(x + 4 * y) / 16.0f;
+        EXPECT_EQ(r.out(l, 0), 0.4f < d ? 1.0f : 0.0f) << l;
+        int fx = x + 1, fy = y - 1;
+        bool in = fx < 4 && fy >= 0;
+        EXPECT_EQ(r.out(l, 1), in ? float(fx + 4 * fy) / 16.0f : 0.0f) << l;
+        int ox = (x - 1 + 4) % 4, oy = (y + 2) % 4;  // repeat addressing
+        EXPECT_EQ(r.out(l, 2), float(ox + 4 * oy) / 16.0f) << l;
+    }
+}

@@ -23,14 +23,14 @@ inline uint64_t mix(uint64_t x) {
 class GridConsumer : public CoverageConsumer {
   public:
     GridConsumer(int w, int h, int samples, size_t num_tiles)
-        : w_(w),
-          h_(h),
-          samples_(samples),
-          count(size_t(w) * h * samples),
+        : count(size_t(w) * h * samples),
           hash(count.size()),
           digest(num_tiles),
           order_ok(num_tiles, 1),
           bounds_ok(num_tiles, 1),
+          w_(w),
+          h_(h),
+          samples_(samples),
           last_payload_(num_tiles) {}
 
     void begin_tile(unsigned, const TileInfo& t) override {

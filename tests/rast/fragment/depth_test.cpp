@@ -77,11 +77,15 @@ TEST(FragmentDepth, CompareOpsTruthTable) {
         EXPECT_EQ(compare_float(CompareOp(op), 0.2f, 0.2f), expected[op][1]);
         EXPECT_EQ(compare_float(CompareOp(op), 0.3f, 0.2f), expected[op][2]);
     }
-    // NaN: ordered compares false, NOT_EQUAL true (fcmp une), ALWAYS true
+    // NaN: lavapipe's compares are unordered (fcmp ult/ueq/...), so everything but NEVER is true
     for (int op = 0; op < 8; ++op) {
-        const bool want = CompareOp(op) == CompareOp::NotEqual || CompareOp(op) == CompareOp::Always;
+        const bool want = CompareOp(op) != CompareOp::Never;
         EXPECT_EQ(compare_float(CompareOp(op), NAN, 0.5f), want) << op;
+        EXPECT_EQ(compare_float(CompareOp(op), 0.5f, NAN), want) << op;
     }
+    // DAZ: a denormal equals zero
+    EXPECT_TRUE(compare_float(CompareOp::Equal, 1e-40f, 0.0f));
+    EXPECT_FALSE(compare_float(CompareOp::Greater, 1e-40f, 0.0f));
 }
 
 TEST(FragmentStencil, AllOpsAllValues) {

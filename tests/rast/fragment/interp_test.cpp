@@ -138,3 +138,31 @@ TEST(FragmentInterp, FragCoordAndDepth) {
     eval_flat(3.5f, flat);
     for (float v : flat) EXPECT_EQ(v, 3.5f);
 }
+
+TEST(FragmentInterp, CentroidPicksLowestCoveredSampleOrCentre) {
+    uint16_t m[4] = {0, 0, 0, 0};
+    // lane 0: all covered -> centre; lane 1: none -> centre; lane 2: samples 2,3 -> sample 2; lane 3: only 3
+    for (int s = 0; s < 4; ++s) m[s] |= 1u << 0;
+    m[2] |= 1u << 2;
+    m[3] |= (1u << 2) | (1u << 3);
+    float ox[16], oy[16];
+    centroid_offsets(m, ox, oy);
+    EXPECT_EQ(ox[0], 0.5f);
+    EXPECT_EQ(oy[1], 0.5f);
+    EXPECT_EQ(ox[2], 0.125f);
+    EXPECT_EQ(oy[2], 0.625f);
+    EXPECT_EQ(ox[3], 0.625f);
+    EXPECT_EQ(oy[3], 0.875f);
+    // per-lane evaluation with uniform offsets equals eval_plane
+    Plane p{0.37f, -1.3f, 12.0f};
+    float u[16], a[16], b[16];
+    for (int l = 0; l < 16; ++l) u[l] = 0.5f;
+    eval_plane_per_lane(p, 40, 8, u, u, true, a);
+    eval_plane(p, 40, 8, plane_offset(4, -1), true, b);
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(a[l], b[l]);
+    // and with the centroid offsets matches the step-by-step formula
+    eval_plane_per_lane(p, 40, 8, ox, oy, true, a);
+    for (int l = 0; l < 16; ++l)
+        EXPECT_EQ(a[l], step_by_step(p.dadx, p.dady, p.a0, float(40 + lane_x(l)) + ox[l], float(8 + lane_y(l)) + oy[l],
+                                     true));
+}

@@ -5,10 +5,6 @@
 #include <cstring>
 #include <random>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include "rast/fragment/msaa.h"
 
 using namespace tilevk::rast::fragment;
@@ -22,23 +18,34 @@ TEST(FragmentMsaa, AlphaToCoverageThresholds) {
     alpha_to_coverage_4x(alpha, masks);
     for (int l = 0; l < 16; ++l)
         for (int s = 0; s < 4; ++s) {
-            // sample s survives iff alpha > s/4 (strict; NaN never)
-            const bool want = alpha[l] > double(s) / 4.0;
+            // sample s survives iff alpha > s/4 (strict; unordered: NaN always survives)
+            const bool want = std::isnan(alpha[l]) || alpha[l] > double(s) / 4.0;
             EXPECT_EQ(bool(masks[s] & (1u << l)), want) << "lane " << l << " sample " << s;
         }
     const uint16_t m1 = alpha_to_coverage_1x(alpha, 0xffff);
-    for (int l = 0; l < 16; ++l) EXPECT_EQ(bool(m1 & (1u << l)), alpha[l] > 0.5) << l;
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(bool(m1 & (1u << l)), std::isnan(alpha[l]) || alpha[l] > 0.5) << l;
+    // DAZ: a denormal alpha is zero, so it fails even the s = 0 threshold
+    float tiny[16];
+    for (float& t : tiny) t = 1e-42f;
+    uint16_t mt[4] = {0xffff, 0xffff, 0xffff, 0xffff};
+    alpha_to_coverage_4x(tiny, mt);
+    EXPECT_EQ(mt[0], 0);
     EXPECT_EQ(alpha_to_coverage_1x(alpha, 0), 0);
 }
 
 TEST(FragmentMsaa, SampleMask) {
     uint16_t m[4] = {0x1111, 0x2222, 0x4444, 0x8888};
-    apply_sample_mask(0x5, m);
+    apply_sample_mask(0x5, 4, m);
     EXPECT_EQ(m[0], 0x1111);
     EXPECT_EQ(m[1], 0);
     EXPECT_EQ(m[2], 0x4444);
     EXPECT_EQ(m[3], 0);
     EXPECT_EQ(any_sample(m), 0x5555);
+    uint16_t one[4] = {0xffff, 0, 0, 0};
+    apply_sample_mask(0x2, 1, one);  // 1x ignores the mask ...
+    EXPECT_EQ(one[0], 0xffff);
+    apply_sample_mask(0, 1, one);  // ... unless it is entirely zero
+    EXPECT_EQ(one[0], 0);
 }
 
 TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
@@ -110,7 +117,25 @@ TEST(FragmentMsaa, ClearColorPacking) {
     std::memcpy(f, out, 8);
     EXPECT_EQ(f[0], 0.5f);
     EXPECT_EQ(f[1], 1.0f);
-    EXPECT_FALSE(pack_clear_color(ColorFormat::R8G8B8A8_SRGB, c, out));
+    ASSERT_TRUE(pack_clear_color(ColorFormat::R8G8B8A8_SRGB, c, out));
+    EXPECT_EQ(out[1], 255);
+    EXPECT_EQ(out[2], 0);
+    EXPECT_EQ(out[3], float_to_ubyte_clear(0.25f));  // alpha is linear
+}
+
+TEST(FragmentMsaa, SrgbClearEncoderAccuracy) {
+    // The table encoder (rygorous' fp32 -> sRGB8) is within 0.6 of the exact curve for every float in [0, 1],
+    // and clamps NaN / negatives to 0 and >= 1 to 255.
+    for (uint32_t u = 0; u <= 0x3f800000u; u += 37) {
+        float x;
+        std::memcpy(&x, &u, 4);
+        const double e = (x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(double(x), 1 / 2.4) - 0.055) * 255.0;
+        ASSERT_LE(std::fabs(srgb_clear_encode(x) - e), 0.6) << x;
+    }
+    EXPECT_EQ(srgb_clear_encode(NAN), 0);
+    EXPECT_EQ(srgb_clear_encode(-1.0f), 0);
+    EXPECT_EQ(srgb_clear_encode(1.0f), 255);
+    EXPECT_EQ(srgb_clear_encode(5.0f), 255);
 }
 
 TEST(FragmentMsaa, ClearDepthPacking) {
@@ -134,18 +159,3 @@ TEST(FragmentMsaa, ClearDepthPacking) {
     std::memcpy(&hb, &h, 4);
     EXPECT_EQ(pack_clear_depth(DepthFormat::D32F, 0.3), hb);
 }
-
-#if defined(__x86_64__)
-__attribute__((target("f16c"))) static uint16_t hw_half_rne(float f) {
-    return uint16_t(_mm_extract_epi16(_mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
-}
-TEST(FragmentMsaa, HalfRneMatchesF16c) {
-    if (!__builtin_cpu_supports("f16c")) GTEST_SKIP() << "no F16C";
-    for (uint64_t u = 0; u <= 0xffffffffull; u += 241) {
-        float f;
-        const uint32_t b = uint32_t(u);
-        std::memcpy(&f, &b, 4);
-        ASSERT_EQ(float_to_half_rne(f), hw_half_rne(f)) << std::hex << b;
-    }
-}
-#endif

@@ -2,6 +2,7 @@
 // comments, or step by step with explicit float roundings, or from a double-precision reference clipper.
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "rast/geometry/clip.h"
+#include "rast/geometry/fp_env.h"
 #include "rast/geometry/viewport.h"
 
 using namespace tilevk::rast::geometry;
@@ -412,4 +414,45 @@ TEST(FloatCull, DeterminantSignAndZero) {
     EXPECT_TRUE(float_cull_keep(front, a, c, d));
     FloatCull none{};
     EXPECT_TRUE(float_cull_keep(none, a, c, d));
+}
+
+TEST(Viewport, PixelRectRounding) {
+    // full 64x64: x0 = (int)(0 + 0.499) = 0, x1 = (int)(64 - 0.501) = 63 inclusive -> [0, 64)
+    PixelRect r = viewport_pixel_rect(make_viewport(0, 0, 64, 64, 0, 1));
+    EXPECT_EQ(r.x0, 0);
+    EXPECT_EQ(r.x1, 64);
+    EXPECT_EQ(r.y1, 64);
+    // x = 10.5, width 20: tx - sx = 10.5 -> (int)10.999 = 10; 20 + 10.5 - 0.501 = 29.999 -> 29 -> [10, 30)
+    // y = 5.6, height 10.2: ty - sy = 5.6 -> (int)6.099 = 6; 10.2 + 5.6 - 0.501 = 15.299 -> 15 -> [6, 16)
+    r = viewport_pixel_rect(make_viewport(10.5f, 5.6f, 20.0f, 10.2f, 0, 1));
+    EXPECT_EQ(r.x0, 10);
+    EXPECT_EQ(r.x1, 30);
+    EXPECT_EQ(r.y0, 6);
+    EXPECT_EQ(r.y1, 16);
+    // negative height (flipped): |sy| is used, y0 = ty - |sy|: y = 20, height -10 -> sy = -5, ty = 15 -> 10..19
+    r = viewport_pixel_rect(make_viewport(0, 20.0f, 8.0f, -10.0f, 0, 1));
+    EXPECT_EQ(r.y0, 10);
+    EXPECT_EQ(r.y1, 20);
+    // garbage never traps
+    r = viewport_pixel_rect(Viewport{{NAN, 1e30f, 1}, {0, 0, 0}});
+    EXPECT_EQ(r.x0, INT32_MIN);
+}
+
+TEST(FpEnv, FlushesDenormalsInsideTheGuardOnly) {
+    volatile float tiny = 1e-38f;  // normal
+    volatile float sub = 1e-40f;   // subnormal
+    volatile float scale = 1e-3f;
+    EXPECT_NE(tiny * scale, 0.0f);  // default environment: a subnormal result
+    {
+        ScopedFlushDenormals guard;
+        EXPECT_EQ(tiny * scale, 0.0f);  // FTZ: subnormal results flush to zero
+        EXPECT_EQ(sub + 0.0f, 0.0f);    // DAZ: subnormal inputs read as zero
+        // the clipper under FTZ: a plane distance that would be subnormal is 0 (inside), as in lavapipe
+        // (w - x with both normal but a subnormal difference)
+        const float c[4] = {2e-38f, 0.0f, 0.5f, 2.1e-38f};
+        EXPECT_EQ(clip_plane_distance(c, 0, true), 0.0f);
+    }
+    const float c[4] = {2e-38f, 0.0f, 0.5f, 2.1e-38f};
+    EXPECT_GT(clip_plane_distance(c, 0, true), 0.0f);
+    EXPECT_NE(sub + 0.0f, 0.0f);
 }

@@ -4,8 +4,10 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
+#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
 
@@ -231,4 +233,37 @@ TEST(PrimitiveAssembly, IndexFetchRules) {
     EXPECT_EQ(out[2], 9u);
     // too-small output buffer: no overflow, fewer primitives
     EXPECT_EQ(assemble_primitives(na, Topology::kTriangleList, true, out.data(), 2), 0u);
+}
+
+TEST(LavapipeQuirks, NineVertexTriangleList) {
+    // first six vertices: the aero rectangle (X0,Y0) (X0,Y1) (X1,Y1) | (X1,Y0) (X1,Y1) (X0,Y0); last three on y = 7
+    const float aero[9][2] = {{1, 2}, {1, 5}, {4, 5}, {4, 2}, {4, 5}, {1, 2}, {0, 7}, {3, 7}, {9, 7}};
+    TriangleListBatch b;
+    b.vertex_count = 9;
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kAeroRect);
+    float other[9][2];
+    std::memcpy(other, aero, sizeof(other));
+    other[3][0] = 4.5f;  // breaks the pattern: swallowed
+    EXPECT_EQ(nine_vertex_quirk(b, other), NineVertexQuirk::kSwallowed);
+    other[8][1] = 7.5f;  // last triangle not flat in y: normal draw
+    EXPECT_EQ(nine_vertex_quirk(b, other), NineVertexQuirk::kNone);
+    b.vertex_count = 11;  // trimmed to 9
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kAeroRect);
+    b.vertex_count = 12;
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kNone);
+    b.vertex_count = 9;
+    b.fs_has_flat_input = true;
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kNone);
+    b.fs_has_flat_input = false;
+    b.indexed = true;
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kNone);
+    b.indexed = false;
+    b.any_vertex_clipped = true;
+    EXPECT_EQ(nine_vertex_quirk(b, aero), NineVertexQuirk::kNone);
+    b.any_vertex_clipped = false;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    float nans[9][2];
+    std::memcpy(nans, aero, sizeof(nans));
+    nans[6][1] = nans[7][1] = nans[8][1] = nan;
+    EXPECT_EQ(nine_vertex_quirk(b, nans), NineVertexQuirk::kNone);
 }

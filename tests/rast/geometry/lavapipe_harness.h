@@ -1,0 +1,392 @@
+// Test harness: a minimal Vulkan renderer on lavapipe (64x64 R8G8B8A8_UNORM target, 1x, one interleaved vertex
+// buffer with a vec4 position and a vec4 colour attribute), pipelines cached per state.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "kXcheck_frag.spv.h"
+#include "kXcheck_noflat_frag.spv.h"
+#include "kXcheck_vert.spv.h"
+#include "rast/geometry/planes.h"
+
+namespace xcheck {
+
+using tilevk::rast::geometry::DepthBias;
+
+constexpr int kSize = 64;
+constexpr size_t kIndexOffset = 1 << 19;  // index data lives in the upper half of the vertex buffer
+
+struct InVertex {
+    float pos[4];
+    float col[4];
+};
+
+// Less common state for a draw (pipeline key, plus an optional 32-bit index buffer).
+struct Extra {
+    bool depth_clamp = false;
+    VkCullModeFlags cull = VK_CULL_MODE_NONE;
+    VkFrontFace front = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    bool restart = false;
+    const std::vector<uint32_t>* indices = nullptr;
+    float vp[4] = {0, 0, kSize, kSize};  // x, y, width, height
+    bool no_flat = false;                // fragment shader without a flat input (smooth colour only)
+    int samples = 1;                     // 1, or 4 (rendered at 4x and resolved by the render pass)
+};
+
+#define VK_OK(x)                                      \
+    do {                                              \
+        VkResult r_ = (x);                            \
+        if (r_ != VK_SUCCESS) {                       \
+            ADD_FAILURE() << #x << " failed: " << r_; \
+            return {};                                \
+        }                                             \
+    } while (0)
+
+// Minimal Vulkan renderer on lavapipe: one pipeline, one 64x64 RGBA8 target, draws a triangle list.
+class Lavapipe {
+  public:
+    bool init() {
+        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+        app.apiVersion = VK_API_VERSION_1_0;
+        VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+        ici.pApplicationInfo = &app;
+        if (vkCreateInstance(&ici, nullptr, &inst_) != VK_SUCCESS) return false;
+        uint32_t n = 0;
+        vkEnumeratePhysicalDevices(inst_, &n, nullptr);
+        std::vector<VkPhysicalDevice> pds(n);
+        vkEnumeratePhysicalDevices(inst_, &n, pds.data());
+        for (auto pd : pds) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(pd, &p);
+            if (std::strstr(p.deviceName, "llvmpipe")) pd_ = pd;
+        }
+        if (!pd_) return false;
+        float prio = 1.0f;
+        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qci.queueFamilyIndex = 0;
+        qci.queueCount = 1;
+        qci.pQueuePriorities = &prio;
+        VkPhysicalDeviceFeatures feats{};
+        feats.wideLines = VK_TRUE;
+        feats.largePoints = VK_TRUE;
+        feats.depthBiasClamp = VK_TRUE;
+        feats.depthClamp = VK_TRUE;
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        dci.pEnabledFeatures = &feats;
+        VkPhysicalDeviceLineRasterizationFeaturesEXT line_feats{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+        line_feats.bresenhamLines = VK_TRUE;
+        const char* ext = VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME;
+        uint32_t next = 0;
+        vkEnumerateDeviceExtensionProperties(pd_, nullptr, &next, nullptr);
+        std::vector<VkExtensionProperties> exts(next);
+        vkEnumerateDeviceExtensionProperties(pd_, nullptr, &next, exts.data());
+        for (const auto& e : exts)
+            if (std::strcmp(e.extensionName, ext) == 0) has_line_ext_ = true;
+        if (has_line_ext_) {
+            dci.enabledExtensionCount = 1;
+            dci.ppEnabledExtensionNames = &ext;
+            dci.pNext = &line_feats;
+        }
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &qci;
+        if (vkCreateDevice(pd_, &dci, nullptr, &dev_) != VK_SUCCESS) return false;
+        vkGetDeviceQueue(dev_, 0, 0, &queue_);
+        return setup();
+    }
+    ~Lavapipe() {
+        if (dev_) vkDeviceWaitIdle(dev_), vkDestroyDevice(dev_, nullptr);  // objects die with the device in lvp
+        if (inst_) vkDestroyInstance(inst_, nullptr);
+    }
+
+    bool has_line_ext() const { return has_line_ext_; }
+
+    // Renders `verts` as a triangle list with the given fragment mode; returns RGBA8 pixels.
+    std::vector<uint8_t> render(const std::vector<InVertex>& verts, int mode,
+                                VkPrimitiveTopology topo = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, float line_width = 1,
+                                bool bresenham = false, VkFormat col_format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                                const DepthBias* bias = nullptr, const Extra& extra = Extra{}) {
+        const VkPipeline pipe = pipeline(topo, line_width, bresenham, col_format, bias, extra);
+        if (pipe == VK_NULL_HANDLE) return {};
+        std::memcpy(vb_map_, verts.data(), verts.size() * sizeof(InVertex));
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        VK_OK(vkResetCommandBuffer(cmd_, 0));
+        VK_OK(vkBeginCommandBuffer(cmd_, &bi));
+        VkClearValue clear[2] = {};
+        VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        rp.renderPass = extra.samples == 4 ? pass_ms_ : pass_;
+        rp.framebuffer = extra.samples == 4 ? fb_ms_ : fb_;
+        rp.renderArea.extent = {kSize, kSize};
+        rp.clearValueCount = extra.samples == 4 ? 2 : 1;
+        rp.pClearValues = clear;
+        vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        VkDeviceSize off = 0;
+        vkCmdBindVertexBuffers(cmd_, 0, 1, &vb_, &off);
+        vkCmdPushConstants(cmd_, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &mode);
+        if (extra.indices) {
+            std::memcpy(static_cast<char*>(vb_map_) + kIndexOffset, extra.indices->data(), extra.indices->size() * 4);
+            vkCmdBindIndexBuffer(cmd_, vb_, kIndexOffset, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(cmd_, static_cast<uint32_t>(extra.indices->size()), 1, 0, 0, 0);
+        } else {
+            vkCmdDraw(cmd_, static_cast<uint32_t>(verts.size()), 1, 0, 0);
+        }
+        vkCmdEndRenderPass(cmd_);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {kSize, kSize, 1};
+        vkCmdCopyImageToBuffer(cmd_, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rb_, 1, &copy);
+        VK_OK(vkEndCommandBuffer(cmd_));
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cmd_;
+        VK_OK(vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE));
+        VK_OK(vkQueueWaitIdle(queue_));
+        std::vector<uint8_t> px(kSize * kSize * 4);
+        std::memcpy(px.data(), rb_map_, px.size());
+        return px;
+    }
+
+  private:
+    uint32_t host_memory_type(uint32_t bits) {
+        VkPhysicalDeviceMemoryProperties mp;
+        vkGetPhysicalDeviceMemoryProperties(pd_, &mp);
+        for (uint32_t i = 0; i < mp.memoryTypeCount; ++i)
+            if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) return i;
+        return 0;
+    }
+    bool buffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer* b, void** map) {
+        VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+        ci.size = size;
+        ci.usage = usage;
+        if (vkCreateBuffer(dev_, &ci, nullptr, b) != VK_SUCCESS) return false;
+        VkMemoryRequirements mr;
+        vkGetBufferMemoryRequirements(dev_, *b, &mr);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = mr.size;
+        ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
+        VkDeviceMemory m;
+        if (vkAllocateMemory(dev_, &ai, nullptr, &m) != VK_SUCCESS) return false;
+        vkBindBufferMemory(dev_, *b, m, 0);
+        return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
+    }
+    VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format,
+                        const DepthBias* bias, const Extra& x) {
+        const DepthBias b = bias ? *bias : DepthBias{};
+        for (const auto& p : pipes_)
+            if (p.topo == topo && p.width == line_width && p.bresenham == bresenham && p.format == col_format &&
+                p.bias.constant_factor == b.constant_factor && p.bias.slope_factor == b.slope_factor &&
+                p.bias.clamp == b.clamp && p.x.depth_clamp == x.depth_clamp && p.x.cull == x.cull &&
+                p.x.front == x.front && p.x.restart == x.restart && std::memcmp(p.x.vp, x.vp, sizeof(x.vp)) == 0 &&
+                p.x.no_flat == x.no_flat)
+                return p.pipe;
+        VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+        st[0].stage = VK_SHADER_STAGE_VERTEX_BIT, st[0].module = vs_, st[0].pName = "main";
+        st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT, st[1].module = x.no_flat ? fs_noflat_ : fs_, st[1].pName = "main";
+        VkVertexInputBindingDescription bind{0, sizeof(InVertex), VK_VERTEX_INPUT_RATE_VERTEX};
+        VkVertexInputAttributeDescription attrs[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 0, col_format, 16}};
+        VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        vin.vertexBindingDescriptionCount = 1;
+        vin.pVertexBindingDescriptions = &bind;
+        vin.vertexAttributeDescriptionCount = 2;
+        vin.pVertexAttributeDescriptions = attrs;
+        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+        ia.topology = topo;
+        ia.primitiveRestartEnable = x.restart;
+        VkViewport vp{x.vp[0], x.vp[1], x.vp[2], x.vp[3], 0, 1};
+        VkRect2D sc{{0, 0}, {kSize, kSize}};
+        VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+        vps.viewportCount = vps.scissorCount = 1;
+        vps.pViewports = &vp;
+        vps.pScissors = &sc;
+        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+        rs.polygonMode = VK_POLYGON_MODE_FILL;
+        rs.cullMode = x.cull;
+        rs.frontFace = x.front;
+        rs.depthClampEnable = x.depth_clamp;
+        rs.lineWidth = line_width;
+        rs.depthBiasEnable = bias != nullptr;
+        rs.depthBiasConstantFactor = b.constant_factor;
+        rs.depthBiasSlopeFactor = b.slope_factor;
+        rs.depthBiasClamp = b.clamp;
+        VkPipelineRasterizationLineStateCreateInfoEXT ls{
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+        ls.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
+        if (bresenham) rs.pNext = &ls;
+        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+        ms.rasterizationSamples = x.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+        VkPipelineColorBlendAttachmentState cba{};
+        cba.colorWriteMask = 0xF;
+        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        cb.attachmentCount = 1;
+        cb.pAttachments = &cba;
+        VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+        gi.stageCount = 2;
+        gi.pStages = st;
+        gi.pVertexInputState = &vin;
+        gi.pInputAssemblyState = &ia;
+        gi.pViewportState = &vps;
+        gi.pRasterizationState = &rs;
+        gi.pMultisampleState = &ms;
+        gi.pColorBlendState = &cb;
+        gi.layout = layout_;
+        gi.renderPass = x.samples == 4 ? pass_ms_ : pass_;
+        VkPipeline pipe = VK_NULL_HANDLE;
+        if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
+        pipes_.push_back({topo, line_width, bresenham, col_format, b, x, pipe});
+        return pipe;
+    }
+    bool setup() {
+        if (!buffer(1 << 20, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &vb_, &vb_map_))
+            return false;
+        if (!buffer(kSize * kSize * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, &rb_, &rb_map_)) return false;
+        VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ii.imageType = VK_IMAGE_TYPE_2D;
+        ii.format = VK_FORMAT_R8G8B8A8_UNORM;
+        ii.extent = {kSize, kSize, 1};
+        ii.mipLevels = ii.arrayLayers = 1;
+        ii.samples = VK_SAMPLE_COUNT_1_BIT;
+        ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+        ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        if (vkCreateImage(dev_, &ii, nullptr, &image_) != VK_SUCCESS) return false;
+        VkMemoryRequirements mr;
+        vkGetImageMemoryRequirements(dev_, image_, &mr);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = mr.size;
+        ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
+        VkDeviceMemory m;
+        if (vkAllocateMemory(dev_, &ai, nullptr, &m) != VK_SUCCESS) return false;
+        vkBindImageMemory(dev_, image_, m, 0);
+        VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        vi.image = image_;
+        vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        vi.format = ii.format;
+        vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkImageView view;
+        if (vkCreateImageView(dev_, &vi, nullptr, &view) != VK_SUCCESS) return false;
+        VkAttachmentDescription att{};
+        att.format = ii.format;
+        att.samples = VK_SAMPLE_COUNT_1_BIT;
+        att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        att.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        att.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &ref;
+        VkSubpassDependency dep{};
+        dep.srcSubpass = 0;
+        dep.dstSubpass = VK_SUBPASS_EXTERNAL;
+        dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+        dep.dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+        dep.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+        VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+        rpi.attachmentCount = 1;
+        rpi.pAttachments = &att;
+        rpi.subpassCount = 1;
+        rpi.pSubpasses = &sub;
+        rpi.dependencyCount = 1;
+        rpi.pDependencies = &dep;
+        if (vkCreateRenderPass(dev_, &rpi, nullptr, &pass_) != VK_SUCCESS) return false;
+        VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+        fi.renderPass = pass_;
+        fi.attachmentCount = 1;
+        fi.pAttachments = &view;
+        fi.width = fi.height = kSize;
+        fi.layers = 1;
+        if (vkCreateFramebuffer(dev_, &fi, nullptr, &fb_) != VK_SUCCESS) return false;
+        // 4x: a multisampled colour attachment resolved into image_ at the end of the subpass
+        ii.samples = VK_SAMPLE_COUNT_4_BIT;
+        ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        VkImage ms_image;
+        if (vkCreateImage(dev_, &ii, nullptr, &ms_image) != VK_SUCCESS) return false;
+        vkGetImageMemoryRequirements(dev_, ms_image, &mr);
+        ai.allocationSize = mr.size;
+        ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
+        VkDeviceMemory mm;
+        if (vkAllocateMemory(dev_, &ai, nullptr, &mm) != VK_SUCCESS) return false;
+        vkBindImageMemory(dev_, ms_image, mm, 0);
+        vi.image = ms_image;
+        VkImageView ms_view;
+        if (vkCreateImageView(dev_, &vi, nullptr, &ms_view) != VK_SUCCESS) return false;
+        VkAttachmentDescription atts[2] = {att, att};
+        atts[0].samples = VK_SAMPLE_COUNT_4_BIT;
+        atts[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        atts[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        atts[1].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        VkAttachmentReference resolve_ref{1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+        sub.pResolveAttachments = &resolve_ref;
+        rpi.attachmentCount = 2;
+        rpi.pAttachments = atts;
+        if (vkCreateRenderPass(dev_, &rpi, nullptr, &pass_ms_) != VK_SUCCESS) return false;
+        VkImageView ms_views[2] = {ms_view, view};
+        fi.renderPass = pass_ms_;
+        fi.attachmentCount = 2;
+        fi.pAttachments = ms_views;
+        if (vkCreateFramebuffer(dev_, &fi, nullptr, &fb_ms_) != VK_SUCCESS) return false;
+        VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        smi.codeSize = sizeof(kXcheck_vert);
+        smi.pCode = kXcheck_vert;
+        if (vkCreateShaderModule(dev_, &smi, nullptr, &vs_) != VK_SUCCESS) return false;
+        smi.codeSize = sizeof(kXcheck_frag);
+        smi.pCode = kXcheck_frag;
+        if (vkCreateShaderModule(dev_, &smi, nullptr, &fs_) != VK_SUCCESS) return false;
+        smi.codeSize = sizeof(kXcheck_noflat_frag);
+        smi.pCode = kXcheck_noflat_frag;
+        if (vkCreateShaderModule(dev_, &smi, nullptr, &fs_noflat_) != VK_SUCCESS) return false;
+        VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+        VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        li.pushConstantRangeCount = 1;
+        li.pPushConstantRanges = &pcr;
+        if (vkCreatePipelineLayout(dev_, &li, nullptr, &layout_) != VK_SUCCESS) return false;
+        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        VkCommandPool pool;
+        if (vkCreateCommandPool(dev_, &pi, nullptr, &pool) != VK_SUCCESS) return false;
+        VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        cai.commandPool = pool;
+        cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        cai.commandBufferCount = 1;
+        return vkAllocateCommandBuffers(dev_, &cai, &cmd_) == VK_SUCCESS;
+    }
+
+    VkInstance inst_ = VK_NULL_HANDLE;
+    VkPhysicalDevice pd_ = VK_NULL_HANDLE;
+    VkDevice dev_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    VkBuffer vb_ = VK_NULL_HANDLE, rb_ = VK_NULL_HANDLE;
+    void* vb_map_ = nullptr;
+    void* rb_map_ = nullptr;
+    VkImage image_ = VK_NULL_HANDLE;
+    VkRenderPass pass_ = VK_NULL_HANDLE;
+    VkFramebuffer fb_ = VK_NULL_HANDLE;
+    VkRenderPass pass_ms_ = VK_NULL_HANDLE;
+    VkFramebuffer fb_ms_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkShaderModule vs_ = VK_NULL_HANDLE, fs_ = VK_NULL_HANDLE, fs_noflat_ = VK_NULL_HANDLE;
+    struct Pipe {
+        VkPrimitiveTopology topo;
+        float width;
+        bool bresenham;
+        VkFormat format;
+        DepthBias bias;
+        Extra x;
+        VkPipeline pipe;
+    };
+    std::vector<Pipe> pipes_;
+    bool has_line_ext_ = false;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+};
+
+}  // namespace xcheck
