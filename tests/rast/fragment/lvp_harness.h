@@ -1,0 +1,938 @@
+// Vulkan harness for the lavapipe cross-checks: device setup, buffers, images and the render passes the tests
+// run on lavapipe. Included by lavapipe_crosscheck_test.cpp only.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <vulkan/vulkan.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "buffer_color_frag.h"
+#include "buffer_depth_frag.h"
+#include "fullscreen_vert.h"
+#include "interp_frag.h"
+#include "interp_vert.h"
+#include "rast/fragment/blend.h"
+#include "rast/fragment/depth_stencil.h"
+#include "rast/fragment/interp.h"
+#include "rast/fragment/msaa.h"
+#include "sample_color_frag.h"
+
+using namespace tilevk::rast::fragment;
+
+namespace {
+
+constexpr uint32_t kW = 64, kH = 64;
+
+#define VKC(x)                                                                               \
+    do {                                                                                     \
+        VkResult r_ = (x);                                                                   \
+        if (r_ != VK_SUCCESS) throw std::runtime_error(#x " failed: " + std::to_string(r_)); \
+    } while (0)
+
+VkFormat to_vk(ColorFormat f) {
+    switch (f) {
+        case ColorFormat::R8G8B8A8_UNORM:
+            return VK_FORMAT_R8G8B8A8_UNORM;
+        case ColorFormat::B8G8R8A8_UNORM:
+            return VK_FORMAT_B8G8R8A8_UNORM;
+        case ColorFormat::R8G8B8A8_SRGB:
+            return VK_FORMAT_R8G8B8A8_SRGB;
+        case ColorFormat::B8G8R8A8_SRGB:
+            return VK_FORMAT_B8G8R8A8_SRGB;
+        case ColorFormat::R8_UNORM:
+            return VK_FORMAT_R8_UNORM;
+        case ColorFormat::R8G8_UNORM:
+            return VK_FORMAT_R8G8_UNORM;
+        case ColorFormat::R16G16B16A16_SFLOAT:
+            return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case ColorFormat::R32_SFLOAT:
+            return VK_FORMAT_R32_SFLOAT;
+        case ColorFormat::R32G32_SFLOAT:
+            return VK_FORMAT_R32G32_SFLOAT;
+        case ColorFormat::R32G32B32A32_SFLOAT:
+            return VK_FORMAT_R32G32B32A32_SFLOAT;
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+
+struct Lvp {
+    VkInstance inst = VK_NULL_HANDLE;
+    VkPhysicalDevice phys = VK_NULL_HANDLE;
+    VkDevice dev = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t qfam = 0;
+    VkPhysicalDeviceMemoryProperties mem{};
+    VkCommandPool pool = VK_NULL_HANDLE;
+
+    bool init() {
+        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+        app.apiVersion = VK_API_VERSION_1_0;
+        VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+        ici.pApplicationInfo = &app;
+        if (vkCreateInstance(&ici, nullptr, &inst) != VK_SUCCESS) return false;
+        uint32_t n = 0;
+        vkEnumeratePhysicalDevices(inst, &n, nullptr);
+        std::vector<VkPhysicalDevice> devs(n);
+        vkEnumeratePhysicalDevices(inst, &n, devs.data());
+        for (VkPhysicalDevice d : devs) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(d, &p);
+            if (std::string(p.deviceName).find("llvmpipe") != std::string::npos) phys = d;
+        }
+        if (!phys) return false;
+        vkGetPhysicalDeviceMemoryProperties(phys, &mem);
+        float prio = 1.0f;
+        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qci.queueFamilyIndex = 0;
+        qci.queueCount = 1;
+        qci.pQueuePriorities = &prio;
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &qci;
+        VkPhysicalDeviceFeatures feats{};
+        feats.depthClamp = VK_TRUE;
+        feats.sampleRateShading = VK_TRUE;
+        dci.pEnabledFeatures = &feats;
+        if (vkCreateDevice(phys, &dci, nullptr, &dev) != VK_SUCCESS) return false;
+        vkGetDeviceQueue(dev, 0, 0, &queue);
+        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        VKC(vkCreateCommandPool(dev, &pci, nullptr, &pool));
+        return true;
+    }
+    ~Lvp() {
+        if (dev) {
+            vkDestroyCommandPool(dev, pool, nullptr);
+            vkDestroyDevice(dev, nullptr);
+        }
+        if (inst) vkDestroyInstance(inst, nullptr);
+    }
+    uint32_t mem_type(uint32_t bits, VkMemoryPropertyFlags want) const {
+        for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+            if ((bits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return i;
+        throw std::runtime_error("no memory type");
+    }
+};
+
+struct Buffer {
+    VkBuffer buf = VK_NULL_HANDLE;
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    void* map = nullptr;
+};
+
+Buffer make_buffer(const Lvp& v, VkDeviceSize size, VkBufferUsageFlags usage) {
+    Buffer b;
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = size;
+    bci.usage = usage;
+    VKC(vkCreateBuffer(v.dev, &bci, nullptr, &b.buf));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(v.dev, b.buf, &req);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex =
+        v.mem_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &b.mem));
+    VKC(vkBindBufferMemory(v.dev, b.buf, b.mem, 0));
+    VKC(vkMapMemory(v.dev, b.mem, 0, VK_WHOLE_SIZE, 0, &b.map));
+    return b;
+}
+void free_buffer(const Lvp& v, Buffer& b) {
+    vkDestroyBuffer(v.dev, b.buf, nullptr);
+    vkFreeMemory(v.dev, b.mem, nullptr);
+}
+
+VkShaderModule make_shader(const Lvp& v, const uint32_t* code, size_t bytes) {
+    VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    ci.codeSize = bytes;
+    ci.pCode = code;
+    VkShaderModule m;
+    VKC(vkCreateShaderModule(v.dev, &ci, nullptr, &m));
+    return m;
+}
+
+// Renders src colours over dst bytes with the blend state; returns the image bytes.
+std::vector<uint8_t> render(const Lvp& v, ColorFormat f, const BlendAttachment& a, const float consts[4],
+                            const std::vector<float>& src, const std::vector<uint8_t>& dst) {
+    const uint32_t bpp = format_info(f).bytes;
+    const VkFormat vf = to_vk(f);
+    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ii.imageType = VK_IMAGE_TYPE_2D;
+    ii.format = vf;
+    ii.extent = {kW, kH, 1};
+    ii.mipLevels = ii.arrayLayers = 1;
+    ii.samples = VK_SAMPLE_COUNT_1_BIT;
+    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VkImage img;
+    VKC(vkCreateImage(v.dev, &ii, nullptr, &img));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(v.dev, img, &req);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = v.mem_type(req.memoryTypeBits, 0);
+    VkDeviceMemory imem;
+    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &imem));
+    VKC(vkBindImageMemory(v.dev, img, imem, 0));
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = img;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = vf;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view;
+    VKC(vkCreateImageView(v.dev, &vi, nullptr, &view));
+
+    VkAttachmentDescription att{};
+    att.format = vf;
+    att.samples = VK_SAMPLE_COUNT_1_BIT;
+    att.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    att.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = 1;
+    sub.pColorAttachments = &ref;
+    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rpi.attachmentCount = 1;
+    rpi.pAttachments = &att;
+    rpi.subpassCount = 1;
+    rpi.pSubpasses = &sub;
+    VkRenderPass rp;
+    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
+    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fbi.renderPass = rp;
+    fbi.attachmentCount = 1;
+    fbi.pAttachments = &view;
+    fbi.width = kW;
+    fbi.height = kH;
+    fbi.layers = 1;
+    VkFramebuffer fb;
+    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+
+    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    dli.bindingCount = 1;
+    dli.pBindings = &b0;
+    VkDescriptorSetLayout dsl;
+    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
+    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &dsl;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+    VkPipelineLayout pl;
+    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
+
+    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
+    VkShaderModule fs = make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag);
+    VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                             {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    st[0].module = vs;
+    st[0].pName = "main";
+    st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    st[1].module = fs;
+    st[1].pName = "main";
+    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
+    VkRect2D sc{{0, 0}, {kW, kH}};
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &vp;
+    vps.scissorCount = 1;
+    vps.pScissors = &sc;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_NONE;
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineColorBlendAttachmentState cba{};
+    cba.blendEnable = a.blend_enable;
+    cba.srcColorBlendFactor = VkBlendFactor(a.src_color);
+    cba.dstColorBlendFactor = VkBlendFactor(a.dst_color);
+    cba.colorBlendOp = VkBlendOp(a.color_op);
+    cba.srcAlphaBlendFactor = VkBlendFactor(a.src_alpha);
+    cba.dstAlphaBlendFactor = VkBlendFactor(a.dst_alpha);
+    cba.alphaBlendOp = VkBlendOp(a.alpha_op);
+    cba.colorWriteMask = a.write_mask;
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = 1;
+    cb.pAttachments = &cba;
+    std::memcpy(cb.blendConstants, consts, 16);
+    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    gpi.stageCount = 2;
+    gpi.pStages = st;
+    gpi.pVertexInputState = &vin;
+    gpi.pInputAssemblyState = &ia;
+    gpi.pViewportState = &vps;
+    gpi.pRasterizationState = &rs;
+    gpi.pMultisampleState = &ms;
+    gpi.pColorBlendState = &cb;
+    gpi.layout = pl;
+    gpi.renderPass = rp;
+    VkPipeline pipe;
+    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpi.maxSets = 1;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    VkDescriptorPool dp;
+    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = dp;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &dsl;
+    VkDescriptorSet ds;
+    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+
+    Buffer colors = make_buffer(v, src.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::memcpy(colors.map, src.data(), src.size() * 4);
+    Buffer xfer = make_buffer(v, VkDeviceSize(kW) * kH * bpp,
+                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    std::memcpy(xfer.map, dst.data(), dst.size());
+    VkDescriptorBufferInfo dbi{colors.buf, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = ds;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &dbi;
+    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
+
+    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cai.commandPool = v.pool;
+    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
+    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VKC(vkBeginCommandBuffer(cmd, &cbi));
+    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    bar.image = img;
+    bar.subresourceRange = vi.subresourceRange;
+    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &bar);
+    VkBufferImageCopy bic{};
+    bic.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    bic.imageExtent = {kW, kH, 1};
+    vkCmdCopyBufferToImage(cmd, xfer.buf, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &bic);
+    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    bar.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
+                         nullptr, 0, nullptr, 1, &bar);
+    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rbi.renderPass = rp;
+    rbi.framebuffer = fb;
+    rbi.renderArea = sc;
+    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
+    const uint32_t width = kW;
+    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+    vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1, &bic);
+    VKC(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
+    VKC(vkQueueWaitIdle(v.queue));
+    std::vector<uint8_t> out(size_t(kW) * kH * bpp);
+    std::memcpy(out.data(), xfer.map, out.size());
+
+    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
+    free_buffer(v, colors);
+    free_buffer(v, xfer);
+    vkDestroyDescriptorPool(v.dev, dp, nullptr);
+    vkDestroyPipeline(v.dev, pipe, nullptr);
+    vkDestroyShaderModule(v.dev, vs, nullptr);
+    vkDestroyShaderModule(v.dev, fs, nullptr);
+    vkDestroyPipelineLayout(v.dev, pl, nullptr);
+    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
+    vkDestroyFramebuffer(v.dev, fb, nullptr);
+    vkDestroyRenderPass(v.dev, rp, nullptr);
+    vkDestroyImageView(v.dev, view, nullptr);
+    vkDestroyImage(v.dev, img, nullptr);
+    vkFreeMemory(v.dev, imem, nullptr);
+    return out;
+}
+
+float random_src(std::mt19937& rng, ChannelKind kind) {
+    const uint32_t r = rng() % 1000;
+    if (kind == ChannelKind::Float32 || kind == ChannelKind::Half) return float(int(rng() % 40001) - 20000) / 7919.0f;
+    if (r < 5) return INFINITY;  // the 8-wide conversion clamps +Inf to 1 (the 4-wide one would give 0)
+    if (r < 8) return NAN;
+    if (r < 10) return 3e9f;
+    if (r < 30) return -0.25f;
+    if (r < 60) return 1.5f;
+    return float(rng() % 1000001) / 1000000.0f;
+}
+
+void random_dst(std::mt19937& rng, ColorFormat f, uint8_t* px) {
+    const FormatInfo fi = format_info(f);
+    if (fi.kind == ChannelKind::Float32) {
+        for (int c = 0; c < fi.channels; ++c) {
+            const float v = float(int(rng() % 20001) - 10000) / 4999.0f;
+            std::memcpy(px + 4 * c, &v, 4);
+        }
+    } else if (fi.kind == ChannelKind::Half) {
+        for (int c = 0; c < fi.channels; ++c) {
+            const uint16_t h = uint16_t(rng() % 0x4400u) | uint16_t((rng() & 1) << 15);  // finite, |x| < 4
+            std::memcpy(px + 2 * c, &h, 2);
+        }
+    } else {
+        for (int i = 0; i < fi.bytes; ++i) px[i] = uint8_t(rng());
+    }
+}
+
+struct Case {
+    const char* name;
+    ColorFormat format;
+    BlendAttachment a;
+};
+
+BlendAttachment ba(BlendFactor sc, BlendFactor dc, BlendOp co, BlendFactor sa, BlendFactor da, BlendOp ao,
+                   uint8_t mask = 0xf) {
+    BlendAttachment a;
+    a.blend_enable = true;
+    a.src_color = sc;
+    a.dst_color = dc;
+    a.color_op = co;
+    a.src_alpha = sa;
+    a.dst_alpha = da;
+    a.alpha_op = ao;
+    a.write_mask = mask;
+    return a;
+}
+
+}  // namespace
+
+namespace {
+
+struct Img {
+    VkImage img = VK_NULL_HANDLE;
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+};
+
+Img make_image(const Lvp& v, VkFormat f, VkSampleCountFlagBits samples, VkImageUsageFlags usage,
+               VkImageAspectFlags aspect) {
+    Img r;
+    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ii.imageType = VK_IMAGE_TYPE_2D;
+    ii.format = f;
+    ii.extent = {kW, kH, 1};
+    ii.mipLevels = ii.arrayLayers = 1;
+    ii.samples = samples;
+    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ii.usage = usage;
+    VKC(vkCreateImage(v.dev, &ii, nullptr, &r.img));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(v.dev, r.img, &req);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = v.mem_type(req.memoryTypeBits, 0);
+    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &r.mem));
+    VKC(vkBindImageMemory(v.dev, r.img, r.mem, 0));
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = r.img;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = f;
+    vi.subresourceRange = {aspect, 0, 1, 0, 1};
+    VKC(vkCreateImageView(v.dev, &vi, nullptr, &r.view));
+    return r;
+}
+void free_image(const Lvp& v, Img& i) {
+    vkDestroyImageView(v.dev, i.view, nullptr);
+    vkDestroyImage(v.dev, i.img, nullptr);
+    vkFreeMemory(v.dev, i.mem, nullptr);
+}
+
+struct PassSpec {
+    bool depth = false;  // depth-only pass writing gl_FragDepth, else colour (4x, per-sample) + resolve
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    bool depth_clamp = false;
+    float min_depth = 0.0f, max_depth = 1.0f;
+    bool per_pixel_color = false;  // colour pass: one colour per pixel (no sample shading) instead of per sample
+    bool alpha_to_coverage = false;
+    uint32_t sample_mask = 0xf;
+    bool interp = false;  // interp.vert/interp.frag with vertex data in the buffer, `samples` samples
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+    bool no_draw = false;  // only the render pass clear
+    float clear[4] = {};   // colour clear value
+};
+
+// Runs one pass and returns the readback (depth aspect, or the resolved colour image).
+std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vector<float>& data, uint32_t bpp) {
+    const VkSampleCountFlagBits samples = spec.depth ? VK_SAMPLE_COUNT_1_BIT : spec.samples;
+    const bool resolve = !spec.depth && samples != VK_SAMPLE_COUNT_1_BIT;
+    const VkImageAspectFlags aspect = spec.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    Img target =
+        make_image(v, spec.format, samples,
+                   (spec.depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) |
+                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                   aspect);
+    Img resolved;
+    if (resolve)
+        resolved = make_image(v, spec.format, VK_SAMPLE_COUNT_1_BIT,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, aspect);
+
+    VkAttachmentDescription att[2]{};
+    att[0].format = spec.format;
+    att[0].samples = samples;
+    att[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    att[1] = att[0];
+    att[1].samples = VK_SAMPLE_COUNT_1_BIT;
+    att[1].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    VkAttachmentReference r0{
+        0, spec.depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference r1{1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    if (spec.depth) {
+        sub.pDepthStencilAttachment = &r0;
+    } else {
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &r0;
+        if (resolve) sub.pResolveAttachments = &r1;
+    }
+    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rpi.attachmentCount = resolve ? 2 : 1;
+    rpi.pAttachments = att;
+    rpi.subpassCount = 1;
+    rpi.pSubpasses = &sub;
+    VkRenderPass rp;
+    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
+    VkImageView views[2] = {target.view, resolved.view};
+    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fbi.renderPass = rp;
+    fbi.attachmentCount = rpi.attachmentCount;
+    fbi.pAttachments = views;
+    fbi.width = kW;
+    fbi.height = kH;
+    fbi.layers = 1;
+    VkFramebuffer fb;
+    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+
+    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                    VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    dli.bindingCount = 1;
+    dli.pBindings = &b0;
+    VkDescriptorSetLayout dsl;
+    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
+    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &dsl;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+    VkPipelineLayout pl;
+    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
+    VkShaderModule vs = spec.interp ? make_shader(v, kInterpVert, sizeof kInterpVert)
+                                    : make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
+    VkShaderModule fs = spec.interp            ? make_shader(v, kInterpFrag, sizeof kInterpFrag)
+                        : spec.depth           ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
+                        : spec.per_pixel_color ? make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag)
+                                               : make_shader(v, kSampleColorFrag, sizeof kSampleColorFrag);
+    VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                             {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    st[0].module = vs;
+    st[0].pName = "main";
+    st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    st[1].module = fs;
+    st[1].pName = "main";
+    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkViewport vp{0, 0, float(kW), float(kH), spec.min_depth, spec.max_depth};
+    VkRect2D sc{{0, 0}, {kW, kH}};
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &vp;
+    vps.scissorCount = 1;
+    vps.pScissors = &sc;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_NONE;
+    rs.lineWidth = 1.0f;
+    rs.depthClampEnable = spec.depth_clamp;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = samples;
+    ms.sampleShadingEnable = !spec.depth && !spec.per_pixel_color && !spec.interp;
+    ms.minSampleShading = 1.0f;
+    const VkSampleMask smask = spec.sample_mask;
+    ms.pSampleMask = &smask;
+    ms.alphaToCoverageEnable = spec.alpha_to_coverage;
+    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    dss.depthTestEnable = VK_TRUE;
+    dss.depthWriteEnable = VK_TRUE;
+    dss.depthCompareOp = VK_COMPARE_OP_ALWAYS;
+    VkPipelineColorBlendAttachmentState cba{};
+    cba.colorWriteMask = 0xf;
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = spec.depth ? 0 : 1;
+    cb.pAttachments = &cba;
+    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    gpi.stageCount = 2;
+    gpi.pStages = st;
+    gpi.pVertexInputState = &vin;
+    gpi.pInputAssemblyState = &ia;
+    gpi.pViewportState = &vps;
+    gpi.pRasterizationState = &rs;
+    gpi.pMultisampleState = &ms;
+    gpi.pDepthStencilState = spec.depth ? &dss : nullptr;
+    gpi.pColorBlendState = &cb;
+    gpi.layout = pl;
+    gpi.renderPass = rp;
+    VkPipeline pipe;
+    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpi.maxSets = 1;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    VkDescriptorPool dp;
+    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = dp;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &dsl;
+    VkDescriptorSet ds;
+    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+    Buffer ssbo = make_buffer(v, data.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::memcpy(ssbo.map, data.data(), data.size() * 4);
+    Buffer xfer = make_buffer(v, VkDeviceSize(kW) * kH * bpp, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = ds;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &dbi;
+    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
+
+    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cai.commandPool = v.pool;
+    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
+    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VKC(vkBeginCommandBuffer(cmd, &cbi));
+    VkClearValue clear{};
+    std::memcpy(clear.color.float32, spec.clear, 16);
+    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rbi.renderPass = rp;
+    rbi.framebuffer = fb;
+    rbi.renderArea = sc;
+    rbi.clearValueCount = 1;
+    rbi.pClearValues = &clear;
+    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
+    const uint32_t width = kW;
+    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
+    if (!spec.no_draw) vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+    VkBufferImageCopy bic{};
+    bic.imageSubresource = {aspect, 0, 0, 1};
+    bic.imageExtent = {kW, kH, 1};
+    vkCmdCopyImageToBuffer(cmd, resolve ? resolved.img : target.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1,
+                           &bic);
+    VKC(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
+    VKC(vkQueueWaitIdle(v.queue));
+    std::vector<uint8_t> out(size_t(kW) * kH * bpp);
+    std::memcpy(out.data(), xfer.map, out.size());
+
+    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
+    free_buffer(v, ssbo);
+    free_buffer(v, xfer);
+    vkDestroyDescriptorPool(v.dev, dp, nullptr);
+    vkDestroyPipeline(v.dev, pipe, nullptr);
+    vkDestroyShaderModule(v.dev, vs, nullptr);
+    vkDestroyShaderModule(v.dev, fs, nullptr);
+    vkDestroyPipelineLayout(v.dev, pl, nullptr);
+    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
+    vkDestroyFramebuffer(v.dev, fb, nullptr);
+    vkDestroyRenderPass(v.dev, rp, nullptr);
+    free_image(v, target);
+    if (resolve) free_image(v, resolved);
+    return out;
+}
+
+float bits_f(uint32_t u) {
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
+
+}  // namespace
+
+namespace {
+
+VkStencilOpState to_vk(const StencilFace& f) {
+    VkStencilOpState s{};
+    s.failOp = VkStencilOp(f.fail_op);
+    s.passOp = VkStencilOp(f.pass_op);
+    s.depthFailOp = VkStencilOp(f.depth_fail_op);
+    s.compareOp = VkCompareOp(f.compare_op);
+    s.compareMask = f.compare_mask;
+    s.writeMask = f.write_mask;
+    s.reference = f.reference;
+    return s;
+}
+
+// D24S8 pass: initial depth/stencil from buffers, gl_FragDepth from `z`, returns (depth words, stencil bytes).
+void run_stencil_pass(const Lvp& v, const DepthStencilState& st, bool front, const std::vector<uint32_t>& d0,
+                      const std::vector<uint8_t>& s0, const std::vector<float>& z, std::vector<uint32_t>& d1,
+                      std::vector<uint8_t>& s1) {
+    const VkFormat vf = VK_FORMAT_D24_UNORM_S8_UINT;
+    const VkImageAspectFlags both = VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    Img img = make_image(
+        v, vf, VK_SAMPLE_COUNT_1_BIT,
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        both);
+    VkAttachmentDescription att{};
+    att.format = vf;
+    att.samples = VK_SAMPLE_COUNT_1_BIT;
+    att.loadOp = att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    att.storeOp = att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att.initialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    att.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkAttachmentReference r0{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.pDepthStencilAttachment = &r0;
+    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rpi.attachmentCount = 1;
+    rpi.pAttachments = &att;
+    rpi.subpassCount = 1;
+    rpi.pSubpasses = &sub;
+    VkRenderPass rp;
+    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
+    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fbi.renderPass = rp;
+    fbi.attachmentCount = 1;
+    fbi.pAttachments = &img.view;
+    fbi.width = kW;
+    fbi.height = kH;
+    fbi.layers = 1;
+    VkFramebuffer fb;
+    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    dli.bindingCount = 1;
+    dli.pBindings = &b0;
+    VkDescriptorSetLayout dsl;
+    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
+    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &dsl;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+    VkPipelineLayout pl;
+    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
+    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
+    VkShaderModule fs = make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag);
+    VkPipelineShaderStageCreateInfo stg[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                              {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stg[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stg[0].module = vs;
+    stg[0].pName = "main";
+    stg[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stg[1].module = fs;
+    stg[1].pName = "main";
+    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
+    VkRect2D sc{{0, 0}, {kW, kH}};
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &vp;
+    vps.scissorCount = 1;
+    vps.pScissors = &sc;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_NONE;
+    // The full-screen triangle has negative Vulkan area: it is front-facing with CLOCKWISE.
+    rs.frontFace = front ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    dss.depthTestEnable = st.depth_test;
+    dss.depthWriteEnable = st.depth_write;
+    dss.depthCompareOp = VkCompareOp(st.depth_compare);
+    dss.stencilTestEnable = st.stencil_test;
+    dss.front = to_vk(st.front);
+    dss.back = to_vk(st.back);
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    gpi.stageCount = 2;
+    gpi.pStages = stg;
+    gpi.pVertexInputState = &vin;
+    gpi.pInputAssemblyState = &ia;
+    gpi.pViewportState = &vps;
+    gpi.pRasterizationState = &rs;
+    gpi.pMultisampleState = &ms;
+    gpi.pDepthStencilState = &dss;
+    gpi.pColorBlendState = &cb;
+    gpi.layout = pl;
+    gpi.renderPass = rp;
+    VkPipeline pipe;
+    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpi.maxSets = 1;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    VkDescriptorPool dp;
+    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
+    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = dp;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &dsl;
+    VkDescriptorSet ds;
+    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+    const size_t n = size_t(kW) * kH;
+    Buffer ssbo = make_buffer(v, n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::memcpy(ssbo.map, z.data(), n * 4);
+    Buffer xfer = make_buffer(v, n * 5, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    std::memcpy(xfer.map, d0.data(), n * 4);
+    std::memcpy(static_cast<uint8_t*>(xfer.map) + n * 4, s0.data(), n);
+    VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = ds;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &dbi;
+    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
+
+    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cai.commandPool = v.pool;
+    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
+    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    VKC(vkBeginCommandBuffer(cmd, &cbi));
+    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    bar.image = img.img;
+    bar.subresourceRange = {both, 0, 1, 0, 1};
+    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &bar);
+    VkBufferImageCopy bic[2]{};
+    bic[0].imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    bic[0].imageExtent = {kW, kH, 1};
+    bic[1] = bic[0];
+    bic[1].imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+    bic[1].bufferOffset = n * 4;
+    vkCmdCopyBufferToImage(cmd, xfer.buf, img.img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 2, bic);
+    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.newLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    bar.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 0, nullptr,
+                         0, nullptr, 1, &bar);
+    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rbi.renderPass = rp;
+    rbi.framebuffer = fb;
+    rbi.renderArea = sc;
+    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
+    const uint32_t width = kW;
+    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+    vkCmdCopyImageToBuffer(cmd, img.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 2, bic);
+    VKC(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
+    VKC(vkQueueWaitIdle(v.queue));
+    d1.resize(n);
+    s1.resize(n);
+    std::memcpy(d1.data(), xfer.map, n * 4);
+    std::memcpy(s1.data(), static_cast<uint8_t*>(xfer.map) + n * 4, n);
+
+    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
+    free_buffer(v, ssbo);
+    free_buffer(v, xfer);
+    vkDestroyDescriptorPool(v.dev, dp, nullptr);
+    vkDestroyPipeline(v.dev, pipe, nullptr);
+    vkDestroyShaderModule(v.dev, vs, nullptr);
+    vkDestroyShaderModule(v.dev, fs, nullptr);
+    vkDestroyPipelineLayout(v.dev, pl, nullptr);
+    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
+    vkDestroyFramebuffer(v.dev, fb, nullptr);
+    vkDestroyRenderPass(v.dev, rp, nullptr);
+    free_image(v, img);
+}
+
+}  // namespace
+
+namespace {
+
+struct SetupPlane {
+    // lp_state_setup.c emit_tri_coef with unfused float ops; v are the re-ordered window positions.
+    static Plane make(const float vx[3], const float vy[3], const float a[3], float pc) {
+        volatile float x0c = vx[0] - pc, y0c = vy[0] - pc;
+        volatile float dx01 = vx[0] - vx[1], dy01 = vy[0] - vy[1];
+        volatile float dx20 = vx[2] - vx[0], dy20 = vy[2] - vy[0];
+        volatile float m1 = dx01 * dy20, m2 = dy01 * dx20;
+        volatile float area = m1 - m2;
+        volatile float ooa = 1.0f / area;
+        volatile float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
+        volatile float da01 = a[0] - a[1], da20 = a[2] - a[0];
+        volatile float t1 = da01 * dy20o, t2 = da20 * dy01o;
+        volatile float dadx = t1 - t2;
+        volatile float t3 = da20 * dx01o, t4 = da01 * dx20o;
+        volatile float dady = t3 - t4;
+        volatile float u1 = dadx * x0c, u2 = dady * y0c;
+        volatile float s = u1 + u2;
+        volatile float a0 = a[0] - s;
+        return Plane{dadx, dady, a0};
+    }
+};
+
+}  // namespace
