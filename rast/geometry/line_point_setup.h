@@ -67,7 +67,9 @@ struct PointSetup {
     AttribPlane pos;  // z and 1/w constant (v0's), x/y identity planes
 };
 
-// size: PointSize (clamped to 255; NaN or <= 1 px give a 1-pixel square, as in lavapipe).
+// size: PointSize as written by the vertex shader (pass 1.0 when it writes none); clamped to 255, NaN or <= 1 px
+// give a 1-pixel square, as in lavapipe. Attributes must be in fragment-input order (point_persp_coeff indexes
+// the vertex by input slot, which only equals the attribute when the layouts agree — they do for lavapipe).
 // All attributes are constant: a0 = value (perspective ones premultiplied by 1/w), dadx = dady = 0.
 PrimSetupStatus setup_point(const PointSetupConfig& cfg, const float* v, float size, PointSetup* out,
                             AttribPlane* attribs);

@@ -51,23 +51,19 @@ uint32_t fetch_index(const IndexSource& src, uint32_t i, bool* is_restart) {
 namespace {
 
 // Emits the primitives of one restart-free run of vertex indices v[0..n).
+// Appends whole primitives while they fit; never writes past `cap`.
 struct Emitter {
     Topology t;
-    bool first;
     uint32_t* out;
     size_t cap;
     size_t used = 0;
     uint32_t prims = 0;
 
-    void put(uint32_t a) {
-        if (used < cap) out[used++] = a;
-    }
-    void emit(const uint32_t* idx, uint32_t k) {
+    void emit(const uint32_t* idx) {
         const uint32_t per = vertices_per_primitive(t);
         if (used + per > cap) return;
-        for (uint32_t j = 0; j < per; ++j) put(idx[j]);
+        for (uint32_t j = 0; j < per; ++j) out[used++] = idx[j];
         ++prims;
-        (void)k;
     }
 };
 
@@ -75,7 +71,7 @@ struct Emitter {
 
 uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_first, uint32_t* out,
                              size_t out_capacity) {
-    Emitter e{t, flatshade_first, out, out_capacity};
+    Emitter e{t, out, out_capacity};
     // State of the current run: run position n, first vertex (fans), last two vertices (strips/lists).
     uint32_t n = 0;
     uint32_t v0 = 0, prev2 = 0, prev1 = 0;
@@ -90,20 +86,20 @@ uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_
         switch (t) {
             case Topology::kPointList:
                 p[0] = v;
-                e.emit(p, n);
+                e.emit(p);
                 break;
             case Topology::kLineList:
                 if (n & 1) {
                     p[0] = prev1;
                     p[1] = v;
-                    e.emit(p, n);
+                    e.emit(p);
                 }
                 break;
             case Topology::kLineStrip:
                 if (n >= 1) {
                     p[0] = prev1;
                     p[1] = v;
-                    e.emit(p, n);
+                    e.emit(p);
                 }
                 break;
             case Topology::kTriangleList:
@@ -111,7 +107,7 @@ uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_
                     p[0] = prev2;
                     p[1] = prev1;
                     p[2] = v;
-                    e.emit(p, n);
+                    e.emit(p);
                 }
                 break;
             case Topology::kTriangleStrip:
@@ -128,7 +124,7 @@ uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_
                         p[1] = odd ? prev2 : prev1;
                         p[2] = v;
                     }
-                    e.emit(p, n);
+                    e.emit(p);
                 }
                 break;
             case Topology::kTriangleFan:
@@ -142,7 +138,7 @@ uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_
                         p[1] = prev1;
                         p[2] = v;
                     }
-                    e.emit(p, n);
+                    e.emit(p);
                 }
                 break;
         }
