@@ -121,15 +121,18 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
 
 void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
     // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
-    // at most six 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
-    // them gets a single 4-px level at its own (4-aligned, not 16-aligned) origin. Values up to 12 px past the tile
-    // edge stay within 2^30 + 12*2^24.
+    // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
+    // them gets the 4-px level in one 16-px window at its own (4-aligned, not 16-aligned) origin. Windows reach at most
+    // 15 px past the tile edge, where values stay within 2^30 + 15*2^24 < 2^31; lanes outside the box are ignored.
     const RelBox r = rel_box(prim, t);
     const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
-    if ((bw + 1) * (bh + 1) <= 6) return scan_blocks(prim, t, planes, n, r, out);
+    if ((bw + 1) * (bh + 1) <= 12) return scan_blocks(prim, t, planes, n, r, out);
     if (bw <= 3 && bh <= 3) {
-        const int32_t ox = r.x0 & ~3, oy = r.y0 & ~3;
-        return hier_block16(prim, t, planes, n, ox, oy, lanes_in_box(ox, oy, 2, r.x0, r.y0, r.x1, r.y1), out);
+        // One 16x16-px window anchored at the box (the tile-aligned 16-px grid might cut it into four).
+        for (int32_t oy = r.y0 & ~3; oy <= r.y1; oy += 16)
+            for (int32_t ox = r.x0 & ~3; ox <= r.x1; ox += 16)
+                hier_block16(prim, t, planes, n, ox, oy, lanes_in_box(ox, oy, 2, r.x0, r.y0, r.x1, r.y1), out);
+        return;
     }
     if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, lanes_in_box(0, 0, 2, r.x0, r.y0, r.x1, r.y1), out);
     uint32_t live, full, acc[Prim::kMaxPlanes];
