@@ -626,6 +626,11 @@ void Translator::op(const Instr& in) {
             emit(SOp::Not, def(), p_.reg_live);
             return;
         // memory
+        case spv::Op::OpUndef: {  // undefined value: zeros (deterministic)
+            uint32_t d = def();
+            for (uint32_t i = 0; i < std::max(1u, type(in[1]).flat); ++i) emit(SOp::Mov, d + i, zero_);
+            return;
+        }
         case spv::Op::OpVariable: {  // function variable (memory assigned in translate.cpp); initializer
             const Value& v = val(in[2]);
             if (in.n > 4) store(pointers_[size_t(v.ptr)], pointers_[size_t(v.ptr)].type, reg(in[4]), 0);
