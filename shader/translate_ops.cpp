@@ -773,7 +773,8 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpImageQuerySizeLod:
         case spv::Op::OpImageQuerySize: {
             const Type& it = type(val(in[3]).type);
-            uint32_t flags = (it.arrayed ? kSampleArray : 0) | (spv::Dim(it.dim) == spv::Dim::Dim1D ? kSample1D : 0);
+            uint32_t flags = (it.arrayed ? uint32_t(kSampleArray) : 0u) |
+                             (spv::Dim(it.dim) == spv::Dim::Dim1D ? uint32_t(kSample1D) : 0u);
             uint32_t lod = in.op == spv::Op::OpImageQuerySizeLod ? reg(in[4]) : zero_;
             emit(SOp::QuerySize, def(), reg(in[3]), lod, kNoReg, flags, std::max(1u, type(in[1]).flat));
             return;
