@@ -16,6 +16,20 @@ namespace tilevk::shader {
 namespace {
 
 using f32a = float __attribute__((may_alias));
+// Whole-register vector types (GCC vector extension): one operation over all 16 lanes, AVX2 or SSE alike.
+using VF = float __attribute__((vector_size(64)));
+using VU = uint32_t __attribute__((vector_size(64)));
+using VS = int32_t __attribute__((vector_size(64)));
+template <typename V>
+inline V vload(const uint32_t* p) {
+    V v;
+    std::memcpy(&v, p, sizeof(v));
+    return v;
+}
+template <typename V>
+inline void vstore(uint32_t* p, V v) {
+    std::memcpy(p, &v, sizeof(v));
+}
 using i32a = int32_t __attribute__((may_alias));
 
 #define LANES for (int l = 0; l < kLanes; ++l)
@@ -110,79 +124,71 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
 #define SA reinterpret_cast<const i32a*>(A)
 #define SB reinterpret_cast<const i32a*>(B)
 #define SC reinterpret_cast<const i32a*>(C)
-#define U1(expr)                          \
-    {                                     \
-        uint32_t* __restrict d = D;       \
-        const uint32_t* __restrict a = A; \
-        LANES d[l] = (expr);              \
-    }                                     \
+// Operands are copied into local arrays: they cannot alias, so GCC vectorizes every lane loop (register
+// pointers would need alias checks it does not emit). The copies compile to plain vector loads and stores.
+#define LOAD_U(x, src)              \
+    alignas(64) uint32_t x[kLanes]; \
+    std::memcpy(x, src, sizeof(x));
+#define LOAD_F(x, src)           \
+    alignas(64) float x[kLanes]; \
+    std::memcpy(x, src, sizeof(x));
+#define LOAD_S(x, src)             \
+    alignas(64) int32_t x[kLanes]; \
+    std::memcpy(x, src, sizeof(x));
+#define KERNEL(DT, load_a, load_b, expr)        \
+    {                                           \
+        load_a load_b alignas(64) DT d[kLanes]; \
+        LANES d[l] = (expr);                    \
+        std::memcpy(D, d, sizeof(d));           \
+    }                                           \
     break;
-#define F1(expr)                       \
-    {                                  \
-        f32a* __restrict d = FD;       \
-        const f32a* __restrict a = FA; \
-        LANES d[l] = (expr);           \
-    }                                  \
+#define VOP2(V, expr)                       \
+    {                                       \
+        V a = vload<V>(A), b = vload<V>(B); \
+        vstore(D, (expr));                  \
+    }                                       \
     break;
-#define F2(expr)                                            \
-    {                                                       \
-        f32a* __restrict d = FD;                            \
-        const f32a* __restrict a = FA, * __restrict b = FB; \
-        LANES d[l] = (expr);                                \
-    }                                                       \
+#define VOP1(V, expr)      \
+    {                      \
+        V a = vload<V>(A); \
+        vstore(D, (expr)); \
+    }                      \
     break;
-#define FCMP(expr)                                          \
-    {                                                       \
-        uint32_t* __restrict d = D;                         \
-        const f32a* __restrict a = FA, * __restrict b = FB; \
-        LANES d[l] = mask(expr);                            \
-    }                                                       \
-    break;
-#define U2(expr)                                              \
-    {                                                         \
-        uint32_t* __restrict d = D;                           \
-        const uint32_t* __restrict a = A, * __restrict b = B; \
-        LANES d[l] = (expr);                                  \
-    }                                                         \
-    break;
-#define S2(expr)                                            \
-    {                                                       \
-        uint32_t* __restrict d = D;                         \
-        const i32a* __restrict a = SA, * __restrict b = SB; \
-        LANES d[l] = uint32_t(expr);                        \
-    }                                                       \
-    break;
+#define U1(expr) KERNEL(uint32_t, LOAD_U(a, A), , expr)
+#define F1(expr) KERNEL(float, LOAD_F(a, A), , expr)
+#define F2(expr) KERNEL(float, LOAD_F(a, A), LOAD_F(b, B), expr)
+#define FCMP(expr) KERNEL(uint32_t, LOAD_F(a, A), LOAD_F(b, B), mask(expr))
+#define U2(expr) KERNEL(uint32_t, LOAD_U(a, A), LOAD_U(b, B), expr)
+#define S2(expr) KERNEL(uint32_t, LOAD_S(a, A), LOAD_S(b, B), uint32_t(expr))
         switch (in.op) {
             case Op::Mov:
-                U1(a[l])
+                VOP1(VU, a)
             case Op::Select: {
-                uint32_t* __restrict d = D;
-                const uint32_t* __restrict a = A, * __restrict b = B, * __restrict c = C;
-                LANES d[l] = (c[l] & a[l]) | (~c[l] & b[l]);
+                VU a = vload<VU>(A), b = vload<VU>(B), c = vload<VU>(C);
+                vstore(D, (c & a) | (~c & b));
                 break;
             }
             case Op::MaskedMov: {
-                uint32_t* __restrict d = D;
-                const uint32_t* __restrict a = A, * __restrict c = C;
-                LANES d[l] = (c[l] & a[l]) | (~c[l] & d[l]);
+                VU a = vload<VU>(A), c = vload<VU>(C), d = vload<VU>(D);
+                vstore(D, (c & a) | (~c & d));
                 break;
             }
             case Op::FAdd:
-                F2(a[l] + b[l])
+                VOP2(VF, a + b)
             case Op::FSub:
-                F2(a[l] - b[l])
+                VOP2(VF, a - b)
             case Op::FMul:
-                F2(a[l] * b[l])
+                VOP2(VF, a * b)
             case Op::FDiv:
-                F2(a[l] / b[l])
+                VOP2(VF, a / b)
             case Op::FNeg:
-                U1(a[l] ^ 0x80000000u)
+                VOP1(VU, a ^ 0x80000000u)
             case Op::FAbs:
-                U1(a[l] & 0x7fffffffu)
+                VOP1(VU, a & 0x7fffffffu)
             case Op::FMin:
-                F2(min_f(a[l], b[l]))
+                VOP2(VF, ((a < b) | (b != b)) ? a : b)
             case Op::FMax:
-                F2(max_f(a[l], b[l]))
+                VOP2(VF, ((a > b) | (b != b)) ? a : b)
             // mod(x, y) = x - y * floor(x / y)
             case Op::FMod:
                 F2(a[l] - b[l] * std::floor(a[l] / b[l]))
@@ -195,39 +201,39 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 break;
             }
             case Op::FOrdEq:
-                FCMP(a[l] == b[l])
+                VOP2(VF, VU(a == b))
             case Op::FOrdNe:
-                FCMP(a[l] < b[l] || a[l] > b[l])
+                VOP2(VF, VU((a < b) | (a > b)))
             case Op::FOrdLt:
-                FCMP(a[l] < b[l])
+                VOP2(VF, VU(a < b))
             case Op::FOrdLe:
-                FCMP(a[l] <= b[l])
+                VOP2(VF, VU(a <= b))
             case Op::FOrdGt:
-                FCMP(a[l] > b[l])
+                VOP2(VF, VU(a > b))
             case Op::FOrdGe:
-                FCMP(a[l] >= b[l])
+                VOP2(VF, VU(a >= b))
             case Op::FUnordEq:
-                FCMP(!(a[l] < b[l] || a[l] > b[l]))
+                VOP2(VF, ~VU((a < b) | (a > b)))
             case Op::FUnordNe:
-                FCMP(!(a[l] == b[l]))
+                VOP2(VF, ~VU(a == b))
             case Op::FUnordLt:
-                FCMP(!(a[l] >= b[l]))
+                VOP2(VF, ~VU(a >= b))
             case Op::FUnordLe:
-                FCMP(!(a[l] > b[l]))
+                VOP2(VF, ~VU(a > b))
             case Op::FUnordGt:
-                FCMP(!(a[l] <= b[l]))
+                VOP2(VF, ~VU(a <= b))
             case Op::FUnordGe:
-                FCMP(!(a[l] < b[l]))
+                VOP2(VF, ~VU(a < b))
             case Op::IsNan:
                 U1(mask((a[l] & 0x7fffffffu) > 0x7f800000u))
             case Op::IsInf:
                 U1(mask((a[l] & 0x7fffffffu) == 0x7f800000u))
             case Op::IAdd:
-                U2(a[l] + b[l])
+                VOP2(VU, a + b)
             case Op::ISub:
-                U2(a[l] - b[l])
+                VOP2(VU, a - b)
             case Op::IMul:
-                U2(a[l] * b[l])
+                VOP2(VU, a * b)
             // division by zero: udiv gives 0xFFFFFFFF, sdiv 0 (as llvmpipe); INT_MIN / -1 = INT_MIN
             case Op::UDiv:
                 U2(b[l] ? a[l] / b[l] : 0xFFFFFFFFu)
@@ -249,49 +255,49 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 break;
             }
             case Op::INeg:
-                U1(0u - a[l])
+                VOP1(VU, 0u - a)
             case Op::And:
-                U2(a[l] & b[l])
+                VOP2(VU, a & b)
             case Op::Or:
-                U2(a[l] | b[l])
+                VOP2(VU, a | b)
             case Op::Xor:
-                U2(a[l] ^ b[l])
+                VOP2(VU, a ^ b)
             case Op::Not:
-                U1(~a[l])
+                VOP1(VU, ~a)
             case Op::Shl:
-                U2(a[l] << (b[l] & 31))
+                VOP2(VU, a << (b & 31u))
             case Op::ShrL:
-                U2(a[l] >> (b[l] & 31))
+                VOP2(VU, a >> (b & 31u))
             case Op::ShrA:
-                S2(a[l] >> (b[l] & 31))
+                VOP2(VS, a >> (b & 31))
             case Op::IEq:
-                U2(mask(a[l] == b[l]))
+                VOP2(VU, VU(a == b))
             case Op::INe:
-                U2(mask(a[l] != b[l]))
+                VOP2(VU, VU(a != b))
             case Op::SLt:
-                S2(mask(a[l] < b[l]))
+                VOP2(VS, VU(a < b))
             case Op::SLe:
-                S2(mask(a[l] <= b[l]))
+                VOP2(VS, VU(a <= b))
             case Op::SGt:
-                S2(mask(a[l] > b[l]))
+                VOP2(VS, VU(a > b))
             case Op::SGe:
-                S2(mask(a[l] >= b[l]))
+                VOP2(VS, VU(a >= b))
             case Op::ULt:
-                U2(mask(a[l] < b[l]))
+                VOP2(VU, VU(a < b))
             case Op::ULe:
-                U2(mask(a[l] <= b[l]))
+                VOP2(VU, VU(a <= b))
             case Op::UGt:
-                U2(mask(a[l] > b[l]))
+                VOP2(VU, VU(a > b))
             case Op::UGe:
-                U2(mask(a[l] >= b[l]))
+                VOP2(VU, VU(a >= b))
             case Op::SMin:
-                S2(std::min(a[l], b[l]))
+                VOP2(VS, (a < b) ? a : b)
             case Op::SMax:
-                S2(std::max(a[l], b[l]))
+                VOP2(VS, (a > b) ? a : b)
             case Op::UMin:
-                U2(std::min(a[l], b[l]))
+                VOP2(VU, (a < b) ? a : b)
             case Op::UMax:
-                U2(std::max(a[l], b[l]))
+                VOP2(VU, (a > b) ? a : b)
             case Op::SAbs:
                 U1(int32_t(a[l]) < 0 ? 0u - a[l] : a[l])
             case Op::SSign:
@@ -541,16 +547,13 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 }
                 break;
             }
-            case Op::LoadLocalFixed: {
-                uint32_t* __restrict d = D;
-                const uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
-                LANES d[l] = m[l];
+            case Op::LoadLocalFixed:
+                vstore(D, vload<VU>(M + size_t(in.imm) * kLanes));
                 break;
-            }
             case Op::StoreLocalFixed: {
-                uint32_t* __restrict m = M + size_t(in.imm) * kLanes;
-                const uint32_t* __restrict b = B, * __restrict c = C;
-                LANES m[l] = (c[l] & b[l]) | (~c[l] & m[l]);
+                uint32_t* m = M + size_t(in.imm) * kLanes;
+                VU b = vload<VU>(B), c = vload<VU>(C), old = vload<VU>(m);
+                vstore(m, (c & b) | (~c & old));
                 break;
             }
             case Op::LoadBuf: {

@@ -331,7 +331,7 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                 is_type_[in[1]] = 1;
                 break;
             case spv::Op::OpTypeBool:
-                types_[in[1]] = Type{Type::Bool};
+                types_[in[1]] = Type{}, types_[in[1]].kind = Type::Bool;
                 types_[in[1]].flat = 1;
                 is_type_[in[1]] = 1;
                 break;
@@ -385,7 +385,7 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                 break;
             }
             case spv::Op::OpTypePointer:
-                types_[in[1]] = Type{Type::Pointer};
+                types_[in[1]] = Type{}, types_[in[1]].kind = Type::Pointer;
                 types_[in[1]].storage = spv::StorageClass(in[2]);
                 types_[in[1]].elem = in[3];
                 is_type_[in[1]] = 1;
@@ -411,12 +411,12 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                 break;
             }
             case spv::Op::OpTypeSampler:
-                types_[in[1]] = Type{Type::Sampler};
+                types_[in[1]] = Type{}, types_[in[1]].kind = Type::Sampler;
                 types_[in[1]].flat = 1;
                 is_type_[in[1]] = 1;
                 break;
             case spv::Op::OpTypeSampledImage:
-                types_[in[1]] = Type{Type::SampledImage};
+                types_[in[1]] = Type{}, types_[in[1]].kind = Type::SampledImage;
                 types_[in[1]].elem = in[2];
                 types_[in[1]].flat = 1;
                 is_type_[in[1]] = 1;
@@ -641,7 +641,10 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
         const Instr& in = ins[k];
         if (in.op == spv::Op::OpLabel) {
             block_of[in[1]] = uint32_t(blocks.size());
-            blocks.push_back(Block{in[1], k + 1, k + 1});
+            Block nb;
+            nb.label = in[1];
+            nb.first = nb.end = k + 1;
+            blocks.push_back(nb);
         } else if (in.op == spv::Op::OpVariable) {
             // Function-scope variable: local SoA memory.
             if (blocks.empty()) fail("variable outside a block");

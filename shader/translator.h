@@ -100,6 +100,7 @@ class Translator {
 
     // translate_ops.cpp
     void op(const Instr& in);
+    void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450
 
     [[noreturn]] static void fail(const std::string& m) { throw TranslateError{m}; }
 

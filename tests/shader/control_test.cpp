@@ -264,3 +264,84 @@ TEST(ShaderControl, FunctionsAreInlined) {
         EXPECT_EQ(r.out(l, 1), b + b + b);
     }
 }
+
+TEST(ShaderControl, DoWhileComplexContinueAndInfiniteLoopBreak) {
+    FsRun r(R"(
+        int n = int(v.x);
+        int a = 0;
+        do { a += 3; } while (a < n);
+        int b = 0;
+        for (int i = 0; i < n; i += (((i & 1) == 0) ? 1 : 2)) {
+            if (i > 5 && v.y > 0.0) { b += 100; continue; }
+            b += i;
+        }
+        int c = 0;
+        while (true) {
+            c++;
+            if (c * 2 > n) {
+                if (v.y > 0.0) break;
+                c += 1000;
+                break;
+            }
+        }
+        color = vec4(float(a), float(b), float(c), 0.0);
+    )");
+    for (int l = 0; l < kLanes; ++l) {
+        r.set_v(l, 0, float(l * 2));
+        r.set_v(l, 1, l % 3 == 0 ? -1.0f : 1.0f);
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        int n = l * 2;
+        float y = l % 3 == 0 ? -1.0f : 1.0f;
+        int a = 0;
+        do {
+            a += 3;
+        } while (a < n);
+        int b = 0;
+        for (int i = 0; i < n; i += ((i & 1) == 0 ? 1 : 2)) {
+            if (i > 5 && y > 0.0f) {
+                b += 100;
+                continue;
+            }
+            b += i;
+        }
+        int c = 0;
+        while (true) {
+            c++;
+            if (c * 2 > n) {
+                if (y > 0.0f) break;
+                c += 1000;
+                break;
+            }
+        }
+        EXPECT_EQ(r.out(l, 0), float(a)) << l;
+        EXPECT_EQ(r.out(l, 1), float(b)) << l;
+        EXPECT_EQ(r.out(l, 2), float(c)) << l;
+    }
+}
+
+TEST(ShaderControl, DemoteKeepsHelperRunning) {
+    auto spirv = tilevk::shader::test::compile_glsl(Stage::Fragment, R"(#version 450
+        #extension GL_EXT_demote_to_helper_invocation : require
+        layout(location=0) in vec4 v;
+        layout(location=0) out vec4 color;
+        void main() {
+            if (v.x > 1.5) demote;
+            color = vec4(dFdx(v.x), helperInvocationEXT() ? 1.0 : 0.0, 0.0, 1.0);
+        })",
+                                                    true);
+    Result res = Program::create(spirv, Stage::Fragment);
+    ASSERT_TRUE(res) << res.error;
+    FragmentBlock fb;
+    for (int l = 0; l < kLanes; ++l) fb.inputs[0][0][l] = u(float(lane_x(l)));
+    Scratch s;
+    res.program->run_fragment(Bindings{}, fb, s);
+    uint32_t live = 0;
+    for (int l = 0; l < kLanes; ++l) {
+        if (lane_x(l) <= 1) live |= 1u << l;
+        EXPECT_EQ(f(fb.outputs[0][0][l]), 1.0f) << l;  // derivative still from the demoted neighbour
+        EXPECT_EQ(f(fb.outputs[0][1][l]), lane_x(l) > 1 ? 1.0f : 0.0f) << l;
+    }
+    EXPECT_EQ(fb.live_mask, live);
+}
