@@ -137,8 +137,11 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     properties.limits = make_limits();
     properties.sparseProperties = {};
 
-    // Features: everything off until the render path proves it (see icd/README.md).
+    // Features: only what the render path implements (see icd/README.md).
     features = {};
+    features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
+    features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
+    features.independentBlend = VK_TRUE;
 
     memory.memoryTypeCount = 1;
     memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
@@ -207,17 +210,18 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_TRANSFER_DST_BIT) need |= VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
     if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    // Sampling, storage and input attachments need the shader path, which is not there yet.
-    if (usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT)) {
-        return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    }
+    if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    // Storage images and input attachments are not implemented by the shader path.
+    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f)
+    // Multisampled images cannot be sampled (the shader path reads one sample per texel).
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f) &&
+                                   !(usage & VK_IMAGE_USAGE_SAMPLED_BIT)
                                ? kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;
