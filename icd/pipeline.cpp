@@ -150,9 +150,17 @@ std::string build_pipeline(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) 
         case VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN:
             s.topology = rast::geometry::Topology::kTriangleFan;
             break;
+        case VK_PRIMITIVE_TOPOLOGY_POINT_LIST:
+            s.topology = rast::geometry::Topology::kPointList;
+            break;
+        case VK_PRIMITIVE_TOPOLOGY_LINE_LIST:
+            s.topology = rast::geometry::Topology::kLineList;
+            break;
+        case VK_PRIMITIVE_TOPOLOGY_LINE_STRIP:
+            s.topology = rast::geometry::Topology::kLineStrip;
+            break;
         default:
-            // Points and lines: rast/render does not rasterize them yet (icd/README.md).
-            return "primitive topology " + std::to_string(ia.topology) + " is not rasterized yet";
+            return "primitive topology " + std::to_string(ia.topology) + " (adjacency / patches) is not supported";
     }
     s.primitive_restart = ia.primitiveRestartEnable;
 
