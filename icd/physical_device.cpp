@@ -105,10 +105,13 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxCullDistances = 0;
     l.maxCombinedClipAndCullDistances = 0;
     l.discreteQueuePriorities = 2;
-    l.pointSizeRange[0] = l.pointSizeRange[1] = 1.0f;  // largePoints is off
-    l.lineWidthRange[0] = l.lineWidthRange[1] = 1.0f;  // wideLines is off
-    l.pointSizeGranularity = 0.0f;
-    l.lineWidthGranularity = 0.0f;
+    // lavapipe's ranges (notes §6): point sizes clamp at 255, line widths in [1, 255].
+    l.pointSizeRange[0] = 0.0f;
+    l.pointSizeRange[1] = 255.0f;
+    l.lineWidthRange[0] = 1.0f;
+    l.lineWidthRange[1] = 255.0f;
+    l.pointSizeGranularity = 0.125f;
+    l.lineWidthGranularity = 0.0078125f;
     l.strictLines = VK_FALSE;
     l.standardSampleLocations = VK_TRUE;  // lavapipe's 4x positions are the standard ones
     l.optimalBufferCopyOffsetAlignment = 1;
@@ -142,6 +145,8 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
     features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
     features.independentBlend = VK_TRUE;
+    features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
+    features.wideLines = VK_TRUE;    // rast/geometry setup_line: rectangular lines of any width
 
     memory.memoryTypeCount = 1;
     memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
