@@ -30,6 +30,7 @@ struct Staged {
     uint8_t* image = nullptr;
     size_t row_pitch = 0;
     uint32_t samples = 1, texel_bytes = 0, byte_offset = 0, elem = 0, w = 0, h = 0;
+    uint32_t copy_bytes = 0;  // bytes of each element that belong to this aspect (D24S8 depth: 3 of 4)
     std::vector<uint8_t> plane;
 };
 
@@ -62,9 +63,9 @@ void copy_planes(Staged& s, bool to_staging) {
                 uint8_t* img = s.image + y * s.row_pitch + (size_t(x) * s.samples + sm) * s.texel_bytes + s.byte_offset;
                 uint8_t* pl = s.plane.data() + sm * plane_size + (size_t(y) * s.w + x) * s.elem;
                 if (to_staging)
-                    std::memcpy(pl, img, s.elem);
+                    std::memcpy(pl, img, s.copy_bytes);
                 else
-                    std::memcpy(img, pl, s.elem);
+                    std::memcpy(img, pl, s.copy_bytes);
             }
 }
 
@@ -74,12 +75,15 @@ struct PlaneRef {
     uint8_t* data;
     size_t row_pitch, sample_stride;
 };
-PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t byte_offset, uint32_t w, uint32_t h) {
+PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t byte_offset, uint32_t w, uint32_t h,
+                  uint32_t copy_bytes = 0) {
     const Image& img = *v.image;
     const uint32_t level = v.range.baseMipLevel;
     uint8_t* base = img.texel(level, v.range.baseArrayLayer, 0, 0);
     const size_t pitch = img.layout.row_pitch[level];
-    if (img.samples == 1 && img.format->texel_bytes == elem) return {base + byte_offset, pitch, 0};
+    if (copy_bytes == 0) copy_bytes = elem;
+    if (img.samples == 1 && img.format->texel_bytes == elem && copy_bytes == elem)
+        return {base + byte_offset, pitch, 0};
     Staged& s = ctx.staged.emplace_back();
     s.image = base;
     s.row_pitch = pitch;
@@ -87,6 +91,7 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t 
     s.texel_bytes = img.format->texel_bytes;
     s.byte_offset = byte_offset;
     s.elem = elem;
+    s.copy_bytes = copy_bytes;
     s.w = w;
     s.h = h;
     s.plane.resize(size_t(w) * h * elem * s.samples);
@@ -123,7 +128,10 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
         rr::DepthStencilTarget& t = fb.depth_stencil;
         t.format = depth_format_of(v.format->format);
         if (t.format != rast::fragment::DepthFormat::None) {
-            const PlaneRef p = plane_of(ctx, v, uint32_t(rr::depth_bytes(t.format)), 0, fbo.width, fbo.height);
+            // X8D24 (D24_UNORM_S8_UINT): the renderer's 32-bit depth words get the 24 depth bits, the top byte
+            // (the image's stencil) stays 0 in staging and is never written back.
+            const uint32_t copy = t.format == rast::fragment::DepthFormat::X8D24 ? 3 : 0;
+            const PlaneRef p = plane_of(ctx, v, uint32_t(rr::depth_bytes(t.format)), 0, fbo.width, fbo.height, copy);
             t.depth = p.data;
             t.depth_row_pitch = p.row_pitch;
             t.depth_sample_stride = p.sample_stride;

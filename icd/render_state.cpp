@@ -96,6 +96,8 @@ rast::fragment::DepthFormat depth_format_of(VkFormat f) {
         case VK_FORMAT_D32_SFLOAT:
         case VK_FORMAT_D32_SFLOAT_S8_UINT:
             return DepthFormat::D32F;
+        case VK_FORMAT_D24_UNORM_S8_UINT:
+            return DepthFormat::X8D24;
         default:
             return DepthFormat::None;
     }
