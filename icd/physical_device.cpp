@@ -146,7 +146,9 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
     features.independentBlend = VK_TRUE;
     features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
-    features.wideLines = VK_TRUE;    // rast/geometry setup_line: rectangular lines of any width
+    features.wideLines = VK_TRUE;
+    features.fillModeNonSolid = VK_TRUE;  // rast/render: draw's unfilled stage (edges / corners after culling)    //
+                                          // rast/geometry setup_line: rectangular lines of any width
 
     memory.memoryTypeCount = 1;
     memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
@@ -217,7 +219,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     // Storage images and input attachments are not implemented by the shader path.
-    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;

@@ -167,7 +167,10 @@ std::string build_pipeline(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) 
     const VkPipelineRasterizationStateCreateInfo& rs = *ci.pRasterizationState;
     p.rasterizer_discard = rs.rasterizerDiscardEnable;
     if (!p.rasterizer_discard) {
-        if (rs.polygonMode != VK_POLYGON_MODE_FILL) return "polygon modes other than FILL are not supported";
+        if (rs.polygonMode > VK_POLYGON_MODE_POINT) return "polygon mode is not supported";
+        s.polygon_mode = rs.polygonMode == VK_POLYGON_MODE_LINE    ? rast::render::PolygonMode::kLine
+                         : rs.polygonMode == VK_POLYGON_MODE_POINT ? rast::render::PolygonMode::kPoint
+                                                                   : rast::render::PolygonMode::kFill;
         s.cull = rast::CullMode(rs.cullMode & 3);
         s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
         s.depth_clamp = rs.depthClampEnable;

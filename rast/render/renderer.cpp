@@ -199,6 +199,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     fcull.cull_back = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kBack);
     fcull.front_ccw = pipe.front_ccw;
     const bool any_cull = pipe.cull != CullMode::kNone;
+    const bool unfilled = pipe.polygon_mode != PolygonMode::kFill && verts_per_prim == 3;
 
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
@@ -206,8 +207,9 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
         // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
         // batch boundaries for draws of more than one draw-module batch).
-        const bool pipeline_path =
-            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
+        // Unfilled polygons need draw's pipeline (its unfilled stage), so every triangle takes that path then.
+        const bool pipeline_path = unfilled || std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(),
+                                                           [](uint32_t m) { return m != 0; });
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
         };
@@ -243,7 +245,19 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                 if (any_cull &&
                     !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
                     continue;
-                add_triangle(draw_index, rec, a, b, c);
+                if (pipe.polygon_mode == PolygonMode::kLine) {
+                    // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
+                    // strips and fans; the clipper's new internal edges are drawn too — not modelled).
+                    add_line(draw_index, rec, c, a);
+                    add_line(draw_index, rec, a, b);
+                    add_line(draw_index, rec, b, c);
+                } else if (pipe.polygon_mode == PolygonMode::kPoint) {
+                    add_point(draw_index, rec, a, 1.0f);
+                    add_point(draw_index, rec, b, 1.0f);
+                    add_point(draw_index, rec, c, 1.0f);
+                } else {
+                    add_triangle(draw_index, rec, a, b, c);
+                }
             }
         }
     }
