@@ -139,6 +139,11 @@ void pack_clear_depth(const FormatInfo& f, float depth, uint8_t* texel) {
         double z = depth;
         uint16_t v = z <= 0.0 ? 0 : z >= 1.0 ? 0xffff : uint16_t(std::lrint(z * 65535.0));
         std::memcpy(texel, &v, 2);
+    } else if (f.pack == PackKind::kD24S8) {
+        // util_pack_z for Z24_UNORM_S8_UINT: lrint in double, 1.0 -> 0xffffff.
+        double z = depth;
+        uint32_t v = z <= 0.0 ? 0 : z >= 1.0 ? 0xffffff : uint32_t(std::lrint(z * 16777215.0));
+        std::memcpy(texel, &v, 3);
     } else if (f.pack == PackKind::kD32F || f.pack == PackKind::kD32FS8) {
         std::memcpy(texel, &depth, 4);
     }

@@ -1,4 +1,5 @@
 #include "device.h"
+#include "execute.h"
 
 #include "entrypoints.h"
 #include "physical_device.h"
@@ -47,6 +48,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice,
 VKAPI_ATTR void VKAPI_CALL tvk_DestroyDevice(VkDevice device, const VkAllocationCallbacks*) {
     Device* dev = from_handle<Device>(device);
     if (dev == nullptr) return;
+    if (dev->queue) destroy_draw_context(dev->queue->draw);
     destroy_object(dev->queue);
     destroy_object(dev);
 }

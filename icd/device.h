@@ -8,13 +8,15 @@ namespace tilevk::icd {
 
 struct PhysicalDevice;
 struct Device;
+struct DrawContext;
 
 struct Queue : DispatchableObject {
     using Handle = VkQueue;
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_QUEUE;
     Queue() : DispatchableObject(kType) {}
     Device* device = nullptr;
-    std::mutex submit_mutex;  // vkQueueSubmit executes command buffers in order, one submission at a time
+    std::mutex submit_mutex;
+    DrawContext* draw = nullptr;  // the queue's renderer, created at the first submission (execute_draw.cpp)  // vkQueueSubmit executes command buffers in order, one submission at a time
 };
 TILEVK_ASSERT_DISPATCHABLE(Queue);
 

@@ -1,5 +1,5 @@
 // The command interpreter: walks a command buffer's list and runs each command. Render-pass load/clear and
-// resolve run here; draw commands need the render path and are reported, not faked.
+// resolve run here; draws and their state go to execute_draw.cpp.
 #include "execute.h"
 
 #include "framebuffer.h"
@@ -152,17 +152,21 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
             }
             case CmdType::kNextSubpass:
                 if (st.render_pass == nullptr) break;
+                finish_rendering(st);
                 resolve_attachments(st, st.subpass);
                 ++st.subpass;
                 load_attachments(st, st.subpass);
                 break;
             case CmdType::kEndRenderPass:
                 if (st.render_pass == nullptr) break;
+                finish_rendering(st);
                 resolve_attachments(st, st.subpass);
                 st.render_pass = nullptr;
                 st.framebuffer = nullptr;
                 break;
             case CmdType::kClearAttachments:
+                // Binned draws render first, so the clear lands after them in API order.
+                finish_rendering(st);
                 clear_attachments(st, *static_cast<CmdClearAttachments*>(cmd));
                 break;
             case CmdType::kExecuteCommands: {
@@ -174,12 +178,10 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
             case CmdType::kDrawIndexed:
             case CmdType::kDrawIndirect:
             case CmdType::kDrawIndexedIndirect:
-                if (!st.draw_warned) {
-                    log_error("vkQueueSubmit: draw commands were not executed: the render path is not connected");
-                    st.draw_warned = true;
-                }
+                exec_draw_command(st, *cmd);
                 break;
-            default:  // state commands: consumed by the render path
+            default:  // vkCmdBind* / vkCmdSet*
+                exec_state_command(st, *cmd);
                 break;
         }
     }

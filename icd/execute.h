@@ -9,9 +9,35 @@ struct Image;
 struct ImageView;
 struct RenderPass;
 struct Framebuffer;
+struct Pipeline;
+struct DescriptorSet;
+struct Buffer;
+struct DrawContext;  // execute_draw.cpp: one renderer per queue
+
+// Bound draw state (vkCmdBind*, vkCmdSet*): lives for one command buffer.
+struct BoundState {
+    static constexpr uint32_t kMaxSets = 4, kMaxVertexBuffers = 16, kMaxDynamicOffsets = 64;
+    Pipeline* pipeline = nullptr;
+    DescriptorSet* sets[kMaxSets] = {};
+    uint32_t dynamic_offsets[kMaxSets][kMaxDynamicOffsets] = {};  // per set, in binding/element order
+    Buffer* vertex_buffers[kMaxVertexBuffers] = {};
+    VkDeviceSize vertex_offsets[kMaxVertexBuffers] = {};
+    Buffer* index_buffer = nullptr;
+    VkDeviceSize index_offset = 0;
+    VkIndexType index_type = VK_INDEX_TYPE_UINT16;
+    alignas(16) uint8_t push_constants[128] = {};
+    VkViewport viewport{};
+    VkRect2D scissor{};
+    float line_width = 1.0f;
+    float depth_bias[3] = {0, 0, 0};  // constant, clamp, slope
+    float blend_constants[4] = {0, 0, 0, 0};
+    uint32_t stencil_compare[2] = {0xff, 0xff}, stencil_write[2] = {0xff, 0xff}, stencil_ref[2] = {0, 0};
+};
 
 // State that lives across commands while a queue runs one command buffer.
 struct ExecState {
+    DrawContext* draw = nullptr;  // the queue's renderer (never null when a queue executes)
+    BoundState bound;
     RenderPass* render_pass = nullptr;
     Framebuffer* framebuffer = nullptr;
     uint32_t subpass = 0;
@@ -21,6 +47,16 @@ struct ExecState {
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
+
+// ---- draws (execute_draw.cpp) ----
+DrawContext* create_draw_context();
+void destroy_draw_context(DrawContext* ctx);
+// vkCmdBind* / vkCmdSet*: updates st.bound.
+void exec_state_command(ExecState& st, const Cmd& cmd);
+// vkCmdDraw*: renders into the current subpass (the renderer starts lazily at the subpass's first draw).
+void exec_draw_command(ExecState& st, const Cmd& cmd);
+// Ends the renderer's pass if one is running: renders what is binned and writes the targets back.
+void finish_rendering(ExecState& st);
 
 // ---- transfer operations (execute_transfer.cpp) ----
 void exec_copy_buffer(const CmdCopyBuffer& c);

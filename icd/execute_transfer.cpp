@@ -50,6 +50,21 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
               bool to_image) {
     const FormatInfo& f = *img.format;
     const uint32_t bytes = buffer_texel_bytes(f, aspect);
+    if (f.pack == PackKind::kD24S8 && aspect == VK_IMAGE_ASPECT_DEPTH_BIT) {
+        // D24 depth in a 32-bit buffer word: the low 24 bits; the top byte (the image's stencil) is written as 0
+        // (lavapipe's X8 bits) and never copied into the image.
+        for (uint32_t x = 0; x < width; ++x) {
+            uint8_t* t = image_row + size_t(x) * 4;
+            uint8_t* b = buffer_row + size_t(x) * 4;
+            if (to_image) {
+                std::memcpy(t, b, 3);
+            } else {
+                std::memcpy(b, t, 3);
+                b[3] = 0;
+            }
+        }
+        return;
+    }
     if (bytes == f.texel_bytes) {
         if (to_image)
             std::memcpy(image_row, buffer_row, size_t(width) * bytes);
@@ -203,10 +218,13 @@ void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_la
     const FormatInfo& f = *img.format;
     uint8_t texel[16] = {};
     pack_clear_depth(f, v.depth, texel);
-    texel[aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT)] = f.pack == PackKind::kD32FS8 ? uint8_t(v.stencil) : texel[0];
+    const bool separate_stencil = f.pack == PackKind::kD32FS8 || f.pack == PackKind::kD24S8;
+    texel[aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT)] = separate_stencil ? uint8_t(v.stencil) : texel[0];
+    // D24S8's depth is 3 bytes of its 4-byte texel: a depth clear keeps the stencil byte.
+    const uint32_t depth_bytes = f.pack == PackKind::kD24S8 ? 3 : buffer_texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT);
     for (uint32_t l = 0; l < layer_count; ++l) {
         if ((aspects & VK_IMAGE_ASPECT_DEPTH_BIT) && (f.aspects & VK_IMAGE_ASPECT_DEPTH_BIT)) {
-            fill_rect(img, level, base_layer + l, rect, texel, 0, buffer_texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT));
+            fill_rect(img, level, base_layer + l, rect, texel, 0, depth_bytes);
         }
         if ((aspects & VK_IMAGE_ASPECT_STENCIL_BIT) && (f.aspects & VK_IMAGE_ASPECT_STENCIL_BIT)) {
             fill_rect(img, level, base_layer + l, rect, texel, aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT), 1);

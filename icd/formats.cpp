@@ -4,9 +4,13 @@ namespace tilevk::icd {
 namespace {
 
 constexpr VkFormatFeatureFlags kTransfer = VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
-// Colour attachments: load/clear/store and render-pass resolve work; drawing into them needs the render path.
-constexpr VkFormatFeatureFlags kColor = kTransfer | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+// Colour formats: drawn and blended by rast/fragment, sampled (nearest and linear) by shader/.
+constexpr VkFormatFeatureFlags kColor =
+    kTransfer | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
+    VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
 constexpr VkFormatFeatureFlags kDepth = kTransfer | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
+// D16 and D32 are also sampled (shadow samplers); D32_S8's 8-byte texel is not a layout shader/ reads.
+constexpr VkFormatFeatureFlags kDepthSampled = kDepth | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
 constexpr VkFormatFeatureFlags kVertex = VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT;
 constexpr VkImageAspectFlags kC = VK_IMAGE_ASPECT_COLOR_BIT;
 
@@ -22,9 +26,11 @@ constexpr FormatInfo kFormats[] = {
     {VK_FORMAT_R32_SFLOAT, 4, 1, false, PackKind::kFloat32, kC, kColor, kColor, kVertex},
     {VK_FORMAT_R32G32_SFLOAT, 8, 2, false, PackKind::kFloat32, kC, kColor, kColor, kVertex},
     {VK_FORMAT_R32G32B32A32_SFLOAT, 16, 4, false, PackKind::kFloat32, kC, kColor, kColor, kVertex},
-    {VK_FORMAT_D16_UNORM, 2, 1, false, PackKind::kD16, VK_IMAGE_ASPECT_DEPTH_BIT, kDepth, 0, 0},
-    {VK_FORMAT_D32_SFLOAT, 4, 1, false, PackKind::kD32F, VK_IMAGE_ASPECT_DEPTH_BIT, kDepth, 0, 0},
+    {VK_FORMAT_D16_UNORM, 2, 1, false, PackKind::kD16, VK_IMAGE_ASPECT_DEPTH_BIT, kDepthSampled, 0, 0},
+    {VK_FORMAT_D32_SFLOAT, 4, 1, false, PackKind::kD32F, VK_IMAGE_ASPECT_DEPTH_BIT, kDepthSampled, 0, 0},
     {VK_FORMAT_D32_SFLOAT_S8_UINT, 8, 2, false, PackKind::kD32FS8,
+     VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT, kDepth, 0, 0},
+    {VK_FORMAT_D24_UNORM_S8_UINT, 4, 2, false, PackKind::kD24S8,
      VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT, kDepth, 0, 0},
     // Vertex attribute formats only (no image support).
     {VK_FORMAT_R32G32B32_SFLOAT, 12, 3, false, PackKind::kNone, 0, 0, 0, kVertex},
@@ -75,6 +81,7 @@ bool format_supports_msaa(const FormatInfo& f) {
         case PackKind::kD16:
         case PackKind::kD32F:
         case PackKind::kD32FS8:
+        case PackKind::kD24S8:
             return true;
         default:
             return false;
@@ -82,12 +89,13 @@ bool format_supports_msaa(const FormatInfo& f) {
 }
 
 uint32_t buffer_texel_bytes(const FormatInfo& f, VkImageAspectFlags aspect) {
-    if (f.pack == PackKind::kD32FS8) return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : 4;
+    if (f.pack == PackKind::kD32FS8 || f.pack == PackKind::kD24S8) return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : 4;
     return f.texel_bytes;
 }
 
 uint32_t aspect_offset(const FormatInfo& f, VkImageAspectFlags aspect) {
-    return f.pack == PackKind::kD32FS8 && aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 4 : 0;
+    if (aspect != VK_IMAGE_ASPECT_STENCIL_BIT) return 0;
+    return f.pack == PackKind::kD32FS8 ? 4 : f.pack == PackKind::kD24S8 ? 3 : 0;
 }
 
 }  // namespace tilevk::icd

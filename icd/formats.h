@@ -16,6 +16,7 @@ enum class PackKind : uint8_t {
     kD16,      // depth: lrint(z * 65535.0) in double
     kD32F,     // depth: (float)z
     kD32FS8,   // depth float at byte 0, stencil byte at byte 4 (8-byte texel)
+    kD24S8,    // depth: lrint(z * 16777215.0) in double, low 24 bits (bytes 0-2); stencil at byte 3
 };
 
 struct FormatInfo {

@@ -108,7 +108,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetImageSubresourceLayout(VkDevice, VkImage image
     const ImageLayout& l = img->layout;
     const uint32_t level = pSub->mipLevel;
     pLayout->offset = l.level_offset[level] + VkDeviceSize(pSub->arrayLayer) * l.layer_pitch[level];
-    if (img->format->pack == PackKind::kD32FS8) {
+    if (img->format->pack == PackKind::kD32FS8 || img->format->pack == PackKind::kD24S8) {
         pLayout->offset += aspect_offset(*img->format, pSub->aspectMask);  // interleaved depth/stencil texels
     }
     pLayout->size = l.layer_pitch[level];

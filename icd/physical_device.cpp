@@ -105,10 +105,13 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxCullDistances = 0;
     l.maxCombinedClipAndCullDistances = 0;
     l.discreteQueuePriorities = 2;
-    l.pointSizeRange[0] = l.pointSizeRange[1] = 1.0f;  // largePoints is off
-    l.lineWidthRange[0] = l.lineWidthRange[1] = 1.0f;  // wideLines is off
-    l.pointSizeGranularity = 0.0f;
-    l.lineWidthGranularity = 0.0f;
+    // lavapipe's ranges (notes §6): point sizes clamp at 255, line widths in [1, 255].
+    l.pointSizeRange[0] = 0.0f;
+    l.pointSizeRange[1] = 255.0f;
+    l.lineWidthRange[0] = 1.0f;
+    l.lineWidthRange[1] = 255.0f;
+    l.pointSizeGranularity = 0.125f;
+    l.lineWidthGranularity = 0.0078125f;
     l.strictLines = VK_FALSE;
     l.standardSampleLocations = VK_TRUE;  // lavapipe's 4x positions are the standard ones
     l.optimalBufferCopyOffsetAlignment = 1;
@@ -137,8 +140,15 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     properties.limits = make_limits();
     properties.sparseProperties = {};
 
-    // Features: everything off until the render path proves it (see icd/README.md).
+    // Features: only what the render path implements (see icd/README.md).
     features = {};
+    features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
+    features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
+    features.independentBlend = VK_TRUE;
+    features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
+    features.wideLines = VK_TRUE;
+    features.fillModeNonSolid = VK_TRUE;  // rast/render: draw's unfilled stage (edges / corners after culling)    //
+                                          // rast/geometry setup_line: rectangular lines of any width
 
     memory.memoryTypeCount = 1;
     memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
@@ -207,17 +217,19 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_TRANSFER_DST_BIT) need |= VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
     if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    // Sampling, storage and input attachments need the shader path, which is not there yet.
-    if (usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT)) {
+    if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    // Storage images and input attachments are not implemented by the shader path.
+    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
         return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    }
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f)
+    // Multisampled images cannot be sampled (the shader path reads one sample per texel).
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f) &&
+                                   !(usage & VK_IMAGE_USAGE_SAMPLED_BIT)
                                ? kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;

@@ -18,6 +18,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
             from_handle<Semaphore>(s.pWaitSemaphores[j])->signaled = false;
         for (uint32_t j = 0; j < s.commandBufferCount; ++j) {
             ExecState st;
+            if (q->draw == nullptr) q->draw = create_draw_context();
+            st.draw = q->draw;
             execute_command_buffer(from_handle<CommandBuffer>(s.pCommandBuffers[j]), st);
         }
         for (uint32_t j = 0; j < s.signalSemaphoreCount; ++j) {

@@ -16,6 +16,9 @@
 
 namespace tilevk::rast::render {
 
+// VkPolygonMode: LINE and POINT draw each surviving triangle's edges / corners (draw's unfilled stage).
+enum class PolygonMode : uint8_t { kFill, kLine, kPoint };
+
 struct ViewportRect {
     float x = 0, y = 0, width = 0, height = 0, min_depth = 0, max_depth = 1;
 };
@@ -44,6 +47,7 @@ struct PipelineState {
     bool depth_bias_enable = false;
     geometry::DepthBias depth_bias;  // factors; format fields are filled by the renderer from the target
     float line_width = 1.0f;
+    PolygonMode polygon_mode = PolygonMode::kFill;
 
     // Multisample.
     int samples = 1;

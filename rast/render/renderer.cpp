@@ -6,6 +6,7 @@
 
 #include "rast/core/fixed_point.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
 
@@ -122,9 +123,6 @@ void Renderer::clear(const ClipRect& rect, const ClearRecord& clear) {
 std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings) {
     if (!pipe.vertex) return "draw without a vertex shader";
     if (pipe.samples != fb_.samples) return "pipeline sample count differs from the framebuffer's";
-    if (pipe.topology != geometry::Topology::kTriangleList && pipe.topology != geometry::Topology::kTriangleStrip &&
-        pipe.topology != geometry::Topology::kTriangleFan)
-        return "point and line topologies are not rasterized yet";
     if (call.count == 0 || call.instance_count == 0) return {};
     if (prims_.size() >= kMaxScenePrims) flush();
 
@@ -201,6 +199,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     fcull.cull_back = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kBack);
     fcull.front_ccw = pipe.front_ccw;
     const bool any_cull = pipe.cull != CullMode::kNone;
+    const bool unfilled = pipe.polygon_mode != PolygonMode::kFill && verts_per_prim == 3;
 
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
@@ -208,13 +207,30 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
         // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
         // batch boundaries for draws of more than one draw-module batch).
-        const bool pipeline_path =
-            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
+        // Unfilled polygons need draw's pipeline (its unfilled stage), so every triangle takes that path then.
+        const bool pipeline_path = unfilled || std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(),
+                                                           [](uint32_t m) { return m != 0; });
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
         };
         for (uint32_t p = 0; p < num_prims; ++p) {
-            const uint32_t* ids = assembled_.data() + size_t(p) * 3;
+            const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
+            if (verts_per_prim == 1) {
+                const uint32_t s0 = slot(ids[0]);
+                const float* v0 = shaded_.record(s0);
+                if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
+                add_point(draw_index, rec, v0, shaded_.point_size[s0]);
+                continue;
+            }
+            if (verts_per_prim == 2) {
+                const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]);
+                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
+                if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
+                                                          clip_scratch_.data(), &v0, &v1))
+                    continue;
+                add_line(draw_index, rec, v0, v1);
+                continue;
+            }
             const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
             const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
             const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
@@ -229,11 +245,100 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                 if (any_cull &&
                     !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
                     continue;
-                add_triangle(draw_index, rec, a, b, c);
+                if (pipe.polygon_mode == PolygonMode::kLine) {
+                    // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
+                    // strips and fans; the clipper's new internal edges are drawn too — not modelled).
+                    add_line(draw_index, rec, c, a);
+                    add_line(draw_index, rec, a, b);
+                    add_line(draw_index, rec, b, c);
+                } else if (pipe.polygon_mode == PolygonMode::kPoint) {
+                    add_point(draw_index, rec, a, 1.0f);
+                    add_point(draw_index, rec, b, 1.0f);
+                    add_point(draw_index, rec, c, 1.0f);
+                } else {
+                    add_triangle(draw_index, rec, a, b, c);
+                }
             }
         }
     }
     return {};
+}
+
+// Scissor ∩ viewport rectangle: the viewport rectangle also bounds coverage (lp_setup_set_viewports
+// draw_regions[0], notes §2).
+ClipRect Renderer::prim_clip(const PipelineState& pipe) const {
+    ClipRect r = {std::max(pipe.scissor.x0, 0), std::max(pipe.scissor.y0, 0), pipe.scissor.x1, pipe.scissor.y1};
+    const ViewportRect& v = pipe.viewport;
+    const float sx = 0.5f * v.width, tx = sx + v.x;
+    const float sy = std::fabs(0.5f * v.height), ty = 0.5f * v.height + v.y;
+    const ClipRect vp_rect = {static_cast<int32_t>(tx - sx + 0.499f), static_cast<int32_t>(ty - sy + 0.499f),
+                              static_cast<int32_t>(2 * sx + (tx - sx) - 0.501f) + 1,
+                              static_cast<int32_t>(2 * sy + (ty - sy) - 0.501f) + 1};
+    r = {std::max(r.x0, vp_rect.x0), std::max(r.y0, vp_rect.y0), std::min(r.x1, vp_rect.x1),
+         std::min(r.y1, vp_rect.y1)};
+    r.x1 = std::min(r.x1, fb_.width);
+    r.y1 = std::min(r.y1, fb_.height);
+    return r;
+}
+
+void Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
+                         uint32_t num_attribs) {
+    PrimRecord pr;
+    pr.draw = draw;
+    pr.plane_base = static_cast<uint32_t>(planes_.size());
+    pr.kind = kind;
+    prims_.push_back(pr);
+    const size_t base = planes_.size();
+    planes_.resize(base + kPrimHeaderFloats + size_t(kPlaneFloats) * num_attribs);
+    float* dst = planes_.data() + base;
+    std::memcpy(dst, &pos, sizeof(float) * kPlaneFloats);
+    dst[kPlaneFloats] = depth_offset;
+    std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
+}
+
+void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1) {
+    const PipelineState& pipe = *rec.pipe;
+    geometry::LineSetupConfig cfg;
+    cfg.layout = rec.varyings.layout();
+    cfg.mode = geometry::LineMode::kRectangular;  // Vulkan's default mode: lavapipe's rectangular lines (notes §6)
+    cfg.width = pipe.line_width;
+    cfg.multisample = fb_.samples > 1;
+    cfg.flatshade_first = true;
+    geometry::LineSetup ls;
+    if (geometry::setup_line(cfg, v0, v1, &ls, attrib_planes_.data()) != geometry::PrimSetupStatus::kOk) return;
+    ConvexInput in;
+    for (int i = 0; i < 4; ++i) in.planes[i] = {ls.planes[i].c, ls.planes[i].a, ls.planes[i].b};
+    in.num_planes = 4;
+    in.min_x = ls.min_x;
+    in.min_y = ls.min_y;
+    in.max_x = ls.max_x;
+    in.max_y = ls.max_y;
+    in.common.clip = prim_clip(pipe);
+    in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
+    in.common.payload = static_cast<uint32_t>(prims_.size());
+    if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
+    push_prim(draw, PrimKind::kLine, ls.pos, 0.0f, cfg.layout.num_attribs);
+}
+
+void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size) {
+    const PipelineState& pipe = *rec.pipe;
+    geometry::PointSetupConfig cfg;
+    cfg.layout = rec.varyings.layout();
+    cfg.multisample = fb_.samples > 1;
+    geometry::PointSetup ps;
+    if (geometry::setup_point(cfg, v, size, &ps, attrib_planes_.data()) != geometry::PrimSetupStatus::kOk) return;
+    BoxInput in;
+    // Intersect with the clip rect first: far-off boxes can exceed the core's range (rast/geometry/README.md).
+    const ClipRect clip = prim_clip(pipe);
+    in.x0 = std::max<int64_t>(ps.x0, int64_t(clip.x0) * kFixedOne);
+    in.y0 = std::max<int64_t>(ps.y0, int64_t(clip.y0) * kFixedOne);
+    in.x1 = std::min<int64_t>(ps.x1, int64_t(clip.x1) * kFixedOne);
+    in.y1 = std::min<int64_t>(ps.y1, int64_t(clip.y1) * kFixedOne);
+    in.common.clip = clip;
+    in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
+    in.common.payload = static_cast<uint32_t>(prims_.size());
+    if (scene_->add_box(in) != SetupStatus::kAccepted) return;
+    push_prim(draw, PrimKind::kPoint, ps.pos, 0.0f, cfg.layout.num_attribs);
 }
 
 void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2) {
@@ -247,16 +352,7 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     tri.cull = pipe.cull;
     tri.front_ccw = pipe.front_ccw;
     tri.flatshade_first = true;
-    tri.common.clip = {std::max(pipe.scissor.x0, 0), std::max(pipe.scissor.y0, 0), pipe.scissor.x1, pipe.scissor.y1};
-    // The viewport rectangle also bounds coverage (lp_setup_set_viewports draw_regions[0], notes §2).
-    const ViewportRect& v = pipe.viewport;
-    const float sx = 0.5f * v.width, tx = sx + v.x;
-    const float sy = std::fabs(0.5f * v.height), ty = 0.5f * v.height + v.y;
-    const ClipRect vp_rect = {static_cast<int32_t>(tx - sx + 0.499f), static_cast<int32_t>(ty - sy + 0.499f),
-                              static_cast<int32_t>(2 * sx + (tx - sx) - 0.501f) + 1,
-                              static_cast<int32_t>(2 * sy + (ty - sy) - 0.501f) + 1};
-    tri.common.clip = {std::max(tri.common.clip.x0, vp_rect.x0), std::max(tri.common.clip.y0, vp_rect.y0),
-                       std::min(tri.common.clip.x1, vp_rect.x1), std::min(tri.common.clip.y1, vp_rect.y1)};
+    tri.common.clip = prim_clip(pipe);
     tri.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     tri.common.payload = static_cast<uint32_t>(prims_.size());
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;

@@ -42,6 +42,12 @@ class Renderer {
   private:
     void flush();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
+    void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1);
+    void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size);
+    ClipRect prim_clip(const PipelineState& pipe) const;
+    // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
+    void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
+                   uint32_t num_attribs);
 
     ThreadPool& pool_;
     Method method_;

@@ -34,7 +34,7 @@ struct DrawRecord {
     ClearRecord clear;
 };
 
-enum class PrimKind : uint8_t { kTriangle, kPoint, kClear };
+enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear };
 
 struct PrimRecord {
     uint32_t draw = 0;        // index into the draw records

@@ -122,12 +122,12 @@ uint32_t Device::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const {
     return ~0u;
 }
 
-Device::Buffer Device::make_buffer(VkDeviceSize size) {
+Device::Buffer Device::make_buffer(VkDeviceSize size, VkBufferUsageFlags extra_usage) {
     Buffer b;
     b.size = size;
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size;
-    ci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    ci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | extra_usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     vkCreateBuffer(device_, &ci, nullptr, &b.buffer);
     VkMemoryRequirements req;

@@ -53,7 +53,8 @@ class Device {
         VkImage image = VK_NULL_HANDLE;
         VkDeviceMemory memory = VK_NULL_HANDLE;
     };
-    Buffer make_buffer(VkDeviceSize size);  // TRANSFER_SRC|DST, host visible and coherent, mapped
+    // TRANSFER_SRC|DST (| extra_usage), host visible and coherent, mapped.
+    Buffer make_buffer(VkDeviceSize size, VkBufferUsageFlags extra_usage = 0);
     void destroy(Buffer& b);
     Image make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
                      VkSampleCountFlagBits samples, VkImageUsageFlags usage);

@@ -183,10 +183,48 @@ TEST_F(RenderTest, SmoothColourIsInterpolatedAndConverted) {
     draw(r, p, v);
     r.end();
     for (int px = 0; px < w; ++px) {
-        const float red = (px + 0.5f) / w;                             // exact: w is a power of two
+        const float red = (px + 0.5f) / w;                                  // exact: w is a power of two
         const int expect = static_cast<int>(std::nearbyint(red * 255.0f));  // rne(x*255)
         for (int py = 0; py < h; ++py) EXPECT_EQ(img.rgba[(size_t(py) * w + px) * 4], expect) << px << "," << py;
     }
+}
+
+// Lines and points through the scene. Window coordinates are exact in float (32x16 target: wx = (x+1)*16,
+// wy = (y+1)*8). Independent expectations: a 1-wide horizontal rectangular line from (2.5, 4.5) to (10.5, 4.5)
+// covers the pixel centres inside [2.5, 10.5) x (4, 5) (top-left rule: the left end is in, the right end out);
+// a size-1 point at (20.5, 10.5) covers exactly pixel (20, 10).
+TEST_F(RenderTest, LineAndPointCoverage) {
+    const int w = 32, h = 16;
+    Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 0), {}};
+    ThreadPool pool(2);
+    Renderer r(pool, Method::kHier);
+    auto clip_x = [](float wx) { return wx / 16.0f - 1.0f; };
+    auto clip_y = [](float wy) { return wy / 8.0f - 1.0f; };
+    PipelineState lines = make_pipeline(vs.get(), fs.get(), w, h);
+    lines.topology = geometry::Topology::kLineList;
+    PipelineState points = make_pipeline(vs.get(), fs.get(), w, h);
+    points.topology = geometry::Topology::kPointList;
+    r.begin(make_fb(img, false));
+    draw(r, lines,
+         {{{clip_x(2.5f), clip_y(4.5f), 0.5f, 1}, {0, 1, 0, 1}},
+          {{clip_x(10.5f), clip_y(4.5f), 0.5f, 1}, {0, 1, 0, 1}}});
+    draw(r, points, {{{clip_x(20.5f), clip_y(10.5f), 0.5f, 1}, {0, 0, 1, 1}}});
+    r.end();
+    int mismatches = 0;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+            const uint8_t* c = &img.rgba[(size_t(py) * w + px) * 4];
+            const bool on_line = py == 4 && px >= 2 && px <= 9;
+            const bool on_point = py == 10 && px == 20;
+            const uint8_t want[4] = {0, uint8_t(on_line ? 255 : 0), uint8_t(on_point ? 255 : 0),
+                                     uint8_t(on_line || on_point ? 255 : 0)};
+            if (std::memcmp(c, want, 4) != 0) {
+                ++mismatches;
+                ADD_FAILURE() << "pixel " << px << "," << py << " = " << int(c[0]) << " " << int(c[1]) << " "
+                              << int(c[2]) << " " << int(c[3]);
+            }
+        }
+    EXPECT_EQ(mismatches, 0);
 }
 
 }  // namespace
