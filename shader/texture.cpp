@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "shader/ir.h"
+#include "shader/texture_fixed8.h"
 
 namespace tilevk::shader {
 
@@ -229,6 +230,85 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     return r;
 }
 
+using Bytes = std::array<int32_t, 4>;
+
+// The 8-bit channels of one texel in RGBA order (absent channels read 0, 0, 0, 255), for fits_8unorm formats.
+Bytes texel_bytes(Format f, const uint8_t* p) {
+    switch (f) {
+        case Format::RGBA8_UNORM:
+            return {p[0], p[1], p[2], p[3]};
+        case Format::BGRA8_UNORM:
+            return {p[2], p[1], p[0], p[3]};
+        case Format::R8_UNORM:
+            return {p[0], 0, 0, 255};
+        case Format::RG8_UNORM:
+            return {p[0], p[1], 0, 255};
+        default:
+            return {0, 0, 0, 0};
+    }
+}
+
+bool simple_wrap(AddressMode m) {
+    return m == AddressMode::Repeat || m == AddressMode::ClampToEdge;
+}
+
+// lavapipe's choice of the 8-bit fixed-point filter (lp_bld_sample_soa.c use_aos): an 8-bit UNORM non-sRGB
+// format, no depth compare, REPEAT or CLAMP_TO_EDGE on every used axis.
+bool use_fixed8(const ImageView& img, const SamplerState& smp, bool one_d, bool dref) {
+    bool fits = img.format == Format::RGBA8_UNORM || img.format == Format::BGRA8_UNORM ||
+                img.format == Format::R8_UNORM || img.format == Format::RG8_UNORM;
+    return fits && !(dref && smp.compare_enable) && simple_wrap(smp.address_u) && (one_d || simple_wrap(smp.address_v));
+}
+
+// One axis of the bilinear footprint in 8.8 fixed point (lp_bld_sample_aos.c lp_build_sample_image_linear).
+fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, AddressMode m) {
+    // normalized: s * float(n*256); unnormalized: s * 256
+    float c256 = unnormalized ? s * 256.0f : s * float(n * 256);
+    int32_t c = fixed8::coord(c256);
+    int32_t i = int32_t(uint32_t(c >> 8) + uint32_t(off));
+    if (m == AddressMode::ClampToEdge) return fixed8::wrap_clamp(int32_t(uint32_t(i) << 8) | (c & 255), n);
+    if ((n & (n - 1)) == 0) return fixed8::wrap_repeat_pot(i, c & 255, n);
+    // the offset joins the float coordinate as off / n before the wrap
+    float sf = off ? s + float(off) / float(n) : s;
+    return fixed8::wrap_repeat_npot(sf, n);
+}
+
+// One mip level through the 8-bit path: nearest texels as the float path picks them, linear with 8-bit weights
+// and two lerps along x then one along y.
+Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s,
+                          float t, bool linear, bool one_d, const SampleArgs& args) {
+    const ImageLevel& il = img.level[level];
+    int32_t w = int32_t(std::max(1u, img.width >> level));
+    int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
+    uint32_t bpp = texel_size(img.format);
+    const uint8_t* base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
+    auto at = [&](int32_t x, int32_t y) {
+        return texel_bytes(img.format, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
+    };
+    if (!linear) {
+        float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
+        int32_t x = wrap(safe_floor(u) + args.off_x, w, smp.address_u);
+        int32_t y = one_d ? 0 : wrap(safe_floor(v) + args.off_y, h, smp.address_v);
+        return at(x, y);
+    }
+    fixed8::Pair px = axis_fixed8(s, w, args.off_x, smp.unnormalized, smp.address_u);
+    fixed8::Pair py = one_d ? fixed8::Pair{0, 0, 0} : axis_fixed8(t, h, args.off_y, smp.unnormalized, smp.address_v);
+    Bytes t00 = at(px.i0, py.i0), t10 = at(px.i1, py.i0);
+    Bytes r;
+    if (one_d) {
+        for (int c = 0; c < 4; ++c) r[c] = fixed8::lerp(px.w, t00[c], t10[c]);
+        return r;
+    }
+    Bytes t01 = at(px.i0, py.i1), t11 = at(px.i1, py.i1);
+    for (int c = 0; c < 4; ++c)
+        r[c] = fixed8::lerp(py.w, fixed8::lerp(px.w, t00[c], t10[c]), fixed8::lerp(px.w, t01[c], t11[c]));
+    return r;
+}
+
+Vec4 bytes_to_float(const Bytes& b) {
+    return {float(b[0]) / 255.0f, float(b[1]) / 255.0f, float(b[2]) / 255.0f, float(b[3]) / 255.0f};
+}
+
 bool image_ok(const ImageView* img) {
     return img && img->base && texel_size(img->format) && img->width && img->height && img->levels &&
            img->levels <= kMaxMipLevels && img->layers;
@@ -347,8 +427,22 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                     dsdy = s[q + 2] - s[q], dtdy = t[q + 2] - t[q];
                 }
                 dsdx *= w0, dsdy *= w0, dtdx *= h0, dtdy *= h0;
-                float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
-                lambda = std::log2(std::max(rx, ry));
+                if (smp->mipmap_mode == MipmapMode::Linear) {
+                    // lavapipe (lp_bld_sample.c lp_build_lod_selector, no rho_approx/brilinear):
+                    // lambda = 0.5 * fast_log2(max(dsdx^2 + dtdx^2, dsdy^2 + dtdy^2)), 1D: rho = max(|dsdx|, |dsdy|)
+                    float rho2;
+                    if (one_d) {
+                        float rho = std::max(std::fabs(dsdx), std::fabs(dsdy));
+                        rho2 = rho * rho;
+                    } else {
+                        rho2 = std::max(dsdx * dsdx + dtdx * dtdx, dsdy * dsdy + dtdy * dtdy);
+                    }
+                    if ((in.imm & kSampleGrad) && !std::isfinite(rho2)) rho2 = 0.0f;
+                    lambda = fixed8::fast_log2(rho2) * 0.5f;
+                } else {
+                    float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
+                    lambda = std::log2(std::max(rx, ry));
+                }
                 if (in.imm & kSampleBias) lambda += fl(in.c, l);
             }
             if (!smp->unnormalized) lambda += smp->mip_lod_bias;
@@ -360,7 +454,30 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
             float lyr =
                 std::nearbyint(std::clamp(layer_f[l] == layer_f[l] ? layer_f[l] : 0.0f, 0.0f, float(img->layers - 1)));
             uint32_t layer = uint32_t(lyr);
-            if (smp->unnormalized || mag) {
+            if (use_fixed8(*img, *smp, one_d, dref)) {
+                // lod = lo + frac: levels clamped to the view (frac dropped there), weight trunc(frac*256)
+                uint32_t lv = 0, hi = 0;
+                int32_t mw = 0;
+                if (smp->unnormalized || mag) {
+                } else if (smp->mipmap_mode == MipmapMode::Nearest) {
+                    lv = uint32_t(std::clamp(std::ceil(lambda + 0.5f) - 1.0f, 0.0f, float(max_level)));
+                } else {
+                    float fl0 = std::floor(lambda);
+                    if (fl0 >= float(max_level)) {
+                        lv = max_level;
+                    } else if (fl0 >= 0.0f) {
+                        lv = uint32_t(fl0);
+                        hi = lv + 1;
+                        mw = fixed8::mip_weight(lambda - fl0);
+                    }
+                }
+                Bytes a = sample_level_fixed8(*img, *smp, lv, layer, s[l], t[l], linear, one_d, args);
+                if (mw > 0) {
+                    Bytes b = sample_level_fixed8(*img, *smp, hi, layer, s[l], t[l], linear, one_d, args);
+                    for (int c = 0; c < 4; ++c) a[c] = fixed8::lerp(mw, a[c], b[c]);
+                }
+                r = bytes_to_float(a);
+            } else if (smp->unnormalized || mag) {
                 r = sample_level(*img, *smp, 0, layer, s[l], t[l], linear, one_d, args);
             } else if (smp->mipmap_mode == MipmapMode::Nearest) {
                 // d = ceil(lambda + 0.5) - 1, clamped to the view's levels

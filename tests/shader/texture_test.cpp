@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "glsl.h"
+#include "shader/texture_fixed8.h"
 
 using namespace tilevk::shader;
 using tilevk::shader::test::make_program;
@@ -131,7 +132,8 @@ TEST(ShaderTexture, BilinearFiltering) {
     TestImage img;
     SamplerState smp;
     smp.mag_filter = smp.min_filter = Filter::Linear;
-    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    // MIRROR_CLAMP_TO_EDGE reads like CLAMP_TO_EDGE for indices >= -1 but keeps lavapipe's float filter
+    smp.address_u = smp.address_v = AddressMode::MirrorClampToEdge;
     FsTex r("color = textureLod(tex, v.xy, 0.0);");
     r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
     for (int l = 0; l < kLanes; ++l) {
@@ -178,6 +180,7 @@ TEST(ShaderTexture, TrilinearBetweenLevels) {
     TestImage img;
     SamplerState smp;
     smp.mipmap_mode = MipmapMode::Linear;
+    smp.address_u = smp.address_v = AddressMode::MirroredRepeat;  // float filter (not lavapipe's 8-bit path)
     FsTex r("color = textureLod(tex, vec2(0.01, 0.01), v.x);");
     r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
     for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(0.25f * float(l));
@@ -290,4 +293,127 @@ TEST(ShaderTexture, ShadowCompareAndOffsets) {
         int ox = (x - 1 + 4) % 4, oy = (y + 2) % 4;  // repeat addressing
         EXPECT_EQ(r.out(l, 2), float(ox + 4 * oy) / 16.0f) << l;
     }
+}
+
+// ---- lavapipe's 8-bit fixed-point filter (shader/texture_fixed8.h) ----
+
+namespace {
+// Independent model of llvmpipe's 8-bit lerp: a + (w/256)*(b-a) rounded half up.
+int lerp_model(int w, int a, int b) {
+    return a + int(std::floor(double(w) * double(b - a) / 256.0 + 0.5));
+}
+// Footprint along one axis for CLAMP_TO_EDGE: u in texels, 8 fraction bits (ties to even), minus half a texel.
+struct Axis {
+    int i0, i1, w;
+};
+Axis clamp_axis(float s, int n) {
+    long c = std::lrint(double(s) * double(n) * 256.0) - 128;  // default rounding: to nearest even
+    long i = c >= 0 ? c / 256 : -((-c + 255) / 256);           // floor division
+    int w = int(c - i * 256);
+    auto cl = [n](long k) { return int(std::min<long>(std::max<long>(k, 0), n - 1)); };
+    return {cl(i), cl(i + 1), w};
+}
+}  // namespace
+
+TEST(ShaderTextureFixed8, LerpMatchesRoundedModelAndKnownValues) {
+    for (int w = 0; w < 256; ++w)
+        for (int a = 0; a < 256; a += 5)
+            for (int b = 0; b < 256; b += 3) ASSERT_EQ(fixed8::lerp(w, a, b), lerp_model(w, a, b)) << w << a << b;
+    EXPECT_EQ(fixed8::lerp(128, 0, 255), 128);  // (128*255 + 128) >> 8 = 32768 >> 8
+    EXPECT_EQ(fixed8::lerp(255, 0, 255), 254);  // the largest weight never reaches b
+    EXPECT_EQ(fixed8::lerp(1, 200, 0), 199);    // (-200 + 128) >> 8 = -1
+}
+
+TEST(ShaderTextureFixed8, FastLog2IsPiecewiseLinear) {
+    EXPECT_EQ(fixed8::fast_log2(1.0f), 0.0f);
+    EXPECT_EQ(fixed8::fast_log2(8.0f), 3.0f);
+    EXPECT_EQ(fixed8::fast_log2(0.25f), -2.0f);
+    EXPECT_EQ(fixed8::fast_log2(3.0f), 1.5f);    // 2 * 1.5: 1 + 0.5
+    EXPECT_EQ(fixed8::fast_log2(9.0f), 3.125f);  // 8 * 1.125
+    EXPECT_EQ(fixed8::fast_log2(0.75f), -0.5f);  // 0.5 * 1.5: -1 + 0.5
+    EXPECT_EQ(fixed8::fast_log2(0.0f), -127.0f);
+    EXPECT_EQ(fixed8::mip_weight(0.5625f), 144);
+    EXPECT_EQ(fixed8::mip_weight(0.999f), 255);
+    EXPECT_EQ(fixed8::mip_weight(-0.25f), 0);
+    EXPECT_EQ(fixed8::iround(2.5f), 2);
+    EXPECT_EQ(fixed8::iround(3.5f), 4);
+    EXPECT_EQ(fixed8::iround(NAN), INT32_MIN);
+}
+
+TEST(ShaderTextureFixed8, BilinearClampToEdge) {
+    TestImage img;
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    auto sx = [](int l) { return 0.05f + 0.0613f * float(l); };
+    auto ty = [](int l) { return 0.93f - 0.057f * float(l); };
+    for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(sx(l)), r.block.inputs[0][1][l] = u(ty(l));
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        Axis x = clamp_axis(sx(l), 8), y = clamp_axis(ty(l), 8);
+        for (int c = 0; c < 4; ++c) {
+            auto b = [&](int i, int j) { return int(std::lround(img.texel(0, i, j, c) * 255.0f)); };
+            int top = lerp_model(x.w, b(x.i0, y.i0), b(x.i1, y.i0));
+            int bottom = lerp_model(x.w, b(x.i0, y.i1), b(x.i1, y.i1));
+            EXPECT_EQ(r.out(l, c), float(lerp_model(y.w, top, bottom)) / 255.0f) << l << " " << c;
+        }
+    }
+}
+
+TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoWrapsFromTheFloatCoordinate) {
+    TestImage img(Format::RGBA8_UNORM, 6, 6);
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    // s = 1.02: fract 0.02 -> 0.12 texels -> c = 31 - 128 = -97 -> i0 = -1 -> 5, i1 = 0, w = 159
+    // s = -0.5: fract 0.5 -> 3 texels -> c = 768 - 128 = 640 -> i0 = 2, i1 = 3, w = 128
+    const float ss[2] = {1.02f, -0.5f};
+    const int e[2][3] = {{5, 0, 159}, {2, 3, 128}};
+    for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(ss[l % 2]), r.block.inputs[0][1][l] = u(0.5f);
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        // t = 0.5: c = 768 - 128 = 640: rows 2 and 3 with weight 128
+        const int* k = e[l % 2];
+        int top = lerp_model(k[2], k[0] * 16, k[1] * 16);  // red = x*16 on level 0
+        EXPECT_EQ(r.out(l, 0), float(top) / 255.0f) << l;
+        EXPECT_EQ(r.out(l, 1), float(lerp_model(128, 32, 48)) / 255.0f) << l;  // green = y*16
+    }
+}
+
+TEST(ShaderTextureFixed8, MipLinearUsesFastLog2AndEightBitWeight) {
+    TestImage img;
+    SamplerState smp;
+    smp.mipmap_mode = MipmapMode::Linear;
+    FsTex r("color = texture(tex, v.xy);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    // 3 texels per pixel: rho^2 = 9, lambda = 0.5 * fast_log2(9) = 1.5625 (exact log2 would give 1.585)
+    // levels 1 and 2, weight trunc(0.5625 * 256) = 144; blue = 40*L: 40 + ((144*40 + 128) >> 8) = 63
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u((float(lane_x(l)) + 0.5f) * 3.0f / 8.0f);
+        r.block.inputs[0][1][l] = u((float(lane_y(l)) + 0.5f) * 3.0f / 8.0f);
+    }
+    r.run();
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), 63.0f / 255.0f) << l;
+    // explicit LOD 2.25 on RGBA8 + REPEAT: weight 64; 80 + ((64*40 + 128) >> 8) = 90
+    FsTex e("color = textureLod(tex, vec2(0.01, 0.01), 2.25);");
+    e.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    e.run();
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(e.out(l, 2), 90.0f / 255.0f) << l;
+}
+
+TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
+    // sRGB does not fit 8-bit UNORM after decoding: lavapipe blends the linear floats
+    TestImage img(Format::RGBA8_SRGB, 8, 8);
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    FsTex r("color = textureLod(tex, vec2(0.125, 0.0625), 0.0);");  // halfway between texels 0 and 1, row 0
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    r.run();
+    double c1 = 16.0 / 255.0;
+    float lin1 = float(std::pow((c1 + 0.055) / 1.055, 2.4));
+    EXPECT_EQ(r.out(0, 0), 0.5f * 0.0f + 0.5f * lin1);
 }
