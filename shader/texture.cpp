@@ -197,6 +197,30 @@ struct SampleArgs {
     float ref = 0.0f;
 };
 
+bool fits_unorm8(Format f) {
+    return f == Format::RGBA8_UNORM || f == Format::BGRA8_UNORM || f == Format::R8_UNORM || f == Format::RG8_UNORM;
+}
+
+struct Axis {
+    int32_t i0, i1;  // texel indices (i1 already wrapped when `wrapped`)
+    float w;
+};
+
+// MIRRORED_REPEAT in lavapipe's float filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear): mirror the
+// normalized coordinate first, m = |2(s/2 - round(s/2))|, then u = m*n - 0.5, i0 = max(floor(u), 0),
+// i1 = min(floor(u) + 1, n - 1). The returned indices are final (the wrap of fetch() leaves them unchanged).
+Axis mirror_axis(float s, int32_t n, int32_t off) {
+    if (off) s = s + float(off) / float(n);
+    float h = s * 0.5f;
+    float f = h - std::nearbyint(h);
+    float m = std::fabs(f + f);
+    if (!(m == m)) m = 0.0f;
+    float u = m * float(n) - 0.5f;
+    float fl = std::floor(u);
+    int32_t i = safe_floor(u);
+    return {std::max(i, 0), std::min(i + 1, n - 1), u - fl};
+}
+
 Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
                   bool linear, bool one_d, const SampleArgs& args) {
     const ImageLevel& il = img.level[level];
@@ -223,8 +247,28 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     int32_t i0 = safe_floor(uu), j0 = one_d ? 0 : safe_floor(vv);
     float a = (uu == uu) ? uu - std::floor(uu) : 0.0f;
     float b = one_d ? 0.0f : ((vv == vv) ? vv - std::floor(vv) : 0.0f);
-    Vec4 t00 = fetch(i0, j0), t10 = fetch(i0 + 1, j0), t01 = fetch(i0, j0 + 1), t11 = fetch(i0 + 1, j0 + 1);
+    int32_t i1 = i0 + 1, j1 = j0 + 1;
+    Axis ax = {i0 + args.off_x, i1 + args.off_x, a}, ay = {j0 + args.off_y, j1 + args.off_y, b};
+    if (smp.address_u == AddressMode::MirroredRepeat && !smp.unnormalized) ax = mirror_axis(s, lv.w, args.off_x);
+    if (!one_d && smp.address_v == AddressMode::MirroredRepeat && !smp.unnormalized)
+        ay = mirror_axis(t, lv.h, args.off_y);
+    a = ax.w, b = one_d ? 0.0f : ay.w;
+    // fetch() adds the offsets again: hand it offset-free indices
+    i0 = ax.i0 - args.off_x, i1 = ax.i1 - args.off_x, j0 = ay.i0 - args.off_y, j1 = ay.i1 - args.off_y;
+    if (one_d) j1 = j0;
+    Vec4 t00 = fetch(i0, j0), t10 = fetch(i1, j0), t01 = fetch(i0, j1), t11 = fetch(i1, j1);
     Vec4 r;
+    if (fits_unorm8(img.format) && !args.dref) {
+        // lavapipe's float (SoA) filter for 8-bit formats it could not take the 8-bit path with: texels are
+        // c * float(1/255), lerped along x then y with fused multiply-adds: lerp(w, p, q) = fma(w, q - p, p)
+        auto re = [](float x) { return float(int32_t(std::lround(x * 255.0f))) * (1.0f / 255.0f); };
+        auto lerp = [](float w, float p, float q) { return std::fma(w, q - p, p); };
+        for (int c = 0; c < 4; ++c) {
+            float x0 = lerp(a, re(t00[c]), re(t10[c]));
+            r[c] = one_d ? x0 : lerp(b, x0, lerp(a, re(t01[c]), re(t11[c])));
+        }
+        return r;
+    }
     for (int c = 0; c < 4; ++c)
         r[c] = (1 - a) * (1 - b) * t00[c] + a * (1 - b) * t10[c] + (1 - a) * b * t01[c] + a * b * t11[c];
     return r;

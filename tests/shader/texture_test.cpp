@@ -132,7 +132,7 @@ TEST(ShaderTexture, BilinearFiltering) {
     TestImage img;
     SamplerState smp;
     smp.mag_filter = smp.min_filter = Filter::Linear;
-    // MIRROR_CLAMP_TO_EDGE reads like CLAMP_TO_EDGE for indices >= -1 but keeps lavapipe's float filter
+    // MIRROR_CLAMP_TO_EDGE reads like CLAMP_TO_EDGE for indices >= -1 but takes lavapipe's float filter
     smp.address_u = smp.address_v = AddressMode::MirrorClampToEdge;
     FsTex r("color = textureLod(tex, v.xy, 0.0);");
     r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
@@ -150,8 +150,10 @@ TEST(ShaderTexture, BilinearFiltering) {
         for (int c = 0; c < 4; ++c) {
             float t00 = img.texel(0, cl(i0), cl(j0), c), t10 = img.texel(0, cl(i0 + 1), cl(j0), c);
             float t01 = img.texel(0, cl(i0), cl(j0 + 1), c), t11 = img.texel(0, cl(i0 + 1), cl(j0 + 1), c);
-            float e = (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
-            EXPECT_EQ(r.out(l, c), e) << l << " " << c;
+            // lavapipe's float filter for 8-bit texels: c * float(1/255), fused lerps along x, then y
+            auto re = [](float x) { return float(std::lround(x * 255.0f)) * (1.0f / 255.0f); };
+            float x0 = std::fma(a, re(t10) - re(t00), re(t00)), x1 = std::fma(a, re(t11) - re(t01), re(t01));
+            EXPECT_EQ(r.out(l, c), std::fma(b, x1 - x0, x0)) << l << " " << c;
         }
     }
 }
@@ -416,4 +418,22 @@ TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
     double c1 = 16.0 / 255.0;
     float lin1 = float(std::pow((c1 + 0.055) / 1.055, 2.4));
     EXPECT_EQ(r.out(0, 0), 0.5f * 0.0f + 0.5f * lin1);
+}
+
+TEST(ShaderTextureFixed8, MirroredRepeatLinearMirrorsTheCoordinateFirst) {
+    // float path (MIRRORED_REPEAT is not an 8-bit-path wrap): s = 1.125 -> m = |2(0.5625 - 1)| = 0.875,
+    // u = 0.875*8 - 0.5 = 6.5: texels 6 and 7 with weight 0.5; s = -0.0625 -> m = 0.0625, u = 0: texel 0 only
+    TestImage img;
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    smp.address_u = AddressMode::MirroredRepeat;
+    smp.address_v = AddressMode::ClampToEdge;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (int l = 0; l < kLanes; ++l)
+        r.block.inputs[0][0][l] = u(l % 2 ? -0.0625f : 1.125f), r.block.inputs[0][1][l] = u(0.0625f);
+    r.run();
+    const float k = 1.0f / 255.0f;
+    for (int l = 0; l < kLanes; ++l)
+        EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : std::fma(0.5f, 112.0f * k - 96.0f * k, 96.0f * k)) << l;
 }
