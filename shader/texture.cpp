@@ -331,8 +331,17 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
-        int32_t x = wrap(safe_floor(u) + args.off_x, w, smp.address_u);
-        int32_t y = one_d ? 0 : wrap(safe_floor(v) + args.off_y, h, smp.address_v);
+        // REPEAT with a non-power-of-two size wraps the float coordinate: trunc(min(fract(s + off/n), 1-2^-24)*n)
+        auto axis = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
+            if (m != AddressMode::Repeat || (n & (n - 1)) == 0 || smp.unnormalized)
+                return wrap(safe_floor(un) + off, n, m);
+            if (off) st = st + float(off) / float(n);
+            float f = st - std::floor(st);
+            f = (f == f) ? std::min(f, 0x1.fffffep-1f) : 0x1.fffffep-1f;
+            return std::clamp(int32_t(f * float(n)), 0, n - 1);
+        };
+        int32_t x = axis(s, u, w, args.off_x, smp.address_u);
+        int32_t y = one_d ? 0 : axis(t, v, h, args.off_y, smp.address_v);
         return at(x, y);
     }
     fixed8::Pair px = axis_fixed8(s, w, args.off_x, smp.unnormalized, smp.address_u);

@@ -437,3 +437,16 @@ TEST(ShaderTextureFixed8, MirroredRepeatLinearMirrorsTheCoordinateFirst) {
     for (int l = 0; l < kLanes; ++l)
         EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : std::fma(0.5f, 112.0f * k - 96.0f * k, 96.0f * k)) << l;
 }
+
+TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoNearestTruncatesTheWrappedFraction) {
+    // s = 0x1.2aaaaap+0: s*6 rounds to 7.0 (texel 1 after floor and mod), but lavapipe's 8-bit path takes
+    // fract(s) = 0x0.2aaaaap+0 = 0.16666663, times 6 = 0.99999976, truncated: texel 0 (red = x*16 = 0)
+    TestImage img(Format::RGBA8_UNORM, 6, 6);
+    SamplerState smp;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    for (int l = 0; l < kLanes; ++l)
+        r.block.inputs[0][0][l] = u(l % 2 ? 0x1.2aaaaap+0f : 0.25f), r.block.inputs[0][1][l] = u(0.5f);
+    r.run();
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : 16.0f / 255.0f) << l;  // 0.25*6 -> 1
+}
