@@ -35,8 +35,14 @@ inline float sse_max(float a, float b) {
 }
 // cvtps2dq (round half to even), INT32_MIN for NaN / out of range.
 inline int32_t cvtps2dq(float f) {
+#if TILEVK_HAVE_SSE_RSQRT
+    // The instruction itself (round to nearest even under the default MXCSR; out of range and NaN -> INT32_MIN):
+    // the portable form below calls libm's nearbyint, which dominated UNORM8 stores.
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
     if (!(f >= -2147483648.0f && f < 2147483648.0f)) return INT32_MIN;
     return int32_t(std::nearbyint(f));
+#endif
 }
 // packssdw then packuswb: signed saturate to 16 bits, then unsigned saturate to 8 bits.
 inline uint8_t pack_sat_u8(int32_t v) {
