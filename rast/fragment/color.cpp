@@ -44,11 +44,6 @@ inline int32_t cvtps2dq(float f) {
     return int32_t(std::nearbyint(f));
 #endif
 }
-// packssdw then packuswb: signed saturate to 16 bits, then unsigned saturate to 8 bits.
-inline uint8_t pack_sat_u8(int32_t v) {
-    int32_t s16 = v < -32768 ? -32768 : v > 32767 ? 32767 : v;
-    return uint8_t(s16 < 0 ? 0 : s16 > 255 ? 255 : s16);
-}
 }  // namespace
 
 FormatInfo format_info(ColorFormat f) {
@@ -75,13 +70,6 @@ FormatInfo format_info(ColorFormat f) {
             return {16, 4, true, false, ChannelKind::Float32};
     }
     return {4, 4, true, false, ChannelKind::Unorm8};
-}
-
-uint8_t float_to_unorm8(float x, UnormPath path) {
-    // Avx8: a = min.ps(1.0, x)  (NaN -> x, i.e. stays NaN);  then cvtps2dq(fl(a*255)) and saturating packs
-    float a = x;
-    if (path == UnormPath::Avx8) a = sse_min(1.0f, x);
-    return pack_sat_u8(cvtps2dq(a * 255.0f));
 }
 
 float unorm8_to_float(uint8_t u) {
