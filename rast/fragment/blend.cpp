@@ -123,7 +123,7 @@ struct Px8 {
     uint8_t sa, ka;
 };
 
-uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8& p) {
+[[gnu::always_inline]] inline uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8& p) {
     switch (f) {
         case kZero:
             return 0;
@@ -162,7 +162,7 @@ uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8&
     }
 }
 
-uint8_t func8(BlendOp op, uint8_t a, uint8_t b) {
+[[gnu::always_inline]] inline uint8_t func8(BlendOp op, uint8_t a, uint8_t b) {
     switch (op) {
         case BlendOp::Add:
             return uint8_t(a + b > 255 ? 255 : a + b);  // uadd.sat
