@@ -22,6 +22,13 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
                                               int samples, uint16_t sample_mask) {
     Block4& b = out->blocks[out->num_blocks];
     b.x = x, b.y = y;
+    if (samples == 1) {
+        // 1x: one mask; the other slots must still read zero for the consumer.
+        const uint16_t m = static_cast<uint16_t>((sample_mask & 1u) ? masks[0] : 0u);
+        b.mask[0] = m, b.mask[1] = 0, b.mask[2] = 0, b.mask[3] = 0;
+        out->num_blocks += m != 0;
+        return;
+    }
     uint32_t any = 0;
     for (int s = 0; s < kMaxSamples; ++s) {
         b.mask[s] = static_cast<uint16_t>(s < samples && ((sample_mask >> s) & 1u) ? masks[s] : 0u);
@@ -65,6 +72,9 @@ using PlaneList = const TilePlane* const*;
 
 // Lanes of a 4x4 grid of 2^shift blocks at (ox, oy) whose block meets the tile-relative box [x0,x1]x[y0,y1].
 uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    // Common case for large primitives: the whole grid (4 << shift px square) lies inside the box.
+    const int32_t last = (4 << shift) - 1;
+    if (ox >= x0 && oy >= y0 && ox + last <= x1 && oy + last <= y1) return 0xFFFF;
     uint32_t cols = 0, rows = 0;
     for (int i = 0; i < 4; ++i) {
         const int32_t bx = ox + (i << shift), by = oy + (i << shift), e = (1 << shift) - 1;
