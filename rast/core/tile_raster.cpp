@@ -70,21 +70,19 @@ using PlaneList = const TilePlane* const*;
     *full = *live & acc_all;
 }
 
+// Bits i of the 4 lanes along one axis whose block [o + i*w, o + i*w + w-1] (w = 2^shift) meets [lo, hi]:
+// floor((lo-o)/w) <= i <= floor((hi-o)/w) (arithmetic shift is floor), clamped to [0, 3].
+inline uint32_t lane_range(int32_t o, int shift, int32_t lo, int32_t hi) {
+    const int32_t first = std::max((lo - o) >> shift, 0), last = std::min((hi - o) >> shift, 3);
+    return first > last ? 0u : (2u << last) - (1u << first);
+}
+
 // Lanes of a 4x4 grid of 2^shift blocks at (ox, oy) whose block meets the tile-relative box [x0,x1]x[y0,y1].
 uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
-    // Common case for large primitives: the whole grid (4 << shift px square) lies inside the box.
-    const int32_t last = (4 << shift) - 1;
-    if (ox >= x0 && oy >= y0 && ox + last <= x1 && oy + last <= y1) return 0xFFFF;
-    uint32_t cols = 0, rows = 0;
-    for (int i = 0; i < 4; ++i) {
-        const int32_t bx = ox + (i << shift), by = oy + (i << shift), e = (1 << shift) - 1;
-        cols |= static_cast<uint32_t>(bx <= x1 && bx + e >= x0) << i;
-        rows |= static_cast<uint32_t>(by <= y1 && by + e >= y0) << i;
-    }
-    uint32_t m = 0;
-    for (int r = 0; r < 4; ++r)
-        if ((rows >> r) & 1u) m |= cols << (4 * r);
-    return m;
+    const uint32_t cols = lane_range(ox, shift, x0, x1), rows = lane_range(oy, shift, y0, y1);
+    // Row bit r -> bit 4r; times cols (< 16) copies the column bits into each selected row without carries.
+    const uint32_t spread = (rows & 1u) | ((rows & 2u) << 3) | ((rows & 4u) << 6) | ((rows & 8u) << 9);
+    return spread * cols;
 }
 
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
