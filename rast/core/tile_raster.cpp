@@ -105,9 +105,13 @@ void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, 
         if ((full >> lane) & 1u) {
             push_full(out, t.x0 + bx, t.y0 + by, 4);
         } else {
-            const TilePlane* kept[Prim::kMaxPlanes];
-            const int k = drop_accepted(planes, n, acc, lane, kept);
-            hier_block4(prim, t, kept, k, bx, by, out);
+            // Mask with the planes that do not accept this lane, directly (no kept-plane list at the last level).
+            uint32_t masks[4] = {0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF};
+            for (int k = 0; k < n; ++k) {
+                if ((acc[k] >> lane) & 1u) continue;
+                for (int s = 0; s < t.samples; ++s) masks[s] &= mask4x4(planes + k, 1, s, bx, by);
+            }
+            push_block(out, t.x0 + bx, t.y0 + by, masks, t.samples, prim.sample_mask);
         }
     }
 }
