@@ -24,6 +24,7 @@ class MaskConsumer final : public rast::CoverageConsumer {
     void begin_tile(unsigned, const rast::TileInfo&) override {}
     void end_tile(unsigned, const rast::TileInfo&) override {}
     void primitive(unsigned, const rast::TileInfo&, const rast::PrimCoverage& c) override {
+        front_ = c.front_facing;
         for (size_t i = 0; i < c.num_blocks; ++i) {
             const rast::Block4& b = c.blocks[i];
             for (int s = 0; s < cov_.samples; ++s)
@@ -39,9 +40,13 @@ class MaskConsumer final : public rast::CoverageConsumer {
 
   private:
     void set(int x, int y, uint8_t bits) {
-        if (x >= 0 && y >= 0 && uint32_t(x) < cov_.width && uint32_t(y) < cov_.height)
-            cov_.mask[size_t(y) * cov_.width + x] |= bits;
+        if (x >= 0 && y >= 0 && uint32_t(x) < cov_.width && uint32_t(y) < cov_.height) {
+            const size_t i = size_t(y) * cov_.width + x;
+            cov_.mask[i] |= bits;
+            if (cov_.counting != Frag::kColor && bits) ++(front_ ? cov_.front : cov_.back)[i];
+        }
     }
+    bool front_ = true;
     OracleCoverage& cov_;
 };
 
@@ -59,13 +64,22 @@ bool exact_rgba8(const float c[4], bool only_0_1, uint32_t& out) {
     return true;
 }
 
-std::string draw_domain(const Draw& d) {
+bool additive(const VkPipelineColorBlendAttachmentState& b) {
+    return b.blendEnable && b.srcColorBlendFactor == VK_BLEND_FACTOR_ONE &&
+           b.dstColorBlendFactor == VK_BLEND_FACTOR_ONE && b.colorBlendOp == VK_BLEND_OP_ADD &&
+           b.srcAlphaBlendFactor == VK_BLEND_FACTOR_ONE && b.dstAlphaBlendFactor == VK_BLEND_FACTOR_ONE &&
+           b.alphaBlendOp == VK_BLEND_OP_ADD && b.colorWriteMask == 0xF;
+}
+
+std::string draw_domain(const Draw& d, Frag counting) {
     if (d.topology != VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST && d.topology != VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP &&
         d.topology != VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN)
         return "not a triangle topology";
     if (d.polygon_mode != VK_POLYGON_MODE_FILL) return "polygon mode not FILL";
-    if (d.frag != Frag::kColor || d.texture) return "shading is not a plain colour";
-    if (d.blend.blendEnable || d.blend.colorWriteMask != 0xF) return "blending or a partial write mask";
+    if (d.texture || d.frag != counting) return "shading is not a plain colour (or mixed counting modes)";
+    if (counting == Frag::kColor && (d.blend.blendEnable || d.blend.colorWriteMask != 0xF))
+        return "blending or a partial write mask";
+    if (counting != Frag::kColor && !additive(d.blend)) return "counting without ONE,ONE additive blending";
     if (d.depth_test || d.stencil_test) return "depth or stencil test";
     if (d.alpha_to_coverage) return "alpha to coverage";
     return {};
@@ -101,8 +115,15 @@ std::string oracle_coverage(const Scene& scene, OracleCoverage& out) {
     out.samples = t.samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1;
     if (!exact_rgba8(t.clear_color, false, out.clear_rgba)) return "clear colour has no exact RGBA8 value";
     bool have_colour = false;
+    out.counting = scene.draws[0].frag == Frag::kCount || scene.draws[0].frag == Frag::kFacing ? scene.draws[0].frag
+                                                                                               : Frag::kColor;
+    if (out.counting != Frag::kColor && out.samples != 1) return "counting at 4x (a resolved mix)";
     for (const Draw& d : scene.draws) {
-        if (std::string e = draw_domain(d); !e.empty()) return e;
+        if (std::string e = draw_domain(d, out.counting); !e.empty()) return e;
+        if (out.counting != Frag::kColor) {
+            have_colour = true;  // the shader's constant, not the vertex colour
+            continue;
+        }
         for (const Vertex& v : d.vertices) {
             uint32_t c;
             if (!exact_rgba8(v.color, true, c)) return "a vertex colour is not 0/1 per component";
@@ -113,6 +134,10 @@ std::string oracle_coverage(const Scene& scene, OracleCoverage& out) {
     }
     if (!have_colour) return "no vertices";
     out.mask.assign(size_t(t.width) * t.height, 0);
+    if (out.counting != Frag::kColor) {
+        out.front.assign(out.mask.size(), 0);
+        out.back.assign(out.mask.size(), 0);
+    }
 
     rast::Scene rs({.width = int32_t(t.width),
                     .height = int32_t(t.height),
@@ -182,7 +207,18 @@ std::string oracle_judge(const OracleCoverage& cov, const std::vector<Plane>& pl
             const uint8_t m = cov.mask[size_t(y) * cov.width + x];
             if (m != 0 && m != all) continue;  // partly covered 4x pixel: a resolved mix
             ++judged;
-            const uint32_t want = m ? cov.draw_rgba : cov.clear_rgba;
+            uint32_t want = m ? cov.draw_rgba : cov.clear_rgba;
+            if (cov.counting != Frag::kColor) {
+                // kCount adds 1/255 per covering triangle to every channel; kFacing to red (front) or green
+                // (back) and to alpha (both); unorm8 saturates at 255.
+                const uint32_t f = cov.front[size_t(y) * cov.width + x], b = cov.back[size_t(y) * cov.width + x];
+                const uint32_t add[4] = {cov.counting == Frag::kCount ? f + b : f,
+                                         cov.counting == Frag::kCount ? f + b : b,
+                                         cov.counting == Frag::kCount ? f + b : 0, f + b};
+                want = 0;
+                for (int ch = 0; ch < 4; ++ch)
+                    want |= std::min<uint32_t>(255, (cov.clear_rgba >> (8 * ch) & 0xFF) + add[ch]) << (8 * ch);
+            }
             uint32_t v;
             std::memcpy(&v, &p->data[(size_t(y) * p->width + x) * 4], 4);
             if (v == want) continue;
@@ -208,7 +244,10 @@ OracleVerdict rast_reference_oracle(const Scene& scene, const std::vector<Plane>
         return v;
     }
     v.applies = true;
-    v.note = std::to_string(cov.triangles) + " triangles, " + std::to_string(cov.samples) + "x";
+    v.note = std::to_string(cov.triangles) + " triangles, " + std::to_string(cov.samples) + "x" +
+             (cov.counting == Frag::kCount    ? ", counted"
+              : cov.counting == Frag::kFacing ? ", counted by facing"
+                                              : "");
     v.error = oracle_judge(cov, planes);
     return v;
 }

@@ -20,10 +20,15 @@ struct OracleCoverage {
     std::vector<uint8_t> mask;
     uint32_t draw_rgba = 0, clear_rgba = 0;
     uint64_t triangles = 0;  // triangles handed to the oracle (before culling)
+    // Counting scenes (Frag::kCount / kFacing with ONE,ONE additive blending, 1x only): per-pixel number of
+    // front- and back-facing triangles covering the pixel; the expected pixel is clear + count per channel.
+    Frag counting = Frag::kColor;
+    std::vector<uint16_t> front, back;
 };
 
 // Empty string: `out` holds the oracle's coverage. Else why the scene is outside the domain: the colour must be
-// RGBA8 UNORM at 1x or 4x, every draw a FILL triangle topology with Frag::kColor, no blending, full write mask, no
+// RGBA8 UNORM at 1x or 4x, every draw a FILL triangle topology with Frag::kColor, no blending (or, at 1x, every draw
+// Frag::kCount or every draw kFacing with ONE,ONE additive blending), full write mask, no
 // depth/stencil test, no alpha-to-coverage, one colour for every vertex (components 0 or 1 unless flat), and no
 // vertex of any assembled triangle needing clipping (non-zero clip mask: the clipper makes new vertices and
 // reorders them, which the oracle does not model), and every window coordinate within rast's range.

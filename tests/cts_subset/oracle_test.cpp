@@ -92,6 +92,32 @@ TEST(CoverageOracle, FourSamplesFullPixels) {
     EXPECT_NE(rast_reference_oracle(s, rect_image(9, 8, 24, 20)).error, "");
 }
 
+// Two ONE,ONE additive kCount draws of the rectangle: its pixels are clear + 2/255 per channel, the rest clear.
+TEST(CoverageOracle, CountingAddsPerTriangle) {
+    Scene s = rect_scene();
+    s.draws[0].frag = Frag::kCount;
+    s.draws[0].blend = {VK_TRUE,
+                        VK_BLEND_FACTOR_ONE,
+                        VK_BLEND_FACTOR_ONE,
+                        VK_BLEND_OP_ADD,
+                        VK_BLEND_FACTOR_ONE,
+                        VK_BLEND_FACTOR_ONE,
+                        VK_BLEND_OP_ADD,
+                        0xF};
+    s.draws.push_back(s.draws[0]);
+    s.target.clear_color[3] = 0.0f;
+    std::vector<Plane> img = rect_image(8, 8, 24, 20);
+    for (size_t i = 0; i < img[0].data.size(); i += 4) {
+        const uint8_t v = img[0].data[i] ? 2 : 0;
+        for (int c = 0; c < 4; ++c) img[0].data[i + c] = v;
+    }
+    OracleVerdict r = rast_reference_oracle(s, img);
+    ASSERT_TRUE(r.applies) << r.note;
+    EXPECT_EQ(r.error, "");
+    img[0].data[(10 * 32 + 10) * 4] = 1;  // counted once: the fill rule would have missed a triangle
+    EXPECT_EQ(rast_reference_oracle(s, img).error.rfind("1 of 1024", 0), 0u);
+}
+
 TEST(CoverageOracle, OutsideTheDomainIsNotApplicable) {
     Scene s = rect_scene();
     s.draws[0].vertices[0].pos[0] = -1.5f;  // needs clipping
