@@ -47,9 +47,14 @@ Check coverage_band(const Scene& scene, float margin);
 // All checks in order; the first failure wins.
 Check all_of(std::vector<Check> checks);
 
-// Hook for rast/'s reference coverage method (when the rast branch lands): if set, it is run on every case's
-// scene and our planes, and a non-empty answer fails the case.
-using CoverageOracle = std::function<std::string(const Scene& scene, const std::vector<Plane>& ours)>;
+// Hook for an independent coverage oracle (oracle.hpp: rast/'s reference method), run on every case's scene
+// and each device's planes. `applies` false: the case is outside the oracle's domain (`note` says why).
+struct OracleVerdict {
+    bool applies = false;
+    std::string note;   // why not applicable, or what was checked
+    std::string error;  // non-empty: the planes disagree with the oracle
+};
+using CoverageOracle = std::function<OracleVerdict(const Scene& scene, const std::vector<Plane>& planes)>;
 void set_coverage_oracle(CoverageOracle oracle);
 const CoverageOracle& coverage_oracle();
 

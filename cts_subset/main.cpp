@@ -14,6 +14,7 @@
 
 #include "case.hpp"
 #include "glsl.hpp"
+#include "oracle.hpp"
 #include "png_writer.hpp"
 #include "render.hpp"
 #include "results.hpp"
@@ -242,8 +243,18 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         if (why.empty() && !ca.empty()) why = "independent check: " + ca;
         if (why.empty() && !cb.empty()) why = "independent check failed on the reference: " + cb;
     }
-    if (const CoverageOracle& oracle = coverage_oracle(); oracle && why.empty()) {
-        if (auto e = oracle(scene, a.planes); !e.empty()) why = "coverage oracle: " + e;
+    if (const CoverageOracle& oracle = coverage_oracle()) {
+        // Judged on both devices: the reference must agree with rast's reference coverage too.
+        const OracleVerdict va = oracle(scene, a.planes), vb = oracle(scene, b.planes);
+        if (!va.applies) {
+            r.oracle = "n/a: " + va.note;
+        } else {
+            r.oracle = va.error.empty() && vb.error.empty() ? "ok (" + va.note + ")"
+                       : !va.error.empty()                  ? va.error
+                                                            : "reference: " + vb.error;
+            if (why.empty() && !va.error.empty()) why = "coverage oracle: " + va.error;
+            if (why.empty() && !vb.error.empty()) why = "coverage oracle failed on the reference: " + vb.error;
+        }
     }
     if (!o.png_dir.empty() && (!why.empty() || o.png_all)) save_pngs(o.png_dir, c.name, a.planes, b.planes);
     if (!why.empty()) return fail(why);
@@ -253,6 +264,7 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
 }  // namespace
 
 int main(int argc, char** argv) {
+    set_coverage_oracle(rast_reference_oracle);
     Options o;
     if (!parse(argc, argv, o)) {
         usage();

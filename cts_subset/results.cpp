@@ -99,8 +99,8 @@ bool write_json(const std::string& path, const RunInfo& info, const std::vector<
           << "\", \"reason\": \"" << json_escape(r.reason) << "\", \"note\": \"" << json_escape(r.note)
           << "\", \"differing\": " << r.differing << ", \"total\": " << r.total
           << ", \"max_error\": " << num(r.max_error) << ", \"check\": \"" << json_escape(r.check)
-          << "\", \"ours_ms\": " << num(r.ours_ms) << ", \"ref_ms\": " << num(r.ref_ms)
-          << ", \"ours_pipeline_ms\": " << num(r.ours_pipeline_ms)
+          << "\", \"oracle\": \"" << json_escape(r.oracle) << "\", \"ours_ms\": " << num(r.ours_ms)
+          << ", \"ref_ms\": " << num(r.ref_ms) << ", \"ours_pipeline_ms\": " << num(r.ours_pipeline_ms)
           << ", \"ref_pipeline_ms\": " << num(r.ref_pipeline_ms) << ", \"seconds\": " << num(r.seconds) << "}"
           << (i + 1 < results.size() ? "," : "") << "\n";
     }
@@ -144,7 +144,7 @@ bool write_log(const std::string& path, const RunInfo& info, const std::vector<C
         o << "Test case '" << r.name << "'..\n";
         if (r.status == Status::kPass)
             o << "  Pass (" << r.total << " pixels equal" << (r.check.empty() || r.check == "none" ? "" : ", check ok")
-              << ")\n";
+              << (r.oracle.rfind("ok", 0) == 0 ? ", coverage oracle ok" : "") << ")\n";
         else
             o << "  " << status_name(r.status) << " (" << r.reason << ")\n";
     }

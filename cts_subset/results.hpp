@@ -17,6 +17,7 @@ struct CaseResult {
     uint64_t differing = 0, total = 0;  // pixels over every plane
     double max_error = 0;
     std::string check;                 // "none", or the independent check's verdict ("ok" / failure text)
+    std::string oracle = "none";       // coverage oracle: "none", "n/a: why", "ok (...)" or the disagreement
     double ours_ms = -1, ref_ms = -1;  // median frame time, -1 if not timed
     double ours_pipeline_ms = -1, ref_pipeline_ms = -1;
     double seconds = 0;  // wall time of the whole case

@@ -22,6 +22,13 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
                                               int samples, uint16_t sample_mask) {
     Block4& b = out->blocks[out->num_blocks];
     b.x = x, b.y = y;
+    if (samples == 1) {
+        // 1x: one mask; the other slots must still read zero for the consumer.
+        const uint16_t m = static_cast<uint16_t>((sample_mask & 1u) ? masks[0] : 0u);
+        b.mask[0] = m, b.mask[1] = 0, b.mask[2] = 0, b.mask[3] = 0;
+        out->num_blocks += m != 0;
+        return;
+    }
     uint32_t any = 0;
     for (int s = 0; s < kMaxSamples; ++s) {
         b.mask[s] = static_cast<uint16_t>(s < samples && ((sample_mask >> s) & 1u) ? masks[s] : 0u);
@@ -63,18 +70,19 @@ using PlaneList = const TilePlane* const*;
     *full = *live & acc_all;
 }
 
+// Bits i of the 4 lanes along one axis whose block [o + i*w, o + i*w + w-1] (w = 2^shift) meets [lo, hi]:
+// floor((lo-o)/w) <= i <= floor((hi-o)/w) (arithmetic shift is floor), clamped to [0, 3].
+inline uint32_t lane_range(int32_t o, int shift, int32_t lo, int32_t hi) {
+    const int32_t first = std::max((lo - o) >> shift, 0), last = std::min((hi - o) >> shift, 3);
+    return first > last ? 0u : (2u << last) - (1u << first);
+}
+
 // Lanes of a 4x4 grid of 2^shift blocks at (ox, oy) whose block meets the tile-relative box [x0,x1]x[y0,y1].
 uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
-    uint32_t cols = 0, rows = 0;
-    for (int i = 0; i < 4; ++i) {
-        const int32_t bx = ox + (i << shift), by = oy + (i << shift), e = (1 << shift) - 1;
-        cols |= static_cast<uint32_t>(bx <= x1 && bx + e >= x0) << i;
-        rows |= static_cast<uint32_t>(by <= y1 && by + e >= y0) << i;
-    }
-    uint32_t m = 0;
-    for (int r = 0; r < 4; ++r)
-        if ((rows >> r) & 1u) m |= cols << (4 * r);
-    return m;
+    const uint32_t cols = lane_range(ox, shift, x0, x1), rows = lane_range(oy, shift, y0, y1);
+    // Row bit r -> bit 4r; times cols (< 16) copies the column bits into each selected row without carries.
+    const uint32_t spread = (rows & 1u) | ((rows & 2u) << 3) | ((rows & 4u) << 6) | ((rows & 8u) << 9);
+    return spread * cols;
 }
 
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
@@ -97,9 +105,13 @@ void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, 
         if ((full >> lane) & 1u) {
             push_full(out, t.x0 + bx, t.y0 + by, 4);
         } else {
-            const TilePlane* kept[Prim::kMaxPlanes];
-            const int k = drop_accepted(planes, n, acc, lane, kept);
-            hier_block4(prim, t, kept, k, bx, by, out);
+            // Mask with the planes that do not accept this lane, directly (no kept-plane list at the last level).
+            uint32_t masks[4] = {0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF};
+            for (int k = 0; k < n; ++k) {
+                if ((acc[k] >> lane) & 1u) continue;
+                for (int s = 0; s < t.samples; ++s) masks[s] &= mask4x4(planes + k, 1, s, bx, by);
+            }
+            push_block(out, t.x0 + bx, t.y0 + by, masks, t.samples, prim.sample_mask);
         }
     }
 }

@@ -123,7 +123,7 @@ struct Px8 {
     uint8_t sa, ka;
 };
 
-uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8& p) {
+[[gnu::always_inline]] inline uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8& p) {
     switch (f) {
         case kZero:
             return 0;
@@ -162,7 +162,7 @@ uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8&
     }
 }
 
-uint8_t func8(BlendOp op, uint8_t a, uint8_t b) {
+[[gnu::always_inline]] inline uint8_t func8(BlendOp op, uint8_t a, uint8_t b) {
     switch (op) {
         case BlendOp::Add:
             return uint8_t(a + b > 255 ? 255 : a + b);  // uadd.sat
@@ -449,57 +449,113 @@ bool blend_supported(const BlendAttachment& a) {
            to_pipe(a.src_alpha) != kUnsupported && to_pipe(a.dst_alpha) != kUnsupported;
 }
 
-void blend_pixel(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4], uint8_t* dst,
-                 const BlendOptions& opt) {
-    const FormatInfo fi = format_info(f);
-    const uint8_t wmask = format_write_mask(fi, a.write_mask);
-    if (wmask == 0) return;
+namespace {
+
+// Everything blend_pixel derives from the state alone, computed once per block instead of once per pixel.
+struct PreparedBlend {
+    FormatInfo fi;
+    uint8_t wmask;  // write mask restricted to the format's channels
+    bool blend;
+    PipeBlend pb;   // lowered state (valid when blend)
+    uint8_t k8[4];  // UNORM8 constants
+    float kf[4];    // float constants (sRGB: clamped)
+    bool ftz;
+};
+
+PreparedBlend prepare_blend(const BlendAttachment& a, ColorFormat f, const float constants[4],
+                            const BlendOptions& opt) {
+    PreparedBlend pr{};
+    pr.fi = format_info(f);
+    pr.wmask = format_write_mask(pr.fi, a.write_mask);
+    pr.blend = a.blend_enable;
+    if (pr.blend) pr.pb = lower(a, pr.fi);
+    pr.ftz = pr.fi.kind != ChannelKind::Half;  // half targets run with denormals enabled (lp_build_fpstate)
+    for (int c = 0; c < 4; ++c) {
+        pr.k8[c] = float_to_unorm8(constants[c], opt.unorm_path);
+        // constants: lp_build_clamp (min then max) for sRGB
+        pr.kf[c] = pr.fi.kind == ChannelKind::Srgb8 ? sse_max(sse_min(constants[c], 1.0f), 0.0f) : constants[c];
+    }
+    return pr;
+}
+
+void blend_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, const BlendOptions& opt) {
+    const FormatInfo& fi = pr.fi;
     if (fi.kind == ChannelKind::Unorm8) {
         Px8 p;
         for (int c = 0; c < 4; ++c) {
             p.s[c] = float_to_unorm8(src[c], opt.unorm_path);
-            p.k[c] = float_to_unorm8(constants[c], opt.unorm_path);
+            p.k[c] = pr.k8[c];
         }
         p.sa = p.s[3];
         p.ka = p.k[3];
-        load_u8(fi, dst, p.d);
         uint8_t out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
-        if (a.blend_enable) blend_unorm8(lower(a, fi), fi, p, out);
-        store_u8(fi, out, wmask, dst);
+        if (pr.blend) {
+            load_u8(fi, dst, p.d);
+            blend_unorm8(pr.pb, fi, p, out);
+        }
+        store_u8(fi, out, pr.wmask, dst);
         return;
     }
     PxF p;
-    p.ftz = fi.kind != ChannelKind::Half;  // half targets run with denormals enabled (lp_build_fpstate)
+    p.ftz = pr.ftz;
     for (int c = 0; c < 4; ++c) {
         p.s[c] = src[c];
-        p.k[c] = constants[c];
+        p.k[c] = pr.kf[c];
         if (fi.kind == ChannelKind::Srgb8) {
-            // sources: clamp_zero_one_nanzero; constants: lp_build_clamp (min then max)
+            // sources: clamp_zero_one_nanzero
             float s = src[c] > 0.0f ? src[c] : 0.0f;
             p.s[c] = sse_min(s, 1.0f);
-            p.k[c] = sse_max(sse_min(constants[c], 1.0f), 0.0f);
         }
     }
     p.sa = p.s[3];
     p.ka = p.k[3];
     float out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
-    if (a.blend_enable) {
+    if (pr.blend) {
         load_f(fi, dst, p.d, opt.fused);
-        blend_float(lower(a, fi), fi, p, out, opt.fused);
+        blend_float(pr.pb, fi, p, out, opt.fused);
     }
     // Masked-out channels keep their stored bits (lavapipe re-encodes the decoded dst; the round trip is exact,
     // see the sRGB round-trip test).
-    store_f(fi, out, wmask, dst, opt.fused);
+    store_f(fi, out, pr.wmask, dst, opt.fused);
+}
+
+// Opaque RGBA8/BGRA8 UNORM write of every channel: the bytes are the converted source, nothing is read.
+void store_rgba8_block(bool bgra, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block, size_t pitch,
+                       UnormPath path) {
+    for (int l = 0; l < kBlockLanes; ++l) {
+        if (!(lane_mask & (1u << l))) continue;
+        uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * 4;
+        const uint8_t r = float_to_unorm8(src[0][l], path), g = float_to_unorm8(src[1][l], path),
+                      b = float_to_unorm8(src[2][l], path), a = float_to_unorm8(src[3][l], path);
+        px[0] = bgra ? b : r;
+        px[1] = g;
+        px[2] = bgra ? r : b;
+        px[3] = a;
+    }
+}
+
+}  // namespace
+
+void blend_pixel(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4], uint8_t* dst,
+                 const BlendOptions& opt) {
+    const PreparedBlend pr = prepare_blend(a, f, constants, opt);
+    if (pr.wmask == 0) return;
+    blend_prepared(pr, src, dst, opt);
 }
 
 void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4][kBlockLanes],
                  uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt) {
-    const FormatInfo fi = format_info(f);
+    const PreparedBlend pr = prepare_blend(a, f, constants, opt);
+    if (pr.wmask == 0 || lane_mask == 0) return;
+    if (pr.fi.kind == ChannelKind::Unorm8 && !pr.blend && pr.fi.channels == 4 && pr.wmask == 0xf) {
+        store_rgba8_block(pr.fi.bgra, src, lane_mask, block, pitch, opt.unorm_path);
+        return;
+    }
     for (int l = 0; l < kBlockLanes; ++l) {
         if (!(lane_mask & (1u << l))) continue;
         const float s[4] = {src[0][l], src[1][l], src[2][l], src[3][l]};
-        uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * fi.bytes;
-        blend_pixel(a, f, constants, s, px, opt);
+        uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * pr.fi.bytes;
+        blend_prepared(pr, s, px, opt);
     }
 }
 

@@ -35,13 +35,14 @@ inline float sse_max(float a, float b) {
 }
 // cvtps2dq (round half to even), INT32_MIN for NaN / out of range.
 inline int32_t cvtps2dq(float f) {
+#if TILEVK_HAVE_SSE_RSQRT
+    // The instruction itself (round to nearest even under the default MXCSR; out of range and NaN -> INT32_MIN):
+    // the portable form below calls libm's nearbyint, which dominated UNORM8 stores.
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
     if (!(f >= -2147483648.0f && f < 2147483648.0f)) return INT32_MIN;
     return int32_t(std::nearbyint(f));
-}
-// packssdw then packuswb: signed saturate to 16 bits, then unsigned saturate to 8 bits.
-inline uint8_t pack_sat_u8(int32_t v) {
-    int32_t s16 = v < -32768 ? -32768 : v > 32767 ? 32767 : v;
-    return uint8_t(s16 < 0 ? 0 : s16 > 255 ? 255 : s16);
+#endif
 }
 }  // namespace
 
@@ -69,13 +70,6 @@ FormatInfo format_info(ColorFormat f) {
             return {16, 4, true, false, ChannelKind::Float32};
     }
     return {4, 4, true, false, ChannelKind::Unorm8};
-}
-
-uint8_t float_to_unorm8(float x, UnormPath path) {
-    // Avx8: a = min.ps(1.0, x)  (NaN -> x, i.e. stays NaN);  then cvtps2dq(fl(a*255)) and saturating packs
-    float a = x;
-    if (path == UnormPath::Avx8) a = sse_min(1.0f, x);
-    return pack_sat_u8(cvtps2dq(a * 255.0f));
 }
 
 float unorm8_to_float(uint8_t u) {

@@ -13,7 +13,13 @@
 // on the 8-wide AVX path (every AVX CPU, the default here) +Inf gives 255.
 #pragma once
 
+#include <climits>
+#include <cmath>
 #include <cstdint>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 namespace tilevk::rast::fragment {
 
@@ -47,8 +53,30 @@ enum class UnormPath : uint8_t {
     Sse4,  // lavapipe without AVX: the min is dropped, x*255 >= 2^31 -> 0
 };
 
-// Shader output to UNORM8, also used for the blend constants.
-uint8_t float_to_unorm8(float x, UnormPath path = UnormPath::Avx8);
+namespace detail {
+// cvtps2dq (round half to even under the default MXCSR), INT32_MIN for NaN / out of range.
+inline int32_t cvtps2dq_u8path(float f) {
+#if defined(__x86_64__) || defined(__i386__)
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
+    if (!(f >= -2147483648.0f && f < 2147483648.0f)) return INT32_MIN;
+    return int32_t(std::nearbyint(f));
+#endif
+}
+// packssdw then packuswb: signed saturate to 16 bits, then unsigned saturate to 8 bits.
+inline uint8_t pack_sat_u8(int32_t v) {
+    const int32_t s16 = v < -32768 ? -32768 : v > 32767 ? 32767 : v;
+    return uint8_t(s16 < 0 ? 0 : s16 > 255 ? 255 : s16);
+}
+}  // namespace detail
+
+// Shader output to UNORM8, also used for the blend constants. Inline: it runs once per channel per pixel.
+inline uint8_t float_to_unorm8(float x, UnormPath path = UnormPath::Avx8) {
+    // Avx8: a = min.ps(1.0, x)  (NaN -> x, i.e. stays NaN);  then cvtps2dq(fl(a*255)) and saturating packs
+    float a = x;
+    if (path == UnormPath::Avx8) a = 1.0f < x ? 1.0f : x;
+    return detail::pack_sat_u8(detail::cvtps2dq_u8path(a * 255.0f));
+}
 // UNORM8 to float: fl(float(u) * fl(1/255)).
 float unorm8_to_float(uint8_t u);
 // util_pack_color's float_to_ubyte (colour clears).

@@ -40,6 +40,27 @@ uint16_t inside_mask(int32_t x, int32_t y, int32_t width, int32_t height) {
     return m;
 }
 
+// Depth texels are 2 or 4 bytes: constant-size copies (inlined) instead of a memcpy call per lane.
+inline uint32_t load_depth_texel(const uint8_t* src, size_t bytes) {
+    if (bytes == 2) {
+        uint16_t v;
+        std::memcpy(&v, src, 2);
+        return v;
+    }
+    uint32_t v = 0;
+    if (bytes == 4) std::memcpy(&v, src, 4);
+    return v;
+}
+
+inline void store_depth_texel(uint8_t* dst, size_t bytes, uint32_t v) {
+    if (bytes == 2) {
+        const uint16_t h = uint16_t(v);
+        std::memcpy(dst, &h, 2);
+    } else if (bytes == 4) {
+        std::memcpy(dst, &v, 4);
+    }
+}
+
 void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
                         fragment::DepthStencilBlock& zs) {
     const size_t bytes = depth_bytes(t.format);
@@ -48,13 +69,10 @@ void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int3
         zs.stencil[l] = 0;
         if (!(lanes & (1u << l))) continue;
         const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
-        if (t.depth) {
-            const uint8_t* src =
-                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes;
-            uint32_t v = 0;
-            std::memcpy(&v, src, bytes);
-            zs.depth[l] = v;
-        }
+        if (t.depth)
+            zs.depth[l] = load_depth_texel(
+                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes,
+                bytes);
         if (t.stencil)
             zs.stencil[l] = t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px];
     }
@@ -67,9 +85,9 @@ void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int
         if (!(lanes & (1u << l))) continue;
         const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
         if (t.depth)
-            std::memcpy(
+            store_depth_texel(
                 t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes,
-                &zs.depth[l], bytes);
+                bytes, zs.depth[l]);
         if (t.stencil)
             t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px] = zs.stencil[l];
     }
