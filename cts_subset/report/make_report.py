@@ -18,6 +18,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 
 def load(path):
@@ -50,6 +51,16 @@ def counts(run):
     return n
 
 
+def independent_check(c):
+    """The case's judgement besides byte equality: analytic check and/or coverage oracle (n/a reasons omitted)."""
+    parts = []
+    if c.get("check", "none") != "none":
+        parts.append("analytic: " + c["check"])
+    if c.get("oracle") and not c["oracle"].startswith("n/a"):
+        parts.append("oracle: " + c["oracle"])
+    return "; ".join(parts).replace("|", "/") or "–"
+
+
 def fmt(v, spec=".3g", none="–"):
     return none if v is None else format(v, spec)
 
@@ -79,6 +90,61 @@ def speed_accuracy_chart(runs, path):
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+METHOD_COLOURS = {"default": "tab:blue", "reference": "tab:orange", "bbox": "tab:green", "hier": "tab:red",
+                  "float": "tab:purple"}
+
+
+def group_of(name):
+    """Case group: the name without its last component (rasterization.culling.front_cw -> rasterization.culling)."""
+    return name.rsplit(".", 1)[0]
+
+
+def speed_accuracy_panels(runs, panels, path, title):
+    """Small multiples: one panel per scene (or group), each method one point, lavapipe the star at (1, 100 %).
+
+    panels: list of (panel title, predicate on case name). x: tilevk time / lavapipe time measured in the same run
+    (geometric mean over the panel's cases), y: share of pixels that differ from lavapipe's (over the panel's cases).
+    """
+    cols = 5
+    rows = max(1, math.ceil(len(panels) / cols))
+    fig, axs = plt.subplots(rows, cols, figsize=(3.2 * cols, 2.6 * rows), squeeze=False)
+    for ax in axs.flat[len(panels):]:
+        ax.axis("off")
+    for ax, (label, keep) in zip(axs.flat, panels):
+        ax.scatter([1.0], [0.0], marker="*", s=120, color="black", zorder=3)
+        xs, ys = [1.0], [0.0]
+        for run in runs:
+            cases = [c for c in run["cases"] if keep(c["name"])]
+            px = sum(c["total"] for c in cases)
+            g = geomean([ratio(c) for c in cases])
+            if g is None or not px:
+                continue
+            wrong = 100.0 * sum(c["differing"] for c in cases) / px
+            ax.scatter([g], [wrong], s=36, color=METHOD_COLOURS.get(run["label"]), zorder=2)
+            xs.append(g)
+            ys.append(wrong)
+        ax.set_xscale("log")
+        ax.set_xlim(min(xs) / 1.6, max(xs) * 1.6)
+        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.axvline(1.0, color="grey", linewidth=0.5)
+        # Differing pixels, 0 (exact, like lavapipe) at the top; the range adapts to the worst method shown.
+        top = max(max(ys), 0.01)
+        ax.set_ylim(top * 1.15, -top * 0.1)
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.set_title(label, fontsize=8)
+        ax.tick_params(labelsize=7)
+    handles = [plt.Line2D([], [], marker="*", linestyle="", color="black", markersize=10, label="lavapipe")]
+    handles += [plt.Line2D([], [], marker="o", linestyle="", color=METHOD_COLOURS.get(r["label"]),
+                           label=f"tilevk {r['label']}") for r in runs]
+    fig.legend(handles=handles, loc="lower right", fontsize=8, ncol=len(handles))
+    fig.suptitle(title + "  (x: time / lavapipe time in the same run, log; y: pixels differing from lavapipe, %, exact at the top)", fontsize=10)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
+    fig.savefig(path, dpi=90)
     plt.close(fig)
 
 
@@ -164,6 +230,13 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     main_run = runs[0]
     speed_accuracy_chart(runs, os.path.join(a.out, "speed_accuracy.png"))
+    names = [c["name"] for c in main_run["cases"]]
+    scenes = [n for n in names if n.startswith("scene.")]
+    speed_accuracy_panels(runs, [(n.split(".", 1)[1], lambda x, n=n: x == n) for n in scenes],
+                          os.path.join(a.out, "speed_accuracy_scenes.png"), "Speed against accuracy per scene")
+    groups = sorted({group_of(n) for n in names})
+    speed_accuracy_panels(runs, [(g, lambda x, g=g: group_of(x) == g) for g in groups],
+                          os.path.join(a.out, "speed_accuracy_groups.png"), "Speed against accuracy per case group")
     time_ratio_chart(main_run, os.path.join(a.out, "time_ratio.png"))
     have_sweep = bool(a.stability) and os.path.exists(a.stability)
     if have_sweep:
@@ -217,9 +290,16 @@ def main():
     md.append("")
     md.append("Stability sweep: " + ("see stability.png." if have_sweep else "not available "
                                       "(bench/rast's stability_sweep did not produce a CSV)."))
+    analytic = [c for c in main_run["cases"] if c.get("check", "none") != "none"]
+    oracle = [c for c in main_run["cases"] if c.get("oracle", "").startswith(("ok", "FAIL", "fail"))]
+    md.append("")
+    md.append(f"Independent checks (besides byte equality with the reference): {len(analytic)} cases carry an "
+              f"analytic check ({sum(1 for c in analytic if c['check'] == 'ok')} ok); {len(oracle)} cases are "
+              f"judged by the coverage oracle, rast/'s `reference` method "
+              f"({sum(1 for c in oracle if c['oracle'].startswith('ok'))} agree).")
     md += ["", "## Cases (main run)", "",
-           "| case | status | exact % | max err | tilevk ms | lavapipe ms | ratio | pipeline ms (t/l) | reason |",
-           "|---|---|---|---|---|---|---|---|---|"]
+           "| case | status | exact % | max err | tilevk ms | lavapipe ms | ratio | pipeline ms (t/l) | independent check | reason |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
     for c in main_run["cases"]:
         pm = (f"{c['ours_pipeline_ms']:.2f}/{c['ref_pipeline_ms']:.2f}"
               if c.get("ours_pipeline_ms", -1) >= 0 and c.get("ref_pipeline_ms", -1) >= 0 else "–")
@@ -227,7 +307,7 @@ def main():
         ref_ms = c["ref_ms"] if c.get("ref_ms", -1) >= 0 else None
         note = f" [{c['note']}]" if c.get("note") else ""
         md.append(f"| {c['name']}{note} | {c['status']} | {fmt(exact_pct(c), '.3f')} | {fmt(c['max_error'] if c['total'] else None, 'g')} | "
-                  f"{fmt(ours_ms)} | {fmt(ref_ms)} | {fmt(ratio(c))} | {pm} | "
+                  f"{fmt(ours_ms)} | {fmt(ref_ms)} | {fmt(ratio(c))} | {pm} | {independent_check(c)} | "
                   f"{c['reason'].replace('|', '/')} |")
     with open(os.path.join(a.out, "summary.md"), "w") as f:
         f.write("\n".join(md) + "\n")
@@ -250,9 +330,12 @@ def main():
     h.append("</table>")
     h += [f"<p>{esc(line)}</p>" for line in intro[cut:] if line and not line.startswith("|") and line != "## Runs"]
     h.append("<h2>Charts</h2><img src='speed_accuracy.png'> <img src='time_ratio.png'>")
+    h.append("<h3>Per scene</h3><img src='speed_accuracy_scenes.png'>")
+    h.append("<h3>Per case group</h3><img src='speed_accuracy_groups.png'>")
     h.append("<img src='stability.png'>" if have_sweep else "<p>Stability sweep: not available.</p>")
     h.append("<h2>Cases (main run)</h2><table><tr><th>case</th><th>status</th><th>exact %</th><th>max err</th>"
-             "<th>tilevk ms</th><th>lavapipe ms</th><th>ratio</th><th>pipeline ms (t/l)</th><th>reason</th></tr>")
+             "<th>tilevk ms</th><th>lavapipe ms</th><th>ratio</th><th>pipeline ms (t/l)</th><th>independent check</th>"
+             "<th>reason</th></tr>")
     for line in md[md.index("## Cases (main run)") + 4:]:
         cells = [x.strip() for x in line.strip("|").split("|")]
         h.append(f"<tr class='{esc(cells[1])}'>" + "".join(f"<td>{esc(x)}</td>" for x in cells) + "</tr>")

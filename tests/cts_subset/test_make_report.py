@@ -49,7 +49,8 @@ with tempfile.TemporaryDirectory() as tmp:
     # Independent expectation: hier passes 1 of 3 cases, bbox 3 of 3.
     if "1/3" not in summary or "3/3" not in summary:
         problems.append("summary.md lacks the pass counts 1/3 and 3/3")
-    for png in ["speed_accuracy.png", "time_ratio.png", "stability.png"]:
+    for png in ["speed_accuracy.png", "speed_accuracy_scenes.png", "speed_accuracy_groups.png", "time_ratio.png",
+                "stability.png"]:
         if not os.path.getsize(os.path.join(out, png)):
             problems.append(f"{png} empty")
         if png not in html:
