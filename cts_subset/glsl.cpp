@@ -76,7 +76,7 @@ std::string vertex_source(const Draw& d) {
     return s + "}\n";
 }
 
-std::string fragment_source(const Draw& d) {
+std::string fragment_source(const Draw& d, bool color_output) {
     std::string q = qualifier(d.interp);
     std::string s =
         "#version 450\n"
@@ -84,9 +84,10 @@ std::string fragment_source(const Draw& d) {
         q +
         "in vec4 v_color;\n"
         "layout(location=1) " +
-        q +
-        "in vec2 v_uv;\n"
-        "layout(location=0) out vec4 o_color;\n";
+        q + "in vec2 v_uv;\n";
+    // The inputs stay declared: they consume the vertex shader's outputs.
+    if (!color_output) return s + "void main() {}\n";
+    s += "layout(location=0) out vec4 o_color;\n";
     switch (d.frag) {
         case Frag::kColor:
             return s + "void main() { o_color = v_color; }\n";

@@ -15,8 +15,10 @@ enum class Stage { kVertex, kFragment };
 // Results are cached by source text (the cache is shared by both devices: the SPIR-V is identical by design).
 const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source);
 
-// The vertex and fragment GLSL for a draw (depends on interpolation, fragment kind and topology only).
+// The vertex and fragment GLSL for a draw (depends on interpolation, fragment kind and topology only). A target
+// without a colour attachment gets a fragment shader without a colour output (the validation layer warns about
+// an output that no attachment consumes).
 std::string vertex_source(const Draw& d);
-std::string fragment_source(const Draw& d);
+std::string fragment_source(const Draw& d, bool color_output = true);
 
 }  // namespace tilevk::cts

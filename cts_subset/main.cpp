@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <string>
 #include <thread>
@@ -18,6 +19,7 @@
 #include "png_writer.hpp"
 #include "render.hpp"
 #include "results.hpp"
+#include "validation.hpp"
 
 using namespace tilevk::cts;
 
@@ -27,6 +29,8 @@ struct Options {
     bool list = false;
     std::string filter = "*", device = "tilevk", ref = "llvmpipe", log, junit, json, png_dir, start_after;
     bool device_is_prefix = true, png_all = false, selftest_perturb = false;
+    bool validation = false;
+    bool selftest_validation = false;  // hidden: records one invalid barrier, which --validation must report
     int timing = 0;
     int case_timeout = 300;  // seconds; a hung driver ends the process (run_one.sh resumes after the case)
 };
@@ -36,10 +40,11 @@ void usage() {
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
         "                  [--case-timeout SECONDS (default 300)]\n"
-        "                  [--selftest-perturb]\n"
+        "                  [--selftest-perturb] [--validation]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
         "  --selftest-perturb flips one bit of the device-under-test's read-back (proves the comparison).\n"
+        "  --validation enables VK_LAYER_KHRONOS_validation: any warning or error fails the case it arrives in.\n"
         "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
         "  VK_ICD_FILENAMES defaults to this build's tilevk_icd.json and lavapipe's manifest.");
 }
@@ -74,6 +79,10 @@ bool parse(int argc, char** argv, Options& o) {
             o.png_all = true;
         else if (a == "--selftest-perturb")
             o.selftest_perturb = true;
+        else if (a == "--validation")
+            o.validation = true;
+        else if (a == "--selftest-validation")
+            o.selftest_validation = true;
         else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
         } else if (a == "--case-timeout") {
@@ -133,8 +142,33 @@ void save_pngs(const std::string& dir, const std::string& name, const std::vecto
     }
 }
 
-CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string& ours_missing, const DeviceContext& ref,
-                    const Options& o) {
+// Who the validation layer's messages belong to while a case runs: the side being recorded or judged.
+struct Sides {
+    ValidationLog* log = nullptr;  // null without --validation
+    std::string ours, ref;         // labels of the two devices in messages
+    void enter(const std::string& scope, const std::string& side) const {
+        if (log) log->set_scope(scope, side);
+    }
+};
+
+// "validation: N messages (tilevk 2, llvmpipe 1); first: [tilevk] error VUID-...: text"; empty without messages.
+// Every message also goes to stderr, with its case.
+std::string validation_verdict(const std::string& scope, const std::vector<ValidationMessage>& msgs) {
+    if (msgs.empty()) return {};
+    std::map<std::string, int> per_device;
+    for (const ValidationMessage& m : msgs) {
+        ++per_device[m.device];
+        std::fprintf(stderr, "validation: %s: %s\n", scope.c_str(), format_message(m).c_str());
+    }
+    std::string counts;
+    for (const auto& [device, n] : per_device)
+        counts += (counts.empty() ? "" : ", ") + device + " " + std::to_string(n);
+    return "validation: " + std::to_string(msgs.size()) + " message" + (msgs.size() == 1 ? "" : "s") + " (" + counts +
+           "); first: " + format_message(msgs.front());
+}
+
+CaseResult run_case_body(const Case& c, const DeviceContext* ours, const std::string& ours_missing,
+                         const DeviceContext& ref, const Options& o, const Sides& sides, bool bad) {
     CaseResult r;
     r.name = c.name;
     r.note = c.note;
@@ -156,16 +190,17 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     try {
         for (const Draw& d : scene.draws) {
             compile_glsl(Stage::kVertex, vertex_source(d));
-            compile_glsl(Stage::kFragment, fragment_source(d));
+            compile_glsl(Stage::kFragment, fragment_source(d, scene.target.color != VK_FORMAT_UNDEFINED));
         }
     } catch (const std::exception& e) {
         return fail(std::string("harness: ") + e.what());
     }
     if (!ours) {
         // Still time the reference, so the report shows lavapipe's side while tilevk is missing.
+        sides.enter(c.name, sides.ref);
         if (unsupported(ref, scene).empty()) {
             try {
-                RenderResult b = render(ref, scene, o.timing);
+                RenderResult b = render(ref, scene, o.timing, bad);
                 r.ref_ms = median(b.frame_ms);
                 r.ref_pipeline_ms = b.pipeline_ms;
             } catch (const std::exception&) {
@@ -173,11 +208,13 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         }
         return fail(ours_missing);
     }
+    sides.enter(c.name, sides.ours);
     if (auto why = unsupported(*ours, scene); !why.empty()) {
         r.status = Status::kNotSupported;
         r.reason = ours->name + ": " + why;
         return r;
     }
+    sides.enter(c.name, sides.ref);
     if (auto why = unsupported(ref, scene); !why.empty()) {
         r.status = Status::kNotSupported;
         r.reason = ref.name + ": " + why;
@@ -187,16 +224,18 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     // load from elsewhere on the machine falls on both sides alike.
     RenderResult a, b;
     std::unique_ptr<Frame> fa, fb;
+    sides.enter(c.name, sides.ours);
     try {
-        fa = std::make_unique<Frame>(*ours, scene);
+        fa = std::make_unique<Frame>(*ours, scene, bad);
         fa->submit();
         a.planes = fa->planes();
         a.pipeline_ms = fa->pipeline_ms();
     } catch (const std::exception& e) {
         return fail(ours->name + ": " + e.what());
     }
+    sides.enter(c.name, sides.ref);
     try {
-        fb = std::make_unique<Frame>(ref, scene);
+        fb = std::make_unique<Frame>(ref, scene, bad);
         fb->submit();
         b.planes = fb->planes();
         b.pipeline_ms = fb->pipeline_ms();
@@ -204,17 +243,25 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
         return fail("reference " + ref.name + ": " + e.what());
     }
     for (int i = 0; i < o.timing; ++i) {
+        sides.enter(c.name, sides.ours);
         try {
             a.frame_ms.push_back(fa->submit());
         } catch (const std::exception& e) {
             return fail(ours->name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
         }
+        sides.enter(c.name, sides.ref);
         try {
             b.frame_ms.push_back(fb->submit());
         } catch (const std::exception& e) {
             return fail("reference " + ref.name + " (timing run " + std::to_string(i + 1) + "): " + e.what());
         }
     }
+    // Each frame is destroyed under its own side's name (the layer checks object lifetimes there).
+    sides.enter(c.name, sides.ours);
+    fa.reset();
+    sides.enter(c.name, sides.ref);
+    fb.reset();
+    sides.enter(c.name, "");
     // Harness self-test: one changed bit in our first plane must be caught by every comparison path.
     if (o.selftest_perturb && !a.planes.empty() && !a.planes[0].data.empty()) a.planes[0].data[0] ^= 1;
     r.ours_ms = median(a.frame_ms);
@@ -261,6 +308,27 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     return r;
 }
 
+CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string& ours_missing, const DeviceContext& ref,
+                    const Options& o, const Sides& sides) {
+    const bool bad = o.selftest_validation;
+    // Any validation message fails the case ahead of every other verdict: an invalid command stream makes the
+    // images meaningless.
+    auto judged = [&](CaseResult r) {
+        sides.enter("(between cases)", "");
+        if (!sides.log) return r;
+        std::vector<ValidationMessage> msgs = sides.log->take();
+        for (const ValidationMessage& m : msgs) r.validation.push_back(format_message(m));
+        if (std::string v = validation_verdict(c.name, msgs); !v.empty()) {
+            if (r.status == Status::kFail) v += "; then: " + r.reason;
+            r.status = Status::kFail;
+            r.reason = v;
+        }
+        return r;
+    };
+    CaseResult r = run_case_body(c, ours, ours_missing, ref, o, sides, bad);
+    return judged(std::move(r));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -295,9 +363,10 @@ int main(int argc, char** argv) {
     };
     info.threads = "LP_NUM_THREADS=" + env("LP_NUM_THREADS") + " TILEVK_THREADS=" + env("TILEVK_THREADS");
 
+    ValidationLog validation;  // outlives the instance: vkDestroyInstance may still report
     std::unique_ptr<Instance> instance;
     try {
-        instance = std::make_unique<Instance>();
+        instance = std::make_unique<Instance>(o.validation ? &validation : nullptr);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tilevk-cts: %s\n", e.what());
         return 3;
@@ -316,6 +385,19 @@ int main(int argc, char** argv) {
     std::printf("tilevk-cts: %zu cases, device '%s' vs reference '%s'\n", cases.size(), info.device_name.c_str(),
                 ref.name.c_str());
     if (!have_ours) std::printf("tilevk-cts: device under test unavailable: %s\n", ours_missing.c_str());
+    Sides sides;
+    if (o.validation) {
+        // Labels name the driver; the same physical device on both sides gets the role added.
+        sides.log = &validation;
+        auto short_name = [](const std::string& n) { return n.substr(0, n.find(' ')); };  // "tilevk", "llvmpipe"
+        sides.ours = short_name(info.device_name);
+        sides.ref = short_name(ref.name) == sides.ours ? sides.ours + " (reference)" : short_name(ref.name);
+        validation.add_device(uint64_t(ref.device), uint64_t(ref.queue), sides.ref);
+        if (have_ours) validation.add_device(uint64_t(ours.device), uint64_t(ours.queue), sides.ours);
+        std::printf("tilevk-cts: VK_LAYER_KHRONOS_validation on: any warning or error fails its case\n");
+    }
+    // Messages from instance and device creation belong to no case; they fail the run at the end.
+    std::vector<ValidationMessage> outside = validation.take();
 
     // Watchdog: a driver that hangs inside a case must not hang the whole run. The JSON written before the case
     // names it as running, so run_one.sh records it as failed and resumes after it.
@@ -341,7 +423,7 @@ int main(int argc, char** argv) {
         if (!o.json.empty()) write_json(o.json, info, results, cases[i].name);  // survives a driver crash
         auto t0 = std::chrono::steady_clock::now();
         case_started = std::chrono::duration_cast<std::chrono::seconds>(t0.time_since_epoch()).count();
-        CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o);
+        CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o, sides);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         fails += r.status == Status::kFail;
         std::printf("[%3zu/%zu] %-58s %s%s%s\n", i + 1, cases.size(), r.name.c_str(), status_name(r.status),
@@ -351,13 +433,33 @@ int main(int argc, char** argv) {
     }
     done = true;
     watchdog.join();
+    // Devices and instance go before the results are written: their destruction is validated too.
+    sides.enter("(teardown)", sides.ours);
+    Instance::close(ours);
+    sides.enter("(teardown)", sides.ref);
+    Instance::close(ref);
+    sides.enter("(teardown)", "");
+    instance.reset();
+    info.validation = o.validation;
+    for (ValidationMessage& m : validation.take()) outside.push_back(std::move(m));
+    for (const ValidationMessage& m : outside) {
+        std::fprintf(stderr, "validation: %s: %s\n", m.scope.c_str(), format_message(m).c_str());
+        info.validation_outside.push_back(m.scope + ": " + format_message(m));
+    }
     if (!o.json.empty()) write_json(o.json, info, results, "");
     if (!o.junit.empty()) write_junit(o.junit, info, results);
     if (!o.log.empty()) write_log(o.log, info, results);
     size_t ns =
         std::count_if(results.begin(), results.end(), [](auto& r) { return r.status == Status::kNotSupported; });
     std::printf("tilevk-cts: %zu passed, %d failed, %zu not supported\n", results.size() - fails - ns, fails, ns);
-    Instance::close(ours);
-    Instance::close(ref);
-    return fails ? 1 : 0;
+    if (o.validation) {
+        std::map<std::string, int> totals = validation.totals();
+        std::string counts;
+        for (const std::string& side : {sides.ours, sides.ref})
+            counts += (counts.empty() ? "" : ", ") + side + " " + std::to_string(totals[side]);
+        for (const auto& [device, n] : totals)
+            if (device != sides.ours && device != sides.ref) counts += ", " + device + " " + std::to_string(n);
+        std::printf("tilevk-cts: validation messages: %s; %zu outside any case\n", counts.c_str(), outside.size());
+    }
+    return fails || !outside.empty() ? 1 : 0;
 }

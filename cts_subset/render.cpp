@@ -48,15 +48,22 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
     ci.usage = usage;
     vk_check(vkCreateBuffer(c.device, &ci, nullptr, &b.buffer), "vkCreateBuffer");
     VkDevice dev = c.device;
-    gc.add([dev, buf = b.buffer] { vkDestroyBuffer(dev, buf, nullptr); });
+    // Cleanup runs in reverse: the buffer is destroyed before its memory is freed (the layer's best-practices
+    // check warns about the other order). Until the memory exists, a failure destroys the buffer here.
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(c.device, b.buffer, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
-    ai.memoryTypeIndex =
-        c.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    vk_check(vkAllocateMemory(c.device, &ai, nullptr, &b.memory), "vkAllocateMemory");
+    try {
+        ai.memoryTypeIndex = c.memory_type(req.memoryTypeBits,
+                                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        vk_check(vkAllocateMemory(c.device, &ai, nullptr, &b.memory), "vkAllocateMemory");
+    } catch (...) {
+        vkDestroyBuffer(dev, b.buffer, nullptr);
+        throw;
+    }
     gc.add([dev, mem = b.memory] { vkFreeMemory(dev, mem, nullptr); });
+    gc.add([dev, buf = b.buffer] { vkDestroyBuffer(dev, buf, nullptr); });
     vk_check(vkBindBufferMemory(c.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
     vk_check(vkMapMemory(c.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
     return b;
@@ -77,15 +84,21 @@ VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_
     VkImage img;
     vk_check(vkCreateImage(c.device, &ci, nullptr, &img), "vkCreateImage");
     VkDevice dev = c.device;
-    gc.add([dev, img] { vkDestroyImage(dev, img, nullptr); });
+    // As make_buffer: the image is destroyed before its memory is freed.
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(c.device, img, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
-    ai.memoryTypeIndex = c.memory_type(req.memoryTypeBits, 0);
     VkDeviceMemory mem;
-    vk_check(vkAllocateMemory(c.device, &ai, nullptr, &mem), "vkAllocateMemory(image)");
+    try {
+        ai.memoryTypeIndex = c.memory_type(req.memoryTypeBits, 0);
+        vk_check(vkAllocateMemory(c.device, &ai, nullptr, &mem), "vkAllocateMemory(image)");
+    } catch (...) {
+        vkDestroyImage(dev, img, nullptr);
+        throw;
+    }
     gc.add([dev, mem] { vkFreeMemory(dev, mem, nullptr); });
+    gc.add([dev, img] { vkDestroyImage(dev, img, nullptr); });
     vk_check(vkBindImageMemory(c.device, img, mem, 0), "vkBindImageMemory");
     return img;
 }
@@ -195,7 +208,8 @@ VkShaderModule make_module(const DeviceContext& c, Cleanup& gc, const std::vecto
 VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,
                          VkPipelineLayout layout, double& pipeline_ms) {
     VkShaderModule vs = make_module(c, gc, compile_glsl(Stage::kVertex, vertex_source(d)));
-    VkShaderModule fs = make_module(c, gc, compile_glsl(Stage::kFragment, fragment_source(d)));
+    VkShaderModule fs =
+        make_module(c, gc, compile_glsl(Stage::kFragment, fragment_source(d, s.target.color != VK_FORMAT_UNDEFINED)));
     VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
     stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -360,7 +374,7 @@ double Frame::pipeline_ms() const {
     return impl_->pipeline_ms;
 }
 
-Frame::Frame(const DeviceContext& c, const Scene& s) : impl_(std::make_unique<Impl>()) {
+Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) : impl_(std::make_unique<Impl>()) {
     impl_->c = &c;
     Cleanup& gc = impl_->gc;
     auto& reads = impl_->reads;
@@ -524,6 +538,14 @@ Frame::Frame(const DeviceContext& c, const Scene& s) : impl_(std::make_unique<Im
         first += s.draws[i].vertices.size();
     }
     vkCmdEndRenderPass(cb);
+    if (selftest_bad_command) {
+        // SHADER_WRITE is not an access of the TRANSFER stage (VUID-vkCmdPipelineBarrier-srcAccessMask-02815);
+        // drivers ignore access masks, so only the layer notices.
+        VkMemoryBarrier bad{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_ACCESS_TRANSFER_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &bad, 0, nullptr,
+                             0, nullptr);
+    }
     for (Readback& r : reads) {
         VkBufferImageCopy region{};
         region.imageSubresource = {r.aspect, 0, 0, 1};
@@ -568,8 +590,8 @@ std::vector<Plane> Frame::planes() const {
     return out;
 }
 
-RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps) {
-    Frame f(c, s);
+RenderResult render(const DeviceContext& c, const Scene& s, int timing_reps, bool selftest_bad_command) {
+    Frame f(c, s, selftest_bad_command);
     RenderResult out;
     f.submit();
     out.planes = f.planes();

@@ -17,10 +17,11 @@ struct RenderResult {
 };
 
 // A scene built on a device (objects, one recorded command buffer), ready to be submitted again and again; used
-// to time two devices interleaved. The constructor throws like render().
+// to time two devices interleaved. The constructor throws like render(). `selftest_bad_command` records one
+// invalid (but harmless) barrier, which the validation layer must report (the --validation self-test).
 class Frame {
   public:
-    Frame(const DeviceContext& ctx, const Scene& scene);
+    Frame(const DeviceContext& ctx, const Scene& scene, bool selftest_bad_command = false);
     ~Frame();
     Frame(const Frame&) = delete;
     Frame& operator=(const Frame&) = delete;
@@ -34,7 +35,7 @@ class Frame {
 };
 
 // Throws VkError (or std::runtime_error) with the failing call when the device cannot run the scene.
-RenderResult render(const DeviceContext& ctx, const Scene& scene, int timing_reps);
+RenderResult render(const DeviceContext& ctx, const Scene& scene, int timing_reps, bool selftest_bad_command = false);
 
 // Empty if the device supports everything the scene uses; otherwise what is missing.
 std::string unsupported(const DeviceContext& ctx, const Scene& scene);

@@ -69,6 +69,12 @@ std::string xml_escape(const std::string& s) {
     return o;
 }
 
+std::string json_list(const std::vector<std::string>& items) {
+    std::string o = "[";
+    for (size_t i = 0; i < items.size(); ++i) o += (i ? ", \"" : "\"") + json_escape(items[i]) + "\"";
+    return o + "]";
+}
+
 // Writes to a temporary file and renames, so a reader never sees half a file.
 bool write_atomically(const std::string& path, const std::string& text) {
     std::string tmp = path + ".tmp";
@@ -92,7 +98,9 @@ bool write_json(const std::string& path, const RunInfo& info, const std::vector<
       << ",\n  \"rast_method\": \"" << json_escape(info.rast_method) << "\",\n  \"threads\": \""
       << json_escape(info.threads) << "\",\n  \"icd_filenames\": \"" << json_escape(info.icd_filenames)
       << "\",\n  \"timing_reps\": " << info.timing_reps << ",\n  \"complete\": " << (running.empty() ? "true" : "false")
-      << ",\n  \"running\": \"" << json_escape(running) << "\",\n  \"cases\": [\n";
+      << ",\n  \"running\": \"" << json_escape(running)
+      << "\",\n  \"validation\": " << (info.validation ? "true" : "false")
+      << ",\n  \"validation_outside\": " << json_list(info.validation_outside) << ",\n  \"cases\": [\n";
     for (size_t i = 0; i < results.size(); ++i) {
         const CaseResult& r = results[i];
         o << "    {\"name\": \"" << json_escape(r.name) << "\", \"status\": \"" << status_name(r.status)
@@ -101,8 +109,8 @@ bool write_json(const std::string& path, const RunInfo& info, const std::vector<
           << ", \"max_error\": " << num(r.max_error) << ", \"check\": \"" << json_escape(r.check)
           << "\", \"oracle\": \"" << json_escape(r.oracle) << "\", \"ours_ms\": " << num(r.ours_ms)
           << ", \"ref_ms\": " << num(r.ref_ms) << ", \"ours_pipeline_ms\": " << num(r.ours_pipeline_ms)
-          << ", \"ref_pipeline_ms\": " << num(r.ref_pipeline_ms) << ", \"seconds\": " << num(r.seconds) << "}"
-          << (i + 1 < results.size() ? "," : "") << "\n";
+          << ", \"ref_pipeline_ms\": " << num(r.ref_pipeline_ms) << ", \"seconds\": " << num(r.seconds)
+          << ", \"validation\": " << json_list(r.validation) << "}" << (i + 1 < results.size() ? "," : "") << "\n";
     }
     o << "  ]\n}\n";
     return write_atomically(path, o.str());

@@ -20,7 +20,8 @@ struct CaseResult {
     std::string oracle = "none";       // coverage oracle: "none", "n/a: why", "ok (...)" or the disagreement
     double ours_ms = -1, ref_ms = -1;  // median frame time, -1 if not timed
     double ours_pipeline_ms = -1, ref_pipeline_ms = -1;
-    double seconds = 0;  // wall time of the whole case
+    double seconds = 0;                   // wall time of the whole case
+    std::vector<std::string> validation;  // --validation: the layer's messages during the case, "[device] ..."
 };
 
 struct RunInfo {
@@ -28,6 +29,8 @@ struct RunInfo {
     bool device_found = false;
     int timing_reps = 0;
     std::string threads;
+    bool validation = false;                      // --validation was on
+    std::vector<std::string> validation_outside;  // messages outside any case (device creation, teardown)
 };
 
 std::string json_escape(const std::string& s);

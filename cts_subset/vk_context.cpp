@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "validation.hpp"
 #include "vk_names.hpp"
 
 namespace tilevk::cts {
@@ -18,13 +19,44 @@ uint32_t DeviceContext::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) 
     throw VkError("no memory type with flags " + std::to_string(flags) + " in bits " + std::to_string(bits));
 }
 
-Instance::Instance() {
+Instance::Instance(ValidationLog* validation) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "tilevk-cts";
     app.apiVersion = VK_API_VERSION_1_0;
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
-    vk_check(vkCreateInstance(&ci, nullptr, &instance_), "vkCreateInstance");
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    const char* exts[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    VkDebugUtilsMessengerCreateInfoEXT mci = ValidationLog::messenger_info(validation);
+    // The layer's default checks plus synchronization validation (off by default): missing or wrong barriers are
+    // harness bugs that a CPU driver, which runs commands in order, would never show in an image.
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+    if (validation) {
+        features.pNext = &mci;  // messages of vkCreateInstance/vkDestroyInstance themselves
+        ci.pNext = &features;
+        ci.enabledLayerCount = 1;
+        ci.ppEnabledLayerNames = &layer;
+        ci.enabledExtensionCount = 2;
+        ci.ppEnabledExtensionNames = exts;
+    }
+    vk_check(vkCreateInstance(&ci, nullptr, &instance_),
+             validation ? "vkCreateInstance with VK_LAYER_KHRONOS_validation" : "vkCreateInstance");
+    if (validation) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (!create) {
+            vkDestroyInstance(instance_, nullptr);
+            throw VkError("vkCreateDebugUtilsMessengerEXT is not available");
+        }
+        VkResult r = create(instance_, &mci, nullptr, &messenger_);
+        if (r != VK_SUCCESS) {
+            vkDestroyInstance(instance_, nullptr);
+            vk_check(r, "vkCreateDebugUtilsMessengerEXT");
+        }
+    }
     uint32_t n = 0;
     vk_check(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
     physicals_.resize(n);
@@ -33,7 +65,13 @@ Instance::Instance() {
 }
 
 Instance::~Instance() {
-    if (instance_) vkDestroyInstance(instance_, nullptr);
+    if (!instance_) return;
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    vkDestroyInstance(instance_, nullptr);
 }
 
 std::vector<std::string> Instance::device_names() const {

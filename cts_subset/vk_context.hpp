@@ -10,6 +10,8 @@
 
 namespace tilevk::cts {
 
+class ValidationLog;
+
 // Any failing Vulkan call becomes this error; its text is the reason a case fails.
 struct VkError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -33,7 +35,9 @@ struct DeviceContext {
 
 class Instance {
   public:
-    Instance();
+    // With a log, VK_LAYER_KHRONOS_validation is enabled and a debug-utils messenger feeds the log (also during
+    // vkCreateInstance/vkDestroyInstance).
+    explicit Instance(ValidationLog* validation = nullptr);
     ~Instance();
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
@@ -46,6 +50,7 @@ class Instance {
 
   private:
     VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     std::vector<VkPhysicalDevice> physicals_;
 };
 

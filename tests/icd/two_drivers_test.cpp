@@ -104,6 +104,25 @@ TEST(TwoDrivers, ZeroValidationMessages) {
     EXPECT_EQ(h.message_count(), 0) << h.message_report();
 }
 
+// The negative control of ZeroValidationMessages: one invalid query per driver (usage 0 breaks
+// VUID-vkGetPhysicalDeviceImageFormatProperties-usage-requiredbitmask) must reach the counter once per driver.
+TEST(TwoDrivers, ValidationMessagesAreCounted) {
+    Harness h;
+    ASSERT_TRUE(h.ok());
+    ASSERT_EQ(h.message_count(), 0) << h.message_report();
+    std::vector<VkPhysicalDevice> pds = h.physical_devices();
+    ASSERT_EQ(pds.size(), 2u);
+    for (VkPhysicalDevice pd : pds) {
+        VkImageFormatProperties ifp;
+        vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
+                                                 VK_IMAGE_TILING_OPTIMAL, 0, 0, &ifp);
+    }
+    EXPECT_EQ(h.message_count(), 2) << h.message_report();
+    EXPECT_NE(h.message_report().find("VUID-vkGetPhysicalDeviceImageFormatProperties-usage-requiredbitmask"),
+              std::string::npos)
+        << h.message_report();
+}
+
 // tilevk's reported properties, checked against the design (not against its own output).
 TEST(TwoDrivers, TilevkProperties) {
     Harness h;

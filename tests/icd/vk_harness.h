@@ -17,10 +17,11 @@ struct Messages {
 
 class Harness {
   public:
-    // Creates the instance (Vulkan 1.0, validation + debug utils). ok() tells whether it worked.
+    // Creates the instance (Vulkan 1.0, validation + debug utils). ok() tells whether it worked, including the
+    // messenger: without it the layer would print to stdout and message_count() would stay 0.
     explicit Harness(bool validation = true);
     ~Harness();
-    bool ok() const { return instance_ != VK_NULL_HANDLE; }
+    bool ok() const { return instance_ != VK_NULL_HANDLE && messenger_ != VK_NULL_HANDLE; }
     VkInstance instance() const { return instance_; }
     int message_count() const { return messages_.count.load(); }
     std::string message_report() const;
