@@ -606,14 +606,18 @@ void Translator::op(const Instr& in) {
             SOp dx = coarse ? SOp::DdxCoarse : SOp::DdxFine, dy = coarse ? SOp::DdyCoarse : SOp::DdyFine;
             uint32_t a = reg(in[3]);
             uint32_t d = def();
-            for (uint32_t i = 0; i < type(in[1]).flat; ++i) {
-                if (in.op == spv::Op::OpDPdx || in.op == spv::Op::OpDPdxFine || in.op == spv::Op::OpDPdxCoarse)
-                    emit(dx, d + i, a + i);
-                else if (in.op == spv::Op::OpDPdy || in.op == spv::Op::OpDPdyFine || in.op == spv::Op::OpDPdyCoarse)
-                    emit(dy, d + i, a + i);
-                else
-                    emit(SOp::FAdd, d + i, emit1(SOp::FAbs, emit1(dx, a + i)), emit1(SOp::FAbs, emit1(dy, a + i)));
-            }
+            uint32_t n = std::max(1u, type(in[1]).flat);
+            // reads neighbour lanes: in a loop, keep the value a lane computed while it was active
+            keep_active(d, n, [&](uint32_t t) {
+                for (uint32_t i = 0; i < n; ++i) {
+                    if (in.op == spv::Op::OpDPdx || in.op == spv::Op::OpDPdxFine || in.op == spv::Op::OpDPdxCoarse)
+                        emit(dx, t + i, a + i);
+                    else if (in.op == spv::Op::OpDPdy || in.op == spv::Op::OpDPdyFine || in.op == spv::Op::OpDPdyCoarse)
+                        emit(dy, t + i, a + i);
+                    else
+                        emit(SOp::FAdd, t + i, emit1(SOp::FAbs, emit1(dx, a + i)), emit1(SOp::FAbs, emit1(dy, a + i)));
+                }
+            });
             return;
         }
         case spv::Op::OpDemoteToHelperInvocation:
@@ -653,7 +657,10 @@ void Translator::op(const Instr& in) {
                 iface_.push_constant_size = std::max(iface_.push_constant_size, p.offset + 4 * type(in[1]).flat);
             }
             uint32_t d = def();
-            load(p, in[1], d, 0);
+            if (p.space == Space::Buffer)  // shared memory: other lanes may change it while this one waits
+                keep_active(d, std::max(1u, type(in[1]).flat), [&](uint32_t t) { load(p, in[1], t, 0); });
+            else
+                load(p, in[1], d, 0);
             return;
         }
         case spv::Op::OpStore: {
@@ -765,9 +772,15 @@ void Translator::op(const Instr& in) {
                 if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
                 d = def(4);
             }
-            emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, d, reg(in[3]), coords,
-                 lod == kNoReg ? zero_ : lod, flags, ncoord)
-                .n = grad;
+            auto sample = [&](uint32_t t) {
+                emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, t, reg(in[3]), coords,
+                     lod == kNoReg ? zero_ : lod, flags, ncoord)
+                    .n = grad;
+            };
+            if (implicit)  // the LOD comes from neighbour lanes' coordinates
+                keep_active(d, 4, sample);
+            else
+                sample(d);
             return;
         }
         case spv::Op::OpImageQuerySizeLod:
