@@ -154,6 +154,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DemoteToHelperInvocation:
         case spv::Capability::Sampled1D:
         case spv::Capability::StorageImageExtendedFormats:
+        case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
         case spv::Capability::SampledImageArrayDynamicIndexing:
         case spv::Capability::UniformBufferArrayDynamicIndexing:

@@ -379,6 +379,32 @@ void Translator::op(const Instr& in) {
             for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(SOp::Bfi, d + i, a + i, ins + i, off, cnt);
             return;
         }
+        // extended arithmetic: the result is a struct {low/value, high/carry/borrow} of equal vector types
+        case spv::Op::OpIAddCarry:
+        case spv::Op::OpISubBorrow:
+        case spv::Op::OpUMulExtended:
+        case spv::Op::OpSMulExtended: {
+            uint32_t a = reg(in[3]), b = reg(in[4]);
+            uint32_t n = flat_of(in[3]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) {
+                switch (in.op) {
+                    case spv::Op::OpIAddCarry:  // carry = (a + b) < a
+                        emit(SOp::IAdd, d + i, a + i, b + i);
+                        emit(SOp::And, d + n + i, emit1(SOp::ULt, d + i, a + i), konst(1));
+                        break;
+                    case spv::Op::OpISubBorrow:  // borrow = a < b
+                        emit(SOp::ISub, d + i, a + i, b + i);
+                        emit(SOp::And, d + n + i, emit1(SOp::ULt, a + i, b + i), konst(1));
+                        break;
+                    default:
+                        emit(SOp::IMul, d + i, a + i, b + i);
+                        emit(in.op == spv::Op::OpUMulExtended ? SOp::MulHiU : SOp::MulHiS, d + n + i, a + i, b + i);
+                        break;
+                }
+            }
+            return;
+        }
         // comparisons
         case spv::Op::OpIEqual:
             return binary(SOp::IEq);
@@ -668,6 +694,26 @@ void Translator::op(const Instr& in) {
             if (pv.ptr < 0) fail("store to a non-pointer");
             Pointer p = pointers_[size_t(pv.ptr)];
             store(p, p.type, reg(in[2]), 0);
+            return;
+        }
+        case spv::Op::OpArrayLength: {
+            // length of the runtime array that ends a storage buffer block: (size - member offset) / stride
+            const Value& sv = val(in[3]);
+            if (sv.ptr < 0) fail("OpArrayLength of a non-pointer");
+            const Pointer& p = pointers_[size_t(sv.ptr)];
+            const Type& st = type(p.type);
+            uint32_t m = in[4];
+            if (p.space != Space::Buffer || p.in_array || st.kind != Type::Struct || m >= st.members.size() ||
+                type(st.members[m]).kind != Type::RuntimeArray)
+                fail("OpArrayLength needs a buffer block ending in a runtime array");
+            auto it = member_deco_.find({p.type, m});
+            uint32_t stride = uint32_t(deco_[st.members[m]].array_stride);
+            if (it == member_deco_.end() || it->second.offset < 0 || stride == 0)
+                fail("runtime array without Offset/ArrayStride");
+            uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+            emit(SOp::BufArrayLength, def(), elem, konst(stride), kNoReg, p.base,
+                 p.offset + uint32_t(it->second.offset))
+                .n = p.limit;
             return;
         }
         case spv::Op::OpCopyMemory: {

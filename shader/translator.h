@@ -14,6 +14,8 @@
 
 namespace tilevk::shader {
 
+const char* glsl_std450_name(uint32_t opcode);  // "MatrixInverse", ... (translate_glsl.cpp)
+
 struct TranslateError {
     std::string message;
 };

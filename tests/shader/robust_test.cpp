@@ -132,7 +132,7 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
             layout(location=0) out vec4 c;
             layout(location=0) in vec4 v;
             void main() { c = vec4(interpolateAtCentroid(v).x); })",
-         ""},
+         "InterpolateAtCentroid"},
     };
     for (const Case& c : cases) {
         auto spirv = compile_glsl(c.stage, c.src);
