@@ -111,6 +111,7 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
     const uint32_t num_slots = uint32_t(s.slots.size());
     const Inst* code = p.code.data();
     size_t pc = 0;
+    uint64_t back_edges = 0;  // loop watchdog: a valid shader may loop forever; never hang the caller
     for (;;) {
         const Inst& in = code[pc++];
 #define D (R + size_t(in.d) * kLanes)
@@ -654,7 +655,13 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 const uint32_t* __restrict a = A;
                 uint32_t any = 0;
                 LANES any |= a[l];
-                if (any) pc = in.imm;
+                if (any) {
+                    if (++back_edges > kMaxLoopBackEdges) {
+                        ++s.loop_limit_hits;
+                        return;
+                    }
+                    pc = in.imm;
+                }
                 break;
             }
             case Op::Kill: {

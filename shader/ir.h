@@ -238,6 +238,7 @@ struct Scratch::Impl {
     std::vector<uint32_t> local;
     std::vector<const Descriptor*> slots;
     uint64_t last = 0;  // serial of the program the registers were prepared for
+    uint64_t loop_limit_hits = 0;
 };
 
 // Interpret the program (exec.cpp).
