@@ -111,6 +111,7 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
     const uint32_t num_slots = uint32_t(s.slots.size());
     const Inst* code = p.code.data();
     size_t pc = 0;
+    uint64_t back_edges = 0;  // loop watchdog: a valid shader may loop forever; never hang the caller
     for (;;) {
         const Inst& in = code[pc++];
 #define D (R + size_t(in.d) * kLanes)
@@ -460,6 +461,30 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 LANES d[l] = std::ldexp(a[l], std::clamp(b[l], -300, 300));
                 break;
             }
+            case Op::FrexpSig: {
+                // DAZ applies to the comparison: a denormal counts as zero and is returned unchanged (as lavapipe)
+                uint32_t* __restrict d = D;
+                const f32a* __restrict a = FA;
+                LANES {
+                    float x = a[l], ax = std::fabs(x);
+                    uint32_t b = std::bit_cast<uint32_t>(x);
+                    d[l] = (0.0f < ax && ax <= std::numeric_limits<float>::max()) ? (b & 0x807fffffu) | 0x3f000000u : b;
+                }
+                break;
+            }
+            case Op::FrexpExp: {
+                uint32_t* __restrict d = D;
+                const f32a* __restrict a = FA;
+                LANES {
+                    float ax = std::fabs(a[l]);
+                    d[l] = (std::bit_cast<uint32_t>(ax) >> 23) - (ax != 0.0f ? 126u : 0u);
+                }
+                break;
+            }
+            case Op::MulHiU:
+                U2(uint32_t((uint64_t(a[l]) * uint64_t(b[l])) >> 32))
+            case Op::MulHiS:
+                S2(uint32_t(uint64_t(int64_t(a[l]) * int64_t(b[l])) >> 32))
             case Op::PackHalf2x16: {
                 uint32_t* __restrict d = D;
                 const f32a* __restrict a = FA, * __restrict b = FB;
@@ -595,6 +620,21 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 }
                 break;
             }
+            case Op::BufArrayLength: {
+                // runtime array length = (buffer size - member offset) / stride, 0 when missing or too small
+                uint32_t* __restrict d = D;
+                const uint32_t* __restrict a = A, * __restrict b = B;
+                LANES {
+                    uint32_t v = 0;
+                    if (a[l] < in.n && in.imm + a[l] < num_slots && b[l]) {
+                        const Descriptor* desc = slots[in.imm + a[l]];
+                        if (desc && desc->buffer.data && desc->buffer.size > in.extra)
+                            v = uint32_t(std::min<uint64_t>((desc->buffer.size - in.extra) / b[l], 0xFFFFFFFFu));
+                    }
+                    d[l] = v;
+                }
+                break;
+            }
             case Op::Sample:
             case Op::Fetch:
             case Op::QuerySize:
@@ -615,7 +655,13 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
                 const uint32_t* __restrict a = A;
                 uint32_t any = 0;
                 LANES any |= a[l];
-                if (any) pc = in.imm;
+                if (any) {
+                    if (++back_edges > kMaxLoopBackEdges) {
+                        ++s.loop_limit_hits;
+                        return;
+                    }
+                    pc = in.imm;
+                }
                 break;
             }
             case Op::Kill: {

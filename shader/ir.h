@@ -119,6 +119,10 @@ enum class Op : uint16_t {
     Step,
     SmoothStep,
     Ldexp,
+    FrexpSig,  // nir_lower_frexp: (0 < |x| finite) ? (x & 0x807fffff) | 0x3f000000 : x
+    FrexpExp,  // (|x| >> 23) - (|x| != 0 ? 126 : 0)
+    MulHiU,    // high 32 bits of the 64-bit product (umulExtended / imulExtended)
+    MulHiS,
     PackHalf2x16,
     UnpackHalf2x16Lo,
     UnpackHalf2x16Hi,
@@ -143,6 +147,7 @@ enum class Op : uint16_t {
     LoadBuf,          // d = buffer(slot imm + elem a)[byte offset b]; out of bounds -> 0
     LoadBufUniform,   // d = buffer(slot imm)[byte offset extra] for every lane
     StoreBuf,         // buffer(slot imm + elem a)[byte offset b] = c under mask extra
+    BufArrayLength,   // d = max(size(buffer(slot imm + elem a)) - extra, 0) / b (stride register); n: array size
     // images: d..d+3 = result; a = handle, b = first coordinate register, c = lod/bias register or kNoReg
     Sample,     // imm: SampleFlags; extra: dref/offset unused
     Fetch,      // texelFetch: integer coords at b, lod at c
@@ -233,6 +238,7 @@ struct Scratch::Impl {
     std::vector<uint32_t> local;
     std::vector<const Descriptor*> slots;
     uint64_t last = 0;  // serial of the program the registers were prepared for
+    uint64_t loop_limit_hits = 0;
 };
 
 // Interpret the program (exec.cpp).

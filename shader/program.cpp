@@ -71,6 +71,9 @@ const Descriptor* Bindings::find(uint32_t set, uint32_t binding, uint32_t elemen
 
 Scratch::Scratch() : impl_(std::make_unique<Impl>()) {}
 Scratch::~Scratch() = default;
+uint64_t Scratch::loop_limit_hits() const {
+    return impl_->loop_limit_hits;
+}
 
 Program::Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface)
     : impl_(std::move(impl)), interface_(std::move(iface)) {}

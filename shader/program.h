@@ -275,10 +275,15 @@ class Scratch {
     Scratch& operator=(const Scratch&) = delete;
     struct Impl;
     Impl* impl() { return impl_.get(); }
+    // Runs cut short by the loop watchdog since this Scratch was made: a batch whose loops jumped back more than
+    // kMaxLoopBackEdges times ends there (outputs as written so far) instead of hanging. Never happens for a
+    // shader whose loops terminate in reasonable time; the driver may treat a non-zero count as a lost device.
+    uint64_t loop_limit_hits() const;
 
   private:
     std::unique_ptr<Impl> impl_;
 };
+constexpr uint64_t kMaxLoopBackEdges = uint64_t(1) << 22;  // per run (batch of 16 lanes): ~4M iterations
 
 struct ProgramImpl;  // internal: the translated SIMD program
 

@@ -154,6 +154,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DemoteToHelperInvocation:
         case spv::Capability::Sampled1D:
         case spv::Capability::StorageImageExtendedFormats:
+        case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
         case spv::Capability::SampledImageArrayDynamicIndexing:
         case spv::Capability::UniformBufferArrayDynamicIndexing:
@@ -713,6 +714,16 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
     std::vector<uint32_t> order(post.rbegin(), post.rend());
     for (uint32_t i = 0; i < order.size(); ++i) blocks[order[i]].order = int(i);
 
+    // Blocks inside a loop construct: between the header and its merge block in this layout (the merge is visited
+    // first, so every block of the loop lands before it). Over-approximating only costs a masked move.
+    std::vector<uint8_t> in_loop(blocks.size(), 0);
+    for (const Block& h : blocks) {
+        if (!h.cont || h.order < 0) continue;
+        int lo = h.order, hi = blocks[block_of.at(h.merge)].order;
+        if (hi <= lo) hi = int(order.size());
+        for (int o = lo; o < hi; ++o) in_loop[order[size_t(o)]] = 1;
+    }
+
     // Masks: entry block starts with the entry mask; the others start empty.
     for (uint32_t i = 0; i < blocks.size(); ++i) {
         blocks[i].mask = alloc();
@@ -723,8 +734,12 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
         for (size_t j = b.first; j < b.end; ++j) {
             const Instr& in = ins[j];
             if (in.op != spv::Op::OpPhi) continue;
-            uint32_t r = alloc(std::max(1u, type(in[1]).flat));
+            uint32_t n = std::max(1u, type(in[1]).flat);
+            uint32_t r = alloc(n);
             vals_[in[2]] = Value{r, in[1], -1, true};
+            // Lanes that never reach this block would otherwise keep a previous run's value, which a derivative
+            // in non-uniform control flow (undefined, but must be deterministic) could read from a neighbour.
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Mov, r + i, zero_);
         }
     }
 
@@ -738,6 +753,7 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
         emit(SOp::JumpIfNone, kNoReg, b.mask);
         cur_mask_ = b.mask;
         store_mask_ = kNoReg;
+        in_loop_ = in_loop[order[oi]] != 0;
         size_t j = b.first;
         for (; j + 1 < b.end; ++j) {
             const Instr& in = ins[j];

@@ -1,6 +1,8 @@
 // GLSL.std.450 extended instructions -> SIMD instructions (split from translate_ops.cpp).
 #include <bit>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 #include <spirv/unified1/GLSL.std.450.h>
 
@@ -9,6 +11,99 @@
 namespace tilevk::shader {
 
 using SOp = tilevk::shader::Op;
+
+namespace {
+// Instruction names for error messages, indexed by the GLSL.std.450 opcode (GLSL.std.450.h order).
+constexpr const char* kGlslNames[] = {
+    "Bad",
+    "Round",
+    "RoundEven",
+    "Trunc",
+    "FAbs",
+    "SAbs",
+    "FSign",
+    "SSign",
+    "Floor",
+    "Ceil",
+    "Fract",
+    "Radians",
+    "Degrees",
+    "Sin",
+    "Cos",
+    "Tan",
+    "Asin",
+    "Acos",
+    "Atan",
+    "Sinh",
+    "Cosh",
+    "Tanh",
+    "Asinh",
+    "Acosh",
+    "Atanh",
+    "Atan2",
+    "Pow",
+    "Exp",
+    "Log",
+    "Exp2",
+    "Log2",
+    "Sqrt",
+    "InverseSqrt",
+    "Determinant",
+    "MatrixInverse",
+    "Modf",
+    "ModfStruct",
+    "FMin",
+    "UMin",
+    "SMin",
+    "FMax",
+    "UMax",
+    "SMax",
+    "FClamp",
+    "UClamp",
+    "SClamp",
+    "FMix",
+    "IMix",
+    "Step",
+    "SmoothStep",
+    "Fma",
+    "Frexp",
+    "FrexpStruct",
+    "Ldexp",
+    "PackSnorm4x8",
+    "PackUnorm4x8",
+    "PackSnorm2x16",
+    "PackUnorm2x16",
+    "PackHalf2x16",
+    "PackDouble2x32",
+    "UnpackSnorm2x16",
+    "UnpackUnorm2x16",
+    "UnpackHalf2x16",
+    "UnpackSnorm4x8",
+    "UnpackUnorm4x8",
+    "UnpackDouble2x32",
+    "Length",
+    "Distance",
+    "Cross",
+    "Normalize",
+    "FaceForward",
+    "Reflect",
+    "Refract",
+    "FindILsb",
+    "FindSMsb",
+    "FindUMsb",
+    "InterpolateAtCentroid",
+    "InterpolateAtSample",
+    "InterpolateAtOffset",
+    "NMin",
+    "NMax",
+    "NClamp",
+};
+static_assert(sizeof(kGlslNames) / sizeof(kGlslNames[0]) == GLSLstd450Count);
+}  // namespace
+
+const char* glsl_std450_name(uint32_t e) {
+    return e < GLSLstd450Count ? kGlslNames[e] : "(unknown)";
+}
 
 void Translator::glsl_op(const Instr& in) {
     auto def = [&](uint32_t n = 0) {
@@ -45,6 +140,58 @@ void Translator::glsl_op(const Instr& in) {
         uint32_t fa = argn(0), fb = argn(1), fc = argn(2);
         for (uint32_t i = 0; i < n; ++i)
             emit(o, d + i, a + (fa > 1 ? i : 0), b + (fb > 1 ? i : 0), c + (fc > 1 ? i : 0));
+    };
+    // Matrices as columns of row registers, for lavapipe's determinant (vtn build_det): expand along column 0,
+    // prod_i = m[0][i] * subdet(without row i, column 0), det = (prod_0 - prod_1) + (prod_2 - prod_3).
+    using Mat = std::vector<std::vector<uint32_t>>;
+    auto columns = [&](uint32_t id) {
+        const Type& mt = type(val(id).type);
+        if (mt.kind != Type::Matrix || mt.count < 2 || mt.count > 4 || type(mt.elem).count != mt.count)
+            fail("determinant/inverse of a non-square matrix");
+        uint32_t r0 = reg(id);
+        Mat m(mt.count, std::vector<uint32_t>(mt.count));
+        for (uint32_t c = 0; c < mt.count; ++c)
+            for (uint32_t r = 0; r < mt.count; ++r) m[c][r] = r0 + c * mt.count + r;
+        return m;
+    };
+    std::function<uint32_t(const Mat&)> det;
+    // determinant of m without row `row` and column `col` (a 2x2's is the opposite element)
+    auto subdet = [&](const Mat& m, uint32_t row, uint32_t col) -> uint32_t {
+        size_t size = m.size();
+        if (size == 2) return m[1 - col][1 - row];
+        Mat sub;
+        for (size_t j = 0; j < size; ++j) {
+            if (j == col) continue;
+            std::vector<uint32_t> c;
+            for (size_t r = 0; r < size; ++r)
+                if (r != row) c.push_back(m[j][r]);
+            sub.push_back(c);
+        }
+        return det(sub);
+    };
+    det = [&](const Mat& m) -> uint32_t {
+        uint32_t size = uint32_t(m.size());
+        std::vector<uint32_t> prod(size);
+        for (uint32_t i = 0; i < size; ++i) prod[i] = emit1(SOp::FMul, m[0][i], subdet(m, i, 0));
+        uint32_t result = kNoReg;
+        for (uint32_t i = 0; i < size; i += 2) {
+            uint32_t term = i + 1 < size ? emit1(SOp::FSub, prod[i], prod[i + 1]) : prod[i];
+            result = result == kNoReg ? term : emit1(SOp::FAdd, result, term);
+        }
+        return result;
+    };
+    // Modf/Frexp return the second part through a pointer operand; the *Struct forms return {first, second}.
+    auto store_pair = [&](bool through_pointer, uint32_t first, uint32_t second, uint32_t m) {
+        uint32_t d = def();
+        for (uint32_t i = 0; i < m; ++i) emit(SOp::Mov, d + i, first + i);
+        if (!through_pointer) {
+            for (uint32_t i = 0; i < m; ++i) emit(SOp::Mov, d + m + i, second + i);
+            return;
+        }
+        const Value& pv = val(in[6]);
+        if (pv.ptr < 0) fail(std::string(glsl_std450_name(e)) + " output operand is not a pointer");
+        const Pointer& p = pointers_[size_t(pv.ptr)];
+        store(p, p.type, second, 0);
     };
     switch (e) {
         case GLSLstd450Round:
@@ -269,26 +416,66 @@ void Translator::glsl_op(const Instr& in) {
         case GLSLstd450FindUMsb:
             return map1(SOp::FindUMsb);
         case GLSLstd450Determinant: {
-            const Type& mt = type(val(in[5]).type);
-            uint32_t m = arg(0);
-            auto at = [&](uint32_t c, uint32_t r) { return m + c * mt.count + r; };
-            auto mul = [&](uint32_t a, uint32_t b) { return emit1(SOp::FMul, a, b); };
-            auto sub = [&](uint32_t a, uint32_t b) { return emit1(SOp::FSub, a, b); };
-            auto det2 = [&](uint32_t a, uint32_t b, uint32_t c, uint32_t d) { return sub(mul(a, d), mul(b, c)); };
-            if (mt.count == 2) {
-                alias(det2(at(0, 0), at(1, 0), at(0, 1), at(1, 1)));
-            } else if (mt.count == 3) {
-                uint32_t a = mul(at(0, 0), det2(at(1, 1), at(2, 1), at(1, 2), at(2, 2)));
-                uint32_t b = mul(at(1, 0), det2(at(0, 1), at(2, 1), at(0, 2), at(2, 2)));
-                uint32_t c = mul(at(2, 0), det2(at(0, 1), at(1, 1), at(0, 2), at(1, 2)));
-                alias(emit1(SOp::FAdd, sub(a, b), c));
-            } else {
-                fail("unsupported GLSL.std.450 Determinant of a 4x4 matrix");
-            }
+            Mat m = columns(in[5]);
+            alias(det(m));
             return;
         }
-        default:
-            fail("unsupported GLSL.std.450 instruction " + std::to_string(e));
+        case GLSLstd450MatrixInverse: {
+            // lavapipe (vtn matrix_inverse): adjugate from the same sub-determinants, times 1/det (a division)
+            Mat m = columns(in[5]);
+            uint32_t size = uint32_t(m.size());
+            uint32_t inv = emit1(SOp::FDiv, konstf(1.0f), det(m));
+            uint32_t d = def();
+            for (uint32_t c = 0; c < size; ++c)
+                for (uint32_t r = 0; r < size; ++r) {
+                    // adj[c][r] = (-1)^(r+c) * subdet(without row c, column r)
+                    uint32_t a = subdet(m, c, r);
+                    if ((r + c) % 2) a = emit1(SOp::FNeg, a);
+                    emit(SOp::FMul, d + c * size + r, a, inv);
+                }
+            return;
+        }
+        case GLSLstd450Modf:
+        case GLSLstd450ModfStruct: {
+            // lavapipe (vtn): sign = sign(x), a = |x|; fract = |x| == inf ? (x & sign bit) : sign * fract(a);
+            // whole = sign * floor(a)
+            uint32_t x = arg(0);
+            uint32_t m = argn(0);
+            uint32_t fr = alloc(m), wh = alloc(m);
+            for (uint32_t i = 0; i < m; ++i) {
+                uint32_t sg = emit1(SOp::FSign, x + i), a = emit1(SOp::FAbs, x + i);
+                uint32_t inf = emit1(SOp::IEq, a, konst(0x7f800000u));
+                uint32_t f = emit1(SOp::FMul, sg, emit1(SOp::Fract, a));
+                emit(SOp::Select, fr + i, emit1(SOp::And, x + i, konst(0x80000000u)), f, inf);
+                emit(SOp::FMul, wh + i, sg, emit1(SOp::Floor, a));
+            }
+            store_pair(e == GLSLstd450Modf, fr, wh, m);
+            return;
+        }
+        case GLSLstd450Frexp:
+        case GLSLstd450FrexpStruct: {
+            // nir_lower_frexp: significand in [0.5, 1) with x's sign, exponent such that x = sig * 2^exp
+            uint32_t x = arg(0);
+            uint32_t m = argn(0);
+            uint32_t sig = alloc(m), ex = alloc(m);
+            for (uint32_t i = 0; i < m; ++i) {
+                emit(SOp::FrexpSig, sig + i, x + i);
+                emit(SOp::FrexpExp, ex + i, x + i);
+            }
+            store_pair(e == GLSLstd450Frexp, sig, ex, m);
+            return;
+        }
+        case GLSLstd450InterpolateAtCentroid:
+        case GLSLstd450InterpolateAtSample:
+        case GLSLstd450InterpolateAtOffset:
+            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
+                 " (re-interpolation at another position is not implemented)");
+        case GLSLstd450PackDouble2x32:
+        case GLSLstd450UnpackDouble2x32:
+            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
+                 " (64-bit types are not supported)");
+        default:  // IMix (reserved) and anything newer
+            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e));
     }
 }
 

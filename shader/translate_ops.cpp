@@ -379,6 +379,32 @@ void Translator::op(const Instr& in) {
             for (uint32_t i = 0; i < type(in[1]).flat; ++i) emit(SOp::Bfi, d + i, a + i, ins + i, off, cnt);
             return;
         }
+        // extended arithmetic: the result is a struct {low/value, high/carry/borrow} of equal vector types
+        case spv::Op::OpIAddCarry:
+        case spv::Op::OpISubBorrow:
+        case spv::Op::OpUMulExtended:
+        case spv::Op::OpSMulExtended: {
+            uint32_t a = reg(in[3]), b = reg(in[4]);
+            uint32_t n = flat_of(in[3]);
+            uint32_t d = def();
+            for (uint32_t i = 0; i < n; ++i) {
+                switch (in.op) {
+                    case spv::Op::OpIAddCarry:  // carry = (a + b) < a
+                        emit(SOp::IAdd, d + i, a + i, b + i);
+                        emit(SOp::And, d + n + i, emit1(SOp::ULt, d + i, a + i), konst(1));
+                        break;
+                    case spv::Op::OpISubBorrow:  // borrow = a < b
+                        emit(SOp::ISub, d + i, a + i, b + i);
+                        emit(SOp::And, d + n + i, emit1(SOp::ULt, a + i, b + i), konst(1));
+                        break;
+                    default:
+                        emit(SOp::IMul, d + i, a + i, b + i);
+                        emit(in.op == spv::Op::OpUMulExtended ? SOp::MulHiU : SOp::MulHiS, d + n + i, a + i, b + i);
+                        break;
+                }
+            }
+            return;
+        }
         // comparisons
         case spv::Op::OpIEqual:
             return binary(SOp::IEq);
@@ -606,14 +632,18 @@ void Translator::op(const Instr& in) {
             SOp dx = coarse ? SOp::DdxCoarse : SOp::DdxFine, dy = coarse ? SOp::DdyCoarse : SOp::DdyFine;
             uint32_t a = reg(in[3]);
             uint32_t d = def();
-            for (uint32_t i = 0; i < type(in[1]).flat; ++i) {
-                if (in.op == spv::Op::OpDPdx || in.op == spv::Op::OpDPdxFine || in.op == spv::Op::OpDPdxCoarse)
-                    emit(dx, d + i, a + i);
-                else if (in.op == spv::Op::OpDPdy || in.op == spv::Op::OpDPdyFine || in.op == spv::Op::OpDPdyCoarse)
-                    emit(dy, d + i, a + i);
-                else
-                    emit(SOp::FAdd, d + i, emit1(SOp::FAbs, emit1(dx, a + i)), emit1(SOp::FAbs, emit1(dy, a + i)));
-            }
+            uint32_t n = std::max(1u, type(in[1]).flat);
+            // reads neighbour lanes: in a loop, keep the value a lane computed while it was active
+            keep_active(d, n, [&](uint32_t t) {
+                for (uint32_t i = 0; i < n; ++i) {
+                    if (in.op == spv::Op::OpDPdx || in.op == spv::Op::OpDPdxFine || in.op == spv::Op::OpDPdxCoarse)
+                        emit(dx, t + i, a + i);
+                    else if (in.op == spv::Op::OpDPdy || in.op == spv::Op::OpDPdyFine || in.op == spv::Op::OpDPdyCoarse)
+                        emit(dy, t + i, a + i);
+                    else
+                        emit(SOp::FAdd, t + i, emit1(SOp::FAbs, emit1(dx, a + i)), emit1(SOp::FAbs, emit1(dy, a + i)));
+                }
+            });
             return;
         }
         case spv::Op::OpDemoteToHelperInvocation:
@@ -653,7 +683,10 @@ void Translator::op(const Instr& in) {
                 iface_.push_constant_size = std::max(iface_.push_constant_size, p.offset + 4 * type(in[1]).flat);
             }
             uint32_t d = def();
-            load(p, in[1], d, 0);
+            if (p.space == Space::Buffer)  // shared memory: other lanes may change it while this one waits
+                keep_active(d, std::max(1u, type(in[1]).flat), [&](uint32_t t) { load(p, in[1], t, 0); });
+            else
+                load(p, in[1], d, 0);
             return;
         }
         case spv::Op::OpStore: {
@@ -661,6 +694,26 @@ void Translator::op(const Instr& in) {
             if (pv.ptr < 0) fail("store to a non-pointer");
             Pointer p = pointers_[size_t(pv.ptr)];
             store(p, p.type, reg(in[2]), 0);
+            return;
+        }
+        case spv::Op::OpArrayLength: {
+            // length of the runtime array that ends a storage buffer block: (size - member offset) / stride
+            const Value& sv = val(in[3]);
+            if (sv.ptr < 0) fail("OpArrayLength of a non-pointer");
+            const Pointer& p = pointers_[size_t(sv.ptr)];
+            const Type& st = type(p.type);
+            uint32_t m = in[4];
+            if (p.space != Space::Buffer || p.in_array || st.kind != Type::Struct || m >= st.members.size() ||
+                type(st.members[m]).kind != Type::RuntimeArray)
+                fail("OpArrayLength needs a buffer block ending in a runtime array");
+            auto it = member_deco_.find({p.type, m});
+            uint32_t stride = uint32_t(deco_[st.members[m]].array_stride);
+            if (it == member_deco_.end() || it->second.offset < 0 || stride == 0)
+                fail("runtime array without Offset/ArrayStride");
+            uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+            emit(SOp::BufArrayLength, def(), elem, konst(stride), kNoReg, p.base,
+                 p.offset + uint32_t(it->second.offset))
+                .n = p.limit;
             return;
         }
         case spv::Op::OpCopyMemory: {
@@ -765,9 +818,15 @@ void Translator::op(const Instr& in) {
                 if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
                 d = def(4);
             }
-            emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, d, reg(in[3]), coords,
-                 lod == kNoReg ? zero_ : lod, flags, ncoord)
-                .n = grad;
+            auto sample = [&](uint32_t t) {
+                emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, t, reg(in[3]), coords,
+                     lod == kNoReg ? zero_ : lod, flags, ncoord)
+                    .n = grad;
+            };
+            if (implicit)  // the LOD comes from neighbour lanes' coordinates
+                keep_active(d, 4, sample);
+            else
+                sample(d);
             return;
         }
         case spv::Op::OpImageQuerySizeLod:

@@ -14,6 +14,8 @@
 
 namespace tilevk::shader {
 
+const char* glsl_std450_name(uint32_t opcode);  // "MatrixInverse", ... (translate_glsl.cpp)
+
 struct TranslateError {
     std::string message;
 };
@@ -165,6 +167,19 @@ class Translator {
     std::vector<uint32_t> store_masks_;  // per block: mask for side effects
     uint32_t store_mask_ = kNoReg;
     bool buffer_written_ = false;
+    // The block being translated lies inside a loop. Instructions there run for all lanes on every iteration, so
+    // a lane that already left the loop has its registers recomputed. That is harmless for pure functions of its
+    // own (masked) phis and memory, but not for results that depend on other lanes or shared memory: buffer loads,
+    // derivatives and implicit-LOD sampling. Those are written under the block mask (keep_active) in loops.
+    bool in_loop_ = false;
+    // Emit `gen(tmp)` computing n registers, then move them into d..d+n-1 for the block's lanes only (in loops).
+    template <typename Gen>
+    void keep_active(uint32_t d, uint32_t n, Gen gen) {
+        if (!in_loop_) return gen(d);
+        uint32_t tmp = alloc(n);
+        gen(tmp);
+        for (uint32_t i = 0; i < n; ++i) emit(Op::MaskedMov, d + i, tmp + i, kNoReg, cur_mask_);
+    }
     std::vector<std::pair<uint32_t, uint32_t>> private_inits_;  // (pointer index, initializer id)
 };
 

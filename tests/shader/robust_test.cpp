@@ -132,7 +132,7 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
             layout(location=0) out vec4 c;
             layout(location=0) in vec4 v;
             void main() { c = vec4(interpolateAtCentroid(v).x); })",
-         ""},
+         "InterpolateAtCentroid"},
     };
     for (const Case& c : cases) {
         auto spirv = compile_glsl(c.stage, c.src);
@@ -169,4 +169,29 @@ TEST(ShaderRobust, NanInfAndDivisionByZero) {
     EXPECT_EQ(vb.outputs[0][1][2], uint32_t(-2));
     // NaN -> int is INT_MIN (cvttps2dq)
     EXPECT_EQ(vb.outputs[0][0][0], 0x80000000u);
+}
+
+TEST(ShaderRobust, InfiniteLoopIsCutByTheWatchdog) {
+    // valid SPIR-V that never terminates for v.x >= 0: the run must return, and say so
+    auto spirv = compile_glsl(Stage::Fragment, R"(#version 450
+        layout(location=0) in vec4 v;
+        layout(location=0) out vec4 color;
+        void main() {
+            float c = 0.0;
+            while (v.x >= 0.0) { c += 1.0; if (c > 1e30) c = 0.0; }
+            color = vec4(c);
+        })");
+    Result r = Program::create(spirv, Stage::Fragment);
+    ASSERT_TRUE(r) << r.error;
+    FragmentBlock fb;
+    for (int l = 0; l < kLanes; ++l) fb.inputs[0][0][l] = std::bit_cast<uint32_t>(l < 8 ? 1.0f : -1.0f);
+    Scratch s;
+    EXPECT_EQ(s.loop_limit_hits(), 0u);
+    r.program->run_fragment(Bindings{}, fb, s);
+    EXPECT_EQ(s.loop_limit_hits(), 1u);
+    // a terminating loop on the same scratch does not count
+    for (int l = 0; l < kLanes; ++l) fb.inputs[0][0][l] = std::bit_cast<uint32_t>(-1.0f);
+    r.program->run_fragment(Bindings{}, fb, s);
+    EXPECT_EQ(s.loop_limit_hits(), 1u);
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(fb.outputs[0][0][l], 0u);
 }
