@@ -36,25 +36,36 @@ inline constexpr int32_t kLaneCol[16] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 
 inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
 
 // Fills p->step, step4, up, dn from a, b (once per plane per tile; the levels reuse the tables).
-inline void fill_step_table(TilePlane* p) {
+inline void fill_step_table_scalar(TilePlane* p) {
     p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
     p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
-#if TILEVK_SIMD_AVX2
-    // Integer products and sums: exactly the scalar loop's values.
-    const __m256i a = _mm256_set1_epi32(p->a), b = _mm256_set1_epi32(p->b);
-    const __m256i col = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), row0 = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
-    const __m256i ac = _mm256_mullo_epi32(a, col), b2 = _mm256_add_epi32(b, b);
-    const __m256i s0 = _mm256_add_epi32(ac, _mm256_mullo_epi32(b, row0));  // lanes 0-7: rows 0, 1
-    const __m256i s1c = _mm256_add_epi32(s0, b2);                          // lanes 8-15: rows 2, 3 = rows 0, 1 + 2b
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step), s0);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1c);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1c, 2));
-#else
     for (int i = 0; i < 16; ++i) {
         p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
         p->step4[i] = p->step[i] * 4;
     }
+}
+
+#if TILEVK_SIMD_AVX2
+// The same integer products and sums as the scalar loop, eight lanes at a time.
+inline void fill_step_table_avx2(TilePlane* p) {
+    p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
+    p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
+    const __m256i a = _mm256_set1_epi32(p->a), b = _mm256_set1_epi32(p->b);
+    const __m256i col = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), row = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+    const __m256i s0 = _mm256_add_epi32(_mm256_mullo_epi32(a, col), _mm256_mullo_epi32(b, row));  // rows 0, 1
+    const __m256i s1 = _mm256_add_epi32(s0, _mm256_add_epi32(b, b));                              // rows 2, 3
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step), s0);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
+}
+#endif
+
+inline void fill_step_table(TilePlane* p) {
+#if TILEVK_SIMD_AVX2
+    fill_step_table_avx2(p);
+#else
+    fill_step_table_scalar(p);
 #endif
 }
 

@@ -115,8 +115,10 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
 [[gnu::always_inline]] inline int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane,
                                                 const TilePlane** kept) {
     int m = 0;
-    for (int k = 0; k < n; ++k)
-        if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
+    for (int k = 0; k < n; ++k) {  // branch-free compaction: write every plane, advance past the kept ones
+        kept[m] = planes[k];
+        m += static_cast<int>(((acc[k] >> lane) & 1u) ^ 1u);
+    }
     return m;
 }
 
@@ -330,16 +332,18 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
         // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^39 + 2^38: 64-bit).
         const int64_t c = p.c0 + int64_t{p.a} * tile.x0 + int64_t{p.b} * tile.y0;
         const int64_t lo = c + p.dlo, hi = c + p.dhi;
-        const int64_t min_v = lo + span * (int64_t{std::min(p.a, 0)} + std::min(p.b, 0));
-        const int64_t max_v = hi + span * (int64_t{std::max(p.a, 0)} + std::max(p.b, 0));
+        const int64_t min_v = lo + span * p.dn, max_v = hi + span * p.up;  // extremes over the tile
         if (max_v <= 0) return TileClass::kReject;
-        if (min_v > 0) continue;  // trivially inside the whole tile: drop
         if (!out) {
-            ++n;
+            n += min_v <= 0;  // planes > 0 over the whole tile are dropped
             continue;
         }
-        // Live plane: every value over the tile is in (-2^30, 2^30] (tile_kernels.h), so 32 bits hold them.
-        TilePlane& tp = out[n++];
+        // Written unconditionally and kept only if live (branch-free: whether an edge is trivially inside a tile
+        // is unpredictable). A dropped plane's slot is overwritten by the next live one or ignored (its 32-bit
+        // casts may wrap; they are never read). Live plane: every value over the tile is in (-2^30, 2^30]
+        // (tile_kernels.h), so 32 bits hold them.
+        TilePlane& tp = out[n];
+        n += min_v <= 0;
         tp.a = p.a, tp.b = p.b;
         tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
         for (int s = 0; s < 4; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);
