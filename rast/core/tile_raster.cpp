@@ -124,8 +124,8 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
 
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
 // work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block then
-// starts at base + (step[lane] << 2) (the corner step table), so a lane costs one broadcast-add-movemask per plane
-// and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n.
+// starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask per
+// plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n.
 //
 // Branch-light by design (on this kind of code mispredictions, not instructions, dominate): one loop over the live
 // lanes with no data-dependent branch inside. Every lane writes a candidate entry into both lists and advances the
