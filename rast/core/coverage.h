@@ -31,7 +31,8 @@ struct FullBlock {
     int32_t size = 0;
 };
 
-// Coverage of one primitive within one tile. Blocks come in descent order; the two lists never overlap.
+// Coverage of one primitive within one tile. The two lists never overlap; the order within each list is
+// deterministic (the same for any thread count) but otherwise unspecified.
 struct PrimCoverage {
     uint32_t payload = 0;      // PrimCommon::payload
     uint16_t sample_mask = 0;  // PrimCommon::sample_mask & ((1 << samples) - 1)

@@ -73,6 +73,7 @@ void compute_pixel_planes(int samples, Prim* prim) {
         const EdgePlane& p = prim->planes[k];
         PixelPlane& q = prim->pix[k];
         q.a = p.a, q.b = p.b;
+        q.up = std::max(p.a, 0) + std::max(p.b, 0), q.dn = std::min(p.a, 0) + std::min(p.b, 0);
         // Sample 0 at 1x sits on the lattice (offset 0); at 4x at kSamplePos4x[0].
         int64_t cs[4];
         for (int s = 0; s < samples; ++s) {

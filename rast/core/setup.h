@@ -18,6 +18,7 @@ struct PixelPlane {
     int32_t a, b;
     int32_t d[4];
     int32_t dlo, dhi;  // min and max of d[] over the samples
+    int32_t up, dn;    // max(a,0) + max(b,0) and min(a,0) + min(b,0): extreme steps per pixel (tile corners)
 };
 
 // Hot fields first (read per tile by hier/bbox); the 64-bit planes and floats (reference/float methods, setup)

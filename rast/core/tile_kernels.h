@@ -23,19 +23,50 @@
 namespace tilevk::rast {
 
 struct TilePlane {
-    int32_t c[4];                  // value at the tile origin pixel, per sample (only c[0] at 1x)
-    int32_t a, b;                  // pixel steps
-    int32_t lo, hi;                // min and max of c[] over samples
-    alignas(32) int32_t step[16];  // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
+    int32_t c[4];                   // value at the tile origin pixel, per sample (only c[0] at 1x)
+    int32_t a, b;                   // pixel steps
+    int32_t lo, hi;                 // min and max of c[] over samples
+    int32_t up, dn;                 // max(a,0) + max(b,0) and min(a,0) + min(b,0): the extreme corner per pixel
+    alignas(32) int32_t step[16];   // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
+    alignas(32) int32_t step4[16];  // step << 2: corner steps of the 4x4-px blocks of a 16x16 block (< 3*2^26)
 };
 
 // Lane i of a 16-lane block grid: column i&3, row i>>2.
 inline constexpr int32_t kLaneCol[16] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
 inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
 
-// Fills p->step (once per plane per tile; every level reuses it scaled by a shift).
+// Fills p->step, step4, up, dn from a, b (once per plane per tile; the levels reuse the tables).
+inline void fill_step_table_scalar(TilePlane* p) {
+    p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
+    p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
+    for (int i = 0; i < 16; ++i) {
+        p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
+        p->step4[i] = p->step[i] * 4;
+    }
+}
+
+#if TILEVK_SIMD_AVX2
+// The same integer products and sums as the scalar loop, eight lanes at a time.
+inline void fill_step_table_avx2(TilePlane* p) {
+    p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
+    p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
+    const __m256i a = _mm256_set1_epi32(p->a), b = _mm256_set1_epi32(p->b);
+    const __m256i col = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), row = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+    const __m256i s0 = _mm256_add_epi32(_mm256_mullo_epi32(a, col), _mm256_mullo_epi32(b, row));  // rows 0, 1
+    const __m256i s1 = _mm256_add_epi32(s0, _mm256_add_epi32(b, b));                              // rows 2, 3
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step), s0);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
+}
+#endif
+
 inline void fill_step_table(TilePlane* p) {
-    for (int i = 0; i < 16; ++i) p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
+#if TILEVK_SIMD_AVX2
+    fill_step_table_avx2(p);
+#else
+    fill_step_table_scalar(p);
+#endif
 }
 
 // Classifies the 4x4 grid of sub-blocks of size 2^shift at tile-relative origin (ox, oy) against one plane:
@@ -44,9 +75,9 @@ inline void fill_step_table(TilePlane* p) {
 // corner offset (2^shift - 1)*(max(a,0)+max(b,0)) (reject) or (2^shift - 1)*(min(a,0)+min(b,0)) (accept).
 inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
                               uint32_t* accept) {
-    const int32_t origin = p.a * ox + p.b * oy, ext = (1 << shift) - 1;
-    const int32_t hi = p.hi + origin + ext * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
-    const int32_t lo = p.lo + origin + ext * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
+    const int32_t origin = p.a * ox + p.b * oy;
+    const int32_t hi = p.hi + origin + ((p.up << shift) - p.up);  // + (2^shift - 1)*up
+    const int32_t lo = p.lo + origin + ((p.dn << shift) - p.dn);
     uint32_t rej = 0, acc = 0;
     for (int i = 0; i < 16; ++i) {
         const int32_t off = p.step[i] * (1 << shift);
@@ -56,16 +87,20 @@ inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int sh
     *reject = rej, *accept = acc;
 }
 
+// Pixel mask of one plane over a 4x4 block whose top-left pixel has value `base`: bit i set iff base + step[i] > 0.
+inline uint32_t plane_mask4x4_scalar(const TilePlane& p, int32_t base) {
+    uint32_t bits = 0;
+    for (int i = 0; i < 16; ++i) bits |= static_cast<uint32_t>(base + p.step[i] > 0) << i;
+    return bits;
+}
+
 // Pixel mask of a 4x4 block at tile-relative (ox, oy) for sample s: bit (y*4+x) set iff c[s] + a*(ox+x) +
 // b*(oy+y) > 0 for every plane.
 inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
-        const int32_t base = p.c[s] + p.a * ox + p.b * oy;
-        uint32_t bits = 0;
-        for (int i = 0; i < 16; ++i) bits |= static_cast<uint32_t>(base + p.step[i] > 0) << i;
-        m &= bits;
+        m &= plane_mask4x4_scalar(p, p.c[s] + p.a * ox + p.b * oy);
     }
     return m;
 }
@@ -73,36 +108,43 @@ inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int
 #if TILEVK_SIMD_AVX2
 namespace avx2 {
 
-inline uint32_t positive_bits(__m256i v0, __m256i v1) {
-    const __m256i zero = _mm256_setzero_si256();
-    const uint32_t m0 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v0, zero))));
-    const uint32_t m1 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v1, zero))));
+// Bit i set iff lane i of (v0, v1) is negative: one movemask per 8 lanes (the sign bit), no compare.
+// With v = value - 1 this is "value <= 0" (no overflow: every value is in (-2^30, 2^30], tile_kernels.h).
+inline uint32_t sign_bits(__m256i v0, __m256i v1) {
+    const uint32_t m0 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(v0)));
+    const uint32_t m1 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(v1)));
     return m0 | (m1 << 8);
 }
 
 }  // namespace avx2
 
 inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
-    const int32_t origin = p.a * ox + p.b * oy, ext = (1 << shift) - 1;
-    const int32_t hi = p.hi + origin + ext * ((p.a > 0 ? p.a : 0) + (p.b > 0 ? p.b : 0));
-    const int32_t lo = p.lo + origin + ext * ((p.a < 0 ? p.a : 0) + (p.b < 0 ? p.b : 0));
-    const __m128i sh = _mm_cvtsi32_si128(shift);
-    const __m256i t0 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.step)), sh);
-    const __m256i t1 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8)), sh);
-    const __m256i vhi = _mm256_set1_epi32(hi), vlo = _mm256_set1_epi32(lo);
-    // reject: hi + off <= 0  <=>  !(hi + off > 0)
-    *reject = ~avx2::positive_bits(_mm256_add_epi32(vhi, t0), _mm256_add_epi32(vhi, t1)) & 0xFFFF;
-    *accept = avx2::positive_bits(_mm256_add_epi32(vlo, t0), _mm256_add_epi32(vlo, t1));
+    const int32_t origin = p.a * ox + p.b * oy;
+    const int32_t hi = p.hi + origin + ((p.up << shift) - p.up);  // + (2^shift - 1)*up
+    const int32_t lo = p.lo + origin + ((p.dn << shift) - p.dn);
+    // The 4-px level (shift 2, the hot one) reads the pre-shifted table; other levels shift step.
+    const int32_t* table = shift == 2 ? p.step4 : p.step;
+    const __m128i sh = _mm_cvtsi32_si128(shift == 2 ? 0 : shift);
+    const __m256i t0 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table)), sh);
+    const __m256i t1 = _mm256_sll_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table + 8)), sh);
+    // x > 0  <=>  sign(x - 1) clear: reject = hi + off <= 0, accept = !(lo + off <= 0).
+    const __m256i vhi = _mm256_set1_epi32(hi - 1), vlo = _mm256_set1_epi32(lo - 1);
+    *reject = avx2::sign_bits(_mm256_add_epi32(vhi, t0), _mm256_add_epi32(vhi, t1));
+    *accept = ~avx2::sign_bits(_mm256_add_epi32(vlo, t0), _mm256_add_epi32(vlo, t1)) & 0xFFFF;
+}
+
+inline uint32_t plane_mask4x4_avx2(const TilePlane& p, int32_t base) {
+    const __m256i b = _mm256_set1_epi32(base - 1);  // base + step > 0  <=>  base - 1 + step >= 0
+    const __m256i t0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step));
+    const __m256i t1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8));
+    return ~avx2::sign_bits(_mm256_add_epi32(b, t0), _mm256_add_epi32(b, t1)) & 0xFFFF;
 }
 
 inline uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
-        const __m256i base = _mm256_set1_epi32(p.c[s] + p.a * ox + p.b * oy);
-        const __m256i t0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step));
-        const __m256i t1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8));
-        m &= avx2::positive_bits(_mm256_add_epi32(base, t0), _mm256_add_epi32(base, t1));
+        m &= plane_mask4x4_avx2(p, p.c[s] + p.a * ox + p.b * oy);
     }
     return m;
 }
@@ -122,6 +164,14 @@ inline uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int32_t ox
     return mask4x4_avx2(planes, n, s, ox, oy);
 #else
     return mask4x4_scalar(planes, n, s, ox, oy);
+#endif
+}
+
+inline uint32_t plane_mask4x4(const TilePlane& p, int32_t base) {
+#if TILEVK_SIMD_AVX2
+    return plane_mask4x4_avx2(p, base);
+#else
+    return plane_mask4x4_scalar(p, base);
 #endif
 }
 

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
+#include <cstring>
 
 namespace tilevk::rast {
 
@@ -39,6 +41,27 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
 
 [[gnu::always_inline]] inline void push_full(TileScratch* out, int32_t x, int32_t y, int32_t size) {
     out->full[out->num_full++] = {x, y, size};
+}
+
+// Packed positions for the hot loops: x in the low, y in the high 32 bits (the memory order of Block4/FullBlock).
+inline uint64_t pack_xy(int32_t x, int32_t y) {
+    return static_cast<uint32_t>(x) | (uint64_t{static_cast<uint32_t>(y)} << 32);
+}
+// Offset of lane i's 4x4 block in a 16x16 block: (4*(i&3), 4*(i>>2)) packed.
+inline constexpr uint64_t kLaneXY4[16] = {0x000000000ull, 0x000000004ull, 0x000000008ull, 0x00000000Cull,
+                                          0x400000000ull, 0x400000004ull, 0x400000008ull, 0x40000000Cull,
+                                          0x800000000ull, 0x800000004ull, 0x800000008ull, 0x80000000Cull,
+                                          0xC00000000ull, 0xC00000004ull, 0xC00000008ull, 0xC0000000Cull};
+static_assert(sizeof(Block4) == 16 && offsetof(Block4, mask) == 8 && sizeof(FullBlock) == 12);
+
+// Block4 from packed xy and the four 16-bit sample masks packed (sample s in bits 16s..16s+15).
+[[gnu::always_inline]] inline void store_block(Block4* b, uint64_t xy, uint64_t masks) {
+    std::memcpy(b, &xy, 8);
+    std::memcpy(reinterpret_cast<char*>(b) + 8, &masks, 8);
+}
+[[gnu::always_inline]] inline void store_full(FullBlock* f, uint64_t xy, int32_t size) {
+    std::memcpy(f, &xy, 8);
+    f->size = size;
 }
 
 // --- hier: 64 -> 16 -> 4 -----------------------------------------------------------------------------------------
@@ -77,42 +100,103 @@ inline uint32_t lane_range(int32_t o, int shift, int32_t lo, int32_t hi) {
     return first > last ? 0u : (2u << last) - (1u << first);
 }
 
+// The 4x4 lane set of row bits `rows` and column bits `cols` (both < 16): row bit r -> bit 4r, then times cols
+// copies the column bits into each selected row without carries.
+inline uint32_t lane_grid(uint32_t rows, uint32_t cols) {
+    return ((rows & 1u) | ((rows & 2u) << 3) | ((rows & 4u) << 6) | ((rows & 8u) << 9)) * cols;
+}
+
 // Lanes of a 4x4 grid of 2^shift blocks at (ox, oy) whose block meets the tile-relative box [x0,x1]x[y0,y1].
-uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
-    const uint32_t cols = lane_range(ox, shift, x0, x1), rows = lane_range(oy, shift, y0, y1);
-    // Row bit r -> bit 4r; times cols (< 16) copies the column bits into each selected row without carries.
-    const uint32_t spread = (rows & 1u) | ((rows & 2u) << 3) | ((rows & 4u) << 6) | ((rows & 8u) << 9);
-    return spread * cols;
+inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    return lane_grid(lane_range(oy, shift, y0, y1), lane_range(ox, shift, x0, x1));
 }
 
 // Keeps the planes that do not accept lane `lane` (edges trivially inside a block are dropped within it).
 [[gnu::always_inline]] inline int drop_accepted(PlaneList planes, int n, const uint32_t* acc, int lane,
                                                 const TilePlane** kept) {
     int m = 0;
-    for (int k = 0; k < n; ++k)
-        if (!((acc[k] >> lane) & 1u)) kept[m++] = planes[k];
+    for (int k = 0; k < n; ++k) {  // branch-free compaction: write every plane, advance past the kept ones
+        kept[m] = planes[k];
+        m += static_cast<int>(((acc[k] >> lane) & 1u) ^ 1u);
+    }
     return m;
 }
 
-// A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, accept whole ones, mask the partial ones.
+// A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
+// work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block then
+// starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask per
+// plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n.
+//
+// Branch-light by design (on this kind of code mispredictions, not instructions, dominate): one loop over the live
+// lanes with no data-dependent branch inside. Every lane writes a candidate entry into both lists and advances the
+// one it belongs to (full lanes: the full list; others: the block list when the mask is not empty). Planes that
+// accept a lane are still evaluated there (they give 0xFFFF exactly), so full lanes get mask 0xFFFF and partial ones
+// their exact mask without per-lane plane selection. The writes stay within capacity: before any lane is emitted,
+// num_blocks + num_full <= the 4x4 blocks already emitted in this tile <= 255.
+template <int kN>
+void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
+                    uint32_t valid, TileScratch* out) {
+    if constexpr (kN != 0) n = kN;
+    uint32_t rej_any = 0, acc_all = valid;
+    int32_t base[Prim::kMaxPlanes];
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        uint32_t rej, acc;
+        classify16(p, ox, oy, 2, &rej, &acc);
+        rej_any |= rej, acc_all &= acc;
+        base[k] = p.a * ox + p.b * oy;  // plane offset of the block origin; + c[s] per sample below
+    }
+    const uint32_t live = valid & ~rej_any, full = live & acc_all;
+    // Positions as packed (x | y << 32) words: one add per lane gives both (x, y >= 0, so no carry crosses).
+    const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
+    size_t nb = out->num_blocks, nf = out->num_full;
+    if (t.samples == 1) {
+        for (int k = 0; k < n; ++k) base[k] += planes[k]->c[0];
+        for (uint32_t m = live; m; m &= m - 1) {
+            const int lane = std::countr_zero(m);
+            uint32_t mask = 0xFFFF;
+            for (int k = 0; k < n; ++k) mask &= plane_mask4x4(*planes[k], base[k] + planes[k]->step4[lane]);
+            const uint64_t xy = xy0 + kLaneXY4[lane];
+            const uint32_t is_full = (full >> lane) & 1u;
+            store_full(&out->full[nf], xy, 4);
+            nf += is_full;
+            store_block(&out->blocks[nb], xy, mask);  // 1x: masks 1-3 zero
+            nb += (mask != 0) & (is_full ^ 1u);       // 1x: sample_mask bit 0 is set (else setup rejects the prim)
+        }
+        out->num_blocks = nb, out->num_full = nf;
+        return;
+    }
+    const uint64_t keep = (prim.sample_mask & 1u ? 0xFFFFull : 0) | (prim.sample_mask & 2u ? 0xFFFFull << 16 : 0) |
+                          (prim.sample_mask & 4u ? 0xFFFFull << 32 : 0) | (prim.sample_mask & 8u ? 0xFFFFull << 48 : 0);
+    // 4x: a full lane would cost 4 masks per plane, so full and partial lanes get their own loops here.
+    for (uint32_t m = full; m; m &= m - 1) store_full(&out->full[nf++], xy0 + kLaneXY4[std::countr_zero(m)], 4);
+    for (uint32_t m = live & ~full; m; m &= m - 1) {
+        const int lane = std::countr_zero(m);
+        uint64_t masks = keep;
+        for (int k = 0; k < n; ++k) {
+            const TilePlane& p = *planes[k];
+            const int32_t corner = base[k] + p.step4[lane];
+            uint64_t pm = 0;  // this plane's four sample masks, packed
+            for (int s = 0; s < 4; ++s) pm |= uint64_t{plane_mask4x4(p, corner + p.c[s])} << (16 * s);
+            masks &= pm;
+        }
+        store_block(&out->blocks[nb], xy0 + kLaneXY4[lane], masks);
+        nb += masks != 0;
+    }
+    out->num_blocks = nb, out->num_full = nf;
+}
+
 void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
-    uint32_t live, full, acc[Prim::kMaxPlanes];
-    classify_grid(planes, n, ox, oy, 2, valid, &live, &full, acc);
-    for (uint32_t m = live; m; m &= m - 1) {
-        const int lane = std::countr_zero(m);
-        const int32_t bx = ox + 4 * (lane & 3), by = oy + 4 * (lane >> 2);
-        if ((full >> lane) & 1u) {
-            push_full(out, t.x0 + bx, t.y0 + by, 4);
-        } else {
-            // Mask with the planes that do not accept this lane, directly (no kept-plane list at the last level).
-            uint32_t masks[4] = {0xFFFF, 0xFFFF, 0xFFFF, 0xFFFF};
-            for (int k = 0; k < n; ++k) {
-                if ((acc[k] >> lane) & 1u) continue;
-                for (int s = 0; s < t.samples; ++s) masks[s] &= mask4x4(planes + k, 1, s, bx, by);
-            }
-            push_block(out, t.x0 + bx, t.y0 + by, masks, t.samples, prim.sample_mask);
-        }
+    switch (n) {
+        case 1:
+            return hier_block16_n<1>(prim, t, planes, n, ox, oy, valid, out);
+        case 2:
+            return hier_block16_n<2>(prim, t, planes, n, ox, oy, valid, out);
+        case 3:
+            return hier_block16_n<3>(prim, t, planes, n, ox, oy, valid, out);
+        default:
+            return hier_block16_n<0>(prim, t, planes, n, ox, oy, valid, out);
     }
 }
 
@@ -149,16 +233,19 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, lanes_in_box(0, 0, 2, r.x0, r.y0, r.x1, r.y1), out);
     uint32_t live, full, acc[Prim::kMaxPlanes];
     classify_grid(planes, n, 0, 0, 4, lanes_in_box(0, 0, 4, r.x0, r.y0, r.x1, r.y1), &live, &full, acc);
-    for (uint32_t m = live; m; m &= m - 1) {
+    for (uint32_t m = full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
-        const int32_t bx = 16 * (lane & 3), by = 16 * (lane >> 2);
-        if ((full >> lane) & 1u) {
-            push_full(out, t.x0 + bx, t.y0 + by, 16);
-        } else {
-            const TilePlane* kept[Prim::kMaxPlanes];
-            const int k = drop_accepted(planes, n, acc, lane, kept);
-            hier_block16(prim, t, kept, k, bx, by, lanes_in_box(bx, by, 2, r.x0, r.y0, r.x1, r.y1), out);
-        }
+        push_full(out, t.x0 + 16 * (lane & 3), t.y0 + 16 * (lane >> 2), 16);
+    }
+    // 4-px columns/rows of the tile that meet the box (bit j = pixels [4j, 4j+3]); a 16-px lane takes 4 of each.
+    const uint32_t cols4 = (2u << (r.x1 >> 2)) - (1u << (r.x0 >> 2)), rows4 = (2u << (r.y1 >> 2)) - (1u << (r.y0 >> 2));
+    for (uint32_t m = live & ~full; m; m &= m - 1) {
+        const int lane = std::countr_zero(m);
+        const int col = lane & 3, row = lane >> 2;
+        const TilePlane* kept[Prim::kMaxPlanes];
+        const int k = drop_accepted(planes, n, acc, lane, kept);
+        const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
+        hier_block16(prim, t, kept, k, 16 * col, 16 * row, valid, out);
     }
 }
 
@@ -245,16 +332,18 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
         // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^39 + 2^38: 64-bit).
         const int64_t c = p.c0 + int64_t{p.a} * tile.x0 + int64_t{p.b} * tile.y0;
         const int64_t lo = c + p.dlo, hi = c + p.dhi;
-        const int64_t min_v = lo + span * (int64_t{std::min(p.a, 0)} + std::min(p.b, 0));
-        const int64_t max_v = hi + span * (int64_t{std::max(p.a, 0)} + std::max(p.b, 0));
+        const int64_t min_v = lo + span * p.dn, max_v = hi + span * p.up;  // extremes over the tile
         if (max_v <= 0) return TileClass::kReject;
-        if (min_v > 0) continue;  // trivially inside the whole tile: drop
         if (!out) {
-            ++n;
+            n += min_v <= 0;  // planes > 0 over the whole tile are dropped
             continue;
         }
-        // Live plane: every value over the tile is in (-2^30, 2^30] (tile_kernels.h), so 32 bits hold them.
-        TilePlane& tp = out[n++];
+        // Written unconditionally and kept only if live (branch-free: whether an edge is trivially inside a tile
+        // is unpredictable). A dropped plane's slot is overwritten by the next live one or ignored (its 32-bit
+        // casts may wrap; they are never read). Live plane: every value over the tile is in (-2^30, 2^30]
+        // (tile_kernels.h), so 32 bits hold them.
+        TilePlane& tp = out[n];
+        n += min_v <= 0;
         tp.a = p.a, tp.b = p.b;
         tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
         for (int s = 0; s < 4; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);

@@ -1,6 +1,9 @@
 // The AVX2 kernels and their scalar twins agree bit for bit on random planes within the proved 32-bit bounds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <random>
 
 #include "rast/core/tile_kernels.h"
@@ -21,7 +24,7 @@ TilePlane random_plane(std::mt19937_64& rng) {
     // A value somewhere in the tile is ~0; the origin value is then within 63*(|a|+|b|) of 0.
     const int64_t span = 63 * (int64_t{std::abs(p.a)} + std::abs(p.b)) + 1;
     const int64_t c0 = std::uniform_int_distribution<int64_t>(-span, span)(rng);
-    int64_t lo = c0, hi = c0;
+    int64_t lo = INT64_MAX, hi = INT64_MIN;  // exact min/max over the samples, as tile_setup makes them
     for (int s = 0; s < 4; ++s) {
         const int64_t d = (int64_t{std::abs(p.a)} + std::abs(p.b)) * 3 / 4;
         p.c[s] = static_cast<int32_t>(c0 + std::uniform_int_distribution<int64_t>(-d, d)(rng));
@@ -53,6 +56,26 @@ TEST(Kernels, ScalarAndAvx2Agree) {
             ASSERT_EQ(a1, a2) << iter;
             partial += (r1 | a1) != 0xFFFF;
         }
+        // The per-plane 4x4 mask from a block value anywhere in the tile (the 16->4 level's entry point).
+        for (int k = 0; k < n; ++k) {
+            const int32_t bx4 = 4 * ((iter >> 3) & 15), by4 = 4 * ((iter >> 7) & 15);
+            for (int s = 0; s < 4; ++s) {
+                const int32_t base = planes[k].c[s] + planes[k].a * bx4 + planes[k].b * by4;
+                ASSERT_EQ(plane_mask4x4_scalar(planes[k], base), plane_mask4x4_avx2(planes[k], base)) << iter;
+            }
+        }
+        // Step tables: the AVX2 fill equals the scalar one field for field.
+        for (int k = 0; k < n; ++k) {
+            TilePlane x = planes[k], y = planes[k];
+            fill_step_table_scalar(&x);
+            fill_step_table_avx2(&y);
+            ASSERT_EQ(x.up, y.up);
+            ASSERT_EQ(x.dn, y.dn);
+            for (int i = 0; i < 16; ++i) {
+                ASSERT_EQ(x.step[i], y.step[i]) << iter;
+                ASSERT_EQ(x.step4[i], y.step4[i]) << iter;
+            }
+        }
         const int32_t bx = 4 * ((iter >> 2) & 15), by = 4 * ((iter >> 6) & 15);
         for (int s = 0; s < 4; ++s) {
             const uint32_t m1 = mask4x4_scalar(list, n, s, bx, by), m2 = mask4x4_avx2(list, n, s, bx, by);
@@ -78,8 +101,49 @@ TEST(Kernels, ScalarMatchesDefinition) {
                 if (int64_t{p.c[s]} + int64_t{p.a} * (ox + (i & 3)) + int64_t{p.b} * (oy + (i >> 2)) > 0)
                     expect |= 1u << i;
             ASSERT_EQ(mask4x4_scalar(list, 1, s, ox, oy), expect);
+            const int64_t base = int64_t{p.c[s]} + int64_t{p.a} * ox + int64_t{p.b} * oy;
+            ASSERT_EQ(plane_mask4x4_scalar(p, static_cast<int32_t>(base)), expect);
+        }
+        // Step tables from their definition.
+        for (int i = 0; i < 16; ++i) {
+            ASSERT_EQ(p.step[i], p.a * (i & 3) + p.b * (i >> 2));
+            ASSERT_EQ(p.step4[i], 4 * (p.a * (i & 3) + p.b * (i >> 2)));
         }
     }
+}
+
+// classify16_scalar against brute force: the true minimum and maximum of the plane over every sample of every
+// pixel of each sub-block (64-bit), at the 16-px level of a 64-px tile and the 4-px level of each 16-px block.
+TEST(Kernels, ClassifyMatchesBruteForce) {
+    std::mt19937_64 rng(4242);
+    uint64_t rejects = 0, accepts = 0, partial = 0;
+    for (int iter = 0; iter < 3000; ++iter) {
+        const TilePlane p = random_plane(rng);
+        const int shift = (iter & 1) ? 4 : 2;
+        const int32_t ox = (iter & 1) ? 0 : 16 * ((iter >> 1) & 3), oy = (iter & 1) ? 0 : 16 * ((iter >> 3) & 3);
+        const int w = 1 << shift;
+        uint32_t expect_rej = 0, expect_acc = 0;
+        for (int lane = 0; lane < 16; ++lane) {
+            int64_t lo = INT64_MAX, hi = INT64_MIN;
+            for (int y = 0; y < w; ++y)
+                for (int x = 0; x < w; ++x)
+                    for (int s = 0; s < 4; ++s) {
+                        const int64_t v = int64_t{p.c[s]} + int64_t{p.a} * (ox + (lane & 3) * w + x) +
+                                          int64_t{p.b} * (oy + (lane >> 2) * w + y);
+                        lo = std::min(lo, v), hi = std::max(hi, v);
+                    }
+            expect_rej |= static_cast<uint32_t>(hi <= 0) << lane;
+            expect_acc |= static_cast<uint32_t>(lo > 0) << lane;
+        }
+        uint32_t rej, acc;
+        classify16_scalar(p, ox, oy, shift, &rej, &acc);
+        ASSERT_EQ(rej, expect_rej) << iter;
+        ASSERT_EQ(acc, expect_acc) << iter;
+        rejects += std::popcount(rej), accepts += std::popcount(acc), partial += 16 - std::popcount(rej | acc);
+    }
+    EXPECT_GT(rejects, 1000u);
+    EXPECT_GT(accepts, 1000u);
+    EXPECT_GT(partial, 1000u);
 }
 
 }  // namespace
