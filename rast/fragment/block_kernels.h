@@ -330,8 +330,10 @@ inline void store_rgba8_scalar(bool bgra, const float src[4][kBlockLanes], uint1
 }
 
 #if TILEVK_SIMD_AVX2
-// UnormPath::Avx8 only. Touches only the pixels of `mask` (masked stores), so blocks at the framebuffer edge are fine.
-inline void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch) {
+namespace detail {
+// The block's source colours as UNORM8 pixels in memory order (R G B A, or B G R A), raster rows 0..3.
+// u8 = packus(packs(cvtps2dq(fl(min(1, x) * 255)))): float_to_unorm8 with UnormPath::Avx8.
+inline void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i rows[4]) {
     const __m256 one = _mm256_set1_ps(1.0f), k255 = _mm256_set1_ps(255.0f);
     // bytes r0..r3 g0..g3 b0..b3 a0..a3 (per 128-bit half) -> pixels r g b a (or b g r a)
     const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
@@ -341,37 +343,52 @@ inline void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_
     for (int h = 0; h < 2; ++h) {
         __m256i c[4];
         for (int ch = 0; ch < 4; ++ch) {
-            // u8 = packus(packs(cvtps2dq(fl(min(1, x) * 255))))
             const __m256 x = _mm256_loadu_ps(src[ch] + 8 * h);
             c[ch] = _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(one, x), k255));
         }
         const __m256i px = _mm256_shuffle_epi8(
             _mm256_packus_epi16(_mm256_packs_epi32(c[0], c[1]), _mm256_packs_epi32(c[2], c[3])), order);
+        // lanes 0..3 = (0,0) (1,0) (0,1) (1,1), lanes 4..7 = (2,0) (3,0) (2,1) (3,1)
         const __m128i lo = _mm256_castsi256_si128(px), hi = _mm256_extracti128_si256(px, 1);
-        const __m128i rows[2] = {_mm_unpacklo_epi64(lo, hi), _mm_unpackhi_epi64(lo, hi)};
-        const uint32_t m = mask >> (8 * h);
-        // row bits: lanes {0,1,4,5} and {2,3,6,7} of this half
-        const uint32_t row_bits[2] = {(m & 3u) | ((m >> 2) & 0xcu), ((m >> 2) & 3u) | ((m >> 4) & 0xcu)};
-        for (int r = 0; r < 2; ++r) {
-            if (!row_bits[r]) continue;
-            uint8_t* dst = origin + size_t(2 * h + r) * pitch;
-            if (row_bits[r] == 0xf) {
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), rows[r]);
-            } else {
-                const __m128i sel = _mm_setr_epi32(1, 2, 4, 8);
-                const __m128i m4 = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(int(row_bits[r])), sel), sel);
-                _mm_maskstore_epi32(reinterpret_cast<int*>(dst), m4, rows[r]);
-            }
+        rows[2 * h] = _mm_unpacklo_epi64(lo, hi);
+        rows[2 * h + 1] = _mm_unpackhi_epi64(lo, hi);
+    }
+}
+}  // namespace detail
+
+// UnormPath::Avx8 only. `inside`: all 16 pixels exist, so a partly covered row is read, merged and written back
+// whole (VPMASKMOVD stores are microcoded and slow on some CPUs); otherwise masked stores touch only `mask` pixels.
+inline void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch,
+                             bool inside) {
+    __m128i rows[4];
+    detail::pack_rgba8_rows(bgra, src, rows);
+    const uint32_t raster = lanes_to_raster(mask);
+    for (int r = 0; r < 4; ++r) {
+        const uint32_t row_bits = (raster >> (4 * r)) & 0xfu;
+        if (!row_bits) continue;
+        uint8_t* dst = origin + size_t(r) * pitch;
+        if (row_bits == 0xf) {
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), rows[r]);
+            continue;
+        }
+        const __m128i sel = _mm_setr_epi32(1, 2, 4, 8);
+        const __m128i m4 = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(int(row_bits)), sel), sel);
+        if (inside) {
+            const __m128i old = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dst));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm_blendv_epi8(old, rows[r], m4));
+        } else {
+            _mm_maskstore_epi32(reinterpret_cast<int*>(dst), m4, rows[r]);
         }
     }
 }
 #endif
 
 inline void store_rgba8_fast(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch,
-                             UnormPath path) {
+                             UnormPath path, bool inside) {
 #if TILEVK_SIMD_AVX2
-    if (path == UnormPath::Avx8) return store_rgba8_avx2(bgra, src, mask, origin, pitch);
+    if (path == UnormPath::Avx8) return store_rgba8_avx2(bgra, src, mask, origin, pitch, inside);
 #endif
+    (void)inside;
     store_rgba8_scalar(bgra, src, mask, origin, pitch, path);
 }
 

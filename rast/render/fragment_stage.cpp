@@ -32,7 +32,7 @@ struct InputPlan {
     geometry::Interp interp = geometry::Interp::kPerspective;
 };
 
-enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8 };
+enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8, kRgba8 };
 
 struct FragmentStage::DrawPlan {
     bool fast = false;              // false: the reference path (clears, unsupported states)
@@ -42,6 +42,8 @@ struct FragmentStage::DrawPlan {
     bool depth_fast = false;        // depth_block_fast handles the depth test
     fragment::DepthFast depth;
     ColorPath color[kMaxColorTargets] = {};
+    fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
+    uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
 };
 
 namespace {
@@ -179,12 +181,17 @@ FragmentStage::DrawPlan make_plan(const DrawRecord& draw, const Framebuffer& fb)
     for (uint32_t c = 0; c < fb.num_color && c < kMaxColorTargets; ++c) {
         const fragment::BlendAttachment& a = pipe.blend[c];
         const fragment::ColorFormat f = fb.color[c].format;
+        plan.color_bytes[c] = fragment::format_info(f).bytes;
         const bool rgba8 = f == fragment::ColorFormat::R8G8B8A8_UNORM || f == fragment::ColorFormat::B8G8R8A8_UNORM;
-        if ((a.write_mask & 0xf) == 0)
+        if ((a.write_mask & 0xf) == 0) {
             plan.color[c] = ColorPath::kNone;
-        else if (rgba8 && !a.blend_enable && (a.write_mask & 0xf) == 0xf)
+        } else if (rgba8 && !a.blend_enable && (a.write_mask & 0xf) == 0xf) {
             plan.color[c] =
                 f == fragment::ColorFormat::B8G8R8A8_UNORM ? ColorPath::kOpaqueBgra8 : ColorPath::kOpaqueRgba8;
+        } else if (rgba8) {
+            plan.rgba8[c] = fragment::prepare_rgba8_blend(a, f, pipe.blend_constants);
+            if (plan.rgba8[c].ok) plan.color[c] = ColorPath::kRgba8;
+        }
     }
     return plan;
 }
@@ -589,16 +596,19 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
         const ColorTarget& t = fb_.color[c];
         if (!t.data || plan.color[c] == ColorPath::kNone) continue;
         std::memcpy(src, b.outputs[c], sizeof src);
-        const size_t bytes = fragment::format_info(t.format).bytes;
+        const size_t bytes = plan.color_bytes[c];
         for (int s = 0; s < samples; ++s) {
             if (!final_mask[s]) continue;
             uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
-            if (plan.color[c] == ColorPath::kGeneric)
+            if (plan.color[c] == ColorPath::kRgba8 && inside &&
+                fragment::blend_rgba8_block(plan.rgba8[c], src, final_mask[s], origin, t.row_pitch))
+                continue;
+            if (plan.color[c] == ColorPath::kGeneric || plan.color[c] == ColorPath::kRgba8)
                 fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
                                       t.row_pitch, opt);
             else
                 fragment::store_rgba8_fast(plan.color[c] == ColorPath::kOpaqueBgra8, src, final_mask[s], origin,
-                                           t.row_pitch, opt.unorm_path);
+                                           t.row_pitch, opt.unorm_path, inside);
         }
     }
 }

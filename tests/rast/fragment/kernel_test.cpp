@@ -205,15 +205,79 @@ TEST(FragmentKernels, OpaqueStoreMatchesBlendBlock) {
         std::vector<uint8_t> scalar = mem;
         store_rgba8_scalar(bgra, src, mask, scalar.data(), pitch, path);
         ASSERT_EQ(scalar, expect) << iter;
-        std::vector<uint8_t> fast = mem;
-        store_rgba8_fast(bgra, src, mask, fast.data(), pitch, path);
-        ASSERT_EQ(fast, expect) << iter;
+        for (bool inside : {false, true}) {
+            std::vector<uint8_t> fast = mem;
+            store_rgba8_fast(bgra, src, mask, fast.data(), pitch, path, inside);
+            ASSERT_EQ(fast, expect) << iter;
 #if TILEVK_SIMD_AVX2
-        if (path == UnormPath::Avx8) {
-            std::vector<uint8_t> simd = mem;
-            store_rgba8_avx2(bgra, src, mask, simd.data(), pitch);
-            ASSERT_EQ(simd, expect) << iter;
-        }
+            if (path == UnormPath::Avx8) {
+                std::vector<uint8_t> simd = mem;
+                store_rgba8_avx2(bgra, src, mask, simd.data(), pitch, inside);
+                ASSERT_EQ(simd, expect) << iter;
+            }
 #endif
+        }
     }
+}
+
+TEST(FragmentKernels, Rgba8BlendMatchesBlendBlock) {
+    std::mt19937 rng(15);
+    int fast = 0;
+    for (int iter = 0; iter < 40000; ++iter) {
+        const ColorFormat f = (iter & 1) ? ColorFormat::B8G8R8A8_UNORM : ColorFormat::R8G8B8A8_UNORM;
+        BlendAttachment a;
+        a.blend_enable = (iter % 5) != 0;
+        auto factor = [&] { return BlendFactor(rng() % 15); };  // Zero..SrcAlphaSaturate
+        a.src_color = factor();
+        a.dst_color = factor();
+        a.src_alpha = factor();
+        a.dst_alpha = factor();
+        a.color_op = BlendOp(rng() % 5);
+        a.alpha_op = BlendOp(rng() % 5);
+        if (iter % 3 == 0) {  // the common state: standard alpha blending
+            a.src_color = BlendFactor::SrcAlpha;
+            a.dst_color = BlendFactor::OneMinusSrcAlpha;
+            a.color_op = a.alpha_op = BlendOp::Add;
+        }
+        a.write_mask = (iter % 2) ? 0xf : uint8_t(rng() % 16);
+        float k[4], src[4][kBlockLanes];
+        for (float& v : k) v = nasty(rng, 0.0f, 1.0f);
+        for (auto& ch : src)
+            for (float& v : ch) v = nasty(rng, 0.0f, 1.0f);
+        const size_t pitch = 16 + 20;
+        std::vector<uint8_t> mem(pitch * 4);
+        for (auto& b : mem) b = uint8_t(rng());
+        if (iter % 7 == 0)
+            for (size_t i = 0; i < mem.size(); ++i) mem[i] = (i % 4 == 3) ? 255 : uint8_t(rng());  // opaque dst
+        const uint16_t mask = (iter % 4 == 0) ? 0xffff : uint16_t(rng());
+
+        std::vector<uint8_t> expect = mem;
+        blend_block(a, f, k, src, mask, expect.data(), pitch);
+        const Rgba8Blend b = prepare_rgba8_blend(a, f, k);
+        ASSERT_TRUE(b.ok);
+        std::vector<uint8_t> got = mem;
+        if (blend_rgba8_block(b, src, mask, got.data(), pitch)) {
+            ++fast;
+            ASSERT_EQ(got, expect) << "iter " << iter;
+        }
+    }
+#if TILEVK_SIMD_AVX2
+    EXPECT_EQ(fast, 40000);
+#else
+    EXPECT_EQ(fast, 0);
+#endif
+}
+
+TEST(FragmentKernels, Rgba8BlendDeclinesWhatItDoesNotCover) {
+    BlendAttachment a;
+    const float k[4] = {0, 0, 0, 0};
+    EXPECT_TRUE(prepare_rgba8_blend(a, ColorFormat::R8G8B8A8_UNORM, k).ok);
+    EXPECT_FALSE(prepare_rgba8_blend(a, ColorFormat::R8G8B8A8_SRGB, k).ok);
+    EXPECT_FALSE(prepare_rgba8_blend(a, ColorFormat::R8_UNORM, k).ok);
+    BlendOptions sse;
+    sse.unorm_path = UnormPath::Sse4;
+    EXPECT_FALSE(prepare_rgba8_blend(a, ColorFormat::R8G8B8A8_UNORM, k, sse).ok);
+    a.blend_enable = true;
+    a.src_color = BlendFactor::Src1Color;
+    EXPECT_FALSE(prepare_rgba8_blend(a, ColorFormat::R8G8B8A8_UNORM, k).ok);
 }
