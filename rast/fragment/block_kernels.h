@@ -76,9 +76,17 @@ inline void reciprocal_avx2(const float w[kBlockLanes], float oow[kBlockLanes]) 
     for (int h = 0; h < kBlockLanes; h += 8) _mm256_storeu_ps(oow + h, _mm256_div_ps(one, _mm256_loadu_ps(w + h)));
 }
 
+// a * oow with the reference's NaN choice: when both are NaN the result is oow's (quieted), as the scalar loop's
+// VMULSS (oow first) returns it. A plain _mm256_mul_ps would leave that to the compiler's operand order.
+inline __m256 mul_oow(__m256 a, __m256 oow) {
+    const __m256 oow_nan = _mm256_cmp_ps(oow, oow, _CMP_UNORD_Q);
+    const __m256 quiet = _mm256_or_ps(oow, _mm256_castsi256_ps(_mm256_set1_epi32(0x00400000)));
+    return _mm256_blendv_ps(_mm256_mul_ps(a, oow), quiet, oow_nan);
+}
+
 inline void mul_lanes_avx2(float a[kBlockLanes], const float oow[kBlockLanes]) {
     for (int h = 0; h < kBlockLanes; h += 8)
-        _mm256_storeu_ps(a + h, _mm256_mul_ps(_mm256_loadu_ps(a + h), _mm256_loadu_ps(oow + h)));
+        _mm256_storeu_ps(a + h, mul_oow(_mm256_loadu_ps(a + h), _mm256_loadu_ps(oow + h)));
 }
 #endif
 
@@ -110,6 +118,27 @@ inline void mul_lanes_fast(float a[kBlockLanes], const float oow[kBlockLanes]) {
     mul_lanes_avx2(a, oow);
 #else
     mul_lanes_scalar(a, oow);
+#endif
+}
+
+// One shader input component straight into the shader's lane words (float bits): eval_plane, then * oow when
+// `oow` is not null (perspective). The AVX2 form stores through may_alias vector types; the scalar form copies.
+inline void interpolate_input(const Plane& p, const LaneCoords& c, bool fused, const float* oow,
+                              uint32_t out[kBlockLanes]) {
+#if TILEVK_SIMD_AVX2
+    const __m256 dadx = _mm256_set1_ps(p.dadx), dady = _mm256_set1_ps(p.dady), a0 = _mm256_set1_ps(p.a0);
+    for (int h = 0; h < kBlockLanes; h += 8) {
+        const __m256 px = _mm256_load_ps(c.x + h), py = _mm256_load_ps(c.y + h);
+        __m256 a = fused ? _mm256_fmadd_ps(dady, py, _mm256_fmadd_ps(dadx, px, a0))
+                         : _mm256_add_ps(_mm256_mul_ps(dady, py), _mm256_add_ps(_mm256_mul_ps(dadx, px), a0));
+        if (oow) a = mul_oow(a, _mm256_loadu_ps(oow + h));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + h), _mm256_castps_si256(a));
+    }
+#else
+    float a[kBlockLanes];
+    eval_plane_scalar(p, c, fused, a);
+    if (oow) mul_lanes_scalar(a, oow);
+    std::memcpy(out, a, sizeof a);
 #endif
 }
 

@@ -515,7 +515,7 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
         b.sample_id = 0;
         const shader::ProgramInterface& iface = fs->interface();
         const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);
-        alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {}, tmp[kBlockLanes];
+        alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
         if (plan.perspective || frag_coord) fragment::eval_plane_fast(plane_of(planes, 3), centre, fused_, wlanes);
         if (frag_coord) {
             const fragment::EvalOffset off = fragment::plane_offset(samples, -1);
@@ -544,9 +544,9 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
                 for (int l = 0; l < kBlockLanes; ++l) b.inputs[in.loc][in.comp][l] = bits_of(p[in.comp]);
                 continue;
             }
-            fragment::eval_plane_fast(plane_of(p, int(in.comp)), centre, fused_, tmp);
-            if (in.interp == geometry::Interp::kPerspective) fragment::mul_lanes_fast(tmp, oow);
-            std::memcpy(b.inputs[in.loc][in.comp], tmp, sizeof tmp);
+            fragment::interpolate_input(plane_of(p, int(in.comp)), centre, fused_,
+                                        in.interp == geometry::Interp::kPerspective ? oow : nullptr,
+                                        b.inputs[in.loc][in.comp]);
         }
         fs->run_fragment(draw.bindings, b, w.scratch);
         live = static_cast<uint16_t>(b.live_mask & shade_lanes);
