@@ -2,6 +2,7 @@
 // without blending and depth, RGBA8 at 1x and 4x.  Filter with --benchmark_filter.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 #include <vector>
@@ -113,6 +114,11 @@ void BM_Render(benchmark::State& state) {
     call.vertex_buffers = {{reinterpret_cast<const uint8_t*>(verts.data()), uint32_t(verts.size() * sizeof(Vertex))}};
     shader::Bindings bindings;
     for (auto _ : state) {
+        // Every iteration starts from the cleared depth buffer (before 2026-11-22 it kept the previous iteration's
+        // depth, so only the last full-screen triangle passed LEQUAL after the first iteration).
+        state.PauseTiming();
+        std::fill(f.depth.begin(), f.depth.end(), 1.0f);
+        state.ResumeTiming();
         r.begin(fb);
         if (!r.draw(p, call, bindings).empty()) state.SkipWithError("draw failed");
         r.end();

@@ -75,6 +75,27 @@ void blend_pixel(const BlendAttachment& a, ColorFormat f, const float constants[
 void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4][kBlockLanes],
                  uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt = {});
 
+// The fast path for 4-channel UNORM8 targets (R8G8B8A8 / B8G8R8A8): every state blend_block supports for them
+// (all single-source factors, the five ops, any write mask, blending on or off), prepared once per draw.
+// ok = false: the state or options are not covered (UnormPath::Sse4, other formats, dual source) -> blend_block.
+struct Rgba8Blend {
+    bool ok = false;
+    bool bgra = false;
+    bool blend = false;
+    uint8_t rgb_src = 0, rgb_dst = 0, a_src = 0, a_dst = 0;  // lowered factors (blend.cpp's PipeFactor codes)
+    BlendOp rgb_op = BlendOp::Add, a_op = BlendOp::Add;
+    uint8_t k[4] = {};      // UNORM8 constants in memory order
+    uint8_t wmask_mem = 0;  // channel write mask in memory order
+};
+Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const float constants[4],
+                               const BlendOptions& opt = {});
+
+// blend_block for a prepared RGBA8 / BGRA8 state on a block whose 16 pixels all exist: 16 pixels at once with
+// AVX2 (mul_norm in 16-bit lanes, saturating 8-bit ops). Returns false, writing nothing, when built without AVX2:
+// blend_block is its scalar twin (tests/rast/fragment/kernel_test.cpp compares them).
+bool blend_rgba8_block(const Rgba8Blend& b, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block,
+                       size_t pitch);
+
 // 8-bit helpers, exposed for tests.
 // mul_norm(a, b) = (p + (p >> 8) + 0x80) >> 8 with p = a*b  (lp_build_mul_norm, 16-bit lanes)
 constexpr uint8_t mul_norm8(uint8_t a, uint8_t b) {

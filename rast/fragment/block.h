@@ -25,21 +25,15 @@ constexpr int lane_y(int lane) {
     return ((lane >> 3) & 1) * 2 + ((lane >> 1) & 1);
 }
 
-// Raster-order mask (bit y*4+x) -> lane-order mask (bit lane_of(x,y)).
+// Raster-order mask (bit y*4+x) -> lane-order mask (bit lane_of(x,y)). The permutation swaps bits 2,3 with
+// bits 4,5 in each byte (raster (2,0),(3,0) are lanes 4,5; raster (0,1),(1,1) are lanes 2,3) and is its own inverse.
 constexpr uint16_t raster_to_lanes(uint16_t raster) {
-    uint16_t out = 0;
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x)
-            if (raster & (1u << (y * 4 + x))) out |= uint16_t(1u << lane_of(x, y));
-    return out;
+    return uint16_t((raster & 0xC3C3u) | ((raster >> 2) & 0x0C0Cu) | ((raster << 2) & 0x3030u));
 }
 
 // Lane-order mask -> raster-order mask.
 constexpr uint16_t lanes_to_raster(uint16_t lanes) {
-    uint16_t out = 0;
-    for (int l = 0; l < kBlockLanes; ++l)
-        if (lanes & (1u << l)) out |= uint16_t(1u << (lane_y(l) * 4 + lane_x(l)));
-    return out;
+    return raster_to_lanes(lanes);
 }
 
 // lavapipe's standard 4x sample positions relative to the pixel corner (lp_rast.c lp_sample_pos_4x).

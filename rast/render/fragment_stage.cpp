@@ -2,11 +2,15 @@
 // depth/stencil) -> blend and write, per sample plane. Orders and formulas are lavapipe's (notes §3–§5).
 #include "rast/render/fragment_stage.h"
 
+#include <atomic>
 #include <bit>
+#include <cstdlib>
 #include <cstring>
+#include <string_view>
 
 #include "rast/fragment/blend.h"
 #include "rast/fragment/block.h"
+#include "rast/fragment/block_kernels.h"
 #include "rast/fragment/interp.h"
 #include "rast/fragment/msaa.h"
 #include "shader/program.h"
@@ -16,7 +20,49 @@ namespace tilevk::rast::render {
 struct FragmentStage::Worker {
     shader::Scratch scratch;
     shader::FragmentBlock block;
+    // The primitive whose uniform shader result block.outputs holds (DrawPlan::uniform_shader), or null.
+    const PrimRecord* uniform_prim = nullptr;
+    bool uniform_front = false;
 };
+
+// One shader input component the fast path interpolates.
+struct InputPlan {
+    uint32_t loc = 0, comp = 0;
+    uint32_t plane = 0;  // float offset of its plane from the primitive's first attribute plane
+    geometry::Interp interp = geometry::Interp::kPerspective;
+};
+
+enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8, kRgba8 };
+
+struct FragmentStage::DrawPlan {
+    bool fast = false;              // false: the reference path (clears, unsupported states)
+    std::vector<InputPlan> inputs;  // the declared components only: the shader cannot read the others
+    bool perspective = false;       // some input divides by w
+    bool uniform_shader = false;    // the shader's outputs are the same for every fragment of a primitive
+    bool depth_fast = false;        // depth_block_fast handles the depth test
+    fragment::DepthFast depth;
+    ColorPath color[kMaxColorTargets] = {};
+    fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
+    uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
+};
+
+namespace {
+std::atomic<int> g_fast_paths{-1};  // -1: not read from the environment yet
+}  // namespace
+
+void set_fragment_fast_paths(bool on) {
+    g_fast_paths.store(on ? 1 : 0);
+}
+
+bool fragment_fast_paths() {
+    int v = g_fast_paths.load();
+    if (v < 0) {
+        const char* e = std::getenv("TILEVK_FRAG");
+        v = (e && std::string_view(e) == "reference") ? 0 : 1;
+        g_fast_paths.store(v);
+    }
+    return v != 0;
+}
 
 namespace {
 
@@ -93,6 +139,63 @@ void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int
     }
 }
 
+// What the fast path needs to know about a draw, derived once per scene.
+FragmentStage::DrawPlan make_plan(const DrawRecord& draw, const Framebuffer& fb) {
+    FragmentStage::DrawPlan plan;
+    if (draw.is_clear || !draw.pipe) return plan;
+    const PipelineState& pipe = *draw.pipe;
+    plan.fast = true;
+
+    const shader::Program* fs = pipe.fragment;
+    bool all_flat = true;
+    if (fs) {
+        const shader::ProgramInterface& iface = fs->interface();
+        const size_t num_slots = draw.varyings.slot_location.size();
+        for (size_t slot = 0; slot < num_slots; ++slot) {
+            const uint32_t loc = draw.varyings.slot_location[slot];
+            // Components the shader declares at this location (the interpreter copies only those in).
+            uint32_t comps = 0;
+            for (const shader::IoVariable& v : iface.inputs)
+                if (v.location == loc) comps |= ((1u << v.components) - 1u) << v.component;
+            const geometry::Interp interp = draw.varyings.slot_interp[slot];
+            all_flat &= interp == geometry::Interp::kFlat;
+            plan.perspective |= interp == geometry::Interp::kPerspective && (comps & 0xfu);
+            for (uint32_t c = 0; c < 4; ++c)
+                if (comps & (1u << c)) plan.inputs.push_back({loc, c, uint32_t(slot * kPlaneFloats), interp});
+        }
+        // The outputs cannot vary across a primitive when every input is flat, no per-fragment built-in is read
+        // (front facing is per primitive), nothing is discarded or written besides colour, and there are no
+        // derivatives (helper lanes): one run per primitive then gives every fragment's result.
+        bool writes_memory = false;
+        for (const shader::DescriptorUse& d : iface.descriptors) writes_memory |= d.written;
+        const uint32_t per_prim_builtins = shader::bit(shader::BuiltIn::FrontFacing);
+        plan.uniform_shader = all_flat && !(iface.builtins_read & ~per_prim_builtins) && !iface.uses_discard &&
+                              !iface.writes_frag_depth && !iface.uses_derivatives && iface.builtins_written == 0 &&
+                              !writes_memory;
+    }
+
+    const DepthStencilTarget& ds = fb.depth_stencil;
+    plan.depth_fast = draw.depth_mode != 0 && ds.depth && fragment::depth_fast_supported(draw.depth_stencil, ds.format);
+    if (plan.depth_fast) plan.depth = fragment::make_depth_fast(draw.depth_stencil, ds.format);
+
+    for (uint32_t c = 0; c < fb.num_color && c < kMaxColorTargets; ++c) {
+        const fragment::BlendAttachment& a = pipe.blend[c];
+        const fragment::ColorFormat f = fb.color[c].format;
+        plan.color_bytes[c] = fragment::format_info(f).bytes;
+        const bool rgba8 = f == fragment::ColorFormat::R8G8B8A8_UNORM || f == fragment::ColorFormat::B8G8R8A8_UNORM;
+        if ((a.write_mask & 0xf) == 0) {
+            plan.color[c] = ColorPath::kNone;
+        } else if (rgba8 && !a.blend_enable && (a.write_mask & 0xf) == 0xf) {
+            plan.color[c] =
+                f == fragment::ColorFormat::B8G8R8A8_UNORM ? ColorPath::kOpaqueBgra8 : ColorPath::kOpaqueRgba8;
+        } else if (rgba8) {
+            plan.rgba8[c] = fragment::prepare_rgba8_blend(a, f, pipe.blend_constants);
+            if (plan.rgba8[c].ok) plan.color[c] = ColorPath::kRgba8;
+        }
+    }
+    return plan;
+}
+
 }  // namespace
 
 FragmentStage::FragmentStage() = default;
@@ -106,7 +209,14 @@ void FragmentStage::prepare(const Framebuffer& fb, const std::deque<DrawRecord>&
     prims_ = &prims;
     planes_ = &planes;
     fused_ = fused;
+    fast_ = fragment_fast_paths();
     while (workers_.size() < workers) workers_.push_back(std::make_unique<Worker>());
+    for (auto& w : workers_) w->uniform_prim = nullptr;  // prim records are rebuilt for every scene
+    plans_.clear();
+    if (fast_) {
+        plans_.reserve(draws.size());
+        for (const DrawRecord& d : draws) plans_.push_back(make_plan(d, fb));
+    }
 }
 
 void FragmentStage::begin_tile(unsigned, const TileInfo&) {}
@@ -116,9 +226,12 @@ void FragmentStage::primitive(unsigned worker, const TileInfo&, const PrimCovera
     const PrimRecord& prim = (*prims_)[cov.payload];
     const DrawRecord& draw = (*draws_)[prim.draw];
     Worker& w = *workers_[worker];
+    const DrawPlan* plan = fast_ && plans_[prim.draw].fast ? &plans_[prim.draw] : nullptr;
     auto one_block = [&](int32_t x, int32_t y, const uint16_t masks[4]) {
         if (prim.kind == PrimKind::kClear)
             clear_block(draw.clear, x, y, masks);
+        else if (plan)
+            shade_block_fast(w, *plan, draw, prim, cov.front_facing, x, y, masks);
         else
             shade_block(w, draw, prim, cov.front_facing, x, y, masks);
     };
@@ -127,7 +240,10 @@ void FragmentStage::primitive(unsigned worker, const TileInfo&, const PrimCovera
         const FullBlock& f = cov.full[i];
         for (int32_t by = f.y; by < f.y + f.size; by += 4)
             for (int32_t bx = f.x; bx < f.x + f.size; bx += 4) {
-                const uint16_t inside = inside_mask(bx, by, fb_.width, fb_.height);
+                // Full squares lie inside the framebuffer (coverage.h); the check costs two compares.
+                const uint16_t inside = bx + 4 <= fb_.width && by + 4 <= fb_.height
+                                            ? uint16_t(0xffff)
+                                            : inside_mask(bx, by, fb_.width, fb_.height);
                 uint16_t masks[4];
                 for (int s = 0; s < 4; ++s) masks[s] = (cov.sample_mask >> s) & 1 ? inside : 0;
                 one_block(bx, by, masks);
@@ -164,6 +280,7 @@ void FragmentStage::clear_block(const ClearRecord& clear, int32_t x, int32_t y, 
 
 void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
                                 int32_t y, const uint16_t raster_masks[4]) {
+    w.uniform_prim = nullptr;  // block.outputs is about to change
     const PipelineState& pipe = *draw.pipe;
     const int samples = fb_.samples;
     const float* planes = planes_->data() + prim.plane_base;
@@ -304,6 +421,194 @@ void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRec
             uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
             fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
                                   t.row_pitch, opt);
+        }
+    }
+}
+
+}  // namespace tilevk::rast::render
+
+namespace tilevk::rast::render {
+
+// The reference pipeline of shade_block, with each step replaced by what the draw's plan allows (see the header).
+void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const DrawRecord& draw, const PrimRecord& prim,
+                                     bool front_facing, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    const PipelineState& pipe = *draw.pipe;
+    const int samples = fb_.samples;
+    const float* planes = planes_->data() + prim.plane_base;
+    const float depth_offset = planes[kPlaneFloats];
+
+    uint16_t cover[4] = {0, 0, 0, 0};
+    uint16_t any = 0;
+    for (int s = 0; s < samples; ++s) any |= cover[s] = fragment::raster_to_lanes(raster_masks[s]);
+    if (!any) return;
+    const bool inside = x + 4 <= fb_.width && y + 4 <= fb_.height;
+
+    // Lane coordinates at the pixel centre; at 1x they are also the depth sample positions.
+    fragment::LaneCoords centre;
+    fragment::make_lane_coords(x, y, fragment::plane_offset(samples, -1), centre);
+
+    float z[4][kBlockLanes];
+    const fragment::Plane zplane = plane_of(planes, 2);
+    const bool depth_active = draw.depth_mode != 0;
+    if (depth_active)
+        for (int s = 0; s < samples; ++s) {
+            if (samples > 1) {
+                fragment::LaneCoords at;
+                fragment::make_lane_coords(x, y, fragment::plane_offset(samples, s), at);
+                fragment::eval_plane_fast(zplane, at, fused_, z[s]);
+            } else {
+                fragment::eval_plane_fast(zplane, centre, fused_, z[s]);
+            }
+            for (int l = 0; l < kBlockLanes; ++l) z[s][l] = z[s][l] + depth_offset;  // eval_depth's plain add
+        }
+
+    const DepthStencilTarget& dst = fb_.depth_stencil;
+    fragment::DepthStencilBlock zs[4];
+    const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
+    const bool early_write = draw.depth_mode & fragment::kEarlyDepthWrite;
+    const size_t zbytes = depth_bytes(dst.format);
+    auto depth_origin = [&](int s) {
+        return dst.depth + size_t(s) * dst.depth_sample_stride + size_t(y) * dst.depth_row_pitch + size_t(x) * zbytes;
+    };
+    uint16_t pass[4] = {cover[0], cover[1], cover[2], cover[3]};
+    if (depth_active && early) {
+        for (int s = 0; s < samples; ++s) {
+            if (plan.depth_fast) {
+                if (cover[s])
+                    pass[s] = fragment::depth_block_fast(plan.depth, z[s], cover[s], depth_origin(s),
+                                                         dst.depth_row_pitch, early_write, inside);
+                continue;
+            }
+            load_depth_stencil(dst, s, x, y, cover[s], zs[s]);
+            pass[s] = fragment::depth_stencil_test(draw.depth_stencil, dst.format, front_facing, z[s], cover[s], zs[s],
+                                                   early_write);
+            if (early_write) store_depth_stencil(dst, s, x, y, cover[s], zs[s]);
+        }
+    } else if (depth_active && !plan.depth_fast) {
+        for (int s = 0; s < samples; ++s) load_depth_stencil(dst, s, x, y, cover[s], zs[s]);
+    }
+    uint16_t shade_lanes = 0;
+    for (int s = 0; s < samples; ++s) shade_lanes |= pass[s];
+    if (!shade_lanes) return;
+
+    shader::FragmentBlock& b = w.block;
+    const shader::Program* fs = pipe.fragment;
+    uint16_t live = shade_lanes;
+    if (fs && plan.uniform_shader) {
+        // One run per primitive: every lane of it sees the same flat inputs, so block.outputs stays valid.
+        if (w.uniform_prim != &prim || w.uniform_front != front_facing) {
+            b.cover_mask = shader::kAllLanes;
+            b.front_facing = front_facing ? 1u : 0u;
+            b.sample_id = 0;
+            const float* attribs = planes + kPrimHeaderFloats;
+            for (const InputPlan& in : plan.inputs)
+                for (int l = 0; l < kBlockLanes; ++l)
+                    b.inputs[in.loc][in.comp][l] = bits_of(attribs[in.plane + in.comp]);
+            fs->run_fragment(draw.bindings, b, w.scratch);
+            w.uniform_prim = &prim;
+            w.uniform_front = front_facing;
+        }
+    } else if (fs) {
+        w.uniform_prim = nullptr;  // block.inputs/outputs are about to change
+        b.cover_mask = shade_lanes;
+        b.front_facing = front_facing ? 1u : 0u;
+        b.sample_id = 0;
+        const shader::ProgramInterface& iface = fs->interface();
+        const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);
+        alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
+        if (plan.perspective || frag_coord) fragment::eval_plane_fast(plane_of(planes, 3), centre, fused_, wlanes);
+        if (frag_coord) {
+            const fragment::EvalOffset off = fragment::plane_offset(samples, -1);
+            float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
+            fragment::frag_coord_xy(x, y, fragment::frag_coord_offset(samples, -1), fx, fy);
+            fragment::eval_depth(zplane, depth_offset, x, y, off, fused_, fz);
+            for (int l = 0; l < kBlockLanes; ++l) {
+                b.frag_coord[0][l] = bits_of(fx[l]);
+                b.frag_coord[1][l] = bits_of(fy[l]);
+                b.frag_coord[2][l] = bits_of(fz[l]);
+                b.frag_coord[3][l] = bits_of(wlanes[l]);
+            }
+        }
+        if (iface.builtins_read & shader::bit(shader::BuiltIn::SampleMask))
+            for (int l = 0; l < kBlockLanes; ++l) {
+                uint32_t m = 0;
+                for (int s = 0; s < samples; ++s) m |= ((cover[s] >> l) & 1u) << s;
+                b.sample_mask_in[l] = m;
+            }
+        // perspective: a * fl(1/w), the reciprocal once per block
+        if (plan.perspective) fragment::reciprocal_fast(wlanes, oow);
+        const float* attribs = planes + kPrimHeaderFloats;
+        for (const InputPlan& in : plan.inputs) {
+            const float* p = attribs + in.plane;
+            if (in.interp == geometry::Interp::kFlat) {
+                for (int l = 0; l < kBlockLanes; ++l) b.inputs[in.loc][in.comp][l] = bits_of(p[in.comp]);
+                continue;
+            }
+            fragment::interpolate_input(plane_of(p, int(in.comp)), centre, fused_,
+                                        in.interp == geometry::Interp::kPerspective ? oow : nullptr,
+                                        b.inputs[in.loc][in.comp]);
+        }
+        fs->run_fragment(draw.bindings, b, w.scratch);
+        live = static_cast<uint16_t>(b.live_mask & shade_lanes);
+        if (iface.writes_frag_depth && depth_active)
+            for (int s = 0; s < samples; ++s)
+                for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&z[s][l], &b.frag_depth[l], 4);
+    }
+
+    uint16_t final_mask[4];
+    for (int s = 0; s < samples; ++s) final_mask[s] = pass[s] & live;
+    if (fs && pipe.alpha_to_coverage) {
+        float alpha[kBlockLanes];
+        for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&alpha[l], &b.outputs[0][3][l], 4);
+        if (samples > 1)
+            fragment::alpha_to_coverage_4x(alpha, final_mask);
+        else
+            final_mask[0] = fragment::alpha_to_coverage_1x(alpha, final_mask[0]);
+    }
+    if (fs && (fs->interface().builtins_written & shader::bit(shader::BuiltIn::SampleMask)))
+        for (int s = 0; s < samples; ++s)
+            for (int l = 0; l < kBlockLanes; ++l)
+                if (!((b.sample_mask[l] >> s) & 1u)) final_mask[s] &= uint16_t(~(1u << l));
+
+    // Late depth/stencil, as shade_block: lanes that failed the early test re-run it.
+    if (depth_active && !(early && early_write)) {
+        for (int s = 0; s < samples; ++s) {
+            const uint16_t test_lanes =
+                early ? static_cast<uint16_t>((cover[s] & ~pass[s]) | final_mask[s]) : final_mask[s];
+            if (!test_lanes) continue;
+            if (plan.depth_fast) {
+                final_mask[s] &= fragment::depth_block_fast(plan.depth, z[s], test_lanes, depth_origin(s),
+                                                            dst.depth_row_pitch, true, inside);
+                continue;
+            }
+            const uint16_t late_pass = fragment::depth_stencil_test(draw.depth_stencil, dst.format, front_facing, z[s],
+                                                                    test_lanes, zs[s], true);
+            store_depth_stencil(dst, s, x, y, test_lanes, zs[s]);
+            final_mask[s] &= late_pass;
+        }
+    }
+    if (!fs) return;
+
+    fragment::BlendOptions opt;
+    opt.fused = fused_;
+    alignas(32) float src[4][kBlockLanes];
+    for (uint32_t c = 0; c < fb_.num_color && c < shader::kMaxColorOutputs; ++c) {
+        const ColorTarget& t = fb_.color[c];
+        if (!t.data || plan.color[c] == ColorPath::kNone) continue;
+        std::memcpy(src, b.outputs[c], sizeof src);
+        const size_t bytes = plan.color_bytes[c];
+        for (int s = 0; s < samples; ++s) {
+            if (!final_mask[s]) continue;
+            uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
+            if (plan.color[c] == ColorPath::kRgba8 && inside &&
+                fragment::blend_rgba8_block(plan.rgba8[c], src, final_mask[s], origin, t.row_pitch))
+                continue;
+            if (plan.color[c] == ColorPath::kGeneric || plan.color[c] == ColorPath::kRgba8)
+                fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
+                                      t.row_pitch, opt);
+            else
+                fragment::store_rgba8_fast(plan.color[c] == ColorPath::kOpaqueBgra8, src, final_mask[s], origin,
+                                           t.row_pitch, opt.unorm_path, inside);
         }
     }
 }

@@ -1,5 +1,13 @@
 // The fragment stage: the coverage consumer that turns each covered 4x4 block into pixels — interpolation,
 // fragment shader, depth/stencil, alpha to coverage, blending and writes — for one tile at a time.
+//
+// Two paths give the same bytes. The reference path runs the general per-block pipeline for every block. The
+// fast path (default) looks at each draw once (DrawPlan) and models no more than it needs: only the input
+// components the shader declares are interpolated (SIMD, one reciprocal of w per block), D16/D32F depth without
+// stencil runs a 16-lane kernel, opaque RGBA8/BGRA8 writes a fused convert-and-store, and a shader whose result
+// cannot vary across a primitive (flat inputs only, no per-pixel built-ins, no discard, no side effects) runs once
+// per primitive and tile instead of once per block. tests/rast/fragment/stage_test.cpp renders random scenes both
+// ways and compares every byte.
 #pragma once
 
 #include <deque>
@@ -11,6 +19,11 @@
 #include "rast/render/targets.h"
 
 namespace tilevk::rast::render {
+
+// Process-wide switch for the fast paths: on unless TILEVK_FRAG=reference; tests flip it to compare both paths.
+// Read when a scene is prepared.
+void set_fragment_fast_paths(bool on);
+bool fragment_fast_paths();
 
 class FragmentStage final : public CoverageConsumer {
   public:
@@ -25,10 +38,14 @@ class FragmentStage final : public CoverageConsumer {
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
     void end_tile(unsigned worker, const TileInfo& tile) override;
 
+    struct DrawPlan;  // what the fast path derived from one draw's state (fragment_stage.cpp)
+
   private:
     struct Worker;
     void shade_block(Worker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x, int32_t y,
                      const uint16_t raster_masks[4]);
+    void shade_block_fast(Worker& w, const DrawPlan& plan, const DrawRecord& draw, const PrimRecord& prim,
+                          bool front_facing, int32_t x, int32_t y, const uint16_t raster_masks[4]);
     void clear_block(const ClearRecord& clear, int32_t x, int32_t y, const uint16_t raster_masks[4]);
 
     Framebuffer fb_;
@@ -36,6 +53,8 @@ class FragmentStage final : public CoverageConsumer {
     const std::vector<PrimRecord>* prims_ = nullptr;
     const std::vector<float>* planes_ = nullptr;
     bool fused_ = true;
+    bool fast_ = true;
+    std::vector<DrawPlan> plans_;  // per draw record (fast path)
     std::vector<std::unique_ptr<Worker>> workers_;
 };
 
