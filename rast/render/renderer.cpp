@@ -46,6 +46,12 @@ fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
     return t;
 }
 
+bool vertex_writes_memory(const shader::Program* vs) {
+    for (const shader::DescriptorUse& d : vs->interface().descriptors)
+        if (d.written) return true;
+    return false;
+}
+
 // lavapipe's orientation decision, from the same snapped coordinates rast/core uses: area > 0 is "ccw".
 // Needed before plane setup because a cw triangle's planes are computed from (v0, v2, v1).
 bool snapped_ccw(const float* w0, const float* w1, const float* w2, int samples) {
@@ -200,10 +206,15 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     fcull.front_ccw = pipe.front_ccw;
     const bool any_cull = pipe.cull != CullMode::kNone;
     const bool unfilled = pipe.polygon_mode != PolygonMode::kFill && verts_per_prim == 3;
+    // lp_state_derived.c: a sample mask of 0 (all 32 bits, at any sample count) sets rasterizer_discard, so setup
+    // drops every primitive; the vertex shader still runs in draw (its memory writes stay visible).
+    const bool discard = pipe.sample_mask == 0;
+    if (discard && !vertex_writes_memory(pipe.vertex)) return {};
 
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
         shade_vertices(vcfg, unique_, *scratch_[0], &shaded_);
+        if (discard) continue;
         // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
         // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
         // batch boundaries for draws of more than one draw-module batch).
