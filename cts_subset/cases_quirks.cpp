@@ -20,6 +20,37 @@ Draw triangle(std::array<float, 4> c = kWhite) {
     return d;
 }
 
+// The window-space sliver of tests/rast/geometry FloatCullOnlyOnDrawsPipelinePath on a 64x64 target: float
+// det and snapped fixed-point area give it opposite orientations, so draw's float cull and llvmpipe's integer
+// cull disagree about it.
+void push_sliver(std::vector<Vertex>& v) {
+    auto ndc = [](float wx) { return wx / 32.0f - 1.0f; };
+    v.push_back(vtx(ndc(10.5f), ndc(10.5f), 0.5f, 1, kRed));
+    v.push_back(vtx(ndc(30.5f), ndc(10.5017f), 0.5f, 1, kGreen));
+    v.push_back(vtx(ndc(50.5f), ndc(10.503f), 0.5f, 1, kBlue));
+}
+
+// A triangle with one vertex left of the viewport (its batch takes draw's pipeline path).
+void push_clipped(std::vector<Vertex>& v) {
+    v.push_back(vtx(-1.5f, 0.5f, 0.5f, 1, kWhite));
+    v.push_back(vtx(-0.5f, 0.9f, 0.5f, 1, kWhite));
+    v.push_back(vtx(-0.6f, 0.6f, 0.5f, 1, kWhite));
+}
+
+// Zero-area filler triangles (all three vertices equal): dropped on every path, they only move batch boundaries.
+void push_filler(std::vector<Vertex>& v, uint32_t triangles) {
+    for (uint32_t i = 0; i < 3 * triangles; ++i) v.push_back(vtx(0.25f, 0.25f, 0.5f, 1, kWhite));
+}
+
+// The 9 vertices of the swallowed list (tests/rast/geometry NineVertexTriangleListQuirk): the third triangle's
+// window y values are equal.
+void push_nine(std::vector<Vertex>& v, float last_y = 0.5f) {
+    const float p[9][2] = {{-0.9f, -0.9f}, {0.5f, -0.8f}, {-0.7f, 0.6f}, {0.1f, 0.1f},  {0.9f, 0.2f},
+                           {0.3f, 0.9f},   {-0.5f, 0.5f}, {0.0f, 0.5f},  {0.5f, last_y}};
+    const std::array<float, 4> c[3] = {kRed, kGreen, kBlue};
+    for (int i = 0; i < 9; ++i) v.push_back(vtx(p[i][0], p[i][1], 0.5f, 1, c[i % 3]));
+}
+
 void add_sample_mask_cases(CaseList& out) {
     // lp_state_derived.c: sample_mask == 0 sets rasterizer_discard, at any sample count.
     out.push_back({"quirks.sample_mask.zero_1x",
@@ -59,10 +90,109 @@ void add_sample_mask_cases(CaseList& out) {
                    Check(), ""});
 }
 
+void add_nine_vertex_cases(CaseList& out) {
+    // lp_setup_analysis.c lp_setup_analyse_triangles: a draw_arrays batch of exactly 9 list vertices whose last
+    // triangle has equal window y is swallowed (not the "aero" rectangle).
+    out.push_back({"quirks.nine_vertex.swallowed",
+                   [] {
+                       Draw d;
+                       push_nine(d.vertices);
+                       return one_draw(d);
+                   },
+                   nothing_drawn(), ""});
+    out.push_back({"quirks.nine_vertex.ten_vertices_trimmed",
+                   [] {
+                       Draw d;
+                       push_nine(d.vertices);
+                       d.vertices.push_back(vtx(0, 0));
+                       return one_draw(d);
+                   },
+                   nothing_drawn(), ""});
+    out.push_back({"quirks.nine_vertex.control_not_flat_y",
+                   [] {
+                       Draw d;
+                       push_nine(d.vertices, 0.6f);
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.nine_vertex.flat_input_draws",
+                   [] {
+                       Draw d;
+                       d.interp = Interp::kFlat;
+                       push_nine(d.vertices);
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.nine_vertex.clipped_vertex_draws",
+                   [] {
+                       Draw d;
+                       push_nine(d.vertices);
+                       d.vertices[0].pos[0] = -1.5f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    // 4095 filler vertices fill draw's first 4096-vertex batch; the 9-vertex tail is a batch of its own.
+    out.push_back({"quirks.nine_vertex.tail_batch_of_4104",
+                   [] {
+                       Draw d;
+                       push_filler(d.vertices, 1365);
+                       push_nine(d.vertices);
+                       return one_draw(d);
+                   },
+                   nothing_drawn(), ""});
+}
+
+void add_batch_cases(CaseList& out) {
+    // draw_pt_fetch_shade_pipeline_llvm.c: the clipper and the float cull run per vsplit batch (non-indexed lists:
+    // 4095 vertices), not per draw. The sliver alone is integer-culled; sharing a batch with a clipped triangle it
+    // is float-culled.
+    for (VkCullModeFlags cull : {VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_FRONT_BIT}) {
+        const std::string c = cull == VK_CULL_MODE_BACK_BIT ? "back" : "front";
+        out.push_back({"quirks.batch.list_sliver_next_batch_cull_" + c,
+                       [=] {
+                           Draw d;
+                           d.cull = cull;
+                           push_clipped(d.vertices);
+                           push_filler(d.vertices, 1364);  // vertices 3..4094: the rest of batch 0
+                           push_sliver(d.vertices);        // batch 1
+                           return one_draw(d);
+                       },
+                       Check(), ""});
+        out.push_back({"quirks.batch.list_sliver_same_batch_cull_" + c,
+                       [=] {
+                           Draw d;
+                           d.cull = cull;
+                           push_clipped(d.vertices);
+                           push_filler(d.vertices, 1363);
+                           push_sliver(d.vertices);  // vertices 4092..4094: still batch 0
+                           push_filler(d.vertices, 2);
+                           return one_draw(d);
+                       },
+                       Check(), ""});
+        // Strips: 4096-vertex segments (4094 triangles, even), the next starting 2 vertices back.
+        out.push_back({"quirks.batch.strip_sliver_next_batch_cull_" + c,
+                       [=] {
+                           Draw d;
+                           d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+                           d.cull = cull;
+                           // batch 0: a clipped strip start, then degenerate repeats up to vertex 4095
+                           push_clipped(d.vertices);
+                           while (d.vertices.size() < 4096) d.vertices.push_back(vtx(0.25f, 0.25f, 0.5f));
+                           // batch 1 = vertices 4094.. : triangle 4094 (even) is (4094, 4095, 4096)
+                           d.vertices.resize(4094);
+                           push_sliver(d.vertices);
+                           return one_draw(d);
+                       },
+                       Check(), ""});
+    }
+}
+
 }  // namespace
 
 void add_quirk_cases(CaseList& out) {
     add_sample_mask_cases(out);
+    add_nine_vertex_cases(out);
+    add_batch_cases(out);
 }
 
 }  // namespace tilevk::cts

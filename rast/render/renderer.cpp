@@ -6,6 +6,8 @@
 
 #include "rast/core/fixed_point.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/draw_batches.h"
+#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
@@ -211,65 +213,99 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     const bool discard = pipe.sample_mask == 0;
     if (discard && !vertex_writes_memory(pipe.vertex)) return {};
 
+    // llvmpipe's triangle-list analysis (lp_setup_analysis.c) runs on a non-indexed list batch handed to
+    // draw_arrays, i.e. one that skipped draw's pipeline, when the fragment shader has no flat input.
+    bool has_flat_input = false;
+    for (geometry::Interp i : rec.varyings.slot_interp) has_flat_input |= i == geometry::Interp::kFlat;
+    const bool nine_vertex_candidate =
+        !call.indexed && pipe.topology == geometry::Topology::kTriangleList && !has_flat_input;
+
+    // draw's batches: per instance, per restart run, per vsplit segment (draw_batches.h).
+    geometry::draw_batches(src, pipe.topology, &batches_);
+
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
         shade_vertices(vcfg, unique_, *scratch_[0], &shaded_);
         if (discard) continue;
-        // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
-        // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
-        // batch boundaries for draws of more than one draw-module batch).
-        // Unfilled polygons need draw's pipeline (its unfilled stage), so every triangle takes that path then.
-        const bool pipeline_path = unfilled || std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(),
-                                                           [](uint32_t m) { return m != 0; });
+        const bool any_clipped =
+            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
         };
-        for (uint32_t p = 0; p < num_prims; ++p) {
-            const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
-            if (verts_per_prim == 1) {
-                const uint32_t s0 = slot(ids[0]);
-                const float* v0 = shaded_.record(s0);
-                if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
-                add_point(draw_index, rec, v0, shaded_.point_size[s0]);
-                continue;
+        uint32_t first_prim = 0;
+        for (const uint32_t batch_prims : batches_) {
+            const uint32_t end_prim = std::min(num_prims, first_prim + batch_prims);
+            const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * verts_per_prim;
+            const size_t batch_verts = size_t(end_prim - first_prim) * verts_per_prim;
+            // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through
+            // draw's pipeline (clipper, float cull). Unfilled polygons always take it (their stage lives there).
+            bool pipeline_path = unfilled;
+            for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
+                pipeline_path = shaded_.clipmask[slot(batch_ids[k])] != 0;
+            uint32_t batch_end = end_prim;
+            if (nine_vertex_candidate && !pipeline_path && batch_verts == 9) {
+                float xy[9][2];
+                for (int k = 0; k < 9; ++k) {
+                    const float* w = geometry::win_pos(shaded_.record(slot(batch_ids[k])));
+                    xy[k][0] = w[0];
+                    xy[k][1] = w[1];
+                }
+                geometry::TriangleListBatch qb;
+                qb.vertex_count = 9;
+                const geometry::NineVertexQuirk q = geometry::nine_vertex_quirk(qb, xy);
+                // Swallowed: nothing. Aero: llvmpipe bins one rectangle (lp_rect_cw) covering the first two
+                // triangles; drawn here as those two triangles (the rect path is not modelled).
+                if (q == geometry::NineVertexQuirk::kSwallowed) batch_end = first_prim;
+                if (q == geometry::NineVertexQuirk::kAeroRect) batch_end = first_prim + 2;
             }
-            if (verts_per_prim == 2) {
-                const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]);
-                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
-                if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
-                                                          clip_scratch_.data(), &v0, &v1))
+            for (uint32_t p = first_prim; p < batch_end; ++p) {
+                const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
+                if (verts_per_prim == 1) {
+                    const uint32_t s0 = slot(ids[0]);
+                    const float* v0 = shaded_.record(s0);
+                    if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
+                    add_point(draw_index, rec, v0, shaded_.point_size[s0]);
                     continue;
-                add_line(draw_index, rec, v0, v1);
-                continue;
-            }
-            const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
-            const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
-            const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
-            if (!pipeline_path) {
-                add_triangle(draw_index, rec, v0, v1, v2);
-                continue;
-            }
-            geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
-            const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
-            for (uint32_t t = 0; t < n; ++t) {
-                const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
-                if (any_cull &&
-                    !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
+                }
+                if (verts_per_prim == 2) {
+                    const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]);
+                    const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
+                    if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
+                                                              clip_scratch_.data(), &v0, &v1))
+                        continue;
+                    add_line(draw_index, rec, v0, v1);
                     continue;
-                if (pipe.polygon_mode == PolygonMode::kLine) {
-                    // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
-                    // strips and fans; the clipper's new internal edges are drawn too — not modelled).
-                    add_line(draw_index, rec, c, a);
-                    add_line(draw_index, rec, a, b);
-                    add_line(draw_index, rec, b, c);
-                } else if (pipe.polygon_mode == PolygonMode::kPoint) {
-                    add_point(draw_index, rec, a, 1.0f);
-                    add_point(draw_index, rec, b, 1.0f);
-                    add_point(draw_index, rec, c, 1.0f);
-                } else {
-                    add_triangle(draw_index, rec, a, b, c);
+                }
+                const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
+                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
+                const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
+                if (!pipeline_path) {
+                    add_triangle(draw_index, rec, v0, v1, v2);
+                    continue;
+                }
+                geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
+                const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
+                for (uint32_t t = 0; t < n; ++t) {
+                    const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
+                    if (any_cull && !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b),
+                                                               geometry::win_pos(c)))
+                        continue;
+                    if (pipe.polygon_mode == PolygonMode::kLine) {
+                        // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
+                        // strips and fans; the clipper's new internal edges are drawn too — not modelled).
+                        add_line(draw_index, rec, c, a);
+                        add_line(draw_index, rec, a, b);
+                        add_line(draw_index, rec, b, c);
+                    } else if (pipe.polygon_mode == PolygonMode::kPoint) {
+                        add_point(draw_index, rec, a, 1.0f);
+                        add_point(draw_index, rec, b, 1.0f);
+                        add_point(draw_index, rec, c, 1.0f);
+                    } else {
+                        add_triangle(draw_index, rec, a, b, c);
+                    }
                 }
             }
+            first_prim = end_prim;
         }
     }
     return {};

@@ -63,6 +63,7 @@ class Renderer {
     ShadedVertices shaded_;
     std::vector<float> clip_scratch_;
     std::vector<geometry::AttribPlane> attrib_planes_;
+    std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
 };
 
 }  // namespace tilevk::rast::render
