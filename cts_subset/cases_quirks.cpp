@@ -187,12 +187,148 @@ void add_batch_cases(CaseList& out) {
     }
 }
 
+// polygonMode LINE / POINT: draw's clipper marks the edges it creates along frustum planes as hidden and the
+// vertices where a polygon leaves a plane as not drawn (draw_pipe_clip.c); offset, flatshade and the vertex's
+// point size apply through draw's stages (draw_pipe_offset.c, draw_pipe_flatshade.c, lp_setup_point.c).
+void add_unfilled_cases(CaseList& out) {
+    auto big = [](VkPolygonMode mode) {
+        Draw d;
+        d.polygon_mode = mode;
+        // crosses the right and the top viewport edges
+        d.vertices = {vtx(-0.8f, -0.2f, 0.5f, 1, kRed), vtx(1.7f, -0.6f, 0.5f, 1, kGreen),
+                      vtx(0.3f, -1.6f, 0.5f, 1, kBlue)};
+        d.viewport = VkViewport{8, 8, 48, 48, 0, 1};
+        return d;
+    };
+    out.push_back({"quirks.unfilled.line_clipped_edges_hidden",
+                   [=] {
+                       Draw d = big(VK_POLYGON_MODE_LINE);
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.wide_line_clipped_edges_hidden",
+                   [=] {
+                       Draw d = big(VK_POLYGON_MODE_LINE);
+                       d.line_width = 4.0f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.line_near_plane_edge_hidden",
+                   [=] {
+                       Draw d;
+                       d.polygon_mode = VK_POLYGON_MODE_LINE;
+                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
+                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.point_clipped_vertices_size_6",
+                   [=] {
+                       Draw d = big(VK_POLYGON_MODE_POINT);
+                       for (Vertex& v : d.vertices) v.point_size = 6.0f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    // A vertex the clipper makes where the polygon re-enters through the near plane is drawn (with its
+    // interpolated size); one on an x/y plane is not (clip.h ClippedTriangle::corners).
+    out.push_back({"quirks.unfilled.point_near_plane_vertex_drawn",
+                   [] {
+                       Draw d;
+                       d.polygon_mode = VK_POLYGON_MODE_POINT;
+                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
+                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                       for (Vertex& v : d.vertices) v.point_size = 4.0f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.point_right_plane_vertex_hidden",
+                   [=] {
+                       Draw d = big(VK_POLYGON_MODE_POINT);
+                       d.viewport.reset();
+                       d.vertices[2] = vtx(0.3f, 0.8f, 0.5f, 1, kBlue);
+                       for (Vertex& v : d.vertices) v.point_size = 6.0f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.point_size_from_shader",
+                   [] {
+                       Draw d = triangle(kBlue);
+                       d.polygon_mode = VK_POLYGON_MODE_POINT;
+                       float size = 3.0f;
+                       for (Vertex& v : d.vertices) v.point_size = size, size += 2.5f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
+    out.push_back({"quirks.unfilled.line_flat_provoking_colour",
+                   [] {
+                       Draw d = triangle(kBlue);
+                       d.polygon_mode = VK_POLYGON_MODE_LINE;
+                       d.interp = Interp::kFlat;
+                       d.line_width = 3.0f;
+                       return one_draw(d);
+                   },
+                   palette_only({rgba8(0, 0, 0, 0), rgba8(255, 0, 0, 255)})});
+    // Depth bias: draw's offset stage offsets the triangle's vertices before its edges/corners are emitted.
+    struct Bias {
+        const char* name;
+        VkFormat format;
+        float constant, slope, clamp;
+    };
+    const Bias biases[] = {{"d16_constant", VK_FORMAT_D16_UNORM, 200.0f, 0.0f, 0.0f},
+                           {"d32_constant_slope", VK_FORMAT_D32_SFLOAT, 3000.0f, 2.0f, 0.0f},
+                           {"d32_clamped", VK_FORMAT_D32_SFLOAT, -5000.0f, -4.0f, -0.01f}};
+    for (const Bias& b : biases) {
+        for (VkPolygonMode mode : {VK_POLYGON_MODE_LINE, VK_POLYGON_MODE_POINT}) {
+            const std::string m = mode == VK_POLYGON_MODE_LINE ? "line" : "point";
+            out.push_back({"quirks.unfilled." + m + "_depth_bias_" + b.name,
+                           [=] {
+                               Draw d;
+                               d.polygon_mode = mode;
+                               d.line_width = 2.0f;
+                               d.depth_test = d.depth_write = true;
+                               d.depth_op = VK_COMPARE_OP_ALWAYS;
+                               d.depth_bias = true;
+                               d.bias_constant = b.constant;
+                               d.bias_slope = b.slope;
+                               d.bias_clamp = b.clamp;
+                               d.vertices = {vtx(-0.8f, -0.7f, 0.2f, 1, kRed),  vtx(0.9f, -0.5f, 0.7f, 1, kGreen),
+                                             vtx(-0.2f, 0.8f, 0.45f, 1, kBlue), vtx(0.5f, 0.9f, 0.3f, 1, kWhite),
+                                             vtx(0.7f, 0.1f, 0.6f, 1, kRed),    vtx(-0.9f, 0.2f, 0.9f, 1, kGreen)};
+                               for (Vertex& v : d.vertices) v.point_size = 3.0f;
+                               Scene s = one_draw(d);
+                               s.target.depth = b.format;
+                               return s;
+                           },
+                           Check(), ""});
+        }
+    }
+    // Line and point topologies never get a bias: llvmpipe's line/point setup has no offset, and draw's offset
+    // stage only sees triangles.
+    out.push_back({"quirks.unfilled.line_list_depth_bias_ignored",
+                   [] {
+                       Draw d;
+                       d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+                       d.depth_test = d.depth_write = true;
+                       d.depth_op = VK_COMPARE_OP_ALWAYS;
+                       d.depth_bias = true;
+                       d.bias_constant = 3000.0f;
+                       d.bias_slope = 2.0f;
+                       d.vertices = {vtx(-0.8f, -0.7f, 0.2f, 1, kRed), vtx(0.9f, -0.5f, 0.7f, 1, kGreen),
+                                     vtx(-0.2f, 0.8f, 0.45f, 1, kBlue), vtx(0.5f, 0.9f, 0.3f, 1, kWhite)};
+                       Scene s = one_draw(d);
+                       s.target.depth = VK_FORMAT_D32_SFLOAT;
+                       return s;
+                   },
+                   Check(), ""});
+}
+
 }  // namespace
 
 void add_quirk_cases(CaseList& out) {
     add_sample_mask_cases(out);
     add_nine_vertex_cases(out);
     add_batch_cases(out);
+    add_unfilled_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -9,6 +9,7 @@
 #include "rast/geometry/draw_batches.h"
 #include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
+#include "rast/geometry/unfilled.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
 
@@ -213,6 +214,12 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     const bool discard = pipe.sample_mask == 0;
     if (discard && !vertex_writes_memory(pipe.vertex)) return {};
 
+    geometry::UnfilledConfig ucfg;
+    ucfg.layout = layout;
+    ucfg.bias_enable = pipe.depth_bias_enable;
+    ucfg.bias = depth_bias_for_target(pipe);
+    unfilled_scratch_.resize(size_t(3) * geometry::vertex_floats(layout));
+
     // llvmpipe's triangle-list analysis (lp_setup_analysis.c) runs on a non-indexed list batch handed to
     // draw_arrays, i.e. one that skipped draw's pipeline, when the fragment shader has no flat input.
     bool has_flat_input = false;
@@ -231,6 +238,15 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
             std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
+        };
+        // The point size of a record: its shaded vertex's, or for a vertex the clipper made, `fallback`'s (exact
+        // when the triangle's vertices share one size; draw would interpolate it).
+        auto point_size_of = [&](const float* v, const float* fallback) {
+            const float* base = shaded_.records.data();
+            const size_t stride = shaded_.floats_per_vertex;
+            if (v < base || v >= base + shaded_.records.size()) v = fallback;
+            if (v < base || v >= base + shaded_.records.size()) return 1.0f;
+            return shaded_.point_size[size_t(v - base) / stride];
         };
         uint32_t first_prim = 0;
         for (const uint32_t batch_prims : batches_) {
@@ -290,18 +306,21 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                     if (any_cull && !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b),
                                                                geometry::win_pos(c)))
                         continue;
-                    if (pipe.polygon_mode == PolygonMode::kLine) {
-                        // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
-                        // strips and fans; the clipper's new internal edges are drawn too — not modelled).
-                        add_line(draw_index, rec, c, a);
-                        add_line(draw_index, rec, a, b);
-                        add_line(draw_index, rec, b, c);
-                    } else if (pipe.polygon_mode == PolygonMode::kPoint) {
-                        add_point(draw_index, rec, a, 1.0f);
-                        add_point(draw_index, rec, b, 1.0f);
-                        add_point(draw_index, rec, c, 1.0f);
-                    } else {
+                    if (!unfilled) {
                         add_triangle(draw_index, rec, a, b, c);
+                        continue;
+                    }
+                    // draw's offset, flatshade and unfilled stages (unfilled.h): edges / corners by edge flag.
+                    const float* u[3];
+                    geometry::prepare_unfilled_triangle(ucfg, out[t].v, unfilled_scratch_.data(), u);
+                    if (pipe.polygon_mode == PolygonMode::kLine) {
+                        uint8_t lines[3][2];
+                        const uint32_t nl = geometry::unfilled_lines(out[t].edges, lines);
+                        for (uint32_t l = 0; l < nl; ++l) add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]]);
+                    } else {
+                        for (int k = 0; k < 3; ++k)
+                            if (out[t].corners & (1u << k))
+                                add_point(draw_index, rec, u[k], point_size_of(out[t].v[k], v0));
                     }
                 }
             }
@@ -309,6 +328,16 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         }
     }
     return {};
+}
+
+// The pipeline's depth-bias factors with the depth format's rule (util_get_depth_format_mrd: D16 16 bits, D32F
+// the float rule, anything else — D24 or no depth attachment — 24 bits).
+geometry::DepthBias Renderer::depth_bias_for_target(const PipelineState& pipe) const {
+    geometry::DepthBias b = pipe.depth_bias;
+    const fragment::DepthFormat df = fb_.depth_stencil.depth ? fb_.depth_stencil.format : fragment::DepthFormat::None;
+    b.float_depth = df == fragment::DepthFormat::D32F;
+    b.unorm_bits = df == fragment::DepthFormat::D16 ? 16 : 24;
+    return b;
 }
 
 // Scissor ∩ viewport rectangle: the viewport rectangle also bounds coverage (lp_setup_set_viewports
@@ -412,15 +441,7 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     pcfg.layout = rec.varyings.layout();
     pcfg.multisample = fb_.samples > 1;
     pcfg.flatshade_first = true;
-    if (pipe.depth_bias_enable) {
-        pcfg.bias = pipe.depth_bias;
-        const fragment::DepthFormat df =
-            fb_.depth_stencil.depth ? fb_.depth_stencil.format : fragment::DepthFormat::None;
-        pcfg.bias.float_depth = df == fragment::DepthFormat::D32F;
-        pcfg.bias.unorm_bits = df == fragment::DepthFormat::D16 ? 16 : 24;
-    } else {
-        pcfg.bias = {};
-    }
+    pcfg.bias = pipe.depth_bias_enable ? depth_bias_for_target(pipe) : geometry::DepthBias{};
     geometry::TrianglePlanes tp;
     geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
 
