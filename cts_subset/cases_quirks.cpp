@@ -241,6 +241,18 @@ void add_unfilled_cases(CaseList& out) {
                        return one_draw(d);
                    },
                    Check(), ""});
+    out.push_back({"quirks.unfilled.point_near_plane_vertex_interpolated_size",
+                   [] {
+                       Draw d;
+                       d.polygon_mode = VK_POLYGON_MODE_POINT;
+                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
+                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                       d.vertices[0].point_size = 2.0f;  // the new vertex halfway to v1 gets size 5
+                       d.vertices[1].point_size = 8.0f;
+                       d.vertices[2].point_size = 4.0f;
+                       return one_draw(d);
+                   },
+                   Check(), ""});
     out.push_back({"quirks.unfilled.point_right_plane_vertex_hidden",
                    [=] {
                        Draw d = big(VK_POLYGON_MODE_POINT);

@@ -142,6 +142,10 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     rec.push_constants.assign(bindings.push_constants.begin(), bindings.push_constants.end());
     rec.bindings.push_constants = rec.push_constants;
     rec.varyings = make_varyings(pipe.fragment);
+    if (pipe.polygon_mode == PolygonMode::kPoint && geometry::vertices_per_primitive(pipe.topology) == 3) {
+        rec.varyings.carry_point_size = true;
+        rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
+    }
     rec.depth_stencil = pipe.depth_stencil;
     rec.depth_stencil.min_depth = std::min(pipe.viewport.min_depth, pipe.viewport.max_depth);
     rec.depth_stencil.max_depth = std::max(pipe.viewport.min_depth, pipe.viewport.max_depth);
@@ -239,15 +243,6 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
         };
-        // The point size of a record: its shaded vertex's, or for a vertex the clipper made, `fallback`'s (exact
-        // when the triangle's vertices share one size; draw would interpolate it).
-        auto point_size_of = [&](const float* v, const float* fallback) {
-            const float* base = shaded_.records.data();
-            const size_t stride = shaded_.floats_per_vertex;
-            if (v < base || v >= base + shaded_.records.size()) v = fallback;
-            if (v < base || v >= base + shaded_.records.size()) return 1.0f;
-            return shaded_.point_size[size_t(v - base) / stride];
-        };
         uint32_t first_prim = 0;
         for (const uint32_t batch_prims : batches_) {
             const uint32_t end_prim = std::min(num_prims, first_prim + batch_prims);
@@ -320,7 +315,8 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                     } else {
                         for (int k = 0; k < 3; ++k)
                             if (out[t].corners & (1u << k))
-                                add_point(draw_index, rec, u[k], point_size_of(out[t].v[k], v0));
+                                add_point(draw_index, rec, u[k],
+                                          geometry::attrib(u[k], rec.varyings.point_size_slot())[0]);
                     }
                 }
             }
