@@ -280,6 +280,25 @@ void add_unfilled_cases(CaseList& out) {
                        return one_draw(d);
                    },
                    palette_only({rgba8(0, 0, 0, 0), rgba8(255, 0, 0, 255)})});
+    // gl_FrontFacing of an edge or corner is its triangle's facing (draw_pipe_unfilled.c inject_front_face_info).
+    for (VkPolygonMode mode : {VK_POLYGON_MODE_LINE, VK_POLYGON_MODE_POINT}) {
+        const std::string m = mode == VK_POLYGON_MODE_LINE ? "line" : "point";
+        out.push_back({"quirks.unfilled." + m + "_facing_both_windings",
+                       [=] {
+                           Lcg rng{31};
+                           Draw d;
+                           d.polygon_mode = mode;
+                           d.frag = Frag::kFacing;
+                           d.blend = additive();
+                           for (int i = 0; i < 12; ++i) {
+                               Vertex v = vtx(rng.range(-1, 1), rng.range(-1, 1));
+                               v.point_size = 3.0f;
+                               d.vertices.push_back(v);
+                           }
+                           return one_draw(d);
+                       },
+                       Check(), ""});
+    }
     // Depth bias: draw's offset stage offsets the triangle's vertices before its edges/corners are emitted.
     struct Bias {
         const char* name;

@@ -80,6 +80,14 @@ void prepare_unfilled_triangle(const UnfilledConfig& cfg, const float* const v[3
     }
 }
 
+bool unfilled_front_facing(bool front_ccw, const float* v0, const float* v1, const float* v2) {
+    const float ex = v0[0] - v2[0], ey = v0[1] - v2[1];
+    const float fx = v1[0] - v2[0], fy = v1[1] - v2[1];
+    const float p = ex * fy, q = ey * fx;
+    const float det = p - q;
+    return front_ccw ? det < 0.0f : det > 0.0f;
+}
+
 uint32_t unfilled_lines(uint8_t edges, uint8_t out[3][2]) {
     uint32_t n = 0;
     if (edges & 4) out[n][0] = 2, out[n][1] = 0, ++n;

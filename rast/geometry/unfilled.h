@@ -36,6 +36,11 @@ float unfilled_depth_offset(const DepthBias& b, const float* w0, const float* w1
 // neither applies, out[k] = v[k] and scratch is untouched.
 void prepare_unfilled_triangle(const UnfilledConfig& cfg, const float* const v[3], float* scratch, const float* out[3]);
 
+// inject_front_face_info: gl_FrontFacing of the triangle's edges and corners (llvmpipe's line/point setup reads
+// the injected value; line and point topologies are always front facing). det = fl(ex*fy) - fl(ey*fx) as the
+// cull stage computes it; front = front_ccw ? det < 0 : det > 0 (zero or NaN: back).
+bool unfilled_front_facing(bool front_ccw, const float* w0, const float* w1, const float* w2);
+
 // The lines lines() emits for edge bits `edges`, in its order: (2,0) if bit 2, (0,1) if bit 0, (1,2) if bit 1.
 // Writes vertex positions (0..2) pairs to out and returns how many lines.
 uint32_t unfilled_lines(uint8_t edges, uint8_t out[3][2]);

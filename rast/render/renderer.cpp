@@ -308,15 +308,18 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                     // draw's offset, flatshade and unfilled stages (unfilled.h): edges / corners by edge flag.
                     const float* u[3];
                     geometry::prepare_unfilled_triangle(ucfg, out[t].v, unfilled_scratch_.data(), u);
+                    const bool front = geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(a),
+                                                                       geometry::win_pos(b), geometry::win_pos(c));
                     if (pipe.polygon_mode == PolygonMode::kLine) {
                         uint8_t lines[3][2];
                         const uint32_t nl = geometry::unfilled_lines(out[t].edges, lines);
-                        for (uint32_t l = 0; l < nl; ++l) add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]]);
+                        for (uint32_t l = 0; l < nl; ++l)
+                            add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]], front);
                     } else {
                         for (int k = 0; k < 3; ++k)
                             if (out[t].corners & (1u << k))
                                 add_point(draw_index, rec, u[k],
-                                          geometry::attrib(u[k], rec.varyings.point_size_slot())[0]);
+                                          geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
                     }
                 }
             }
@@ -368,7 +371,7 @@ void Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPla
     std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
 }
 
-void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1) {
+void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
     geometry::LineSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
@@ -388,11 +391,12 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     in.common.clip = prim_clip(pipe);
     in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.front_facing = front_facing;
     if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
     push_prim(draw, PrimKind::kLine, ls.pos, 0.0f, cfg.layout.num_attribs);
 }
 
-void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size) {
+void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
     geometry::PointSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
@@ -409,6 +413,7 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     in.common.clip = clip;
     in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.front_facing = front_facing;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
     push_prim(draw, PrimKind::kPoint, ps.pos, 0.0f, cfg.layout.num_attribs);
 }

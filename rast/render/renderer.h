@@ -42,8 +42,8 @@ class Renderer {
   private:
     void flush();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
-    void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1);
-    void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size);
+    void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
+    void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
     ClipRect prim_clip(const PipelineState& pipe) const;
     geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
     // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).

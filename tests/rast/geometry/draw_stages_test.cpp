@@ -245,3 +245,20 @@ TEST(Unfilled, SaturateClampsToOne) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Unfilled, FrontFacingFromTheCullDeterminant) {
+    // y down: (0,0) (8,0) (0,4) turns clockwise on screen; det = ex*fy - ey*fx with e = v0-v2 = (0,-4),
+    // f = v1-v2 = (8,-4): 0*-4 - (-4*8) = 32 > 0, i.e. "cw" for draw: front only with a clockwise front face.
+    const float a[2] = {0, 0}, b[2] = {8, 0}, c[2] = {0, 4};
+    EXPECT_FALSE(unfilled_front_facing(true, a, b, c));
+    EXPECT_TRUE(unfilled_front_facing(false, a, b, c));
+    EXPECT_TRUE(unfilled_front_facing(true, a, c, b));
+    // zero area: back for both front-face conventions
+    const float d[2] = {16, 0};
+    EXPECT_FALSE(unfilled_front_facing(true, a, b, d));
+    EXPECT_FALSE(unfilled_front_facing(false, a, b, d));
+}
+
+}  // namespace
