@@ -2,6 +2,8 @@
 
 namespace tilevk::cts {
 
+void add_quirk_cases(CaseList& out);  // cases_quirks.cpp
+
 CaseList all_cases() {
     CaseList out;
     add_api_cases(out);
@@ -16,6 +18,7 @@ CaseList all_cases() {
     add_viewport_cases(out);
     add_texture_cases(out);
     add_mesh_cases(out);
+    add_quirk_cases(out);
     return out;
 }
 

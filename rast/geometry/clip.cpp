@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace tilevk::rast::geometry {
 namespace {
@@ -91,31 +92,49 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
                        uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out) {
     uint32_t clipmask = m0 | m1 | m2;
     if (clipmask == 0) {
-        out[0] = {{v0, v1, v2}};
+        out[0] = {{v0, v1, v2}, kAllEdges, kAllEdges};
         return 1;
     }
     if ((m0 & m1 & m2) != 0) return 0;
     clipmask &= 0x3Fu;  // only the six frustum planes exist here (no user clip planes)
 
     const uint32_t stride = vertex_floats(cfg.layout);
+    // Vertex lists with, per position, the vertex's own edge flag (vertex_header.edgeflag: 1 for shaded
+    // vertices) and the flag of the edge from this position to the next (the header's DRAW_PIPE_EDGE_FLAG_k).
     const float* a[kMaxClippedVertices];
     const float* b[kMaxClippedVertices];
+    bool va[kMaxClippedVertices], vb[kMaxClippedVertices];
+    bool ea[kMaxClippedVertices], eb[kMaxClippedVertices];
+    bool xa[kMaxClippedVertices], xb[kMaxClippedVertices];  // created on an x or y plane
     const float** inlist = a;
     const float** outlist = b;
+    bool *in_vflag = va, *out_vflag = vb;
+    bool *in_edge = ea, *out_edge = eb;
+    bool *in_xy = xa, *out_xy = xb;
     uint32_t tmpnr = 0;
     uint32_t n = 3;
     inlist[0] = v0;
     inlist[1] = v1;
     inlist[2] = v2;
+    for (int i = 0; i < 3; ++i) {
+        in_vflag[i] = in_edge[i] = true;  // decomposition: DRAW_PIPE_EDGE_FLAG_ALL
+        in_xy[i] = false;
+    }
 
     while (clipmask && n >= 3) {
         const uint32_t plane = static_cast<uint32_t>(__builtin_ctz(clipmask));
         clipmask &= ~(1u << plane);
         const float* vert_prev = inlist[0];
+        bool vflag_prev = in_vflag[0];
+        bool edge_prev = in_edge[0];
+        bool xy_prev = in_xy[0];
         float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz);
         if (is_inf_or_nan(dp_prev)) return 0;
         if (n >= kMaxClippedVertices) return 0;
         inlist[n] = inlist[0];  // close the polygon without rotating it
+        in_vflag[n] = in_vflag[0];
+        in_edge[n] = in_edge[0];
+        in_xy[n] = in_xy[0];
         uint32_t outcount = 0;
         for (uint32_t i = 1; i <= n; ++i) {
             const float* vert = inlist[i];
@@ -124,6 +143,9 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
             bool different_sign;
             if (dp_prev >= 0.0f) {
                 if (outcount >= kMaxClippedVertices) return 0;
+                out_vflag[outcount] = vflag_prev;
+                out_edge[outcount] = edge_prev;
+                out_xy[outcount] = xy_prev;
                 outlist[outcount++] = vert_prev;
                 different_sign = dp < 0.0f;
             } else {
@@ -133,6 +155,12 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
                 if (tmpnr >= kClipScratchVertices) return 0;
                 float* nv = scratch + static_cast<size_t>(stride) * tmpnr++;
                 if (outcount >= kMaxClippedVertices) return 0;
+                // The edge from a new vertex keeps the flag of the edge it was cut from. The vertex flag hides
+                // the edge along a frustum plane: a vertex going out gets 0, one coming back in copies the
+                // flag of the (outside) vertex before it.
+                out_edge[outcount] = edge_prev;
+                out_vflag[outcount] = dp < 0.0f ? false : vflag_prev;
+                out_xy[outcount] = plane < 4;
                 outlist[outcount++] = nv;
                 const float denom = dp - dp_prev;
                 // Interpolate from the vertex nearer the plane so |t| <= 0.5.
@@ -151,11 +179,15 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
                 }
             }
             vert_prev = vert;
+            vflag_prev = in_vflag[i];
+            edge_prev = in_edge[i];
+            xy_prev = in_xy[i];
             dp_prev = dp;
         }
-        const float** tmp = inlist;
-        inlist = outlist;
-        outlist = tmp;
+        std::swap(inlist, outlist);
+        std::swap(in_vflag, out_vflag);
+        std::swap(in_edge, out_edge);
+        std::swap(in_xy, out_xy);
         n = outcount;
     }
     if (n < 3) return 0;
@@ -166,16 +198,34 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         float* dup = scratch + static_cast<size_t>(stride) * tmpnr++;
         std::memcpy(dup, inlist[0], sizeof(float) * stride);
         copy_flat(cfg.layout, dup, provoking);
-        inlist[0] = dup;
+        inlist[0] = dup;  // dup_vert copies the vertex flag too
     }
-    // emit_poly: a fan around inlist[0] in the provoking-vertex order
+    // emit_poly: a fan around inlist[0] in the provoking-vertex order. Header flags: the first triangle carries
+    // the edge in[0]->in[1], each the edge in[i-1]->in[i], the last in[n-1]->in[0]; the fan's inner edges none.
+    // Triangle edge bit k (the edge from tri.v[k]) is in flag slot 0/1/2 as first/middle/last with
+    // flatshade_first, else 2/0/1.
+    const uint8_t edge_first = cfg.flatshade_first ? 1 : 4;
+    const uint8_t edge_middle = cfg.flatshade_first ? 2 : 1;
+    const uint8_t edge_last = cfg.flatshade_first ? 4 : 2;
+    uint8_t flags = static_cast<uint8_t>((in_edge[0] ? edge_first : 0) | edge_middle);
     uint32_t count = 0;
-    for (uint32_t i = 2; i < n; ++i) {
+    for (uint32_t i = 2; i < n; ++i, flags = edge_middle) {
+        uint32_t pos[3];
         if (cfg.flatshade_first) {
-            out[count++] = {{inlist[0], inlist[i - 1], inlist[i]}};
+            pos[0] = 0, pos[1] = i - 1, pos[2] = i;
         } else {
-            out[count++] = {{inlist[i - 1], inlist[i], inlist[0]}};
+            pos[0] = i - 1, pos[1] = i, pos[2] = 0;
         }
+        if (!in_edge[i - 1]) flags &= static_cast<uint8_t>(~edge_middle);
+        if (i == n - 1 && in_edge[i]) flags |= edge_last;
+        // draw_pipe_unfilled: edge k is drawn iff header flag k and tri.v[k]->edgeflag
+        uint8_t edges = 0, corners = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (!(flags & (1u << k)) || !in_vflag[pos[k]]) continue;
+            edges |= static_cast<uint8_t>(1u << k);
+            if (!in_xy[pos[k]]) corners |= static_cast<uint8_t>(1u << k);
+        }
+        out[count++] = {{inlist[pos[0]], inlist[pos[1]], inlist[pos[2]]}, edges, corners};
     }
     return count;
 }

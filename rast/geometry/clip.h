@@ -23,8 +23,18 @@ struct ClipConfig {
     bool flatshade_first = true;  // Vulkan's provoking vertex = first
 };
 
+// Edge bit k: the edge from v[k] to v[(k+1)%3] (k = 0, 1, 2) is drawn by polygonMode LINE, and v[k] is drawn by
+// polygonMode POINT (draw_pipe_unfilled.c: header flag DRAW_PIPE_EDGE_FLAG_k and v[k]->edgeflag).
+inline constexpr uint8_t kAllEdges = 7;
+
 struct ClippedTriangle {
     const float* v[3];  // vertex records (inputs or scratch)
+    uint8_t edges = kAllEdges;
+    // Corner bit k: v[k] is drawn by polygonMode POINT. The edge bit, except that a vertex the clipper created on
+    // an x or y frustum plane is never drawn as a point by lavapipe (found by experiment, cts quirks.unfilled.
+    // point_clipped_*: a coming-in vertex on the near plane is drawn with its interpolated size, one on an x/y
+    // plane is not, though its edges are drawn in LINE mode; the mechanism in draw was not pinned down).
+    uint8_t corners = kAllEdges;
 };
 
 // Clips one triangle whose vertices have clip masks m0..m2 (compute_clipmask). Returns the number of triangles
@@ -33,8 +43,11 @@ struct ClippedTriangle {
 //   m0&m1&m2 != 0 -> 0 (trivially outside);
 //   otherwise Sutherland-Hodgman over the set bits in bit order; a NaN/Inf plane distance discards everything;
 //   emitted as a fan (p0, p[i-1], p[i]) with flatshade_first, else (p[i-1], p[i], p0). This re-ordering also
-//   happens when nothing was cut. With flat attributes, p0 (when it is not the original provoking vertex) is
-//   copied into scratch and given the provoking vertex's flat attributes.
+//   happens when nothing was cut. Edge flags (draw_pipe_clip.c do_clip_tri / emit_poly): the fan's inner edges
+//   and the edges the clipper creates along a frustum plane are not drawn in polygonMode LINE; a vertex created
+//   where the polygon leaves a plane is not drawn in polygonMode POINT, one where it comes back in is. With flat
+//   attributes, p0 (when it is not the original provoking vertex) is copied into scratch and given the provoking
+//   vertex's flat attributes.
 // `scratch` holds kClipScratchVertices records of vertex_floats(layout) floats each. Output pointers refer to
 // the inputs or to scratch, so scratch must outlive the use of out[].
 uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,

@@ -6,7 +6,10 @@
 
 #include "rast/core/fixed_point.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/draw_batches.h"
+#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
+#include "rast/geometry/unfilled.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
 
@@ -44,6 +47,12 @@ fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
     t.writes_sample_mask = i.builtins_written & shader::bit(shader::BuiltIn::SampleMask);
     for (const shader::DescriptorUse& d : i.descriptors) t.writes_memory |= d.written;
     return t;
+}
+
+bool vertex_writes_memory(const shader::Program* vs) {
+    for (const shader::DescriptorUse& d : vs->interface().descriptors)
+        if (d.written) return true;
+    return false;
 }
 
 // lavapipe's orientation decision, from the same snapped coordinates rast/core uses: area > 0 is "ccw".
@@ -133,6 +142,10 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     rec.push_constants.assign(bindings.push_constants.begin(), bindings.push_constants.end());
     rec.bindings.push_constants = rec.push_constants;
     rec.varyings = make_varyings(pipe.fragment);
+    if (pipe.polygon_mode == PolygonMode::kPoint && geometry::vertices_per_primitive(pipe.topology) == 3) {
+        rec.varyings.carry_point_size = true;
+        rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
+    }
     rec.depth_stencil = pipe.depth_stencil;
     rec.depth_stencil.min_depth = std::min(pipe.viewport.min_depth, pipe.viewport.max_depth);
     rec.depth_stencil.max_depth = std::max(pipe.viewport.min_depth, pipe.viewport.max_depth);
@@ -200,68 +213,130 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     fcull.front_ccw = pipe.front_ccw;
     const bool any_cull = pipe.cull != CullMode::kNone;
     const bool unfilled = pipe.polygon_mode != PolygonMode::kFill && verts_per_prim == 3;
+    // lp_state_derived.c: a sample mask of 0 (all 32 bits, at any sample count) sets rasterizer_discard, so setup
+    // drops every primitive; the vertex shader still runs in draw (its memory writes stay visible).
+    const bool discard = pipe.sample_mask == 0;
+    if (discard && !vertex_writes_memory(pipe.vertex)) return {};
+
+    geometry::UnfilledConfig ucfg;
+    ucfg.layout = layout;
+    ucfg.bias_enable = pipe.depth_bias_enable;
+    ucfg.bias = depth_bias_for_target(pipe);
+    unfilled_scratch_.resize(size_t(3) * geometry::vertex_floats(layout));
+
+    // llvmpipe's triangle-list analysis (lp_setup_analysis.c) runs on a non-indexed list batch handed to
+    // draw_arrays, i.e. one that skipped draw's pipeline, when the fragment shader has no flat input.
+    bool has_flat_input = false;
+    for (geometry::Interp i : rec.varyings.slot_interp) has_flat_input |= i == geometry::Interp::kFlat;
+    const bool nine_vertex_candidate =
+        !call.indexed && pipe.topology == geometry::Topology::kTriangleList && !has_flat_input;
+
+    // draw's batches: per instance, per restart run, per vsplit segment (draw_batches.h).
+    geometry::draw_batches(src, pipe.topology, &batches_);
 
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
         shade_vertices(vcfg, unique_, *scratch_[0], &shaded_);
-        // lavapipe sends a whole vertex batch through draw's pipeline (clipper, float cull) as soon as one of its
-        // vertices has a clip-mask bit; tilevk takes the draw instance as the batch (documented difference in
-        // batch boundaries for draws of more than one draw-module batch).
-        // Unfilled polygons need draw's pipeline (its unfilled stage), so every triangle takes that path then.
-        const bool pipeline_path = unfilled || std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(),
-                                                           [](uint32_t m) { return m != 0; });
+        if (discard) continue;
+        const bool any_clipped =
+            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
         auto slot = [&](uint32_t index) {
             return static_cast<uint32_t>(std::lower_bound(unique_.begin(), unique_.end(), index) - unique_.begin());
         };
-        for (uint32_t p = 0; p < num_prims; ++p) {
-            const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
-            if (verts_per_prim == 1) {
-                const uint32_t s0 = slot(ids[0]);
-                const float* v0 = shaded_.record(s0);
-                if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
-                add_point(draw_index, rec, v0, shaded_.point_size[s0]);
-                continue;
+        uint32_t first_prim = 0;
+        for (const uint32_t batch_prims : batches_) {
+            const uint32_t end_prim = std::min(num_prims, first_prim + batch_prims);
+            const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * verts_per_prim;
+            const size_t batch_verts = size_t(end_prim - first_prim) * verts_per_prim;
+            // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through
+            // draw's pipeline (clipper, float cull). Unfilled polygons always take it (their stage lives there).
+            bool pipeline_path = unfilled;
+            for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
+                pipeline_path = shaded_.clipmask[slot(batch_ids[k])] != 0;
+            uint32_t batch_end = end_prim;
+            if (nine_vertex_candidate && !pipeline_path && batch_verts == 9) {
+                float xy[9][2];
+                for (int k = 0; k < 9; ++k) {
+                    const float* w = geometry::win_pos(shaded_.record(slot(batch_ids[k])));
+                    xy[k][0] = w[0];
+                    xy[k][1] = w[1];
+                }
+                geometry::TriangleListBatch qb;
+                qb.vertex_count = 9;
+                const geometry::NineVertexQuirk q = geometry::nine_vertex_quirk(qb, xy);
+                // Swallowed: nothing. Aero: llvmpipe bins one rectangle (lp_rect_cw) covering the first two
+                // triangles; drawn here as those two triangles (the rect path is not modelled).
+                if (q == geometry::NineVertexQuirk::kSwallowed) batch_end = first_prim;
+                if (q == geometry::NineVertexQuirk::kAeroRect) batch_end = first_prim + 2;
             }
-            if (verts_per_prim == 2) {
-                const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]);
-                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
-                if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
-                                                          clip_scratch_.data(), &v0, &v1))
+            for (uint32_t p = first_prim; p < batch_end; ++p) {
+                const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
+                if (verts_per_prim == 1) {
+                    const uint32_t s0 = slot(ids[0]);
+                    const float* v0 = shaded_.record(s0);
+                    if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
+                    add_point(draw_index, rec, v0, shaded_.point_size[s0]);
                     continue;
-                add_line(draw_index, rec, v0, v1);
-                continue;
-            }
-            const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
-            const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
-            const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
-            if (!pipeline_path) {
-                add_triangle(draw_index, rec, v0, v1, v2);
-                continue;
-            }
-            geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
-            const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
-            for (uint32_t t = 0; t < n; ++t) {
-                const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
-                if (any_cull &&
-                    !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
+                }
+                if (verts_per_prim == 2) {
+                    const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]);
+                    const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
+                    if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
+                                                              clip_scratch_.data(), &v0, &v1))
+                        continue;
+                    add_line(draw_index, rec, v0, v1);
                     continue;
-                if (pipe.polygon_mode == PolygonMode::kLine) {
-                    // draw_pipe_unfilled.c lines(): edges v2-v0, v0-v1, v1-v2 (every edge flag set for lists,
-                    // strips and fans; the clipper's new internal edges are drawn too — not modelled).
-                    add_line(draw_index, rec, c, a);
-                    add_line(draw_index, rec, a, b);
-                    add_line(draw_index, rec, b, c);
-                } else if (pipe.polygon_mode == PolygonMode::kPoint) {
-                    add_point(draw_index, rec, a, 1.0f);
-                    add_point(draw_index, rec, b, 1.0f);
-                    add_point(draw_index, rec, c, 1.0f);
-                } else {
-                    add_triangle(draw_index, rec, a, b, c);
+                }
+                const uint32_t s0 = slot(ids[0]), s1 = slot(ids[1]), s2 = slot(ids[2]);
+                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
+                const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
+                if (!pipeline_path) {
+                    add_triangle(draw_index, rec, v0, v1, v2);
+                    continue;
+                }
+                geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
+                const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
+                for (uint32_t t = 0; t < n; ++t) {
+                    const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
+                    if (any_cull && !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b),
+                                                               geometry::win_pos(c)))
+                        continue;
+                    if (!unfilled) {
+                        add_triangle(draw_index, rec, a, b, c);
+                        continue;
+                    }
+                    // draw's offset, flatshade and unfilled stages (unfilled.h): edges / corners by edge flag.
+                    const float* u[3];
+                    geometry::prepare_unfilled_triangle(ucfg, out[t].v, unfilled_scratch_.data(), u);
+                    const bool front = geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(a),
+                                                                       geometry::win_pos(b), geometry::win_pos(c));
+                    if (pipe.polygon_mode == PolygonMode::kLine) {
+                        uint8_t lines[3][2];
+                        const uint32_t nl = geometry::unfilled_lines(out[t].edges, lines);
+                        for (uint32_t l = 0; l < nl; ++l)
+                            add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]], front);
+                    } else {
+                        for (int k = 0; k < 3; ++k)
+                            if (out[t].corners & (1u << k))
+                                add_point(draw_index, rec, u[k],
+                                          geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
+                    }
                 }
             }
+            first_prim = end_prim;
         }
     }
     return {};
+}
+
+// The pipeline's depth-bias factors with the depth format's rule (util_get_depth_format_mrd: D16 16 bits, D32F
+// the float rule, anything else — D24 or no depth attachment — 24 bits).
+geometry::DepthBias Renderer::depth_bias_for_target(const PipelineState& pipe) const {
+    geometry::DepthBias b = pipe.depth_bias;
+    const fragment::DepthFormat df = fb_.depth_stencil.depth ? fb_.depth_stencil.format : fragment::DepthFormat::None;
+    b.float_depth = df == fragment::DepthFormat::D32F;
+    b.unorm_bits = df == fragment::DepthFormat::D16 ? 16 : 24;
+    return b;
 }
 
 // Scissor ∩ viewport rectangle: the viewport rectangle also bounds coverage (lp_setup_set_viewports
@@ -296,7 +371,7 @@ void Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPla
     std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
 }
 
-void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1) {
+void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
     geometry::LineSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
@@ -316,11 +391,12 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     in.common.clip = prim_clip(pipe);
     in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.front_facing = front_facing;
     if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
     push_prim(draw, PrimKind::kLine, ls.pos, 0.0f, cfg.layout.num_attribs);
 }
 
-void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size) {
+void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
     geometry::PointSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
@@ -337,6 +413,7 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     in.common.clip = clip;
     in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.front_facing = front_facing;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
     push_prim(draw, PrimKind::kPoint, ps.pos, 0.0f, cfg.layout.num_attribs);
 }
@@ -365,15 +442,7 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     pcfg.layout = rec.varyings.layout();
     pcfg.multisample = fb_.samples > 1;
     pcfg.flatshade_first = true;
-    if (pipe.depth_bias_enable) {
-        pcfg.bias = pipe.depth_bias;
-        const fragment::DepthFormat df =
-            fb_.depth_stencil.depth ? fb_.depth_stencil.format : fragment::DepthFormat::None;
-        pcfg.bias.float_depth = df == fragment::DepthFormat::D32F;
-        pcfg.bias.unorm_bits = df == fragment::DepthFormat::D16 ? 16 : 24;
-    } else {
-        pcfg.bias = {};
-    }
+    pcfg.bias = pipe.depth_bias_enable ? depth_bias_for_target(pipe) : geometry::DepthBias{};
     geometry::TrianglePlanes tp;
     geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
 

@@ -42,9 +42,10 @@ class Renderer {
   private:
     void flush();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
-    void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1);
-    void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size);
+    void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
+    void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
     ClipRect prim_clip(const PipelineState& pipe) const;
+    geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
     // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
     void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
                    uint32_t num_attribs);
@@ -63,6 +64,8 @@ class Renderer {
     ShadedVertices shaded_;
     std::vector<float> clip_scratch_;
     std::vector<geometry::AttribPlane> attrib_planes_;
+    std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
+    std::vector<float> unfilled_scratch_;  // 3 records: a polygonMode LINE/POINT triangle after offset/flatshade
 };
 
 }  // namespace tilevk::rast::render

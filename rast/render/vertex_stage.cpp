@@ -62,7 +62,8 @@ void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indi
         for (uint32_t lane = 0; lane < count; ++lane) {
             float* rec = out->records.data() + size_t(first + lane) * stride;
             for (int c = 0; c < 4; ++c) rec[geometry::kClipPosOffset + c] = as_float(batch.position[c][lane]);
-            for (uint32_t s = 0; s < layout.num_attribs; ++s) {
+            const uint32_t num_inputs = static_cast<uint32_t>(cfg.varyings->slot_location.size());
+            for (uint32_t s = 0; s < num_inputs; ++s) {
                 const uint32_t loc = cfg.varyings->slot_location[s];
                 for (int c = 0; c < 4; ++c)
                     rec[geometry::kAttribOffset + 4 * s + c] = as_float(batch.outputs[loc][c][lane]);
@@ -70,6 +71,11 @@ void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indi
             out->clipmask[first + lane] = geometry::compute_clipmask(cfg.clip, rec + geometry::kClipPosOffset);
             geometry::viewport_transform(cfg.viewport, rec + geometry::kClipPosOffset, rec + geometry::kWinPosOffset);
             out->point_size[first + lane] = writes_point_size ? as_float(batch.point_size[lane]) : 1.0f;
+            if (cfg.varyings->carry_point_size) {
+                float* ps = rec + geometry::kAttribOffset + 4 * num_inputs;
+                ps[0] = out->point_size[first + lane];
+                ps[1] = ps[2] = ps[3] = 0.0f;
+            }
         }
     }
 }

@@ -22,10 +22,16 @@ struct VertexInputState {
 
 // How vertex-shader outputs become geometry records: record attribute slot i carries VS output location
 // `slot_location[i]` (the fragment shader's input at that location), interpolated as `slot_interp[i]`.
+// With `carry_point_size`, the record has one more attribute after the fragment inputs: (PointSize, 0, 0, 0),
+// perspective-interpolated by the clipper as draw does for PSIZE (draw_pipe_clip.c find_interp's default), so a
+// vertex the clipper makes in polygonMode POINT gets lavapipe's interpolated size. slot_interp then has one more
+// entry than slot_location; the fragment stage reads slot_location.size() slots only.
 struct VaryingMap {
     std::vector<uint32_t> slot_location;
     std::vector<geometry::Interp> slot_interp;
-    geometry::VertexLayout layout() const { return {static_cast<uint32_t>(slot_location.size()), slot_interp.data()}; }
+    bool carry_point_size = false;
+    geometry::VertexLayout layout() const { return {static_cast<uint32_t>(slot_interp.size()), slot_interp.data()}; }
+    uint32_t point_size_slot() const { return static_cast<uint32_t>(slot_location.size()); }
 };
 
 // The shaded vertices of one draw instance.
