@@ -16,6 +16,7 @@ CaseList all_cases() {
     add_viewport_cases(out);
     add_texture_cases(out);
     add_mesh_cases(out);
+    add_blit_cases(out);
     return out;
 }
 
