@@ -76,6 +76,33 @@ struct Vertex {
     float x, y, s, t;
 };
 
+// The attribute planes of lp_state_setup.c (init_args, calc_coef4) from the float window coordinates of (v0, v1, v2),
+// origin at pixel (0,0)'s centre; separate (unfused) multiplies and subtractions.
+void attrib_planes(const Vertex& v0, const Vertex& v1, const Vertex& v2, AttribPlane& s, AttribPlane& t) {
+    const float x0c = v0.x - 0.5f, y0c = v0.y - 0.5f;
+    const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+    const float e = dx01 * dy20, f = dy01 * dx20;
+    const float ooa = 1.0f / (e - f);
+    const float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
+    auto plane = [&](float a0, float a1, float a2) {
+        AttribPlane p;
+        const float da01 = a0 - a1, da20 = a2 - a0;
+        p.dadx = da01 * dy20o - da20 * dy01o;
+        p.dady = da20 * dx01o - da01 * dx20o;
+        const float dadx_x0 = p.dadx * x0c, dady_y0 = p.dady * y0c;
+        p.a0 = a0 - (dadx_x0 + dady_y0);
+        return p;
+    };
+    s = plane(v0.s, v1.s, v2.s);
+    t = plane(v0.t, v1.t, v2.t);
+}
+
+// util_iround(256 * a): round half away from zero after a float add (lp_setup_rect.c subpixel_snap)
+int32_t subpixel_snap(float a) {
+    const float f = 256.0f * a;
+    return f >= 0.0f ? int32_t(f + 0.5f) : int32_t(f - 0.5f);
+}
+
 // The setup of one triangle (lp_setup_tri.c do_triangle_ccw / triangle_both, lp_state_setup.c init_args/calc_coef4).
 Triangle setup(Vertex v0, Vertex v1, Vertex v2, uint32_t surf_w, uint32_t surf_h) {
     Triangle tri;
@@ -106,23 +133,7 @@ Triangle setup(Vertex v0, Vertex v1, Vertex v2, uint32_t surf_w, uint32_t surf_h
     tri.bx1 = std::min((max_x - 1) >> 8, int32_t(surf_w) - 1);
     tri.by0 = std::max((min_y + 1) >> 8, 0);
     tri.by1 = std::min(max_y >> 8, int32_t(surf_h) - 1);
-    // attribute planes from the float window coordinates, origin at pixel (0,0)'s centre; separate (unfused) ops
-    const float x0c = v0.x - 0.5f, y0c = v0.y - 0.5f;
-    const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
-    const float e = dx01 * dy20, f = dy01 * dx20;
-    const float ooa = 1.0f / (e - f);
-    const float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
-    auto plane = [&](float a0, float a1, float a2) {
-        AttribPlane p;
-        const float da01 = a0 - a1, da20 = a2 - a0;
-        p.dadx = da01 * dy20o - da20 * dy01o;
-        p.dady = da20 * dx01o - da01 * dx20o;
-        const float dadx_x0 = p.dadx * x0c, dady_y0 = p.dady * y0c;
-        p.a0 = a0 - (dadx_x0 + dady_y0);
-        return p;
-    };
-    tri.s = plane(v0.s, v1.s, v2.s);
-    tri.t = plane(v0.t, v1.t, v2.t);
+    attrib_planes(v0, v1, v2, tri.s, tri.t);
     tri.valid = true;
     return tri;
 }
@@ -142,6 +153,12 @@ bool Triangle::covers(int32_t px, int32_t py) const {
 }
 
 bool Quad::texcoord(int32_t px, int32_t py, float& s, float& t) const {
+    if (rect) {
+        if (px < rx0 || px > rx1 || py < ry0 || py > ry1) return false;
+        s = fmuladd(rs.dady, float(py), fmuladd(rs.dadx, float(px), rs.a0, fused), fused);
+        t = fmuladd(rt.dady, float(py), fmuladd(rt.dadx, float(px), rt.a0, fused), fused);
+        return true;
+    }
     for (const Triangle& tr : tri) {
         if (!tr.covers(px, py)) continue;
         // a = fmuladd(dady, py, fmuladd(dadx, px, a0))   (lp_bld_interp.c attribs_update_simple, LINEAR)
@@ -153,7 +170,7 @@ bool Quad::texcoord(int32_t px, int32_t py, float& s, float& t) const {
 }
 
 Quad make_quad(uint32_t surf_w, uint32_t surf_h, int32_t x1, int32_t y1, int32_t x2, int32_t y2, float s1, float t1,
-               float s2, float t2, bool fused) {
+               float s2, float t2, bool fused, bool rect) {
     // blitter_set_rectangle: ndc = fl(fl(fl(x / W) * 2) - 1) in C; viewport scale = translate = 0.5f * W;
     // draw's JIT: window = fmuladd(ndc * (1/w = 1), scale, translate)
     auto window = [fused](int32_t v, uint32_t size) {
@@ -166,6 +183,20 @@ Quad make_quad(uint32_t surf_w, uint32_t surf_h, int32_t x1, int32_t y1, int32_t
     const Vertex v0{wx1, wy1, s1, t1}, v1{wx2, wy1, s2, t1}, v2{wx2, wy2, s2, t2}, v3{wx1, wy2, s1, t2};
     Quad q;
     q.fused = fused;
+    if (rect) {
+        // linear mode (lp_setup_vbuf.c rect -> lp_setup_rect.c): both triangles are cw, do_rect_ccw finds the
+        // rectangle and lp_rect_cw sets it up from the corners (v2, v0, v1) with no reorder; coverage is the box
+        // of the util_iround-snapped corners (bottom_edge_rule adds 1 to y before the shift)
+        q.rect = true;
+        attrib_planes(v2, v0, v1, q.rs, q.rt);
+        const int32_t sx1 = subpixel_snap(wx1 - 0.5f), sx2 = subpixel_snap(wx2 - 0.5f);
+        const int32_t sy1 = subpixel_snap(wy1 - 0.5f), sy2 = subpixel_snap(wy2 - 0.5f);
+        q.rx0 = std::max((std::min(sx1, sx2) + 255) >> 8, 0);
+        q.rx1 = std::min(((std::max(sx1, sx2) + 255) >> 8) - 1, int32_t(surf_w) - 1);
+        q.ry0 = std::max((std::min(sy1, sy2) + 256) >> 8, 0);
+        q.ry1 = std::min(((std::max(sy1, sy2) + 256) >> 8) - 1, int32_t(surf_h) - 1);
+        return q;
+    }
     // lp_setup_vbuf.c, TRIANGLE_FAN with flatshade_first == 0: (v0, v1, v2), (v0, v2, v3)
     q.tri[0] = setup(v0, v1, v2, surf_w, surf_h);
     q.tri[1] = setup(v0, v2, v3, surf_w, surf_h);
@@ -401,10 +432,12 @@ void blit_region(const Image& src, const Image& dst, const VkImageBlit& r, VkFil
     const float t1 = coord(sy.src, source.h), t2 = coord(sy.src + sy.src_len, source.h);
     const uint32_t dl = r.dstSubresource.mipLevel;
     const uint32_t surf_w = dst.level_width(dl), surf_h = dst.level_height(dl);
+    // llvmpipe's linear mode: a single-layer, single-sample B8G8R8A8_UNORM colour target without depth
+    const bool rect = dst.format->format == VK_FORMAT_B8G8R8A8_UNORM && dst.array_layers == 1 && dst.samples == 1;
     const blit::Quad quad = blit::make_quad(surf_w, surf_h, sx.dst, sy.dst, sx.dst + sx.dst_len, sy.dst + sy.dst_len,
-                                            s1, t1, s2, t2, fused);
+                                            s1, t1, s2, t2, fused, rect);
     const bool fixed8 = src.format->pack == PackKind::kUnorm8;
-    int32_t x0 = INT32_MAX, x1 = -1, y0 = INT32_MAX, y1 = -1;
+    int32_t x0 = quad.rx0, x1 = quad.rx1, y0 = quad.ry0, y1 = quad.ry1;
     for (const blit::Triangle& t : quad.tri) {
         if (!t.valid) continue;
         x0 = std::min(x0, t.bx0), x1 = std::max(x1, t.bx1), y0 = std::min(y0, t.by0), y1 = std::max(y1, t.by1);

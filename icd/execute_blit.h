@@ -41,14 +41,18 @@ struct Triangle {
 // The blitter's quad over destination pixels [x1,x2) x [y1,y2) of a surface of surf_w x surf_h, with texture
 // coordinates (s1,t1) at the (x1,y1) corner and (s2,t2) at the (x2,y2) corner, drawn as the triangle fan
 // (x1,y1) (x2,y1) (x2,y2) (x1,y2). `fused`: lavapipe's fmuladd is a true FMA (host has FMA).
+// With `rect` (llvmpipe's linear mode), the fan is set up as one rectangle instead: a box and one plane pair.
 struct Quad {
     Triangle tri[2];
     bool fused = true;
+    bool rect = false;
+    int32_t rx0 = INT32_MAX, ry0 = INT32_MAX, rx1 = -1, ry1 = -1;  // the rectangle's inclusive pixel box
+    AttribPlane rs, rt;
     // The interpolated coordinates at pixel (px,py); false if neither triangle covers it.
     bool texcoord(int32_t px, int32_t py, float& s, float& t) const;
 };
 Quad make_quad(uint32_t surf_w, uint32_t surf_h, int32_t x1, int32_t y1, int32_t x2, int32_t y2, float s1, float t1,
-               float s2, float t2, bool fused);
+               float s2, float t2, bool fused, bool rect = false);
 
 using Rgba = std::array<float, 4>;
 // A texel as lavapipe's sampler returns it (UNORM8 c*fl(1/255), sRGB polynomial, half exact, D16 c*fl(1/65535)),

@@ -27,11 +27,14 @@ TEST(BlitQuad, CoversTheBoxExactlyOnce) {
         const uint32_t w = 1 + g.next(300), h = 1 + g.next(300);
         const int32_t x1 = int32_t(g.next(w)), y1 = int32_t(g.next(h));
         const int32_t x2 = x1 + 1 + int32_t(g.next(w - uint32_t(x1))), y2 = y1 + 1 + int32_t(g.next(h - uint32_t(y1)));
-        for (bool fused : {true, false}) {
-            const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, 0.0f, 0.0f, 1.0f, 1.0f, fused);
+        for (int mode = 0; mode < 3; ++mode) {  // triangles fused / unfused, the linear-mode rectangle
+            const bool fused = mode != 1, rect = mode == 2;
+            const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, 0.0f, 0.0f, 1.0f, 1.0f, fused, rect);
             for (int32_t y = 0; y < int32_t(h); ++y) {
                 for (int32_t x = 0; x < int32_t(w); ++x) {
-                    const int n = int(q.tri[0].covers(x, y)) + int(q.tri[1].covers(x, y));
+                    float s, t;
+                    const int n =
+                        rect ? int(q.texcoord(x, y, s, t)) : int(q.tri[0].covers(x, y)) + int(q.tri[1].covers(x, y));
                     const bool inside = x >= x1 && x < x2 && y >= y1 && y < y2;
                     ASSERT_EQ(n, inside ? 1 : 0) << "surface " << w << "x" << h << " box (" << x1 << "," << y1 << ")-("
                                                  << x2 << "," << y2 << ") pixel " << x << "," << y;
@@ -50,7 +53,7 @@ TEST(BlitQuad, CoordinatesFollowTheAffineMap) {
         const int32_t x2 = x1 + 1 + int32_t(g.next(w - uint32_t(x1))), y2 = y1 + 1 + int32_t(g.next(h - uint32_t(y1)));
         const float s1 = float(g.next(1000)) / 1000.0f, s2 = float(g.next(1000)) / 1000.0f;
         const float t1 = float(g.next(1000)) / 1000.0f, t2 = float(g.next(1000)) / 1000.0f;
-        const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, s1, t1, s2, t2, true);
+        const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, s1, t1, s2, t2, true, iter % 2 == 1);
         for (int32_t y = y1; y < y2; y += 1 + (y2 - y1) / 7) {
             for (int32_t x = x1; x < x2; x += 1 + (x2 - x1) / 7) {
                 float s, t;
