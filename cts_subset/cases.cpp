@@ -19,6 +19,7 @@ CaseList all_cases() {
     add_texture_cases(out);
     add_mesh_cases(out);
     add_quirk_cases(out);
+    add_blit_cases(out);
     return out;
 }
 

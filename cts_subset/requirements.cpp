@@ -29,6 +29,9 @@ std::string check_format(const DeviceContext& c, VkFormat f, VkFormatFeatureFlag
 }  // namespace
 
 std::string unsupported(const DeviceContext& c, const Scene& s) {
+    if (s.unsupported) {
+        if (std::string why = s.unsupported(c); !why.empty()) return why;
+    }
     const Target& t = s.target;
     const VkPhysicalDeviceFeatures& f = c.features;
     const VkPhysicalDeviceLimits& lim = c.props.limits;

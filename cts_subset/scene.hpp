@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,9 +81,16 @@ struct Target {
     uint32_t clear_stencil = 0;
 };
 
+struct Plane;
+struct DeviceContext;
+
 struct Scene {
     Target target;
     std::vector<Draw> draws;
+    // A case without draws (transfer commands, e.g. cases_blit.cpp) runs its own commands instead: `run` records,
+    // submits and reads back on one device; `unsupported` names what the device lacks (empty: supported).
+    std::function<std::vector<Plane>(const DeviceContext&)> run;
+    std::function<std::string(const DeviceContext&)> unsupported;
 };
 
 // One read-back plane: colour, depth or stencil, tightly packed rows.

@@ -29,6 +29,7 @@ enum class CmdType : uint8_t {
     kClearColorImage,
     kClearDepthStencilImage,
     kResolveImage,
+    kBlitImage,
     // synchronisation
     kPipelineBarrier,
     kSetEvent,
@@ -120,6 +121,12 @@ struct CmdResolveImage : CmdOf<CmdType::kResolveImage> {
     Image *src, *dst;
     uint32_t count;
     const VkImageResolve* regions;
+};
+struct CmdBlitImage : CmdOf<CmdType::kBlitImage> {
+    Image *src, *dst;
+    uint32_t count;
+    const VkImageBlit* regions;
+    VkFilter filter;
 };
 struct CmdPipelineBarrier : CmdOf<CmdType::kPipelineBarrier> {
     VkPipelineStageFlags src_stages, dst_stages;

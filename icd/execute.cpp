@@ -2,6 +2,8 @@
 // resolve run here; draws and their state go to execute_draw.cpp.
 #include "execute.h"
 
+#include "execute_blit.h"
+
 #include "framebuffer.h"
 #include "image.h"
 #include "render_pass.h"
@@ -127,6 +129,9 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
                 break;
             case CmdType::kResolveImage:
                 exec_resolve_image(*static_cast<CmdResolveImage*>(cmd));
+                break;
+            case CmdType::kBlitImage:
+                exec_blit_image(*static_cast<CmdBlitImage*>(cmd));
                 break;
             // Execution is serial and in order, so barriers have nothing left to order.
             case CmdType::kPipelineBarrier:

@@ -4,13 +4,15 @@ namespace tilevk::icd {
 namespace {
 
 constexpr VkFormatFeatureFlags kTransfer = VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+// vkCmdBlitImage (execute_blit.cpp): every colour format (NEAREST and LINEAR) and D16/D32 (NEAREST only).
+constexpr VkFormatFeatureFlags kBlit = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT;
 // Colour formats: drawn and blended by rast/fragment, sampled (nearest and linear) by shader/.
 constexpr VkFormatFeatureFlags kColor =
-    kTransfer | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
+    kTransfer | kBlit | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
     VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
 constexpr VkFormatFeatureFlags kDepth = kTransfer | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
 // D16 and D32 are also sampled (shadow samplers); D32_S8's 8-byte texel is not a layout shader/ reads.
-constexpr VkFormatFeatureFlags kDepthSampled = kDepth | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+constexpr VkFormatFeatureFlags kDepthSampled = kDepth | kBlit | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
 constexpr VkFormatFeatureFlags kVertex = VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT;
 constexpr VkImageAspectFlags kC = VK_IMAGE_ASPECT_COLOR_BIT;
 

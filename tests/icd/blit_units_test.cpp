@@ -1,0 +1,111 @@
+// The pure pieces of execute_blit.cpp, checked against expectations computed here: the blitter's quad covers every
+// destination pixel of its box exactly once and nothing outside it; its interpolated coordinates stay within a
+// small tolerance of the exact affine map (the exact lavapipe rounding is pinned by blit_test.cpp); texel
+// conversions round-trip.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "execute_blit.h"
+#include "formats.h"
+
+namespace tilevk::icd {
+namespace {
+
+struct Lcg {
+    uint32_t s;
+    uint32_t next(uint32_t n) {
+        s = s * 1664525u + 1013904223u;
+        return (s >> 8) % n;
+    }
+};
+
+TEST(BlitQuad, CoversTheBoxExactlyOnce) {
+    Lcg g{99};
+    for (int iter = 0; iter < 300; ++iter) {
+        const uint32_t w = 1 + g.next(300), h = 1 + g.next(300);
+        const int32_t x1 = int32_t(g.next(w)), y1 = int32_t(g.next(h));
+        const int32_t x2 = x1 + 1 + int32_t(g.next(w - uint32_t(x1))), y2 = y1 + 1 + int32_t(g.next(h - uint32_t(y1)));
+        for (int mode = 0; mode < 3; ++mode) {  // triangles fused / unfused, the linear-mode rectangle
+            const bool fused = mode != 1, rect = mode == 2;
+            const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, 0.0f, 0.0f, 1.0f, 1.0f, fused, rect);
+            for (int32_t y = 0; y < int32_t(h); ++y) {
+                for (int32_t x = 0; x < int32_t(w); ++x) {
+                    float s, t;
+                    const int n =
+                        rect ? int(q.texcoord(x, y, s, t)) : int(q.tri[0].covers(x, y)) + int(q.tri[1].covers(x, y));
+                    const bool inside = x >= x1 && x < x2 && y >= y1 && y < y2;
+                    ASSERT_EQ(n, inside ? 1 : 0) << "surface " << w << "x" << h << " box (" << x1 << "," << y1 << ")-("
+                                                 << x2 << "," << y2 << ") pixel " << x << "," << y;
+                }
+            }
+        }
+    }
+}
+
+TEST(BlitQuad, CoordinatesFollowTheAffineMap) {
+    // s at pixel centre x: s1 + (x + 0.5 - x1) / (x2 - x1) * (s2 - s1), up to float rounding of the planes
+    Lcg g{7};
+    for (int iter = 0; iter < 200; ++iter) {
+        const uint32_t w = 2 + g.next(500), h = 2 + g.next(500);
+        const int32_t x1 = int32_t(g.next(w / 2)), y1 = int32_t(g.next(h / 2));
+        const int32_t x2 = x1 + 1 + int32_t(g.next(w - uint32_t(x1))), y2 = y1 + 1 + int32_t(g.next(h - uint32_t(y1)));
+        const float s1 = float(g.next(1000)) / 1000.0f, s2 = float(g.next(1000)) / 1000.0f;
+        const float t1 = float(g.next(1000)) / 1000.0f, t2 = float(g.next(1000)) / 1000.0f;
+        const blit::Quad q = blit::make_quad(w, h, x1, y1, x2, y2, s1, t1, s2, t2, true, iter % 2 == 1);
+        for (int32_t y = y1; y < y2; y += 1 + (y2 - y1) / 7) {
+            for (int32_t x = x1; x < x2; x += 1 + (x2 - x1) / 7) {
+                float s, t;
+                ASSERT_TRUE(q.texcoord(x, y, s, t));
+                const double es = s1 + (x + 0.5 - x1) / double(x2 - x1) * (double(s2) - s1);
+                const double et = t1 + (y + 0.5 - y1) / double(y2 - y1) * (double(t2) - t1);
+                EXPECT_NEAR(s, es, 1e-4) << x << "," << y;
+                EXPECT_NEAR(t, et, 1e-4) << x << "," << y;
+            }
+        }
+    }
+}
+
+TEST(BlitTexels, ConversionsRoundTrip) {
+    // every UNORM8 byte decodes to u/255 (as u * fl(1/255)) and encodes back to itself; halves and floats are exact
+    const FormatInfo& rgba8 = *find_format(VK_FORMAT_R8G8B8A8_UNORM);
+    for (int u = 0; u < 256; ++u) {
+        const uint8_t in[4] = {uint8_t(u), uint8_t(255 - u), uint8_t(u / 2), uint8_t(u ^ 0x55)};
+        const blit::Rgba c = blit::decode(rgba8, in, true);
+        EXPECT_EQ(c[0], float(u) * (1.0f / 255.0f));
+        uint8_t out[4];
+        blit::encode(rgba8, c, out, true);
+        EXPECT_EQ(std::memcmp(in, out, 4), 0) << u;
+    }
+    const FormatInfo& bgra8 = *find_format(VK_FORMAT_B8G8R8A8_UNORM);
+    const uint8_t b[4] = {10, 20, 30, 40};  // B, G, R, A in memory
+    const blit::Rgba c = blit::decode(bgra8, b, true);
+    EXPECT_EQ(c[0], 30.0f * (1.0f / 255.0f));
+    EXPECT_EQ(c[2], 10.0f * (1.0f / 255.0f));
+    const FormatInfo& r8 = *find_format(VK_FORMAT_R8_UNORM);
+    const uint8_t one = 7;
+    const blit::Rgba rc = blit::decode(r8, &one, true);
+    EXPECT_EQ(rc[1], 0.0f);
+    EXPECT_EQ(rc[3], 1.0f);
+    const FormatInfo& half = *find_format(VK_FORMAT_R16G16B16A16_SFLOAT);
+    for (uint32_t h = 0; h < 0x7c00; h += 37) {  // finite non-negative halves
+        const uint16_t in[4] = {uint16_t(h), uint16_t(h + 1), 0x3c00, 0};
+        uint16_t out[4];
+        blit::encode(half, blit::decode(half, reinterpret_cast<const uint8_t*>(in), true),
+                     reinterpret_cast<uint8_t*>(out), true);
+        EXPECT_EQ(std::memcmp(in, out, 8), 0) << h;
+    }
+    // D16: every value survives decode -> encode (u * fl(1/65535), then the +128 store trick)
+    const FormatInfo& d16 = *find_format(VK_FORMAT_D16_UNORM);
+    for (uint32_t d = 0; d < 65536; ++d) {
+        const uint16_t in = uint16_t(d);
+        uint16_t out;
+        blit::encode(d16, blit::decode(d16, reinterpret_cast<const uint8_t*>(&in), true),
+                     reinterpret_cast<uint8_t*>(&out), true);
+        ASSERT_EQ(in, out) << d;
+    }
+}
+
+}  // namespace
+}  // namespace tilevk::icd
