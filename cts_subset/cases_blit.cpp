@@ -208,6 +208,8 @@ std::vector<Plane> run_blit(const DeviceContext& c, const BlitSpec& s) {
     if (!init_copies.empty())
         vkCmdCopyBufferToImage(cb, init, dst, kDstL, uint32_t(init_copies.size()), init_copies.data());
     vkCmdCopyBufferToImage(cb, up, src, kDstL, uint32_t(up_copies.size()), up_copies.data());
+    // The blit overwrites texels the copies above just wrote: order the two writes (write-after-write).
+    barrier(cb, dst, da, kDstL, kDstL, 0, dst_levels);
     if (s.mip_chain) {
         for (uint32_t l = 1; l < s.src_levels; ++l) {
             barrier(cb, src, sa, kDstL, kSrcL, l - 1, 1);
