@@ -59,8 +59,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceQueue(VkDevice device, uint32_t, uint32_
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_DeviceWaitIdle(VkDevice device) {
     // Submissions execute synchronously inside vkQueueSubmit; taking the queue lock waits for one in flight.
-    std::lock_guard<std::mutex> lock(from_handle<Device>(device)->queue->submit_mutex);
-    return VK_SUCCESS;
+    Device* dev = from_handle<Device>(device);
+    std::lock_guard<std::mutex> lock(dev->queue->submit_mutex);
+    return dev->lost ? VK_ERROR_DEVICE_LOST : VK_SUCCESS;
 }
 
 }  // namespace tilevk::icd

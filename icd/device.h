@@ -1,5 +1,6 @@
 // VkDevice and its single VkQueue.
 #pragma once
+#include <atomic>
 #include <mutex>
 
 #include "object.h"
@@ -16,7 +17,8 @@ struct Queue : DispatchableObject {
     Queue() : DispatchableObject(kType) {}
     Device* device = nullptr;
     std::mutex submit_mutex;
-    DrawContext* draw = nullptr;  // the queue's renderer, created at the first submission (execute_draw.cpp)  // vkQueueSubmit executes command buffers in order, one submission at a time
+    DrawContext* draw = nullptr;  // the queue's renderer, created at the first submission (execute_draw.cpp)  //
+                                  // vkQueueSubmit executes command buffers in order, one submission at a time
 };
 TILEVK_ASSERT_DISPATCHABLE(Queue);
 
@@ -27,6 +29,9 @@ struct Device : DispatchableObject {
     PhysicalDevice* physical_device = nullptr;
     Queue* queue = nullptr;
     VkPhysicalDeviceFeatures enabled_features{};
+    // Set when a submission could not be executed faithfully (a shader that never terminated was cut short by the
+    // loop watchdog): from then on submissions and waits return VK_ERROR_DEVICE_LOST, as after a GPU hang.
+    std::atomic<bool> lost{false};
 };
 TILEVK_ASSERT_DISPATCHABLE(Device);
 

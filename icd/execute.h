@@ -51,6 +51,8 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st);
 // ---- draws (execute_draw.cpp) ----
 DrawContext* create_draw_context();
 void destroy_draw_context(DrawContext* ctx);
+// Shader runs the loop watchdog has cut short on this context so far (shader::Scratch::loop_limit_hits).
+uint64_t shader_watchdog_hits(const DrawContext& ctx);
 // vkCmdBind* / vkCmdSet*: updates st.bound.
 void exec_state_command(ExecState& st, const Cmd& cmd);
 // vkCmdDraw*: renders into the current subpass (the renderer starts lazily at the subpass's first draw).

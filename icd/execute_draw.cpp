@@ -52,6 +52,9 @@ DrawContext* create_draw_context() {
 void destroy_draw_context(DrawContext* ctx) {
     delete ctx;
 }
+uint64_t shader_watchdog_hits(const DrawContext& ctx) {
+    return ctx.renderer.shader_loop_limit_hits();
+}
 
 namespace {
 

@@ -50,6 +50,12 @@ namespace {
 std::atomic<int> g_fast_paths{-1};  // -1: not read from the environment yet
 }  // namespace
 
+uint64_t FragmentStage::loop_limit_hits() const {
+    uint64_t hits = 0;
+    for (const auto& w : workers_) hits += w->scratch.loop_limit_hits();
+    return hits;
+}
+
 void set_fragment_fast_paths(bool on) {
     g_fast_paths.store(on ? 1 : 0);
 }

@@ -38,6 +38,9 @@ class FragmentStage final : public CoverageConsumer {
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
     void end_tile(unsigned worker, const TileInfo& tile) override;
 
+    // Fragment-shader runs the loop watchdog cut short so far (shader::Scratch::loop_limit_hits of every worker).
+    uint64_t loop_limit_hits() const;
+
     struct DrawPlan;  // what the fast path derived from one draw's state (fragment_stage.cpp)
 
   private:

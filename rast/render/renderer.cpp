@@ -74,6 +74,12 @@ bool Renderer::fused() {
     return value;
 }
 
+uint64_t Renderer::shader_loop_limit_hits() const {
+    uint64_t hits = fragment_->loop_limit_hits();
+    for (const auto& s : scratch_) hits += s->loop_limit_hits();
+    return hits;
+}
+
 Renderer::Renderer(ThreadPool& pool, Method method) : pool_(pool), method_(method) {
     for (unsigned i = 0; i < pool_.num_workers(); ++i) scratch_.push_back(std::make_unique<shader::Scratch>());
     fragment_ = std::make_unique<FragmentStage>();

@@ -39,6 +39,10 @@ class Renderer {
     // Whether lavapipe's viewport/interpolation fmuladds are fused (host FMA) — one decision for the process.
     static bool fused();
 
+    // Shader runs (vertex and fragment) that the loop watchdog cut short since this renderer was made. A non-zero
+    // increase means some shader did not terminate: its outputs are incomplete and the driver must say so.
+    uint64_t shader_loop_limit_hits() const;
+
   private:
     void flush();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);

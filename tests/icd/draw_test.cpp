@@ -12,6 +12,7 @@ namespace {
 
 #include "color_frag.h"
 #include "draw_vert.h"
+#include "endless_vert.h"
 #include "texture_frag.h"
 
 using tilevk::test::Device;
@@ -35,6 +36,8 @@ struct Scene {
     bool blend = false;                                     // src alpha over
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // 4: resolved into the 1x read-back image
     bool texture = false;                                   // 4x4 RGBA8 texture sampled (nearest) at v_color.xy
+    bool endless_vertex_loop = false;                       // a vertex shader whose loop never terminates
+    VkResult* draw_result = nullptr;                        // receives the draw submission's result if set
 };
 
 VkShaderModule module(VkDevice d, const uint32_t* code, size_t bytes) {
@@ -172,7 +175,8 @@ Bytes render(Device& dev, const Scene& s) {
     EXPECT_EQ(vkCreatePipelineLayout(d, &plci, nullptr, &layout), VK_SUCCESS);
 
     // Pipeline.
-    VkShaderModule vs = module(d, draw_vert, sizeof draw_vert);
+    VkShaderModule vs =
+        s.endless_vertex_loop ? module(d, endless_vert, sizeof endless_vert) : module(d, draw_vert, sizeof draw_vert);
     VkShaderModule fs =
         s.texture ? module(d, texture_frag, sizeof texture_frag) : module(d, color_frag, sizeof color_frag);
     VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
@@ -268,7 +272,7 @@ Bytes render(Device& dev, const Scene& s) {
         dev.destroy(texels);
     }
 
-    dev.run([&](VkCommandBuffer c) {
+    const VkResult drawn = dev.run([&](VkCommandBuffer c) {
         VkClearValue clears[3] = {};
         clears[0].color = {{0.0f, 0.0f, 0.25f, 1.0f}};
         if (s.depth) clears[depth_ref.attachment].depthStencil = {1.0f, 0};
@@ -295,6 +299,10 @@ Bytes render(Device& dev, const Scene& s) {
         r.imageExtent = {kSize, kSize, 1};
         vkCmdCopyImageToBuffer(c, out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &r);
     });
+    if (s.draw_result != nullptr)
+        *s.draw_result = drawn;
+    else
+        EXPECT_EQ(drawn, VK_SUCCESS);
     Bytes bytes(static_cast<uint8_t*>(staging.map), static_cast<uint8_t*>(staging.map) + staging.size);
 
     dev.destroy(staging);
@@ -426,6 +434,34 @@ TEST_F(Draw, TextureSample) {
     EXPECT_EQ(pixel(b, 0, 0)[0], 0);             // texel 0
     EXPECT_EQ(pixel(b, 9, 0)[0], 16);            // texel 1 (x 9.5/32*4 = 1.19)
     EXPECT_EQ(pixel(b, 0, 9)[1], 255 - 4 * 13);  // texel 4
+}
+
+// A shader that never terminates is cut short by the loop watchdog (shader/README.md). tilevk must not present the
+// incomplete image as valid: the submission reports VK_ERROR_DEVICE_LOST, as a hung GPU would, and the device stays
+// lost. Another device of the same driver is unaffected. (lavapipe would hang, so this runs on tilevk only.)
+TEST_F(Draw, EndlessShaderLosesTheDevice) {
+    Device lost(harness_->find_device("tilevk"));
+    ASSERT_TRUE(lost.ok());
+    VkResult result = VK_SUCCESS;
+    Scene s;
+    s.endless_vertex_loop = true;
+    s.draw_result = &result;
+    s.vertices = {v(-0.8f, -0.8f, 0, 1, 0, 0), v(0.8f, -0.6f, 0, 0, 1, 0), v(-0.2f, 0.9f, 0, 0, 0, 1)};
+    render(lost, s);
+    EXPECT_EQ(result, VK_ERROR_DEVICE_LOST);
+    // Lost for good: the next (harmless) submission and the idle waits report it too.
+    Scene plain;
+    plain.draw_result = &result;
+    plain.vertices = s.vertices;
+    result = VK_SUCCESS;
+    render(lost, plain);
+    EXPECT_EQ(result, VK_ERROR_DEVICE_LOST);
+    EXPECT_EQ(vkDeviceWaitIdle(lost.device()), VK_ERROR_DEVICE_LOST);
+    // The shared tilevk device still renders, equal to lavapipe.
+    Scene fine;
+    fine.vertices = s.vertices;
+    const Bytes b = both(fine);
+    EXPECT_NE(pixel(b, 10, 12)[2], kClearBlue);
 }
 
 }  // namespace

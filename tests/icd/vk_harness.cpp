@@ -180,7 +180,7 @@ void Device::destroy(Image& i) {
     i = {};
 }
 
-void Device::run(const std::function<void(VkCommandBuffer)>& record) {
+VkResult Device::run(const std::function<void(VkCommandBuffer)>& record) {
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = pool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -198,10 +198,12 @@ void Device::run(const std::function<void(VkCommandBuffer)>& record) {
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cb;
-    vkQueueSubmit(queue_, 1, &si, fence);
-    vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+    VkResult result = vkQueueSubmit(queue_, 1, &si, fence);
+    const VkResult waited = vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX);
+    if (result == VK_SUCCESS) result = waited;
     vkDestroyFence(device_, fence, nullptr);
     vkFreeCommandBuffers(device_, pool_, 1, &cb);
+    return result;
 }
 
 void transition(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspects, VkImageLayout from, VkImageLayout to,

@@ -60,8 +60,8 @@ class Device {
     Image make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
                      VkSampleCountFlagBits samples, VkImageUsageFlags usage);
     void destroy(Image& i);
-    // Records with `record`, submits with a fence and waits.
-    void run(const std::function<void(VkCommandBuffer)>& record);
+    // Records with `record`, submits with a fence and waits. Returns the submission's result, else the wait's.
+    VkResult run(const std::function<void(VkCommandBuffer)>& record);
 
   private:
     uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
