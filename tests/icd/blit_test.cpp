@@ -464,7 +464,9 @@ TEST_F(Blit, WritesOnlyTheDestinationBox) {
     for (uint32_t y = 0; y < 32; ++y)
         for (uint32_t x = 0; x < 32; ++x) {
             const bool inside = x >= 5 && x < 17 && y >= 6 && y < 11;
-            if (!inside) ASSERT_EQ(texel32(out, 32, x, y), texel32(init, 32, x, y)) << x << "," << y;
+            if (!inside) {
+                ASSERT_EQ(texel32(out, 32, x, y), texel32(init, 32, x, y)) << x << "," << y;
+            }
         }
 }
 
