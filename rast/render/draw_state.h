@@ -79,6 +79,10 @@ struct DrawCall {
     uint32_t index_bytes = 0;                         // bytes available from index_data
     uint32_t index_size = 4;                          // 2 or 4
     std::vector<VertexBufferBinding> vertex_buffers;  // indexed by binding number
+    // Occlusion query: when set, the number of samples of this draw that pass every per-sample test (the final
+    // per-sample masks after the late depth/stencil test, as lavapipe counts them) is added here when the draw's
+    // tiles are rendered (Renderer::end or a mid-pass flush). Must stay valid until then.
+    uint64_t* samples_passed = nullptr;
 };
 
 }  // namespace tilevk::rast::render

@@ -23,6 +23,7 @@ struct FragmentStage::Worker {
     // The primitive whose uniform shader result block.outputs holds (DrawPlan::uniform_shader), or null.
     const PrimRecord* uniform_prim = nullptr;
     bool uniform_front = false;
+    std::vector<uint64_t> samples_passed;  // per draw record of the current scene
 };
 
 // One shader input component the fast path interpolates.
@@ -49,6 +50,13 @@ struct FragmentStage::DrawPlan {
 namespace {
 std::atomic<int> g_fast_paths{-1};  // -1: not read from the environment yet
 }  // namespace
+
+uint64_t FragmentStage::samples_passed(uint32_t draw) const {
+    uint64_t n = 0;
+    for (const auto& w : workers_)
+        if (draw < w->samples_passed.size()) n += w->samples_passed[draw];
+    return n;
+}
 
 uint64_t FragmentStage::loop_limit_hits() const {
     uint64_t hits = 0;
@@ -145,6 +153,16 @@ void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int
     }
 }
 
+// Occlusion counting: lavapipe adds popcount of the post-depth/stencil mask per sample (lp_state_fs.c,
+// lp_build_occlusion_count inside the sample loop under MSAA), i.e. after discard, alpha to coverage, the shader's
+// sample mask and the late test. The final masks here are exactly those.
+template <class W>
+inline void count_passed(W& w, uint32_t draw, const uint16_t final_mask[4], int samples) {
+    uint64_t n = 0;
+    for (int s = 0; s < samples; ++s) n += uint64_t(std::popcount(final_mask[s]));
+    w.samples_passed[draw] += n;
+}
+
 // What the fast path needs to know about a draw, derived once per scene.
 FragmentStage::DrawPlan make_plan(const DrawRecord& draw, const Framebuffer& fb) {
     FragmentStage::DrawPlan plan;
@@ -217,7 +235,10 @@ void FragmentStage::prepare(const Framebuffer& fb, const std::deque<DrawRecord>&
     fused_ = fused;
     fast_ = fragment_fast_paths();
     while (workers_.size() < workers) workers_.push_back(std::make_unique<Worker>());
-    for (auto& w : workers_) w->uniform_prim = nullptr;  // prim records are rebuilt for every scene
+    for (auto& w : workers_) {
+        w->uniform_prim = nullptr;  // prim records are rebuilt for every scene
+        w->samples_passed.assign(draws.size(), 0);
+    }
     plans_.clear();
     if (fast_) {
         plans_.reserve(draws.size());
@@ -411,6 +432,7 @@ void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRec
             final_mask[s] &= late_pass;
         }
     }
+    count_passed(w, prim.draw, final_mask, samples);
     if (!fs) return;
 
     // Blend and write each colour target, per sample plane.
@@ -593,6 +615,7 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
             final_mask[s] &= late_pass;
         }
     }
+    count_passed(w, prim.draw, final_mask, samples);
     if (!fs) return;
 
     fragment::BlendOptions opt;

@@ -38,6 +38,11 @@ class FragmentStage final : public CoverageConsumer {
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
     void end_tile(unsigned worker, const TileInfo& tile) override;
 
+    // Samples of draw record `draw` that passed every per-sample test in the scene last rasterized: the sum of
+    // popcount(final mask) per sample plane over all blocks. Counted per (draw, worker), so no two threads share a
+    // counter and the sum does not depend on the thread count or on which worker rendered which tile.
+    uint64_t samples_passed(uint32_t draw) const;
+
     // Fragment-shader runs the loop watchdog cut short so far (shader::Scratch::loop_limit_hits of every worker).
     uint64_t loop_limit_hits() const;
 

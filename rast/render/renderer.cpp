@@ -111,6 +111,8 @@ void Renderer::flush() {
     if (!prims_.empty()) {
         fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
         scene_->rasterize(*fragment_, pool_);
+        for (uint32_t d = 0; d < draws_.size(); ++d)
+            if (uint64_t* sink = draws_[d].samples_passed) *sink += fragment_->samples_passed(d);
     }
     scene_->reset();
     // Draw records stay referenced by nothing once the scene is rendered.
@@ -144,6 +146,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     const uint32_t draw_index = static_cast<uint32_t>(draws_.size());
     DrawRecord& rec = draws_.emplace_back();
     rec.pipe = &pipe;
+    rec.samples_passed = call.samples_passed;
     rec.bindings = bindings;
     rec.push_constants.assign(bindings.push_constants.begin(), bindings.push_constants.end());
     rec.bindings.push_constants = rec.push_constants;

@@ -32,6 +32,7 @@ struct DrawRecord {
     uint8_t depth_mode = 0;                     // fragment::DepthModeBits
     bool is_clear = false;
     ClearRecord clear;
+    uint64_t* samples_passed = nullptr;  // DrawCall::samples_passed
 };
 
 enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear };

@@ -4,6 +4,7 @@
 // every depth compare, clamp, blending, write masks, alpha to coverage, perspective and flat inputs, discard,
 // FragCoord, FragDepth, FrontFacing — are rendered both ways and compared byte for byte (colour, depth, stencil).
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cstring>
 #include <random>
@@ -80,6 +81,7 @@ struct Vertex {
 
 struct Targets {
     std::vector<uint8_t> color0, color1, depth, stencil;
+    std::vector<uint64_t> passed;  // occlusion count per draw (DrawCall::samples_passed)
 };
 
 struct SceneDesc {
@@ -238,8 +240,10 @@ class FragmentStageTest : public ::testing::Test {
         ThreadPool pool(threads);
         Renderer r(pool);
         r.begin(fb);
+        t.passed.assign(d.pipes.size(), 0);
         for (size_t i = 0; i < d.pipes.size(); ++i) {
             DrawCall call;
+            call.samples_passed = &t.passed[i];
             call.count = uint32_t(d.draws[i].size());
             call.vertex_buffers = {
                 {reinterpret_cast<const uint8_t*>(d.draws[i].data()), uint32_t(d.draws[i].size() * sizeof(Vertex))}};
@@ -257,6 +261,7 @@ class FragmentStageTest : public ::testing::Test {
 TEST_F(FragmentStageTest, FastPathWritesTheReferenceBytes) {
     std::mt19937 rng(2024);
     int changed = 0;
+    long counted = 0;  // draws whose count is not zero
     for (int iter = 0; iter < 300; ++iter) {
         const SceneDesc d = random_scene(rng, iter);
         const Targets ref = render(d, false, 1);
@@ -265,10 +270,14 @@ TEST_F(FragmentStageTest, FastPathWritesTheReferenceBytes) {
         ASSERT_TRUE(fast.color1 == ref.color1) << "colour 1, iter " << iter << ": " << describe(d);
         ASSERT_TRUE(fast.depth == ref.depth) << "depth, iter " << iter << ": " << describe(d);
         ASSERT_TRUE(fast.stencil == ref.stencil) << "stencil, iter " << iter << ": " << describe(d);
+        // Occlusion counts: the same on both paths and any thread count (per (draw, worker) counters).
+        ASSERT_TRUE(fast.passed == ref.passed) << "samples passed, iter " << iter << ": " << describe(d);
+        counted += std::count_if(ref.passed.begin(), ref.passed.end(), [](uint64_t n) { return n != 0; });
         // the scenes must draw something, or the comparison proves nothing
         changed += ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35);
     }
     EXPECT_GT(changed, 200);
+    EXPECT_GT(counted, 300);
 }
 
 TEST_F(FragmentStageTest, SwitchReadsBack) {
