@@ -1,12 +1,15 @@
 // vkCmd*: every command is recorded as a plain struct (commands.h); execution happens at vkQueueSubmit.
 #include "command_buffer.h"
 
+#include <atomic>
+
 #include "buffer.h"
 #include "descriptor_pool.h"
 #include "entrypoints.h"
 #include "framebuffer.h"
 #include "image.h"
 #include "pipeline.h"
+#include "query_pool.h"
 #include "render_pass.h"
 #include "sync.h"
 
@@ -381,6 +384,75 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexedIndirect(VkCommandBuffer commandBuf
         c->draw_count = drawCount;
         c->stride = stride;
     }
+}
+
+// ---- queries (executed in execute_query.cpp) -----------------------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginQuery(VkCommandBuffer commandBuffer, VkQueryPool queryPool, uint32_t query,
+                                             VkQueryControlFlags) {
+    // PRECISE or not, the count is exact (occlusionQueryPrecise is reported), as in lavapipe.
+    if (auto* c = cb_of(commandBuffer)->append<CmdBeginQuery>()) {
+        c->pool = from_handle<QueryPool>(queryPool);
+        c->query = query;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdEndQuery(VkCommandBuffer commandBuffer, VkQueryPool queryPool, uint32_t query) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdEndQuery>()) {
+        c->pool = from_handle<QueryPool>(queryPool);
+        c->query = query;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdResetQueryPool(VkCommandBuffer commandBuffer, VkQueryPool queryPool,
+                                                 uint32_t firstQuery, uint32_t queryCount) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdResetQueryPool>()) {
+        c->pool = from_handle<QueryPool>(queryPool);
+        c->first = firstQuery;
+        c->count = queryCount;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdWriteTimestamp(VkCommandBuffer commandBuffer, VkPipelineStageFlagBits pipelineStage,
+                                                 VkQueryPool queryPool, uint32_t query) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdWriteTimestamp>()) {
+        c->stage = pipelineStage;
+        c->pool = from_handle<QueryPool>(queryPool);
+        c->query = query;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyQueryPoolResults(VkCommandBuffer commandBuffer, VkQueryPool queryPool,
+                                                       uint32_t firstQuery, uint32_t queryCount, VkBuffer dstBuffer,
+                                                       VkDeviceSize dstOffset, VkDeviceSize stride,
+                                                       VkQueryResultFlags flags) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdCopyQueryPoolResults>()) {
+        c->pool = from_handle<QueryPool>(queryPool);
+        c->first = firstQuery;
+        c->count = queryCount;
+        c->dst = from_handle<Buffer>(dstBuffer);
+        c->offset = dstOffset;
+        c->stride = stride;
+        c->flags = flags;
+    }
+}
+
+// ---- compute ---------------------------------------------------------------------------------------------------
+// No queue family has VK_QUEUE_COMPUTE_BIT and compute pipelines cannot be created, so a dispatch has nothing to
+// run: it is not recorded, and said so once per process.
+namespace {
+void refuse_dispatch(const char* name) {
+    static std::atomic<bool> said{false};
+    if (!said.exchange(true))
+        log_error("%s: tilevk has no compute queue and runs no compute shaders; the dispatch does nothing", name);
+}
+}  // namespace
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatch(VkCommandBuffer, uint32_t, uint32_t, uint32_t) {
+    refuse_dispatch("vkCmdDispatch");
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatchIndirect(VkCommandBuffer, VkBuffer, VkDeviceSize) {
+    refuse_dispatch("vkCmdDispatchIndirect");
 }
 
 }  // namespace tilevk::icd

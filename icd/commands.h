@@ -17,6 +17,7 @@ struct DescriptorSet;
 struct RenderPass;
 struct Framebuffer;
 struct CommandBuffer;
+struct QueryPool;
 
 enum class CmdType : uint8_t {
     // transfer
@@ -61,6 +62,12 @@ enum class CmdType : uint8_t {
     kDrawIndexedIndirect,
     // secondary command buffers
     kExecuteCommands,
+    // queries (execute_query.cpp)
+    kBeginQuery,
+    kEndQuery,
+    kResetQueryPool,
+    kWriteTimestamp,
+    kCopyQueryPoolResults,
 };
 
 struct Cmd {
@@ -237,6 +244,30 @@ struct CmdDrawIndexedIndirect : CmdOf<CmdType::kDrawIndexedIndirect> {
 struct CmdExecuteCommands : CmdOf<CmdType::kExecuteCommands> {
     uint32_t count;
     CommandBuffer* const* buffers;
+};
+struct CmdBeginQuery : CmdOf<CmdType::kBeginQuery> {
+    QueryPool* pool;
+    uint32_t query;
+};
+struct CmdEndQuery : CmdOf<CmdType::kEndQuery> {
+    QueryPool* pool;
+    uint32_t query;
+};
+struct CmdResetQueryPool : CmdOf<CmdType::kResetQueryPool> {
+    QueryPool* pool;
+    uint32_t first, count;
+};
+struct CmdWriteTimestamp : CmdOf<CmdType::kWriteTimestamp> {
+    VkPipelineStageFlagBits stage;
+    QueryPool* pool;
+    uint32_t query;
+};
+struct CmdCopyQueryPoolResults : CmdOf<CmdType::kCopyQueryPoolResults> {
+    QueryPool* pool;
+    uint32_t first, count;
+    Buffer* dst;
+    VkDeviceSize offset, stride;
+    VkQueryResultFlags flags;
 };
 
 }  // namespace tilevk::icd

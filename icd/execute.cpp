@@ -179,6 +179,13 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
                 for (uint32_t i = 0; i < c->count; ++i) execute_command_buffer(c->buffers[i], st);
                 break;
             }
+            case CmdType::kBeginQuery:
+            case CmdType::kEndQuery:
+            case CmdType::kResetQueryPool:
+            case CmdType::kWriteTimestamp:
+            case CmdType::kCopyQueryPoolResults:
+                exec_query_command(st, *cmd);
+                break;
             case CmdType::kDraw:
             case CmdType::kDrawIndexed:
             case CmdType::kDrawIndirect:

@@ -3,6 +3,9 @@
 #include "command_buffer.h"
 #include "formats.h"
 
+#include <utility>
+#include <vector>
+
 namespace tilevk::icd {
 
 struct Image;
@@ -12,6 +15,7 @@ struct Framebuffer;
 struct Pipeline;
 struct DescriptorSet;
 struct Buffer;
+struct QueryPool;
 struct DrawContext;  // execute_draw.cpp: one renderer per queue
 
 // Bound draw state (vkCmdBind*, vkCmdSet*): lives for one command buffer.
@@ -44,6 +48,12 @@ struct ExecState {
     VkRect2D area{};
     const VkClearValue* clears = nullptr;
     bool draw_warned = false;
+    // The active occlusion query (at most one per command buffer): draws add their passing samples to it.
+    QueryPool* occlusion_pool = nullptr;
+    uint32_t occlusion_query = 0;
+    // Queries ended inside a render pass: their last draws may still be binned; they become available when the
+    // renderer's pass ends (finish_rendering).
+    std::vector<std::pair<QueryPool*, uint32_t>> ended_in_pass;
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
@@ -59,6 +69,16 @@ void exec_state_command(ExecState& st, const Cmd& cmd);
 void exec_draw_command(ExecState& st, const Cmd& cmd);
 // Ends the renderer's pass if one is running: renders what is binned and writes the targets back.
 void finish_rendering(ExecState& st);
+
+// ---- queries (execute_query.cpp) ----
+void exec_query_command(ExecState& st, const Cmd& cmd);
+// Makes the queries ended while draws were binned available (called once the binned draws are rendered).
+void publish_ended_queries(ExecState& st);
+// After a primary command buffer: a query left active (never ended: invalid usage) is ended with a message, so
+// that no host waits for it forever.
+void finish_queries(ExecState& st);
+// The sample counter of the active occlusion query, or null.
+uint64_t* active_occlusion_counter(const ExecState& st);
 
 // ---- transfer operations (execute_transfer.cpp) ----
 void exec_copy_buffer(const CmdCopyBuffer& c);

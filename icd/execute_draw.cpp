@@ -293,6 +293,7 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
     }
     shader::Bindings bindings;
     build_bindings(st, bindings);
+    call.samples_passed = active_occlusion_counter(st);
     const std::string err = ctx.renderer.draw(draw_state(st), call, bindings);
     if (!err.empty() && !ctx.warned) {
         log_error("vkQueueSubmit: a draw was not rendered: %s", err.c_str());
@@ -304,14 +305,17 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
 
 void finish_rendering(ExecState& st) {
     DrawContext& ctx = *st.draw;
-    if (!ctx.active) return;
-    ctx.renderer.end();
-    for (Staged& s : ctx.staged) copy_planes(s, false);
-    ctx.staged.clear();
-    ctx.states.clear();
-    ctx.views.clear();
-    ctx.samplers.clear();
-    ctx.active = false;
+    if (ctx.active) {
+        ctx.renderer.end();
+        for (Staged& s : ctx.staged) copy_planes(s, false);
+        ctx.staged.clear();
+        ctx.states.clear();
+        ctx.views.clear();
+        ctx.samplers.clear();
+        ctx.active = false;
+    }
+    // The draws of queries ended in this pass are rendered (and counted) now.
+    publish_ended_queries(st);
 }
 
 void exec_state_command(ExecState& st, const Cmd& cmd) {

@@ -99,7 +99,8 @@ VkPhysicalDeviceLimits make_limits() {
     l.sampledImageStencilSampleCounts = kSampleCounts;
     l.storageImageSampleCounts = VK_SAMPLE_COUNT_1_BIT;
     l.maxSampleMaskWords = 1;
-    l.timestampComputeAndGraphics = VK_FALSE;
+    // vkCmdWriteTimestamp reads the host's monotonic clock in nanoseconds (query_pool.cpp), on the one graphics queue.
+    l.timestampComputeAndGraphics = VK_TRUE;
     l.timestampPeriod = 1.0f;
     l.maxClipDistances = 0;  // shaderClipDistance is off
     l.maxCullDistances = 0;
@@ -147,6 +148,7 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     features.independentBlend = VK_TRUE;
     features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
     features.wideLines = VK_TRUE;
+    features.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
     features.fillModeNonSolid = VK_TRUE;  // rast/render: draw's unfilled stage (edges / corners after culling)    //
                                           // rast/geometry setup_line: rectangular lines of any width
 
@@ -184,7 +186,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceQueueFamilyProperties(VkPhysical
     // No compute: tilevk does not dispatch compute shaders, so it does not claim the bit.
     pProps[0].queueFlags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_TRANSFER_BIT;
     pProps[0].queueCount = 1;
-    pProps[0].timestampValidBits = 0;
+    pProps[0].timestampValidBits = 64;  // nanoseconds of CLOCK_MONOTONIC
     pProps[0].minImageTransferGranularity = {1, 1, 1};
     *pCount = 1;
 }

@@ -28,6 +28,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
             st.draw = q->draw;
             const uint64_t hits_before = shader_watchdog_hits(*q->draw);
             execute_command_buffer(from_handle<CommandBuffer>(s.pCommandBuffers[j]), st);
+            finish_queries(st);
             if (const uint64_t hits = shader_watchdog_hits(*q->draw) - hits_before; hits != 0) {
                 // A shader looped past the watchdog (shader/README.md): its results are incomplete. A GPU would
                 // hang here; tilevk reports the device as lost instead of presenting a wrong image as valid.
@@ -52,6 +53,14 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueWaitIdle(VkQueue queue) {
     Queue* q = from_handle<Queue>(queue);
     std::lock_guard<std::mutex> lock(q->submit_mutex);
     return q->device->lost ? VK_ERROR_DEVICE_LOST : VK_SUCCESS;
+}
+
+// The queue family has no VK_QUEUE_SPARSE_BINDING_BIT and no sparse feature is reported, so no resource can be
+// sparse and nothing can be bound: refuse the call (nothing is executed, semaphores and the fence are left alone).
+VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueBindSparse(VkQueue, uint32_t bindInfoCount, const VkBindSparseInfo*, VkFence) {
+    return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                "vkQueueBindSparse: tilevk's queue does not support sparse binding (%u bind info(s) refused)",
+                bindInfoCount);
 }
 
 }  // namespace tilevk::icd

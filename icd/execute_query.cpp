@@ -1,0 +1,112 @@
+// Query commands at vkQueueSubmit: begin/end (occlusion), reset, timestamps, copies of results into a buffer.
+// Occlusion counts come from rast/render: each draw recorded while a query is active carries a pointer to the
+// query's value (DrawCall::samples_passed), to which the renderer adds the draw's passing samples once its tiles
+// are rendered.
+#include <cinttypes>
+
+#include "buffer.h"
+#include "execute.h"
+#include "query_pool.h"
+
+namespace tilevk::icd {
+
+uint64_t* active_occlusion_counter(const ExecState& st) {
+    if (st.occlusion_pool == nullptr || st.occlusion_query >= st.occlusion_pool->count) return nullptr;
+    return &st.occlusion_pool->slots[st.occlusion_query].value;
+}
+
+void publish_ended_queries(ExecState& st) {
+    for (auto [pool, query] : st.ended_in_pass) pool->make_available(query);
+    st.ended_in_pass.clear();
+}
+
+void finish_queries(ExecState& st) {
+    if (st.occlusion_pool != nullptr) {
+        log_error("vkQueueSubmit: occlusion query %u was begun and never ended in its command buffer; ended now",
+                  st.occlusion_query);
+        st.ended_in_pass.emplace_back(st.occlusion_pool, st.occlusion_query);
+        st.occlusion_pool = nullptr;
+    }
+    finish_rendering(st);  // renders anything left binned (invalid usage: a render pass left open) and publishes
+}
+
+namespace {
+
+void begin_query(ExecState& st, const CmdBeginQuery& c) {
+    if (c.pool->type != VK_QUERY_TYPE_OCCLUSION) {
+        log_error("vkCmdBeginQuery: query pool of type %d cannot be begun; ignored", int(c.pool->type));
+        return;
+    }
+    if (c.query >= c.pool->count) {
+        log_error("vkCmdBeginQuery: query %u is outside the pool of %u; ignored", c.query, c.pool->count);
+        return;
+    }
+    c.pool->begin(c.query);
+    st.occlusion_pool = c.pool;
+    st.occlusion_query = c.query;
+}
+
+void end_query(ExecState& st, const CmdEndQuery& c) {
+    if (c.pool != st.occlusion_pool || c.query != st.occlusion_query) {
+        log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", c.query);
+        return;
+    }
+    st.occlusion_pool = nullptr;
+    if (st.render_pass != nullptr)
+        st.ended_in_pass.emplace_back(c.pool, c.query);  // its draws may still be binned
+    else
+        c.pool->make_available(c.query);
+}
+
+void write_timestamp(ExecState& st, const CmdWriteTimestamp& c) {
+    // Draws are binned until the renderer's pass ends; a timestamp after any stage but the top of the pipe must
+    // follow their rendering, so it renders them first (lavapipe flushes its context the same way).
+    if (c.stage != VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT) finish_rendering(st);
+    if (c.pool->type != VK_QUERY_TYPE_TIMESTAMP || c.query >= c.pool->count) {
+        log_error("vkCmdWriteTimestamp: query %u of a pool of type %d and %u queries cannot take a timestamp; ignored",
+                  c.query, int(c.pool->type), c.pool->count);
+        return;
+    }
+    c.pool->write_timestamp(c.query, timestamp_now_ns());
+}
+
+void copy_results(const CmdCopyQueryPoolResults& c) {
+    const Buffer* b = c.dst;
+    if (b == nullptr || b->memory == nullptr || c.offset > b->size) {
+        log_error("vkCmdCopyQueryPoolResults: destination buffer unbound or offset %" PRIu64 " out of range; skipped",
+                  uint64_t(c.offset));
+        return;
+    }
+    // Execution is in order, so every query ended earlier in the stream is available already: WAIT has nothing to
+    // wait for, and a query still unavailable here could only be made available by a later submission.
+    write_query_results(*c.pool, c.first, c.count, b->data() + c.offset, size_t(b->size - c.offset), c.stride, c.flags,
+                        false);
+}
+
+}  // namespace
+
+void exec_query_command(ExecState& st, const Cmd& cmd) {
+    switch (cmd.type) {
+        case CmdType::kBeginQuery:
+            begin_query(st, static_cast<const CmdBeginQuery&>(cmd));
+            break;
+        case CmdType::kEndQuery:
+            end_query(st, static_cast<const CmdEndQuery&>(cmd));
+            break;
+        case CmdType::kResetQueryPool: {
+            const auto& c = static_cast<const CmdResetQueryPool&>(cmd);
+            c.pool->reset(c.first, c.count);
+            break;
+        }
+        case CmdType::kWriteTimestamp:
+            write_timestamp(st, static_cast<const CmdWriteTimestamp&>(cmd));
+            break;
+        case CmdType::kCopyQueryPoolResults:
+            copy_results(static_cast<const CmdCopyQueryPoolResults&>(cmd));
+            break;
+        default:
+            break;
+    }
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,127 @@
+// vkCreateQueryPool, vkDestroyQueryPool, vkGetQueryPoolResults and the slot bookkeeping shared with execution.
+#include "query_pool.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "device.h"
+#include "entrypoints.h"
+
+namespace tilevk::icd {
+
+void QueryPool::reset(uint32_t first, uint32_t n) {
+    std::lock_guard lock(mutex);
+    for (uint32_t i = first; i < first + n && i < count; ++i) slots[i] = Slot{};
+}
+
+void QueryPool::begin(uint32_t query) {
+    if (query >= count) return;
+    std::lock_guard lock(mutex);
+    slots[query] = Slot{0, State::kPending};
+}
+
+void QueryPool::make_available(uint32_t query) {
+    if (query >= count) return;
+    {
+        std::lock_guard lock(mutex);
+        slots[query].state = State::kAvailable;
+    }
+    available_cv.notify_all();
+}
+
+void QueryPool::write_timestamp(uint32_t query, uint64_t ns) {
+    if (query >= count) return;
+    {
+        std::lock_guard lock(mutex);
+        slots[query] = Slot{ns, State::kAvailable};
+    }
+    available_cv.notify_all();
+}
+
+uint64_t timestamp_now_ns() {
+    // steady_clock is CLOCK_MONOTONIC on Linux, the clock lavapipe's os_time_get_nano reads.
+    return uint64_t(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+            .count());
+}
+
+VkResult write_query_results(QueryPool& pool, uint32_t first, uint32_t n, uint8_t* dst, size_t dst_size,
+                             VkDeviceSize stride, VkQueryResultFlags flags, bool may_wait) {
+    const bool wide = flags & VK_QUERY_RESULT_64_BIT;
+    const bool with_availability = flags & VK_QUERY_RESULT_WITH_AVAILABILITY_BIT;
+    const bool partial = flags & VK_QUERY_RESULT_PARTIAL_BIT;
+    const size_t word = wide ? 8 : 4;
+    const size_t entry = word * (with_availability ? 2 : 1);
+    if (first >= pool.count || n > pool.count - first) {
+        log_error("query results: queries [%u, %u) lie outside the pool of %u; only those inside are written", first,
+                  first + n, pool.count);
+        n = first >= pool.count ? 0 : pool.count - first;
+    }
+    auto put = [&](uint8_t* at, uint64_t v) {
+        if (wide) {
+            std::memcpy(at, &v, 8);
+        } else {
+            const uint32_t v32 = v > UINT32_MAX ? UINT32_MAX : uint32_t(v);  // saturate, as lavapipe does
+            std::memcpy(at, &v32, 4);
+        }
+    };
+    VkResult result = VK_SUCCESS;
+    std::unique_lock lock(pool.mutex);
+    for (uint32_t i = 0; i < n; ++i) {
+        const size_t offset = size_t(stride) * i;
+        if (offset > dst_size || entry > dst_size - offset) {
+            log_error("query results: query %u's entry does not fit in the %zu bytes given; not written", first + i,
+                      dst_size);
+            break;
+        }
+        QueryPool::Slot& slot = pool.slots[first + i];
+        if ((flags & VK_QUERY_RESULT_WAIT_BIT) && may_wait)
+            pool.available_cv.wait(lock, [&] { return slot.state != QueryPool::State::kPending; });
+        const bool ready = slot.state == QueryPool::State::kAvailable;
+        if (!ready && !partial) result = VK_NOT_READY;
+        uint8_t* at = dst + offset;
+        if (ready || partial) put(at, slot.value);
+        if (with_availability) put(at + word, ready ? 1 : 0);
+    }
+    return result;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateQueryPool(VkDevice device, const VkQueryPoolCreateInfo* pCreateInfo,
+                                                   const VkAllocationCallbacks* pAllocator, VkQueryPool* pQueryPool) {
+    Device* dev = from_handle<Device>(device);
+    if (pCreateInfo->queryType == VK_QUERY_TYPE_PIPELINE_STATISTICS)
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                    "vkCreateQueryPool: pipeline statistics queries are not supported (pipelineStatisticsQuery is "
+                    "not reported)");
+    if (pCreateInfo->queryType != VK_QUERY_TYPE_OCCLUSION && pCreateInfo->queryType != VK_QUERY_TYPE_TIMESTAMP)
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: query type %d is not supported",
+                    int(pCreateInfo->queryType));
+    QueryPool* pool =
+        create_object<QueryPool>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    if (pool == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateQueryPool: out of host memory");
+    pool->type = pCreateInfo->queryType;
+    pool->count = pCreateInfo->queryCount;
+    pool->slots.reset(new (std::nothrow) QueryPool::Slot[std::max(pool->count, 1u)]);
+    if (!pool->slots) {
+        destroy_object(pool);
+        return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateQueryPool: out of host memory for %u queries",
+                    pCreateInfo->queryCount);
+    }
+    *pQueryPool = to_handle(pool);
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroyQueryPool(VkDevice, VkQueryPool queryPool, const VkAllocationCallbacks*) {
+    destroy_object(from_handle<QueryPool>(queryPool));
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetQueryPoolResults(VkDevice device, VkQueryPool queryPool, uint32_t firstQuery,
+                                                       uint32_t queryCount, size_t dataSize, void* pData,
+                                                       VkDeviceSize stride, VkQueryResultFlags flags) {
+    if (from_handle<Device>(device)->lost.load()) return VK_ERROR_DEVICE_LOST;
+    return write_query_results(*from_handle<QueryPool>(queryPool), firstQuery, queryCount, static_cast<uint8_t*>(pData),
+                               dataSize, stride, flags, true);
+}
+
+}  // namespace tilevk::icd
