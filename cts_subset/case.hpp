@@ -33,6 +33,7 @@ void add_viewport_cases(CaseList& out);
 void add_texture_cases(CaseList& out);
 void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
+void add_query_cases(CaseList& out);
 CaseList all_cases();
 
 // --- scene helpers ---

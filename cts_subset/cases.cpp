@@ -20,6 +20,7 @@ CaseList all_cases() {
     add_mesh_cases(out);
     add_quirk_cases(out);
     add_blit_cases(out);
+    add_query_cases(out);
     return out;
 }
 

@@ -101,6 +101,12 @@ std::string fragment_source(const Draw& d, bool color_output) {
             return s +
                    "void main() { o_color = gl_FrontFacing ? vec4(1.0/255.0, 0, 0, 1.0/255.0)"
                    " : vec4(0, 1.0/255.0, 0, 1.0/255.0); }\n";
+        case Frag::kDiscard:
+            return s +
+                   "void main() {\n"
+                   "    if (((int(gl_FragCoord.x) + int(gl_FragCoord.y)) & 1) != 0) discard;\n"
+                   "    o_color = v_color;\n"
+                   "}\n";
     }
     return s;
 }

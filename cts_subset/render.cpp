@@ -363,6 +363,8 @@ struct Frame::Impl {
     VkCommandBuffer cb = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
     std::vector<Readback> reads;
+    Buffer query_results{};  // QueryMode != kNone: 16 bytes per query (64-bit value, 64-bit availability)
+    uint32_t num_queries = 0;
     double pipeline_ms = 0;
     std::function<std::vector<Plane>(const DeviceContext&)> run;  // a scene that runs its own commands
     std::vector<Plane> run_planes;
@@ -522,6 +524,24 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
     }
+    // Occlusion queries: reset at the start of every submission (the frame is submitted again for timing).
+    VkQueryPool qpool = VK_NULL_HANDLE;
+    const uint32_t nqueries = s.queries == QueryMode::kPerDraw      ? uint32_t(s.draws.size())
+                              : s.queries == QueryMode::kAcrossPass ? 1u
+                                                                    : 0u;
+    if (nqueries) {
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_OCCLUSION;
+        qci.queryCount = nqueries;
+        vk_check(vkCreateQueryPool(dev, &qci, nullptr, &qpool), "vkCreateQueryPool");
+        gc.add([dev, qpool] { vkDestroyQueryPool(dev, qpool, nullptr); });
+        impl_->query_results = make_buffer(c, gc, VkDeviceSize(16) * nqueries, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        impl_->num_queries = nqueries;
+        vkCmdResetQueryPool(cb, qpool, 0, nqueries);
+    }
+    // PRECISE asks for exact counts; both drivers report occlusionQueryPrecise (requirements.cpp checks it).
+    const VkQueryControlFlags qflags = VK_QUERY_CONTROL_PRECISE_BIT;
+    if (s.queries == QueryMode::kAcrossPass) vkCmdBeginQuery(cb, qpool, 0, qflags);
     VkClearValue clears[3];
     uint32_t nclear = 0;
     if (t.color != VK_FORMAT_UNDEFINED) std::memcpy(clears[nclear++].color.float32, t.clear_color, 16);
@@ -540,10 +560,23 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
         if (sets[i]) vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i], 0, nullptr);
         VkDeviceSize offset = first * sizeof(Vertex);
         vkCmdBindVertexBuffers(cb, 0, 1, &vb.buffer, &offset);
+        if (s.queries == QueryMode::kPerDraw) vkCmdBeginQuery(cb, qpool, uint32_t(i), qflags);
         if (!s.draws[i].vertices.empty()) vkCmdDraw(cb, uint32_t(s.draws[i].vertices.size()), 1, 0, 0);
+        if (s.queries == QueryMode::kPerDraw) vkCmdEndQuery(cb, qpool, uint32_t(i));
         first += s.draws[i].vertices.size();
     }
     vkCmdEndRenderPass(cb);
+    if (s.queries == QueryMode::kAcrossPass) vkCmdEndQuery(cb, qpool, 0);
+    if (nqueries) {
+        vkCmdFillBuffer(cb, impl_->query_results.buffer, 0, VK_WHOLE_SIZE, 0xDEADBEEFu);  // unwritten words show
+        VkMemoryBarrier fill{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                             VK_ACCESS_TRANSFER_WRITE_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &fill, 0,
+                             nullptr, 0, nullptr);
+        vkCmdCopyQueryPoolResults(
+            cb, qpool, 0, nqueries, impl_->query_results.buffer, 0, 16,
+            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+    }
     if (selftest_bad_command) {
         // SHADER_WRITE is not an access of the TRANSFER stage (VUID-vkCmdPipelineBarrier-srcAccessMask-02815);
         // drivers ignore access masks, so only the layer notices.
@@ -597,6 +630,12 @@ std::vector<Plane> Frame::planes() const {
         Plane p = r.plane;
         p.data.resize(size_t(p.width) * p.height * p.texel_bytes);
         std::memcpy(p.data.data(), r.buffer.mapped, p.data.size());
+        out.push_back(std::move(p));
+    }
+    if (impl_->num_queries) {
+        Plane p{"queries", VK_FORMAT_UNDEFINED, impl_->num_queries, 1, 16, {}};
+        p.data.resize(size_t(16) * impl_->num_queries);
+        std::memcpy(p.data.data(), impl_->query_results.mapped, p.data.size());
         out.push_back(std::move(p));
     }
     return out;

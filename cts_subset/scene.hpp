@@ -22,7 +22,13 @@ struct Vertex {
 enum class Interp { kSmooth, kFlat, kNoPerspective };
 // kCount writes exactly 1/255 to every channel (one unorm8 increment under ONE,ONE blending);
 // kFacing writes 1/255 to red for front faces and to green for back faces.
-enum class Frag { kColor, kTexture, kCount, kFacing };
+// kDiscard discards pixels whose x + y is odd (a checkerboard) and writes v_color elsewhere.
+enum class Frag { kColor, kTexture, kCount, kFacing, kDiscard };
+
+// Occlusion queries around the draws (cases_query.cpp): none; one query per draw, begun and ended inside the
+// render pass; or one query begun before the render pass and ended after it (spanning it). The results are copied
+// into a buffer (vkCmdCopyQueryPoolResults, 64-bit values with availability) and read back as the plane "queries".
+enum class QueryMode { kNone, kPerDraw, kAcrossPass };
 enum class TexPattern { kChecker, kGradient };
 
 struct TextureSpec {
@@ -87,6 +93,7 @@ struct DeviceContext;
 struct Scene {
     Target target;
     std::vector<Draw> draws;
+    QueryMode queries = QueryMode::kNone;
     // A case without draws (transfer commands, e.g. cases_blit.cpp) runs its own commands instead: `run` records,
     // submits and reads back on one device; `unsupported` names what the device lacks (empty: supported).
     std::function<std::vector<Plane>(const DeviceContext&)> run;
