@@ -169,6 +169,27 @@ void add_query_cases(CaseList& out) {
                            return s;
                        },
                        counts_are({per_pixel * n / 2})});
+        // Discard with depth testing (the test then runs late, after the shader): full target at 0.5, a
+        // checkerboard-discarding full target at 0.3 (half), a discarding rectangle at 0.4 whose survivors are all
+        // behind 0.3 (0), a plain full target at 0.4 (the other half).
+        out.push_back({"query.occlusion.discard_depth" + suffix,
+                       [=] {
+                           Scene s = base(samples, VK_FORMAT_D32_SFLOAT, QueryMode::kPerDraw);
+                           Draw d;
+                           d.depth_test = d.depth_write = true;
+                           d.vertices = pixel_rect(0, 0, kW, kH, 0.5f);
+                           s.draws.push_back(d);
+                           d.frag = Frag::kDiscard;
+                           d.vertices = pixel_rect(0, 0, kW, kH, 0.3f, {1, 0, 0, 1});
+                           s.draws.push_back(d);
+                           d.vertices = pixel_rect(0, 0, 20, 12, 0.4f, {0, 1, 0, 1});
+                           s.draws.push_back(d);
+                           d.frag = Frag::kColor;
+                           d.vertices = pixel_rect(0, 0, kW, kH, 0.4f, {0, 0, 1, 1});
+                           s.draws.push_back(d);
+                           return s;
+                       },
+                       counts_are({per_pixel * n, per_pixel * n / 2, 0, per_pixel * n / 2})});
         // Stencil: the left 24 columns are marked, then a full-screen EQUAL test passes only there.
         out.push_back({"query.occlusion.stencil" + suffix,
                        [=] {

@@ -10,6 +10,11 @@ namespace {
 
 // The value of channel `i` of texel `t` in the format's units, for error reporting.
 double channel(const Plane& p, const uint8_t* t, uint32_t i) {
+    if (p.name == "queries") {  // 64-bit result, 64-bit availability (cases_query.cpp)
+        uint64_t v;
+        std::memcpy(&v, t + 8 * i, 8);
+        return double(v);
+    }
     if (p.name == "depth") {
         if (p.format == VK_FORMAT_D16_UNORM || p.format == VK_FORMAT_D16_UNORM_S8_UINT) {
             uint16_t v;
@@ -27,7 +32,7 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
 }
 
 uint32_t channels(const Plane& p) {
-    return p.name == "color" ? p.texel_bytes : 1;
+    return p.name == "color" ? p.texel_bytes : p.name == "queries" ? 2 : 1;
 }
 
 const Plane* find_color(const std::vector<Plane>& planes) {

@@ -350,6 +350,29 @@ TEST_F(Queries, OcclusionCountsEqualLavapipeAndHandCounts) {
     }
 }
 
+// Discard with depth testing: the depth test runs after the shader (late), and the count must come from after it.
+// Full target at 0.5; a checkerboard-discarding full target at 0.3 (half passes and writes 0.3); a discarding
+// rectangle at 0.4 (its surviving pixels are exactly those at 0.3 already: 0); a plain full target at 0.4 (passes
+// on the other half, still at 0.5).
+TEST_F(Queries, DiscardWithLateDepthTest) {
+    std::vector<Rect> scene;
+    scene.push_back({0, 0, kW, kH, 0.5f, true});
+    Rect d{0, 0, kW, kH, 0.3f, true};
+    d.discard = true;
+    scene.push_back(d);
+    d = {0, 0, 20, 12, 0.4f, true};
+    d.discard = true;
+    scene.push_back(d);
+    scene.push_back({0, 0, kW, kH, 0.4f, true});
+    for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_4_BIT}) {
+        const std::vector<uint64_t> t = count_per_draw(*tilevk_, samples, scene);
+        const std::vector<uint64_t> l = count_per_draw(*lavapipe_, samples, scene);
+        const uint64_t n = uint64_t(kW) * kH * samples;
+        EXPECT_EQ(t, (std::vector<uint64_t>{n, n / 2, 0, n / 2})) << samples << "x";
+        EXPECT_EQ(t, l) << samples << "x";
+    }
+}
+
 // Results of one available query (value 1234 samples... whatever the scene gives), one reset and never begun, read
 // back with every flag combination; the bytes must be equal on both drivers (written words and untouched ones).
 struct FlagRun {
