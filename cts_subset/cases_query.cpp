@@ -222,6 +222,19 @@ void add_query_cases(CaseList& out) {
                            [=] { return random_triangles(samples, seed * 7919u, QueryMode::kPerDraw); },
                            all_available(12)});
     }
+    // B8G8R8A8 without depth: lavapipe may take its linear rasterizer (notes §0.3/§8) for the rectangles.
+    out.push_back({"query.occlusion.bgra_no_depth",
+                   [=] {
+                       Scene s = base(k1, VK_FORMAT_UNDEFINED, QueryMode::kPerDraw);
+                       s.target.color = VK_FORMAT_B8G8R8A8_UNORM;
+                       Draw d;
+                       d.vertices = pixel_rect(0, 0, kW, kH, 0.5f);
+                       s.draws.push_back(d);
+                       d.vertices = pixel_rect(3, 5, 20, 9, 0.5f, {1, 0, 0, 1});
+                       s.draws.push_back(d);
+                       return s;
+                   },
+                   counts_are({n, 17 * 4}), "bgra-linear-path"});
     // Alpha to coverage at 4x: the samples a fragment keeps depend on its alpha (per-sample counts).
     out.push_back({"query.occlusion.alpha_to_coverage_4x",
                    [=] {
