@@ -432,7 +432,7 @@ void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRec
             final_mask[s] &= late_pass;
         }
     }
-    count_passed(w, prim.draw, final_mask, samples);
+    if (draw.samples_passed) count_passed(w, prim.draw, final_mask, samples);  // only inside a query
     if (!fs) return;
 
     // Blend and write each colour target, per sample plane.
@@ -615,7 +615,7 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
             final_mask[s] &= late_pass;
         }
     }
-    count_passed(w, prim.draw, final_mask, samples);
+    if (draw.samples_passed) count_passed(w, prim.draw, final_mask, samples);  // only inside a query
     if (!fs) return;
 
     fragment::BlendOptions opt;
