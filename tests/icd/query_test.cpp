@@ -561,6 +561,46 @@ TEST_F(Queries, QuerySpansRenderPassesAndResets) {
     EXPECT_EQ(l2, l);
 }
 
+// Clears (vkCmdClearAttachments between draws, vkCmdClearColorImage) and transfers inside an active query count
+// nothing; the draws around them do.
+uint64_t clears_run(Device& dev) {
+    Rig rig(dev, VK_SAMPLE_COUNT_4_BIT);
+    rig.set({{0, 0, kW, kH, 0.5f, true}, {2, 3, 12, 13, 0.6f, true}});
+    VkDevice d = dev.device();
+    VkQueryPool pool = make_pool(d, VK_QUERY_TYPE_OCCLUSION, 1);
+    Device::Buffer a = dev.make_buffer(256), b = dev.make_buffer(256);
+    EXPECT_EQ(dev.run([&](VkCommandBuffer cb) {
+        vkCmdResetQueryPool(cb, pool, 0, 1);
+        vkCmdBeginQuery(cb, pool, 0, 0);
+        rig.begin_pass(cb);
+        rig.draw(cb, 0);  // 4*W*H
+        VkClearAttachment ca[2] = {{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}},
+                                   {VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT, 0, {}}};
+        ca[1].clearValue.depthStencil = {1.0f, 0};
+        VkClearRect rect{{{0, 0}, {kW, kH}}, 0, 1};
+        vkCmdClearAttachments(cb, 2, ca, 1, &rect);
+        rig.draw(cb, 1);  // behind nothing after the depth clear: 4*10*10
+        vkCmdEndRenderPass(cb);
+        VkBufferCopy region{0, 0, 256};
+        vkCmdCopyBuffer(cb, a.buffer, b.buffer, 1, &region);
+        vkCmdEndQuery(cb, pool, 0);
+    }),
+              VK_SUCCESS);
+    uint64_t n = 0;
+    EXPECT_EQ(vkGetQueryPoolResults(d, pool, 0, 1, 8, &n, 8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+              VK_SUCCESS);
+    dev.destroy(a);
+    dev.destroy(b);
+    vkDestroyQueryPool(d, pool, nullptr);
+    return n;
+}
+
+TEST_F(Queries, ClearsAndTransfersCountNothing) {
+    const uint64_t t = clears_run(*tilevk_), l = clears_run(*lavapipe_);
+    EXPECT_EQ(t, l);
+    EXPECT_EQ(t, uint64_t(4 * (kW * kH + 100)));
+}
+
 TEST_F(Queries, TimestampsAreMonotonicNanoseconds) {
     VkQueueFamilyProperties qf;
     uint32_t nq = 1;
