@@ -373,8 +373,8 @@ TEST_F(Queries, DiscardWithLateDepthTest) {
     }
 }
 
-// Results of one available query (value 1234 samples... whatever the scene gives), one reset and never begun, read
-// back with every flag combination; the bytes must be equal on both drivers (written words and untouched ones).
+// Three queries — 0 counts one 10x7 rectangle (70), 1 is reset and never begun, 2 counts it twice (140) — read back
+// with every flag combination; the bytes must be equal on both drivers (written words and untouched ones).
 struct FlagRun {
     VkQueryResultFlags flags;
     uint32_t first;  // first query read
