@@ -47,11 +47,12 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
 inline uint64_t pack_xy(int32_t x, int32_t y) {
     return static_cast<uint32_t>(x) | (uint64_t{static_cast<uint32_t>(y)} << 32);
 }
-// Offset of lane i's 4x4 block in a 16x16 block: (4*(i&3), 4*(i>>2)) packed.
-inline constexpr uint64_t kLaneXY4[16] = {0x000000000ull, 0x000000004ull, 0x000000008ull, 0x00000000Cull,
+// Offset of lane i's 4x4 block in a 16x16 block: (4*(i&3), 4*(i>>2)) packed; entry 16 = dummy lane (emit_lanes).
+inline constexpr uint64_t kLaneXY4[17] = {0x000000000ull, 0x000000004ull, 0x000000008ull, 0x00000000Cull,
                                           0x400000000ull, 0x400000004ull, 0x400000008ull, 0x40000000Cull,
                                           0x800000000ull, 0x800000004ull, 0x800000008ull, 0x80000000Cull,
-                                          0xC00000000ull, 0xC00000004ull, 0xC00000008ull, 0xC0000000Cull};
+                                          0xC00000000ull, 0xC00000004ull, 0xC00000008ull, 0xC0000000Cull,
+                                          0};
 static_assert(sizeof(Block4) == 16 && offsetof(Block4, mask) == 8 && sizeof(FullBlock) == 12);
 
 // Block4 from packed xy and the four 16-bit sample masks packed (sample s in bits 16s..16s+15).
@@ -122,6 +123,45 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
     return m;
 }
 
+// Appends the entries of `lanes` (a 16-bit lane set) in ascending lane order at dst[0..popcount). Branch-free within
+// a fixed trip count: 8 when at most 8 lanes (the usual case for an edge crossing a 16x16 block), else 16; the
+// iterations past the last lane write the dummy lane 16 into the slots after the count (TileScratch::kSlack).
+template <typename Store>
+[[gnu::always_inline]] inline void emit_lanes(uint32_t lanes, Store store) {
+    const auto one = [&](int j) {
+        store(j, std::countr_zero(lanes | 0x10000u));
+        lanes &= lanes - 1;
+    };
+    if (std::popcount(lanes) <= 8) {
+#pragma GCC unroll 8
+        for (int j = 0; j < 8; ++j) one(j);
+    } else {
+#pragma GCC unroll 16
+        for (int j = 0; j < 16; ++j) one(j);
+    }
+}
+
+// 1x: the sixteen 4x4 masks of the 16x16 block in one fixed-cost kernel (block16_masks, no per-lane branch), then
+// the full lanes as whole 4x4 blocks and the partial ones as masks, each list written by emit_lanes. At 1x a lane
+// is accepted by every plane exactly when its mask is 0xFFFF (one sample per pixel, lo = hi = c[0]), so this gives
+// the same lists as classifying first.
+template <int kN>
+[[gnu::always_inline]] inline void hier_block16_1x(const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
+                                                   uint32_t valid, TileScratch* out) {
+    int32_t base[Prim::kMaxPlanes];
+    for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
+    Block16Masks bm;
+    block16_masks<kN>(planes, n, base, &bm);
+    const uint32_t full = valid & bm.full, partial = valid & ~(bm.full | bm.empty);
+    const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
+    FullBlock* f = out->full + out->num_full;
+    Block4* b = out->blocks + out->num_blocks;
+    emit_lanes(full, [&](int j, int lane) { store_full(f + j, xy0 + kLaneXY4[lane], 4); });
+    emit_lanes(partial, [&](int j, int lane) { store_block(b + j, xy0 + kLaneXY4[lane], bm.mask[lane]); });
+    out->num_full += std::popcount(full);
+    out->num_blocks += std::popcount(partial);
+}
+
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
 // work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block then
 // starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask per
@@ -150,22 +190,6 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
     // Positions as packed (x | y << 32) words: one add per lane gives both (x, y >= 0, so no carry crosses).
     const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
     size_t nb = out->num_blocks, nf = out->num_full;
-    if (t.samples == 1) {
-        for (int k = 0; k < n; ++k) base[k] += planes[k]->c[0];
-        for (uint32_t m = live; m; m &= m - 1) {
-            const int lane = std::countr_zero(m);
-            uint32_t mask = 0xFFFF;
-            for (int k = 0; k < n; ++k) mask &= plane_mask4x4(*planes[k], base[k] + planes[k]->step4[lane]);
-            const uint64_t xy = xy0 + kLaneXY4[lane];
-            const uint32_t is_full = (full >> lane) & 1u;
-            store_full(&out->full[nf], xy, 4);
-            nf += is_full;
-            store_block(&out->blocks[nb], xy, mask);  // 1x: masks 1-3 zero
-            nb += (mask != 0) & (is_full ^ 1u);       // 1x: sample_mask bit 0 is set (else setup rejects the prim)
-        }
-        out->num_blocks = nb, out->num_full = nf;
-        return;
-    }
     const uint64_t keep = (prim.sample_mask & 1u ? 0xFFFFull : 0) | (prim.sample_mask & 2u ? 0xFFFFull << 16 : 0) |
                           (prim.sample_mask & 4u ? 0xFFFFull << 32 : 0) | (prim.sample_mask & 8u ? 0xFFFFull << 48 : 0);
     // 4x: a full lane would cost 4 masks per plane, so full and partial lanes get their own loops here.
@@ -186,8 +210,23 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
     out->num_blocks = nb, out->num_full = nf;
 }
 
+// 1x entry with any plane count (>= 1). One or two planes both take the two-plane kernel (a single plane is passed
+// twice: OR-ing a plane's values with themselves changes nothing), so the choice between them costs no branch.
+[[gnu::always_inline]] inline void hier_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
+                                                       PlaneList planes, int n, int32_t ox, int32_t oy,
+                                                       uint32_t valid, TileScratch* out) {
+    if (n <= 2) {
+        const TilePlane* two[2] = {p0, p1};
+        return hier_block16_1x<2>(t, two, 2, ox, oy, valid, out);
+    }
+    if (n == 3) return hier_block16_1x<3>(t, planes, 3, ox, oy, valid, out);
+    hier_block16_1x<0>(t, planes, n, ox, oy, valid, out);
+}
+
 void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
+    if (t.samples == 1)
+        return hier_block16_1x_any(t, planes[0], planes[(n >> 1) & 1], planes, n, ox, oy, valid, out);
     switch (n) {
         case 1:
             return hier_block16_n<1>(prim, t, planes, n, ox, oy, valid, out);
@@ -231,7 +270,8 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
         return;
     }
     if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, lanes_in_box(0, 0, 2, r.x0, r.y0, r.x1, r.y1), out);
-    uint32_t live, full, acc[Prim::kMaxPlanes];
+    // acc of the planes past n: accepting everywhere (the 1x path below reads three).
+    uint32_t live, full, acc[Prim::kMaxPlanes] = {0, 0xFFFF, 0xFFFF};
     classify_grid(planes, n, 0, 0, 4, lanes_in_box(0, 0, 4, r.x0, r.y0, r.x1, r.y1), &live, &full, acc);
     for (uint32_t m = full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
@@ -239,6 +279,20 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     }
     // 4-px columns/rows of the tile that meet the box (bit j = pixels [4j, 4j+3]); a 16-px lane takes 4 of each.
     const uint32_t cols4 = (2u << (r.x1 >> 2)) - (1u << (r.x0 >> 2)), rows4 = (2u << (r.y1 >> 2)) - (1u << (r.y0 >> 2));
+    if (t.samples == 1 && n <= 3) {
+        // 1x with up to three planes (every triangle): the planes kept per 16x16 lane are chosen from a fixed three
+        // (slots past n accept everywhere, so they are never kept; the list's slots all point into the caller's
+        // plane array), so neither the choice nor the kernel dispatch branches on the tile's plane count.
+        for (uint32_t m = live & ~full; m; m &= m - 1) {
+            const int lane = std::countr_zero(m);
+            const int col = lane & 3, row = lane >> 2;
+            const TilePlane* kept[3];
+            const int k = drop_accepted(planes, 3, acc, lane, kept);  // 1..3: the lane is not full
+            const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
+            hier_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, out);
+        }
+        return;
+    }
     for (uint32_t m = live & ~full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int col = lane & 3, row = lane >> 2;
@@ -366,7 +420,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     int n = 0;
     const TileClass cls = tile_setup(prim, tile, planes, &n);
     const TilePlane* list[Prim::kMaxPlanes];
-    for (int k = 0; k < n; ++k) list[k] = &planes[k];
+    for (int k = 0; k < Prim::kMaxPlanes; ++k) list[k] = &planes[k];  // all slots: a fixed loop, no branch on n
     if (cls == TileClass::kReject) return;
     if (cls == TileClass::kWhole && method == Method::kHier) {
         push_full(scratch, tile.x0, tile.y0, tile.size);
