@@ -7,6 +7,10 @@
 #include <cstddef>
 #include <cstring>
 
+#if TILEVK_SIMD_AVX2
+#include <immintrin.h>
+#endif
+
 namespace tilevk::rast {
 
 namespace {
@@ -47,12 +51,11 @@ void sample_offset(int samples, int s, int32_t* sx, int32_t* sy) {
 inline uint64_t pack_xy(int32_t x, int32_t y) {
     return static_cast<uint32_t>(x) | (uint64_t{static_cast<uint32_t>(y)} << 32);
 }
-// Offset of lane i's 4x4 block in a 16x16 block: (4*(i&3), 4*(i>>2)) packed; entry 16 = dummy lane (emit_lanes).
-inline constexpr uint64_t kLaneXY4[17] = {0x000000000ull, 0x000000004ull, 0x000000008ull, 0x00000000Cull,
+// Offset of lane i's 4x4 block in a 16x16 block: (4*(i&3), 4*(i>>2)) packed.
+inline constexpr uint64_t kLaneXY4[16] = {0x000000000ull, 0x000000004ull, 0x000000008ull, 0x00000000Cull,
                                           0x400000000ull, 0x400000004ull, 0x400000008ull, 0x40000000Cull,
                                           0x800000000ull, 0x800000004ull, 0x800000008ull, 0x80000000Cull,
-                                          0xC00000000ull, 0xC00000004ull, 0xC00000008ull, 0xC0000000Cull,
-                                          0};
+                                          0xC00000000ull, 0xC00000004ull, 0xC00000008ull, 0xC0000000Cull};
 static_assert(sizeof(Block4) == 16 && offsetof(Block4, mask) == 8 && sizeof(FullBlock) == 12);
 
 // Block4 from packed xy and the four 16-bit sample masks packed (sample s in bits 16s..16s+15).
@@ -123,15 +126,36 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
     return m;
 }
 
-// Appends the entries of `lanes` (a 16-bit lane set) in ascending lane order at dst[0..popcount). Branch-free within
-// a fixed trip count: 8 when at most 8 lanes (the usual case for an edge crossing a 16x16 block), else 16; the
-// iterations past the last lane write the dummy lane 16 into the slots after the count (TileScratch::kSlack).
+// Entry templates per lane, 16 bytes each so that one vector add and one 16-byte store make an entry: FullBlock
+// {dx, dy, size 4, -} (the 4 bytes past a FullBlock are overwritten by the next entry or land in the slack) and
+// Block4 {dx, dy, masks 0} (mask[0] inserted). Row 16 = dummy lane (the scalar emission).
+alignas(16) inline constexpr int32_t kLaneFull16[17][4] = {
+    {0, 0, 4, 0},  {4, 0, 4, 0},  {8, 0, 4, 0},  {12, 0, 4, 0},  {0, 4, 4, 0},  {4, 4, 4, 0},
+    {8, 4, 4, 0},  {12, 4, 4, 0}, {0, 8, 4, 0},  {4, 8, 4, 0},   {8, 8, 4, 0},  {12, 8, 4, 0},
+    {0, 12, 4, 0}, {4, 12, 4, 0}, {8, 12, 4, 0}, {12, 12, 4, 0}, {0, 0, 4, 0}};
+alignas(16) inline constexpr int32_t kLaneBlock16[17][4] = {
+    {0, 0, 0, 0},  {4, 0, 0, 0},  {8, 0, 0, 0},  {12, 0, 0, 0},  {0, 4, 0, 0},  {4, 4, 0, 0},
+    {8, 4, 0, 0},  {12, 4, 0, 0}, {0, 8, 0, 0},  {4, 8, 0, 0},   {8, 8, 0, 0},  {12, 8, 0, 0},
+    {0, 12, 0, 0}, {4, 12, 0, 0}, {8, 12, 0, 0}, {12, 12, 0, 0}, {0, 0, 0, 0}};
+
+// Calls store(j, 16 * lane) for the j-th lane of `lanes` (a 16-bit lane set, ascending order), j < popcount.
+// Branch-free within a fixed trip count: 8 when at most 8 lanes (the usual case for an edge crossing a 16x16 block),
+// else 16; the calls past the last lane write throw-away entries into the slots after the count
+// (TileScratch::kSlack). With BMI2 the lane list is made at once: pdep spreads the lane bits to nibbles, pext picks
+// those nibbles of 0xFEDC...3210, so nibble j is the j-th lane (past the count: 0).
 template <typename Store>
 [[gnu::always_inline]] inline void emit_lanes(uint32_t lanes, Store store) {
+#if TILEVK_SIMD_AVX2
+    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(lanes, 0x1111111111111111ull) * 0xF);
     const auto one = [&](int j) {
-        store(j, std::countr_zero(lanes | 0x10000u));
+        store(j, static_cast<uint32_t>(j == 0 ? (list << 4) & 0xF0 : (list >> (4 * j - 4)) & 0xF0));
+    };
+#else
+    const auto one = [&](int j) {
+        store(j, static_cast<uint32_t>(std::countr_zero(lanes | 0x10000u)) << 4);
         lanes &= lanes - 1;
     };
+#endif
     if (std::popcount(lanes) <= 8) {
 #pragma GCC unroll 8
         for (int j = 0; j < 8; ++j) one(j);
@@ -153,11 +177,35 @@ template <int kN>
     Block16Masks bm;
     block16_masks<kN>(planes, n, base, &bm);
     const uint32_t full = valid & bm.full, partial = valid & ~(bm.full | bm.empty);
-    const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
     FullBlock* f = out->full + out->num_full;
     Block4* b = out->blocks + out->num_blocks;
-    emit_lanes(full, [&](int j, int lane) { store_full(f + j, xy0 + kLaneXY4[lane], 4); });
-    emit_lanes(partial, [&](int j, int lane) { store_block(b + j, xy0 + kLaneXY4[lane], bm.mask[lane]); });
+    const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
+    const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
+#if TILEVK_SIMD_AVX2
+    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(t.x0 + ox, t.y0 + oy)));  // {x, y, 0, 0}
+    const auto entry = [&](const char* table, uint32_t off16) {
+        return _mm_add_epi32(xy, _mm_load_si128(reinterpret_cast<const __m128i*>(table + off16)));
+    };
+    emit_lanes(full, [&](int j, uint32_t off16) {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(f + j), entry(full16, off16));
+    });
+    emit_lanes(partial, [&](int j, uint32_t off16) {
+        // One 16-byte store per entry (the consumer's 8-byte mask load is then forwarded from a single store).
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(b + j), _mm_insert_epi16(entry(block16, off16), bm.mask[off16 >> 4], 4));
+    });
+#else
+    const int32_t x = t.x0 + ox, y = t.y0 + oy;
+    const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
+    emit_lanes(full, [&](int j, uint32_t off16) {
+        const int32_t* e = at(full16, off16);
+        f[j] = {x + e[0], y + e[1], 4};
+    });
+    emit_lanes(partial, [&](int j, uint32_t off16) {
+        const int32_t* e = at(block16, off16);
+        b[j].x = x + e[0], b[j].y = y + e[1];
+        b[j].mask[0] = bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
+    });
+#endif
     out->num_full += std::popcount(full);
     out->num_blocks += std::popcount(partial);
 }
@@ -215,7 +263,8 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
 [[gnu::always_inline]] inline void hier_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
                                                        PlaneList planes, int n, int32_t ox, int32_t oy,
                                                        uint32_t valid, TileScratch* out) {
-    if (n <= 2) {
+    if (n == 1) return hier_block16_1x<1>(t, &p0, 1, ox, oy, valid, out);
+    if (n == 2) {
         const TilePlane* two[2] = {p0, p1};
         return hier_block16_1x<2>(t, two, 2, ox, oy, valid, out);
     }
