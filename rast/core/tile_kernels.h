@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #if TILEVK_SIMD_AVX2
 #include <immintrin.h>
@@ -223,7 +224,13 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
                                                 static_cast<int64_t>(words[1]), 1)),
         _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[2])), static_cast<int64_t>(words[3]), 1), 1);
     const __m256i ones = _mm256_set1_epi32(-1);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), _mm256_xor_si256(unc, ones));
+    // The masks go out as four 8-byte scalar stores: each 2-byte read of one lane is then forwarded from a single
+    // store of the same width class (one 32-byte vector store here made every read wait for it to commit).
+#pragma GCC unroll 4
+    for (int by = 0; by < 4; ++by) {
+        const uint64_t covered = ~words[by];
+        std::memcpy(out->mask + 4 * by, &covered, 8);
+    }
     out->mask[16] = 0;
     // Per 16-bit lane: full = no uncovered bit, empty = all uncovered; packed to bytes, ordered [full | empty].
     const __m256i is_full = _mm256_cmpeq_epi16(unc, _mm256_setzero_si256());
