@@ -183,12 +183,13 @@ template <int kN>
 inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     if constexpr (kN != 0) n = kN;
     constexpr int kMax = kN != 0 ? kN : 8;
-    __m256i left[kMax], step_b[kMax], step_8a[kMax];
+    // Rows 1-3 of a block row and the next block row from the first row with one add each (short dependency chains).
+    __m256i left[kMax], step_b[kMax][4], step_8a[kMax];
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
         left[k] = _mm256_add_epi32(_mm256_set1_epi32(base[k] - 1),
                                    _mm256_load_si256(reinterpret_cast<const __m256i*>(p.row8)));
-        step_b[k] = _mm256_set1_epi32(p.b);
+        for (int i = 0; i < 4; ++i) step_b[k][i] = _mm256_set1_epi32(p.b * (i + 1));  // |4b| < 2^25
         step_8a[k] = _mm256_set1_epi32(p.a * 8);
     }
     // Uncovered bits: word 2*by + h = lanes 4*by + 2*h (low half) and + 1 (high half); two words per qword.
@@ -201,8 +202,8 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
             __m256i r[8];
             r[0] = left[k];
 #pragma GCC unroll 4
-            for (int i = 1; i < 4; ++i) r[i] = _mm256_add_epi32(r[i - 1], step_b[k]);
-            left[k] = _mm256_add_epi32(r[3], step_b[k]);
+            for (int i = 1; i < 4; ++i) r[i] = _mm256_add_epi32(left[k], step_b[k][i - 1]);
+            left[k] = _mm256_add_epi32(left[k], step_b[k][3]);
 #pragma GCC unroll 4
             for (int i = 0; i < 4; ++i) r[4 + i] = _mm256_add_epi32(r[i], step_8a[k]);
 #pragma GCC unroll 8

@@ -165,49 +165,73 @@ template <typename Store>
     }
 }
 
-// 1x: the sixteen 4x4 masks of the 16x16 block in one fixed-cost kernel (block16_masks, no per-lane branch), then
-// the full lanes as whole 4x4 blocks and the partial ones as masks, each list written by emit_lanes. At 1x a lane
-// is accepted by every plane exactly when its mask is 0xFFFF (one sample per pixel, lo = hi = c[0]), so this gives
-// the same lists as classifying first.
+// 1x, in two steps so that the kernels of several 16x16 blocks can overlap (they are independent; emitting right
+// after each one would chain every block behind the previous one's list writes). Block16 = one 16x16 block's result:
+// the sixteen 4x4 masks from one fixed-cost kernel (block16_masks, no per-lane branch), its position and the full
+// and partial lanes within `valid`. At 1x a lane is accepted by every plane exactly when its mask is 0xFFFF (one
+// sample per pixel, lo = hi = c[0]), so this gives the same lists as classifying first.
+struct Block16 {
+    Block16Masks bm;
+    int32_t x, y;  // absolute pixel origin
+    uint32_t full, partial;
+};
+
 template <int kN>
-[[gnu::always_inline]] inline void hier_block16_1x(const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
-                                                   uint32_t valid, TileScratch* out) {
+[[gnu::always_inline]] inline void compute_block16_1x(const TileGeom& t, PlaneList planes, int n, int32_t ox,
+                                                      int32_t oy, uint32_t valid, Block16* r) {
     int32_t base[Prim::kMaxPlanes];
     for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
-    Block16Masks bm;
-    block16_masks<kN>(planes, n, base, &bm);
-    const uint32_t full = valid & bm.full, partial = valid & ~(bm.full | bm.empty);
+    block16_masks<kN>(planes, n, base, &r->bm);
+    r->x = t.x0 + ox, r->y = t.y0 + oy;
+    r->full = valid & r->bm.full, r->partial = valid & ~(r->bm.full | r->bm.empty);
+}
+
+// Any plane count >= 1: compile-time kernels for 1, 2 and 3 planes (p0, p1 = the first two planes).
+[[gnu::always_inline]] inline void compute_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
+                                                          PlaneList planes, int n, int32_t ox, int32_t oy,
+                                                          uint32_t valid, Block16* r) {
+    if (n == 1) return compute_block16_1x<1>(t, &p0, 1, ox, oy, valid, r);
+    if (n == 2) {
+        const TilePlane* two[2] = {p0, p1};
+        return compute_block16_1x<2>(t, two, 2, ox, oy, valid, r);
+    }
+    if (n == 3) return compute_block16_1x<3>(t, planes, 3, ox, oy, valid, r);
+    compute_block16_1x<0>(t, planes, n, ox, oy, valid, r);
+}
+
+// Appends the full lanes as whole 4x4 blocks and the partial ones as masks, each list written by emit_lanes.
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, TileScratch* out) {
     FullBlock* f = out->full + out->num_full;
     Block4* b = out->blocks + out->num_blocks;
     const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
     const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
 #if TILEVK_SIMD_AVX2
-    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(t.x0 + ox, t.y0 + oy)));  // {x, y, 0, 0}
+    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(r.x, r.y)));  // {x, y, 0, 0}
     const auto entry = [&](const char* table, uint32_t off16) {
         return _mm_add_epi32(xy, _mm_load_si128(reinterpret_cast<const __m128i*>(table + off16)));
     };
-    emit_lanes(full, [&](int j, uint32_t off16) {
+    emit_lanes(r.full, [&](int j, uint32_t off16) {
         _mm_storeu_si128(reinterpret_cast<__m128i*>(f + j), entry(full16, off16));
     });
-    emit_lanes(partial, [&](int j, uint32_t off16) {
+    emit_lanes(r.partial, [&](int j, uint32_t off16) {
         // One 16-byte store per entry (the consumer's 8-byte mask load is then forwarded from a single store).
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(b + j), _mm_insert_epi16(entry(block16, off16), bm.mask[off16 >> 4], 4));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(b + j),
+                         _mm_insert_epi16(entry(block16, off16), r.bm.mask[off16 >> 4], 4));
     });
 #else
-    const int32_t x = t.x0 + ox, y = t.y0 + oy;
     const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
-    emit_lanes(full, [&](int j, uint32_t off16) {
+    emit_lanes(r.full, [&](int j, uint32_t off16) {
         const int32_t* e = at(full16, off16);
-        f[j] = {x + e[0], y + e[1], 4};
+        f[j] = {r.x + e[0], r.y + e[1], 4};
     });
-    emit_lanes(partial, [&](int j, uint32_t off16) {
+    emit_lanes(r.partial, [&](int j, uint32_t off16) {
         const int32_t* e = at(block16, off16);
-        b[j].x = x + e[0], b[j].y = y + e[1];
-        b[j].mask[0] = bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
+        b[j].x = r.x + e[0], b[j].y = r.y + e[1];
+        b[j].mask[0] = r.bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
     });
 #endif
-    out->num_full += std::popcount(full);
-    out->num_blocks += std::popcount(partial);
+    out->num_full += std::popcount(r.full);
+    out->num_blocks += std::popcount(r.partial);
 }
 
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
@@ -258,24 +282,13 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
     out->num_blocks = nb, out->num_full = nf;
 }
 
-// 1x entry with any plane count (>= 1). One or two planes both take the two-plane kernel (a single plane is passed
-// twice: OR-ing a plane's values with themselves changes nothing), so the choice between them costs no branch.
-[[gnu::always_inline]] inline void hier_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
-                                                       PlaneList planes, int n, int32_t ox, int32_t oy,
-                                                       uint32_t valid, TileScratch* out) {
-    if (n == 1) return hier_block16_1x<1>(t, &p0, 1, ox, oy, valid, out);
-    if (n == 2) {
-        const TilePlane* two[2] = {p0, p1};
-        return hier_block16_1x<2>(t, two, 2, ox, oy, valid, out);
-    }
-    if (n == 3) return hier_block16_1x<3>(t, planes, 3, ox, oy, valid, out);
-    hier_block16_1x<0>(t, planes, n, ox, oy, valid, out);
-}
-
 void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
-    if (t.samples == 1)
-        return hier_block16_1x_any(t, planes[0], planes[(n >> 1) & 1], planes, n, ox, oy, valid, out);
+    if (t.samples == 1) {
+        Block16 r;
+        compute_block16_1x_any(t, planes[0], planes[(n >> 1) & 1], planes, n, ox, oy, valid, &r);
+        return emit_block16_1x(r, out);
+    }
     switch (n) {
         case 1:
             return hier_block16_n<1>(prim, t, planes, n, ox, oy, valid, out);
@@ -332,14 +345,17 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
         // 1x with up to three planes (every triangle): the planes kept per 16x16 lane are chosen from a fixed three
         // (slots past n accept everywhere, so they are never kept; the list's slots all point into the caller's
         // plane array), so neither the choice nor the kernel dispatch branches on the tile's plane count.
+        Block16 blocks[16];
+        int count = 0;
         for (uint32_t m = live & ~full; m; m &= m - 1) {
             const int lane = std::countr_zero(m);
             const int col = lane & 3, row = lane >> 2;
             const TilePlane* kept[3];
             const int k = drop_accepted(planes, 3, acc, lane, kept);  // 1..3: the lane is not full
             const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
-            hier_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, out);
+            compute_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, &blocks[count++]);
         }
+        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], out);
         return;
     }
     for (uint32_t m = live & ~full; m; m &= m - 1) {
