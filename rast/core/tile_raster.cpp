@@ -199,10 +199,10 @@ template <int kN>
     compute_block16_1x<0>(t, planes, n, ox, oy, valid, r);
 }
 
-// Appends the full lanes as whole 4x4 blocks and the partial ones as masks, each list written by emit_lanes.
-[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, TileScratch* out) {
-    FullBlock* f = out->full + out->num_full;
-    Block4* b = out->blocks + out->num_blocks;
+// Appends the full lanes as whole 4x4 blocks at *f and the partial ones as masks at *b (each list written by
+// emit_lanes) and advances both. The list ends are kept in registers by the caller: stored in TileScratch, each
+// would be reloaded after every vector store (which may alias anything).
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, FullBlock*& f, Block4*& b) {
     const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
     const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
 #if TILEVK_SIMD_AVX2
@@ -230,8 +230,15 @@ template <int kN>
         b[j].mask[0] = r.bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
     });
 #endif
-    out->num_full += std::popcount(r.full);
-    out->num_blocks += std::popcount(r.partial);
+    f += std::popcount(r.full);
+    b += std::popcount(r.partial);
+}
+
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, TileScratch* out) {
+    FullBlock* f = out->full + out->num_full;
+    Block4* b = out->blocks + out->num_blocks;
+    emit_block16_1x(r, f, b);
+    out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
 }
 
 // A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
@@ -355,7 +362,10 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
             const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
             compute_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, &blocks[count++]);
         }
-        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], out);
+        FullBlock* f = out->full + out->num_full;
+        Block4* b = out->blocks + out->num_blocks;
+        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], f, b);
+        out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
         return;
     }
     for (uint32_t m = live & ~full; m; m &= m - 1) {
