@@ -61,7 +61,8 @@ inline void fill_step_table_avx2(TilePlane* p) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1);
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->row8), _mm256_mullo_epi32(a, _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->row8),
+                       _mm256_mullo_epi32(a, _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
 }
 #endif
 
@@ -213,16 +214,15 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
 #pragma GCC unroll 2
         for (int h = 0; h < 2; ++h) {
             const __m256i* a = acc + 4 * h;
-            const __m256i packed =
-                _mm256_packs_epi16(_mm256_packs_epi32(a[0], a[1]), _mm256_packs_epi32(a[2], a[3]));
+            const __m256i packed = _mm256_packs_epi16(_mm256_packs_epi32(a[0], a[1]), _mm256_packs_epi32(a[2], a[3]));
             pair |= uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(packed))} << (32 * h);
         }
         words[by] = pair;
     }
     // Built in registers (a store/reload of the words would stall store forwarding).
     const __m256i unc = _mm256_inserti128_si256(
-        _mm256_castsi128_si256(_mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[0])),
-                                                static_cast<int64_t>(words[1]), 1)),
+        _mm256_castsi128_si256(
+            _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[0])), static_cast<int64_t>(words[1]), 1)),
         _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[2])), static_cast<int64_t>(words[3]), 1), 1);
     const __m256i ones = _mm256_set1_epi32(-1);
     // The masks go out as four 8-byte scalar stores: each 2-byte read of one lane is then forwarded from a single

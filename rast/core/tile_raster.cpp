@@ -130,12 +130,12 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
 // {dx, dy, size 4, -} (the 4 bytes past a FullBlock are overwritten by the next entry or land in the slack) and
 // Block4 {dx, dy, masks 0} (mask[0] inserted). Row 16 = dummy lane (the scalar emission).
 alignas(16) inline constexpr int32_t kLaneFull16[17][4] = {
-    {0, 0, 4, 0},  {4, 0, 4, 0},  {8, 0, 4, 0},  {12, 0, 4, 0},  {0, 4, 4, 0},  {4, 4, 4, 0},
-    {8, 4, 4, 0},  {12, 4, 4, 0}, {0, 8, 4, 0},  {4, 8, 4, 0},   {8, 8, 4, 0},  {12, 8, 4, 0},
+    {0, 0, 4, 0},  {4, 0, 4, 0},  {8, 0, 4, 0},  {12, 0, 4, 0},  {0, 4, 4, 0}, {4, 4, 4, 0},
+    {8, 4, 4, 0},  {12, 4, 4, 0}, {0, 8, 4, 0},  {4, 8, 4, 0},   {8, 8, 4, 0}, {12, 8, 4, 0},
     {0, 12, 4, 0}, {4, 12, 4, 0}, {8, 12, 4, 0}, {12, 12, 4, 0}, {0, 0, 4, 0}};
 alignas(16) inline constexpr int32_t kLaneBlock16[17][4] = {
-    {0, 0, 0, 0},  {4, 0, 0, 0},  {8, 0, 0, 0},  {12, 0, 0, 0},  {0, 4, 0, 0},  {4, 4, 0, 0},
-    {8, 4, 0, 0},  {12, 4, 0, 0}, {0, 8, 0, 0},  {4, 8, 0, 0},   {8, 8, 0, 0},  {12, 8, 0, 0},
+    {0, 0, 0, 0},  {4, 0, 0, 0},  {8, 0, 0, 0},  {12, 0, 0, 0},  {0, 4, 0, 0}, {4, 4, 0, 0},
+    {8, 4, 0, 0},  {12, 4, 0, 0}, {0, 8, 0, 0},  {4, 8, 0, 0},   {8, 8, 0, 0}, {12, 8, 0, 0},
     {0, 12, 0, 0}, {4, 12, 0, 0}, {8, 12, 0, 0}, {12, 12, 0, 0}, {0, 0, 0, 0}};
 
 // Calls store(j, 16 * lane) for the j-th lane of `lanes` (a 16-bit lane set, ascending order), j < popcount.
@@ -241,17 +241,11 @@ template <int kN>
     out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
 }
 
-// A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
-// work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block then
-// starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask per
-// plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n.
-//
-// Branch-light by design (on this kind of code mispredictions, not instructions, dominate): one loop over the live
-// lanes with no data-dependent branch inside. Every lane writes a candidate entry into both lists and advances the
-// one it belongs to (full lanes: the full list; others: the block list when the mask is not empty). Planes that
-// accept a lane are still evaluated there (they give 0xFFFF exactly), so full lanes get mask 0xFFFF and partial ones
-// their exact mask without per-lane plane selection. The writes stay within capacity: before any lane is emitted,
-// num_blocks + num_full <= the 4x4 blocks already emitted in this tile <= 255.
+// 4x: a 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no
+// pixel work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block
+// then starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask
+// per plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n. Full
+// and partial lanes have their own loops (a full lane would cost 4 masks per plane). (1x: compute_block16_1x.)
 template <int kN>
 void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
                     uint32_t valid, TileScratch* out) {
@@ -271,7 +265,6 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
     size_t nb = out->num_blocks, nf = out->num_full;
     const uint64_t keep = (prim.sample_mask & 1u ? 0xFFFFull : 0) | (prim.sample_mask & 2u ? 0xFFFFull << 16 : 0) |
                           (prim.sample_mask & 4u ? 0xFFFFull << 32 : 0) | (prim.sample_mask & 8u ? 0xFFFFull << 48 : 0);
-    // 4x: a full lane would cost 4 masks per plane, so full and partial lanes get their own loops here.
     for (uint32_t m = full; m; m &= m - 1) store_full(&out->full[nf++], xy0 + kLaneXY4[std::countr_zero(m)], 4);
     for (uint32_t m = live & ~full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
@@ -323,6 +316,8 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
 }
 
+// planes: Prim::kMaxPlanes slots pointing into one TilePlane array, the first n of them the live planes (the 1x
+// path reads three slots whatever n is).
 void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
     // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
     // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of

@@ -178,7 +178,8 @@ TEST(Kernels, Block16MasksMatchDefinitionAndTwins) {
                 const int32_t x = ox + 4 * (lane & 3) + (i & 3), y = oy + 4 * (lane >> 2) + (i >> 2);
                 bool inside = true;
                 for (int k = 0; k < n; ++k)
-                    inside = inside && int64_t{planes[k].c[0]} + int64_t{planes[k].a} * x + int64_t{planes[k].b} * y > 0;
+                    inside =
+                        inside && int64_t{planes[k].c[0]} + int64_t{planes[k].a} * x + int64_t{planes[k].b} * y > 0;
                 expect |= static_cast<uint32_t>(inside) << i;
             }
             ASSERT_EQ(s.mask[lane], expect) << iter << " lane " << lane;
