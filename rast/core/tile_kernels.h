@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #if TILEVK_SIMD_AVX2
 #include <immintrin.h>
@@ -29,6 +30,7 @@ struct TilePlane {
     int32_t up, dn;                 // max(a,0) + max(b,0) and min(a,0) + min(b,0): the extreme corner per pixel
     alignas(32) int32_t step[16];   // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
     alignas(32) int32_t step4[16];  // step << 2: corner steps of the 4x4-px blocks of a 16x16 block (< 3*2^26)
+    alignas(32) int32_t row8[8];    // a*x for x = 0..7: one 8-px row segment (the 1x 16x16 kernel)
 };
 
 // Lane i of a 16-lane block grid: column i&3, row i>>2.
@@ -43,6 +45,7 @@ inline void fill_step_table_scalar(TilePlane* p) {
         p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
         p->step4[i] = p->step[i] * 4;
     }
+    for (int x = 0; x < 8; ++x) p->row8[x] = p->a * x;
 }
 
 #if TILEVK_SIMD_AVX2
@@ -58,6 +61,8 @@ inline void fill_step_table_avx2(TilePlane* p) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1);
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p->row8),
+                       _mm256_mullo_epi32(a, _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
 }
 #endif
 
@@ -105,6 +110,28 @@ inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int
     return m;
 }
 
+// 1x, one 16x16-px block at once (the 16->4 level at one sample per pixel). base[k] = value of plane k at the
+// block's top-left pixel. mask[lane] = coverage of the lane's 4x4 block (bit y*4+x set iff every plane is > 0 at
+// that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. mask[16] is a zero dummy entry (read by the
+// fixed-length emission loops past the last lane). Both versions do a fixed amount of work per block.
+struct Block16Masks {
+    alignas(32) uint16_t mask[32];  // lanes 0..15, then the dummy
+    uint32_t full, empty;
+};
+
+inline void block16_masks_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+    uint32_t full = 0, empty = 0;
+    for (int lane = 0; lane < 16; ++lane) {
+        uint32_t m = 0xFFFF;
+        for (int k = 0; k < n; ++k) m &= plane_mask4x4_scalar(*planes[k], base[k] + planes[k]->step4[lane]);
+        out->mask[lane] = static_cast<uint16_t>(m);
+        full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
+        empty |= static_cast<uint32_t>(m == 0) << lane;
+    }
+    out->mask[16] = 0;
+    out->full = full, out->empty = empty;
+}
+
 #if TILEVK_SIMD_AVX2
 namespace avx2 {
 
@@ -148,9 +175,83 @@ inline uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32
     }
     return m;
 }
+// The 256 pixels as 32 row segments of 8 px per plane (row y, x in [0,8) or [8,16)): segment = base - 1 + a*x + b*y,
+// one add each (incremental down the rows, + 8a for the right half); planes combine by OR of the values (sign bit =
+// some plane <= 0). Four rows of one half are packed 32 -> 16 -> 8 bits with signed saturation (signs kept) and one
+// movemask gives the two 4x4 blocks of that half, in the block mask's bit order (y*4 + x), lane order by word.
+// kN = plane count known at compile time (0: use n, up to Prim::kMaxPlanes = 8).
+template <int kN>
+inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+    if constexpr (kN != 0) n = kN;
+    constexpr int kMax = kN != 0 ? kN : 8;
+    // Rows 1-3 of a block row and the next block row from the first row with one add each (short dependency chains).
+    __m256i left[kMax], step_b[kMax][4], step_8a[kMax];
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        left[k] = _mm256_add_epi32(_mm256_set1_epi32(base[k] - 1),
+                                   _mm256_load_si256(reinterpret_cast<const __m256i*>(p.row8)));
+        for (int i = 0; i < 4; ++i) step_b[k][i] = _mm256_set1_epi32(p.b * (i + 1));  // |4b| < 2^25
+        step_8a[k] = _mm256_set1_epi32(p.a * 8);
+    }
+    // Uncovered bits: word 2*by + h = lanes 4*by + 2*h (low half) and + 1 (high half); two words per qword.
+    uint64_t words[4];
+#pragma GCC unroll 4
+    for (int by = 0; by < 4; ++by) {
+        __m256i acc[8];
+#pragma GCC unroll 8
+        for (int k = 0; k < n; ++k) {
+            __m256i r[8];
+            r[0] = left[k];
+#pragma GCC unroll 4
+            for (int i = 1; i < 4; ++i) r[i] = _mm256_add_epi32(left[k], step_b[k][i - 1]);
+            left[k] = _mm256_add_epi32(left[k], step_b[k][3]);
+#pragma GCC unroll 4
+            for (int i = 0; i < 4; ++i) r[4 + i] = _mm256_add_epi32(r[i], step_8a[k]);
+#pragma GCC unroll 8
+            for (int i = 0; i < 8; ++i) acc[i] = k == 0 ? r[i] : _mm256_or_si256(acc[i], r[i]);
+        }
+        uint64_t pair = 0;
+#pragma GCC unroll 2
+        for (int h = 0; h < 2; ++h) {
+            const __m256i* a = acc + 4 * h;
+            const __m256i packed = _mm256_packs_epi16(_mm256_packs_epi32(a[0], a[1]), _mm256_packs_epi32(a[2], a[3]));
+            pair |= uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(packed))} << (32 * h);
+        }
+        words[by] = pair;
+    }
+    // Built in registers (a store/reload of the words would stall store forwarding).
+    const __m256i unc = _mm256_inserti128_si256(
+        _mm256_castsi128_si256(
+            _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[0])), static_cast<int64_t>(words[1]), 1)),
+        _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<int64_t>(words[2])), static_cast<int64_t>(words[3]), 1), 1);
+    const __m256i ones = _mm256_set1_epi32(-1);
+    // The masks go out as four 8-byte scalar stores: each 2-byte read of one lane is then forwarded from a single
+    // store of the same width class (one 32-byte vector store here made every read wait for it to commit).
+#pragma GCC unroll 4
+    for (int by = 0; by < 4; ++by) {
+        const uint64_t covered = ~words[by];
+        std::memcpy(out->mask + 4 * by, &covered, 8);
+    }
+    out->mask[16] = 0;
+    // Per 16-bit lane: full = no uncovered bit, empty = all uncovered; packed to bytes, ordered [full | empty].
+    const __m256i is_full = _mm256_cmpeq_epi16(unc, _mm256_setzero_si256());
+    const __m256i is_empty = _mm256_cmpeq_epi16(unc, ones);
+    const __m256i both = _mm256_permute4x64_epi64(_mm256_packs_epi16(is_full, is_empty), 0xD8);
+    const uint32_t bits = static_cast<uint32_t>(_mm256_movemask_epi8(both));
+    out->full = bits & 0xFFFFu, out->empty = bits >> 16;
+}
 #endif
 
 // The kernels the rasterizer uses: AVX2 when built with it, else the scalar twin.
+template <int kN>
+inline void block16_masks(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+#if TILEVK_SIMD_AVX2
+    block16_masks_avx2<kN>(planes, n, base, out);
+#else
+    block16_masks_scalar(planes, n, base, out);
+#endif
+}
+
 inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
 #if TILEVK_SIMD_AVX2
     classify16_avx2(p, ox, oy, shift, reject, accept);

@@ -7,6 +7,10 @@
 #include <cstddef>
 #include <cstring>
 
+#if TILEVK_SIMD_AVX2
+#include <immintrin.h>
+#endif
+
 namespace tilevk::rast {
 
 namespace {
@@ -122,17 +126,126 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
     return m;
 }
 
-// A 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no pixel
-// work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block then
-// starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask per
-// plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n.
-//
-// Branch-light by design (on this kind of code mispredictions, not instructions, dominate): one loop over the live
-// lanes with no data-dependent branch inside. Every lane writes a candidate entry into both lists and advances the
-// one it belongs to (full lanes: the full list; others: the block list when the mask is not empty). Planes that
-// accept a lane are still evaluated there (they give 0xFFFF exactly), so full lanes get mask 0xFFFF and partial ones
-// their exact mask without per-lane plane selection. The writes stay within capacity: before any lane is emitted,
-// num_blocks + num_full <= the 4x4 blocks already emitted in this tile <= 255.
+// Entry templates per lane, 16 bytes each so that one vector add and one 16-byte store make an entry: FullBlock
+// {dx, dy, size 4, -} (the 4 bytes past a FullBlock are overwritten by the next entry or land in the slack) and
+// Block4 {dx, dy, masks 0} (mask[0] inserted). Row 16 = dummy lane (the scalar emission).
+alignas(16) inline constexpr int32_t kLaneFull16[17][4] = {
+    {0, 0, 4, 0},  {4, 0, 4, 0},  {8, 0, 4, 0},  {12, 0, 4, 0},  {0, 4, 4, 0}, {4, 4, 4, 0},
+    {8, 4, 4, 0},  {12, 4, 4, 0}, {0, 8, 4, 0},  {4, 8, 4, 0},   {8, 8, 4, 0}, {12, 8, 4, 0},
+    {0, 12, 4, 0}, {4, 12, 4, 0}, {8, 12, 4, 0}, {12, 12, 4, 0}, {0, 0, 4, 0}};
+alignas(16) inline constexpr int32_t kLaneBlock16[17][4] = {
+    {0, 0, 0, 0},  {4, 0, 0, 0},  {8, 0, 0, 0},  {12, 0, 0, 0},  {0, 4, 0, 0}, {4, 4, 0, 0},
+    {8, 4, 0, 0},  {12, 4, 0, 0}, {0, 8, 0, 0},  {4, 8, 0, 0},   {8, 8, 0, 0}, {12, 8, 0, 0},
+    {0, 12, 0, 0}, {4, 12, 0, 0}, {8, 12, 0, 0}, {12, 12, 0, 0}, {0, 0, 0, 0}};
+
+// Calls store(j, 16 * lane) for the j-th lane of `lanes` (a 16-bit lane set, ascending order), j < popcount.
+// Branch-free within a fixed trip count: 8 when at most 8 lanes (the usual case for an edge crossing a 16x16 block),
+// else 16; the calls past the last lane write throw-away entries into the slots after the count
+// (TileScratch::kSlack). With BMI2 the lane list is made at once: pdep spreads the lane bits to nibbles, pext picks
+// those nibbles of 0xFEDC...3210, so nibble j is the j-th lane (past the count: 0).
+template <typename Store>
+[[gnu::always_inline]] inline void emit_lanes(uint32_t lanes, Store store) {
+#if TILEVK_SIMD_AVX2
+    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(lanes, 0x1111111111111111ull) * 0xF);
+    const auto one = [&](int j) {
+        store(j, static_cast<uint32_t>(j == 0 ? (list << 4) & 0xF0 : (list >> (4 * j - 4)) & 0xF0));
+    };
+#else
+    const auto one = [&](int j) {
+        store(j, static_cast<uint32_t>(std::countr_zero(lanes | 0x10000u)) << 4);
+        lanes &= lanes - 1;
+    };
+#endif
+    if (std::popcount(lanes) <= 8) {
+#pragma GCC unroll 8
+        for (int j = 0; j < 8; ++j) one(j);
+    } else {
+#pragma GCC unroll 16
+        for (int j = 0; j < 16; ++j) one(j);
+    }
+}
+
+// 1x, in two steps so that the kernels of several 16x16 blocks can overlap (they are independent; emitting right
+// after each one would chain every block behind the previous one's list writes). Block16 = one 16x16 block's result:
+// the sixteen 4x4 masks from one fixed-cost kernel (block16_masks, no per-lane branch), its position and the full
+// and partial lanes within `valid`. At 1x a lane is accepted by every plane exactly when its mask is 0xFFFF (one
+// sample per pixel, lo = hi = c[0]), so this gives the same lists as classifying first.
+struct Block16 {
+    Block16Masks bm;
+    int32_t x, y;  // absolute pixel origin
+    uint32_t full, partial;
+};
+
+template <int kN>
+[[gnu::always_inline]] inline void compute_block16_1x(const TileGeom& t, PlaneList planes, int n, int32_t ox,
+                                                      int32_t oy, uint32_t valid, Block16* r) {
+    int32_t base[Prim::kMaxPlanes];
+    for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
+    block16_masks<kN>(planes, n, base, &r->bm);
+    r->x = t.x0 + ox, r->y = t.y0 + oy;
+    r->full = valid & r->bm.full, r->partial = valid & ~(r->bm.full | r->bm.empty);
+}
+
+// Any plane count >= 1: compile-time kernels for 1, 2 and 3 planes (p0, p1 = the first two planes).
+[[gnu::always_inline]] inline void compute_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
+                                                          PlaneList planes, int n, int32_t ox, int32_t oy,
+                                                          uint32_t valid, Block16* r) {
+    if (n == 1) return compute_block16_1x<1>(t, &p0, 1, ox, oy, valid, r);
+    if (n == 2) {
+        const TilePlane* two[2] = {p0, p1};
+        return compute_block16_1x<2>(t, two, 2, ox, oy, valid, r);
+    }
+    if (n == 3) return compute_block16_1x<3>(t, planes, 3, ox, oy, valid, r);
+    compute_block16_1x<0>(t, planes, n, ox, oy, valid, r);
+}
+
+// Appends the full lanes as whole 4x4 blocks at *f and the partial ones as masks at *b (each list written by
+// emit_lanes) and advances both. The list ends are kept in registers by the caller: stored in TileScratch, each
+// would be reloaded after every vector store (which may alias anything).
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, FullBlock*& f, Block4*& b) {
+    const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
+    const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
+#if TILEVK_SIMD_AVX2
+    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(r.x, r.y)));  // {x, y, 0, 0}
+    const auto entry = [&](const char* table, uint32_t off16) {
+        return _mm_add_epi32(xy, _mm_load_si128(reinterpret_cast<const __m128i*>(table + off16)));
+    };
+    emit_lanes(r.full, [&](int j, uint32_t off16) {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(f + j), entry(full16, off16));
+    });
+    emit_lanes(r.partial, [&](int j, uint32_t off16) {
+        // One 16-byte store per entry (the consumer's 8-byte mask load is then forwarded from a single store).
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(b + j),
+                         _mm_insert_epi16(entry(block16, off16), r.bm.mask[off16 >> 4], 4));
+    });
+#else
+    const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
+    emit_lanes(r.full, [&](int j, uint32_t off16) {
+        const int32_t* e = at(full16, off16);
+        f[j] = {r.x + e[0], r.y + e[1], 4};
+    });
+    emit_lanes(r.partial, [&](int j, uint32_t off16) {
+        const int32_t* e = at(block16, off16);
+        b[j].x = r.x + e[0], b[j].y = r.y + e[1];
+        b[j].mask[0] = r.bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
+    });
+#endif
+    f += std::popcount(r.full);
+    b += std::popcount(r.partial);
+}
+
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, TileScratch* out) {
+    FullBlock* f = out->full + out->num_full;
+    Block4* b = out->blocks + out->num_blocks;
+    emit_block16_1x(r, f, b);
+    out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
+}
+
+// 4x: a 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no
+// pixel work), mask the partial ones. Per plane the value at the block origin is computed once; a lane's 4x4 block
+// then starts at base + step4[lane] (the pre-shifted corner step table), so a lane costs one broadcast-add-movemask
+// per plane and sample. kN = number of planes when known at compile time (1..3, the usual case), 0 = use n. Full
+// and partial lanes have their own loops (a full lane would cost 4 masks per plane). (1x: compute_block16_1x.)
 template <int kN>
 void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy,
                     uint32_t valid, TileScratch* out) {
@@ -150,25 +263,8 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
     // Positions as packed (x | y << 32) words: one add per lane gives both (x, y >= 0, so no carry crosses).
     const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
     size_t nb = out->num_blocks, nf = out->num_full;
-    if (t.samples == 1) {
-        for (int k = 0; k < n; ++k) base[k] += planes[k]->c[0];
-        for (uint32_t m = live; m; m &= m - 1) {
-            const int lane = std::countr_zero(m);
-            uint32_t mask = 0xFFFF;
-            for (int k = 0; k < n; ++k) mask &= plane_mask4x4(*planes[k], base[k] + planes[k]->step4[lane]);
-            const uint64_t xy = xy0 + kLaneXY4[lane];
-            const uint32_t is_full = (full >> lane) & 1u;
-            store_full(&out->full[nf], xy, 4);
-            nf += is_full;
-            store_block(&out->blocks[nb], xy, mask);  // 1x: masks 1-3 zero
-            nb += (mask != 0) & (is_full ^ 1u);       // 1x: sample_mask bit 0 is set (else setup rejects the prim)
-        }
-        out->num_blocks = nb, out->num_full = nf;
-        return;
-    }
     const uint64_t keep = (prim.sample_mask & 1u ? 0xFFFFull : 0) | (prim.sample_mask & 2u ? 0xFFFFull << 16 : 0) |
                           (prim.sample_mask & 4u ? 0xFFFFull << 32 : 0) | (prim.sample_mask & 8u ? 0xFFFFull << 48 : 0);
-    // 4x: a full lane would cost 4 masks per plane, so full and partial lanes get their own loops here.
     for (uint32_t m = full; m; m &= m - 1) store_full(&out->full[nf++], xy0 + kLaneXY4[std::countr_zero(m)], 4);
     for (uint32_t m = live & ~full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
@@ -188,6 +284,11 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
 
 void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
+    if (t.samples == 1) {
+        Block16 r;
+        compute_block16_1x_any(t, planes[0], planes[(n >> 1) & 1], planes, n, ox, oy, valid, &r);
+        return emit_block16_1x(r, out);
+    }
     switch (n) {
         case 1:
             return hier_block16_n<1>(prim, t, planes, n, ox, oy, valid, out);
@@ -215,6 +316,8 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
 }
 
+// planes: Prim::kMaxPlanes slots pointing into one TilePlane array, the first n of them the live planes (the 1x
+// path reads three slots whatever n is).
 void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
     // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
     // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
@@ -231,7 +334,8 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
         return;
     }
     if (t.size == 16) return hier_block16(prim, t, planes, n, 0, 0, lanes_in_box(0, 0, 2, r.x0, r.y0, r.x1, r.y1), out);
-    uint32_t live, full, acc[Prim::kMaxPlanes];
+    // acc of the planes past n: accepting everywhere (the 1x path below reads three).
+    uint32_t live, full, acc[Prim::kMaxPlanes] = {0, 0xFFFF, 0xFFFF};
     classify_grid(planes, n, 0, 0, 4, lanes_in_box(0, 0, 4, r.x0, r.y0, r.x1, r.y1), &live, &full, acc);
     for (uint32_t m = full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
@@ -239,6 +343,26 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     }
     // 4-px columns/rows of the tile that meet the box (bit j = pixels [4j, 4j+3]); a 16-px lane takes 4 of each.
     const uint32_t cols4 = (2u << (r.x1 >> 2)) - (1u << (r.x0 >> 2)), rows4 = (2u << (r.y1 >> 2)) - (1u << (r.y0 >> 2));
+    if (t.samples == 1 && n <= 3) {
+        // 1x with up to three planes (every triangle): the planes kept per 16x16 lane are chosen from a fixed three
+        // (slots past n accept everywhere, so they are never kept; the list's slots all point into the caller's
+        // plane array), so neither the choice nor the kernel dispatch branches on the tile's plane count.
+        Block16 blocks[16];
+        int count = 0;
+        for (uint32_t m = live & ~full; m; m &= m - 1) {
+            const int lane = std::countr_zero(m);
+            const int col = lane & 3, row = lane >> 2;
+            const TilePlane* kept[3];
+            const int k = drop_accepted(planes, 3, acc, lane, kept);  // 1..3: the lane is not full
+            const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
+            compute_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, &blocks[count++]);
+        }
+        FullBlock* f = out->full + out->num_full;
+        Block4* b = out->blocks + out->num_blocks;
+        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], f, b);
+        out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
+        return;
+    }
     for (uint32_t m = live & ~full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
         const int col = lane & 3, row = lane >> 2;
@@ -366,7 +490,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     int n = 0;
     const TileClass cls = tile_setup(prim, tile, planes, &n);
     const TilePlane* list[Prim::kMaxPlanes];
-    for (int k = 0; k < n; ++k) list[k] = &planes[k];
+    for (int k = 0; k < Prim::kMaxPlanes; ++k) list[k] = &planes[k];  // all slots: a fixed loop, no branch on n
     if (cls == TileClass::kReject) return;
     if (cls == TileClass::kWhole && method == Method::kHier) {
         push_full(scratch, tile.x0, tile.y0, tile.size);

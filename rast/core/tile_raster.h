@@ -28,10 +28,13 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
 
 // Fixed capacity: one primitive covers each 4x4 block of a tile at most once (<= (64/4)^2 = 256 blocks), and full
 // blocks (4, 16 or tile sized) never overlap, so neither list can exceed 256 entries. No allocation per primitive.
+// kSlack: room for the hier 1x emission (emit_lanes), which writes up to 15 throw-away entries past the count and
+// stores FullBlocks as 16-byte vectors (4 bytes past the entry): with count <= 256 - (this block's entries), every
+// write stays below entry 256 + 15 + 1.
 struct TileScratch {
-    static constexpr size_t kCapacity = 256;
-    Block4 blocks[kCapacity];
-    FullBlock full[kCapacity];
+    static constexpr size_t kCapacity = 256, kSlack = 16;
+    Block4 blocks[kCapacity + kSlack];
+    FullBlock full[kCapacity + kSlack];
     size_t num_blocks = 0, num_full = 0;
 };
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <random>
 
 #include "rast/core/tile_kernels.h"
@@ -75,6 +76,7 @@ TEST(Kernels, ScalarAndAvx2Agree) {
                 ASSERT_EQ(x.step[i], y.step[i]) << iter;
                 ASSERT_EQ(x.step4[i], y.step4[i]) << iter;
             }
+            for (int i = 0; i < 8; ++i) ASSERT_EQ(x.row8[i], y.row8[i]) << iter;
         }
         const int32_t bx = 4 * ((iter >> 2) & 15), by = 4 * ((iter >> 6) & 15);
         for (int s = 0; s < 4; ++s) {
@@ -109,6 +111,7 @@ TEST(Kernels, ScalarMatchesDefinition) {
             ASSERT_EQ(p.step[i], p.a * (i & 3) + p.b * (i >> 2));
             ASSERT_EQ(p.step4[i], 4 * (p.a * (i & 3) + p.b * (i >> 2)));
         }
+        for (int x = 0; x < 8; ++x) ASSERT_EQ(p.row8[x], p.a * x);
     }
 }
 
@@ -143,6 +146,65 @@ TEST(Kernels, ClassifyMatchesBruteForce) {
     }
     EXPECT_GT(rejects, 1000u);
     EXPECT_GT(accepts, 1000u);
+    EXPECT_GT(partial, 1000u);
+}
+
+// The 1x 16x16 kernel (block16_masks): the scalar twin against the 64-bit definition pixel by pixel, and the AVX2
+// version (the runtime plane count and every compile-time count) against the scalar twin, field for field.
+void expect_same_block16(const Block16Masks& x, const Block16Masks& y, int iter) {
+    for (int lane = 0; lane <= 16; ++lane) ASSERT_EQ(x.mask[lane], y.mask[lane]) << iter << " lane " << lane;
+    ASSERT_EQ(x.full, y.full) << iter;
+    ASSERT_EQ(x.empty, y.empty) << iter;
+}
+
+TEST(Kernels, Block16MasksMatchDefinitionAndTwins) {
+    std::mt19937_64 rng(9090);
+    uint64_t full = 0, empty = 0, partial = 0;
+    for (int iter = 0; iter < 60000; ++iter) {
+        const int n = 1 + iter % 4;
+        TilePlane planes[4];
+        const TilePlane* list[4] = {&planes[0], &planes[1], &planes[2], &planes[3]};
+        for (int k = 0; k < n; ++k) planes[k] = random_plane(rng);
+        const int32_t ox = 16 * ((iter >> 2) & 3), oy = 16 * ((iter >> 4) & 3);
+        int32_t base[4];
+        for (int k = 0; k < n; ++k) base[k] = planes[k].c[0] + planes[k].a * ox + planes[k].b * oy;
+        Block16Masks s;
+        std::memset(&s, 0xA5, sizeof s);  // every checked field must be written
+        block16_masks_scalar(list, n, base, &s);
+        uint32_t expect_full = 0, expect_empty = 0;
+        for (int lane = 0; lane < 16; ++lane) {
+            uint32_t expect = 0;
+            for (int i = 0; i < 16; ++i) {
+                const int32_t x = ox + 4 * (lane & 3) + (i & 3), y = oy + 4 * (lane >> 2) + (i >> 2);
+                bool inside = true;
+                for (int k = 0; k < n; ++k)
+                    inside =
+                        inside && int64_t{planes[k].c[0]} + int64_t{planes[k].a} * x + int64_t{planes[k].b} * y > 0;
+                expect |= static_cast<uint32_t>(inside) << i;
+            }
+            ASSERT_EQ(s.mask[lane], expect) << iter << " lane " << lane;
+            expect_full |= static_cast<uint32_t>(expect == 0xFFFF) << lane;
+            expect_empty |= static_cast<uint32_t>(expect == 0) << lane;
+        }
+        ASSERT_EQ(s.mask[16], 0) << iter;
+        ASSERT_EQ(s.full, expect_full) << iter;
+        ASSERT_EQ(s.empty, expect_empty) << iter;
+        full += std::popcount(expect_full), empty += std::popcount(expect_empty);
+        partial += 16 - std::popcount(expect_full | expect_empty);
+#if TILEVK_SIMD_AVX2
+        Block16Masks v;
+        std::memset(&v, 0x5A, sizeof v);
+        block16_masks_avx2<0>(list, n, base, &v);
+        expect_same_block16(s, v, iter);
+        std::memset(&v, 0x5A, sizeof v);
+        if (n == 1) block16_masks_avx2<1>(list, n, base, &v);
+        if (n == 2) block16_masks_avx2<2>(list, n, base, &v);
+        if (n == 3) block16_masks_avx2<3>(list, n, base, &v);
+        if (n <= 3) expect_same_block16(s, v, iter);
+#endif
+    }
+    EXPECT_GT(full, 1000u);
+    EXPECT_GT(empty, 1000u);
     EXPECT_GT(partial, 1000u);
 }
 
