@@ -21,8 +21,10 @@ struct Vertex {
 
 enum class Interp { kSmooth, kFlat, kNoPerspective };
 // kCount writes exactly 1/255 to every channel (one unorm8 increment under ONE,ONE blending);
-// kFacing writes 1/255 to red for front faces and to green for back faces.
-enum class Frag { kColor, kTexture, kCount, kFacing };
+// kFacing writes 1/255 to red for front faces and to green for back faces;
+// kColorSum writes v_color + v_color: an fadd, which lavapipe's linear-shader analysis
+// (lp_state_fs_analysis.c) refuses, so B8G8R8A8 frames with it isolate the linear mode's geometry.
+enum class Frag { kColor, kTexture, kCount, kFacing, kColorSum };
 enum class TexPattern { kChecker, kGradient };
 
 struct TextureSpec {

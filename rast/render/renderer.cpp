@@ -205,6 +205,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     geometry::ClipConfig ccfg;
     ccfg.layout = layout;
     ccfg.vp = vcfg.viewport.vp;
+    ccfg.guard_band_xy = fb_.linear_mode;
     clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
     attrib_planes_.resize(layout.num_attribs);
     geometry::FloatCull fcull;
