@@ -33,6 +33,45 @@ Draw edge_crossing(uint32_t seed, int n, float reach, VkPrimitiveTopology topo) 
     return d;
 }
 
+// A vertex at window pixel (x, y) of a 128x128 target: NDC x/64 - 1 is exact for x in 1/512 steps, and so is the
+// viewport transform back (fmuladd(ndc, 64, 64)), so the window coordinates are exactly the ones written here.
+Vertex at(float x, float y, std::array<float, 4> c, float w = 1.0f) {
+    return vtx(x / 64.0f - 1.0f, y / 64.0f - 1.0f, 0.5f, w, c);
+}
+
+// Colours affine in the pixel position with binary-fraction gradients: corner differences are exact, so the
+// four corners of a rectangle pass do_rect_ccw's coplanarity test.
+std::array<float, 4> affine(float x, float y, uint32_t k) {
+    const float gx = float(1 + k % 3) / 1024.0f, gy = float(1 + k % 5) / 2048.0f;
+    return {0.0625f + gx * x, 0.125f + gy * y, 0.25f - gx * 0.5f * x, 0.5f - gy * y * 0.5f};
+}
+
+// Two triangles covering the rectangle (x0, y0)-(x1, y1), in one of many vertex and triangle orders: `kind`
+// picks the diagonal, the rotation of each triangle's vertices, the triangle order and (bit 5) a reversed
+// winding, so all nine shared-diagonal configurations of do_rect_ccw and both windings occur.
+void push_rect(Draw& d, float x0, float y0, float x1, float y1, uint32_t kind, bool coplanar, uint32_t k,
+               float w = 1.0f) {
+    const float xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
+    Vertex c[4];
+    for (int i = 0; i < 4; ++i) {
+        std::array<float, 4> col = affine(xs[i], ys[i], k);
+        if (!coplanar && i == 2) col[1] += 1.0f / 64.0f;
+        c[i] = at(xs[i], ys[i], col, w);
+    }
+    const bool diag_bd = kind & 1;
+    int t[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    if (diag_bd) t[0][0] = 1, t[0][1] = 2, t[0][2] = 3, t[1][0] = 1, t[1][1] = 3, t[1][2] = 0;
+    for (int tri = 0; tri < 2; ++tri) {
+        const int rot = int((kind >> (1 + tri)) % 3);
+        int r[3] = {t[tri][rot], t[tri][(rot + 1) % 3], t[tri][(rot + 2) % 3]};
+        if (kind & 32) std::swap(r[1], r[2]);
+        std::copy(r, r + 3, t[tri]);
+    }
+    const int first = (kind & 8) ? 1 : 0;
+    for (int tri : {first, 1 - first})
+        for (int v = 0; v < 3; ++v) d.vertices.push_back(c[t[tri][v]]);
+}
+
 Scene bgra(Draw d, uint32_t w = 160, uint32_t h = 120) {
     Scene s = one_draw(std::move(d), w, h);
     s.target.color = kBgra8;
@@ -84,6 +123,163 @@ void add_linear_cases(CaseList& out) {
                            return bgra(d);
                        },
                        nullptr, note});
+    }
+    // linear.rect.*: llvmpipe's rectangle path (lp_setup_rect.c): 6N-vertex lists, strips and 4-vertex fans whose
+    // triangle pairs form axis-aligned rectangles with equal w and coplanar attributes are set up once from three
+    // corners and cover the box of their util_iround-snapped corners. Corners sit on sub-pixel offsets where
+    // that box and the triangles' edge functions disagree (x.5 + 1/512: half away from zero vs half to even).
+    const float offsets[] = {0.0f, 0.25f, 0.5f, 0.5f + 1.0f / 512.0f, 0.5f - 1.0f / 512.0f, 0.75f, 1.0f / 512.0f};
+    for (bool coplanar : {true, false}) {
+        out.push_back({std::string("linear.rect.subpixel_") + (coplanar ? "coplanar" : "not_coplanar"),
+                       [=] {
+                           Draw d;
+                           d.frag = Frag::kColorSum;
+                           uint32_t k = 0;
+                           for (int j = 0; j < 7; ++j)
+                               for (int i = 0; i < 7; ++i, ++k) {
+                                   const float x = 2.0f + 18.0f * i + offsets[(i + j) % 7];
+                                   const float y = 2.0f + 18.0f * j + offsets[(i * 3 + j) % 7];
+                                   const float x1 = x + 5.0f + offsets[(i + 2 * j + 1) % 7] + float(i % 3) * 3.0f;
+                                   const float y1 = y + 4.0f + offsets[(2 * i + j + 2) % 7] + float(j % 3) * 3.0f;
+                                   push_rect(d, x, y, x1, y1, k * 7 + 3, coplanar, k);
+                               }
+                           return bgra(d, 128, 128);
+                       },
+                       nullptr, note});
+    }
+    // Every vertex/triangle order of the pair (64 kinds), one big rectangle each, drawn over each other with
+    // blending so every rectangle shows; and the same under each cull mode and front face.
+    const VkCullModeFlags culls[] = {VK_CULL_MODE_NONE, VK_CULL_MODE_BACK_BIT, VK_CULL_MODE_FRONT_BIT,
+                                     VK_CULL_MODE_FRONT_AND_BACK};
+    const char* cull_names[] = {"none", "back", "front", "both"};
+    for (int c = 0; c < 4; ++c) {
+        for (VkFrontFace ff : {VK_FRONT_FACE_COUNTER_CLOCKWISE, VK_FRONT_FACE_CLOCKWISE}) {
+            if (c == 0 && ff == VK_FRONT_FACE_CLOCKWISE) continue;
+            out.push_back(
+                {std::string("linear.rect.orders_cull_") + cull_names[c] + (ff == VK_FRONT_FACE_CLOCKWISE ? "_cw" : ""),
+                 [=] {
+                     Scene s = bgra(Draw{}, 128, 128);
+                     s.draws.clear();
+                     for (uint32_t kind = 0; kind < 64; ++kind) {
+                         Draw d;
+                         d.frag = Frag::kColorSum;
+                         d.cull = culls[c];
+                         d.front_face = ff;
+                         d.blend = additive();
+                         const float x = 1.5f + float(kind % 8) * 15.75f, y = 1.25f + float(kind / 8) * 15.5f;
+                         push_rect(d, x, y, x + 13.5f + 1.0f / 512.0f, y + 12.5f, kind, kind % 5 != 4, kind);
+                         for (Vertex& v : d.vertices)
+                             for (float& ch : v.color) ch *= 0.25f;
+                         s.draws.push_back(d);
+                     }
+                     return s;
+                 },
+                 nullptr, note});
+        }
+    }
+    // Partly off-screen rectangles: their batch takes draw's pipeline (vertices outside the viewport), the
+    // clipper re-emits them inside the guard band and the vbuf hands them to setup as one indexed list; those
+    // crossing the guard band are cut into non-rectangles.
+    for (bool cut : {false, true}) {
+        out.push_back({std::string("linear.rect.off_screen") + (cut ? "_guard_band_cut" : ""),
+                       [=] {
+                           Draw d;
+                           d.frag = Frag::kColorSum;
+                           constexpr float t = 0.5f + 1.0f / 512.0f;  // a tie of the two snap roundings
+                           const float r[][4] = {
+                               {-20.25f, 10.0f + t, 30.0f + t, 40.5f},  {100.0f + t, -8.75f, 140.25f, 30.0f + t},
+                               {60.0f + t, 110.0f + t, 90.75f, 150.5f}, {-30.0f, -20.0f, 12.0f + t, 9.0f + t},
+                               {-100.0f, 60.0f, 20.0f + t, 80.0f},      {120.0f, 70.0f + t, 300.0f, 90.0f}};
+                           for (uint32_t k = 0; k < (cut ? 6u : 4u); ++k)
+                               push_rect(d, r[k][0], r[k][1], r[k][2], r[k][3], k * 11, true, k);
+                           return bgra(d, 128, 128);
+                       },
+                       nullptr, note});
+    }
+    out.push_back({"linear.rect.off_screen_odd_count",
+                   [] {
+                       Draw d;
+                       d.frag = Frag::kColorSum;
+                       push_rect(d, -20.25f, 10.5f, 30.0f, 40.5f, 3, true, 1);
+                       push_rect(d, 100.5f, 60.75f, 140.25f, 90.0f, 17, true, 2);
+                       d.vertices.push_back(at(10, 100, {0.5f, 0, 0, 0.5f}));  // a lone triangle: 15 vertices
+                       d.vertices.push_back(at(-30, 120, {0, 0.5f, 0, 0.5f}));
+                       d.vertices.push_back(at(40, 126, {0, 0, 0.5f, 0.5f}));
+                       return bgra(d, 128, 128);
+                   },
+                   nullptr, note});
+    // Strips of rectangles (pairs of consecutive strip triangles) and 4-vertex fans.
+    out.push_back({"linear.rect.strip_column",
+                   [] {
+                       Draw d;
+                       d.frag = Frag::kColorSum;
+                       d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+                       for (int i = 0; i < 9; ++i) {
+                           const float y = 3.25f + 13.25f * float(i) + (i % 2 ? 0.25f + 1.0f / 512.0f : 0.0f);
+                           const float x0 = 20.5f + 1.0f / 512.0f, x1 = 90.5f + 1.0f / 512.0f;
+                           d.vertices.push_back(at(x0, y, affine(x0, y, 1)));
+                           d.vertices.push_back(at(x1, y, affine(x1, y, 1)));
+                       }
+                       d.vertices[7].color[0] += 0.125f;  // one pair not coplanar: the pairing shifts by one
+                       return bgra(d, 128, 128);
+                   },
+                   nullptr, note});
+    for (int order = 0; order < 4; ++order) {
+        out.push_back({"linear.rect.fan4_" + std::to_string(order),
+                       [=] {
+                           Draw d;
+                           d.frag = Frag::kColorSum;
+                           d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
+                           constexpr float t = 1.0f / 512.0f;
+                           const float xs[4] = {10.5f + t, 100.5f + t, 100.5f + t, 10.5f + t};
+                           const float ys[4] = {20.5f + t, 20.5f + t, 90.5f + t, 90.5f + t};
+                           for (int i = 0; i < 4; ++i) {
+                               const int j = (order & 2) ? (order + 4 - i) % 4 : (i + order) % 4;
+                               d.vertices.push_back(at(xs[j], ys[j], affine(xs[j], ys[j], uint32_t(order))));
+                           }
+                           return bgra(d, 128, 128);
+                       },
+                       nullptr, note});
+    }
+    // Equal w (perspective attributes divided by one w) and unequal w (not a rectangle: triangles).
+    for (bool equal_w : {true, false}) {
+        out.push_back({std::string("linear.rect.w_") + (equal_w ? "equal" : "unequal"),
+                       [=] {
+                           Draw d;
+                           d.frag = Frag::kColorSum;
+                           push_rect(d, 10.25f, 12.5f, 70.5f + 1.0f / 512.0f, 60.0f, 0, true, 3, 2.0f);
+                           push_rect(d, 30.5f, 70.25f, 120.0f, 126.5f, 9, true, 4, 0.5f);
+                           if (!equal_w) d.vertices[4].pos[3] *= 1.0f + 1.0f / 1024.0f;
+                           return bgra(d, 128, 128);
+                       },
+                       nullptr, note});
+    }
+    out.push_back({"linear.rect.scissor",
+                   [] {
+                       Draw d;
+                       d.frag = Frag::kColorSum;
+                       d.scissor = VkRect2D{{13, 5}, {70, 61}};
+                       push_rect(d, 2.5f, 3.75f, 120.5f + 1.0f / 512.0f, 16.5f + 1.0f / 512.0f, 5, true, 5);
+                       return bgra(d, 128, 128);
+                   },
+                   nullptr, note});
+    // Any mode: a non-indexed 4-vertex fan without flat inputs reaches llvmpipe's setup through rect() as
+    // (v0, v1, v2), (v0, v2, v3), not in the fan's provoking order (v1, v2, v0), (v2, v3, v0): the attribute
+    // planes are set up from another first vertex. With a flat input the fan order stays.
+    for (Interp in : {Interp::kSmooth, Interp::kFlat}) {
+        out.push_back({std::string("quirks.fan4.rgba_") + (in == Interp::kFlat ? "flat" : "smooth"),
+                       [=] {
+                           Draw d;
+                           d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
+                           d.interp = in;
+                           d.vertices = {at(7.3f, 11.9f, {0.91f, 0.13f, 0.27f, 1}),
+                                         at(117.1f, 3.7f, {0.07f, 0.83f, 0.41f, 1}),
+                                         at(121.9f, 97.3f, {0.33f, 0.29f, 0.97f, 1}),
+                                         at(13.1f, 123.7f, {0.61f, 0.71f, 0.03f, 1})};
+                           Scene s = one_draw(d, 128, 128);
+                           return s;
+                       },
+                       nullptr, ""});
     }
     // The same frame with a depth attachment is not in linear mode (draw clips at the viewport): both must match.
     out.push_back({"linear.guard_band.with_depth_is_not_linear",

@@ -34,7 +34,8 @@ struct DrawRecord {
     ClearRecord clear;
 };
 
-enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear };
+// kRect: llvmpipe's rectangle (lp_setup_rect.c): box coverage, planes from three corners.
+enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear, kRect };
 
 struct PrimRecord {
     uint32_t draw = 0;        // index into the draw records
