@@ -8,6 +8,7 @@
 // (lp_rast_linear_rect_fallback) and only the geometry is under test. Odd triangle counts keep llvmpipe's
 // 6N-vertex rectangle test (lp_setup_vbuf.c) out of the unclipped batches.
 #include <cstdio>
+#include <functional>
 
 #include "case.hpp"
 
@@ -263,6 +264,101 @@ void add_linear_cases(CaseList& out) {
                        return bgra(d, 128, 128);
                    },
                    nullptr, note});
+    // linear.shade.*: llvmpipe's linear shading (lp_linear.c, lp_linear_interp.c) of bins holding only rectangles,
+    // whole-tile triangle commands and clears, for the pass-through shader (o_color = v_color): 1.15 fixed-point
+    // interpolation from each region's origin, truncated to 0.8. Where a region's colours leave [0, 1] or w varies,
+    // llvmpipe falls back to its general shader; tiles with a partial triangle command use the general rasterizer.
+    auto shade_case = [&](const std::string& name, std::function<Scene()> make) {
+        out.push_back({"linear.shade." + name, make, nullptr, note});
+    };
+    shade_case("rects", [] {
+        Draw d;
+        uint32_t k = 0;
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i, ++k) {
+                const float x = 1.5f + 31.0f * i + (k % 3) * 0.25f, y = 2.25f + 30.5f * j + (k % 2) * 0.5f;
+                push_rect(d, x, y, x + 9.0f + 7.5f * float(k % 4), y + 11.0f + 6.25f * float(k % 3), k * 5 + 1, true,
+                          k);
+            }
+        push_rect(d, 20.5f, 30.25f, 110.75f, 100.5f + 1.0f / 512.0f, 3, true, 7);  // spans four tiles
+        return bgra(d, 128, 128);
+    });
+    shade_case("rect_tiles_and_edges", [] {
+        Draw d;
+        // whole tiles, partial tiles and the framebuffer's partial edge tiles (160x120)
+        push_rect(d, 3.25f, 5.5f, 157.5f, 117.75f, 0, true, 2);
+        return bgra(d, 160, 120);
+    });
+    shade_case("rect_colour_out_of_range", [] {
+        Draw d;
+        const float xs[4] = {4.5f, 120.5f, 120.5f, 4.5f}, ys[4] = {6.5f, 6.5f, 121.5f, 121.5f};
+        // red runs from -0.25 to 1.25 across the rectangle: corner checks fail in the outer tiles only
+        const std::array<float, 4> c[4] = {
+            {-0.25f, 0.5f, 0.25f, 1}, {1.25f, 0.5f, 0.25f, 1}, {1.25f, 0.75f, 0.25f, 1}, {-0.25f, 0.75f, 0.25f, 1}};
+        for (int t : {0, 1, 2, 0, 2, 3}) d.vertices.push_back(at(xs[t], ys[t], c[t]));
+        return bgra(d, 128, 128);
+    });
+    for (float w : {2.0f, 0.75f}) {
+        for (Interp in : {Interp::kSmooth, Interp::kNoPerspective}) {
+            shade_case(std::string("rect_w") + (w == 2.0f ? "2" : "0.75") +
+                           (in == Interp::kSmooth ? "_perspective" : "_noperspective"),
+                       [=] {
+                           Draw d;
+                           d.interp = in;
+                           push_rect(d, 6.5f, 9.25f, 121.75f, 119.5f, 4, true, 4, w);
+                           return bgra(d, 128, 128);
+                       });
+        }
+    }
+    shade_case("big_triangles", [] {
+        Draw d;
+        d.vertices = {at(-40.0f, -20.0f, {0.1f, 0.2f, 0.9f, 1}),   at(250.0f, 10.0f, {0.9f, 0.3f, 0.1f, 1}),
+                      at(20.0f, 210.0f, {0.3f, 0.8f, 0.5f, 0.6f}), at(180.5f, 60.25f, {0.2f, 0.2f, 0.2f, 1}),
+                      at(240.0f, 190.0f, {0.7f, 0.9f, 0.1f, 1}),   at(60.0f, 180.5f, {0.5f, 0.1f, 0.7f, 1})};
+        return bgra(d, 256, 192);
+    });
+    shade_case("fullscreen_triangle", [] {
+        Draw d;
+        d.vertices = {vtx(-1, -1, 0.5f, 1, {0.1f, 0.2f, 0.3f, 1}), vtx(3, -1, 0.5f, 1, {0.9f, 0.2f, 0.3f, 1}),
+                      vtx(-1, 3, 0.5f, 1, {0.1f, 0.8f, 0.3f, 1})};
+        return bgra(d, 200, 150);
+    });
+    shade_case("fullscreen_strip", [] {
+        Draw d;
+        d.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        d.vertices = {vtx(-1, -1, 0.5f, 1, {0.1f, 0.2f, 0.3f, 1}), vtx(1, -1, 0.5f, 1, {0.9f, 0.2f, 0.3f, 1}),
+                      vtx(-1, 1, 0.5f, 1, {0.1f, 0.8f, 0.3f, 1}), vtx(1, 1, 0.5f, 1, {0.9f, 0.8f, 0.3f, 1})};
+        return bgra(d, 200, 150);
+    });
+    shade_case("triangles_unequal_w", [] {
+        Draw d;
+        d.vertices = {vtx(-1.5f, -1.2f, 0.5f, 1.0f, {0.1f, 0.2f, 0.9f, 1}),
+                      vtx(1.8f, -1.0f, 0.5f, 2.0f, {0.9f, 0.3f, 0.1f, 1}),
+                      vtx(-0.2f, 1.9f, 0.5f, 1.5f, {0.3f, 0.8f, 0.5f, 1})};
+        return bgra(d, 200, 150);
+    });
+    shade_case("scissored_triangles", [] {
+        // w = 1 (a 2D scene): whole-tile commands inside the scissor, scissor planes make the tiles it cuts partial
+        Draw d;
+        d.vertices = {at(-30.0f, 5.0f, {0.1f, 0.2f, 0.9f, 1}),   at(240.0f, -12.0f, {0.9f, 0.3f, 0.1f, 1}),
+                      at(120.0f, 200.0f, {0.3f, 0.8f, 0.5f, 1}), at(10.0f, 100.0f, {0.6f, 0.6f, 0.1f, 0.5f}),
+                      at(250.0f, 130.0f, {0.2f, 0.9f, 0.9f, 1}), at(50.0f, 190.0f, {0.8f, 0.1f, 0.4f, 1})};
+        d.scissor = VkRect2D{{37, 21}, {150, 140}};
+        return bgra(d, 256, 192);
+    });
+    shade_case("rects_and_triangles", [] {
+        // a rectangle over tiles that a later small triangle partly covers: those bins use the general path
+        Scene s = bgra(Draw{}, 192, 128);
+        s.draws.clear();
+        Draw a;
+        push_rect(a, 2.5f, 3.5f, 190.25f, 125.75f, 2, true, 9);
+        Draw b;
+        b.vertices = {at(70.0f, 70.0f, {1, 0, 0, 1}), at(90.0f, 75.0f, {0, 1, 0, 1}), at(80.0f, 100.0f, {0, 0, 1, 1})};
+        Draw c;
+        push_rect(c, 130.5f, 10.5f, 180.0f, 60.0f, 9, true, 3);
+        s.draws = {a, b, c};
+        return s;
+    });
     // Any mode: a non-indexed 4-vertex fan without flat inputs reaches llvmpipe's setup through rect() as
     // (v0, v1, v2), (v0, v2, v3), not in the fan's provoking order (v1, v2, v0), (v2, v3, v0): the attribute
     // planes are set up from another first vertex. With a flat input the fan order stays.

@@ -302,6 +302,12 @@ class Program {
     // Internal, for tests and benchmarks: number of SIMD instructions after translation.
     size_t instruction_count() const;
 
+    // Fragment programs whose only effect is copying one float input, components 0..3 unchanged, to colour output
+    // location 0 (components 0..3): the input's location, else -1. llvmpipe's linear analysis accepts every such
+    // program (load_deref/store_deref/mov/vec only); tilevk recognises no other member of that class
+    // (shader/README.md, "Linear analysis").
+    int linear_copy_input() const;
+
     ~Program();
     Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface);
 

@@ -12,6 +12,7 @@
 #include "rast/geometry/unfilled.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
+#include "rast/render/linear_bins.h"
 
 namespace tilevk::rast::render {
 namespace {
@@ -95,6 +96,7 @@ void Renderer::begin(const Framebuffer& fb) {
     draws_.clear();
     prims_.clear();
     planes_.clear();
+    reset_linear_tiles();
 }
 
 void Renderer::end() {
@@ -104,6 +106,10 @@ void Renderer::end() {
 void Renderer::flush() {
     if (!prims_.empty()) {
         fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
+        if (fb_.linear_mode)
+            fragment_->set_linear(&tile_linear_, &rect_boxes_);
+        else
+            fragment_->set_linear(nullptr, nullptr);
         scene_->rasterize(*fragment_, pool_);
     }
     scene_->reset();
@@ -111,6 +117,25 @@ void Renderer::flush() {
     draws_.clear();
     prims_.clear();
     planes_.clear();
+    reset_linear_tiles();
+}
+
+void Renderer::reset_linear_tiles() {
+    rect_boxes_.clear();
+    if (!fb_.linear_mode) return;
+    const int32_t tx = (fb_.width + 63) / 64, ty = (fb_.height + 63) / 64;
+    tile_linear_.assign(size_t(tx) * size_t(ty), 1);
+}
+
+void Renderer::mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip) {
+    px0 = std::max(px0, clip.x0);
+    py0 = std::max(py0, clip.y0);
+    px1 = std::min(px1, clip.x1 - 1);
+    py1 = std::min(py1, clip.y1 - 1);
+    if (px0 > px1 || py0 > py1) return;
+    const int32_t tx = (fb_.width + 63) / 64;
+    for (int32_t y = py0 / 64; y <= py1 / 64; ++y)
+        for (int32_t x = px0 / 64; x <= px1 / 64; ++x) tile_linear_[size_t(y) * size_t(tx) + size_t(x)] = 0;
 }
 
 void Renderer::clear(const ClipRect& rect, const ClearRecord& clear) {
@@ -154,6 +179,26 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     if (!fb_.depth_stencil.stencil) rec.depth_stencil.stencil_test = false;
     rec.depth_mode =
         fragment::choose_depth_mode(rec.depth_stencil, depth_traits(pipe.fragment), pipe.alpha_to_coverage);
+    rec.linear_slot = -1;
+    // lp_fs_linear_run: every float of constant buffer 0 (the fragment push constants) must lie in [0, 1].
+    bool constants_in_range = true;
+    for (uint32_t off = 0; off + 4 <= pipe.fragment_push_constant_bytes; off += 4) {
+        float v = 0.0f;
+        if (off + 4 <= rec.push_constants.size()) std::memcpy(&v, rec.push_constants.data() + off, 4);
+        constants_in_range = constants_in_range && !(v < 0.0f || v > 1.0f);
+    }
+    if (fb_.linear_mode && pipe.fragment && !pipe.blend[0].blend_enable && pipe.blend[0].write_mask == 0xF &&
+        constants_in_range) {
+        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the copy class shader/ recognises; blending and
+        // partial write masks in the linear variant are not modelled (the general path runs).
+        const int location = pipe.fragment->linear_copy_input();
+        for (size_t k = 0; location >= 0 && k < rec.varyings.slot_location.size(); ++k)
+            if (int(rec.varyings.slot_location[k]) == location &&
+                rec.varyings.slot_interp[k] != geometry::Interp::kFlat) {
+                rec.linear_slot = static_cast<int>(k);
+                rec.linear_perspective = rec.varyings.slot_interp[k] == geometry::Interp::kPerspective;
+            }
+    }
 
     // Primitive assembly once for all instances.
     geometry::IndexSource src;
@@ -528,6 +573,14 @@ void Renderer::add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, c
     geometry::TrianglePlanes tp;
     geometry::setup_triangle_planes(pcfg, c0, c1, c2, &tp, attrib_planes_.data());
     push_prim(draw, PrimKind::kRect, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
+    if (fb_.linear_mode) {
+        prims_.back().rect = static_cast<uint32_t>(rect_boxes_.size());
+        rect_boxes_.push_back(
+            {in.x0 / kFixedOne, in.y0 / kFixedOne, (in.x1 - in.x0) / kFixedOne, (in.y1 - in.y0) / kFixedOne});
+    } else {
+        // rectangles outside linear mode (the Aero quirk) are binned as llvmpipe's RECTANGLE commands, which
+        // only the linear rasterizer shades differently
+    }
 }
 
 // The pipeline's depth-bias factors with the depth format's rule (util_get_depth_format_mrd: D16 16 bits, D32F
@@ -594,6 +647,10 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     in.common.payload = static_cast<uint32_t>(prims_.size());
     in.front_facing = front_facing;
     if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
+    // one pixel of margin around the line's fixed-point box (llvmpipe's own line box is not modelled)
+    if (fb_.linear_mode)
+        mark_not_linear((ls.min_x >> 8) - 1, (ls.min_y >> 8) - 1, (ls.max_x >> 8) + 1, (ls.max_y >> 8) + 1,
+                        in.common.clip);
     push_prim(draw, PrimKind::kLine, ls.pos, 0.0f, cfg.layout.num_attribs);
 }
 
@@ -616,6 +673,8 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     in.common.payload = static_cast<uint32_t>(prims_.size());
     in.front_facing = front_facing;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
+    if (fb_.linear_mode)
+        mark_not_linear((in.x0 >> 8) - 1, (in.y0 >> 8) - 1, (in.x1 >> 8) + 1, (in.y1 >> 8) + 1, in.common.clip);
     push_prim(draw, PrimKind::kPoint, ps.pos, 0.0f, cfg.layout.num_attribs);
 }
 
@@ -634,9 +693,23 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     tri.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     tri.common.payload = static_cast<uint32_t>(prims_.size());
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
+    const bool ccw = snapped_ccw(w[0], w[1], w[2], fb_.samples);
+    if (fb_.linear_mode) {
+        // llvmpipe's binning of this triangle: tiles where it leaves a partial command are not linear bins
+        const float off = triangle_snap_offset(fb_.samples);
+        int32_t x[3], y[3];
+        bool ok = true;
+        const int order[3] = {0, ccw ? 1 : 2, ccw ? 2 : 1};
+        for (int i = 0; i < 3; ++i)
+            ok = ok && snap_triangle_coord(w[order[i]][0], off, &x[i]) &&
+                 snap_triangle_coord(w[order[i]][1], off, &y[i]);
+        if (ok)
+            mark_partial_triangle_bins(x, y, tri.common.clip, (fb_.width + 63) / 64, &tile_linear_);
+        else
+            mark_not_linear(0, 0, fb_.width, fb_.height, tri.common.clip);
+    }
 
     // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
-    const bool ccw = snapped_ccw(w[0], w[1], w[2], fb_.samples);
     const float* o1 = ccw ? v1 : v2;
     const float* o2 = ccw ? v2 : v1;
     geometry::PlaneSetupConfig pcfg;

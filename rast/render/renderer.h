@@ -16,6 +16,7 @@
 #include "rast/core/method.h"
 #include "rast/core/scene.h"
 #include "rast/core/thread_pool.h"
+#include "rast/fragment/linear.h"
 #include "rast/geometry/rect_detect.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/scene_records.h"
@@ -42,6 +43,7 @@ class Renderer {
 
   private:
     void flush();
+    void reset_linear_tiles();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
     void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
     void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
@@ -56,6 +58,8 @@ class Renderer {
     void vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]);
     void vbuf_flush(uint32_t draw, const DrawRecord& rec);
     ClipRect prim_clip(const PipelineState& pipe) const;
+    // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
+    void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
     geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
     // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
     void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
@@ -87,6 +91,8 @@ class Renderer {
         uint32_t max_vertices = 0;         // 4096 bytes / vertex size
         std::vector<uint64_t> emitted_id;  // vertex ids emitted into the current buffer
     } vbuf_;
+    std::vector<uint8_t> tile_linear_;                // per 64x64 tile, row-major (linear mode)
+    std::vector<fragment::LinearRegion> rect_boxes_;  // pixel box of each kRect (linear mode)
 };
 
 }  // namespace tilevk::rast::render

@@ -32,6 +32,10 @@ struct DrawRecord {
     uint8_t depth_mode = 0;                     // fragment::DepthModeBits
     bool is_clear = false;
     ClearRecord clear;
+    // llvmpipe's linear shading for this draw's rectangles (fragment/linear.h): the varying slot the shader copies
+    // to colour 0, or -1 when tilevk does not shade this draw linearly (shader class, blending, write mask, ...).
+    int linear_slot = -1;
+    bool linear_perspective = true;
 };
 
 // kRect: llvmpipe's rectangle (lp_setup_rect.c): box coverage, planes from three corners.
@@ -41,6 +45,7 @@ struct PrimRecord {
     uint32_t draw = 0;        // index into the draw records
     uint32_t plane_base = 0;  // first float of this primitive's planes in the plane store
     PrimKind kind = PrimKind::kTriangle;
+    uint32_t rect = 0;  // kRect: index of its pixel box (Renderer's rect boxes, linear mode only)
 };
 
 // Plane store layout per primitive: [pos plane (12 floats)][depth offset][pad x3][attrib planes (12 floats each)]
