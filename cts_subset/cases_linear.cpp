@@ -39,6 +39,10 @@ Draw edge_crossing(uint32_t seed, int n, float reach, VkPrimitiveTopology topo) 
 Vertex at(float x, float y, std::array<float, 4> c, float w = 1.0f) {
     return vtx(x / 64.0f - 1.0f, y / 64.0f - 1.0f, 0.5f, w, c);
 }
+// The same for a 256x256 target.
+Vertex at256(float x, float y, std::array<float, 4> c) {
+    return vtx(x / 128.0f - 1.0f, y / 128.0f - 1.0f, 0.5f, 1.0f, c);
+}
 
 // Colours affine in the pixel position with binary-fraction gradients: corner differences are exact, so the
 // four corners of a rectangle pass do_rect_ccw's coplanarity test.
@@ -51,13 +55,13 @@ std::array<float, 4> affine(float x, float y, uint32_t k) {
 // picks the diagonal, the rotation of each triangle's vertices, the triangle order and (bit 5) a reversed
 // winding, so all nine shared-diagonal configurations of do_rect_ccw and both windings occur.
 void push_rect(Draw& d, float x0, float y0, float x1, float y1, uint32_t kind, bool coplanar, uint32_t k,
-               float w = 1.0f) {
+               float w = 1.0f, bool target256 = false) {
     const float xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
     Vertex c[4];
     for (int i = 0; i < 4; ++i) {
         std::array<float, 4> col = affine(xs[i], ys[i], k);
         if (!coplanar && i == 2) col[1] += 1.0f / 64.0f;
-        c[i] = at(xs[i], ys[i], col, w);
+        c[i] = target256 ? at256(xs[i], ys[i], col) : at(xs[i], ys[i], col, w);
     }
     const bool diag_bd = kind & 1;
     int t[2][3] = {{0, 1, 2}, {0, 2, 3}};
@@ -359,6 +363,40 @@ void add_linear_cases(CaseList& out) {
         s.draws = {a, b, c};
         return s;
     });
+    // Blending and write masks in the linear variant: lp_build_blend_aos on the 8-bit interpolants.
+    const VkPipelineColorBlendAttachmentState blends[] = {
+        {VK_TRUE, VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_OP_ADD, VK_BLEND_FACTOR_ONE,
+         VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_OP_ADD, 0xF},
+        additive(),
+        {VK_TRUE, VK_BLEND_FACTOR_CONSTANT_COLOR, VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR, VK_BLEND_OP_REVERSE_SUBTRACT,
+         VK_BLEND_FACTOR_DST_ALPHA, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_MAX, 0xF},
+        {VK_FALSE, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD, VK_BLEND_FACTOR_ONE,
+         VK_BLEND_FACTOR_ZERO, VK_BLEND_OP_ADD, VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_B_BIT},
+    };
+    const char* blend_names[] = {"blend_alpha", "blend_additive", "blend_constant_revsub_max", "write_mask_rb"};
+    for (int bi = 0; bi < 4; ++bi) {
+        shade_case(blend_names[bi], [=] {
+            // 256x256 target: a background rectangle, a blended rectangle and a blended triangle inside the guard
+            // band (whole-tile commands near the origin, partial ones along its long edge)
+            Scene s = bgra(Draw{}, 256, 256);
+            s.draws.clear();
+            Draw a;
+            push_rect(a, 1.5f, 2.5f, 254.25f, 253.5f, 2, true, 6, 1.0f, true);
+            Draw b;
+            b.blend = blends[bi];
+            b.blend_constants[0] = 0.25f;
+            b.blend_constants[1] = 0.5f;
+            b.blend_constants[2] = 0.75f;
+            b.blend_constants[3] = 0.6f;
+            push_rect(b, 20.5f, 10.25f, 210.0f, 150.5f, 5, true, 11, 1.0f, true);
+            Draw c = b;
+            c.vertices = {vtx(-1.9375f, -1.9375f, 0.5f, 1, {0.9f, 0.1f, 0.4f, 0.7f}),
+                          vtx(1.96875f, -1.9375f, 0.5f, 1, {0.2f, 0.7f, 0.4f, 0.3f}),
+                          vtx(-1.9375f, 1.9375f, 0.5f, 1, {0.5f, 0.5f, 0.9f, 0.5f})};
+            s.draws = {a, b, c};
+            return s;
+        });
+    }
     // Any mode: a non-indexed 4-vertex fan without flat inputs reaches llvmpipe's setup through rect() as
     // (v0, v1, v2), (v0, v2, v3), not in the fan's provoking order (v1, v2, v0), (v2, v3, v0): the attribute
     // planes are set up from another first vertex. With a flat input the fan order stays.

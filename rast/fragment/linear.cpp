@@ -48,8 +48,12 @@ float max4(float a, float b, float c, float d) {
 
 }  // namespace
 
+float unorm8_source(uint8_t u) {
+    return static_cast<float>(u) / 255.0f;
+}
+
 bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float input[12], bool perspective,
-                       uint8_t* bgra, size_t row_pitch) {
+                       uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend, const float blend_constants[4]) {
     const float* a0 = input;
     const float* dadx = input + 4;
     const float* dady = input + 8;
@@ -89,16 +93,27 @@ bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float i
         start[j] = ufixed_1_15(s0[j]);
     }
     static constexpr int kByte[4] = {2, 1, 0, 3};
+    const bool direct = !blend || (!blend->blend_enable && blend->write_mask == 0xF);
+    static constexpr float kZero[4] = {0, 0, 0, 0};
     for (int32_t jy = 0; jy < r.height; ++jy) {
         uint8_t* row = bgra + size_t(r.y + jy) * row_pitch + size_t(r.x) * 4;
-        for (int c = 0; c < 4; ++c) {
-            // 16-bit lanes: the row start advances by stepy per row, pixels by stepx (wrapping like paddw)
-            uint16_t v = static_cast<uint16_t>(start[c] + jy * stepy[c]);
-            for (int32_t ix = 0; ix < r.width; ++ix) {
-                const int16_t sv = static_cast<int16_t>(v);
-                const int32_t shifted = sv >> 7;                                                     // psraw 7
-                row[size_t(ix) * 4 + kByte[c]] = static_cast<uint8_t>(std::clamp(shifted, 0, 255));  // packuswb
-                v = static_cast<uint16_t>(v + static_cast<uint16_t>(stepx[c]));
+        uint8_t value[4];
+        // 16-bit lanes: the row start advances by stepy per row, pixels by stepx (wrapping like paddw)
+        uint16_t v[4];
+        for (int c = 0; c < 4; ++c) v[c] = static_cast<uint16_t>(start[c] + jy * stepy[c]);
+        for (int32_t ix = 0; ix < r.width; ++ix) {
+            for (int c = 0; c < 4; ++c) {
+                const int32_t shifted = static_cast<int16_t>(v[c]) >> 7;       // psraw 7
+                value[c] = static_cast<uint8_t>(std::clamp(shifted, 0, 255));  // packuswb
+                v[c] = static_cast<uint16_t>(v[c] + static_cast<uint16_t>(stepx[c]));
+            }
+            uint8_t* px = row + size_t(ix) * 4;
+            if (direct) {
+                for (int c = 0; c < 4; ++c) px[kByte[c]] = value[c];
+            } else {
+                const float src[4] = {unorm8_source(value[0]), unorm8_source(value[1]), unorm8_source(value[2]),
+                                      unorm8_source(value[3])};
+                blend_pixel(*blend, ColorFormat::B8G8R8A8_UNORM, blend_constants ? blend_constants : kZero, src, px);
             }
         }
     }

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "rast/fragment/blend.h"
+
 namespace tilevk::rast::fragment {
 
 // A pixel region [x, x+width) x [y, y+height) inside one tile: a rectangle's box clipped to the tile, or the tile.
@@ -25,8 +27,15 @@ struct LinearRegion {
 //   s0 = fl(a0 + fl(fl(x*dadx) + fl(y*dady)));   start = clamp((unsigned)(s0*32767), 0, 32767)
 //   step = clamp((int)(d*32767), -32767, 32767) for dadx and dady
 //   pixel (x+i, y+j) = clamp_u8(int16(start + i*stepx + j*stepy) >> 7)   (16-bit wrap-around, arithmetic shift)
-// `bgra` points at the target's pixel (0, 0); channel c goes to byte {2, 1, 0, 3}[c].
+// `bgra` points at the target's pixel (0, 0); channel c goes to byte {2, 1, 0, 3}[c]. With blending or a partial
+// write mask (`blend`, may be null for "off, RGBA"), the 8-bit colour is blended as llvmpipe's linear variant
+// does (lp_build_blend_aos on the 8-bit source, the same 8-bit blend as its general path for UNORM8 targets):
+// blend_pixel with the source u/255, which converts back to exactly u.
 bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float input[12], bool perspective,
-                       uint8_t* bgra, size_t row_pitch);
+                       uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend = nullptr,
+                       const float blend_constants[4] = nullptr);
+
+// u / 255 as a float whose UNORM8 conversion (rne(x*255)) is u again (exposed for tests).
+float unorm8_source(uint8_t u);
 
 }  // namespace tilevk::rast::fragment

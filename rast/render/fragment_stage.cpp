@@ -250,7 +250,7 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
         const float* input = pl + kPrimHeaderFloats + size_t(kPlaneFloats) * uint32_t(draw.linear_slot);
         if (r.width > 0 && r.height > 0 &&
             fragment::linear_shade_copy(r, pl, input, draw.linear_perspective, fb_.color[0].data,
-                                        fb_.color[0].row_pitch))
+                                        fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants))
             return;
     }
     Worker& w = *workers_[worker];

@@ -187,10 +187,8 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         if (off + 4 <= rec.push_constants.size()) std::memcpy(&v, rec.push_constants.data() + off, 4);
         constants_in_range = constants_in_range && !(v < 0.0f || v > 1.0f);
     }
-    if (fb_.linear_mode && pipe.fragment && !pipe.blend[0].blend_enable && pipe.blend[0].write_mask == 0xF &&
-        constants_in_range) {
-        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the copy class shader/ recognises; blending and
-        // partial write masks in the linear variant are not modelled (the general path runs).
+    if (fb_.linear_mode && pipe.fragment && constants_in_range) {
+        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the copy class shader/ recognises.
         const int location = pipe.fragment->linear_copy_input();
         for (size_t k = 0; location >= 0 && k < rec.varyings.slot_location.size(); ++k)
             if (int(rec.varyings.slot_location[k]) == location &&

@@ -1,6 +1,8 @@
 // llvmpipe's linear shading of a region (rast/fragment/linear.h); expectations derived by hand in the comments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "rast/fragment/linear.h"
@@ -95,4 +97,31 @@ TEST(LinearShade, RowsStepByDady) {
     ASSERT_TRUE(linear_shade_copy({0, 0, 2, 4}, pos, in, true, t.px.data(), 64 * 4));
     EXPECT_EQ(t.at(0, 0)[0], 255);
     EXPECT_EQ(t.at(1, 3)[0], 232);
+}
+
+TEST(LinearShade, UnormSourceRoundTrips) {
+    // the blended path hands blend_pixel u/255: its UNORM8 conversion rne(x*255) must give u back for every u
+    for (int u = 0; u < 256; ++u) {
+        const float x = unorm8_source(uint8_t(u));
+        EXPECT_EQ(static_cast<int>(std::nearbyint(x * 255.0f)), u);
+    }
+}
+
+TEST(LinearShade, BlendsTheEightBitColour) {
+    // constant 0.5 -> 127 in all channels; SRC_ALPHA / ONE_MINUS_SRC_ALPHA over dst 200: mul_norm(127,127) +
+    // mul_norm(200, 128) = 63 + 100 = 163 (dst alpha 200: 63 + 100 too)
+    float pos[12], in[12];
+    planes(pos, in, 1.0f, 0.5f, 0.0f, 0.0f);
+    Target t;
+    std::fill(t.px.begin(), t.px.end(), uint8_t(200));
+    BlendAttachment a;
+    a.blend_enable = true;
+    a.src_color = a.src_alpha = BlendFactor::SrcAlpha;
+    a.dst_color = a.dst_alpha = BlendFactor::OneMinusSrcAlpha;
+    const float k[4] = {0, 0, 0, 0};
+    ASSERT_TRUE(linear_shade_copy({0, 0, 2, 2}, pos, in, true, t.px.data(), 64 * 4, &a, k));
+    EXPECT_EQ(mul_norm8(127, 127), 63);
+    EXPECT_EQ(mul_norm8(200, 128), 100);
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(t.at(1, 1)[c], 163);
+    EXPECT_EQ(t.at(2, 1)[0], 200);
 }
