@@ -397,6 +397,26 @@ void add_linear_cases(CaseList& out) {
             return s;
         });
     }
+    // Other members of the class: constants (float_to_ubyte) and a constant alpha. (Swizzles are not modelled:
+    // lavapipe renders o = v_color.bgra as v_color.rgba there; rast/geometry/README.md.)
+    const Frag frags[] = {Frag::kConstant, Frag::kColorRgb1};
+    const char* frag_names[] = {"constant", "rgb1"};
+    for (int fi = 0; fi < 2; ++fi) {
+        shade_case(std::string("shader_") + frag_names[fi], [=] {
+            Scene s = bgra(Draw{}, 256, 256);
+            s.draws.clear();
+            Draw a;
+            a.frag = frags[fi];
+            push_rect(a, 1.5f, 2.5f, 254.25f, 253.5f, 2, true, 6, 1.0f, true);
+            Draw c = a;
+            c.blend = blends[0];
+            c.vertices = {vtx(-1.9375f, -1.9375f, 0.5f, 1, {0.9f, 0.1f, 0.4f, 0.7f}),
+                          vtx(1.96875f, -1.9375f, 0.5f, 1, {0.2f, 0.7f, 0.4f, 0.3f}),
+                          vtx(-1.9375f, 1.9375f, 0.5f, 1, {0.5f, 0.5f, 0.9f, 0.5f})};
+            s.draws = {a, c};
+            return s;
+        });
+    }
     // Any mode: a non-indexed 4-vertex fan without flat inputs reaches llvmpipe's setup through rect() as
     // (v0, v1, v2), (v0, v2, v3), not in the fan's provoking order (v1, v2, v0), (v2, v3, v0): the attribute
     // planes are set up from another first vertex. With a flat input the fan order stays.

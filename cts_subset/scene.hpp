@@ -24,7 +24,8 @@ enum class Interp { kSmooth, kFlat, kNoPerspective };
 // kFacing writes 1/255 to red for front faces and to green for back faces;
 // kColorSum writes v_color + v_color: an fadd, which lavapipe's linear-shader analysis
 // (lp_state_fs_analysis.c) refuses, so B8G8R8A8 frames with it isolate the linear mode's geometry.
-enum class Frag { kColor, kTexture, kCount, kFacing, kColorSum };
+// kConstant writes vec4(0.5, 0.25, 0.8, 0.75); kColorRgb1 vec4(v_color.rgb, 1.0).
+enum class Frag { kColor, kTexture, kCount, kFacing, kColorSum, kConstant, kColorRgb1 };
 enum class TexPattern { kChecker, kGradient };
 
 struct TextureSpec {

@@ -1,6 +1,7 @@
 #include "rast/fragment/linear.h"
 
 #include <algorithm>
+#include <bit>
 #include <climits>
 #include <cstring>
 
@@ -52,12 +53,29 @@ float unorm8_source(uint8_t u) {
     return static_cast<float>(u) / 255.0f;
 }
 
+uint8_t float_to_ubyte(float f) {
+    if (!(f > 0.0f)) return 0;
+    if (f >= 1.0f) return 255;
+    const float t = f * (255.0f / 256.0f);
+    const float u = t + 32768.0f;
+    return static_cast<uint8_t>(std::bit_cast<uint32_t>(u) & 0xFF);
+}
+
 bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float input[12], bool perspective,
                        uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend, const float blend_constants[4]) {
-    const float* a0 = input;
-    const float* dadx = input + 4;
-    const float* dady = input + 8;
+    return linear_shade(r, pos, input, perspective, LinearChannels{}, bgra, row_pitch, blend, blend_constants);
+}
+
+bool linear_shade(const LinearRegion& r, const float pos[12], const float* input, bool perspective,
+                  const LinearChannels& ch, uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend,
+                  const float blend_constants[4]) {
     if (pos[4 + 3] != 0.0f || pos[8 + 3] != 0.0f) return false;  // "Require constant w in these rectangles"
+    static constexpr float kNoPlane[12] = {};
+    const bool interpolated = input && ch.usage != 0;
+    const float* plane = interpolated ? input : kNoPlane;
+    const float* a0 = plane;
+    const float* dadx = plane + 4;
+    const float* dady = plane + 8;
     const float oow = 1.0f / pos[3];
     float s0[4], dsdx[4], dsdy[4];
     for (int j = 0; j < 4; ++j) {
@@ -78,9 +96,10 @@ bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float i
         const float t = tx + ty;
         s0[j] = s0[j] + t;
     }
-    int16_t start[4], stepx[4], stepy[4];
+    int16_t start[4] = {}, stepx[4] = {}, stepy[4] = {};
     const float w1 = static_cast<float>(r.width - 1), h1 = static_cast<float>(r.height - 1);
     for (int j = 0; j < 4; ++j) {
+        if (!interpolated || !(ch.usage & (1u << j))) continue;  // usage_mask: unread components stay 0
         // the corners in float, as lp_linear_init_interp checks them (MIN4 < 0.0, MAX4 > 1.0)
         const float a = s0[j];
         const float b = s0[j] + w1 * dsdx[j];
@@ -93,6 +112,8 @@ bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float i
         start[j] = ufixed_1_15(s0[j]);
     }
     static constexpr int kByte[4] = {2, 1, 0, 3};
+    uint8_t constant_u8[4];
+    for (int c = 0; c < 4; ++c) constant_u8[c] = float_to_ubyte(ch.constant[c]);
     const bool direct = !blend || (!blend->blend_enable && blend->write_mask == 0xF);
     static constexpr float kZero[4] = {0, 0, 0, 0};
     for (int32_t jy = 0; jy < r.height; ++jy) {
@@ -102,11 +123,13 @@ bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float i
         uint16_t v[4];
         for (int c = 0; c < 4; ++c) v[c] = static_cast<uint16_t>(start[c] + jy * stepy[c]);
         for (int32_t ix = 0; ix < r.width; ++ix) {
+            uint8_t comp[4];
             for (int c = 0; c < 4; ++c) {
-                const int32_t shifted = static_cast<int16_t>(v[c]) >> 7;       // psraw 7
-                value[c] = static_cast<uint8_t>(std::clamp(shifted, 0, 255));  // packuswb
+                const int32_t shifted = static_cast<int16_t>(v[c]) >> 7;      // psraw 7
+                comp[c] = static_cast<uint8_t>(std::clamp(shifted, 0, 255));  // packuswb
                 v[c] = static_cast<uint16_t>(v[c] + static_cast<uint16_t>(stepx[c]));
             }
+            for (int c = 0; c < 4; ++c) value[c] = ch.source[c] >= 0 ? comp[ch.source[c] & 3] : constant_u8[c];
             uint8_t* px = row + size_t(ix) * 4;
             if (direct) {
                 for (int c = 0; c < 4; ++c) px[kByte[c]] = value[c];

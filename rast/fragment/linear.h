@@ -35,6 +35,21 @@ bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float i
                        uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend = nullptr,
                        const float blend_constants[4] = nullptr);
 
+// The general form: output channel c is interpolated component source[c] of `input` (usage: the components the
+// shader reads, the only ones lp_linear_init_interp range-checks), or, for source[c] < 0, the constant
+// float_to_ubyte(constant[c]) (lp_bld_nir_aos.c emit_load_const). `input` may be null when no channel reads it.
+struct LinearChannels {
+    int8_t source[4] = {0, 1, 2, 3};
+    float constant[4] = {0, 0, 0, 0};
+    uint8_t usage = 0xF;
+};
+bool linear_shade(const LinearRegion& r, const float pos[12], const float* input, bool perspective,
+                  const LinearChannels& ch, uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend = nullptr,
+                  const float blend_constants[4] = nullptr);
+
+// util/u_math.h float_to_ubyte: 0 for !(f > 0), 255 for f >= 1, else the low byte of fl(fl(f*255/256) + 32768).
+uint8_t float_to_ubyte(float f);
+
 // u / 255 as a float whose UNORM8 conversion (rne(x*255)) is u again (exposed for tests).
 float unorm8_source(uint8_t u);
 

@@ -232,7 +232,7 @@ void FragmentStage::end_tile(unsigned, const TileInfo&) {}
 void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& cov) {
     const PrimRecord& prim = (*prims_)[cov.payload];
     const DrawRecord& draw = (*draws_)[prim.draw];
-    if (tile_linear_ && draw.linear_slot >= 0 && (*tile_linear_)[tile.index] &&
+    if (tile_linear_ && draw.linear && (*tile_linear_)[tile.index] &&
         (prim.kind == PrimKind::kRect || prim.kind == PrimKind::kTriangle)) {
         // llvmpipe's linear bin (lp_rast_linear.c): a rectangle's box within the tile (lp_rast_linear_rect) or the
         // whole tile of a whole-tile command (lp_rast_linear_tile; in a linear bin every triangle with coverage
@@ -247,10 +247,12 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
             r.height = std::min(b.y + b.height, tile.y0 + tile.height) - r.y;
         }
         const float* pl = planes_->data() + prim.plane_base;
-        const float* input = pl + kPrimHeaderFloats + size_t(kPlaneFloats) * uint32_t(draw.linear_slot);
+        const float* input = draw.linear_slot >= 0
+                                 ? pl + kPrimHeaderFloats + size_t(kPlaneFloats) * uint32_t(draw.linear_slot)
+                                 : nullptr;
         if (r.width > 0 && r.height > 0 &&
-            fragment::linear_shade_copy(r, pl, input, draw.linear_perspective, fb_.color[0].data,
-                                        fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants))
+            fragment::linear_shade(r, pl, input, draw.linear_perspective, draw.linear_channels, fb_.color[0].data,
+                                   fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants))
             return;
     }
     Worker& w = *workers_[worker];

@@ -120,6 +120,8 @@ void Renderer::flush() {
     reset_linear_tiles();
 }
 
+// Linear-mode bins are llvmpipe's 64x64 tiles; the scene's tiles are the same (SceneConfig's default tile size,
+// which the renderer never changes), so TileInfo::index addresses tile_linear_ directly.
 void Renderer::reset_linear_tiles() {
     rect_boxes_.clear();
     if (!fb_.linear_mode) return;
@@ -187,15 +189,29 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         if (off + 4 <= rec.push_constants.size()) std::memcpy(&v, rec.push_constants.data() + off, 4);
         constants_in_range = constants_in_range && !(v < 0.0f || v > 1.0f);
     }
+    rec.linear = false;
     if (fb_.linear_mode && pipe.fragment && constants_in_range) {
-        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the copy class shader/ recognises.
-        const int location = pipe.fragment->linear_copy_input();
-        for (size_t k = 0; location >= 0 && k < rec.varyings.slot_location.size(); ++k)
-            if (int(rec.varyings.slot_location[k]) == location &&
+        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the class shader/ recognises.
+        const shader::Program::LinearShader ls = pipe.fragment->linear_shader();
+        int slot = -1;
+        bool perspective = true, found = ls.location < 0;
+        for (size_t k = 0; ls.ok && ls.location >= 0 && k < rec.varyings.slot_location.size(); ++k)
+            if (int(rec.varyings.slot_location[k]) == ls.location &&
                 rec.varyings.slot_interp[k] != geometry::Interp::kFlat) {
-                rec.linear_slot = static_cast<int>(k);
-                rec.linear_perspective = rec.varyings.slot_interp[k] == geometry::Interp::kPerspective;
+                slot = static_cast<int>(k);
+                perspective = rec.varyings.slot_interp[k] == geometry::Interp::kPerspective;
+                found = true;
             }
+        if (ls.ok && found) {
+            rec.linear = true;
+            rec.linear_slot = slot;
+            rec.linear_perspective = perspective;
+            for (int c = 0; c < 4; ++c) {
+                rec.linear_channels.source[c] = ls.source[c];
+                rec.linear_channels.constant[c] = ls.constant[c];
+            }
+            rec.linear_channels.usage = ls.usage;
+        }
     }
 
     // Primitive assembly once for all instances.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rast/fragment/depth_stencil.h"
+#include "rast/fragment/linear.h"
 #include "rast/geometry/planes.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/vertex_stage.h"
@@ -34,8 +35,10 @@ struct DrawRecord {
     ClearRecord clear;
     // llvmpipe's linear shading for this draw's rectangles (fragment/linear.h): the varying slot the shader copies
     // to colour 0, or -1 when tilevk does not shade this draw linearly (shader class, blending, write mask, ...).
-    int linear_slot = -1;
+    bool linear = false;
+    int linear_slot = -1;  // -1 with `linear`: the shader writes constants only
     bool linear_perspective = true;
+    fragment::LinearChannels linear_channels;
 };
 
 // kRect: llvmpipe's rectangle (lp_setup_rect.c): box coverage, planes from three corners.

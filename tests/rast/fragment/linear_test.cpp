@@ -125,3 +125,25 @@ TEST(LinearShade, BlendsTheEightBitColour) {
     for (int c = 0; c < 4; ++c) EXPECT_EQ(t.at(1, 1)[c], 163);
     EXPECT_EQ(t.at(2, 1)[0], 200);
 }
+
+TEST(LinearShade, ConstantsAreFloatToUbyte) {
+    // float_to_ubyte: 0.5 -> fl(0.5*255/256) = 0.498046875; + 32768 keeps 1/256 steps, and 0.498046875*256 =
+    // 127.5 is a tie -> even -> 32768 + 128/256: low byte 128
+    EXPECT_EQ(float_to_ubyte(0.5f), 128);
+    EXPECT_EQ(float_to_ubyte(0.0f), 0);
+    EXPECT_EQ(float_to_ubyte(-1.0f), 0);
+    EXPECT_EQ(float_to_ubyte(1.0f), 255);
+    EXPECT_EQ(float_to_ubyte(1.0f / 255.0f), 1);
+    // constant alpha with an interpolated rgb: vec4(v.rgb, 1.0)
+    float pos[12], in[12];
+    planes(pos, in, 1.0f, 0.5f, 0.0f, 0.0f);
+    in[3] = 5.0f;  // alpha component out of range but not read (usage 0x7): not range-checked
+    LinearChannels ch;
+    ch.source[3] = -1;
+    ch.constant[3] = 1.0f;
+    ch.usage = 0x7;
+    Target t;
+    ASSERT_TRUE(linear_shade({0, 0, 2, 2}, pos, in, true, ch, t.px.data(), 64 * 4));
+    EXPECT_EQ(t.at(1, 1)[0], 127);
+    EXPECT_EQ(t.at(1, 1)[3], 255);
+}
