@@ -2,7 +2,8 @@
 
 namespace tilevk::cts {
 
-void add_quirk_cases(CaseList& out);  // cases_quirks.cpp
+void add_quirk_cases(CaseList& out);   // cases_quirks.cpp
+void add_linear_cases(CaseList& out);  // cases_linear.cpp
 
 CaseList all_cases() {
     CaseList out;
@@ -21,6 +22,7 @@ CaseList all_cases() {
     add_quirk_cases(out);
     add_blit_cases(out);
     add_query_cases(out);
+    add_linear_cases(out);
     return out;
 }
 

@@ -95,6 +95,12 @@ std::string fragment_source(const Draw& d, bool color_output) {
             return s +
                    "layout(set=0, binding=0) uniform sampler2D tex;\n"
                    "void main() { o_color = texture(tex, v_uv); }\n";
+        case Frag::kConstant:
+            return s + "void main() { o_color = vec4(0.5, 0.25, 0.8, 0.75); }\n";
+        case Frag::kColorRgb1:
+            return s + "void main() { o_color = vec4(v_color.rgb, 1.0); }\n";
+        case Frag::kColorSum:
+            return s + "void main() { o_color = v_color + v_color; }\n";
         case Frag::kCount:
             return s + "void main() { o_color = vec4(1.0 / 255.0); }\n";
         case Frag::kFacing:

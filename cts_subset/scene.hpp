@@ -23,7 +23,10 @@ enum class Interp { kSmooth, kFlat, kNoPerspective };
 // kCount writes exactly 1/255 to every channel (one unorm8 increment under ONE,ONE blending);
 // kFacing writes 1/255 to red for front faces and to green for back faces.
 // kDiscard discards pixels whose x + y is odd (a checkerboard) and writes v_color elsewhere.
-enum class Frag { kColor, kTexture, kCount, kFacing, kDiscard };
+// kColorSum writes v_color + v_color: an fadd, which lavapipe's linear-shader analysis
+// (lp_state_fs_analysis.c) refuses, so B8G8R8A8 frames with it isolate the linear mode's geometry.
+// kConstant writes vec4(0.5, 0.25, 0.8, 0.75); kColorRgb1 vec4(v_color.rgb, 1.0).
+enum class Frag { kColor, kTexture, kCount, kFacing, kDiscard, kColorSum, kConstant, kColorRgb1 };
 
 // Occlusion queries around the draws (cases_query.cpp): none; one query per draw, begun and ended inside the
 // render pass; or one query begun before the render pass and ended after it (spanning it). The results are copied

@@ -102,6 +102,19 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t 
     return {s.plane.data(), size_t(w) * elem, size_t(w) * h * elem};
 }
 
+// llvmpipe's linear mode (lp_state_derived.c check_linear_rasterizer, notes §0.3): lavapipe binds the subpass's
+// colour attachments as cbufs (VK_ATTACHMENT_UNUSED ones as NULL) and its depth/stencil attachment as zsbuf; the
+// mode needs exactly one cbuf, non-null, of format B8G8R8A8_UNORM (the view's format; B8G8R8X8_UNORM has no
+// Vulkan format lavapipe maps to it), single-sampled, whose resource is PIPE_TEXTURE_2D (lvp_image.c: a 2D image
+// with one array layer), no zsbuf, and no shader writing a viewport index (tilevk exposes no such output).
+bool lavapipe_linear_mode(const Subpass& sp, const Framebuffer& fbo) {
+    if (sp.colors.size() != 1 || sp.depth_stencil.attachment != VK_ATTACHMENT_UNUSED) return false;
+    const uint32_t a = sp.colors[0].attachment;
+    if (a == VK_ATTACHMENT_UNUSED || a >= fbo.attachments.size()) return false;
+    const ImageView& v = *fbo.attachments[a];
+    return v.format->format == VK_FORMAT_B8G8R8A8_UNORM && v.image->samples == 1 && v.image->array_layers == 1;
+}
+
 // Starts the renderer on the current subpass's attachments.
 void begin_rendering(ExecState& st, int pipeline_samples) {
     DrawContext& ctx = *st.draw;
@@ -147,6 +160,7 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
             t.stencil_sample_stride = p.sample_stride;
         }
     }
+    fb.linear_mode = lavapipe_linear_mode(sp, fbo);
     ctx.renderer.begin(fb);
     ctx.active = true;
 }

@@ -1,11 +1,13 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
+#include "descriptor_set_layout.h"
 #include "device.h"
 #include "entrypoints.h"
 #include "physical_device.h"
@@ -100,6 +102,17 @@ fr::StencilFace stencil_face(const VkStencilOpState& s) {
 std::string build_pipeline(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     std::string why;
     PipelineState& s = p.state;
+    // lavapipe's UBO 0 for the fragment stage (lvp_execute.c has_pcbuf, fill_ubo0): the layout's whole push-constant
+    // size when any range names the fragment stage. llvmpipe's linear shading checks those floats.
+    s.fragment_push_constant_bytes = 0;
+    if (const PipelineLayout* layout = ci.layout ? from_handle<PipelineLayout>(ci.layout) : nullptr) {
+        uint32_t size = 0, stages = 0;
+        for (const VkPushConstantRange& r : layout->push_constants) {
+            size = std::max(size, r.offset + r.size);
+            stages |= r.stageFlags;
+        }
+        if (stages & VK_SHADER_STAGE_FRAGMENT_BIT) s.fragment_push_constant_bytes = size;
+    }
     for (uint32_t i = 0; i < ci.stageCount; ++i) {
         const VkPipelineShaderStageCreateInfo& st = ci.pStages[i];
         if (st.stage == VK_SHADER_STAGE_VERTEX_BIT) {

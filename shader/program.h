@@ -302,6 +302,20 @@ class Program {
     // Internal, for tests and benchmarks: number of SIMD instructions after translation.
     size_t instruction_count() const;
 
+    // llvmpipe's linear shader class as far as tilevk reproduces it (shader/README.md, "Linear analysis"): colour
+    // output location 0 whose every channel c is either component c of one float input, unchanged, or a constant
+    // in [0, 1], and nothing else. ok = false for every other program.
+    struct LinearShader {
+        bool ok = false;
+        int location = -1;      // the input read, or -1 (constants only)
+        uint8_t usage = 0;      // components of that input the program reads (lavapipe's input_usage_mask)
+        int8_t source[4] = {};  // per output channel: input component 0..3, or -1 for a constant
+        float constant[4] = {};
+    };
+    LinearShader linear_shader() const;
+    // The plain copy (channel c = component c of one input): its location, else -1.
+    int linear_copy_input() const;
+
     ~Program();
     Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface);
 

@@ -11,6 +11,8 @@ namespace {
 constexpr float kPlanes[6][4] = {
     {-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {0, 0, -1, 1},
 };
+// draw_pt_post_vs.c with guard_band_xy (llvmpipe's linear mode): x/y planes |x|, |y| <= 2w.
+constexpr float kGuardBandPlanes[4][4] = {{-0.5f, 0, 0, 1}, {0.5f, 0, 0, 1}, {0, -0.5f, 0, 1}, {0, 0.5f, 0, 1}};
 
 bool is_inf_or_nan(float f) {
     return !std::isfinite(f);
@@ -78,8 +80,8 @@ void interp(const ClipConfig& cfg, float* dst, float t, const float* out, const 
 
 }  // namespace
 
-float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz) {
-    const float* p = kPlanes[plane];
+float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz, bool guard_band_xy) {
+    const float* p = (guard_band_xy && plane < 4) ? kGuardBandPlanes[plane] : kPlanes[plane];
     const float p4w = (plane == 4 && clip_halfz) ? 0.0f : p[3];
     // dot4: ((a0*b0 + a1*b1) + a2*b2) + a3*b3, every product and sum rounded
     const float m0 = c[0] * p[0], m1 = c[1] * p[1], m2 = c[2] * p[2], m3 = c[3] * p4w;
@@ -128,7 +130,7 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         bool vflag_prev = in_vflag[0];
         bool edge_prev = in_edge[0];
         bool xy_prev = in_xy[0];
-        float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz);
+        float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz, cfg.guard_band_xy);
         if (is_inf_or_nan(dp_prev)) return 0;
         if (n >= kMaxClippedVertices) return 0;
         inlist[n] = inlist[0];  // close the polygon without rotating it
@@ -138,7 +140,7 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         uint32_t outcount = 0;
         for (uint32_t i = 1; i <= n; ++i) {
             const float* vert = inlist[i];
-            const float dp = clip_plane_distance(clip_pos(vert), plane, cfg.clip_halfz);
+            const float dp = clip_plane_distance(clip_pos(vert), plane, cfg.clip_halfz, cfg.guard_band_xy);
             if (is_inf_or_nan(dp)) return 0;
             bool different_sign;
             if (dp_prev >= 0.0f) {
@@ -241,8 +243,8 @@ bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t
     float t0 = 0.0f, t1 = 0.0f;
     while (clipmask) {
         const uint32_t plane = static_cast<uint32_t>(__builtin_ctz(clipmask));
-        const float dp0 = clip_plane_distance(clip_pos(v0), plane, cfg.clip_halfz);
-        const float dp1 = clip_plane_distance(clip_pos(v1), plane, cfg.clip_halfz);
+        const float dp0 = clip_plane_distance(clip_pos(v0), plane, cfg.clip_halfz, cfg.guard_band_xy);
+        const float dp1 = clip_plane_distance(clip_pos(v1), plane, cfg.clip_halfz, cfg.guard_band_xy);
         if (is_inf_or_nan(dp0) || is_inf_or_nan(dp1)) return false;
         if (dp1 < 0.0f) {
             const float t = dp1 / (dp1 - dp0);

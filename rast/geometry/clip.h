@@ -21,6 +21,10 @@ struct ClipConfig {
     Viewport vp;                  // draw->viewports[0]: new vertices are transformed with it in C
     bool clip_halfz = true;       // plane 4 is z >= 0 (else z + w >= 0)
     bool flatshade_first = true;  // Vulkan's provoking vertex = first
+    // llvmpipe's linear mode (draw_set_driver_clipping guard_band_xy): planes 0-3 become the 2x guard band
+    // |x|, |y| <= 2w. The clip mask (compute_clipmask) still tests the viewport, so a triangle crossing the
+    // viewport edge enters the clipper, is cut only beyond the guard band, and is re-emitted as a fan.
+    bool guard_band_xy = false;
 };
 
 // Edge bit k: the edge from v[k] to v[(k+1)%3] (k = 0, 1, 2) is drawn by polygonMode LINE, and v[k] is drawn by
@@ -73,6 +77,6 @@ struct FloatCull {
 bool float_cull_keep(const FloatCull& c, const float* w0, const float* w1, const float* w2);
 
 // Plane distance as draw computes it: dot4 in C, left to right, no FMA (exposed for tests).
-float clip_plane_distance(const float clip[4], uint32_t plane, bool clip_halfz);
+float clip_plane_distance(const float clip[4], uint32_t plane, bool clip_halfz, bool guard_band_xy = false);
 
 }  // namespace tilevk::rast::geometry

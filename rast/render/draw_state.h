@@ -60,6 +60,10 @@ struct PipelineState {
 
     ViewportRect viewport;
     ClipRect scissor = {0, 0, 16384, 16384};
+
+    // Bytes of push constants lavapipe binds as the fragment stage's constant buffer 0 (0: none). llvmpipe's
+    // linear shading requires each of those floats to lie in [0, 1].
+    uint32_t fragment_push_constant_bytes = 0;
 };
 
 // A bound vertex buffer: `data` points at the buffer's bytes from the bind offset, `size` bytes remain.

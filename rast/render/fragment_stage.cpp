@@ -2,6 +2,7 @@
 // depth/stencil) -> blend and write, per sample plane. Orders and formulas are lavapipe's (notes §3–§5).
 #include "rast/render/fragment_stage.h"
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cstdlib>
@@ -246,12 +247,41 @@ void FragmentStage::prepare(const Framebuffer& fb, const std::deque<DrawRecord>&
     }
 }
 
+void FragmentStage::set_linear(const std::vector<uint8_t>* tile_linear,
+                               const std::vector<fragment::LinearRegion>* rect_boxes) {
+    tile_linear_ = tile_linear;
+    rect_boxes_ = rect_boxes;
+}
+
 void FragmentStage::begin_tile(unsigned, const TileInfo&) {}
 void FragmentStage::end_tile(unsigned, const TileInfo&) {}
 
-void FragmentStage::primitive(unsigned worker, const TileInfo&, const PrimCoverage& cov) {
+void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& cov) {
     const PrimRecord& prim = (*prims_)[cov.payload];
     const DrawRecord& draw = (*draws_)[prim.draw];
+    if (tile_linear_ && draw.linear && (*tile_linear_)[tile.index] &&
+        (prim.kind == PrimKind::kRect || prim.kind == PrimKind::kTriangle)) {
+        // llvmpipe's linear bin (lp_rast_linear.c): a rectangle's box within the tile (lp_rast_linear_rect) or the
+        // whole tile of a whole-tile command (lp_rast_linear_tile; in a linear bin every triangle with coverage
+        // has one), shaded from the region's own origin. When lp_fs_linear_run declines, llvmpipe runs its
+        // general shader on the same pixels: the code below.
+        fragment::LinearRegion r = {tile.x0, tile.y0, tile.width, tile.height};
+        if (prim.kind == PrimKind::kRect) {
+            const fragment::LinearRegion& b = (*rect_boxes_)[prim.rect];
+            r.x = std::max(b.x, tile.x0);
+            r.y = std::max(b.y, tile.y0);
+            r.width = std::min(b.x + b.width, tile.x0 + tile.width) - r.x;
+            r.height = std::min(b.y + b.height, tile.y0 + tile.height) - r.y;
+        }
+        const float* pl = planes_->data() + prim.plane_base;
+        const float* input = draw.linear_slot >= 0
+                                 ? pl + kPrimHeaderFloats + size_t(kPlaneFloats) * uint32_t(draw.linear_slot)
+                                 : nullptr;
+        if (r.width > 0 && r.height > 0 &&
+            fragment::linear_shade(r, pl, input, draw.linear_perspective, draw.linear_channels, fb_.color[0].data,
+                                   fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants))
+            return;
+    }
     Worker& w = *workers_[worker];
     const DrawPlan* plan = fast_ && plans_[prim.draw].fast ? &plans_[prim.draw] : nullptr;
     auto one_block = [&](int32_t x, int32_t y, const uint16_t masks[4]) {

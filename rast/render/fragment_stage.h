@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "rast/core/coverage.h"
+#include "rast/fragment/linear.h"
 #include "rast/render/scene_records.h"
 #include "rast/render/targets.h"
 
@@ -33,6 +34,10 @@ class FragmentStage final : public CoverageConsumer {
     // Points the stage at the scene about to be rasterized (the references must outlive rasterize()).
     void prepare(const Framebuffer& fb, const std::deque<DrawRecord>& draws, const std::vector<PrimRecord>& prims,
                  const std::vector<float>& planes, bool fused, unsigned workers);
+
+    // Linear mode: per 64x64 tile (row-major) whether its bin can be llvmpipe's linear bin (only rectangles and
+    // clears touch it), and each rectangle's pixel box. Null pointers: not in linear mode.
+    void set_linear(const std::vector<uint8_t>* tile_linear, const std::vector<fragment::LinearRegion>* rect_boxes);
 
     void begin_tile(unsigned worker, const TileInfo& tile) override;
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
@@ -63,6 +68,8 @@ class FragmentStage final : public CoverageConsumer {
     bool fused_ = true;
     bool fast_ = true;
     std::vector<DrawPlan> plans_;  // per draw record (fast path)
+    const std::vector<uint8_t>* tile_linear_ = nullptr;
+    const std::vector<fragment::LinearRegion>* rect_boxes_ = nullptr;
     std::vector<std::unique_ptr<Worker>> workers_;
 };
 

@@ -12,6 +12,7 @@
 #include "rast/geometry/unfilled.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/fragment_stage.h"
+#include "rast/render/linear_bins.h"
 
 namespace tilevk::rast::render {
 namespace {
@@ -101,6 +102,7 @@ void Renderer::begin(const Framebuffer& fb) {
     draws_.clear();
     prims_.clear();
     planes_.clear();
+    reset_linear_tiles();
 }
 
 void Renderer::end() {
@@ -110,6 +112,10 @@ void Renderer::end() {
 void Renderer::flush() {
     if (!prims_.empty()) {
         fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
+        if (fb_.linear_mode)
+            fragment_->set_linear(&tile_linear_, &rect_boxes_);
+        else
+            fragment_->set_linear(nullptr, nullptr);
         scene_->rasterize(*fragment_, pool_);
         for (uint32_t d = 0; d < draws_.size(); ++d)
             if (uint64_t* sink = draws_[d].samples_passed) *sink += fragment_->samples_passed(d);
@@ -119,6 +125,27 @@ void Renderer::flush() {
     draws_.clear();
     prims_.clear();
     planes_.clear();
+    reset_linear_tiles();
+}
+
+// Linear-mode bins are llvmpipe's 64x64 tiles; the scene's tiles are the same (SceneConfig's default tile size,
+// which the renderer never changes), so TileInfo::index addresses tile_linear_ directly.
+void Renderer::reset_linear_tiles() {
+    rect_boxes_.clear();
+    if (!fb_.linear_mode) return;
+    const int32_t tx = (fb_.width + 63) / 64, ty = (fb_.height + 63) / 64;
+    tile_linear_.assign(size_t(tx) * size_t(ty), 1);
+}
+
+void Renderer::mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip) {
+    px0 = std::max(px0, clip.x0);
+    py0 = std::max(py0, clip.y0);
+    px1 = std::min(px1, clip.x1 - 1);
+    py1 = std::min(py1, clip.y1 - 1);
+    if (px0 > px1 || py0 > py1) return;
+    const int32_t tx = (fb_.width + 63) / 64;
+    for (int32_t y = py0 / 64; y <= py1 / 64; ++y)
+        for (int32_t x = px0 / 64; x <= px1 / 64; ++x) tile_linear_[size_t(y) * size_t(tx) + size_t(x)] = 0;
 }
 
 void Renderer::clear(const ClipRect& rect, const ClearRecord& clear) {
@@ -163,6 +190,38 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     if (!fb_.depth_stencil.stencil) rec.depth_stencil.stencil_test = false;
     rec.depth_mode =
         fragment::choose_depth_mode(rec.depth_stencil, depth_traits(pipe.fragment), pipe.alpha_to_coverage);
+    rec.linear_slot = -1;
+    // lp_fs_linear_run: every float of constant buffer 0 (the fragment push constants) must lie in [0, 1].
+    bool constants_in_range = true;
+    for (uint32_t off = 0; off + 4 <= pipe.fragment_push_constant_bytes; off += 4) {
+        float v = 0.0f;
+        if (off + 4 <= rec.push_constants.size()) std::memcpy(&v, rec.push_constants.data() + off, 4);
+        constants_in_range = constants_in_range && !(v < 0.0f || v > 1.0f);
+    }
+    rec.linear = false;
+    if (fb_.linear_mode && pipe.fragment && constants_in_range) {
+        // llvmpipe's linear variant (lp_state_fs.c, lp_linear.c) for the class shader/ recognises.
+        const shader::Program::LinearShader ls = pipe.fragment->linear_shader();
+        int slot = -1;
+        bool perspective = true, found = ls.location < 0;
+        for (size_t k = 0; ls.ok && ls.location >= 0 && k < rec.varyings.slot_location.size(); ++k)
+            if (int(rec.varyings.slot_location[k]) == ls.location &&
+                rec.varyings.slot_interp[k] != geometry::Interp::kFlat) {
+                slot = static_cast<int>(k);
+                perspective = rec.varyings.slot_interp[k] == geometry::Interp::kPerspective;
+                found = true;
+            }
+        if (ls.ok && found) {
+            rec.linear = true;
+            rec.linear_slot = slot;
+            rec.linear_perspective = perspective;
+            for (int c = 0; c < 4; ++c) {
+                rec.linear_channels.source[c] = ls.source[c];
+                rec.linear_channels.constant[c] = ls.constant[c];
+            }
+            rec.linear_channels.usage = ls.usage;
+        }
+    }
 
     // Primitive assembly once for all instances.
     geometry::IndexSource src;
@@ -214,6 +273,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     geometry::ClipConfig ccfg;
     ccfg.layout = layout;
     ccfg.vp = vcfg.viewport.vp;
+    ccfg.guard_band_xy = fb_.linear_mode;
     clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
     attrib_planes_.resize(layout.num_attribs);
     geometry::FloatCull fcull;
@@ -243,6 +303,30 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     // draw's batches: per instance, per restart run, per vsplit segment (draw_batches.h).
     geometry::draw_batches(src, pipe.topology, &batches_);
 
+    // lp_setup_vbuf.c offers triangle pairs to the rectangle test only without flat inputs (uses_constant_interp)
+    // and, except for the 4-vertex fan's triangle order, only in linear mode; unfilled polygons reach setup as
+    // lines or points.
+    rect_cfg_.layout = layout;
+    rect_cfg_.cull_front = fcull.cull_front;
+    rect_cfg_.cull_back = fcull.cull_back;
+    rect_cfg_.front_ccw = pipe.front_ccw;
+    const bool pair_candidates = !has_flat_input && !unfilled && verts_per_prim == 3;
+    rect_pairs_ = fb_.linear_mode && pair_candidates;
+    if (rect_pairs_) {
+        // vbuf vertex size: position + one vec4 per fragment input (+ face, + point size), 16 bytes each
+        // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size.
+        uint32_t slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
+        if (pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::FrontFacing)))
+            ++slots;
+        if (pipe.vertex->interface().builtins_written & shader::bit(shader::BuiltIn::PointSize)) ++slots;
+        vbuf_.stride = geometry::vertex_floats(layout);
+        vbuf_.max_vertices = 4096 / (16 * slots);
+        vbuf_.records.clear();
+        vbuf_.vertices = 0;
+        vbuf_.emitted_id.clear();
+    }
+    uint64_t vertex_serial = 0;  // distinguishes vertex headers of different batches and clip calls (vbuf ids)
+
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
         vcfg.instance = inst;
         shade_vertices(vcfg, unique_, *scratch_[0], &shaded_);
@@ -262,6 +346,63 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
             bool pipeline_path = unfilled;
             for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
                 pipeline_path = shaded_.clipmask[slot(batch_ids[k])] != 0;
+            const uint64_t batch_serial = ++vertex_serial;
+            // A batch emitted straight to setup flushes draw's pipeline first (draw_pt_emit.c draw_do_flush).
+            if (rect_pairs_ && !pipeline_path) vbuf_flush(draw_index, rec);
+            auto tri_of = [&](uint32_t p, const float* v[3]) {
+                const uint32_t* ids = assembled_.data() + size_t(p) * 3;
+                for (int k = 0; k < 3; ++k) v[k] = shaded_.record(slot(ids[k]));
+            };
+            if (!pipeline_path && pair_candidates) {
+                const float* t0[3];
+                const float* t1[3];
+                const bool list6 = pipe.topology == geometry::Topology::kTriangleList && batch_verts % 6 == 0;
+                if (rect_pairs_ && list6) {
+                    // draw_arrays / draw_elements, PIPE_PRIM_TRIANGLES with nr % 6 == 0: rect() per pair
+                    for (uint32_t p = first_prim; p + 1 < end_prim; p += 2) {
+                        tri_of(p, t0);
+                        tri_of(p + 1, t1);
+                        rect_or_triangles(draw_index, rec, t0, t1);
+                    }
+                    first_prim = end_prim;
+                    continue;
+                }
+                if (rect_pairs_ && !call.indexed && pipe.topology == geometry::Topology::kTriangleStrip) {
+                    // draw_arrays, strip with flatshade_first: setup->rect on each pair of consecutive triangles;
+                    // when it declines, the first is drawn and the pairing moves on by one
+                    uint32_t p = first_prim;
+                    for (; p + 1 < end_prim;) {
+                        tri_of(p, t0);
+                        tri_of(p + 1, t1);
+                        if (apply_rect_decision(draw_index, rec, t0, t1)) {
+                            p += 2;
+                        } else {
+                            add_triangle(draw_index, rec, t0[0], t0[1], t0[2]);
+                            p += 1;
+                        }
+                    }
+                    if (p < end_prim) {
+                        tri_of(p, t0);
+                        add_triangle(draw_index, rec, t0[0], t0[1], t0[2]);
+                    }
+                    first_prim = end_prim;
+                    continue;
+                }
+                if (!call.indexed && pipe.topology == geometry::Topology::kTriangleFan && end_prim - first_prim == 2) {
+                    // draw_arrays, 4-vertex fan (any mode): rect(v0, v1, v2, v0, v2, v3), i.e. outside linear mode
+                    // the triangles (v0, v1, v2), (v0, v2, v3) instead of the fan's (v1, v2, v0), (v2, v3, v0)
+                    const float* a[3];
+                    const float* b[3];
+                    tri_of(first_prim, a);
+                    tri_of(first_prim + 1, b);
+                    const float* q[4] = {a[2], a[0], a[1], b[1]};
+                    const float* u0[3] = {q[0], q[1], q[2]};
+                    const float* u1[3] = {q[0], q[2], q[3]};
+                    rect_or_triangles(draw_index, rec, u0, u1);
+                    first_prim = end_prim;
+                    continue;
+                }
+            }
             uint32_t batch_end = end_prim;
             if (nine_vertex_candidate && !pipeline_path && batch_verts == 9) {
                 float xy[9][2];
@@ -273,10 +414,19 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                 geometry::TriangleListBatch qb;
                 qb.vertex_count = 9;
                 const geometry::NineVertexQuirk q = geometry::nine_vertex_quirk(qb, xy);
-                // Swallowed: nothing. Aero: llvmpipe bins one rectangle (lp_rect_cw) covering the first two
-                // triangles; drawn here as those two triangles (the rect path is not modelled).
+                // Swallowed: nothing. Aero: llvmpipe bins one rectangle, lp_rect_cw(v0, v1, v2, front = TRUE), in
+                // any mode; at 4x it is still drawn as its two triangles (rectangles in MSAA are not modelled).
                 if (q == geometry::NineVertexQuirk::kSwallowed) batch_end = first_prim;
-                if (q == geometry::NineVertexQuirk::kAeroRect) batch_end = first_prim + 2;
+                if (q == geometry::NineVertexQuirk::kAeroRect) {
+                    if (fb_.samples == 1) {
+                        const float* t0[3];
+                        tri_of(first_prim, t0);
+                        add_rect(draw_index, rec, t0[0], t0[1], t0[2], true);
+                        batch_end = first_prim;
+                    } else {
+                        batch_end = first_prim + 2;
+                    }
+                }
             }
             for (uint32_t p = first_prim; p < batch_end; ++p) {
                 const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
@@ -305,11 +455,28 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                 }
                 geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
                 const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
+                const uint64_t clip_serial = ++vertex_serial;
                 for (uint32_t t = 0; t < n; ++t) {
                     const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
                     if (any_cull && !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b),
                                                                geometry::win_pos(c)))
                         continue;
+                    if (rect_pairs_) {
+                        // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch,
+                        // a clipper-made one is a fresh header per clip call
+                        uint64_t ids[3];
+                        for (int k = 0; k < 3; ++k) {
+                            const float* r = out[t].v[k];
+                            if (r == v0 || r == v1 || r == v2)
+                                ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
+                            else
+                                ids[k] = clip_serial << 32 | (1u << 31) |
+                                         static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
+                        }
+                        const float* vv[3] = {a, b, c};
+                        vbuf_triangle(draw_index, rec, vv, ids);
+                        continue;
+                    }
                     if (!unfilled) {
                         add_triangle(draw_index, rec, a, b, c);
                         continue;
@@ -335,7 +502,108 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
             first_prim = end_prim;
         }
     }
+    if (rect_pairs_) vbuf_flush(draw_index, rec);  // llvmpipe_draw_vbo ends with draw_flush
     return {};
+}
+
+bool Renderer::apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3],
+                                   const float* const t1[3]) {
+    const geometry::RectDecision d = geometry::decide_rect_pair(rect_cfg_, t0, t1);
+    switch (d.kind) {
+        case geometry::RectDecision::kTriangles:
+            return false;
+        case geometry::RectDecision::kRect:
+            add_rect(draw, rec, d.corner[0], d.corner[1], d.corner[2], d.front);
+            break;
+        case geometry::RectDecision::kFirstTriangle:
+            add_triangle(draw, rec, t0[0], t0[1], t0[2]);
+            break;
+        case geometry::RectDecision::kSecondTriangle:
+            add_triangle(draw, rec, t1[0], t1[1], t1[2]);
+            break;
+        case geometry::RectDecision::kNothing:
+            break;
+    }
+    return true;
+}
+
+void Renderer::rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3],
+                                 const float* const t1[3]) {
+    if (fb_.linear_mode && apply_rect_decision(draw, rec, t0, t1)) return;
+    add_triangle(draw, rec, t0[0], t0[1], t0[2]);
+    add_triangle(draw, rec, t1[0], t1[1], t1[2]);
+}
+
+void Renderer::vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]) {
+    // draw_pipe_vbuf.c vbuf_tri: check_space(3) against both buffers, then each vertex emitted once per buffer.
+    constexpr uint32_t kMaxIndices = 1020;  // lp_setup_vbuf.c LP_MAX_VBUF_INDEXES
+    const size_t indices = vbuf_.records.size() / vbuf_.stride;
+    if (vbuf_.vertices + 3 > vbuf_.max_vertices || indices + 3 > kMaxIndices) vbuf_flush(draw, rec);
+    for (int k = 0; k < 3; ++k) {
+        if (std::find(vbuf_.emitted_id.begin(), vbuf_.emitted_id.end(), ids[k]) == vbuf_.emitted_id.end()) {
+            vbuf_.emitted_id.push_back(ids[k]);
+            ++vbuf_.vertices;
+        }
+        vbuf_.records.insert(vbuf_.records.end(), v[k], v[k] + vbuf_.stride);
+    }
+}
+
+void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec) {
+    // lp_setup_vbuf.c draw_elements, PIPE_PRIM_TRIANGLES: rect() per pair when nr % 6 == 0, else triangles.
+    const size_t nr = vbuf_.records.size() / vbuf_.stride;
+    auto vert = [&](size_t i) { return vbuf_.records.data() + i * vbuf_.stride; };
+    if (nr % 6 == 0) {
+        for (size_t i = 0; i + 5 < nr; i += 6) {
+            const float* t0[3] = {vert(i), vert(i + 1), vert(i + 2)};
+            const float* t1[3] = {vert(i + 3), vert(i + 4), vert(i + 5)};
+            rect_or_triangles(draw, rec, t0, t1);
+        }
+    } else {
+        for (size_t i = 0; i + 2 < nr; i += 3) add_triangle(draw, rec, vert(i), vert(i + 1), vert(i + 2));
+    }
+    vbuf_.records.clear();
+    vbuf_.vertices = 0;
+    vbuf_.emitted_id.clear();
+}
+
+void Renderer::add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, const float* c1, const float* c2,
+                        bool front) {
+    const PipelineState& pipe = *rec.pipe;
+    const float* w[3] = {geometry::win_pos(c0), geometry::win_pos(c1), geometry::win_pos(c2)};
+    const geometry::RectBox box = geometry::rect_box(w[0], w[1], w[2], triangle_snap_offset(fb_.samples));
+    // An empty box (a rectangle narrower than one 1/256 step after snapping) is dropped here; llvmpipe bins it
+    // with x1 < x0 (rast/geometry/README.md, "Linear mode").
+    if (box.culled || box.x0 > box.x1 || box.y0 > box.y1) return;
+    // u_rect_find_intersection with draw_regions[0] (scissor, framebuffer, viewport rectangle)
+    const ClipRect clip = prim_clip(pipe);
+    BoxInput in;
+    in.x0 = std::max(box.x0, clip.x0) * kFixedOne;
+    in.y0 = std::max(box.y0, clip.y0) * kFixedOne;
+    in.x1 = std::min(box.x1 + 1, clip.x1) * kFixedOne;
+    in.y1 = std::min(box.y1 + 1, clip.y1) * kFixedOne;
+    if (in.x0 >= in.x1 || in.y0 >= in.y1) return;
+    in.common.clip = clip;
+    in.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
+    in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.front_facing = front;
+    if (scene_->add_box(in) != SetupStatus::kAccepted) return;
+    // The setup JIT on (c0, c1, c2) as given: no cw reorder for rectangles.
+    geometry::PlaneSetupConfig pcfg;
+    pcfg.layout = rec.varyings.layout();
+    pcfg.multisample = fb_.samples > 1;
+    pcfg.flatshade_first = true;
+    pcfg.bias = pipe.depth_bias_enable ? depth_bias_for_target(pipe) : geometry::DepthBias{};
+    geometry::TrianglePlanes tp;
+    geometry::setup_triangle_planes(pcfg, c0, c1, c2, &tp, attrib_planes_.data());
+    push_prim(draw, PrimKind::kRect, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
+    if (fb_.linear_mode) {
+        prims_.back().rect = static_cast<uint32_t>(rect_boxes_.size());
+        rect_boxes_.push_back(
+            {in.x0 / kFixedOne, in.y0 / kFixedOne, (in.x1 - in.x0) / kFixedOne, (in.y1 - in.y0) / kFixedOne});
+    } else {
+        // rectangles outside linear mode (the Aero quirk) are binned as llvmpipe's RECTANGLE commands, which
+        // only the linear rasterizer shades differently
+    }
 }
 
 // The pipeline's depth-bias factors with the depth format's rule (util_get_depth_format_mrd: D16 16 bits, D32F
@@ -402,6 +670,10 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     in.common.payload = static_cast<uint32_t>(prims_.size());
     in.front_facing = front_facing;
     if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
+    // one pixel of margin around the line's fixed-point box (llvmpipe's own line box is not modelled)
+    if (fb_.linear_mode)
+        mark_not_linear((ls.min_x >> 8) - 1, (ls.min_y >> 8) - 1, (ls.max_x >> 8) + 1, (ls.max_y >> 8) + 1,
+                        in.common.clip);
     push_prim(draw, PrimKind::kLine, ls.pos, 0.0f, cfg.layout.num_attribs);
 }
 
@@ -424,6 +696,8 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     in.common.payload = static_cast<uint32_t>(prims_.size());
     in.front_facing = front_facing;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
+    if (fb_.linear_mode)
+        mark_not_linear((in.x0 >> 8) - 1, (in.y0 >> 8) - 1, (in.x1 >> 8) + 1, (in.y1 >> 8) + 1, in.common.clip);
     push_prim(draw, PrimKind::kPoint, ps.pos, 0.0f, cfg.layout.num_attribs);
 }
 
@@ -442,9 +716,23 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     tri.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     tri.common.payload = static_cast<uint32_t>(prims_.size());
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
+    const bool ccw = snapped_ccw(w[0], w[1], w[2], fb_.samples);
+    if (fb_.linear_mode) {
+        // llvmpipe's binning of this triangle: tiles where it leaves a partial command are not linear bins
+        const float off = triangle_snap_offset(fb_.samples);
+        int32_t x[3], y[3];
+        bool ok = true;
+        const int order[3] = {0, ccw ? 1 : 2, ccw ? 2 : 1};
+        for (int i = 0; i < 3; ++i)
+            ok = ok && snap_triangle_coord(w[order[i]][0], off, &x[i]) &&
+                 snap_triangle_coord(w[order[i]][1], off, &y[i]);
+        if (ok)
+            mark_partial_triangle_bins(x, y, tri.common.clip, (fb_.width + 63) / 64, &tile_linear_);
+        else
+            mark_not_linear(0, 0, fb_.width, fb_.height, tri.common.clip);
+    }
 
     // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
-    const bool ccw = snapped_ccw(w[0], w[1], w[2], fb_.samples);
     const float* o1 = ccw ? v1 : v2;
     const float* o2 = ccw ? v2 : v1;
     geometry::PlaneSetupConfig pcfg;

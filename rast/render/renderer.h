@@ -16,6 +16,8 @@
 #include "rast/core/method.h"
 #include "rast/core/scene.h"
 #include "rast/core/thread_pool.h"
+#include "rast/fragment/linear.h"
+#include "rast/geometry/rect_detect.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/scene_records.h"
 #include "rast/render/targets.h"
@@ -45,10 +47,23 @@ class Renderer {
 
   private:
     void flush();
+    void reset_linear_tiles();
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
     void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
     void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
+    // llvmpipe's rectangle (lp_setup_rect.c try_rect_cw): box of the snapped corners, planes from (c0, c1, c2).
+    void add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, const float* c1, const float* c2, bool front);
+    // lp_setup_vbuf.c rect(): setup->rect in linear mode, else (or when it declines) both triangles in order.
+    void rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
+    // setup->rect's outcome applied; returns false when it declined (kTriangles), having drawn nothing.
+    bool apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
+    // draw's vbuf stage for triangles leaving the pipeline (clipper, float cull) in linear mode: they collect until
+    // a direct batch, the end of the draw or a full vertex/index buffer, then reach setup as one indexed list.
+    void vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]);
+    void vbuf_flush(uint32_t draw, const DrawRecord& rec);
     ClipRect prim_clip(const PipelineState& pipe) const;
+    // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
+    void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
     geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
     // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
     void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
@@ -70,6 +85,18 @@ class Renderer {
     std::vector<geometry::AttribPlane> attrib_planes_;
     std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
     std::vector<float> unfilled_scratch_;  // 3 records: a polygonMode LINE/POINT triangle after offset/flatshade
+    // Linear-mode rectangle state of the current draw.
+    geometry::RectPairConfig rect_cfg_;
+    bool rect_pairs_ = false;  // linear mode and no flat input (lp_setup_vbuf.c: !uses_constant_interp)
+    struct VbufGroup {
+        std::vector<float> records;        // 3 copied vertex records per triangle
+        uint32_t stride = 0;               // floats per record
+        uint32_t vertices = 0;             // vbuf->nr_vertices (each vertex counted once per buffer)
+        uint32_t max_vertices = 0;         // 4096 bytes / vertex size
+        std::vector<uint64_t> emitted_id;  // vertex ids emitted into the current buffer
+    } vbuf_;
+    std::vector<uint8_t> tile_linear_;                // per 64x64 tile, row-major (linear mode)
+    std::vector<fragment::LinearRegion> rect_boxes_;  // pixel box of each kRect (linear mode)
 };
 
 }  // namespace tilevk::rast::render

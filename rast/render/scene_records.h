@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rast/fragment/depth_stencil.h"
+#include "rast/fragment/linear.h"
 #include "rast/geometry/planes.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/vertex_stage.h"
@@ -33,14 +34,22 @@ struct DrawRecord {
     bool is_clear = false;
     ClearRecord clear;
     uint64_t* samples_passed = nullptr;  // DrawCall::samples_passed
+    // llvmpipe's linear shading for this draw's rectangles (fragment/linear.h): the varying slot the shader copies
+    // to colour 0, or -1 when tilevk does not shade this draw linearly (shader class, blending, write mask, ...).
+    bool linear = false;
+    int linear_slot = -1;  // -1 with `linear`: the shader writes constants only
+    bool linear_perspective = true;
+    fragment::LinearChannels linear_channels;
 };
 
-enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear };
+// kRect: llvmpipe's rectangle (lp_setup_rect.c): box coverage, planes from three corners.
+enum class PrimKind : uint8_t { kTriangle, kLine, kPoint, kClear, kRect };
 
 struct PrimRecord {
     uint32_t draw = 0;        // index into the draw records
     uint32_t plane_base = 0;  // first float of this primitive's planes in the plane store
     PrimKind kind = PrimKind::kTriangle;
+    uint32_t rect = 0;  // kRect: index of its pixel box (Renderer's rect boxes, linear mode only)
 };
 
 // Plane store layout per primitive: [pos plane (12 floats)][depth offset][pad x3][attrib planes (12 floats each)]

@@ -36,6 +36,10 @@ struct Framebuffer {
     ColorTarget color[kMaxColorTargets];
     uint32_t num_color = 0;
     DepthStencilTarget depth_stencil;
+    // llvmpipe's "linear" mode (lp_state_derived.c check_linear_rasterizer: one single-sampled 2D B8G8R8A8/X8
+    // colour buffer, no depth/stencil buffer, one viewport). The driver decides; the renderer then clips x/y
+    // against draw's 2x guard band instead of the viewport (rast/geometry/README.md, "Linear mode").
+    bool linear_mode = false;
 };
 
 inline size_t depth_bytes(fragment::DepthFormat f) {

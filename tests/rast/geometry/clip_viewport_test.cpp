@@ -255,6 +255,62 @@ TEST(Clipper, ReordersEvenWhenNothingIsCut) {
     EXPECT_EQ(out[0].v[2][16], v2.f[16]);
 }
 
+TEST(Clipper, GuardBandCutsOnlyBeyondTwiceTheViewport) {
+    // llvmpipe's linear mode: the clip mask still tests the viewport (x > w), the clipper uses x <= 2w.
+    std::vector<float> scratch(kClipScratchVertices * 20);
+    ClippedTriangle out[kMaxClippedTriangles];
+    ClipConfig gb = config();
+    gb.guard_band_xy = true;
+    // v1 at x = 1.5 w: outside the viewport (mask bit 0), inside the guard band -> one triangle, the input
+    // vertices in the fan order (in[0], in[1], in[2]); without the guard band it is cut into two.
+    Vtx v0 = vert(0, 0, 0.5f, 1, 0), v1 = vert(1.5f, 0, 0.5f, 1, 10), v2 = vert(0, 1, 0.5f, 1, 20);
+    ASSERT_EQ(mask(v1), kClipRight);
+    ASSERT_EQ(clip_triangle(gb, v0.f, v1.f, v2.f, mask(v0), mask(v1), mask(v2), scratch.data(), out), 1u);
+    EXPECT_EQ(out[0].v[0], v0.f);
+    EXPECT_EQ(out[0].v[1], v1.f);
+    EXPECT_EQ(out[0].v[2], v2.f);
+    EXPECT_EQ(clip_triangle(config(), v0.f, v1.f, v2.f, mask(v0), mask(v1), mask(v2), scratch.data(), out), 2u);
+    // v1 at x = 4: plane 0 of the guard band (-0.5, 0, 0, 1): dp0 = 1, dp1 = fl(-2 + 0) + 0 + 1 = -1.
+    // v0->v1 going out: -dp (1) < dp_prev (1) false -> t = -dp_prev/(dp - dp_prev) = 0.5 from v0: A = (2, 0)
+    // v1->v2 coming in: dp_prev = -1, dp (v2) = 1 -> t = 0.5 from v2 towards v1: B = (2, 0.5), attrib 15.
+    Vtx u1 = vert(4, 0, 0.5f, 1, 10);
+    ASSERT_EQ(clip_triangle(gb, v0.f, u1.f, v2.f, mask(v0), mask(u1), mask(v2), scratch.data(), out), 2u);
+    const float* A = out[0].v[1];
+    const float* B = out[0].v[2];
+    EXPECT_EQ(A[0], 2.0f);
+    EXPECT_EQ(A[1], 0.0f);
+    EXPECT_EQ(B[0], 2.0f);
+    EXPECT_EQ(B[1], 0.5f);
+    EXPECT_EQ(B[8], 15.0f);
+    // window x of the cut vertex: fl(fl(2*1)*50) + 50 = 150, past the 100-px viewport
+    EXPECT_EQ(A[4], 150.0f);
+    // the guard-band plane distance: dot4 with -0.5, left to right
+    const float c[4] = {3, -5, 0.25f, 1};
+    EXPECT_EQ(clip_plane_distance(c, 0, true, true), -0.5f);
+    EXPECT_EQ(clip_plane_distance(c, 1, true, true), 2.5f);
+    EXPECT_EQ(clip_plane_distance(c, 2, true, true), 3.5f);
+    EXPECT_EQ(clip_plane_distance(c, 3, true, true), -1.5f);
+    EXPECT_EQ(clip_plane_distance(c, 5, true, true), clip_plane_distance(c, 5, true, false));  // z planes as before
+}
+
+TEST(LineClip, GuardBand) {
+    // v0 x = -3, v1 x = 1.5 (w = 1): guard-band left plane dp = 0.5x + w -> -0.5, 1.75 -> t0 = 0.5/2.25;
+    // the right plane (mask bit set by x > w) cuts nothing (dp1 = -0.75 + 1 = 0.25).
+    std::vector<float> scratch(2 * 20);
+    ClipConfig gb = config();
+    gb.guard_band_xy = true;
+    Vtx v0 = vert(-3, 0, 0.5f, 1, 0), v1 = vert(1.5f, 0, 0.5f, 1, 8);
+    const float* a;
+    const float* b;
+    ASSERT_TRUE(clip_line(gb, v0.f, v1.f, mask(v0), mask(v1), scratch.data(), &a, &b));
+    // v1 has a mask bit, so draw re-makes it with t1 = 0 (same clip position, window coordinates in C)
+    EXPECT_NE(b, v1.f);
+    EXPECT_EQ(b[0], 1.5f);
+    const float t0 = -0.5f / (-0.5f - 1.75f);
+    EXPECT_EQ(a[0], -3.0f + t0 * (1.5f - -3.0f));
+    EXPECT_NEAR(a[0], -2.0f, 1e-6f);
+}
+
 TEST(Clipper, NaNAndInfDiscardHugeSurvives) {
     std::vector<float> scratch(kClipScratchVertices * 20);
     ClippedTriangle out[kMaxClippedTriangles];
