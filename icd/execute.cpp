@@ -158,6 +158,7 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
             case CmdType::kNextSubpass:
                 if (st.render_pass == nullptr) break;
                 finish_rendering(st);
+                st.query_command_pending = false;  // it belonged to the subpass that ended
                 resolve_attachments(st, st.subpass);
                 ++st.subpass;
                 load_attachments(st, st.subpass);
@@ -165,6 +166,7 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
             case CmdType::kEndRenderPass:
                 if (st.render_pass == nullptr) break;
                 finish_rendering(st);
+                st.query_command_pending = false;
                 resolve_attachments(st, st.subpass);
                 st.render_pass = nullptr;
                 st.framebuffer = nullptr;

@@ -54,9 +54,17 @@ struct ExecState {
     // Queries ended inside a render pass: their last draws may still be binned; they become available when the
     // renderer's pass ends (finish_rendering).
     std::vector<std::pair<QueryPool*, uint32_t>> ended_in_pass;
+    // A query command inside the render pass before the renderer's next scene began: that scene is not linear
+    // (note_query_command_in_pass).
+    bool query_command_pending = false;
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
+
+// A query command (begin/end occlusion, timestamp) executed inside a render pass. lavapipe bins it into every tile
+// of its current scene, which keeps that scene off its linear rasterizer; tilevk's current (or next) scene of the
+// subpass follows it (rast::render::Renderer::mark_scene_not_linear).
+void note_query_command_in_pass(ExecState& st);
 
 // ---- draws (execute_draw.cpp) ----
 DrawContext* create_draw_context();

@@ -162,6 +162,10 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
     }
     fb.linear_mode = lavapipe_linear_mode(sp, fbo);
     ctx.renderer.begin(fb);
+    if (st.query_command_pending) {
+        ctx.renderer.mark_scene_not_linear();
+        st.query_command_pending = false;
+    }
     ctx.active = true;
 }
 
@@ -316,6 +320,14 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
 }
 
 }  // namespace
+
+void note_query_command_in_pass(ExecState& st) {
+    if (st.render_pass == nullptr) return;
+    if (st.draw->active)
+        st.draw->renderer.mark_scene_not_linear();
+    else
+        st.query_command_pending = true;
+}
 
 void finish_rendering(ExecState& st) {
     DrawContext& ctx = *st.draw;

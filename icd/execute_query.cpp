@@ -42,6 +42,7 @@ void begin_query(ExecState& st, const CmdBeginQuery& c) {
         return;
     }
     c.pool->begin(c.query);
+    note_query_command_in_pass(st);
     st.occlusion_pool = c.pool;
     st.occlusion_query = c.query;
 }
@@ -52,6 +53,7 @@ void end_query(ExecState& st, const CmdEndQuery& c) {
         return;
     }
     st.occlusion_pool = nullptr;
+    note_query_command_in_pass(st);
     if (st.render_pass != nullptr)
         st.ended_in_pass.emplace_back(c.pool, c.query);  // its draws may still be binned
     else
@@ -67,6 +69,7 @@ void write_timestamp(ExecState& st, const CmdWriteTimestamp& c) {
                   c.query, int(c.pool->type), c.pool->count);
         return;
     }
+    note_query_command_in_pass(st);
     c.pool->write_timestamp(c.query, timestamp_now_ns());
 }
 

@@ -279,8 +279,13 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
                                  : nullptr;
         if (r.width > 0 && r.height > 0 &&
             fragment::linear_shade(r, pl, input, draw.linear_perspective, draw.linear_channels, fb_.color[0].data,
-                                   fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants))
+                                   fb_.color[0].row_pitch, &draw.pipe->blend[0], draw.pipe->blend_constants)) {
+            // Every pixel of the region was written: linear mode is 1x with no depth/stencil and the linear shader
+            // class cannot discard. lavapipe's linear rasterizer forgets to count them (a named difference,
+            // icd/README.md "Queries"); a precise occlusion query must.
+            if (draw.samples_passed) workers_[worker]->samples_passed[prim.draw] += uint64_t(r.width) * r.height;
             return;
+        }
     }
     Worker& w = *workers_[worker];
     const DrawPlan* plan = fast_ && plans_[prim.draw].fast ? &plans_[prim.draw] : nullptr;

@@ -137,6 +137,10 @@ void Renderer::reset_linear_tiles() {
     tile_linear_.assign(size_t(tx) * size_t(ty), 1);
 }
 
+void Renderer::mark_scene_not_linear() {
+    std::fill(tile_linear_.begin(), tile_linear_.end(), uint8_t(0));
+}
+
 void Renderer::mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip) {
     px0 = std::max(px0, clip.x0);
     py0 = std::max(py0, clip.y0);

@@ -45,9 +45,15 @@ class Renderer {
     // increase means some shader did not terminate: its outputs are incomplete and the driver must say so.
     uint64_t shader_loop_limit_hits() const;
 
+    // lavapipe bins a query command (begin/end, timestamp) into every tile of its current scene, so no bin of that
+    // scene is linear-only (lp_setup.c lp_setup_begin_query / lp_setup_end_query): the icd calls this for a query
+    // command inside a render pass. Applies to the scene being built (until the next begin() or flush()).
+    void mark_scene_not_linear();
+
   private:
     void flush();
     void reset_linear_tiles();
+
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
     void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
     void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
