@@ -181,7 +181,7 @@ template <int kN>
                                                       int32_t oy, uint32_t valid, Block16* r) {
     int32_t base[Prim::kMaxPlanes];
     for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
-    block16_masks<kN>(planes, n, base, &r->bm);
+    block16_rows<kN>(planes, n, base, &r->bm);
     r->x = t.x0 + ox, r->y = t.y0 + oy;
     r->full = valid & r->bm.full, r->partial = valid & ~(r->bm.full | r->bm.empty);
 }
@@ -316,9 +316,9 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
 }
 
-// planes: Prim::kMaxPlanes slots pointing into one TilePlane array, the first n of them the live planes (the 1x
+// planes: Prim::kMaxPlanes slots pointing into the TilePlane array `tp`, the first n of them the live planes (the 1x
 // path reads three slots whatever n is).
-void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
+void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList planes, int n, TileScratch* out) {
     // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
     // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
     // them gets the 4-px level in one 16-px window at its own (4-aligned, not 16-aligned) origin. Windows reach at most
@@ -326,6 +326,8 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     const RelBox r = rel_box(prim, t);
     const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
     if ((bw + 1) * (bh + 1) <= 12) return scan_blocks(prim, t, planes, n, r, out);
+    if (t.samples == 1)
+        for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);  // the 1x 16x16 kernel's tables (block16_rows)
     if (bw <= 3 && bh <= 3) {
         // One 16x16-px window anchored at the box (the tile-aligned 16-px grid might cut it into four).
         for (int32_t oy = r.y0 & ~3; oy <= r.y1; oy += 16)
@@ -497,7 +499,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
         return;
     }
     if (method == Method::kHier)
-        raster_hier(prim, tile, list, n, scratch);
+        raster_hier(prim, tile, planes, list, n, scratch);
     else
         raster_bbox(prim, tile, list, n, scratch);
 }
