@@ -320,7 +320,7 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
 // block16_rows with 8 rows per vector (kRowOrder): per plane and 8 rows one add, cvt, fma, max, min, cvtt, mullo,
 // two exact tests and one sllv that puts the row mask in the high 16 bits of its 32-bit lane (bit 16 + x; nothing
 // leaks out, nothing below); the 16 rows are merged into words and transposed by nibbles (one shuffle, two
-// maddubs/madd pairs), then the masks leave as in block16_masks_avx2.
+// maddubs/madd pairs); full and empty lanes as in block16_masks_avx2.
 template <int kN>
 inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     if constexpr (kN != 0) n = kN;
@@ -339,9 +339,9 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
             const __m256 q = _mm256_fmadd_ps(_mm256_cvtepi32_ps(r), inv, off);
             __m256i t = _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(q, flo), fhi));
             const __m256i v = _mm256_add_epi32(r, _mm256_mullo_epi32(a, t));
-            t = _mm256_sub_epi32(t, _mm256_cmpgt_epi32(one, v));                         // v <= 0: + 1
+            t = _mm256_sub_epi32(t, _mm256_cmpgt_epi32(one, v));                        // v <= 0: + 1
             t = _mm256_add_epi32(t, _mm256_cmpgt_epi32(_mm256_sub_epi32(v, a), zero));  // v - a' > 0: - 1
-            const __m256i m = _mm256_xor_si256(_mm256_sllv_epi32(high, t), flip);  // t in [0, 19]
+            const __m256i m = _mm256_xor_si256(_mm256_sllv_epi32(high, t), flip);       // t in [0, 19]
             rows[h] = _mm256_and_si256(rows[h], m);
         }
     }
@@ -350,21 +350,15 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
     // bytes are blocks bx = 2h / 2h + 1; maddubs (1, 16) and madd (1, 256) gather four nibbles into one 16-bit block
     // mask per 32-bit lane.
     const __m256i w = _mm256_or_si256(_mm256_srli_epi32(rows[0], 16), rows[1]);
-    const __m256i order = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1, 5, 9, 13,
-                                           2, 6, 10, 14, 3, 7, 11, 15);
+    const __m256i order = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1, 5, 9,
+                                           13, 2, 6, 10, 14, 3, 7, 11, 15);
     const __m256i s = _mm256_shuffle_epi8(w, order), nib = _mm256_set1_epi8(0x0F);
     const __m256i m1 = _mm256_set1_epi16(0x1001), m2 = _mm256_set1_epi32(0x01000001);
     const __m256i even = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(s, nib), m1), m2);
     const __m256i odd = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(_mm256_srli_epi16(s, 4), nib), m1), m2);
     const __m256i cov = _mm256_or_si256(even, _mm256_slli_epi32(odd, 16));
-    // Four 8-byte stores (store forwarding to the 2-byte reads, as in block16_masks_avx2).
-    const __m128i c0 = _mm256_castsi256_si128(cov), c1 = _mm256_extracti128_si256(cov, 1);
-    const int64_t q0 = _mm_cvtsi128_si64(c0), q1 = _mm_extract_epi64(c0, 1), q2 = _mm_cvtsi128_si64(c1),
-                  q3 = _mm_extract_epi64(c1, 1);
-    std::memcpy(out->mask, &q0, 8);
-    std::memcpy(out->mask + 4, &q1, 8);
-    std::memcpy(out->mask + 8, &q2, 8);
-    std::memcpy(out->mask + 12, &q3, 8);
+    // One 32-byte store: the 1x emission (emit_partial_avx2) reads the masks back as one vector.
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), cov);
     out->mask[16] = 0;
     const __m256i is_full = _mm256_cmpeq_epi16(cov, _mm256_set1_epi32(-1));
     const __m256i is_empty = _mm256_cmpeq_epi16(cov, zero);
