@@ -231,23 +231,41 @@ template <int kN>
     batch(list, b);
     if (std::popcount(r.partial) > 8) batch(list >> 32, b + 8);
 }
+
+// The full lanes as FullBlock {x, y, 4} entries at f, eight per batch like emit_partial_avx2, each written as a
+// 16-byte vector at stride 12 in increasing order (the 4 bytes past an entry are overwritten by the next one or land
+// in kSlack, as before).
+[[gnu::always_inline]] inline void emit_full_avx2(const Block16& r, FullBlock* f) {
+    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(r.full, 0x1111111111111111ull) * 0xF);
+    const __m256i x = _mm256_set1_epi32(r.x), y = _mm256_set1_epi32(r.y), four = _mm256_set1_epi32(4);
+    const auto batch = [&](uint64_t nibbles, FullBlock* out) {
+        const uint64_t bytes = _pdep_u64(nibbles, 0x0F0F0F0F0F0F0F0Full);
+        const __m256i lane = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<int64_t>(bytes)));
+        const __m256i px = _mm256_add_epi32(x, _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(3)), 2));
+        const __m256i py = _mm256_add_epi32(y, _mm256_and_si256(lane, _mm256_set1_epi32(12)));
+        const __m256i xy_lo = _mm256_unpacklo_epi32(px, py), xy_hi = _mm256_unpackhi_epi32(px, py);
+        const __m256i e[4] = {_mm256_unpacklo_epi64(xy_lo, four), _mm256_unpackhi_epi64(xy_lo, four),
+                              _mm256_unpacklo_epi64(xy_hi, four), _mm256_unpackhi_epi64(xy_hi, four)};  // j | j + 4
+#pragma GCC unroll 4
+        for (int j = 0; j < 4; ++j) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm256_castsi256_si128(e[j]));
+#pragma GCC unroll 4
+        for (int j = 0; j < 4; ++j)
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 + j), _mm256_extracti128_si256(e[j], 1));
+    };
+    batch(list, f);
+    if (std::popcount(r.full) > 8) batch(list >> 32, f + 8);
+}
 #endif
 
 // Appends the full lanes as whole 4x4 blocks at *f and the partial ones as masks at *b (each list written by
 // emit_lanes) and advances both. The list ends are kept in registers by the caller: stored in TileScratch, each
 // would be reloaded after every vector store (which may alias anything).
 [[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, FullBlock*& f, Block4*& b) {
-    const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
 #if TILEVK_SIMD_AVX2
-    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(r.x, r.y)));  // {x, y, 0, 0}
-    const auto entry = [&](const char* table, uint32_t off16) {
-        return _mm_add_epi32(xy, _mm_load_si128(reinterpret_cast<const __m128i*>(table + off16)));
-    };
-    emit_lanes(r.full, [&](int j, uint32_t off16) {
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(f + j), entry(full16, off16));
-    });
+    emit_full_avx2(r, f);
     emit_partial_avx2(r, b);
 #else
+    const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
     const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
     const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
     emit_lanes(r.full, [&](int j, uint32_t off16) {
