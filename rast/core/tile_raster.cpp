@@ -60,11 +60,11 @@ static_assert(sizeof(Block4) == 16 && offsetof(Block4, mask) == 8 && sizeof(Full
 
 // Block4 from packed xy and the four 16-bit sample masks packed (sample s in bits 16s..16s+15).
 [[gnu::always_inline]] inline void store_block(Block4* b, uint64_t xy, uint64_t masks) {
-    std::memcpy(b, &xy, 8);
+    std::memcpy(static_cast<void*>(b), &xy, 8);  // Block4 is trivially copyable; the cast says the bytes are meant
     std::memcpy(reinterpret_cast<char*>(b) + 8, &masks, 8);
 }
 [[gnu::always_inline]] inline void store_full(FullBlock* f, uint64_t xy, int32_t size) {
-    std::memcpy(f, &xy, 8);
+    std::memcpy(static_cast<void*>(f), &xy, 8);
     f->size = size;
 }
 
@@ -402,7 +402,9 @@ void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList p
         for (uint32_t m = live & ~full; m; m &= m - 1) {
             const int lane = std::countr_zero(m);
             const int col = lane & 3, row = lane >> 2;
-            const TilePlane* kept[3];
+            // Sized for any prim (not 3) so that the generic kernel instance compute_block16_1x_any may reach for
+            // n > 3 has no out-of-bounds path the compiler must warn about; here k is 1..3.
+            const TilePlane* kept[Prim::kMaxPlanes];
             const int k = drop_accepted(planes, 3, acc, lane, kept);  // 1..3: the lane is not full
             const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
             compute_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, &blocks[count++]);
