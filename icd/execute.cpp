@@ -69,7 +69,7 @@ void load_attachments(ExecState& st, uint32_t sp) {
         const uint32_t bands = (clears[i].rect.extent.height + kClearBandRows - 1) / kClearBandRows;
         first_task[i + 1] = first_task[i] + bands;
     }
-    run_on_workers(st, first_task.back(), [&](size_t task) {
+    const auto clear_band = [&](size_t task) {
         const size_t i = size_t(std::upper_bound(first_task.begin(), first_task.end(), task) - first_task.begin()) - 1;
         const LoadClear& c = clears[i];
         const uint32_t band = uint32_t(task - first_task[i]);
@@ -82,7 +82,18 @@ void load_attachments(ExecState& st, uint32_t sp) {
             clear_color_rect(img, level, c.layer, 1, rect, c.value.color);
         else
             clear_depth_stencil_rect(img, level, c.layer, 1, rect, c.aspects, c.value.depthStencil);
-    });
+    };
+    // Attachments that alias one image layer (VK_ATTACHMENT_DESCRIPTION_MAY_ALIAS_BIT) clear one after the other in
+    // attachment order, so the last one wins whatever the thread count; otherwise every task owns its rows.
+    bool aliased = false;
+    for (size_t i = 0; i < clears.size() && !aliased; ++i)
+        for (size_t j = i + 1; j < clears.size() && !aliased; ++j)
+            aliased = clears[i].view->image == clears[j].view->image && clears[i].layer == clears[j].layer;
+    if (aliased) {
+        for (size_t task = 0; task < first_task.back(); ++task) clear_band(task);
+    } else {
+        run_on_workers(st, first_task.back(), clear_band);
+    }
 }
 
 // Resolves the subpass's colour attachments into its resolve attachments over the render area.
