@@ -8,6 +8,10 @@
 #include "image.h"
 #include "render_pass.h"
 #include "sync.h"
+#include "workers.h"
+
+#include <algorithm>
+#include <vector>
 
 namespace tilevk::icd {
 namespace {
@@ -23,29 +27,72 @@ VkRect2D clip_to_view(const VkRect2D& area, const ImageView& v) {
     return r;
 }
 
-// Applies the load ops of attachments first used in subpass `sp`.
+// One load-op clear of one layer of one attachment.
+struct LoadClear {
+    const ImageView* view;
+    uint32_t layer;
+    VkRect2D rect;
+    VkImageAspectFlags aspects;  // COLOR, or DEPTH and/or STENCIL
+    VkClearValue value;
+};
+
+// Rows per clear task: a band of 64-row tiles (the renderer's tile height), small enough to spread 1024 rows over
+// the workers and large enough that a task is not dominated by the pool's hand-off.
+constexpr uint32_t kClearBandRows = 64;
+
+// Applies the load ops of attachments first used in subpass `sp`. The clears run on the renderer's workers in
+// bands of rows; every band writes the same value to disjoint rows, so the result does not depend on the thread
+// count or the order the bands run in.
 void load_attachments(ExecState& st, uint32_t sp) {
     const RenderPass& rp = *st.render_pass;
+    std::vector<LoadClear> clears;
     for (uint32_t a = 0; a < rp.attachments.size(); ++a) {
         if (rp.first_use[a] != sp || a >= st.framebuffer->attachments.size()) continue;
         const VkAttachmentDescription& d = rp.attachments[a];
         const ImageView& v = *st.framebuffer->attachments[a];
+        VkImageAspectFlags aspects = 0;
+        if (v.format->aspects & VK_IMAGE_ASPECT_COLOR_BIT) {
+            if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects = VK_IMAGE_ASPECT_COLOR_BIT;
+        } else {
+            if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_DEPTH_BIT;
+            if (d.stencilLoadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_STENCIL_BIT;
+        }
+        if (aspects == 0) continue;
         const VkRect2D rect = clip_to_view(st.area, v);
         const uint32_t layers = std::min(v.range.layerCount, st.framebuffer->layers);
-        if (v.format->aspects & VK_IMAGE_ASPECT_COLOR_BIT) {
-            if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) {
-                clear_color_rect(*v.image, v.range.baseMipLevel, v.range.baseArrayLayer, layers, rect,
-                                 st.clears[a].color);
-            }
-            continue;
-        }
-        VkImageAspectFlags aspects = 0;
-        if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_DEPTH_BIT;
-        if (d.stencilLoadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects |= VK_IMAGE_ASPECT_STENCIL_BIT;
-        if (aspects != 0) {
-            clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, v.range.baseArrayLayer, layers, rect, aspects,
-                                     st.clears[a].depthStencil);
-        }
+        for (uint32_t l = 0; l < layers; ++l)
+            clears.push_back({&v, v.range.baseArrayLayer + l, rect, aspects, st.clears[a]});
+    }
+    // Tasks: the bands of every clear, in order.
+    std::vector<size_t> first_task(clears.size() + 1, 0);
+    for (size_t i = 0; i < clears.size(); ++i) {
+        const uint32_t bands = (clears[i].rect.extent.height + kClearBandRows - 1) / kClearBandRows;
+        first_task[i + 1] = first_task[i] + bands;
+    }
+    const auto clear_band = [&](size_t task) {
+        const size_t i = size_t(std::upper_bound(first_task.begin(), first_task.end(), task) - first_task.begin()) - 1;
+        const LoadClear& c = clears[i];
+        const uint32_t band = uint32_t(task - first_task[i]);
+        VkRect2D rect = c.rect;
+        rect.offset.y += int32_t(band * kClearBandRows);
+        rect.extent.height = std::min(kClearBandRows, c.rect.extent.height - band * kClearBandRows);
+        const Image& img = *c.view->image;
+        const uint32_t level = c.view->range.baseMipLevel;
+        if (c.aspects & VK_IMAGE_ASPECT_COLOR_BIT)
+            clear_color_rect(img, level, c.layer, 1, rect, c.value.color);
+        else
+            clear_depth_stencil_rect(img, level, c.layer, 1, rect, c.aspects, c.value.depthStencil);
+    };
+    // Attachments that alias one image layer (VK_ATTACHMENT_DESCRIPTION_MAY_ALIAS_BIT) clear one after the other in
+    // attachment order, so the last one wins whatever the thread count; otherwise every task owns its rows.
+    bool aliased = false;
+    for (size_t i = 0; i < clears.size() && !aliased; ++i)
+        for (size_t j = i + 1; j < clears.size() && !aliased; ++j)
+            aliased = clears[i].view->image == clears[j].view->image && clears[i].layer == clears[j].layer;
+    if (aliased) {
+        for (size_t task = 0; task < first_task.back(); ++task) clear_band(task);
+    } else {
+        run_on_workers(st, first_task.back(), clear_band);
     }
 }
 

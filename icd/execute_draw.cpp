@@ -18,6 +18,7 @@
 #include "render_pass.h"
 #include "render_state.h"
 #include "sampler.h"
+#include "workers.h"
 
 namespace tilevk::icd {
 
@@ -342,6 +343,15 @@ void finish_rendering(ExecState& st) {
     }
     // The draws of queries ended in this pass are rendered (and counted) now.
     publish_ended_queries(st);
+}
+
+void run_on_workers(ExecState& st, size_t num_tasks, const std::function<void(size_t task)>& fn) {
+    if (num_tasks == 0) return;
+    if (num_tasks == 1) {
+        fn(0);
+        return;
+    }
+    st.draw->pool.run(num_tasks, [&fn](unsigned, size_t task) { fn(task); });
 }
 
 void exec_state_command(ExecState& st, const Cmd& cmd) {

@@ -199,9 +199,20 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
     }
     const uint32_t tb = img.format->texel_bytes;
     const size_t texels = size_t(rect.extent.width) * img.samples;
-    for (uint32_t y = 0; y < rect.extent.height; ++y) {
+    if (rect.extent.height == 0 || texels == 0) return;
+    uint8_t* first = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y));
+    for (size_t x = 0; x < texels; ++x) std::memcpy(first + x * tb + byte_offset, texel + byte_offset, byte_count);
+    // Whole texels: the rows below are byte copies of the first (a memcpy per row, not per texel). A partial
+    // texel (one aspect of a packed depth/stencil texel) must keep the other bytes of each row.
+    const bool whole_texels = byte_offset == 0 && byte_count == tb;
+    for (uint32_t y = 1; y < rect.extent.height; ++y) {
         uint8_t* row = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y) + y);
-        for (size_t x = 0; x < texels; ++x) std::memcpy(row + x * tb + byte_offset, texel + byte_offset, byte_count);
+        if (whole_texels) {
+            std::memcpy(row, first, texels * tb);
+        } else {
+            for (size_t x = 0; x < texels; ++x)
+                std::memcpy(row + x * tb + byte_offset, texel + byte_offset, byte_count);
+        }
     }
 }
 

@@ -434,98 +434,108 @@ TEST_F(Transfer, RenderPassClearAndResolve) {
 
 // ---- partial render area + vkCmdClearAttachments ----------------------------------------------------------------
 TEST_F(Transfer, RenderAreaClearAndClearAttachments) {
-    const uint32_t w = 10, h = 7;
     const float c0[4] = {0.1f, 0.2f, 0.3f, 0.4f}, c1[4] = {0.9f, 0.8f, 0.7f, 0.6f}, c2[4] = {0.5f, 0.0f, 1.0f, 0.25f};
-    const VkRect2D area{{2, 1}, {6, 4}}, rect{{4, 3}, {3, 2}};
-    auto scenario = [&](Device& d) {
-        VkDevice dev = d.device();
-        Device::Buffer buf = d.make_buffer(size_t(w) * h * 4);
-        Device::Image img = d.make_image(VK_FORMAT_R8G8B8A8_UNORM, w, h, 1, 1, VK_SAMPLE_COUNT_1_BIT,
-                                         kXfer | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-        VkAttachmentDescription att{};
-        att.format = VK_FORMAT_R8G8B8A8_UNORM;
-        att.samples = VK_SAMPLE_COUNT_1_BIT;
-        att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-        att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        att.initialLayout = kDst;
-        att.finalLayout = kSrc;
-        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sp{};
-        sp.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sp.colorAttachmentCount = 1;
-        sp.pColorAttachments = &cref;
-        VkSubpassDependency deps[2] = {
-            {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-             VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
-            {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-             VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
-        VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-        rpci.attachmentCount = 1;
-        rpci.pAttachments = &att;
-        rpci.subpassCount = 1;
-        rpci.pSubpasses = &sp;
-        rpci.dependencyCount = 2;
-        rpci.pDependencies = deps;
-        VkRenderPass rp;
-        EXPECT_EQ(vkCreateRenderPass(dev, &rpci, nullptr, &rp), VK_SUCCESS);
-        VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        vci.image = img.image;
-        vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        vci.format = VK_FORMAT_R8G8B8A8_UNORM;
-        vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view;
-        EXPECT_EQ(vkCreateImageView(dev, &vci, nullptr, &view), VK_SUCCESS);
-        VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fci.renderPass = rp;
-        fci.attachmentCount = 1;
-        fci.pAttachments = &view;
-        fci.width = w;
-        fci.height = h;
-        fci.layers = 1;
-        VkFramebuffer fb;
-        EXPECT_EQ(vkCreateFramebuffer(dev, &fci, nullptr, &fb), VK_SUCCESS);
-        d.run([&](VkCommandBuffer cb) {
-            transition(cb, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
-            VkClearColorValue cv0;
-            std::memcpy(cv0.float32, c0, sizeof c0);
-            VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            vkCmdClearColorImage(cb, img.image, kDst, &cv0, 1, &all);
-            VkClearValue cv1;
-            std::memcpy(cv1.color.float32, c1, sizeof c1);
-            VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-            bi.renderPass = rp;
-            bi.framebuffer = fb;
-            bi.renderArea = area;
-            bi.clearValueCount = 1;
-            bi.pClearValues = &cv1;
-            vkCmdBeginRenderPass(cb, &bi, VK_SUBPASS_CONTENTS_INLINE);
-            VkClearAttachment ca{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}};
-            std::memcpy(ca.clearValue.color.float32, c2, sizeof c2);
-            VkClearRect cr{rect, 0, 1};
-            vkCmdClearAttachments(cb, 1, &ca, 1, &cr);
-            vkCmdEndRenderPass(cb);
-            VkBufferImageCopy down{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {w, h, 1}};
-            vkCmdCopyImageToBuffer(cb, img.image, kSrc, buf.buffer, 1, &down);
-        });
-        Bytes out = read(buf);
-        vkDestroyFramebuffer(dev, fb, nullptr);
-        vkDestroyImageView(dev, view, nullptr);
-        vkDestroyRenderPass(dev, rp, nullptr);
-        d.destroy(img);
-        d.destroy(buf);
-        return out;
+    // The second size spans several of tilevk's 64-row clear bands, with a render area starting and ending
+    // inside a band (tilevk clears load ops in row bands on its worker threads).
+    struct Size {
+        uint32_t w, h;
+        VkRect2D area, rect;
     };
-    Bytes got = both(scenario);
-    auto inside = [](const VkRect2D& r, uint32_t x, uint32_t y) {
-        return x >= uint32_t(r.offset.x) && x < r.offset.x + r.extent.width && y >= uint32_t(r.offset.y) &&
-               y < r.offset.y + r.extent.height;
-    };
-    for (uint32_t y = 0; y < h; ++y) {
-        for (uint32_t x = 0; x < w; ++x) {
-            const float* c = inside(rect, x, y) ? c2 : inside(area, x, y) ? c1 : c0;
-            for (int k = 0; k < 4; ++k) ASSERT_EQ(got[(y * w + x) * 4 + k], expect_unorm8(c[k])) << x << "," << y;
+    for (const Size& size : {Size{10, 7, {{2, 1}, {6, 4}}, {{4, 3}, {3, 2}}},
+                             Size{150, 300, {{3, 61}, {140, 200}}, {{10, 70}, {50, 100}}}}) {
+        SCOPED_TRACE(size.h);
+        const uint32_t w = size.w, h = size.h;
+        const VkRect2D area = size.area, rect = size.rect;
+        auto scenario = [&](Device& d) {
+            VkDevice dev = d.device();
+            Device::Buffer buf = d.make_buffer(size_t(w) * h * 4);
+            Device::Image img = d.make_image(VK_FORMAT_R8G8B8A8_UNORM, w, h, 1, 1, VK_SAMPLE_COUNT_1_BIT,
+                                             kXfer | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+            VkAttachmentDescription att{};
+            att.format = VK_FORMAT_R8G8B8A8_UNORM;
+            att.samples = VK_SAMPLE_COUNT_1_BIT;
+            att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+            att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+            att.initialLayout = kDst;
+            att.finalLayout = kSrc;
+            VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+            VkSubpassDescription sp{};
+            sp.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+            sp.colorAttachmentCount = 1;
+            sp.pColorAttachments = &cref;
+            VkSubpassDependency deps[2] = {
+                {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
+                {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
+            VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+            rpci.attachmentCount = 1;
+            rpci.pAttachments = &att;
+            rpci.subpassCount = 1;
+            rpci.pSubpasses = &sp;
+            rpci.dependencyCount = 2;
+            rpci.pDependencies = deps;
+            VkRenderPass rp;
+            EXPECT_EQ(vkCreateRenderPass(dev, &rpci, nullptr, &rp), VK_SUCCESS);
+            VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+            vci.image = img.image;
+            vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+            vci.format = VK_FORMAT_R8G8B8A8_UNORM;
+            vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            VkImageView view;
+            EXPECT_EQ(vkCreateImageView(dev, &vci, nullptr, &view), VK_SUCCESS);
+            VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+            fci.renderPass = rp;
+            fci.attachmentCount = 1;
+            fci.pAttachments = &view;
+            fci.width = w;
+            fci.height = h;
+            fci.layers = 1;
+            VkFramebuffer fb;
+            EXPECT_EQ(vkCreateFramebuffer(dev, &fci, nullptr, &fb), VK_SUCCESS);
+            d.run([&](VkCommandBuffer cb) {
+                transition(cb, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
+                VkClearColorValue cv0;
+                std::memcpy(cv0.float32, c0, sizeof c0);
+                VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                vkCmdClearColorImage(cb, img.image, kDst, &cv0, 1, &all);
+                VkClearValue cv1;
+                std::memcpy(cv1.color.float32, c1, sizeof c1);
+                VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+                bi.renderPass = rp;
+                bi.framebuffer = fb;
+                bi.renderArea = area;
+                bi.clearValueCount = 1;
+                bi.pClearValues = &cv1;
+                vkCmdBeginRenderPass(cb, &bi, VK_SUBPASS_CONTENTS_INLINE);
+                VkClearAttachment ca{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}};
+                std::memcpy(ca.clearValue.color.float32, c2, sizeof c2);
+                VkClearRect cr{rect, 0, 1};
+                vkCmdClearAttachments(cb, 1, &ca, 1, &cr);
+                vkCmdEndRenderPass(cb);
+                VkBufferImageCopy down{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {w, h, 1}};
+                vkCmdCopyImageToBuffer(cb, img.image, kSrc, buf.buffer, 1, &down);
+            });
+            Bytes out = read(buf);
+            vkDestroyFramebuffer(dev, fb, nullptr);
+            vkDestroyImageView(dev, view, nullptr);
+            vkDestroyRenderPass(dev, rp, nullptr);
+            d.destroy(img);
+            d.destroy(buf);
+            return out;
+        };
+        Bytes got = both(scenario);
+        auto inside = [](const VkRect2D& r, uint32_t x, uint32_t y) {
+            return x >= uint32_t(r.offset.x) && x < r.offset.x + r.extent.width && y >= uint32_t(r.offset.y) &&
+                   y < r.offset.y + r.extent.height;
+        };
+        for (uint32_t y = 0; y < h; ++y) {
+            for (uint32_t x = 0; x < w; ++x) {
+                const float* c = inside(rect, x, y) ? c2 : inside(area, x, y) ? c1 : c0;
+                for (int k = 0; k < 4; ++k) ASSERT_EQ(got[(y * w + x) * 4 + k], expect_unorm8(c[k])) << x << "," << y;
+            }
         }
     }
 }
