@@ -14,6 +14,8 @@
 // (-2^30, 2^30]. Lane offsets a*dx + b*dy with dx, dy <= 63 are below 2^30 too, so no sum overflows.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -31,6 +33,12 @@ struct TilePlane {
     alignas(32) int32_t step[16];   // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
     alignas(32) int32_t step4[16];  // step << 2: corner steps of the 4x4-px blocks of a 16x16 block (< 3*2^26)
     alignas(32) int32_t row8[8];    // a*x for x = 0..7: one 8-px row segment (the 1x 16x16 kernel)
+    // The 1x row-threshold kernel (block16_rows), filled by fill_row_table only where hier needs it. The plane is
+    // stepped along x with a' = |a| >= 0: when a < 0 it is negated to r' = 1 - r (then "covered" = r' <= 0).
+    alignas(32) int32_t rowb[16];  // b'*y, y in kRowOrder (b' = -b when negated): |.| < 15*2^23
+    int32_t ra;                    // a' = |a|
+    int32_t rflip;                 // -1 when negated (a < 0), else 0
+    float rinv, roff;              // threshold estimate q = r'*rinv + roff (block16_rows' comment)
 };
 
 // Lane i of a 16-lane block grid: column i&3, row i>>2.
@@ -72,6 +80,22 @@ inline void fill_step_table(TilePlane* p) {
 #else
     fill_step_table_scalar(p);
 #endif
+}
+
+// Row order of TilePlane::rowb and the row kernel's vectors: rows {0-3, 8-11} then {4-7, 12-15}, so that one
+// packus_epi32 (which works per 128-bit half) of the two vectors yields the rows 0..15 in order.
+inline constexpr int32_t kRowOrder[16] = {0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7, 12, 13, 14, 15};
+
+// Fills the row-threshold fields (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
+inline void fill_row_table(TilePlane* p) {
+    const int32_t flip = p->a < 0 ? -1 : 0;
+    const int32_t b = (p->b ^ flip) - flip;  // -b when negated
+    p->ra = (p->a ^ flip) - flip;
+    p->rflip = flip;
+    // a' = 0: the row is all covered (r' > 0) or all not; rinv = -64, roff = 33 give q <= -31 or q >= 33 (r' integer).
+    p->rinv = p->ra != 0 ? -1.0f / static_cast<float>(p->ra) : -64.0f;
+    p->roff = p->ra != 0 ? 1.0f : 33.0f;
+    for (int i = 0; i < 16; ++i) p->rowb[i] = b * kRowOrder[i];
 }
 
 // Classifies the 4x4 grid of sub-blocks of size 2^shift at tile-relative origin (ox, oy) against one plane:
@@ -124,6 +148,56 @@ inline void block16_masks_scalar(const TilePlane* const* planes, int n, const in
     for (int lane = 0; lane < 16; ++lane) {
         uint32_t m = 0xFFFF;
         for (int k = 0; k < n; ++k) m &= plane_mask4x4_scalar(*planes[k], base[k] + planes[k]->step4[lane]);
+        out->mask[lane] = static_cast<uint16_t>(m);
+        full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
+        empty |= static_cast<uint32_t>(m == 0) << lane;
+    }
+    out->mask[16] = 0;
+    out->full = full, out->empty = empty;
+}
+
+// 1x, one 16x16 block by row thresholds (same contract and output as block16_masks). Per plane and row y, with
+// r = r'(0, y) (the possibly negated plane value at the row's first pixel, see TilePlane::ra), the pixels x with
+// r + a'x > 0 are exactly x >= T, T = floor(-r/a') + 1 (a' > 0), so the row's 16-bit mask is 0xFFFF << clamp(T, 0, 16)
+// (complemented when negated: there "covered" is r + a'x <= 0, i.e. x < T). T comes from a float estimate made exact:
+//   T_est = clamp(floor(fl(fl(r) * rinv + 1)), 1, 18), rinv = fl(-1/a'),
+// then two exact integer tests: r + a'*(T_est - 1) > 0 (<=> T <= T_est - 1: use T_est - 1) and r + a'*T_est <= 0
+// (<=> T > T_est: use T_est + 1). The result T' is T whenever |T_est - T| <= 1, and otherwise lies on T's side of
+// [0, 16], so clamp(T', 0, 16) = clamp(T, 0, 16); and T' is in [0, 19], so no clamp is needed below 0. Why:
+//  - if |r/a'| <= 20 then |r| < 21*2^23 < 2^28 and q = -r/a' + 1 has |q| <= 21; fl(r), rinv and the one rounding of
+//    the fma each err by at most 2^-24 relative, so the estimate is within 21*3*2^-24 + 2^-24 < 1 of q, its floor
+//    within 1 of floor(q) = T; the clamp only raises it to 1 when T <= 1 (if it ends 2 or more above T, T <= -1 and
+//    the first test gives 0) and lowers it to 18 when T >= 17 (if it ends 2 or more below T, the second gives 19);
+//  - if r/a' > 20 (T <= -20) the estimate is below 1: T_est = 1, the first test holds, T' = 0; if r/a' < -20
+//    (T > 20) it is above 18: T_est = 18, the second test holds, T' = 19 (both clamp as T does);
+//  - a' = 0 (a row is all in or all out): rinv = -64, roff = 33 (fill_row_table) give T_est = 1 for r >= 1 (the
+//    first test then holds: 0, all covered) and 18 for r <= 0 (the second holds: 19, none).
+// 32-bit ranges: r is a plane value at a pixel of the block, within (-2^30 - 15*2^24, 2^30 + 15*2^24] (blocks and
+// windows reach at most 15 px past the tile; negation adds 1); a'*T_est <= 18*2^23 < 2^28; so r + a'*T_est and
+// r + a'*(T_est - 1) stay below 2^30 + 2^25 + 2^28 < 2^31. The rows' masks of the planes are ANDed, and the sixteen
+// 16-bit rows are transposed into the sixteen 4x4 block masks (nibble x/4 of rows 4*by..4*by+3).
+inline uint32_t row_mask_scalar(const TilePlane& p, int32_t r) {
+    float q = std::fma(static_cast<float>(r), p.rinv, p.roff);
+    q = std::min(std::max(q, 1.0f), 18.0f);
+    int32_t t = static_cast<int32_t>(q);
+    const int32_t v = r + p.ra * t;
+    t += static_cast<int32_t>(v <= 0) - static_cast<int32_t>(v - p.ra > 0);  // 0..19
+    return ((0xFFFFu << t) ^ static_cast<uint32_t>(p.rflip)) & 0xFFFFu;
+}
+
+inline void block16_rows_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+    uint32_t rows[16];
+    for (int y = 0; y < 16; ++y) rows[y] = 0xFFFF;
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        const int32_t b0 = (base[k] ^ p.rflip) - 2 * p.rflip;  // 1 - base when negated
+        for (int i = 0; i < 16; ++i) rows[kRowOrder[i]] &= row_mask_scalar(p, b0 + p.rowb[i]);
+    }
+    uint32_t full = 0, empty = 0;
+    for (int lane = 0; lane < 16; ++lane) {
+        const int bx = lane & 3, by = lane >> 2;
+        uint32_t m = 0;
+        for (int y = 0; y < 4; ++y) m |= ((rows[4 * by + y] >> (4 * bx)) & 15u) << (4 * y);
         out->mask[lane] = static_cast<uint16_t>(m);
         full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
         empty |= static_cast<uint32_t>(m == 0) << lane;
@@ -241,6 +315,68 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
     out->full = bits & 0xFFFFu, out->empty = bits >> 16;
 }
 #endif
+
+#if TILEVK_SIMD_AVX2
+// block16_rows with 8 rows per vector (kRowOrder): per plane and 8 rows one add, cvt, fma, max, min, cvtt, mullo,
+// two exact tests and one sllv that puts the row mask in the high 16 bits of its 32-bit lane (bit 16 + x; nothing
+// leaks out, nothing below); the 16 rows are merged into words and transposed by nibbles (one shuffle, two
+// maddubs/madd pairs); full and empty lanes as in block16_masks_avx2.
+template <int kN>
+inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+    if constexpr (kN != 0) n = kN;
+    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1), high = _mm256_set1_epi32(-65536);
+    const __m256 flo = _mm256_set1_ps(1.0f), fhi = _mm256_set1_ps(18.0f);
+    __m256i rows[2] = {high, high};
+#pragma GCC unroll 8
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        const __m256i b0 = _mm256_set1_epi32((base[k] ^ p.rflip) - 2 * p.rflip);
+        const __m256i a = _mm256_set1_epi32(p.ra), flip = _mm256_set1_epi32(p.rflip & -65536);
+        const __m256 inv = _mm256_set1_ps(p.rinv), off = _mm256_set1_ps(p.roff);
+#pragma GCC unroll 2
+        for (int h = 0; h < 2; ++h) {
+            const __m256i r = _mm256_add_epi32(b0, _mm256_load_si256(reinterpret_cast<const __m256i*>(p.rowb + 8 * h)));
+            const __m256 q = _mm256_fmadd_ps(_mm256_cvtepi32_ps(r), inv, off);
+            __m256i t = _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(q, flo), fhi));
+            const __m256i v = _mm256_add_epi32(r, _mm256_mullo_epi32(a, t));
+            t = _mm256_sub_epi32(t, _mm256_cmpgt_epi32(one, v));                        // v <= 0: + 1
+            t = _mm256_add_epi32(t, _mm256_cmpgt_epi32(_mm256_sub_epi32(v, a), zero));  // v - a' > 0: - 1
+            const __m256i m = _mm256_xor_si256(_mm256_sllv_epi32(high, t), flip);       // t in [0, 19]
+            rows[h] = _mm256_and_si256(rows[h], m);
+        }
+    }
+    // Words of w per 128-bit half: rows 0, 4, 1, 5, 2, 6, 3, 7 (+8 in the upper half; kRowOrder). The shuffle makes
+    // each 64-bit lane (one block row by) [byte 0 of rows 4by..4by+3, byte 1 of them]; low/high nibbles of those
+    // bytes are blocks bx = 2h / 2h + 1; maddubs (1, 16) and madd (1, 256) gather four nibbles into one 16-bit block
+    // mask per 32-bit lane.
+    const __m256i w = _mm256_or_si256(_mm256_srli_epi32(rows[0], 16), rows[1]);
+    const __m256i order = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1, 5, 9,
+                                           13, 2, 6, 10, 14, 3, 7, 11, 15);
+    const __m256i s = _mm256_shuffle_epi8(w, order), nib = _mm256_set1_epi8(0x0F);
+    const __m256i m1 = _mm256_set1_epi16(0x1001), m2 = _mm256_set1_epi32(0x01000001);
+    const __m256i even = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(s, nib), m1), m2);
+    const __m256i odd = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(_mm256_srli_epi16(s, 4), nib), m1), m2);
+    const __m256i cov = _mm256_or_si256(even, _mm256_slli_epi32(odd, 16));
+    // One 32-byte store: the 1x emission (emit_partial_avx2) reads the masks back as one vector.
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), cov);
+    out->mask[16] = 0;
+    const __m256i is_full = _mm256_cmpeq_epi16(cov, _mm256_set1_epi32(-1));
+    const __m256i is_empty = _mm256_cmpeq_epi16(cov, zero);
+    const __m256i both = _mm256_permute4x64_epi64(_mm256_packs_epi16(is_full, is_empty), 0xD8);
+    const uint32_t bits = static_cast<uint32_t>(_mm256_movemask_epi8(both));
+    out->full = bits & 0xFFFFu, out->empty = bits >> 16;
+}
+#endif
+
+// The 1x 16x16 kernel the rasterizer uses (planes need fill_row_table): AVX2 when built with it, else the twin.
+template <int kN>
+inline void block16_rows(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+#if TILEVK_SIMD_AVX2
+    block16_rows_avx2<kN>(planes, n, base, out);
+#else
+    block16_rows_scalar(planes, n, base, out);
+#endif
+}
 
 // The kernels the rasterizer uses: AVX2 when built with it, else the scalar twin.
 template <int kN>

@@ -181,7 +181,7 @@ template <int kN>
                                                       int32_t oy, uint32_t valid, Block16* r) {
     int32_t base[Prim::kMaxPlanes];
     for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
-    block16_masks<kN>(planes, n, base, &r->bm);
+    block16_rows<kN>(planes, n, base, &r->bm);
     r->x = t.x0 + ox, r->y = t.y0 + oy;
     r->full = valid & r->bm.full, r->partial = valid & ~(r->bm.full | r->bm.empty);
 }
@@ -199,26 +199,74 @@ template <int kN>
     compute_block16_1x<0>(t, planes, n, ox, oy, valid, r);
 }
 
+#if TILEVK_SIMD_AVX2
+// The partial lanes of a 16x16 block as Block4 entries at b, eight per batch (16 when more than 8 lanes, rare;
+// entries past the count are throw-away ones in TileScratch::kSlack, as in emit_lanes), built in vectors: the lane
+// list (nibble j = j-th lane) spread to one lane id per 32-bit element, x/y offsets from its bits, the mask word
+// picked from the kernel's vector by a dword permute and a shift; then the 4x8 (x, y, mask, 0) columns are
+// interleaved into entries. The element order [0, 2, 4, 6, 1, 3, 5, 7] makes the in-lane unpacks yield entries
+// (0, 1), (2, 3), (4, 5), (6, 7) as the two halves of four 32-byte stores (each 8-byte mask the consumer reads is
+// inside one store, so it is forwarded).
+[[gnu::always_inline]] inline void emit_partial_avx2(const Block16& r, Block4* b) {
+    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(r.partial, 0x1111111111111111ull) * 0xF);
+    const __m256i cov = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.bm.mask));
+    const __m256i x = _mm256_set1_epi32(r.x), y = _mm256_set1_epi32(r.y), zero = _mm256_setzero_si256();
+    const __m256i order = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const auto batch = [&](uint64_t nibbles, Block4* out) {
+        const uint64_t bytes = _pdep_u64(nibbles, 0x0F0F0F0F0F0F0F0Full);
+        const __m256i lane =
+            _mm256_permutevar8x32_epi32(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<int64_t>(bytes))), order);
+        const __m256i px = _mm256_add_epi32(x, _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(3)), 2));
+        const __m256i py = _mm256_add_epi32(y, _mm256_and_si256(lane, _mm256_set1_epi32(12)));
+        const __m256i word = _mm256_permutevar8x32_epi32(cov, _mm256_srli_epi32(lane, 1));  // words 2i, 2i + 1
+        const __m256i odd16 = _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(1)), 4);
+        const __m256i m = _mm256_and_si256(_mm256_srlv_epi32(word, odd16), _mm256_set1_epi32(0xFFFF));
+        const __m256i xy_lo = _mm256_unpacklo_epi32(px, py), xy_hi = _mm256_unpackhi_epi32(px, py);
+        const __m256i m_lo = _mm256_unpacklo_epi32(m, zero), m_hi = _mm256_unpackhi_epi32(m, zero);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 0), _mm256_unpacklo_epi64(xy_lo, m_lo));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 2), _mm256_unpackhi_epi64(xy_lo, m_lo));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 4), _mm256_unpacklo_epi64(xy_hi, m_hi));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 6), _mm256_unpackhi_epi64(xy_hi, m_hi));
+    };
+    batch(list, b);
+    if (std::popcount(r.partial) > 8) batch(list >> 32, b + 8);
+}
+
+// The full lanes as FullBlock {x, y, 4} entries at f, eight per batch like emit_partial_avx2, each written as a
+// 16-byte vector at stride 12 in increasing order (the 4 bytes past an entry are overwritten by the next one or land
+// in kSlack, as before).
+[[gnu::always_inline]] inline void emit_full_avx2(const Block16& r, FullBlock* f) {
+    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(r.full, 0x1111111111111111ull) * 0xF);
+    const __m256i x = _mm256_set1_epi32(r.x), y = _mm256_set1_epi32(r.y), four = _mm256_set1_epi32(4);
+    const auto batch = [&](uint64_t nibbles, FullBlock* out) {
+        const uint64_t bytes = _pdep_u64(nibbles, 0x0F0F0F0F0F0F0F0Full);
+        const __m256i lane = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<int64_t>(bytes)));
+        const __m256i px = _mm256_add_epi32(x, _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(3)), 2));
+        const __m256i py = _mm256_add_epi32(y, _mm256_and_si256(lane, _mm256_set1_epi32(12)));
+        const __m256i xy_lo = _mm256_unpacklo_epi32(px, py), xy_hi = _mm256_unpackhi_epi32(px, py);
+        const __m256i e[4] = {_mm256_unpacklo_epi64(xy_lo, four), _mm256_unpackhi_epi64(xy_lo, four),
+                              _mm256_unpacklo_epi64(xy_hi, four), _mm256_unpackhi_epi64(xy_hi, four)};  // j | j + 4
+#pragma GCC unroll 4
+        for (int j = 0; j < 4; ++j) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm256_castsi256_si128(e[j]));
+#pragma GCC unroll 4
+        for (int j = 0; j < 4; ++j)
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 + j), _mm256_extracti128_si256(e[j], 1));
+    };
+    batch(list, f);
+    if (std::popcount(r.full) > 8) batch(list >> 32, f + 8);
+}
+#endif
+
 // Appends the full lanes as whole 4x4 blocks at *f and the partial ones as masks at *b (each list written by
 // emit_lanes) and advances both. The list ends are kept in registers by the caller: stored in TileScratch, each
 // would be reloaded after every vector store (which may alias anything).
 [[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, FullBlock*& f, Block4*& b) {
+#if TILEVK_SIMD_AVX2
+    emit_full_avx2(r, f);
+    emit_partial_avx2(r, b);
+#else
     const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
     const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
-#if TILEVK_SIMD_AVX2
-    const __m128i xy = _mm_cvtsi64_si128(static_cast<int64_t>(pack_xy(r.x, r.y)));  // {x, y, 0, 0}
-    const auto entry = [&](const char* table, uint32_t off16) {
-        return _mm_add_epi32(xy, _mm_load_si128(reinterpret_cast<const __m128i*>(table + off16)));
-    };
-    emit_lanes(r.full, [&](int j, uint32_t off16) {
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(f + j), entry(full16, off16));
-    });
-    emit_lanes(r.partial, [&](int j, uint32_t off16) {
-        // One 16-byte store per entry (the consumer's 8-byte mask load is then forwarded from a single store).
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(b + j),
-                         _mm_insert_epi16(entry(block16, off16), r.bm.mask[off16 >> 4], 4));
-    });
-#else
     const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
     emit_lanes(r.full, [&](int j, uint32_t off16) {
         const int32_t* e = at(full16, off16);
@@ -316,9 +364,9 @@ void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, c
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
 }
 
-// planes: Prim::kMaxPlanes slots pointing into one TilePlane array, the first n of them the live planes (the 1x
+// planes: Prim::kMaxPlanes slots pointing into the TilePlane array `tp`, the first n of them the live planes (the 1x
 // path reads three slots whatever n is).
-void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
+void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList planes, int n, TileScratch* out) {
     // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
     // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
     // them gets the 4-px level in one 16-px window at its own (4-aligned, not 16-aligned) origin. Windows reach at most
@@ -326,6 +374,8 @@ void raster_hier(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     const RelBox r = rel_box(prim, t);
     const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
     if ((bw + 1) * (bh + 1) <= 12) return scan_blocks(prim, t, planes, n, r, out);
+    if (t.samples == 1)
+        for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);  // the 1x 16x16 kernel's tables (block16_rows)
     if (bw <= 3 && bh <= 3) {
         // One 16x16-px window anchored at the box (the tile-aligned 16-px grid might cut it into four).
         for (int32_t oy = r.y0 & ~3; oy <= r.y1; oy += 16)
@@ -505,7 +555,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
         return;
     }
     if (method == Method::kHier)
-        raster_hier(prim, tile, list, n, scratch);
+        raster_hier(prim, tile, planes, list, n, scratch);
     else
         raster_bbox(prim, tile, list, n, scratch);
 }

@@ -202,6 +202,23 @@ TEST(Kernels, Block16MasksMatchDefinitionAndTwins) {
         if (n == 3) block16_masks_avx2<3>(list, n, base, &v);
         if (n <= 3) expect_same_block16(s, v, iter);
 #endif
+        // The row-threshold kernel (block16_rows): its scalar twin against s (checked against the definition
+        // above), the AVX2 version at every plane count against the twin.
+        for (int k = 0; k < n; ++k) fill_row_table(&planes[k]);
+        Block16Masks rs;
+        std::memset(&rs, 0xA5, sizeof rs);
+        block16_rows_scalar(list, n, base, &rs);
+        expect_same_block16(s, rs, iter);
+#if TILEVK_SIMD_AVX2
+        std::memset(&v, 0x5A, sizeof v);
+        block16_rows_avx2<0>(list, n, base, &v);
+        expect_same_block16(rs, v, iter);
+        std::memset(&v, 0x5A, sizeof v);
+        if (n == 1) block16_rows_avx2<1>(list, n, base, &v);
+        if (n == 2) block16_rows_avx2<2>(list, n, base, &v);
+        if (n == 3) block16_rows_avx2<3>(list, n, base, &v);
+        if (n <= 3) expect_same_block16(rs, v, iter);
+#endif
     }
     EXPECT_GT(full, 1000u);
     EXPECT_GT(empty, 1000u);
