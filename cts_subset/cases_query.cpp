@@ -143,22 +143,20 @@ void add_query_cases(CaseList& out) {
         out.push_back({"query.occlusion.across_pass" + suffix,
                        [=] { return depth_overlap(samples, QueryMode::kAcrossPass); },
                        counts_are({per_pixel * (n + 32 * 24 + d3)})});
-        // Scissor: only the 20x10 scissored pixels count. 1x only: at 4x lavapipe's scissor planes (lp_setup.c,
-        // adj 127) also pass the samples more than half a pixel into the column left of and the row above the
-        // scissor (2 per pixel of each, 1 at the corner: 61 extra samples and 31 coloured pixels here), which
-        // Vulkan's per-pixel scissor test discards and tilevk does not draw. A named difference, pinned on both
-        // drivers by tests/icd/query_test.cpp.
-        if (per_pixel == 1)
-            out.push_back({"query.occlusion.scissor" + suffix,
-                           [=] {
-                               Scene s = base(samples, VK_FORMAT_UNDEFINED, QueryMode::kPerDraw);
-                               Draw d;
-                               d.vertices = pixel_rect(0, 0, kW, kH, 0.5f);
-                               d.scissor = VkRect2D{{8, 8}, {20, 10}};
-                               s.draws.push_back(d);
-                               return s;
-                           },
-                           counts_are({per_pixel * 200})});
+        // Scissor: the 20x10 scissored pixels count; at 4x also lavapipe's scissor-plane samples (lp_setup.c
+        // lp_setup_add_scissor_planes, adj 127): the samples more than half a pixel into the column left of and the
+        // row above the scissor (2 per pixel of each, 1 at the corner: 2*10 + 2*20 + 1 = 61), which Vulkan's
+        // per-pixel scissor test would discard and tilevk deliberately draws to match lavapipe (icd/README.md).
+        out.push_back({"query.occlusion.scissor" + suffix,
+                       [=] {
+                           Scene s = base(samples, VK_FORMAT_UNDEFINED, QueryMode::kPerDraw);
+                           Draw d;
+                           d.vertices = pixel_rect(0, 0, kW, kH, 0.5f);
+                           d.scissor = VkRect2D{{8, 8}, {20, 10}};
+                           s.draws.push_back(d);
+                           return s;
+                       },
+                       counts_are({per_pixel * 200 + (per_pixel > 1 ? 61 : 0)})});
         // discard on a checkerboard: half the pixels (all their samples) survive.
         out.push_back({"query.occlusion.discard" + suffix,
                        [=] {

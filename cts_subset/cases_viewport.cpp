@@ -1,5 +1,7 @@
 // scissor.*, viewport.* and rasterization.huge.*: partial, offset and off-screen rectangles, and coordinates far past
 // the viewport (clipping and guard bands).
+#include <iterator>
+
 #include "case.hpp"
 
 namespace tilevk::cts {
@@ -30,6 +32,82 @@ void add_viewport_cases(CaseList& out) {
                            return one_draw(d);
                        },
                        check, ""});
+    }
+    // 4x with a scissor smaller than the target: lavapipe's scissor planes (lp_setup.c lp_setup_add_scissor_planes,
+    // adj 127) pass the samples more than half a pixel into the column left of / the row above the scissor for
+    // triangles and lines whose bounding box crosses that edge, when that column/row lies in a binned 64-px tile;
+    // points and the right/bottom edges clip whole pixels. tilevk matches it (icd/README.md named differences).
+    // Offsets: inside the first tile, on a tile boundary (64: nothing passes outside), one past it, the last
+    // column; triangles, 1- and 3-px lines, 5-px points, and lines whose bounding box starts on the scissor edge.
+    struct Msaa {
+        const char* name;
+        VkRect2D sc;
+    };
+    const Msaa msaa[] = {{"partial", {{10, 10}, {30, 20}}},
+                         {"odd", {{5, 3}, {7, 9}}},
+                         {"tile_edge", {{64, 64}, {40, 20}}},
+                         {"past_tile_edge", {{65, 63}, {50, 40}}},
+                         {"last_column", {{63, 0}, {1, 64}}},
+                         {"one_pixel", {{33, 47}, {1, 1}}},
+                         {"past_bottom_right", {{70, 40}, {200, 200}}}};
+    const struct {
+        const char* name;
+        VkPrimitiveTopology topo;
+        float width;
+    } prims[] = {{"triangles", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1.0f},
+                 {"lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 1.0f},
+                 {"wide_lines", VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 3.0f},
+                 {"points", VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 1.0f}};
+    for (int i = 0; i < int(std::size(msaa)); ++i) {
+        for (int k = 0; k < int(std::size(prims)); ++k) {
+            const Msaa m = msaa[i];
+            const auto pr = prims[k];
+            out.push_back({std::string("scissor.msaa4.") + m.name + "." + pr.name,
+                           [=] {
+                               Draw d =
+                                   colourful(1300 + 7 * i + k, pr.topo == VK_PRIMITIVE_TOPOLOGY_POINT_LIST ? 60 : 24);
+                               d.topology = pr.topo;
+                               d.line_width = pr.width;
+                               for (Vertex& v : d.vertices) v.point_size = 5.0f;
+                               d.scissor = m.sc;
+                               Scene s = one_draw(d, 128, 96);
+                               s.target.samples = VK_SAMPLE_COUNT_4_BIT;
+                               return s;
+                           },
+                           nullptr, ""});
+        }
+    }
+    // Lines whose ends sit a fraction of a pixel left of / above a whole pixel: lavapipe's line bounding box rounds
+    // min up (lp_setup_line.c), so the partial column/row before it is only drawn inside the bbox's binned tiles
+    // (not across a 64-px tile boundary) and gets no scissor plane when the bbox starts on the scissor edge.
+    for (int scissored = 0; scissored < 2; ++scissored) {
+        out.push_back({std::string("scissor.msaa4.line_box_edges") + (scissored ? ".scissored" : ".unscissored"),
+                       [=] {
+                           Draw d;
+                           d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+                           d.line_width = 2.0f;
+                           auto px = [](float x, float y, std::array<float, 4> c) {  // pixel → NDC on 128x96
+                               return vtx(x / 64.0f - 1.0f, y / 48.0f - 1.0f, 0, 1, c);
+                           };
+                           // horizontal lines starting at 63.3..63.9 and 9.3..9.9 (x-major), vertical ones at
+                           // y 63.x (y-major, the 64-row tile boundary) and 20.x
+                           for (int j = 0; j < 4; ++j) {
+                               const float f = 0.3f + 0.2f * float(j);
+                               d.vertices.push_back(px(63.0f + f, 5.5f + 6 * j, {1, 0, 0, 1}));
+                               d.vertices.push_back(px(90.0f, 7.0f + 6 * j, {0, 1, 0, 1}));
+                               d.vertices.push_back(px(9.0f + f, 40.5f + 6 * j, {0, 0, 1, 1}));
+                               d.vertices.push_back(px(50.0f, 42.0f + 6 * j, {1, 1, 0, 1}));
+                               d.vertices.push_back(px(100.5f + 5 * j, 63.0f + f, {0, 1, 1, 1}));
+                               d.vertices.push_back(px(102.0f + 5 * j, 90.0f, {1, 0, 1, 1}));
+                               d.vertices.push_back(px(70.5f + 5 * j, 20.0f + f, {1, 1, 1, 1}));
+                               d.vertices.push_back(px(72.0f + 5 * j, 50.0f, {0.5f, 0.2f, 0.9f, 1}));
+                           }
+                           if (scissored) d.scissor = VkRect2D{{10, 21}, {110, 70}};
+                           Scene s = one_draw(d, 128, 96);
+                           s.target.samples = VK_SAMPLE_COUNT_4_BIT;
+                           return s;
+                       },
+                       nullptr, ""});
     }
     const VkViewport viewports[] = {{16, 8, 32, 32, 0, 1},  {-16, -24, 64, 64, 0, 1},
                                     {40, 40, 64, 64, 0, 1}, {0.5f, 0.25f, 50.5f, 40.75f, 0, 1},

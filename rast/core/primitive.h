@@ -8,8 +8,11 @@
 
 namespace tilevk::rast {
 
-// Whole-pixel clip rectangle, half-open [x0,x1) x [y0,y1): framebuffer ∩ scissor ∩ viewport rect, given per
-// primitive. Equivalent to lavapipe's draw_regions box plus scissor planes (whole pixels, also in MSAA).
+// Clip rectangle in whole pixels, half-open [x0,x1) x [y0,y1): framebuffer ∩ scissor ∩ viewport rect, given per
+// primitive: lavapipe's draw_regions. Applied as lavapipe does: whole pixels at 1x and for boxes; at 4x, triangles
+// and convex primitives (lines) get lavapipe's scissor planes, which also pass samples more than half a pixel left
+// of / above the rectangle, bounded by lavapipe's 64-px binning tiles (setup.cpp finish_box_msaa; deliberate, the
+// spec discards them).
 struct ClipRect {
     int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
@@ -42,7 +45,8 @@ struct EdgePlane {
 
 // Generic convex primitive (a wide line is a 4-plane rectangle built by rast/geometry): the intersection of
 // `num_planes` planes, limited to the fixed-point box [min_x, max_x) x [min_y, max_y) (pixel box as for
-// triangles: min>>8 .. (max-1)>>8 inclusive). The geometry helper computes planes and box.
+// triangles: min>>8 .. (max-1)>>8 inclusive). The geometry helper computes planes and box. At 4x the box is also
+// lavapipe's line bbox (lp_setup_line.c: min rounded up), which decides its scissor planes and binned tiles.
 struct ConvexInput {
     EdgePlane planes[4];
     int num_planes = 0;

@@ -37,15 +37,35 @@ uint16_t limit_mask(uint16_t mask, int samples) {
     return mask & static_cast<uint16_t>((1u << samples) - 1u);
 }
 
+// Sample X of pixel px satisfies px*256 <= X < px*256 + 256, hence "px >= x0" is "X - x0*256 + 1 > 0" and
+// "px <= x1" is "(x1+1)*256 - X > 0".
+EdgePlane min_x_plane(int32_t x0) {
+    return {-int64_t{x0} * kFixedOne + 1, 1, 0};
+}
+EdgePlane min_y_plane(int32_t y0) {
+    return {-int64_t{y0} * kFixedOne + 1, 0, 1};
+}
+EdgePlane max_x_plane(int32_t x1) {
+    return {(int64_t{x1} + 1) * kFixedOne, -1, 0};
+}
+EdgePlane max_y_plane(int32_t y1) {
+    return {(int64_t{y1} + 1) * kFixedOne, 0, -1};
+}
+
+SetupStatus finish_common(const PrimCommon& common, int samples, Prim* out) {
+    out->payload = common.payload;
+    out->sample_mask = limit_mask(common.sample_mask, samples);
+    if (out->sample_mask == 0) return SetupStatus::kDegenerate;
+    return SetupStatus::kAccepted;
+}
+
 // Clips the fixed-point pixel box [px0,px1]x[py0,py1] (inclusive) against clip ∩ fb and appends box planes
 // on every side where the clip cut the box or force_min/force_max ask for one. Triangles need none of their own:
 // outside the closed triangle some E <= -1, so E + bias <= 0 (min sides); on the max sides, the only closed-triangle
 // points with X == maxX are the rightmost vertex or a vertical right edge, and the top-left rule excludes both (the
 // lower/right edge through them has no bias and E == 0 there), so lavapipe's (maxX-1)>>8 cuts nothing the edges keep.
 // At 4x every sample of pixel ((maxX-1)>>8)+1 has X >= maxX + 32. The method-equivalence tests (whose reference uses
-// the box as loop bounds) check this argument on a million triangles. Sample X
-// of pixel px satisfies px*256 <= X < px*256 + 256, hence "px >= x0" is "X - x0*256 + 1 > 0" and "px <= x1" is
-// "(x1+1)*256 - X > 0".
+// the box as loop bounds) check this argument on a million triangles.
 SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const PrimCommon& common, int samples,
                        const ClipRect& fb, bool force_min, bool force_max, Prim* out) {
     const ClipRect clip = intersect(common.clip, fb);
@@ -53,14 +73,75 @@ SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const
     const int32_t x1 = std::min(px1, clip.x1 - 1), y1 = std::min(py1, clip.y1 - 1);
     if (x0 > x1 || y0 > y1) return SetupStatus::kClipped;
     out->x0 = x0, out->y0 = y0, out->x1 = x1, out->y1 = y1;
-    out->payload = common.payload;
-    out->sample_mask = limit_mask(common.sample_mask, samples);
-    if (out->sample_mask == 0) return SetupStatus::kDegenerate;
+    if (const SetupStatus st = finish_common(common, samples, out); st != SetupStatus::kAccepted) return st;
     int n = out->num_shape_planes;
-    if (x0 > px0 || force_min) out->planes[n++] = {-int64_t{x0} * kFixedOne + 1, 1, 0};
-    if (y0 > py0 || force_min) out->planes[n++] = {-int64_t{y0} * kFixedOne + 1, 0, 1};
-    if (x1 < px1 || force_max) out->planes[n++] = {(int64_t{x1} + 1) * kFixedOne, -1, 0};
-    if (y1 < py1 || force_max) out->planes[n++] = {(int64_t{y1} + 1) * kFixedOne, 0, -1};
+    out->num_scissor_planes = 0;
+    if (x0 > px0 || force_min) out->planes[n++] = min_x_plane(x0);
+    if (y0 > py0 || force_min) out->planes[n++] = min_y_plane(y0);
+    if (x1 < px1 || force_max) out->planes[n++] = max_x_plane(x1);
+    if (y1 < py1 || force_max) out->planes[n++] = max_y_plane(y1);
+    out->num_planes = static_cast<uint8_t>(n);
+    compute_pixel_planes(samples, out);
+    return SetupStatus::kAccepted;
+}
+
+// lavapipe's inclusive pixel bbox of a triangle or line (lp_setup_tri.c / lp_setup_line.c), before the x0/y0 >= 0
+// clamp: what it tests against draw_regions (= clip ∩ fb here), decides the scissor planes with and bins from.
+struct LavapipeBox {
+    int32_t x0, y0, x1, y1;
+};
+
+constexpr int32_t kLavapipeTile = 64;  // llvmpipe's TILE_SIZE: binning works on 64-px tiles of absolute position
+
+// 4x triangles and lines as lavapipe 22.3 rasterizes them against draw_regions (framebuffer ∩ scissor ∩ viewport
+// rectangle; Vulkan's scissor test discards whole pixels, lavapipe does not — a deliberate match, icd/README.md):
+//  - scissor_planes_needed: a side gets a plane only where the bbox (x0, y0 clamped to 0) crosses the region;
+//  - lp_setup_add_scissor_planes with adj = 127 at 4x: the left plane passes sample X iff X > (x0-1)*256 + 127,
+//    i.e. pixel x0-1's samples 1 and 3 (sx 224, 160) and every sample from x0 on; the top plane likewise (rows:
+//    samples 2 and 3, sy 160, 224). The right plane passes X < x1*256 + 254 and the bottom one Y < y1*256 + 254
+//    (x1, y1 inclusive): every sample of the last column/row and none past it (max offset 224), i.e. whole pixels;
+//  - no other clipping: coverage is the shape ∩ those planes ∩ the 64-px tiles binned from the bbox ∩ region
+//    (lp_setup_bin_triangle's trimmed box; the single-tile path bins the bbox's own tile, the same one). So column
+//    x0-1 is reached only when x0 % 64 != 0, and a line (whose bbox rounds min up, lp_setup_line.c) keeps its
+//    samples in the column left of / row above its bbox wherever that column is in a binned tile — even outside
+//    the region when the bbox itself starts at x0 (no plane then).
+// At 1x the planes (adj 0) cut whole pixels at the region and no shape sample lies outside the bbox, so finish_box
+// gives the same coverage; it stays the 1x path.
+SetupStatus finish_box_msaa(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const LavapipeBox& lp,
+                            const PrimCommon& common, int samples, const ClipRect& fb, bool force_min, bool force_max,
+                            Prim* out) {
+    const ClipRect clip = intersect(common.clip, fb);
+    const int32_t rx0 = clip.x0, ry0 = clip.y0, rx1 = clip.x1 - 1, ry1 = clip.y1 - 1;  // inclusive region
+    if (rx0 > rx1 || ry0 > ry1) return SetupStatus::kClipped;
+    if (lp.x1 < rx0 || rx1 < lp.x0 || lp.y1 < ry0 || ry1 < lp.y0) return SetupStatus::kClipped;  // test_intersection
+    const int32_t bx0 = std::max(lp.x0, 0), by0 = std::max(lp.y0, 0);
+    const bool left = bx0<rx0, top = by0<ry0, right = lp.x1> rx1, bottom = lp.y1> ry1;
+    // Tiles of the trimmed box (bbox ∩ region), as whole pixels.
+    const int32_t tx0 = std::max(bx0, rx0) / kLavapipeTile * kLavapipeTile;
+    const int32_t ty0 = std::max(by0, ry0) / kLavapipeTile * kLavapipeTile;
+    const int32_t tx1 = (std::min(lp.x1, rx1) / kLavapipeTile + 1) * kLavapipeTile - 1;
+    const int32_t ty1 = (std::min(lp.y1, ry1) / kLavapipeTile + 1) * kLavapipeTile - 1;
+    int32_t x0 = std::max({px0, tx0, fb.x0}), y0 = std::max({py0, ty0, fb.y0});
+    int32_t x1 = std::min({px1, tx1, fb.x1 - 1}), y1 = std::min({py1, ty1, fb.y1 - 1});
+    if (left) x0 = std::max(x0, rx0 - 1);
+    if (top) y0 = std::max(y0, ry0 - 1);
+    if (right) x1 = std::min(x1, rx1);
+    if (bottom) y1 = std::min(y1, ry1);
+    if (x0 > x1 || y0 > y1) return SetupStatus::kClipped;
+    out->x0 = x0, out->y0 = y0, out->x1 = x1, out->y1 = y1;
+    if (const SetupStatus st = finish_common(common, samples, out); st != SetupStatus::kAccepted) return st;
+    // One plane per side: a sample-exact scissor plane where the box stops at the partial column/row (it also
+    // implies the whole-pixel bound there), else a box plane where the box is tighter than the shape.
+    const bool left_plane = left && x0 == rx0 - 1, top_plane = top && y0 == ry0 - 1;
+    constexpr int64_t kAdj = 127;
+    int n = out->num_shape_planes;
+    if (left_plane) out->planes[n++] = {-(int64_t{rx0 - 1} * kFixedOne + kAdj), 1, 0};
+    if (top_plane) out->planes[n++] = {-(int64_t{ry0 - 1} * kFixedOne + kAdj), 0, 1};
+    out->num_scissor_planes = static_cast<uint8_t>(n - out->num_shape_planes);
+    if (!left_plane && (x0 > px0 || force_min)) out->planes[n++] = min_x_plane(x0);
+    if (!top_plane && (y0 > py0 || force_min)) out->planes[n++] = min_y_plane(y0);
+    if (x1 < px1 || force_max) out->planes[n++] = max_x_plane(x1);
+    if (y1 < py1 || force_max) out->planes[n++] = max_y_plane(y1);
     out->num_planes = static_cast<uint8_t>(n);
     compute_pixel_planes(samples, out);
     return SetupStatus::kAccepted;
@@ -131,9 +212,11 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
     // Inclusive pixel box: x0 = minX>>8, x1 = (maxX-1)>>8 (arithmetic shifts = floor).
     const int32_t minx = std::min({vx[0], vx[1], vx[2]}), maxx = std::max({vx[0], vx[1], vx[2]});
     const int32_t miny = std::min({vy[0], vy[1], vy[2]}), maxy = std::max({vy[0], vy[1], vy[2]});
-    return finish_box(minx >> kSubpixelBits, miny >> kSubpixelBits, (maxx - 1) >> kSubpixelBits,
-                      (maxy - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/false,
-                      /*force_max=*/false, out);
+    const int32_t px0 = minx >> kSubpixelBits, py0 = miny >> kSubpixelBits;
+    const int32_t px1 = (maxx - 1) >> kSubpixelBits, py1 = (maxy - 1) >> kSubpixelBits;
+    if (samples > 1)  // lp_setup_tri.c's bbox is the pixel box itself
+        return finish_box_msaa(px0, py0, px1, py1, {px0, py0, px1, py1}, in.common, samples, fb, false, false, out);
+    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/false, /*force_max=*/false, out);
 }
 
 SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out) {
@@ -151,9 +234,16 @@ SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb,
     out->num_shape_planes = static_cast<uint8_t>(in.num_planes);
     out->front_facing = in.front_facing;
     out->is_triangle = false;
-    return finish_box(in.min_x >> kSubpixelBits, in.min_y >> kSubpixelBits, (in.max_x - 1) >> kSubpixelBits,
-                      (in.max_y - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/true,
-                      /*force_max=*/true, out);
+    const int32_t px0 = in.min_x >> kSubpixelBits, py0 = in.min_y >> kSubpixelBits;
+    const int32_t px1 = (in.max_x - 1) >> kSubpixelBits, py1 = (in.max_y - 1) >> kSubpixelBits;
+    if (samples > 1) {
+        // lp_setup_line.c's bbox (top-left rule: bottom_edge_rule 0): min rounded up, max rounded up minus one.
+        const LavapipeBox lp = {
+            (in.min_x + kFixedOne - 1) >> kSubpixelBits, (in.min_y + kFixedOne - 1) >> kSubpixelBits,
+            ((in.max_x + kFixedOne - 1) >> kSubpixelBits) - 1, ((in.max_y + kFixedOne - 1) >> kSubpixelBits) - 1};
+        return finish_box_msaa(px0, py0, px1, py1, lp, in.common, samples, fb, true, true, out);
+    }
+    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/true, /*force_max=*/true, out);
 }
 
 SetupStatus setup_box(const BoxInput& in, int samples, const ClipRect& fb, Prim* out) {

@@ -7,9 +7,11 @@
 
 namespace tilevk::rast {
 
-// Planes: shape planes first (3 for triangles, up to 4 for convex/box), then up to 4 whole-pixel box planes that
+// Planes: shape planes first (3 for triangles, up to 4 for convex/box), then up to 2 lavapipe MSAA scissor planes
+// (sample-exact: left and top, see finish_box_msaa in setup.cpp; only at 4x), then whole-pixel box planes that
 // bound coverage to the inclusive pixel box [x0,x1] x [y0,y1] (bbox ∩ clip ∩ framebuffer). Box planes are added
 // only on sides where the clipped box may be tighter than what the shape implies (see finish_box in setup.cpp).
+// At most one plane per side beyond the shape planes, so kMaxPlanes = 4 + 4.
 // A plane in pixel units (see tile_kernels.h): with d[s] the sample offsets, the plane at pixel (px, py) and sample s
 // is > 0 iff c0 + d[s] + a*px + b*py > 0, where c0 + d[s] = ceil((c + a*sx_s + b*sy_s) / 256). Precomputed once per
 // primitive so that a tile costs one 64-bit multiply-add per plane and no division. |c0| < 2^39, |d| < 2^24.
@@ -30,6 +32,7 @@ struct Prim {
     uint16_t sample_mask = 0;  // already limited to the sample count
     uint8_t num_planes = 0;
     uint8_t num_shape_planes = 0;
+    uint8_t num_scissor_planes = 0;  // planes[num_shape_planes..+num_scissor_planes): lavapipe's MSAA scissor planes
     bool front_facing = true;
     bool is_triangle = false;
     PixelPlane pix[kMaxPlanes];

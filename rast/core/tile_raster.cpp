@@ -431,7 +431,8 @@ void raster_bbox(const Prim& prim, const TileGeom& t, PlaneList planes, int n, T
     scan_blocks(prim, t, planes, n, rel_box(prim, t), out);
 }
 
-// --- reference: per pixel, per sample, 64-bit, shape planes only, box as loop bounds ------------------------------
+// --- reference: per pixel, per sample, 64-bit, shape and scissor planes only, box as loop bounds
+// ------------------------------
 
 template <typename Inside>
 void raster_per_sample(const Prim& prim, const TileGeom& t, Inside inside, TileScratch* out) {
@@ -458,7 +459,8 @@ void raster_reference(const Prim& prim, const TileGeom& t, TileScratch* out) {
             int32_t sx, sy;
             sample_offset(t.samples, s, &sx, &sy);
             const int64_t X = int64_t{px} * kFixedOne + sx, Y = int64_t{py} * kFixedOne + sy;
-            for (int k = 0; k < prim.num_shape_planes; ++k) {
+            // The scissor planes cut samples (lavapipe's 4x scissor, setup.cpp), so the box cannot stand for them.
+            for (int k = 0; k < prim.num_shape_planes + prim.num_scissor_planes; ++k) {
                 const EdgePlane& p = prim.planes[k];
                 if (!(p.c + p.a * X + p.b * Y > 0)) return false;  // E = c + a*X + b*Y > 0
             }
@@ -492,6 +494,12 @@ void raster_float(const Prim& prim, const TileGeom& t, TileScratch* out) {
                 const float e = dy * (prim.fx[i] - X) - dx * (prim.fy[i] - Y);
                 const bool top_left = dy < 0.0f || (dy == 0.0f && dx > 0.0f);
                 if (!(e > 0.0f || (e == 0.0f && top_left))) return false;
+            }
+            const int64_t SX = int64_t{px} * kFixedOne + kSamplePos4x[s][0],
+                          SY = int64_t{py} * kFixedOne + kSamplePos4x[s][1];
+            for (int k = prim.num_shape_planes; k < prim.num_shape_planes + prim.num_scissor_planes; ++k) {
+                const EdgePlane& p = prim.planes[k];  // only at 4x
+                if (!(p.c + p.a * SX + p.b * SY > 0)) return false;
             }
             return true;
         },
