@@ -55,7 +55,9 @@ class Lavapipe {
     Lavapipe& operator=(const Lavapipe&) = delete;
     bool init() {
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-        app.apiVersion = VK_API_VERSION_1_0;
+        // 1.1: VK_EXT_line_rasterization requires VK_KHR_get_physical_device_properties2, and the flipped-viewport
+        // case needs a negative height (VK_KHR_maintenance1); both are core in 1.1 (the validation layer says so).
+        app.apiVersion = VK_API_VERSION_1_1;
         VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
         ici.pApplicationInfo = &app;
         if (vkCreateInstance(&ici, nullptr, &inst_) != VK_SUCCESS) return false;
