@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Make a fresh Debian 12 machine ready: install the missing Debian packages, configure and build.
 # Usage: tools/bootstrap.sh [build-dir] [extra meson setup options...]
+# TILEVK_JOBS=N limits ninja's parallel jobs (default: ninja's own, cores + 2).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build}"
@@ -23,4 +24,4 @@ fi
 if [[ ! -f "$build/build.ninja" ]]; then
     meson setup "$build" "$here" "$@"
 fi
-ninja -C "$build"
+ninja -C "$build" ${TILEVK_JOBS:+-j "$TILEVK_JOBS"}

@@ -1,24 +1,90 @@
 #!/usr/bin/env bash
-# CI step: every test suite again in an ASan+UBSan build (build-asan/), and the thread pool under TSan
-# (build-tsan/). Leaks inside lavapipe, LLVM, the Vulkan loader and the validation layer are not ours and are
-# suppressed (tools/lsan.supp); everything else fails the run. UBSan findings are fatal.
+# CI step after ./tilevk.sh test (.ci/run calls both): the project under the sanitizers. Any finding fails the run.
+#   1. ASan+UBSan build (build-asan/, also the portable -Dsimd=none build): every meson test but icd_vulkaninfo.
+#   2. The full conformance subset under ASan+UBSan, tilevk (the ASan build's ICD) against lavapipe.
+#   3. TSan build (build-tsan/, only the two test programs): the tile thread pool and the renderer on it.
+# tools/keep_loaded.cpp is preloaded in the ASan runs so that LeakSanitizer sees and names the libraries the Vulkan
+# loader unloads; tools/lsan.supp suppresses only leaks of the validation layer's own. Every other leak, ASan or
+# UBSan report or TSan race fails its step. Every step runs; the exit status is non-zero if any step failed,
+# and the last line counts the tests: "sanitizers: N passed, N failed".
+# TILEVK_JOBS=N limits ninja's parallel jobs; TILEVK_ASAN_BUILD_DIR / TILEVK_TSAN_BUILD_DIR move the build folders.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 asan="${TILEVK_ASAN_BUILD_DIR:-$here/build-asan}"
 tsan="${TILEVK_TSAN_BUILD_DIR:-$here/build-tsan}"
+lvp_icd=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+jobs=(${TILEVK_JOBS:+-j "$TILEVK_JOBS"})
+failed_steps=()
+subset_ok=0
+subset_bad=0
 
-# The ASan build is also the portable build (-Dsimd=none): every suite passes without the AVX2/FMA kernels too.
+step() { echo; echo "=== run_sanitizers: $* ($(date -u +%H:%M:%S))"; }
+
+# --- 1. ASan+UBSan build and every meson test ---------------------------------------------------------------------
+step "ASan+UBSan build in $asan"
 "$here/tools/bootstrap.sh" "$asan" -Db_sanitize=address,undefined -Db_lundef=false -Dbenchmarks=disabled -Dsimd=none
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
-export LSAN_OPTIONS="suppressions=$here/tools/lsan.supp:print_suppressions=0"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-# vulkaninfo is not instrumented, so an instrumented ICD cannot be loaded into it: that one test runs in the
-# normal build only.
-tests=$(meson test -C "$asan" --list 2>/dev/null | sed -n 's/^tilevk:[a-z_]* \/ //p' | grep -v '^icd_vulkaninfo$')
-"$here/tools/run_tests.sh" "$asan" --timeout-multiplier 6 $tests
+# Without sanitizer flags on purpose: see the file's comment.
+c++ -O2 -shared -fPIC -o "$asan/keep_loaded.so" "$here/tools/keep_loaded.cpp"
 
-# TSan: only what runs threads of ours (the tile thread pool and the renderer on it) is built and run.
-[[ -f "$tsan/build.ninja" ]] || meson setup "$tsan" "$here" -Db_sanitize=thread -Db_lundef=false -Dbenchmarks=disabled
-ninja -C "$tsan" tests/rast/core/rast_core_threads_test tests/rast/render/rast_render_test
-TSAN_OPTIONS="halt_on_error=1" meson test -C "$tsan" --no-rebuild --print-errorlogs --timeout-multiplier 6 \
-    rast_core_threads rast_render
+# verify_asan_link_order=0: keep_loaded.so is preloaded ahead of the ASan runtime; it defines only dlclose, so
+# malloc and the other interceptors still resolve to ASan's. exitcode=66: a finding never looks like tilevk-cts's
+# "1 = a case failed", which the python tests that drive it accept.
+export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:strict_string_checks=1:verify_asan_link_order=0:exitcode=66"
+export LSAN_OPTIONS="suppressions=$here/tools/lsan.supp:print_suppressions=0:exitcode=66"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=66"
+export LD_PRELOAD="$asan/keep_loaded.so${LD_PRELOAD:+:$LD_PRELOAD}"
+
+all_tests=$(meson test -C "$asan" --list 2>/dev/null | sed -n 's/^.* \/ //p')
+[[ -n "$all_tests" ]] || { echo "run_sanitizers: meson test --list found no test in $asan" >&2; exit 1; }
+tests=$(grep -vx 'icd_vulkaninfo' <<<"$all_tests")
+step "ASan+UBSan: $(wc -l <<<"$tests") meson tests"
+if grep -qx 'icd_vulkaninfo' <<<"$all_tests"; then
+    echo "run_sanitizers: EXCLUDED icd_vulkaninfo: it loads the ICD into Debian's vulkaninfo, which is not built with"
+    echo "  ASan, and an instrumented ICD cannot be loaded into an uninstrumented program. ./tilevk.sh test runs it."
+fi
+rm -f "$asan/meson-logs/testlog.json" "$asan/meson-logs/testlog-sanitizers.json"  # never count a stale log
+# shellcheck disable=SC2086  # one test name per word
+"$here/tools/run_tests.sh" "$asan" --no-rebuild --timeout-multiplier 6 $tests || failed_steps+=("ASan+UBSan meson tests")
+cp "$asan/meson-logs/testlog.json" "$asan/meson-logs/testlog-sanitizers.json" 2>/dev/null || true
+
+# --- 2. The full conformance subset on the ASan build --------------------------------------------------------------
+step "ASan+UBSan: the full conformance subset, tilevk vs lavapipe"
+if (cd "$asan" && VK_ICD_FILENAMES="$asan/tilevk_icd.json:$lvp_icd" TILEVK_THREADS=2 LP_NUM_THREADS=2 \
+    ./cts_subset/tilevk-cts); then
+    subset_ok=1
+else
+    subset_bad=1
+    failed_steps+=("ASan+UBSan conformance subset")
+fi
+unset LD_PRELOAD ASAN_OPTIONS LSAN_OPTIONS UBSAN_OPTIONS
+
+# --- 3. TSan: the thread pool and the renderer --------------------------------------------------------------------
+step "TSan build in $tsan (rast_core_threads, rast_render)"
+[[ -f "$tsan/build.ninja" ]] ||
+    meson setup "$tsan" "$here" -Db_sanitize=thread -Db_lundef=false -Dbenchmarks=disabled
+ninja -C "$tsan" "${jobs[@]}" tests/rast/core/rast_core_threads_test tests/rast/render/rast_render_test
+rm -f "$tsan/meson-logs/testlog.json"
+TSAN_OPTIONS="halt_on_error=1" "$here/tools/run_tests.sh" "$tsan" --no-rebuild --timeout-multiplier 6 \
+    rast_core_threads rast_render || failed_steps+=("TSan tests")
+
+# --- Summary -------------------------------------------------------------------------------------------------------
+step "summary"
+((${#failed_steps[@]} == 0)) || printf 'run_sanitizers: FAILED: %s\n' "${failed_steps[@]}"
+/usr/bin/python3 - "$asan/meson-logs/testlog-sanitizers.json" "$tsan/meson-logs/testlog.json" \
+    "$subset_ok" "$subset_bad" "${#failed_steps[@]}" <<'PY'
+import json, sys
+ok, bad = int(sys.argv[3]), int(sys.argv[4])
+for path in sys.argv[1:3]:
+    try:
+        lines = open(path).read().splitlines()
+    except OSError:
+        bad += 1  # a step that left no log did not run its tests
+        continue
+    for line in lines:
+        r = json.loads(line)["result"]
+        if r in ("OK", "EXPECTEDFAIL"): ok += 1
+        else: bad += 1  # SKIP included: nothing is skipped silently here
+if bad == 0 and int(sys.argv[5]) != 0: bad = 1  # a failed step always shows
+print(f"sanitizers: {ok} passed, {bad} failed")
+PY
+((${#failed_steps[@]} == 0))

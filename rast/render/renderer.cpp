@@ -649,7 +649,9 @@ void Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPla
     float* dst = planes_.data() + base;
     std::memcpy(dst, &pos, sizeof(float) * kPlaneFloats);
     dst[kPlaneFloats] = depth_offset;
-    std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
+    // No attributes: attrib_planes_ may be empty with a null data(), and memcpy from null is UB even for 0 bytes.
+    if (num_attribs != 0)
+        std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
 }
 
 void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing) {
@@ -757,7 +759,9 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     float* dst = planes_.data() + base;
     std::memcpy(dst, &tp.pos, sizeof(float) * kPlaneFloats);
     dst[kPlaneFloats] = tp.depth_offset;
-    std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
+    if (pcfg.layout.num_attribs != 0)  // as in push_prim: never memcpy from a null data()
+        std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(),
+                    sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
 }
 
 }  // namespace tilevk::rast::render

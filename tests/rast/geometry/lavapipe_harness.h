@@ -50,9 +50,14 @@ struct Extra {
 // Minimal Vulkan renderer on lavapipe: one pipeline, one 64x64 RGBA8 target, draws a triangle list.
 class Lavapipe {
   public:
+    Lavapipe() = default;
+    Lavapipe(const Lavapipe&) = delete;  // owns its Vulkan objects
+    Lavapipe& operator=(const Lavapipe&) = delete;
     bool init() {
         VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-        app.apiVersion = VK_API_VERSION_1_0;
+        // 1.1: VK_EXT_line_rasterization requires VK_KHR_get_physical_device_properties2, and the flipped-viewport
+        // case needs a negative height (VK_KHR_maintenance1); both are core in 1.1 (the validation layer says so).
+        app.apiVersion = VK_API_VERSION_1_1;
         VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
         ici.pApplicationInfo = &app;
         if (vkCreateInstance(&ici, nullptr, &inst_) != VK_SUCCESS) return false;
@@ -99,8 +104,28 @@ class Lavapipe {
         vkGetDeviceQueue(dev_, 0, 0, &queue_);
         return setup();
     }
+    // Every object is destroyed explicitly (vkDestroy* of VK_NULL_HANDLE is a no-op, so a half-done init() is fine):
+    // a device destroyed with live children is invalid usage, and the leak check under ASan would see them.
     ~Lavapipe() {
-        if (dev_) vkDeviceWaitIdle(dev_), vkDestroyDevice(dev_, nullptr);  // objects die with the device in lvp
+        if (dev_) {
+            vkDeviceWaitIdle(dev_);
+            for (const auto& p : pipes_) vkDestroyPipeline(dev_, p.pipe, nullptr);
+            vkDestroyCommandPool(dev_, pool_, nullptr);  // frees cmd_
+            vkDestroyPipelineLayout(dev_, layout_, nullptr);
+            for (VkShaderModule m : {vs_, fs_, fs_noflat_}) vkDestroyShaderModule(dev_, m, nullptr);
+            vkDestroyFramebuffer(dev_, fb_ms_, nullptr);
+            vkDestroyFramebuffer(dev_, fb_, nullptr);
+            vkDestroyRenderPass(dev_, pass_ms_, nullptr);
+            vkDestroyRenderPass(dev_, pass_, nullptr);
+            vkDestroyImageView(dev_, ms_view_, nullptr);
+            vkDestroyImageView(dev_, view_, nullptr);
+            vkDestroyImage(dev_, ms_image_, nullptr);
+            vkDestroyImage(dev_, image_, nullptr);
+            vkDestroyBuffer(dev_, rb_, nullptr);
+            vkDestroyBuffer(dev_, vb_, nullptr);
+            for (VkDeviceMemory m : {ms_mem_, image_mem_, rb_mem_, vb_mem_}) vkFreeMemory(dev_, m, nullptr);
+            vkDestroyDevice(dev_, nullptr);
+        }
         if (inst_) vkDestroyInstance(inst_, nullptr);
     }
 
@@ -160,7 +185,7 @@ class Lavapipe {
             if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) return i;
         return 0;
     }
-    bool buffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer* b, void** map) {
+    bool buffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer* b, VkDeviceMemory* m, void** map) {
         VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
         ci.size = size;
         ci.usage = usage;
@@ -170,10 +195,9 @@ class Lavapipe {
         VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         ai.allocationSize = mr.size;
         ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
-        VkDeviceMemory m;
-        if (vkAllocateMemory(dev_, &ai, nullptr, &m) != VK_SUCCESS) return false;
-        vkBindBufferMemory(dev_, *b, m, 0);
-        return vkMapMemory(dev_, m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
+        if (vkAllocateMemory(dev_, &ai, nullptr, m) != VK_SUCCESS) return false;
+        vkBindBufferMemory(dev_, *b, *m, 0);
+        return vkMapMemory(dev_, *m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
     }
     VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format,
                         const DepthBias* bias, const Extra& x) {
@@ -243,9 +267,10 @@ class Lavapipe {
         return pipe;
     }
     bool setup() {
-        if (!buffer(1 << 20, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &vb_, &vb_map_))
+        if (!buffer(1 << 20, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &vb_, &vb_mem_,
+                    &vb_map_))
             return false;
-        if (!buffer(kSize * kSize * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, &rb_, &rb_map_)) return false;
+        if (!buffer(kSize * kSize * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, &rb_, &rb_mem_, &rb_map_)) return false;
         VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         ii.imageType = VK_IMAGE_TYPE_2D;
         ii.format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -260,16 +285,14 @@ class Lavapipe {
         VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         ai.allocationSize = mr.size;
         ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
-        VkDeviceMemory m;
-        if (vkAllocateMemory(dev_, &ai, nullptr, &m) != VK_SUCCESS) return false;
-        vkBindImageMemory(dev_, image_, m, 0);
+        if (vkAllocateMemory(dev_, &ai, nullptr, &image_mem_) != VK_SUCCESS) return false;
+        vkBindImageMemory(dev_, image_, image_mem_, 0);
         VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         vi.image = image_;
         vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
         vi.format = ii.format;
         vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view;
-        if (vkCreateImageView(dev_, &vi, nullptr, &view) != VK_SUCCESS) return false;
+        if (vkCreateImageView(dev_, &vi, nullptr, &view_) != VK_SUCCESS) return false;
         VkAttachmentDescription att{};
         att.format = ii.format;
         att.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -302,24 +325,21 @@ class Lavapipe {
         VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
         fi.renderPass = pass_;
         fi.attachmentCount = 1;
-        fi.pAttachments = &view;
+        fi.pAttachments = &view_;
         fi.width = fi.height = kSize;
         fi.layers = 1;
         if (vkCreateFramebuffer(dev_, &fi, nullptr, &fb_) != VK_SUCCESS) return false;
         // 4x: a multisampled colour attachment resolved into image_ at the end of the subpass
         ii.samples = VK_SAMPLE_COUNT_4_BIT;
         ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        VkImage ms_image;
-        if (vkCreateImage(dev_, &ii, nullptr, &ms_image) != VK_SUCCESS) return false;
-        vkGetImageMemoryRequirements(dev_, ms_image, &mr);
+        if (vkCreateImage(dev_, &ii, nullptr, &ms_image_) != VK_SUCCESS) return false;
+        vkGetImageMemoryRequirements(dev_, ms_image_, &mr);
         ai.allocationSize = mr.size;
         ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
-        VkDeviceMemory mm;
-        if (vkAllocateMemory(dev_, &ai, nullptr, &mm) != VK_SUCCESS) return false;
-        vkBindImageMemory(dev_, ms_image, mm, 0);
-        vi.image = ms_image;
-        VkImageView ms_view;
-        if (vkCreateImageView(dev_, &vi, nullptr, &ms_view) != VK_SUCCESS) return false;
+        if (vkAllocateMemory(dev_, &ai, nullptr, &ms_mem_) != VK_SUCCESS) return false;
+        vkBindImageMemory(dev_, ms_image_, ms_mem_, 0);
+        vi.image = ms_image_;
+        if (vkCreateImageView(dev_, &vi, nullptr, &ms_view_) != VK_SUCCESS) return false;
         VkAttachmentDescription atts[2] = {att, att};
         atts[0].samples = VK_SAMPLE_COUNT_4_BIT;
         atts[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
@@ -330,7 +350,7 @@ class Lavapipe {
         rpi.attachmentCount = 2;
         rpi.pAttachments = atts;
         if (vkCreateRenderPass(dev_, &rpi, nullptr, &pass_ms_) != VK_SUCCESS) return false;
-        VkImageView ms_views[2] = {ms_view, view};
+        VkImageView ms_views[2] = {ms_view_, view_};
         fi.renderPass = pass_ms_;
         fi.attachmentCount = 2;
         fi.pAttachments = ms_views;
@@ -352,10 +372,9 @@ class Lavapipe {
         if (vkCreatePipelineLayout(dev_, &li, nullptr, &layout_) != VK_SUCCESS) return false;
         VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        VkCommandPool pool;
-        if (vkCreateCommandPool(dev_, &pi, nullptr, &pool) != VK_SUCCESS) return false;
+        if (vkCreateCommandPool(dev_, &pi, nullptr, &pool_) != VK_SUCCESS) return false;
         VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        cai.commandPool = pool;
+        cai.commandPool = pool_;
         cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         cai.commandBufferCount = 1;
         return vkAllocateCommandBuffers(dev_, &cai, &cmd_) == VK_SUCCESS;
@@ -366,9 +385,12 @@ class Lavapipe {
     VkDevice dev_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     VkBuffer vb_ = VK_NULL_HANDLE, rb_ = VK_NULL_HANDLE;
+    VkDeviceMemory vb_mem_ = VK_NULL_HANDLE, rb_mem_ = VK_NULL_HANDLE;
     void* vb_map_ = nullptr;
     void* rb_map_ = nullptr;
-    VkImage image_ = VK_NULL_HANDLE;
+    VkImage image_ = VK_NULL_HANDLE, ms_image_ = VK_NULL_HANDLE;
+    VkDeviceMemory image_mem_ = VK_NULL_HANDLE, ms_mem_ = VK_NULL_HANDLE;
+    VkImageView view_ = VK_NULL_HANDLE, ms_view_ = VK_NULL_HANDLE;
     VkRenderPass pass_ = VK_NULL_HANDLE;
     VkFramebuffer fb_ = VK_NULL_HANDLE;
     VkRenderPass pass_ms_ = VK_NULL_HANDLE;
@@ -386,6 +408,7 @@ class Lavapipe {
     };
     std::vector<Pipe> pipes_;
     bool has_line_ext_ = false;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
 };
 
