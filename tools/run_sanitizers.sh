@@ -50,7 +50,7 @@ cp "$asan/meson-logs/testlog.json" "$asan/meson-logs/testlog-sanitizers.json" 2>
 # --- 2. The full conformance subset on the ASan build --------------------------------------------------------------
 step "ASan+UBSan: the full conformance subset, tilevk vs lavapipe"
 if (cd "$asan" && VK_ICD_FILENAMES="$asan/tilevk_icd.json:$lvp_icd" TILEVK_THREADS=2 LP_NUM_THREADS=2 \
-    ./cts_subset/tilevk-cts); then
+    ./cts_subset/tilevk-cts --strict); then
     subset_ok=1
 else
     subset_bad=1
