@@ -16,6 +16,7 @@ namespace {
 using tilevk::test::Device;
 using tilevk::test::Harness;
 using tilevk::test::transition;
+using tilevk::test::TwoDriverSuite;
 using Bytes = std::vector<uint8_t>;
 
 constexpr VkImageLayout kGeneral = VK_IMAGE_LAYOUT_GENERAL;
@@ -207,29 +208,9 @@ void PrintTo(const Spec& s, std::ostream* os) {
     *os << s.name;
 }
 
-class Blit : public ::testing::Test {
+class Blit : public TwoDriverSuite {
   protected:
-    static void SetUpTestSuite() {
-        harness_ = std::make_unique<Harness>();
-        ASSERT_TRUE(harness_->ok());
-        VkPhysicalDevice t = harness_->find_device("tilevk"), l = harness_->find_device("llvmpipe");
-        ASSERT_NE(t, VK_NULL_HANDLE);
-        ASSERT_NE(l, VK_NULL_HANDLE);
-        tilevk_ = std::make_unique<Device>(t);
-        lavapipe_ = std::make_unique<Device>(l);
-        ASSERT_TRUE(tilevk_->ok() && lavapipe_->ok());
-    }
-    static void TearDownTestSuite() {
-        tilevk_.reset();
-        lavapipe_.reset();
-        harness_.reset();
-    }
-    void TearDown() override { EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report(); }
-    static std::unique_ptr<Harness> harness_;
-    static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
-std::unique_ptr<Harness> Blit::harness_;
-std::unique_ptr<Device> Blit::tilevk_, Blit::lavapipe_;
 
 constexpr VkFormat kRgba8 = VK_FORMAT_R8G8B8A8_UNORM, kBgra8 = VK_FORMAT_B8G8R8A8_UNORM,
                    kSrgb8 = VK_FORMAT_R8G8B8A8_SRGB, kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT,

@@ -18,6 +18,7 @@ namespace {
 using tilevk::test::Device;
 using tilevk::test::Harness;
 using tilevk::test::transition;
+using tilevk::test::TwoDriverSuite;
 using Bytes = std::vector<uint8_t>;
 
 constexpr uint32_t kSize = 32;
@@ -328,24 +329,8 @@ Bytes render(Device& dev, const Scene& s) {
     return bytes;
 }
 
-class Draw : public ::testing::Test {
+class Draw : public TwoDriverSuite {
   protected:
-    static void SetUpTestSuite() {
-        harness_ = std::make_unique<Harness>();
-        ASSERT_TRUE(harness_->ok());
-        VkPhysicalDevice t = harness_->find_device("tilevk"), l = harness_->find_device("llvmpipe");
-        ASSERT_NE(t, VK_NULL_HANDLE);
-        ASSERT_NE(l, VK_NULL_HANDLE);
-        tilevk_ = std::make_unique<Device>(t);
-        lavapipe_ = std::make_unique<Device>(l);
-        ASSERT_TRUE(tilevk_->ok() && lavapipe_->ok());
-    }
-    static void TearDownTestSuite() {
-        tilevk_.reset();
-        lavapipe_.reset();
-        harness_.reset();
-    }
-    void TearDown() override { EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report(); }
     // Renders on both drivers; returns tilevk's bytes after checking they equal lavapipe's.
     Bytes both(const Scene& s) {
         Bytes t = render(*tilevk_, s), l = render(*lavapipe_, s);
@@ -357,11 +342,7 @@ class Draw : public ::testing::Test {
                              << int(t[first]) << " vs " << int(l[first]);
         return t;
     }
-    static std::unique_ptr<Harness> harness_;
-    static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
-std::unique_ptr<Harness> Draw::harness_;
-std::unique_ptr<Device> Draw::tilevk_, Draw::lavapipe_;
 
 const uint8_t* pixel(const Bytes& b, uint32_t x, uint32_t y) {
     return b.data() + (y * kSize + x) * 4;

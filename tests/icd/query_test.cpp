@@ -18,6 +18,7 @@ namespace {
 
 using tilevk::test::Device;
 using tilevk::test::Harness;
+using tilevk::test::TwoDriverSuite;
 
 constexpr uint32_t kW = 40, kH = 24;
 
@@ -283,29 +284,9 @@ std::vector<uint64_t> count_per_draw(Device& dev, VkSampleCountFlagBits samples,
     return out;
 }
 
-class Queries : public ::testing::Test {
+class Queries : public TwoDriverSuite {
   protected:
-    static void SetUpTestSuite() {
-        harness_ = std::make_unique<Harness>();
-        ASSERT_TRUE(harness_->ok());
-        VkPhysicalDevice t = harness_->find_device("tilevk"), l = harness_->find_device("llvmpipe");
-        ASSERT_NE(t, VK_NULL_HANDLE);
-        ASSERT_NE(l, VK_NULL_HANDLE);
-        tilevk_ = std::make_unique<Device>(t);
-        lavapipe_ = std::make_unique<Device>(l);
-        ASSERT_TRUE(tilevk_->ok() && lavapipe_->ok());
-    }
-    static void TearDownTestSuite() {
-        tilevk_.reset();
-        lavapipe_.reset();
-        harness_.reset();
-    }
-    void TearDown() override { EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report(); }
-    static std::unique_ptr<Harness> harness_;
-    static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
-std::unique_ptr<Harness> Queries::harness_;
-std::unique_ptr<Device> Queries::tilevk_, Queries::lavapipe_;
 
 // The scene of the counting tests and its counts per pixel, by hand.
 std::vector<Rect> counting_scene() {

@@ -15,30 +15,15 @@ namespace {
 using tilevk::test::Device;
 using tilevk::test::Harness;
 using tilevk::test::transition;
+using tilevk::test::TwoDriverSuite;
 using Bytes = std::vector<uint8_t>;
 
 constexpr VkImageLayout kDst = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
 constexpr VkImageLayout kSrc = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
 constexpr VkImageUsageFlags kXfer = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
-class Transfer : public ::testing::Test {
+class Transfer : public TwoDriverSuite {
   protected:
-    static void SetUpTestSuite() {
-        harness_ = std::make_unique<Harness>();
-        ASSERT_TRUE(harness_->ok());
-        VkPhysicalDevice t = harness_->find_device("tilevk"), l = harness_->find_device("llvmpipe");
-        ASSERT_NE(t, VK_NULL_HANDLE);
-        ASSERT_NE(l, VK_NULL_HANDLE);
-        tilevk_ = std::make_unique<Device>(t);
-        lavapipe_ = std::make_unique<Device>(l);
-        ASSERT_TRUE(tilevk_->ok() && lavapipe_->ok());
-    }
-    static void TearDownTestSuite() {
-        tilevk_.reset();
-        lavapipe_.reset();
-        harness_.reset();
-    }
-    void TearDown() override { EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report(); }
     // Runs `scenario` on both drivers; returns tilevk's bytes after checking they equal lavapipe's.
     template <class F>
     Bytes both(F scenario) {
@@ -55,11 +40,7 @@ class Transfer : public ::testing::Test {
                              << int(l[first]);
         return t;
     }
-    static std::unique_ptr<Harness> harness_;
-    static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
-std::unique_ptr<Harness> Transfer::harness_;
-std::unique_ptr<Device> Transfer::tilevk_, Transfer::lavapipe_;
 
 Bytes read(const Device::Buffer& b) {
     const uint8_t* p = static_cast<const uint8_t*>(b.map);

@@ -206,6 +206,30 @@ VkResult Device::run(const std::function<void(VkCommandBuffer)>& record) {
     return result;
 }
 
+std::unique_ptr<Harness> TwoDriverSuite::harness_;
+std::unique_ptr<Device> TwoDriverSuite::tilevk_, TwoDriverSuite::lavapipe_;
+
+void TwoDriverSuite::SetUpTestSuite() {
+    harness_ = std::make_unique<Harness>();
+    ASSERT_TRUE(harness_->ok());
+    VkPhysicalDevice t = harness_->find_device("tilevk"), l = harness_->find_device("llvmpipe");
+    ASSERT_NE(t, VK_NULL_HANDLE);
+    ASSERT_NE(l, VK_NULL_HANDLE);
+    tilevk_ = std::make_unique<Device>(t);
+    lavapipe_ = std::make_unique<Device>(l);
+    ASSERT_TRUE(tilevk_->ok() && lavapipe_->ok());
+}
+
+void TwoDriverSuite::TearDownTestSuite() {
+    tilevk_.reset();
+    lavapipe_.reset();
+    harness_.reset();
+}
+
+void TwoDriverSuite::TearDown() {
+    EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report();
+}
+
 void transition(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspects, VkImageLayout from, VkImageLayout to,
                 uint32_t levels, uint32_t layers) {
     VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};

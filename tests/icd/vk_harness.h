@@ -1,10 +1,12 @@
 // Test harness for the loader-level ICD tests: an instance with VK_LAYER_KHRONOS_validation and a debug-utils
 // messenger that counts every message, and small helpers to make buffers/images and run one command buffer.
 #pragma once
+#include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,18 @@ class Device {
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     VkCommandPool pool_ = VK_NULL_HANDLE;
+};
+
+// Fixture base of the suites that run the same work on both drivers: one validation-enabled instance and a device
+// on tilevk and on lavapipe, shared by the suite (made in SetUpTestSuite, so a missing driver fails every test of
+// it); every test must leave zero validation messages.
+class TwoDriverSuite : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite();
+    static void TearDownTestSuite();
+    void TearDown() override;
+    static std::unique_ptr<Harness> harness_;
+    static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
 
 // Whole-image layout transition (UNDEFINED or anything -> `to`), for the validation layer's benefit.
