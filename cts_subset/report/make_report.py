@@ -69,6 +69,7 @@ def speed_accuracy_chart(runs, path):
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.scatter([1.0], [100.0], marker="*", s=160, color="black", label="lavapipe (reference)")
     missing = []
+    placed = []  # points already labelled: a label near an earlier one goes one line lower, so none overlap
     for run in runs:
         g = geomean([ratio(c) for c in run["cases"]])
         n = len(run["cases"])
@@ -77,7 +78,9 @@ def speed_accuracy_chart(runs, path):
             missing.append(run["label"])
             continue
         ax.scatter([g], [acc], s=60, label=f"tilevk {run['label']}")
-        ax.annotate(run["label"], (g, acc), textcoords="offset points", xytext=(6, 4))
+        near = sum(1 for pg, pa in placed if abs(math.log10(g / pg)) < 0.08 and abs(acc - pa) < 4)
+        placed.append((g, acc))
+        ax.annotate(run["label"], (g, acc), textcoords="offset points", xytext=(6, 4 - 11 * near))
     if missing:
         ax.text(0.02, 0.02, "no timings (nothing drawn): " + ", ".join(missing), transform=ax.transAxes, fontsize=8)
     xs = [1.0] + [g for g in (geomean([ratio(c) for c in r["cases"]]) for r in runs) if g]
