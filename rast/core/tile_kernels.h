@@ -171,10 +171,10 @@ inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int
 
 // 1x, one 16x16-px block at once (the 16->4 level at one sample per pixel). base[k] = value of plane k at the
 // block's top-left pixel. mask[lane] = coverage of the lane's 4x4 block (bit y*4+x set iff every plane is > 0 at
-// that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. mask[16] is a zero dummy entry (read by the
-// fixed-length emission loops past the last lane). Both versions do a fixed amount of work per block.
+// that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. Both versions do a fixed amount of work per
+// block. Aligned for the one 32-byte load that hands the sixteen masks over (Block16, tile_raster.cpp).
 struct Block16Masks {
-    alignas(32) uint16_t mask[32];  // lanes 0..15, then the dummy
+    alignas(32) uint16_t mask[16];
     uint32_t full, empty;
 };
 
@@ -187,7 +187,6 @@ inline void block16_masks_scalar(const TilePlane* const* planes, int n, const in
         full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
         empty |= static_cast<uint32_t>(m == 0) << lane;
     }
-    out->mask[16] = 0;
     out->full = full, out->empty = empty;
 }
 
@@ -237,7 +236,6 @@ inline void block16_rows_scalar(const TilePlane* const* planes, int n, const int
         full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
         empty |= static_cast<uint32_t>(m == 0) << lane;
     }
-    out->mask[16] = 0;
     out->full = full, out->empty = empty;
 }
 
@@ -341,7 +339,6 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
         const uint64_t covered = ~words[by];
         std::memcpy(out->mask + 4 * by, &covered, 8);
     }
-    out->mask[16] = 0;
     // Per 16-bit lane: full = no uncovered bit, empty = all uncovered; packed to bytes, ordered [full | empty].
     const __m256i is_full = _mm256_cmpeq_epi16(unc, _mm256_setzero_si256());
     const __m256i is_empty = _mm256_cmpeq_epi16(unc, ones);
@@ -394,7 +391,6 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
     const __m256i cov = _mm256_or_si256(even, _mm256_slli_epi32(odd, 16));
     // One 32-byte store: the 1x emission (emit_partial_avx2) reads the masks back as one vector.
     _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), cov);
-    out->mask[16] = 0;
     const __m256i is_full = _mm256_cmpeq_epi16(cov, _mm256_set1_epi32(-1));
     const __m256i is_empty = _mm256_cmpeq_epi16(cov, zero);
     const __m256i both = _mm256_permute4x64_epi64(_mm256_packs_epi16(is_full, is_empty), 0xD8);
