@@ -25,12 +25,11 @@ class MaskConsumer final : public rast::CoverageConsumer {
     void end_tile(unsigned, const rast::TileInfo&) override {}
     void primitive(unsigned, const rast::TileInfo&, const rast::PrimCoverage& c) override {
         front_ = c.front_facing;
-        for (size_t i = 0; i < c.num_blocks; ++i) {
-            const rast::Block4& b = c.blocks[i];
+        rast::for_each_block4(c, [&](int32_t x, int32_t y, const uint16_t* masks) {
             for (int s = 0; s < cov_.samples; ++s)
                 for (int bit = 0; bit < 16; ++bit)
-                    if (c.blocks[i].mask[s] >> bit & 1) set(b.x + bit % 4, b.y + bit / 4, uint8_t(1u << s));
-        }
+                    if (masks[s] >> bit & 1) set(x + bit % 4, y + bit / 4, uint8_t(1u << s));
+        });
         for (size_t i = 0; i < c.num_full; ++i) {
             const rast::FullBlock& f = c.full[i];
             for (int y = f.y; y < f.y + f.size; ++y)

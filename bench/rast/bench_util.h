@@ -28,6 +28,12 @@ class CountingConsumer : public CoverageConsumer {
             std::memcpy(&word, c.blocks[i].mask, sizeof word);
             n += std::popcount(word);
         }
+        static_assert(sizeof(Block16::mask) == 4 * sizeof(uint64_t));
+        for (size_t i = 0; i < c.num_blocks16; ++i) {  // 1x: sixteen 4x4 masks, four words
+            uint64_t words[4];
+            std::memcpy(words, c.blocks16[i].mask, sizeof words);
+            n += std::popcount(words[0]) + std::popcount(words[1]) + std::popcount(words[2]) + std::popcount(words[3]);
+        }
         for (size_t i = 0; i < c.num_full; ++i) full_px += uint64_t(c.full[i].size) * c.full[i].size;
         counts_[w * 8] += n + full_px * std::popcount(unsigned(c.sample_mask));
     }
@@ -56,10 +62,11 @@ class PayloadHashConsumer : public CoverageConsumer {
     void begin_tile(unsigned, const TileInfo&) override {}
     void primitive(unsigned, const TileInfo&, const PrimCoverage& c) override {
         uint64_t h = 0;
-        for (size_t i = 0; i < c.num_blocks; ++i)
+        for_each_block4(c, [&](int32_t x, int32_t y, const uint16_t* masks) {
             for (int s = 0; s < kMaxSamples; ++s)
                 for (int k = 0; k < 16; ++k)
-                    if ((c.blocks[i].mask[s] >> k) & 1) h += key(c.blocks[i].x + (k & 3), c.blocks[i].y + (k >> 2), s);
+                    if ((masks[s] >> k) & 1) h += key(x + (k & 3), y + (k >> 2), s);
+        });
         for (size_t i = 0; i < c.num_full; ++i)
             for (int y = c.full[i].y; y < c.full[i].y + c.full[i].size; ++y)
                 for (int x = c.full[i].x; x < c.full[i].x + c.full[i].size; ++x)

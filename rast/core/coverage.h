@@ -31,7 +31,17 @@ struct FullBlock {
     int32_t size = 0;
 };
 
-// Coverage of one primitive within one tile. The two lists never overlap; the order within each list is
+// At 1x only: a 4-aligned 16x16-pixel square as its sixteen 4x4 masks, the hier method's unit at 1x (one kernel
+// call yields all sixteen, so they are handed over together instead of as sixteen Block4 entries). mask[j] covers
+// pixels (x + 4*(j&3) + i%4, y + 4*(j>>2) + i/4) for bit i, like Block4::mask[0], already ANDed with the primitive's
+// sample_mask; 0 = nothing covered there, 0xFFFF = all 16 pixels. Parts of the square outside the tile, the
+// framebuffer or the clip rect always have mask 0 (the square itself may reach past them). Never all-zero.
+struct Block16 {
+    int32_t x = 0, y = 0;
+    uint16_t mask[16] = {};
+};
+
+// Coverage of one primitive within one tile. The three lists never overlap; the order within each list is
 // deterministic (the same for any thread count) but otherwise unspecified.
 struct PrimCoverage {
     uint32_t payload = 0;      // PrimCommon::payload
@@ -41,7 +51,26 @@ struct PrimCoverage {
     size_t num_blocks = 0;
     const FullBlock* full = nullptr;
     size_t num_full = 0;
+    const Block16* blocks16 = nullptr;  // 1x only
+    size_t num_blocks16 = 0;
 };
+
+// Calls fn(x, y, masks) for every partially or fully covered 4x4 block given as masks (Block4 entries, then the
+// non-zero 4x4 parts of Block16 entries, whose masks[1..3] read 0): for consumers that want one 4x4 unit. FullBlock
+// squares are not included.
+template <typename Fn>
+void for_each_block4(const PrimCoverage& c, Fn&& fn) {
+    for (size_t i = 0; i < c.num_blocks; ++i) fn(c.blocks[i].x, c.blocks[i].y, c.blocks[i].mask);
+    for (size_t i = 0; i < c.num_blocks16; ++i) {
+        const Block16& b = c.blocks16[i];
+        for (int j = 0; j < 16; ++j) {
+            if (!b.mask[j]) continue;
+            static_assert(kMaxSamples == 4);
+            const uint16_t masks[kMaxSamples] = {b.mask[j], 0, 0, 0};
+            fn(b.x + 4 * (j & 3), b.y + 4 * (j >> 2), masks);
+        }
+    }
+}
 
 // Implemented by the fragment stage. Called from worker threads: begin_tile, then primitive() for each primitive
 // binned to the tile in API order (only those with some coverage), then end_tile. One tile has one worker at a

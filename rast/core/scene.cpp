@@ -108,7 +108,7 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
             }
             const Prim& prim = prims_[cmd.prim];
             raster_prim_in_tile(method, prim, geom, cmd.flags & kBinWholeTile, &s);
-            if (s.num_blocks == 0 && s.num_full == 0) continue;
+            if (s.num_blocks == 0 && s.num_full == 0 && s.num_blocks16 == 0) continue;
             PrimCoverage cov;
             cov.payload = prim.payload;
             cov.sample_mask = prim.sample_mask;
@@ -117,6 +117,8 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
             cov.num_blocks = s.num_blocks;
             cov.full = s.full;
             cov.num_full = s.num_full;
+            cov.blocks16 = s.blocks16;
+            cov.num_blocks16 = s.num_blocks16;
             consumer.primitive(worker, info, cov);
         }
         consumer.end_tile(worker, info);

@@ -26,13 +26,12 @@
 namespace tilevk::rast {
 
 struct TilePlane {
-    int32_t c[4];                   // value at the tile origin pixel, per sample (only c[0] at 1x)
+    int32_t c[4];                   // value at the tile origin pixel, per sample (only c[0] is set at 1x)
     int32_t a, b;                   // pixel steps
     int32_t lo, hi;                 // min and max of c[] over samples
     int32_t up, dn;                 // max(a,0) + max(b,0) and min(a,0) + min(b,0): the extreme corner per pixel
     alignas(32) int32_t step[16];   // a*col + b*row for lane (col, row) = (i&3, i>>2): |step| < 3*2^24
-    alignas(32) int32_t step4[16];  // step << 2: corner steps of the 4x4-px blocks of a 16x16 block (< 3*2^26)
-    alignas(32) int32_t row8[8];    // a*x for x = 0..7: one 8-px row segment (the 1x 16x16 kernel)
+    alignas(32) int32_t step4[16];  // step << 2: corner steps of the 4x4-px blocks of a 16x16 block (< 3*2^26; 4x only)
     // The 1x row-threshold kernel (block16_rows), filled by fill_row_table only where hier needs it. The plane is
     // stepped along x with a' = |a| >= 0: when a < 0 it is negated to r' = 1 - r (then "covered" = r' <= 0).
     alignas(32) int32_t rowb[16];  // b'*y, y in kRowOrder (b' = -b when negated): |.| < 15*2^23
@@ -45,19 +44,21 @@ struct TilePlane {
 inline constexpr int32_t kLaneCol[16] = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
 inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
 
-// Fills p->step, step4, up, dn from a, b (once per plane per tile; the levels reuse the tables).
+// Fills p->step, step4, up, dn from a, b (once per plane per tile; the levels reuse the tables). step4 is used at 4x
+// only; kStep4 = false skips it (1x).
+template <bool kStep4 = true>
 inline void fill_step_table_scalar(TilePlane* p) {
     p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
     p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
     for (int i = 0; i < 16; ++i) {
         p->step[i] = p->a * kLaneCol[i] + p->b * kLaneRow[i];
-        p->step4[i] = p->step[i] * 4;
+        if constexpr (kStep4) p->step4[i] = p->step[i] * 4;
     }
-    for (int x = 0; x < 8; ++x) p->row8[x] = p->a * x;
 }
 
 #if TILEVK_SIMD_AVX2
 // The same integer products and sums as the scalar loop, eight lanes at a time.
+template <bool kStep4 = true>
 inline void fill_step_table_avx2(TilePlane* p) {
     p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
     p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
@@ -67,18 +68,19 @@ inline void fill_step_table_avx2(TilePlane* p) {
     const __m256i s1 = _mm256_add_epi32(s0, _mm256_add_epi32(b, b));                              // rows 2, 3
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step), s0);
     _mm256_store_si256(reinterpret_cast<__m256i*>(p->step + 8), s1);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(p->row8),
-                       _mm256_mullo_epi32(a, _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    if constexpr (kStep4) {
+        _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4), _mm256_slli_epi32(s0, 2));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(p->step4 + 8), _mm256_slli_epi32(s1, 2));
+    }
 }
 #endif
 
+template <bool kStep4 = true>
 inline void fill_step_table(TilePlane* p) {
 #if TILEVK_SIMD_AVX2
-    fill_step_table_avx2(p);
+    fill_step_table_avx2<kStep4>(p);
 #else
-    fill_step_table_scalar(p);
+    fill_step_table_scalar<kStep4>(p);
 #endif
 }
 
@@ -86,16 +88,49 @@ inline void fill_step_table(TilePlane* p) {
 // packus_epi32 (which works per 128-bit half) of the two vectors yields the rows 0..15 in order.
 inline constexpr int32_t kRowOrder[16] = {0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7, 12, 13, 14, 15};
 
-// Fills the row-threshold fields (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
-inline void fill_row_table(TilePlane* p) {
+// The row kernel's reciprocal for a plane with x step a: -1/|a|; a = 0: -64 (with roff = 33 in fill_row_table,
+// the row is all covered (r' > 0) or all not: q <= -31 or q >= 33 for integer r').
+inline float row_inverse(int32_t a) {
+    const int32_t ra = a < 0 ? -a : a;  // |a| < 2^23
+    return ra != 0 ? -1.0f / static_cast<float>(ra) : -64.0f;
+}
+
+// The row-threshold fields but rinv (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
+inline void fill_row_fields(TilePlane* p) {
     const int32_t flip = p->a < 0 ? -1 : 0;
     const int32_t b = (p->b ^ flip) - flip;  // -b when negated
     p->ra = (p->a ^ flip) - flip;
     p->rflip = flip;
-    // a' = 0: the row is all covered (r' > 0) or all not; rinv = -64, roff = 33 give q <= -31 or q >= 33 (r' integer).
-    p->rinv = p->ra != 0 ? -1.0f / static_cast<float>(p->ra) : -64.0f;
     p->roff = p->ra != 0 ? 1.0f : 33.0f;
     for (int i = 0; i < 16; ++i) p->rowb[i] = b * kRowOrder[i];
+}
+
+inline void fill_row_table(TilePlane* p) {
+    fill_row_fields(p);
+    p->rinv = row_inverse(p->a);
+}
+
+// fill_row_table for the n live planes of a tile, the reciprocals four at a time: one vector division instead of
+// one scalar division per plane (IEEE division is correctly rounded either way, so rinv is the same bit for bit).
+inline void fill_row_tables(TilePlane* tp, int n) {
+#if TILEVK_SIMD_AVX2
+    for (int k0 = 0; k0 < n; k0 += 4) {
+        float ra[4];
+        for (int i = 0; i < 4; ++i) {
+            const int k = k0 + i;
+            if (k < n) fill_row_fields(&tp[k]);
+            ra[i] = k < n ? static_cast<float>(tp[k].ra) : 1.0f;
+        }
+        const __m128 v = _mm_setr_ps(ra[0], ra[1], ra[2], ra[3]);
+        const __m128 inv =
+            _mm_blendv_ps(_mm_div_ps(_mm_set1_ps(-1.0f), v), _mm_set1_ps(-64.0f), _mm_cmpeq_ps(v, _mm_setzero_ps()));
+        alignas(16) float out[4];
+        _mm_store_ps(out, inv);
+        for (int i = 0; i < 4 && k0 + i < n; ++i) tp[k0 + i].rinv = out[i];
+    }
+#else
+    for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);
+#endif
 }
 
 // Classifies the 4x4 grid of sub-blocks of size 2^shift at tile-relative origin (ox, oy) against one plane:
@@ -136,10 +171,10 @@ inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int
 
 // 1x, one 16x16-px block at once (the 16->4 level at one sample per pixel). base[k] = value of plane k at the
 // block's top-left pixel. mask[lane] = coverage of the lane's 4x4 block (bit y*4+x set iff every plane is > 0 at
-// that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. mask[16] is a zero dummy entry (read by the
-// fixed-length emission loops past the last lane). Both versions do a fixed amount of work per block.
+// that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. Both versions do a fixed amount of work per
+// block. Aligned for the one 32-byte load that hands the sixteen masks over (Block16, tile_raster.cpp).
 struct Block16Masks {
-    alignas(32) uint16_t mask[32];  // lanes 0..15, then the dummy
+    alignas(32) uint16_t mask[16];
     uint32_t full, empty;
 };
 
@@ -152,7 +187,6 @@ inline void block16_masks_scalar(const TilePlane* const* planes, int n, const in
         full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
         empty |= static_cast<uint32_t>(m == 0) << lane;
     }
-    out->mask[16] = 0;
     out->full = full, out->empty = empty;
 }
 
@@ -202,7 +236,6 @@ inline void block16_rows_scalar(const TilePlane* const* planes, int n, const int
         full |= static_cast<uint32_t>(m == 0xFFFF) << lane;
         empty |= static_cast<uint32_t>(m == 0) << lane;
     }
-    out->mask[16] = 0;
     out->full = full, out->empty = empty;
 }
 
@@ -262,8 +295,8 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
     __m256i left[kMax], step_b[kMax][4], step_8a[kMax];
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
-        left[k] = _mm256_add_epi32(_mm256_set1_epi32(base[k] - 1),
-                                   _mm256_load_si256(reinterpret_cast<const __m256i*>(p.row8)));
+        const __m256i row8 = _mm256_mullo_epi32(_mm256_set1_epi32(p.a), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+        left[k] = _mm256_add_epi32(_mm256_set1_epi32(base[k] - 1), row8);             // a*x for x = 0..7
         for (int i = 0; i < 4; ++i) step_b[k][i] = _mm256_set1_epi32(p.b * (i + 1));  // |4b| < 2^25
         step_8a[k] = _mm256_set1_epi32(p.a * 8);
     }
@@ -271,7 +304,7 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
     uint64_t words[4];
 #pragma GCC unroll 4
     for (int by = 0; by < 4; ++by) {
-        __m256i acc[8];
+        __m256i acc[8] = {};  // n >= 1 always overwrites; zero keeps n = 0 defined (no plane: all covered)
 #pragma GCC unroll 8
         for (int k = 0; k < n; ++k) {
             __m256i r[8];
@@ -306,7 +339,6 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
         const uint64_t covered = ~words[by];
         std::memcpy(out->mask + 4 * by, &covered, 8);
     }
-    out->mask[16] = 0;
     // Per 16-bit lane: full = no uncovered bit, empty = all uncovered; packed to bytes, ordered [full | empty].
     const __m256i is_full = _mm256_cmpeq_epi16(unc, _mm256_setzero_si256());
     const __m256i is_empty = _mm256_cmpeq_epi16(unc, ones);
@@ -359,7 +391,6 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
     const __m256i cov = _mm256_or_si256(even, _mm256_slli_epi32(odd, 16));
     // One 32-byte store: the 1x emission (emit_partial_avx2) reads the masks back as one vector.
     _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), cov);
-    out->mask[16] = 0;
     const __m256i is_full = _mm256_cmpeq_epi16(cov, _mm256_set1_epi32(-1));
     const __m256i is_empty = _mm256_cmpeq_epi16(cov, zero);
     const __m256i both = _mm256_permute4x64_epi64(_mm256_packs_epi16(is_full, is_empty), 0xD8);

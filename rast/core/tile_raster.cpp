@@ -126,70 +126,30 @@ inline uint32_t lanes_in_box(int32_t ox, int32_t oy, int shift, int32_t x0, int3
     return m;
 }
 
-// Entry templates per lane, 16 bytes each so that one vector add and one 16-byte store make an entry: FullBlock
-// {dx, dy, size 4, -} (the 4 bytes past a FullBlock are overwritten by the next entry or land in the slack) and
-// Block4 {dx, dy, masks 0} (mask[0] inserted). Row 16 = dummy lane (the scalar emission).
-alignas(16) inline constexpr int32_t kLaneFull16[17][4] = {
-    {0, 0, 4, 0},  {4, 0, 4, 0},  {8, 0, 4, 0},  {12, 0, 4, 0},  {0, 4, 4, 0}, {4, 4, 4, 0},
-    {8, 4, 4, 0},  {12, 4, 4, 0}, {0, 8, 4, 0},  {4, 8, 4, 0},   {8, 8, 4, 0}, {12, 8, 4, 0},
-    {0, 12, 4, 0}, {4, 12, 4, 0}, {8, 12, 4, 0}, {12, 12, 4, 0}, {0, 0, 4, 0}};
-alignas(16) inline constexpr int32_t kLaneBlock16[17][4] = {
-    {0, 0, 0, 0},  {4, 0, 0, 0},  {8, 0, 0, 0},  {12, 0, 0, 0},  {0, 4, 0, 0}, {4, 4, 0, 0},
-    {8, 4, 0, 0},  {12, 4, 0, 0}, {0, 8, 0, 0},  {4, 8, 0, 0},   {8, 8, 0, 0}, {12, 8, 0, 0},
-    {0, 12, 0, 0}, {4, 12, 0, 0}, {8, 12, 0, 0}, {12, 12, 0, 0}, {0, 0, 0, 0}};
-
-// Calls store(j, 16 * lane) for the j-th lane of `lanes` (a 16-bit lane set, ascending order), j < popcount.
-// Branch-free within a fixed trip count: 8 when at most 8 lanes (the usual case for an edge crossing a 16x16 block),
-// else 16; the calls past the last lane write throw-away entries into the slots after the count
-// (TileScratch::kSlack). With BMI2 the lane list is made at once: pdep spreads the lane bits to nibbles, pext picks
-// those nibbles of 0xFEDC...3210, so nibble j is the j-th lane (past the count: 0).
-template <typename Store>
-[[gnu::always_inline]] inline void emit_lanes(uint32_t lanes, Store store) {
-#if TILEVK_SIMD_AVX2
-    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(lanes, 0x1111111111111111ull) * 0xF);
-    const auto one = [&](int j) {
-        store(j, static_cast<uint32_t>(j == 0 ? (list << 4) & 0xF0 : (list >> (4 * j - 4)) & 0xF0));
-    };
-#else
-    const auto one = [&](int j) {
-        store(j, static_cast<uint32_t>(std::countr_zero(lanes | 0x10000u)) << 4);
-        lanes &= lanes - 1;
-    };
-#endif
-    if (std::popcount(lanes) <= 8) {
-#pragma GCC unroll 8
-        for (int j = 0; j < 8; ++j) one(j);
-    } else {
-#pragma GCC unroll 16
-        for (int j = 0; j < 16; ++j) one(j);
-    }
-}
-
 // 1x, in two steps so that the kernels of several 16x16 blocks can overlap (they are independent; emitting right
-// after each one would chain every block behind the previous one's list writes). Block16 = one 16x16 block's result:
-// the sixteen 4x4 masks from one fixed-cost kernel (block16_masks, no per-lane branch), its position and the full
-// and partial lanes within `valid`. At 1x a lane is accepted by every plane exactly when its mask is 0xFFFF (one
-// sample per pixel, lo = hi = c[0]), so this gives the same lists as classifying first.
-struct Block16 {
+// after each one would chain every block behind the previous one's stores). Block16Result = one 16x16 block's
+// result: the sixteen 4x4 masks from one fixed-cost kernel (block16_rows, no per-lane branch), its position and the
+// lanes that meet the primitive's box within the tile (`valid`).
+struct Block16Result {
     Block16Masks bm;
     int32_t x, y;  // absolute pixel origin
-    uint32_t full, partial;
+    uint32_t valid;
 };
 
 template <int kN>
 [[gnu::always_inline]] inline void compute_block16_1x(const TileGeom& t, PlaneList planes, int n, int32_t ox,
-                                                      int32_t oy, uint32_t valid, Block16* r) {
+                                                      int32_t oy, uint32_t valid, Block16Result* r) {
     int32_t base[Prim::kMaxPlanes];
     for (int k = 0; k < n; ++k) base[k] = planes[k]->c[0] + planes[k]->a * ox + planes[k]->b * oy;
     block16_rows<kN>(planes, n, base, &r->bm);
     r->x = t.x0 + ox, r->y = t.y0 + oy;
-    r->full = valid & r->bm.full, r->partial = valid & ~(r->bm.full | r->bm.empty);
+    r->valid = valid;
 }
 
 // Any plane count >= 1: compile-time kernels for 1, 2 and 3 planes (p0, p1 = the first two planes).
 [[gnu::always_inline]] inline void compute_block16_1x_any(const TileGeom& t, const TilePlane* p0, const TilePlane* p1,
                                                           PlaneList planes, int n, int32_t ox, int32_t oy,
-                                                          uint32_t valid, Block16* r) {
+                                                          uint32_t valid, Block16Result* r) {
     if (n == 1) return compute_block16_1x<1>(t, &p0, 1, ox, oy, valid, r);
     if (n == 2) {
         const TilePlane* two[2] = {p0, p1};
@@ -199,94 +159,29 @@ template <int kN>
     compute_block16_1x<0>(t, planes, n, ox, oy, valid, r);
 }
 
+// Hands one 16x16 block's result over as a Block16 entry at *b (1x): the kernel's sixteen masks with the lanes
+// outside `valid` zeroed, written unconditionally and kept when some lane has coverage (TileScratch has one spare
+// entry). No per-lane list is built: full 4x4 lanes travel as 0xFFFF masks and the consumer walks the non-zero ones.
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16Result& r, Block16*& b) {
+    b->x = r.x, b->y = r.y;
 #if TILEVK_SIMD_AVX2
-// The partial lanes of a 16x16 block as Block4 entries at b, eight per batch (16 when more than 8 lanes, rare;
-// entries past the count are throw-away ones in TileScratch::kSlack, as in emit_lanes), built in vectors: the lane
-// list (nibble j = j-th lane) spread to one lane id per 32-bit element, x/y offsets from its bits, the mask word
-// picked from the kernel's vector by a dword permute and a shift; then the 4x8 (x, y, mask, 0) columns are
-// interleaved into entries. The element order [0, 2, 4, 6, 1, 3, 5, 7] makes the in-lane unpacks yield entries
-// (0, 1), (2, 3), (4, 5), (6, 7) as the two halves of four 32-byte stores (each 8-byte mask the consumer reads is
-// inside one store, so it is forwarded).
-[[gnu::always_inline]] inline void emit_partial_avx2(const Block16& r, Block4* b) {
-    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(r.partial, 0x1111111111111111ull) * 0xF);
-    const __m256i cov = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.bm.mask));
-    const __m256i x = _mm256_set1_epi32(r.x), y = _mm256_set1_epi32(r.y), zero = _mm256_setzero_si256();
-    const __m256i order = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
-    const auto batch = [&](uint64_t nibbles, Block4* out) {
-        const uint64_t bytes = _pdep_u64(nibbles, 0x0F0F0F0F0F0F0F0Full);
-        const __m256i lane =
-            _mm256_permutevar8x32_epi32(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<int64_t>(bytes))), order);
-        const __m256i px = _mm256_add_epi32(x, _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(3)), 2));
-        const __m256i py = _mm256_add_epi32(y, _mm256_and_si256(lane, _mm256_set1_epi32(12)));
-        const __m256i word = _mm256_permutevar8x32_epi32(cov, _mm256_srli_epi32(lane, 1));  // words 2i, 2i + 1
-        const __m256i odd16 = _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(1)), 4);
-        const __m256i m = _mm256_and_si256(_mm256_srlv_epi32(word, odd16), _mm256_set1_epi32(0xFFFF));
-        const __m256i xy_lo = _mm256_unpacklo_epi32(px, py), xy_hi = _mm256_unpackhi_epi32(px, py);
-        const __m256i m_lo = _mm256_unpacklo_epi32(m, zero), m_hi = _mm256_unpackhi_epi32(m, zero);
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 0), _mm256_unpacklo_epi64(xy_lo, m_lo));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 2), _mm256_unpackhi_epi64(xy_lo, m_lo));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 4), _mm256_unpacklo_epi64(xy_hi, m_hi));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 6), _mm256_unpackhi_epi64(xy_hi, m_hi));
-    };
-    batch(list, b);
-    if (std::popcount(r.partial) > 8) batch(list >> 32, b + 8);
-}
-
-// The full lanes as FullBlock {x, y, 4} entries at f, eight per batch like emit_partial_avx2, each written as a
-// 16-byte vector at stride 12 in increasing order (the 4 bytes past an entry are overwritten by the next one or land
-// in kSlack, as before).
-[[gnu::always_inline]] inline void emit_full_avx2(const Block16& r, FullBlock* f) {
-    const uint64_t list = _pext_u64(0xFEDCBA9876543210ull, _pdep_u64(r.full, 0x1111111111111111ull) * 0xF);
-    const __m256i x = _mm256_set1_epi32(r.x), y = _mm256_set1_epi32(r.y), four = _mm256_set1_epi32(4);
-    const auto batch = [&](uint64_t nibbles, FullBlock* out) {
-        const uint64_t bytes = _pdep_u64(nibbles, 0x0F0F0F0F0F0F0F0Full);
-        const __m256i lane = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<int64_t>(bytes)));
-        const __m256i px = _mm256_add_epi32(x, _mm256_slli_epi32(_mm256_and_si256(lane, _mm256_set1_epi32(3)), 2));
-        const __m256i py = _mm256_add_epi32(y, _mm256_and_si256(lane, _mm256_set1_epi32(12)));
-        const __m256i xy_lo = _mm256_unpacklo_epi32(px, py), xy_hi = _mm256_unpackhi_epi32(px, py);
-        const __m256i e[4] = {_mm256_unpacklo_epi64(xy_lo, four), _mm256_unpackhi_epi64(xy_lo, four),
-                              _mm256_unpacklo_epi64(xy_hi, four), _mm256_unpackhi_epi64(xy_hi, four)};  // j | j + 4
-#pragma GCC unroll 4
-        for (int j = 0; j < 4; ++j) _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), _mm256_castsi256_si128(e[j]));
-#pragma GCC unroll 4
-        for (int j = 0; j < 4; ++j)
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 + j), _mm256_extracti128_si256(e[j], 1));
-    };
-    batch(list, f);
-    if (std::popcount(r.full) > 8) batch(list >> 32, f + 8);
-}
-#endif
-
-// Appends the full lanes as whole 4x4 blocks at *f and the partial ones as masks at *b (each list written by
-// emit_lanes) and advances both. The list ends are kept in registers by the caller: stored in TileScratch, each
-// would be reloaded after every vector store (which may alias anything).
-[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, FullBlock*& f, Block4*& b) {
-#if TILEVK_SIMD_AVX2
-    emit_full_avx2(r, f);
-    emit_partial_avx2(r, b);
+    // valid's bit j -> word j all ones: isolate bit j in word j, compare with it.
+    const __m256i bit = _mm256_setr_epi16(1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384,
+                                          static_cast<int16_t>(0x8000));
+    const __m256i keep =
+        _mm256_cmpeq_epi16(_mm256_and_si256(_mm256_set1_epi16(static_cast<int16_t>(r.valid)), bit), bit);
+    const __m256i masks = _mm256_load_si256(reinterpret_cast<const __m256i*>(r.bm.mask));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(b->mask), _mm256_and_si256(masks, keep));
 #else
-    const char* full16 = reinterpret_cast<const char*>(kLaneFull16);
-    const char* block16 = reinterpret_cast<const char*>(kLaneBlock16);
-    const auto at = [](const char* table, uint32_t off16) { return reinterpret_cast<const int32_t*>(table + off16); };
-    emit_lanes(r.full, [&](int j, uint32_t off16) {
-        const int32_t* e = at(full16, off16);
-        f[j] = {r.x + e[0], r.y + e[1], 4};
-    });
-    emit_lanes(r.partial, [&](int j, uint32_t off16) {
-        const int32_t* e = at(block16, off16);
-        b[j].x = r.x + e[0], b[j].y = r.y + e[1];
-        b[j].mask[0] = r.bm.mask[off16 >> 4], b[j].mask[1] = 0, b[j].mask[2] = 0, b[j].mask[3] = 0;
-    });
+    for (int j = 0; j < 16; ++j) b->mask[j] = (r.valid >> j) & 1u ? r.bm.mask[j] : uint16_t{0};
 #endif
-    f += std::popcount(r.full);
-    b += std::popcount(r.partial);
+    b += (r.valid & ~r.bm.empty) != 0;
 }
 
-[[gnu::always_inline]] inline void emit_block16_1x(const Block16& r, TileScratch* out) {
-    FullBlock* f = out->full + out->num_full;
-    Block4* b = out->blocks + out->num_blocks;
-    emit_block16_1x(r, f, b);
-    out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
+[[gnu::always_inline]] inline void emit_block16_1x(const Block16Result& r, TileScratch* out) {
+    Block16* b = out->blocks16 + out->num_blocks16;
+    emit_block16_1x(r, b);
+    out->num_blocks16 = static_cast<size_t>(b - out->blocks16);
 }
 
 // 4x: a 16x16 block at (ox, oy): classify its sixteen 4x4 blocks, emit the accepted ones as whole 4x4 blocks (no
@@ -333,7 +228,7 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
 void hier_block16(const Prim& prim, const TileGeom& t, PlaneList planes, int n, int32_t ox, int32_t oy, uint32_t valid,
                   TileScratch* out) {
     if (t.samples == 1) {
-        Block16 r;
+        Block16Result r;
         compute_block16_1x_any(t, planes[0], planes[(n >> 1) & 1], planes, n, ox, oy, valid, &r);
         return emit_block16_1x(r, out);
     }
@@ -359,23 +254,29 @@ RelBox rel_box(const Prim& prim, const TileGeom& t) {
 }
 
 // Every 4x4 block of the box, masked directly (no classification).
-void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r, TileScratch* out) {
+// Kept out of line: inlined into raster_prim_in_tile, GCC 12 compiles its loop nest less well (+10% instructions).
+[[gnu::noinline]] void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r,
+                                   TileScratch* out) {
     for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
 }
 
 // planes: Prim::kMaxPlanes slots pointing into the TilePlane array `tp`, the first n of them the live planes (the 1x
 // path reads three slots whatever n is).
-void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList planes, int n, TileScratch* out) {
-    // Small-primitive fast paths (the box bounds all coverage, so nothing outside it can be missed): a box spanning
-    // at most twelve 4x4-blocks is masked directly (classifying would cost about as much); one spanning at most 4x4 of
-    // them gets the 4-px level in one 16-px window at its own (4-aligned, not 16-aligned) origin. Windows reach at most
-    // 15 px past the tile edge, where values stay within 2^30 + 15*2^24 < 2^31; lanes outside the box are ignored.
-    const RelBox r = rel_box(prim, t);
+// Small-primitive fast path: a box (within the tile) spanning at most twelve 4x4 blocks is masked directly by
+// scan_blocks, which hier shares with bbox (classifying would cost about as much). The box bounds all coverage, so
+// nothing outside it can be missed.
+inline bool box_is_small(const RelBox& r) {
+    return ((r.x1 >> 2) - (r.x0 >> 2) + 1) * ((r.y1 >> 2) - (r.y0 >> 2) + 1) <= 12;
+}
+
+// Not inlined: its frame (sixteen block results) would otherwise be set up for every small primitive too.
+// A box spanning at most 4x4 blocks (more than twelve: exactly 4x4, so the window below covers exactly its blocks)
+// gets the 4-px level in one 16-px window at its own (4-aligned, not 16-aligned) origin.
+[[gnu::noinline]] void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList planes, int n,
+                                   const RelBox& r, TileScratch* out) {
     const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
-    if ((bw + 1) * (bh + 1) <= 12) return scan_blocks(prim, t, planes, n, r, out);
-    if (t.samples == 1)
-        for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);  // the 1x 16x16 kernel's tables (block16_rows)
+    if (t.samples == 1) fill_row_tables(tp, n);  // the 1x 16x16 kernel's tables (block16_rows)
     if (bw <= 3 && bh <= 3) {
         // One 16x16-px window anchored at the box (the tile-aligned 16-px grid might cut it into four).
         for (int32_t oy = r.y0 & ~3; oy <= r.y1; oy += 16)
@@ -397,7 +298,7 @@ void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList p
         // 1x with up to three planes (every triangle): the planes kept per 16x16 lane are chosen from a fixed three
         // (slots past n accept everywhere, so they are never kept; the list's slots all point into the caller's
         // plane array), so neither the choice nor the kernel dispatch branches on the tile's plane count.
-        Block16 blocks[16];
+        Block16Result blocks[16];
         int count = 0;
         for (uint32_t m = live & ~full; m; m &= m - 1) {
             const int lane = std::countr_zero(m);
@@ -409,10 +310,9 @@ void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList p
             const uint32_t valid = lane_grid((rows4 >> (4 * row)) & 15u, (cols4 >> (4 * col)) & 15u);
             compute_block16_1x_any(t, kept[0], kept[k >> 1], kept, k, 16 * col, 16 * row, valid, &blocks[count++]);
         }
-        FullBlock* f = out->full + out->num_full;
-        Block4* b = out->blocks + out->num_blocks;
-        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], f, b);
-        out->num_full = static_cast<size_t>(f - out->full), out->num_blocks = static_cast<size_t>(b - out->blocks);
+        Block16* b = out->blocks16 + out->num_blocks16;
+        for (int i = 0; i < count; ++i) emit_block16_1x(blocks[i], b);
+        out->num_blocks16 = static_cast<size_t>(b - out->blocks16);
         return;
     }
     for (uint32_t m = live & ~full; m; m &= m - 1) {
@@ -425,11 +325,7 @@ void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList p
     }
 }
 
-// --- bbox: every 4x4 block of box ∩ tile, all live planes evaluated in 32 bits (Giesen-style scan) --------------
-
-void raster_bbox(const Prim& prim, const TileGeom& t, PlaneList planes, int n, TileScratch* out) {
-    scan_blocks(prim, t, planes, n, rel_box(prim, t), out);
-}
+// --- bbox: every 4x4 block of box ∩ tile, all live planes evaluated in 32 bits (Giesen-style scan): scan_blocks ---
 
 // --- reference: per pixel, per sample, 64-bit, shape and scissor planes only, box as loop bounds
 // ------------------------------
@@ -506,9 +402,10 @@ void raster_float(const Prim& prim, const TileGeom& t, TileScratch* out) {
         out);
 }
 
-}  // namespace
-
-TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out) {
+// tile_setup for kSamples samples (1 or 4). At 1x only c[0] is written and no step4 table (the 4x levels' table):
+// nothing at 1x reads them, and this runs once per primitive and tile for every method.
+template <int kSamples>
+TileClass tile_setup_n(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out) {
     int n = 0;
     const int64_t span = tile.size - 1;
     for (int k = 0; k < prim.num_planes; ++k) {
@@ -530,16 +427,23 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
         n += min_v <= 0;
         tp.a = p.a, tp.b = p.b;
         tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
-        for (int s = 0; s < 4; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);
-        fill_step_table(&tp);
+        for (int s = 0; s < kSamples; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);
+        fill_step_table<kSamples == 4>(&tp);
     }
     *num_out = n;
     return n == 0 ? TileClass::kWhole : TileClass::kPartial;
 }
 
+}  // namespace
+
+TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out) {
+    return tile.samples == 1 ? tile_setup_n<1>(prim, tile, out, num_out) : tile_setup_n<4>(prim, tile, out, num_out);
+}
+
 void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch) {
     scratch->num_blocks = 0;
     scratch->num_full = 0;
+    scratch->num_blocks16 = 0;
     if (method == Method::kReference) return raster_reference(prim, tile, scratch);
     if (method == Method::kFloat) return raster_float(prim, tile, scratch);
     if (whole) {
@@ -556,10 +460,9 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
         push_full(scratch, tile.x0, tile.y0, tile.size);
         return;
     }
-    if (method == Method::kHier)
-        raster_hier(prim, tile, planes, list, n, scratch);
-    else
-        raster_bbox(prim, tile, list, n, scratch);
+    const RelBox r = rel_box(prim, tile);
+    if (method == Method::kHier && !box_is_small(r)) return raster_hier(prim, tile, planes, list, n, r, scratch);
+    scan_blocks(prim, tile, list, n, r, scratch);  // bbox; hier's small-primitive path
 }
 
 }  // namespace tilevk::rast

@@ -27,15 +27,16 @@ enum class TileClass { kReject, kWhole, kPartial };
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
 
 // Fixed capacity: one primitive covers each 4x4 block of a tile at most once (<= (64/4)^2 = 256 blocks), and full
-// blocks (4, 16 or tile sized) never overlap, so neither list can exceed 256 entries. No allocation per primitive.
-// kSlack: room for the hier 1x emission (emit_lanes), which writes up to 15 throw-away entries past the count and
-// stores FullBlocks as 16-byte vectors (4 bytes past the entry): with count <= 256 - (this block's entries), every
-// write stays below entry 256 + 15 + 1.
+// blocks (4, 16 or tile sized) never overlap, so neither list can exceed 256 entries; an entry is written at the
+// count before it is known to be kept, which stays below 256 by the same argument. Block16 entries (hier at 1x): at
+// most one per 16x16 block of the tile (16; the 16-px window of a small primitive makes one), written
+// unconditionally and kept when non-empty, hence one spare entry. No allocation per primitive.
 struct TileScratch {
-    static constexpr size_t kCapacity = 256, kSlack = 16;
-    Block4 blocks[kCapacity + kSlack];
-    FullBlock full[kCapacity + kSlack];
-    size_t num_blocks = 0, num_full = 0;
+    static constexpr size_t kCapacity = 256, kCapacity16 = 16;
+    Block4 blocks[kCapacity];
+    FullBlock full[kCapacity];
+    Block16 blocks16[kCapacity16 + 1];
+    size_t num_blocks = 0, num_full = 0, num_blocks16 = 0;
 };
 
 // Appends the coverage of `prim` in `tile` to scratch (cleared first). `whole` = binned as a whole-tile command.

@@ -297,7 +297,7 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
         else
             shade_block(w, draw, prim, cov.front_facing, x, y, masks);
     };
-    for (size_t i = 0; i < cov.num_blocks; ++i) one_block(cov.blocks[i].x, cov.blocks[i].y, cov.blocks[i].mask);
+    for_each_block4(cov, one_block);
     for (size_t i = 0; i < cov.num_full; ++i) {
         const FullBlock& f = cov.full[i];
         for (int32_t by = f.y; by < f.y + f.size; by += 4)

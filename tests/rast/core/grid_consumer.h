@@ -52,6 +52,18 @@ class GridConsumer : public CoverageConsumer {
                     if ((b.mask[s] >> k) & 1) add(t, b.x + (k & 3), b.y + (k >> 2), s, ph);
             }
         }
+        for (size_t i = 0; i < c.num_blocks16; ++i) {
+            const Block16& b = c.blocks16[i];
+            d = mix(d ^ (uint64_t(uint32_t(b.x)) << 32 | uint32_t(b.y)) ^ 0x16ull << 56);
+            bool any = false;
+            for (int j = 0; j < 16; ++j) {
+                d = mix(d ^ b.mask[j]);
+                any |= b.mask[j] != 0;
+                for (int k = 0; k < 16; ++k)
+                    if ((b.mask[j] >> k) & 1) add(t, b.x + 4 * (j & 3) + (k & 3), b.y + 4 * (j >> 2) + (k >> 2), 0, ph);
+            }
+            if (!any || samples_ != 1) bounds_ok[t.index] = 0;  // coverage.h: never all-zero, 1x only
+        }
         for (size_t i = 0; i < c.num_full; ++i) {
             const FullBlock& f = c.full[i];
             d = mix(d ^ (uint64_t(uint32_t(f.x)) << 32 | uint32_t(f.y)) ^ uint64_t(f.size) << 56);
