@@ -41,6 +41,7 @@ struct FragmentStage::DrawPlan {
     std::vector<InputPlan> inputs;  // the declared components only: the shader cannot read the others
     bool perspective = false;       // some input divides by w
     bool uniform_shader = false;    // the shader's outputs are the same for every fragment of a primitive
+    int copy_location = -1;         // >= 0: the shader only copies this vec4 input to colour output 0
     bool depth_fast = false;        // depth_block_fast handles the depth test
     fragment::DepthFast depth;
     ColorPath color[kMaxColorTargets] = {};
@@ -197,6 +198,9 @@ FragmentStage::DrawPlan make_plan(const DrawRecord& draw, const Framebuffer& fb)
         plan.uniform_shader = all_flat && !(iface.builtins_read & ~per_prim_builtins) && !iface.uses_discard &&
                               !iface.writes_frag_depth && !iface.uses_derivatives && iface.builtins_written == 0 &&
                               !writes_memory;
+        // A plain copy (colour = one float vec4 input, unchanged; nothing else: no discard, no built-ins, no memory;
+        // shader::Program::linear_shader) is its interpolated input: the run is a move of the same bits.
+        plan.copy_location = fs->linear_copy_input();
     }
 
     const DepthStencilTarget& ds = fb.depth_stencil;
@@ -611,8 +615,12 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
                                         in.interp == geometry::Interp::kPerspective ? oow : nullptr,
                                         b.inputs[in.loc][in.comp]);
         }
-        fs->run_fragment(draw.bindings, b, w.scratch);
-        live = static_cast<uint16_t>(b.live_mask & shade_lanes);
+        if (plan.copy_location >= 0) {
+            std::memcpy(b.outputs[0], b.inputs[plan.copy_location], sizeof b.outputs[0]);  // what the run would do
+        } else {
+            fs->run_fragment(draw.bindings, b, w.scratch);
+            live = static_cast<uint16_t>(b.live_mask & shade_lanes);
+        }
         if (iface.writes_frag_depth && depth_active)
             for (int s = 0; s < samples; ++s)
                 for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&z[s][l], &b.frag_depth[l], 4);
