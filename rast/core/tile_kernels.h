@@ -37,7 +37,7 @@ struct TilePlane {
     alignas(32) int32_t rowb[16];  // b'*y, y in kRowOrder (b' = -b when negated): |.| < 15*2^23
     int32_t ra;                    // a' = |a|
     int32_t rflip;                 // -1 when negated (a < 0), else 0
-    float rinv, roff;              // threshold estimate q = r'*rinv + roff (block16_rows' comment)
+    float rinv, roff;              // threshold estimate q = r'*rinv + roff (block16_rows' comment, row_inverse)
 };
 
 // Lane i of a 16-lane block grid: column i&3, row i>>2.
@@ -88,49 +88,30 @@ inline void fill_step_table(TilePlane* p) {
 // packus_epi32 (which works per 128-bit half) of the two vectors yields the rows 0..15 in order.
 inline constexpr int32_t kRowOrder[16] = {0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7, 12, 13, 14, 15};
 
-// The row kernel's reciprocal for a plane with x step a: -1/|a|; a = 0: -64 (with roff = 33 in fill_row_table,
-// the row is all covered (r' > 0) or all not: q <= -31 or q >= 33 for integer r').
+// The row kernel's reciprocal for a plane with x step a: -1/|a| to within 1.5*2^-12 relative (block16_rows' proof
+// needs far less than that); a = 0: -64 (with roff = 33 in fill_row_table, the row is all covered (r' > 0) or all
+// not: q <= -31 or q >= 33 for integer r'). With AVX2 it is the hardware estimate (rcpss, 4 cycles), not a division
+// (11+ cycles once per plane and tile, on the path to every block's kernel); the portable build divides. The two can
+// differ in rinv, never in a mask: the estimate only picks T_est, which the integer tests make exact.
 inline float row_inverse(int32_t a) {
     const int32_t ra = a < 0 ? -a : a;  // |a| < 2^23
-    return ra != 0 ? -1.0f / static_cast<float>(ra) : -64.0f;
+    if (ra == 0) return -64.0f;
+#if TILEVK_SIMD_AVX2
+    return -_mm_cvtss_f32(_mm_rcp_ss(_mm_set_ss(static_cast<float>(ra))));
+#else
+    return -1.0f / static_cast<float>(ra);
+#endif
 }
 
-// The row-threshold fields but rinv (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
-inline void fill_row_fields(TilePlane* p) {
+// Fills the row-threshold fields (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
+inline void fill_row_table(TilePlane* p) {
     const int32_t flip = p->a < 0 ? -1 : 0;
     const int32_t b = (p->b ^ flip) - flip;  // -b when negated
     p->ra = (p->a ^ flip) - flip;
     p->rflip = flip;
+    p->rinv = row_inverse(p->a);
     p->roff = p->ra != 0 ? 1.0f : 33.0f;
     for (int i = 0; i < 16; ++i) p->rowb[i] = b * kRowOrder[i];
-}
-
-inline void fill_row_table(TilePlane* p) {
-    fill_row_fields(p);
-    p->rinv = row_inverse(p->a);
-}
-
-// fill_row_table for the n live planes of a tile, the reciprocals four at a time: one vector division instead of
-// one scalar division per plane (IEEE division is correctly rounded either way, so rinv is the same bit for bit).
-inline void fill_row_tables(TilePlane* tp, int n) {
-#if TILEVK_SIMD_AVX2
-    for (int k0 = 0; k0 < n; k0 += 4) {
-        float ra[4];
-        for (int i = 0; i < 4; ++i) {
-            const int k = k0 + i;
-            if (k < n) fill_row_fields(&tp[k]);
-            ra[i] = k < n ? static_cast<float>(tp[k].ra) : 1.0f;
-        }
-        const __m128 v = _mm_setr_ps(ra[0], ra[1], ra[2], ra[3]);
-        const __m128 inv =
-            _mm_blendv_ps(_mm_div_ps(_mm_set1_ps(-1.0f), v), _mm_set1_ps(-64.0f), _mm_cmpeq_ps(v, _mm_setzero_ps()));
-        alignas(16) float out[4];
-        _mm_store_ps(out, inv);
-        for (int i = 0; i < 4 && k0 + i < n; ++i) tp[k0 + i].rinv = out[i];
-    }
-#else
-    for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);
-#endif
 }
 
 // Classifies the 4x4 grid of sub-blocks of size 2^shift at tile-relative origin (ox, oy) against one plane:
@@ -194,15 +175,17 @@ inline void block16_masks_scalar(const TilePlane* const* planes, int n, const in
 // r = r'(0, y) (the possibly negated plane value at the row's first pixel, see TilePlane::ra), the pixels x with
 // r + a'x > 0 are exactly x >= T, T = floor(-r/a') + 1 (a' > 0), so the row's 16-bit mask is 0xFFFF << clamp(T, 0, 16)
 // (complemented when negated: there "covered" is r + a'x <= 0, i.e. x < T). T comes from a float estimate made exact:
-//   T_est = clamp(floor(fl(fl(r) * rinv + 1)), 1, 18), rinv = fl(-1/a'),
+//   T_est = clamp(floor(fl(fl(r) * rinv + 1)), 1, 18), rinv = -1/a' (1 + e), |e| <= 1.5*2^-12 (row_inverse),
 // then two exact integer tests: r + a'*(T_est - 1) > 0 (<=> T <= T_est - 1: use T_est - 1) and r + a'*T_est <= 0
 // (<=> T > T_est: use T_est + 1). The result T' is T whenever |T_est - T| <= 1, and otherwise lies on T's side of
 // [0, 16], so clamp(T', 0, 16) = clamp(T, 0, 16); and T' is in [0, 19], so no clamp is needed below 0. Why:
-//  - if |r/a'| <= 20 then |r| < 21*2^23 < 2^28 and q = -r/a' + 1 has |q| <= 21; fl(r), rinv and the one rounding of
-//    the fma each err by at most 2^-24 relative, so the estimate is within 21*3*2^-24 + 2^-24 < 1 of q, its floor
+//  - if |r/a'| <= 20 then |r| < 21*2^23 < 2^28 and q = -r/a' + 1 has |q| <= 21; fl(r) and the one rounding of the
+//    fma err by at most 2^-24 relative, rinv by 1.5*2^-12, so the estimate is within 21*(2*2^-24 + 1.5*2^-12) +
+//    2^-24 < 0.01 of q, its floor
 //    within 1 of floor(q) = T; the clamp only raises it to 1 when T <= 1 (if it ends 2 or more above T, T <= -1 and
 //    the first test gives 0) and lowers it to 18 when T >= 17 (if it ends 2 or more below T, the second gives 19);
-//  - if r/a' > 20 (T <= -20) the estimate is below 1: T_est = 1, the first test holds, T' = 0; if r/a' < -20
+//  - if r/a' > 20 (T <= -20) the estimate is below 1 (-r/a' (1 + e) + 1 < -20*0.999 + 1, plus roundings):
+//    T_est = 1, the first test holds, T' = 0; if r/a' < -20
 //    (T > 20) it is above 18: T_est = 18, the second test holds, T' = 19 (both clamp as T does);
 //  - a' = 0 (a row is all in or all out): rinv = -64, roff = 33 (fill_row_table) give T_est = 1 for r >= 1 (the
 //    first test then holds: 0, all covered) and 18 for r <= 0 (the second holds: 19, none).

@@ -276,7 +276,8 @@ inline bool box_is_small(const RelBox& r) {
 [[gnu::noinline]] void raster_hier(const Prim& prim, const TileGeom& t, TilePlane* tp, PlaneList planes, int n,
                                    const RelBox& r, TileScratch* out) {
     const int32_t bw = (r.x1 >> 2) - (r.x0 >> 2), bh = (r.y1 >> 2) - (r.y0 >> 2);
-    if (t.samples == 1) fill_row_tables(tp, n);  // the 1x 16x16 kernel's tables (block16_rows)
+    if (t.samples == 1)
+        for (int k = 0; k < n; ++k) fill_row_table(&tp[k]);  // the 1x 16x16 kernel's tables (block16_rows)
     if (bw <= 3 && bh <= 3) {
         // One 16x16-px window anchored at the box (the tile-aligned 16-px grid might cut it into four).
         for (int32_t oy = r.y0 & ~3; oy <= r.y1; oy += 16)
