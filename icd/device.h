@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include "object.h"
+#include "shader/program_cache.h"
 
 namespace tilevk::icd {
 
@@ -32,6 +33,9 @@ struct Device : DispatchableObject {
     // Set when a submission could not be executed faithfully (a shader that never terminated was cut short by the
     // loop watchdog): from then on submissions and waits return VK_ERROR_DEVICE_LOST, as after a GPU hang.
     std::atomic<bool> lost{false};
+    // Shader programs by their exact inputs (module words, stage, entry point, specialization): pipelines that
+    // share shaders build each program once per device (shader/program_cache.h).
+    shader::ProgramCache programs;
 };
 TILEVK_ASSERT_DISPATCHABLE(Device);
 

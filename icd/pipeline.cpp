@@ -61,8 +61,8 @@ using rast::render::PipelineState;
 namespace fr = rast::fragment;
 
 // Builds the program of one stage; false (with `why`) if shader/ refuses it.
-bool make_program(const VkPipelineShaderStageCreateInfo& st, shader::Stage stage,
-                  std::shared_ptr<const shader::Program>* out, double* ms, std::string* why) {
+bool make_program(Device& dev, const VkPipelineShaderStageCreateInfo& st, shader::Stage stage, Pipeline& p,
+                  std::shared_ptr<const shader::Program>* out, std::string* why) {
     const ShaderModule* m = from_handle<ShaderModule>(st.module);
     shader::SpecConstants spec;
     if (const VkSpecializationInfo* si = st.pSpecializationInfo) {
@@ -76,8 +76,9 @@ bool make_program(const VkPipelineShaderStageCreateInfo& st, shader::Stage stage
             spec.push_back(std::move(c));
         }
     }
-    shader::Result r = shader::Program::create(m->words, stage, st.pName ? st.pName : "main", spec);
-    *ms += r.create_ms;
+    bool hit = false;
+    shader::Result r = dev.programs.get_or_create(m->words, stage, st.pName ? st.pName : "main", spec, &hit);
+    (hit ? p.programs_cached : p.programs_built) += 1;
     if (!r) {
         *why = r.error;
         return false;
@@ -99,7 +100,7 @@ fr::StencilFace stencil_face(const VkStencilOpState& s) {
 }
 
 // Translates one create info; returns an empty string or the reason it is unsupported.
-std::string build_pipeline(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     std::string why;
     PipelineState& s = p.state;
     // lavapipe's UBO 0 for the fragment stage (lvp_execute.c has_pcbuf, fill_ubo0): the layout's whole push-constant
@@ -116,10 +117,9 @@ std::string build_pipeline(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) 
     for (uint32_t i = 0; i < ci.stageCount; ++i) {
         const VkPipelineShaderStageCreateInfo& st = ci.pStages[i];
         if (st.stage == VK_SHADER_STAGE_VERTEX_BIT) {
-            if (!make_program(st, shader::Stage::Vertex, &p.vertex, &p.create_ms, &why)) return "vertex shader: " + why;
+            if (!make_program(dev, st, shader::Stage::Vertex, p, &p.vertex, &why)) return "vertex shader: " + why;
         } else if (st.stage == VK_SHADER_STAGE_FRAGMENT_BIT) {
-            if (!make_program(st, shader::Stage::Fragment, &p.fragment, &p.create_ms, &why))
-                return "fragment shader: " + why;
+            if (!make_program(dev, st, shader::Stage::Fragment, p, &p.fragment, &why)) return "fragment shader: " + why;
         } else {
             return "only vertex and fragment stages are supported (stage bit " + std::to_string(st.stage) + ")";
         }
@@ -266,7 +266,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
             result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateGraphicsPipelines: out of host memory");
             continue;
         }
-        const std::string why = build_pipeline(pCreateInfos[i], *p);
+        const std::string why = build_pipeline(*dev, pCreateInfos[i], *p);
         if (!why.empty()) {
             destroy_object(p);
             // Vulkan 1.0 has no "unsupported" code for pipelines: the message says what is going on.
@@ -275,7 +275,9 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
         }
         p->create_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (std::getenv("TILEVK_LOG_PIPELINES"))
-            std::fprintf(stderr, "tilevk: graphics pipeline created in %.3f ms\n", p->create_ms);
+            std::fprintf(stderr,
+                         "tilevk: graphics pipeline created in %.3f ms (%u shader programs built, %u from the cache)\n",
+                         p->create_ms, p->programs_built, p->programs_cached);
         pPipelines[i] = to_handle(p);
     }
     return result;

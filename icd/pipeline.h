@@ -19,10 +19,11 @@ struct Pipeline : NonDispatchableObject {
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_PIPELINE;
     Pipeline() : NonDispatchableObject(kType) {}
     std::shared_ptr<const shader::Program> vertex, fragment;
-    rast::render::PipelineState state;  // program pointers point at the two above
-    uint32_t dynamic = 0;               // dynamic_bit(VK_DYNAMIC_STATE_*)
-    bool rasterizer_discard = false;    // draws produce nothing
-    double create_ms = 0;               // wall time of vkCreateGraphicsPipelines for this pipeline
+    rast::render::PipelineState state;                 // program pointers point at the two above
+    uint32_t dynamic = 0;                              // dynamic_bit(VK_DYNAMIC_STATE_*)
+    bool rasterizer_discard = false;                   // draws produce nothing
+    double create_ms = 0;                              // wall time of vkCreateGraphicsPipelines for this pipeline
+    uint32_t programs_built = 0, programs_cached = 0;  // shader programs built here / found in the device's cache
 };
 
 struct PipelineCache : NonDispatchableObject {
