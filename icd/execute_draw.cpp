@@ -194,6 +194,26 @@ const shader::ImageView* image_of(DrawContext& ctx, const ImageView* v) {
     out.height = img.level_height(b);
     out.levels = std::min<uint32_t>(v->range.levelCount, uint32_t(out.level.size()));
     out.layers = v->range.layerCount;
+    const VkComponentSwizzle mapping[4] = {v->components.r, v->components.g, v->components.b, v->components.a};
+    for (uint8_t c = 0; c < 4; ++c) {
+        switch (mapping[c]) {
+            case VK_COMPONENT_SWIZZLE_ZERO:
+                out.swizzle[c] = shader::kSwizzleZero;
+                break;
+            case VK_COMPONENT_SWIZZLE_ONE:
+                out.swizzle[c] = shader::kSwizzleOne;
+                break;
+            case VK_COMPONENT_SWIZZLE_R:
+            case VK_COMPONENT_SWIZZLE_G:
+            case VK_COMPONENT_SWIZZLE_B:
+            case VK_COMPONENT_SWIZZLE_A:
+                out.swizzle[c] = uint8_t(mapping[c] - VK_COMPONENT_SWIZZLE_R);
+                break;
+            default:  // IDENTITY
+                out.swizzle[c] = c;
+                break;
+        }
+    }
     for (uint32_t i = 0; i < out.levels; ++i) {
         out.level[i].offset =
             img.layout.level_offset[b + i] + VkDeviceSize(v->range.baseArrayLayer) * img.layout.layer_pitch[b + i];

@@ -372,6 +372,15 @@ Vec4 bytes_to_float(const Bytes& b) {
             float(b[3]) * kUnorm8Scale};
 }
 
+Vec4 swizzled(const Vec4& r, const ImageView& img) {
+    Vec4 out;
+    for (int c = 0; c < 4; ++c) {
+        const uint8_t w = img.swizzle[size_t(c)];
+        out[size_t(c)] = w < 4 ? r[w] : w == kSwizzleOne ? 1.0f : 0.0f;
+    }
+    return out;
+}
+
 bool image_ok(const ImageView* img) {
     return img && img->base && texel_size(img->format) && img->width && img->height && img->levels &&
            img->levels <= kMaxMipLevels && img->layers;
@@ -439,6 +448,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                     const ImageLevel& il = img->level[lv];
                     r = decode(img->format, img->base + il.offset + uint64_t(layer) * il.layer_pitch +
                                                 uint64_t(y) * il.row_pitch + uint64_t(x) * texel_size(img->format));
+                    r = swizzled(r, *img);
                 }
             }
             for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
@@ -559,6 +569,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                 }
                 r = a;
             }
+            if (!dref) r = swizzled(r, *img);  // a depth comparison's result is not remapped
         }
         for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
     }
