@@ -64,8 +64,8 @@ VkPhysicalDeviceLimits make_limits() {
     l.subPixelPrecisionBits = 8;  // 15.8 fixed point, as lavapipe
     l.subTexelPrecisionBits = 4;
     l.mipmapPrecisionBits = 4;
-    l.maxDrawIndexedIndexValue = (1u << 24) - 1;  // fullDrawIndexUint32 is off
-    l.maxDrawIndirectCount = 1;                   // multiDrawIndirect is off
+    l.maxDrawIndexedIndexValue = UINT32_MAX;  // fullDrawIndexUint32: indices are 32-bit all the way
+    l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
     l.maxSamplerLodBias = 2.0f;
     l.maxSamplerAnisotropy = 1.0f;
     l.maxViewports = 1;
@@ -146,6 +146,11 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
     features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
     features.independentBlend = VK_TRUE;
+    // Indirect and indexed draws: execute_draw.cpp reads every record (drawCount, stride, firstInstance) and
+    // rast/render fetches 32-bit index values as they are (tests/icd/api_breadth_test.cpp IndirectDrawsWithStride).
+    features.fullDrawIndexUint32 = VK_TRUE;
+    features.multiDrawIndirect = VK_TRUE;
+    features.drawIndirectFirstInstance = VK_TRUE;
     features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
     features.wideLines = VK_TRUE;
     features.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
