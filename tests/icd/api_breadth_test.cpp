@@ -23,9 +23,11 @@ namespace {
 #include "ab_point_float_vert.h"
 #include "ab_point_sint_vert.h"
 #include "ab_point_uint_vert.h"
+#include "ab_pull_vert.h"
 #include "ab_push_frag.h"
 #include "ab_push_vert.h"
 #include "ab_sample_frag.h"
+#include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
 #include "color_frag.h"
 #include "draw_vert.h"
@@ -1168,6 +1170,215 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
             if (m.g == VK_COMPONENT_SWIZZLE_R) EXPECT_EQ(px0[1], px0[0]);
         }
     }
+}
+
+// Vertex pulling from a storage buffer in the vertex shader, an array of combined image samplers and an array of
+// uniform blocks in the fragment shader (constant indices), one descriptor write covering several array elements.
+TEST_F(ApiBreadth, DescriptorArraysAndVertexPulling) {
+    both([](Kit& k) {
+        Target t = target(k);
+        const VkShaderStageFlags F = VK_SHADER_STAGE_FRAGMENT_BIT;
+        VkDescriptorSetLayout dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3, F},
+                                                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT},
+                                                  {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2, F}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}};
+        VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        pci.maxSets = 1;
+        pci.poolSizeCount = 3;
+        pci.pPoolSizes = sizes;
+        VkDescriptorPool pool = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateDescriptorPool(k.d, &pci, nullptr, &pool), VK_SUCCESS);
+        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        ai.descriptorPool = pool;
+        ai.descriptorSetCount = 1;
+        ai.pSetLayouts = &dsl;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        EXPECT_EQ(vkAllocateDescriptorSets(k.d, &ai, &set), VK_SUCCESS);
+        VkSampler smp = k.sampler(VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+        VkDescriptorImageInfo ii[3];
+        for (uint32_t i = 0; i < 3; ++i) {
+            Device::Image tex = k.image(VK_FORMAT_R8G8B8A8_UNORM, 4 + i, 4,
+                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+            upload_rgba8(k, tex.image, 4 + i, 4, 10 + i);
+            ii[i] = {smp, k.view(tex.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        }
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
+        const VkDeviceSize align = std::max<VkDeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
+        Device::Buffer ubo = k.buffer(2 * align, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        const float scales[2][4] = {{0.5f, 0.25f, 1.0f, 1.0f}, {0.25f, 0.5f, 0.0f, 0.0f}};
+        for (int i = 0; i < 2; ++i) std::memcpy(static_cast<uint8_t*>(ubo.map) + i * align, scales[i], 16);
+        std::vector<Vertex> verts = {
+            v(-1, -1, 0, 0, 0, 0),     v(1, -1, 0, 1.5f, 0, 0),          v(-1, 1, 0, 0, 1.5f, 0),
+            v(0.9f, 0.8f, 0, 1, 1, 0), v(0.2f, -0.9f, 0, 0.3f, 0.7f, 0), v(-0.7f, 0.6f, 0, 0.9f, 0.2f, 0)};
+        Device::Buffer ssbo = k.buffer_of(verts, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        VkDescriptorBufferInfo sb{ssbo.buffer, 0, VK_WHOLE_SIZE};
+        VkDescriptorBufferInfo ub[2] = {{ubo.buffer, 0, 16}, {ubo.buffer, align, 16}};
+        VkWriteDescriptorSet w[3] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                     {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                     {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+        w[0].dstSet = w[1].dstSet = w[2].dstSet = set;
+        w[0].dstBinding = 0;
+        w[0].descriptorCount = 3;
+        w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        w[0].pImageInfo = ii;
+        w[1].dstBinding = 1;
+        w[1].descriptorCount = 1;
+        w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w[1].pBufferInfo = &sb;
+        w[2].dstBinding = 2;
+        w[2].descriptorCount = 2;
+        w[2].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        w[2].pBufferInfo = ub;
+        vkUpdateDescriptorSets(k.d, 3, w, 0, nullptr);
+        Pipe p;
+        p.vs = SPV(ab_pull_vert);
+        p.fs = SPV(ab_tex_array_frag);
+        p.bindings = {};
+        p.attrs = {};
+        p.rp = t.rp;
+        p.layout = layout;
+        VkPipeline pipe = k.pipeline(p);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDraw(c, 6, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes b = k.read(t.image.image, 32, 32, 4);
+        vkDestroyDescriptorPool(k.d, pool, nullptr);
+        EXPECT_NE(px(b, 2, 2)[2], 64);
+        return b;
+    });
+}
+
+// 4x multisampled rendering into two colour attachments (RGBA8 and R32_SFLOAT) resolved at the end of the
+// subpass, over a render area smaller than the framebuffer: the clear, the draw and the resolve stay inside it;
+// the resolve targets keep their earlier contents outside.
+TEST_F(ApiBreadth, MsaaTwoResolvesAndPartialRenderArea) {
+    both([](Kit& k) {
+        const VkFormat fmts[2] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32_SFLOAT};
+        Device::Image ms[2], rs[2];
+        std::vector<VkImageView> views;
+        for (int i = 0; i < 2; ++i) {
+            ms[i] = k.dev().make_image(fmts[i], 32, 32, 1, 1, VK_SAMPLE_COUNT_4_BIT,
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT);
+            EXPECT_NE(ms[i].image, VK_NULL_HANDLE);
+            views.push_back(k.view(ms[i].image, fmts[i], VK_IMAGE_ASPECT_COLOR_BIT));
+        }
+        for (int i = 0; i < 2; ++i) {
+            rs[i] = k.image(fmts[i], 32, 32,
+                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+            views.push_back(k.view(rs[i].image, fmts[i], VK_IMAGE_ASPECT_COLOR_BIT));
+        }
+        std::vector<VkAttachmentDescription> atts;
+        for (int i = 0; i < 2; ++i) {
+            VkAttachmentDescription a =
+                attachment(fmts[i], VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
+                           VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+            a.samples = VK_SAMPLE_COUNT_4_BIT;
+            atts.push_back(a);
+        }
+        for (int i = 0; i < 2; ++i)
+            atts.push_back(attachment(fmts[i], VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE));
+        const VkImageLayout CA = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        VkAttachmentReference col[2] = {{0, CA}, {1, CA}}, res[2] = {{2, CA}, {3, CA}};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 2;
+        sub.pColorAttachments = col;
+        sub.pResolveAttachments = res;
+        VkRenderPass rp = k.render_pass(atts, {sub});
+        VkFramebuffer fb = k.framebuffer(rp, views, 32, 32);
+        Pipe p;
+        p.fs = SPV(ab_mrt_frag);
+        p.rp = rp;
+        p.color_count = 2;
+        VkPipeline pipe = VK_NULL_HANDLE;
+        {
+            // The shared Pipe builder makes 1x pipelines; this one needs 4 samples.
+            VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+            stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+            stages[0].module = k.shader(p.vs);
+            stages[0].pName = "main";
+            stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+            stages[1].module = k.shader(p.fs);
+            stages[1].pName = "main";
+            VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+            vi.vertexBindingDescriptionCount = 1;
+            vi.pVertexBindingDescriptions = p.bindings.data();
+            vi.vertexAttributeDescriptionCount = 2;
+            vi.pVertexAttributeDescriptions = p.attrs.data();
+            VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+            ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+            VkViewport vp{0, 0, 32, 32, 0, 1};
+            VkRect2D sc{{6, 3}, {20, 22}};  // the render area: nothing is drawn outside it
+            VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+            vps.viewportCount = vps.scissorCount = 1;
+            vps.pViewports = &vp;
+            vps.pScissors = &sc;
+            VkPipelineRasterizationStateCreateInfo rs_state{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+            rs_state.lineWidth = 1.0f;
+            VkPipelineMultisampleStateCreateInfo ms_state{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+            ms_state.rasterizationSamples = VK_SAMPLE_COUNT_4_BIT;
+            VkPipelineColorBlendAttachmentState cba[2] = {opaque(), opaque()};
+            VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+            cb.attachmentCount = 2;
+            cb.pAttachments = cba;
+            VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+            gci.stageCount = 2;
+            gci.pStages = stages;
+            gci.pVertexInputState = &vi;
+            gci.pInputAssemblyState = &ia;
+            gci.pViewportState = &vps;
+            gci.pRasterizationState = &rs_state;
+            gci.pMultisampleState = &ms_state;
+            gci.pColorBlendState = &cb;
+            gci.layout = k.empty_layout();
+            gci.renderPass = rp;
+            EXPECT_EQ(vkCreateGraphicsPipelines(k.d, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe), VK_SUCCESS);
+        }
+        Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            // Earlier contents of the resolve targets, kept outside the render area.
+            for (int i = 0; i < 2; ++i) {
+                transition(c, rs[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+                VkClearColorValue cc{{0.75f, 0.5f, 0.25f, 1.0f}};
+                VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                vkCmdClearColorImage(c, rs[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &cc, 1, &range);
+                transition(c, rs[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            }
+            VkClearValue clears[4] = {clear_color(0, 0, 0.25f, 1), clear_color(-1.5f, 0, 0, 0)};
+            VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+            bi.renderPass = rp;
+            bi.framebuffer = fb;
+            bi.renderArea = {{6, 3}, {20, 22}};
+            bi.clearValueCount = 2;
+            bi.pClearValues = clears;
+            vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            VkDeviceSize zero = 0;
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes a = k.read(rs[0].image, 32, 32, 4), b = k.read(rs[1].image, 32, 32, 4);
+        EXPECT_EQ(px(a, 0, 0)[0], 191);  // outside the render area: the earlier clear
+        for (int i = 0; i < 2; ++i) k.dev().destroy(ms[i]);
+        vkDestroyPipeline(k.d, pipe, nullptr);
+        return concat({a, b});
+    });
 }
 
 // ---- Transfers -------------------------------------------------------------------------------------------------
