@@ -259,6 +259,7 @@ void build_bindings(ExecState& st, shader::Bindings& b) {
                         out.sampler = sampler_of(ctx, smp);
                         break;
                     case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+                    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:  // read by subpassLoad as a texel fetch
                         out.image = image_of(ctx, d.image_view);
                         break;
                     case VK_DESCRIPTOR_TYPE_SAMPLER:

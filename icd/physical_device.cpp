@@ -225,9 +225,14 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    // Storage images and input attachments are not implemented by the shader path.
-    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
-        return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // Storage images are not implemented by the shader path. Input attachments are read by subpassLoad as a
+    // texel fetch (shader/translate_ops.cpp), so they need an attachment format the shader path can read.
+    if (usage & VK_IMAGE_USAGE_STORAGE_BIT) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (usage & VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) {
+        if (!(have & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+        if (!(have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)))
+            return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    }
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
