@@ -27,6 +27,7 @@ namespace {
 #include "ab_push_frag.h"
 #include "ab_push_vert.h"
 #include "ab_sample_frag.h"
+#include "ab_shadow_frag.h"
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
@@ -1475,6 +1476,259 @@ TEST_F(ApiBreadth, MsaaTwoResolvesAndPartialRenderArea) {
         for (int i = 0; i < 2; ++i) k.dev().destroy(ms[i]);
         vkDestroyPipeline(k.d, pipe, nullptr);
         return concat({a, b});
+    });
+}
+
+// Shadow lookups (sampler2DShadow, compare LESS_OR_EQUAL) on D16 and D32 textures with NEAREST and LINEAR
+// (percentage-closer) filtering, into an RGBA32F target.
+TEST_F(ApiBreadth, DepthCompareSampling) {
+    for (VkFormat f : {VK_FORMAT_D16_UNORM, VK_FORMAT_D32_SFLOAT}) {
+        for (VkFilter filter : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+            VkFormatProperties fp;
+            vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), f, &fp);
+            if (filter == VK_FILTER_LINEAR &&
+                !(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+                continue;  // not reported: not tested
+            SCOPED_TRACE("format " + std::to_string(f) + " filter " + std::to_string(filter));
+            both([&](Kit& k) {
+                Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT);
+                Device::Image tex = k.image(f, 8, 8, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+                Device::Buffer src = k.buffer_of(texel_data(f, 64, 7), 0);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+                    VkBufferImageCopy r{};
+                    r.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+                    r.imageExtent = {8, 8, 1};
+                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                }),
+                          VK_SUCCESS);
+                VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+                sci.magFilter = sci.minFilter = filter;
+                sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+                sci.compareEnable = VK_TRUE;
+                sci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+                sci.maxLod = 0.25f;
+                VkSampler smp = VK_NULL_HANDLE;
+                EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
+                VkDescriptorSetLayout dsl =
+                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+                VkPipelineLayout layout = k.pipeline_layout({dsl});
+                VkDescriptorSet set = k.descriptor_set(dsl);
+                VkDescriptorImageInfo ii{smp, k.view(tex.image, f, VK_IMAGE_ASPECT_DEPTH_BIT),
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+                k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+                Pipe p;
+                p.fs = SPV(ab_shadow_frag);
+                p.rp = tg.rp;
+                p.layout = layout;
+                VkPipeline pipe = k.pipeline(p);
+                // uv over [0, 1.2] and the reference depth z over [0, 1] across the target.
+                std::vector<Vertex> verts = {v(-1, -1, 0, 0, 0, 0), v(3, -1, 0, 2.4f, 0, 1.0f),
+                                             v(-1, 3, 0, 0, 2.4f, 1.0f)};
+                Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    VkDeviceSize zero = 0;
+                    begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(-1, -1, -1, -1)});
+                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+                    vkCmdDraw(c, 3, 1, 0, 0);
+                    vkCmdEndRenderPass(c);
+                }),
+                          VK_SUCCESS);
+                Bytes out = k.read(tg.image.image, 32, 32, 16);
+                vkDestroySampler(k.d, smp, nullptr);
+                return out;
+            });
+        }
+    }
+}
+
+// Rendering into one mip level and one array layer of an image (a single-layer view of level 1, layer 2 as the
+// colour attachment, and of level 0 layer 1 as the depth attachment): only that subresource changes.
+TEST_F(ApiBreadth, RenderIntoLevelAndLayer) {
+    both([](Kit& k) {
+        const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, D = VK_FORMAT_D32_SFLOAT;
+        Device::Image col = k.image(
+            C, 64, 64,
+            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 2,
+            3);
+        Device::Image dep =
+            k.image(D, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 1, 2);
+        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &cref;
+        sub.pDepthStencilAttachment = &dref;
+        VkRenderPass rp = k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE),
+                                         attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
+                                        {sub});
+        VkFramebuffer fb =
+            k.framebuffer(rp,
+                          {k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_VIEW_TYPE_2D, 1, 1, 2, 1),
+                           k.view(dep.image, D, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_VIEW_TYPE_2D, 0, 1, 1, 1)},
+                          32, 32);
+        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        Pipe p;
+        p.rp = rp;
+        p.ds = &ds;
+        VkPipeline pipe = k.pipeline(p);
+        std::vector<Vertex> verts = kTriangle;
+        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            // Every subresource of the colour image starts grey; the pass loads level 1 layer 2.
+            transition(c, col.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            VkClearColorValue grey{{0.5f, 0.5f, 0.5f, 1.0f}};
+            VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 2, 0, 3};
+            vkCmdClearColorImage(c, col.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &all);
+            transition(c, col.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            VkDeviceSize zero = 0;
+            begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0, 0), clear_depth(1.0f)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            vkCmdDraw(c, 6, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes out;
+        for (uint32_t level = 0; level < 2; ++level)
+            for (uint32_t layer = 0; layer < 3; ++layer) {
+                Bytes b = k.read(col.image, 64u >> level, 64u >> level, 4, VK_IMAGE_ASPECT_COLOR_BIT, level, layer);
+                const bool target = level == 1 && layer == 2;
+                EXPECT_EQ(px(b, 10, 12, 64u >> level)[0] == 128 && px(b, 10, 12, 64u >> level)[1] == 128, !target)
+                    << "level " << level << " layer " << layer;
+                out = concat({out, b});
+            }
+        // The depth attachment ends in TRANSFER_SRC_OPTIMAL (its finalLayout).
+        return concat({out, k.read(dep.image, 32, 32, 4, VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1)});
+    });
+}
+
+// A LINEAR-tiled RGBA8 image written by the host through vkGetImageSubresourceLayout (PREINITIALIZED), then
+// sampled; and a pipeline cache's data round trip.
+TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
+    both([](Kit& k) {
+        Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+        VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ici.imageType = VK_IMAGE_TYPE_2D;
+        ici.format = VK_FORMAT_R8G8B8A8_UNORM;
+        ici.extent = {4, 4, 1};
+        ici.mipLevels = ici.arrayLayers = 1;
+        ici.samples = VK_SAMPLE_COUNT_1_BIT;
+        ici.tiling = VK_IMAGE_TILING_LINEAR;
+        ici.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+        ici.initialLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+        VkImage img = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateImage(k.d, &ici, nullptr, &img), VK_SUCCESS);
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(k.d, img, &req);
+        VkPhysicalDeviceMemoryProperties mp;
+        vkGetPhysicalDeviceMemoryProperties(k.dev().physical(), &mp);
+        uint32_t type = 0;
+        const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        while (type < mp.memoryTypeCount &&
+               !((req.memoryTypeBits >> type & 1) && (mp.memoryTypes[type].propertyFlags & host) == host))
+            ++type;
+        EXPECT_LT(type, mp.memoryTypeCount);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex = type;
+        VkDeviceMemory mem = VK_NULL_HANDLE;
+        EXPECT_EQ(vkAllocateMemory(k.d, &ai, nullptr, &mem), VK_SUCCESS);
+        EXPECT_EQ(vkBindImageMemory(k.d, img, mem, 0), VK_SUCCESS);
+        VkImageSubresource sr{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
+        VkSubresourceLayout layout_info;
+        vkGetImageSubresourceLayout(k.d, img, &sr, &layout_info);
+        EXPECT_GE(layout_info.rowPitch, 16u);
+        void* map = nullptr;
+        EXPECT_EQ(vkMapMemory(k.d, mem, 0, VK_WHOLE_SIZE, 0, &map), VK_SUCCESS);
+        const std::vector<uint8_t> texels = texel_data(VK_FORMAT_R8G8B8A8_UNORM, 16, 5);
+        for (uint32_t y = 0; y < 4; ++y)
+            std::memcpy(static_cast<uint8_t*>(map) + layout_info.offset + y * layout_info.rowPitch, &texels[y * 16],
+                        16);
+        vkUnmapMemory(k.d, mem);
+        VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        vci.image = img;
+        vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        vci.format = VK_FORMAT_R8G8B8A8_UNORM;
+        vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkImageView view = VK_NULL_HANDLE;  // destroyed below, before its image
+        EXPECT_EQ(vkCreateImageView(k.d, &vci, nullptr, &view), VK_SUCCESS);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        // Pipeline cache: the header round-trips into a new cache, which then builds the pipeline.
+        VkPipelineCacheCreateInfo pcci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+        VkPipelineCache cache = VK_NULL_HANDLE, cache2 = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreatePipelineCache(k.d, &pcci, nullptr, &cache), VK_SUCCESS);
+        size_t size = 0;
+        EXPECT_EQ(vkGetPipelineCacheData(k.d, cache, &size, nullptr), VK_SUCCESS);
+        EXPECT_GE(size, 16u + VK_UUID_SIZE);
+        std::vector<uint8_t> data(size);
+        EXPECT_EQ(vkGetPipelineCacheData(k.d, cache, &size, data.data()), VK_SUCCESS);
+        uint32_t header[4];
+        std::memcpy(header, data.data(), 16);
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
+        EXPECT_EQ(header[0], 16u + VK_UUID_SIZE);
+        EXPECT_EQ(header[1], uint32_t(VK_PIPELINE_CACHE_HEADER_VERSION_ONE));
+        EXPECT_EQ(header[2], props.vendorID);
+        EXPECT_EQ(header[3], props.deviceID);
+        EXPECT_EQ(std::memcmp(data.data() + 16, props.pipelineCacheUUID, VK_UUID_SIZE), 0);
+        pcci.initialDataSize = size;
+        pcci.pInitialData = data.data();
+        EXPECT_EQ(vkCreatePipelineCache(k.d, &pcci, nullptr, &cache2), VK_SUCCESS);
+        EXPECT_EQ(vkMergePipelineCaches(k.d, cache2, 1, &cache), VK_SUCCESS);
+        Pipe p;
+        p.vs = SPV(ab_fullscreen_vert);
+        p.fs = SPV(ab_sample_frag);
+        p.bindings = {};
+        p.attrs = {};
+        p.width = p.height = 4;
+        p.rp = tg.rp;
+        p.layout = layout;
+        VkPipeline pipe = k.pipeline(p);  // (the builder passes no cache; the cache objects are checked above)
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+            b.srcAccessMask = VK_ACCESS_HOST_WRITE_BIT;
+            b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+            b.oldLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+            b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = img;
+            b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
+                                 nullptr, 1, &b);
+            begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes out = k.read(tg.image.image, 4, 4, 16);
+        float first;
+        std::memcpy(&first, out.data(), 4);
+        EXPECT_EQ(first, float(texels[0]) * float(1.0 / 255.0));  // texel (0,0) red, as written by the host
+        vkDestroyPipelineCache(k.d, cache, nullptr);
+        vkDestroyPipelineCache(k.d, cache2, nullptr);
+        vkDestroyImageView(k.d, view, nullptr);
+        vkDestroyImage(k.d, img, nullptr);
+        vkFreeMemory(k.d, mem, nullptr);
+        return out;
     });
 }
 
