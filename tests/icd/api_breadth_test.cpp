@@ -845,6 +845,84 @@ TEST_F(ApiBreadth, InputAttachmentsReadThePreviousSubpass) {
     });
 }
 
+// A subpass whose first colour reference is VK_ATTACHMENT_UNUSED (the shader's output 0 goes nowhere, output 1
+// to the attachment), recorded in secondary command buffers across vkCmdNextSubpass, with vkCmdClearAttachments
+// inside a secondary.
+TEST_F(ApiBreadth, UnusedAttachmentReferenceAndSecondaryClears) {
+    VkPhysicalDeviceFeatures features{};
+    features.independentBlend = VK_TRUE;
+    Device tdev(tilevk_->physical(), &features), ldev(lavapipe_->physical(), &features);
+    ASSERT_TRUE(tdev.ok() && ldev.ok());
+    both_on(tdev, ldev, [](Kit& k) {
+        const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM;
+        Device::Image img = k.image(C, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        const VkImageLayout CA = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        VkAttachmentReference refs0[2] = {{VK_ATTACHMENT_UNUSED, CA}, {0, CA}}, refs1[1] = {{0, CA}};
+        std::vector<VkSubpassDescription> subs(2);
+        subs[0].pipelineBindPoint = subs[1].pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        subs[0].colorAttachmentCount = 2;
+        subs[0].pColorAttachments = refs0;
+        subs[1].colorAttachmentCount = 1;
+        subs[1].pColorAttachments = refs1;
+        VkSubpassDependency dep{0,
+                                1,
+                                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                0};
+        VkRenderPass rp =
+            k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)}, subs, {dep});
+        VkFramebuffer fb = k.framebuffer(rp, {k.view(img.image, C, VK_IMAGE_ASPECT_COLOR_BIT)}, 32, 32);
+        Pipe p0;
+        p0.fs = SPV(ab_mrt_frag);
+        p0.rp = rp;
+        p0.color_count = 2;
+        VkPipeline pipe0 = k.pipeline(p0);
+        Pipe p1;
+        p1.rp = rp;
+        p1.subpass = 1;
+        p1.blend = {alpha_over()};
+        VkPipeline pipe1 = k.pipeline(p1);
+        Device::Buffer vb1 = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        Device::Buffer vb2 = k.buffer_of(kTriangle2, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        VkCommandBuffer sec[2];
+        for (uint32_t i = 0; i < 2; ++i) {
+            sec[i] = k.command_buffer(VK_COMMAND_BUFFER_LEVEL_SECONDARY);
+            VkCommandBufferInheritanceInfo inh{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
+            inh.renderPass = rp;
+            inh.subpass = i;
+            inh.framebuffer = i == 0 ? VK_NULL_HANDLE : fb;  // the framebuffer is optional
+            VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+            bi.flags = VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT | VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+            bi.pInheritanceInfo = &inh;
+            EXPECT_EQ(vkBeginCommandBuffer(sec[i], &bi), VK_SUCCESS);
+            VkDeviceSize zero = 0;
+            vkCmdBindPipeline(sec[i], VK_PIPELINE_BIND_POINT_GRAPHICS, i == 0 ? pipe0 : pipe1);
+            vkCmdBindVertexBuffers(sec[i], 0, 1, i == 0 ? &vb1.buffer : &vb2.buffer, &zero);
+            vkCmdDraw(sec[i], 3, 1, 0, 0);
+            if (i == 1) {
+                VkClearAttachment ca{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}};
+                ca.clearValue.color = {{0.2f, 0.9f, 0.4f, 1.0f}};
+                VkClearRect r{{{5, 20}, {14, 6}}, 0, 1};
+                vkCmdClearAttachments(sec[i], 1, &ca, 1, &r);
+            }
+            EXPECT_EQ(vkEndCommandBuffer(sec[i]), VK_SUCCESS);
+        }
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1)}, VK_SUBPASS_CONTENTS_SECONDARY_COMMAND_BUFFERS);
+            vkCmdExecuteCommands(c, 1, &sec[0]);
+            vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_SECONDARY_COMMAND_BUFFERS);
+            vkCmdExecuteCommands(c, 1, &sec[1]);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes b = k.read(img.image, 32, 32, 4);
+        EXPECT_EQ(px(b, 6, 21)[1], 230);  // the secondary's clear rectangle
+        return b;
+    });
+}
+
 // vkCmdClearAttachments: several partial rectangles, colour and depth, on both layers of a 2-layer framebuffer,
 // between draws (the second draw is depth-tested against the partly cleared depth).
 TEST_F(ApiBreadth, ClearAttachmentsRectsAndLayers) {
