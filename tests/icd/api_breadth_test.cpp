@@ -20,6 +20,7 @@ namespace {
 #include "ab_fullscreen_vert.h"
 #include "ab_instanced_vert.h"
 #include "ab_mrt_frag.h"
+#include "ab_passthrough_geom.h"
 #include "ab_point_float_vert.h"
 #include "ab_point_sint_vert.h"
 #include "ab_point_uint_vert.h"
@@ -1111,6 +1112,8 @@ TEST_F(ApiBreadth, PushConstantsBothStagesWithOffsets) {
         p.rp = t.rp;
         p.layout = layout;
         VkPipeline pipe = k.pipeline(p);
+        p.blend = {alpha_over()};
+        VkPipeline blended = k.pipeline(p);  // same layout: the pushed values stay valid across the switch
         Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             VkDeviceSize zero = 0;
@@ -1126,6 +1129,11 @@ TEST_F(ApiBreadth, PushConstantsBothStagesWithOffsets) {
             const float add[4] = {0.5f, 0, 0, 0.0f}, x = 0.6f;
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 32, 16, add);
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 4, &x);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            // Another pipeline with the same layout, nothing pushed again; then one y offset pushed.
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, blended);
+            const float y = 0.7f;
+            vkCmdPushConstants(c, layout, VK_SHADER_STAGE_VERTEX_BIT, 4, 4, &y);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
@@ -1420,9 +1428,10 @@ TEST_F(ApiBreadth, DescriptorArraysAndVertexPulling) {
         p.layout = layout;
         VkPipeline pipe = k.pipeline(p);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            // Bound before the render pass begins (binding state is not reset by it).
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
             vkCmdDraw(c, 6, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
@@ -2414,6 +2423,58 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         VkPipeline cp = VK_NULL_HANDLE;
         EXPECT_NE(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &cci, nullptr, &cp), VK_SUCCESS);
         EXPECT_EQ(cp, VK_NULL_HANDLE);
+        // A geometry stage (the feature is not reported; without the layer nothing stops the call): refused.
+        {
+            VkPipelineShaderStageCreateInfo st[3] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+            const VkShaderStageFlagBits stages[3] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_GEOMETRY_BIT,
+                                                     VK_SHADER_STAGE_FRAGMENT_BIT};
+            const Spv code[3] = {SPV(draw_vert), SPV(ab_passthrough_geom), SPV(color_frag)};
+            for (int i = 0; i < 3; ++i) {
+                st[i].stage = stages[i];
+                st[i].module = k.shader(code[i]);
+                st[i].pName = "main";
+            }
+            VkVertexInputBindingDescription vb{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+            VkVertexInputAttributeDescription va[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                                                       {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
+            VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+            vi.vertexBindingDescriptionCount = 1;
+            vi.pVertexBindingDescriptions = &vb;
+            vi.vertexAttributeDescriptionCount = 2;
+            vi.pVertexAttributeDescriptions = va;
+            VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+            ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+            VkViewport vp{0, 0, 32, 32, 0, 1};
+            VkRect2D sc{{0, 0}, {32, 32}};
+            VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+            vps.viewportCount = vps.scissorCount = 1;
+            vps.pViewports = &vp;
+            vps.pScissors = &sc;
+            VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+            rs.lineWidth = 1.0f;
+            VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+            ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+            VkPipelineColorBlendAttachmentState cba = opaque();
+            VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+            cb.attachmentCount = 1;
+            cb.pAttachments = &cba;
+            VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+            gci.stageCount = 3;
+            gci.pStages = st;
+            gci.pVertexInputState = &vi;
+            gci.pInputAssemblyState = &ia;
+            gci.pViewportState = &vps;
+            gci.pRasterizationState = &rs;
+            gci.pMultisampleState = &ms;
+            gci.pColorBlendState = &cb;
+            gci.layout = k.empty_layout();
+            gci.renderPass = t.rp;
+            VkPipeline gp = VK_NULL_HANDLE;
+            EXPECT_NE(vkCreateGraphicsPipelines(k.d, VK_NULL_HANDLE, 1, &gci, nullptr, &gp), VK_SUCCESS);
+            EXPECT_EQ(gp, VK_NULL_HANDLE);
+        }
         // The device still draws.
         Pipe ok;
         ok.rp = t.rp;
