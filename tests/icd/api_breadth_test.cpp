@@ -1098,6 +1098,85 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
     });
 }
 
+// Two-sided stencil with different front and back state (static ops, per-face dynamic reference and masks), both
+// windings drawn, on D24_UNORM_S8_UINT; and a reversed-depth viewport (minDepth 1, maxDepth 0, compare GREATER,
+// cleared to 0) as reversed-Z renderers use it.
+TEST_F(ApiBreadth, PerFaceStencilAndReversedDepthRange) {
+    both([](Kit& k) {
+        const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, DS = VK_FORMAT_D24_UNORM_S8_UINT;
+        Device::Image col = k.image(C, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        Device::Image dep =
+            k.image(DS, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &cref;
+        sub.pDepthStencilAttachment = &dref;
+        VkRenderPass rp = k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
+                                         attachment(DS, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
+                                        {sub});
+        VkFramebuffer fb =
+            k.framebuffer(rp,
+                          {k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT),
+                           k.view(dep.image, DS, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)},
+                          32, 32);
+        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+        ds.depthCompareOp = VK_COMPARE_OP_GREATER;
+        ds.stencilTestEnable = VK_TRUE;
+        ds.front = {VK_STENCIL_OP_ZERO,
+                    VK_STENCIL_OP_INCREMENT_AND_CLAMP,
+                    VK_STENCIL_OP_KEEP,
+                    VK_COMPARE_OP_GREATER_OR_EQUAL,
+                    0,
+                    0,
+                    0};
+        ds.back = {VK_STENCIL_OP_KEEP,
+                   VK_STENCIL_OP_INVERT,
+                   VK_STENCIL_OP_DECREMENT_AND_WRAP,
+                   VK_COMPARE_OP_NOT_EQUAL,
+                   0,
+                   0,
+                   0};
+        Pipe p;
+        p.rp = rp;
+        p.ds = &ds;
+        p.dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_STENCIL_COMPARE_MASK,
+                     VK_DYNAMIC_STATE_STENCIL_WRITE_MASK, VK_DYNAMIC_STATE_STENCIL_REFERENCE};
+        VkPipeline pipe = k.pipeline(p);
+        // kTriangle is counter-clockwise in framebuffer space, its reversed copy clockwise: one front, one back.
+        std::vector<Vertex> verts = kTriangle;
+        verts.insert(verts.end(), kTriangle2.rbegin(), kTriangle2.rend());
+        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            VkDeviceSize zero = 0;
+            begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.0f, 0x35)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            VkViewport vp{0, 0, 32, 32, 1.0f, 0.0f};  // reversed depth range
+            vkCmdSetViewport(c, 0, 1, &vp);
+            vkCmdSetStencilReference(c, VK_STENCIL_FACE_FRONT_BIT, 0x40);
+            vkCmdSetStencilReference(c, VK_STENCIL_FACE_BACK_BIT, 0x35);
+            vkCmdSetStencilCompareMask(c, VK_STENCIL_FACE_FRONT_BIT, 0xf0);
+            vkCmdSetStencilCompareMask(c, VK_STENCIL_FACE_BACK_BIT, 0x0f);
+            vkCmdSetStencilWriteMask(c, VK_STENCIL_FACE_FRONT_BIT, 0xff);
+            vkCmdSetStencilWriteMask(c, VK_STENCIL_FACE_BACK_BIT, 0x3c);
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            vkCmdDraw(c, 6, 1, 0, 0);
+            vkCmdSetStencilReference(c, VK_STENCIL_FACE_BACK_BIT, 0x30);
+            vkCmdDraw(c, 3, 1, 6, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes c0 = k.read(col.image, 32, 32, 4);
+        EXPECT_EQ(px(c0, 31, 31)[2], 64);
+        return concat({c0, k.read(dep.image, 32, 32, 4, VK_IMAGE_ASPECT_DEPTH_BIT),
+                       k.read(dep.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT)});
+    });
+}
+
 // ---- Push constants and descriptors ----------------------------------------------------------------------------
 
 // Push constants in both stages at different offsets, updated in pieces between draws.
