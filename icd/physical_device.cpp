@@ -239,9 +239,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    // Multisampled images cannot be sampled (the shader path reads one sample per texel).
+    // Multisampled images cannot be sampled or read as input attachments (the shader path reads one sample per
+    // texel; subpassInputMS is refused).
     pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f) &&
-                                   !(usage & VK_IMAGE_USAGE_SAMPLED_BIT)
+                                   !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
                                ? kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;

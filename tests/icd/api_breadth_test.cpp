@@ -2377,6 +2377,47 @@ TEST_F(ApiBreadth, ImageFormatPropertiesMatchFeatures) {
         }
     }
     EXPECT_GT(accepted, 20);
+    // LINEAR tiling: what the linear features do not have is refused too.
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(pd, VkFormat(fi), &fp);
+        for (auto [usage, feature] : usages) {
+            VkImageFormatProperties ip;
+            const VkResult r = vkGetPhysicalDeviceImageFormatProperties(pd, VkFormat(fi), VK_IMAGE_TYPE_2D,
+                                                                        VK_IMAGE_TILING_LINEAR, usage, 0, &ip);
+            if (!(fp.linearTilingFeatures & feature))
+                EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "linear format " << fi << " usage " << usage;
+            else
+                EXPECT_EQ(r, VK_SUCCESS) << "linear format " << fi << " usage " << usage;
+        }
+    }
+    // Input attachments: every colour-attachment format may be one (it is read by a texel fetch); a depth format
+    // only when it is also sampled; never multisampled. What is accepted, vkCreateImage makes.
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        const VkFormat f = VkFormat(fi);
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(pd, f, &fp);
+        const VkFormatFeatureFlags t = fp.optimalTilingFeatures;
+        const VkImageUsageFlags att = (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT)
+                                          ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT
+                                          : VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        const VkImageUsageFlags usage = att | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;
+        VkImageFormatProperties ip;
+        const VkResult r =
+            vkGetPhysicalDeviceImageFormatProperties(pd, f, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0, &ip);
+        const bool attachment =
+            t & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        if (!attachment) {
+            EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "format " << fi;
+            continue;
+        }
+        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) EXPECT_EQ(r, VK_SUCCESS) << "colour format " << fi;
+        if (r != VK_SUCCESS) continue;
+        EXPECT_EQ(ip.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT)) << "format " << fi;
+        Device::Image img = tilevk_->make_image(f, 16, 8, 1, 1, VK_SAMPLE_COUNT_1_BIT, usage);
+        EXPECT_NE(img.image, VK_NULL_HANDLE) << "format " << fi;
+        if (img.image) tilevk_->destroy(img);
+    }
 }
 
 // ---- Synchronisation and error paths ---------------------------------------------------------------------------
