@@ -29,6 +29,7 @@ namespace {
 #include "ab_push_vert.h"
 #include "ab_sample_frag.h"
 #include "ab_shadow_frag.h"
+#include "ab_spec_frag.h"
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
@@ -76,6 +77,7 @@ struct Pipe {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkRenderPass rp = VK_NULL_HANDLE;
     uint32_t subpass = 0;
+    const VkSpecializationInfo* fs_spec = nullptr;  // fragment stage specialization
 };
 
 VkPipelineColorBlendAttachmentState opaque() {
@@ -272,6 +274,7 @@ class Kit {
         stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         stages[1].module = shader(p.fs);
         stages[1].pName = "main";
+        stages[1].pSpecializationInfo = p.fs_spec;
         VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
         vi.vertexBindingDescriptionCount = uint32_t(p.bindings.size());
         vi.pVertexBindingDescriptions = p.bindings.data();
@@ -1219,6 +1222,59 @@ TEST_F(ApiBreadth, PushConstantsBothStagesWithOffsets) {
                   VK_SUCCESS);
         Bytes b = k.read(t.image.image, 32, 32, 4);
         EXPECT_EQ(px(b, 0, 31)[2], 64);
+        return b;
+    });
+}
+
+// Specialization constants (float, int, bool, and an int sizing an array), three pipelines from one module with
+// different map entries and data layouts, plus one with no specialization (the defaults).
+TEST_F(ApiBreadth, SpecializationConstants) {
+    both([](Kit& k) {
+        Target t = target(k);
+        struct Data {
+            int32_t mode;
+            float scale;
+            VkBool32 invert;
+            int32_t count;
+        };
+        const VkSpecializationMapEntry entries[4] = {{0, offsetof(Data, scale), 4},
+                                                     {3, offsetof(Data, mode), 4},
+                                                     {7, offsetof(Data, invert), 4},
+                                                     {9, offsetof(Data, count), 4}};
+        const Data data[3] = {{1, 0.75f, VK_FALSE, 3}, {2, 1.5f, VK_TRUE, 5}, {0, 0.5f, VK_TRUE, 1}};
+        VkSpecializationInfo infos[3];
+        for (int i = 0; i < 3; ++i) infos[i] = {4, entries, sizeof(Data), &data[i]};
+        infos[2].mapEntryCount = 2;  // only scale and mode: invert and count keep their defaults
+        std::vector<VkPipeline> pipes;
+        for (int i = 0; i < 4; ++i) {
+            Pipe p;
+            p.fs = SPV(ab_spec_frag);
+            p.rp = t.rp;
+            p.blend = {alpha_over()};
+            p.fs_spec = i < 3 ? &infos[i] : nullptr;
+            pipes.push_back(k.pipeline(p));
+        }
+        std::vector<Vertex> verts = kTriangle;
+        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        for (int i = 0; i < 3; ++i)
+            verts.push_back(v(-1.0f + 0.9f * float(i), 1.0f - float(i == 1), 0.1f, 0.9f, 0.3f, 0.6f, 0.7f));
+        verts.push_back(v(-0.3f, -1, 0, 0.1f, 0.8f, 0.2f, 0.9f));
+        verts.push_back(v(1, 0.2f, 0, 0.6f, 0.1f, 0.9f, 0.4f));
+        verts.push_back(v(0.5f, 1, 0, 0.3f, 0.3f, 0.3f, 0.6f));
+        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            VkDeviceSize zero = 0;
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            for (uint32_t i = 0; i < 4; ++i) {
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes[i]);
+                vkCmdDraw(c, 3, 1, 3 * i, 0);
+            }
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes b = k.read(t.image.image, 32, 32, 4);
+        EXPECT_NE(px(b, 10, 12)[2], 64);
         return b;
     });
 }
