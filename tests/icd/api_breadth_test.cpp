@@ -78,6 +78,8 @@ struct Pipe {
     VkRenderPass rp = VK_NULL_HANDLE;
     uint32_t subpass = 0;
     const VkSpecializationInfo* fs_spec = nullptr;  // fragment stage specialization
+    bool no_fragment_stage = false;                 // vertex stage only (depth-only passes)
+    bool rasterizer_discard = false;
 };
 
 VkPipelineColorBlendAttachmentState opaque() {
@@ -306,8 +308,9 @@ class Kit {
         VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
         dyn.dynamicStateCount = uint32_t(p.dynamic.size());
         dyn.pDynamicStates = p.dynamic.data();
+        rs.rasterizerDiscardEnable = p.rasterizer_discard;
         VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gci.stageCount = 2;
+        gci.stageCount = p.no_fragment_stage ? 1 : 2;
         gci.pStages = stages;
         gci.pVertexInputState = &vi;
         gci.pInputAssemblyState = &ia;
@@ -315,7 +318,7 @@ class Kit {
         gci.pRasterizationState = &rs;
         gci.pMultisampleState = &ms;
         gci.pDepthStencilState = p.ds;
-        gci.pColorBlendState = &cb;
+        gci.pColorBlendState = blend.empty() ? nullptr : &cb;
         gci.pDynamicState = p.dynamic.empty() ? nullptr : &dyn;
         gci.layout = p.layout != VK_NULL_HANDLE ? p.layout : empty_layout();
         gci.renderPass = p.rp;
@@ -1767,6 +1770,104 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
             });
         }
     }
+}
+
+// Shadow mapping as engines do it: a depth-only pass (no colour attachment, no fragment stage, depth bias) into a
+// D16 image, then a pass sampling it with a comparison sampler; plus a rasterizer-discard pipeline that must draw
+// nothing.
+TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
+    both([](Kit& k) {
+        const VkFormat D = VK_FORMAT_D16_UNORM;
+        Device::Image shadow = k.image(
+            D, 32, 32,
+            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        VkImageView sv = k.view(shadow.image, D, VK_IMAGE_ASPECT_DEPTH_BIT);
+        VkAttachmentReference dref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.pDepthStencilAttachment = &dref;
+        VkSubpassDependency dep{0,
+                                VK_SUBPASS_EXTERNAL,
+                                VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                                VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                VK_ACCESS_SHADER_READ_BIT,
+                                0};
+        VkRenderPass depth_rp = k.render_pass({attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
+                                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)},
+                                              {sub}, {dep});
+        VkFramebuffer depth_fb = k.framebuffer(depth_rp, {sv}, 32, 32);
+        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        Pipe dp;
+        dp.rp = depth_rp;
+        dp.ds = &ds;
+        dp.no_fragment_stage = true;
+        dp.color_count = 0;
+        dp.depth_bias = true;
+        dp.dynamic = {VK_DYNAMIC_STATE_DEPTH_BIAS};
+        VkPipeline depth_pipe = k.pipeline(dp);
+        dp.rasterizer_discard = true;
+        VkPipeline discard_pipe = k.pipeline(dp);
+        // Second pass: shadow lookups into RGBA32F.
+        Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT);
+        VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+        sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        sci.compareEnable = VK_TRUE;
+        sci.compareOp = VK_COMPARE_OP_LESS;
+        VkSampler smp = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        VkDescriptorImageInfo ii{smp, sv, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        Pipe lp;
+        lp.fs = SPV(ab_shadow_frag);
+        lp.rp = tg.rp;
+        lp.layout = layout;
+        VkPipeline lookup = k.pipeline(lp);
+        std::vector<Vertex> verts = kTriangle;
+        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        verts.push_back(v(-1, -1, 0, 0, 0, 0));
+        verts.push_back(v(3, -1, 0, 2.0f, 0, 1.0f));
+        verts.push_back(v(-1, 3, 0, 0, 2.0f, 1.0f));
+        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            VkDeviceSize zero = 0;
+            begin_pass(c, depth_rp, depth_fb, 32, 32, {clear_depth(1.0f)});
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, discard_pipe);
+            vkCmdSetDepthBias(c, 0.0f, 0.0f, 0.0f);
+            vkCmdDraw(c, 3, 1, 6, 0);  // would cover everything at depth 0: discarded
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipe);
+            vkCmdSetDepthBias(c, 300.0f, 0.0f, 1.5f);
+            vkCmdDraw(c, 6, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+            begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(-1, -1, -1, -1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, lookup);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDraw(c, 3, 1, 6, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes out = k.read(tg.image.image, 32, 32, 16);
+        vkDestroySampler(k.d, smp, nullptr);
+        // The depth pass left shadowed and lit texels: the lookups see both (and the discarded draw none).
+        int lit = 0, shadowed = 0;
+        for (size_t i = 0; i < 32 * 32; ++i) {
+            float a;
+            std::memcpy(&a, out.data() + 16 * i, 4);
+            lit += a == 1.0f;
+            shadowed += a == 0.0f;
+        }
+        EXPECT_GT(lit, 0);
+        EXPECT_GT(shadowed, 0);
+        return out;
+    });
 }
 
 // Rendering into one mip level and one array layer of an image (a single-layer view of level 1, layer 2 as the
