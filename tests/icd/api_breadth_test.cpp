@@ -901,7 +901,10 @@ TEST_F(ApiBreadth, UnusedAttachmentReferenceAndSecondaryClears) {
             inh.subpass = i;
             inh.framebuffer = i == 0 ? VK_NULL_HANDLE : fb;  // the framebuffer is optional
             VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-            bi.flags = VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT | VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+            // The second is executed twice in one primary: SIMULTANEOUS_USE.
+            bi.flags =
+                VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT |
+                (i == 1 ? VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT : VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT);
             bi.pInheritanceInfo = &inh;
             EXPECT_EQ(vkBeginCommandBuffer(sec[i], &bi), VK_SUCCESS);
             VkDeviceSize zero = 0;
@@ -920,7 +923,8 @@ TEST_F(ApiBreadth, UnusedAttachmentReferenceAndSecondaryClears) {
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1)}, VK_SUBPASS_CONTENTS_SECONDARY_COMMAND_BUFFERS);
             vkCmdExecuteCommands(c, 1, &sec[0]);
             vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_SECONDARY_COMMAND_BUFFERS);
-            vkCmdExecuteCommands(c, 1, &sec[1]);
+            const VkCommandBuffer twice[2] = {sec[1], sec[1]};  // blended twice: visible
+            vkCmdExecuteCommands(c, 2, twice);
             vkCmdEndRenderPass(c);
         }),
                   VK_SUCCESS);
@@ -2176,10 +2180,11 @@ TEST_F(ApiBreadth, InstancedIndexedDrawsWithOffsetsAndRestart) {
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, strip);
             VkBuffer bufs[3] = {vb0.buffer, vb1.buffer, vb2.buffer};
             VkDeviceSize offs[3] = {0, 0, 1};
-            vkCmdBindVertexBuffers(c, 0, 3, bufs, offs);
-            vkCmdDraw(c, 4, 2, 0, 0);  // instances 0, 1
-            vkCmdBindIndexBuffer(c, ib32.buffer, 0, VK_INDEX_TYPE_UINT32);
-            vkCmdDrawIndexed(c, 9, 2, 2, 4, 2);  // firstIndex 2, vertexOffset 4, instances 2, 3
+            vkCmdBindVertexBuffers(c, 0, 2, bufs, offs);
+            vkCmdBindVertexBuffers(c, 2, 1, &bufs[2], &offs[2]);            // firstBinding 2 on its own
+            vkCmdDraw(c, 4, 2, 0, 0);                                       // instances 0, 1
+            vkCmdBindIndexBuffer(c, ib32.buffer, 4, VK_INDEX_TYPE_UINT32);  // offset one index
+            vkCmdDrawIndexed(c, 9, 2, 1, 4, 2);  // firstIndex 1 (+1 from the offset), vertexOffset 4, instances 2, 3
             vkCmdBindIndexBuffer(c, ib16.buffer, 2, VK_INDEX_TYPE_UINT16);  // offset 2 bytes
             vkCmdDrawIndexed(c, 7, 1, 0, 7, 4);
             vkCmdDrawIndexed(c, 3, 1, 4, 4, 5);
