@@ -19,6 +19,8 @@ namespace {
 #include "ab_descriptors_frag.h"
 #include "ab_fullscreen_vert.h"
 #include "ab_instanced_vert.h"
+#include "ab_limits_frag.h"
+#include "ab_limits_vert.h"
 #include "ab_mrt_frag.h"
 #include "ab_passthrough_geom.h"
 #include "ab_point_float_vert.h"
@@ -1283,6 +1285,115 @@ TEST_F(ApiBreadth, SpecializationConstants) {
         Bytes b = k.read(t.image.image, 32, 32, 4);
         EXPECT_NE(px(b, 10, 12)[2], 64);
         return b;
+    });
+}
+
+// The limits tilevk reports are usable at their value: 16 vertex attributes from 16 bindings (mixed formats and
+// rates), 56 varying components, 128 bytes of push constants visible to both stages, 4 descriptor sets, 4 colour
+// attachments of 4 formats.
+TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(tilevk_->physical(), &props);
+    const VkPhysicalDeviceLimits& lim = props.limits;
+    ASSERT_GE(lim.maxVertexInputAttributes, 16u);
+    ASSERT_GE(lim.maxVertexInputBindings, 16u);
+    ASSERT_GE(lim.maxVertexOutputComponents, 56u);
+    ASSERT_GE(lim.maxPushConstantsSize, 128u);
+    ASSERT_GE(lim.maxBoundDescriptorSets, 4u);
+    ASSERT_GE(lim.maxColorAttachments, 4u);
+    VkPhysicalDeviceFeatures features{};
+    features.independentBlend = VK_TRUE;
+    Device tdev(tilevk_->physical(), &features), ldev(lavapipe_->physical(), &features);
+    ASSERT_TRUE(tdev.ok() && ldev.ok());
+    both_on(tdev, ldev, [](Kit& k) {
+        const VkFormat fmts[4] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                  VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM};
+        const uint32_t texel[4] = {4, 16, 8, 4};
+        std::vector<Device::Image> imgs;
+        std::vector<VkImageView> views;
+        std::vector<VkAttachmentDescription> atts;
+        std::vector<VkAttachmentReference> refs;
+        for (uint32_t i = 0; i < 4; ++i) {
+            imgs.push_back(
+                k.image(fmts[i], 16, 16, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT));
+            views.push_back(k.view(imgs.back().image, fmts[i], VK_IMAGE_ASPECT_COLOR_BIT));
+            atts.push_back(attachment(fmts[i], VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE));
+            refs.push_back({i, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
+        }
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.colorAttachmentCount = 4;
+        sub.pColorAttachments = refs.data();
+        VkRenderPass rp = k.render_pass(atts, {sub});
+        VkFramebuffer fb = k.framebuffer(rp, views, 16, 16);
+        std::vector<VkDescriptorSetLayout> dsls;
+        std::vector<VkDescriptorSet> sets;
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
+        const VkDeviceSize align = std::max<VkDeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
+        Device::Buffer ubo = k.buffer(4 * align, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        for (uint32_t i = 0; i < 4; ++i) {
+            const float u[4] = {0.1f * float(i + 1), 0.5f, 1.0f - 0.2f * float(i), 0.25f};
+            std::memcpy(static_cast<uint8_t*>(ubo.map) + i * align, u, 16);
+            dsls.push_back(k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}}));
+            sets.push_back(k.descriptor_set(dsls.back()));
+            VkDescriptorBufferInfo bi{ubo.buffer, i * align, 16};
+            k.write(sets.back(), 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &bi, nullptr);
+        }
+        VkPipelineLayout layout =
+            k.pipeline_layout(dsls, {{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 128}});
+        // 16 bindings, one attribute each: formats cycle through float/norm/half, every fourth per instance.
+        const VkFormat afmt[4] = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
+                                  VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_SNORM};
+        const uint32_t asize[4] = {16, 4, 8, 4};
+        Pipe p;
+        p.vs = SPV(ab_limits_vert);
+        p.fs = SPV(ab_limits_frag);
+        p.rp = rp;
+        p.layout = layout;
+        p.width = p.height = 16;
+        p.color_count = 4;
+        p.bindings.clear();
+        p.attrs.clear();
+        std::vector<Device::Buffer> vbs;
+        for (uint32_t i = 0; i < 16; ++i) {
+            const uint32_t f = i == 0 ? 0 : i % 4;
+            const bool inst = i % 4 == 3;
+            p.bindings.push_back({i, asize[f], inst ? VK_VERTEX_INPUT_RATE_INSTANCE : VK_VERTEX_INPUT_RATE_VERTEX});
+            p.attrs.push_back({i, i, afmt[f], 0});
+            std::vector<uint8_t> data = texel_data(f == 0   ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                   : f == 2 ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                            : VK_FORMAT_R8G8B8A8_UNORM,
+                                                   3, 40 + i);
+            if (i == 0) {  // positions: a triangle covering most of the target
+                const float pos[12] = {-0.9f, -0.9f, 0, 1, 0.95f, -0.6f, 0, 1, -0.5f, 0.9f, 0, 1};
+                std::memcpy(data.data(), pos, sizeof pos);
+            }
+            vbs.push_back(k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT));
+        }
+        VkPipeline pipe = k.pipeline(p);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, rp, fb, 16, 16,
+                       {clear_color(0, 0, 0.25f, 1), clear_color(-1, 0, 1, 0), clear_color(0.5f, 0, 0, 1),
+                        clear_color(0, 1, 0, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            std::vector<VkBuffer> bufs;
+            std::vector<VkDeviceSize> offs(16, 0);
+            for (auto& b : vbs) bufs.push_back(b.buffer);
+            vkCmdBindVertexBuffers(c, 0, 16, bufs.data(), offs.data());
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 4, sets.data(), 0, nullptr);
+            float pc[32];
+            for (int i = 0; i < 32; ++i) pc[i] = float((i * 7) % 11) / 10.0f - 0.2f;
+            pc[0] = pc[1] = 0.0f;  // no position offset
+            vkCmdPushConstants(c, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 128, pc);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes out;
+        for (uint32_t i = 0; i < 4; ++i) out = concat({out, k.read(imgs[i].image, 16, 16, texel[i])});
+        EXPECT_NE(px(out, 8, 8, 16)[2], 64);  // attachment 0 drawn in the middle
+        return out;
     });
 }
 
