@@ -17,6 +17,7 @@ namespace {
 #include "ab_array_frag.h"
 #include "ab_compute_comp.h"
 #include "ab_descriptors_frag.h"
+#include "ab_dynamic_frag.h"
 #include "ab_fullscreen_vert.h"
 #include "ab_instanced_vert.h"
 #include "ab_limits_frag.h"
@@ -1478,6 +1479,63 @@ TEST_F(ApiBreadth, DescriptorSetsDynamicOffsetsSeparateSamplers) {
         Bytes b = k.read(t.image.image, 32, 32, 4);
         EXPECT_NE(px(b, 1, 1)[0], px(b, 30, 30)[0]);  // the two dynamic offsets differ
         return b;
+    });
+}
+
+// Dynamic offsets are consumed in set order, then binding number (not declaration order), then array element:
+// set 0 declares binding 2 (an array of two) before binding 0; set 1 has one; five offsets, rebound per draw.
+TEST_F(ApiBreadth, DynamicOffsetOrderAcrossSetsBindingsAndArrays) {
+    both([](Kit& k) {
+        Target t = target(k);
+        const VkShaderStageFlags F = VK_SHADER_STAGE_FRAGMENT_BIT;
+        const VkDescriptorType DYN = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+        VkDescriptorSetLayout l0 = k.set_layout({{2, DYN, 2, F}, {0, DYN, 1, F}});
+        VkDescriptorSetLayout l1 = k.set_layout({{1, DYN, 1, F}});
+        VkPipelineLayout layout = k.pipeline_layout({l0, l1});
+        VkDescriptorSet s0 = k.descriptor_set(l0), s1 = k.descriptor_set(l1);
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
+        const VkDeviceSize align = std::max<VkDeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
+        Device::Buffer ubo = k.buffer(8 * align, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        for (uint32_t i = 0; i < 8; ++i) {
+            const float val[4] = {float(i) / 7.0f, float(7 - i) / 7.0f, float(i % 3) / 2.0f, 1.0f};
+            std::memcpy(static_cast<uint8_t*>(ubo.map) + i * align, val, 16);
+        }
+        VkDescriptorBufferInfo bi[2] = {{ubo.buffer, 0, 16}, {ubo.buffer, 0, 16}};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = s0;
+        w.dstBinding = 2;
+        w.descriptorCount = 2;
+        w.descriptorType = DYN;
+        w.pBufferInfo = bi;
+        vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+        k.write(s0, 0, DYN, bi, nullptr);
+        k.write(s1, 1, DYN, bi, nullptr);
+        Pipe p;
+        p.fs = SPV(ab_dynamic_frag);
+        p.rp = t.rp;
+        p.layout = layout;
+        VkPipeline pipe = k.pipeline(p);
+        std::vector<Vertex> verts = kTriangle;
+        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            VkDeviceSize zero = 0;
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            VkDescriptorSet sets[2] = {s0, s1};
+            // Order: set 0 binding 0, set 0 binding 2 [0], [1], set 1 binding 1.
+            uint32_t offs[4] = {uint32_t(1 * align), uint32_t(4 * align), uint32_t(6 * align), uint32_t(2 * align)};
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 2, sets, 4, offs);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            uint32_t offs1[1] = {uint32_t(7 * align)};
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s1, 1, offs1);
+            vkCmdDraw(c, 3, 1, 3, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        return k.read(t.image.image, 32, 32, 4);
     });
 }
 
