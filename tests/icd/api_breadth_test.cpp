@@ -2465,64 +2465,68 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
         EXPECT_TRUE(tp.bufferFeatures & VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT) << "mandatory vertex format " << f;
     }
     for (VkFormat f : tested) {
-        SCOPED_TRACE("vertex format " + std::to_string(f));
-        both([f](Kit& k) {
-            Target t = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
-            // Element size from a probe: the largest tilevk format is 16 bytes; use a generous odd-ish stride.
-            const uint32_t stride = 20, offset = 4;
-            Pipe p;
-            const bool is_uint = f == VK_FORMAT_R8_UINT || f == VK_FORMAT_R8G8_UINT || f == VK_FORMAT_R8G8B8_UINT ||
-                                 f == VK_FORMAT_R8G8B8A8_UINT || f == VK_FORMAT_R16_UINT ||
-                                 f == VK_FORMAT_R16G16_UINT || f == VK_FORMAT_R16G16B16_UINT ||
-                                 f == VK_FORMAT_R16G16B16A16_UINT || f == VK_FORMAT_R32_UINT ||
-                                 f == VK_FORMAT_R32G32_UINT || f == VK_FORMAT_R32G32B32_UINT ||
-                                 f == VK_FORMAT_R32G32B32A32_UINT || f == VK_FORMAT_A2B10G10R10_UINT_PACK32;
-            const bool is_sint = f == VK_FORMAT_R8_SINT || f == VK_FORMAT_R8G8_SINT || f == VK_FORMAT_R8G8B8_SINT ||
-                                 f == VK_FORMAT_R8G8B8A8_SINT || f == VK_FORMAT_R16_SINT ||
-                                 f == VK_FORMAT_R16G16_SINT || f == VK_FORMAT_R16G16B16_SINT ||
-                                 f == VK_FORMAT_R16G16B16A16_SINT || f == VK_FORMAT_R32_SINT ||
-                                 f == VK_FORMAT_R32G32_SINT || f == VK_FORMAT_R32G32B32_SINT ||
-                                 f == VK_FORMAT_R32G32B32A32_SINT || f == VK_FORMAT_A2B10G10R10_SINT_PACK32;
-            p.vs = is_uint ? SPV(ab_point_uint_vert) : is_sint ? SPV(ab_point_sint_vert) : SPV(ab_point_float_vert);
-            p.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-            p.width = p.height = 4;
-            p.rp = t.rp;
-            p.bindings = {{0, stride, VK_VERTEX_INPUT_RATE_VERTEX}};
-            p.attrs = {{0, 0, f, offset}};
-            VkPipeline pipe = k.pipeline(p);
-            // Bytes: integers and norms take anything; float formats get finite values (no NaN/Inf/denormal
-            // questions): half floats with exponents 10..20, floats in [-4, 4].
-            std::vector<uint8_t> data(16 * stride + 16);
-            std::mt19937 rng(uint32_t(f) * 7919u);
-            for (auto& b : data) b = uint8_t(rng());
-            const bool half = f == VK_FORMAT_R16_SFLOAT || f == VK_FORMAT_R16G16_SFLOAT ||
-                              f == VK_FORMAT_R16G16B16_SFLOAT || f == VK_FORMAT_R16G16B16A16_SFLOAT;
-            const bool single = f == VK_FORMAT_R32_SFLOAT || f == VK_FORMAT_R32G32_SFLOAT ||
-                                f == VK_FORMAT_R32G32B32_SFLOAT || f == VK_FORMAT_R32G32B32A32_SFLOAT;
-            for (uint32_t i = 0; i + 4 <= data.size(); i += 4) {
-                if (half) {
-                    for (int h = 0; h < 2; ++h) {
-                        const uint16_t bits =
-                            uint16_t(((rng() & 1) << 15) | ((10 + rng() % 11) << 10) | (rng() & 1023));
-                        std::memcpy(&data[i + 2 * h], &bits, 2);
+        for (bool unaligned : {false, true}) {
+            SCOPED_TRACE("vertex format " + std::to_string(f) + (unaligned ? " unaligned" : ""));
+            both([f, unaligned](Kit& k) {
+                Target t = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+                // The largest element is 16 bytes. Aligned: stride 20, offset 4; unaligned (legal in Vulkan 1.0, no
+                // alignment rule for vertex input): stride 21, offset 3, so most elements start at odd addresses.
+                const uint32_t stride = unaligned ? 21 : 20, offset = unaligned ? 3 : 4;
+                Pipe p;
+                const bool is_uint = f == VK_FORMAT_R8_UINT || f == VK_FORMAT_R8G8_UINT || f == VK_FORMAT_R8G8B8_UINT ||
+                                     f == VK_FORMAT_R8G8B8A8_UINT || f == VK_FORMAT_R16_UINT ||
+                                     f == VK_FORMAT_R16G16_UINT || f == VK_FORMAT_R16G16B16_UINT ||
+                                     f == VK_FORMAT_R16G16B16A16_UINT || f == VK_FORMAT_R32_UINT ||
+                                     f == VK_FORMAT_R32G32_UINT || f == VK_FORMAT_R32G32B32_UINT ||
+                                     f == VK_FORMAT_R32G32B32A32_UINT || f == VK_FORMAT_A2B10G10R10_UINT_PACK32;
+                const bool is_sint = f == VK_FORMAT_R8_SINT || f == VK_FORMAT_R8G8_SINT || f == VK_FORMAT_R8G8B8_SINT ||
+                                     f == VK_FORMAT_R8G8B8A8_SINT || f == VK_FORMAT_R16_SINT ||
+                                     f == VK_FORMAT_R16G16_SINT || f == VK_FORMAT_R16G16B16_SINT ||
+                                     f == VK_FORMAT_R16G16B16A16_SINT || f == VK_FORMAT_R32_SINT ||
+                                     f == VK_FORMAT_R32G32_SINT || f == VK_FORMAT_R32G32B32_SINT ||
+                                     f == VK_FORMAT_R32G32B32A32_SINT || f == VK_FORMAT_A2B10G10R10_SINT_PACK32;
+                p.vs = is_uint ? SPV(ab_point_uint_vert) : is_sint ? SPV(ab_point_sint_vert) : SPV(ab_point_float_vert);
+                p.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+                p.width = p.height = 4;
+                p.rp = t.rp;
+                p.bindings = {{0, stride, VK_VERTEX_INPUT_RATE_VERTEX}};
+                p.attrs = {{0, 0, f, offset}};
+                VkPipeline pipe = k.pipeline(p);
+                // Bytes: integers and norms take anything; float formats get finite values (no NaN/Inf/denormal
+                // questions): half floats with exponents 10..20, floats in [-4, 4].
+                std::vector<uint8_t> data(16 * stride + 16);
+                std::mt19937 rng(uint32_t(f) * 7919u);
+                for (auto& b : data) b = uint8_t(rng());
+                const bool half = f == VK_FORMAT_R16_SFLOAT || f == VK_FORMAT_R16G16_SFLOAT ||
+                                  f == VK_FORMAT_R16G16B16_SFLOAT || f == VK_FORMAT_R16G16B16A16_SFLOAT;
+                const bool single = f == VK_FORMAT_R32_SFLOAT || f == VK_FORMAT_R32G32_SFLOAT ||
+                                    f == VK_FORMAT_R32G32B32_SFLOAT || f == VK_FORMAT_R32G32B32A32_SFLOAT;
+                for (uint32_t e = 0; e < 16; ++e) {  // components of each element, wherever it starts
+                    const size_t base = size_t(offset) + size_t(e) * stride;
+                    for (int c = 0; c < 4; ++c) {
+                        if (half) {
+                            const uint16_t bits =
+                                uint16_t(((rng() & 1) << 15) | ((10 + rng() % 11) << 10) | (rng() & 1023));
+                            std::memcpy(&data[base + 2 * c], &bits, 2);
+                        } else if (single) {
+                            const float x = float(int32_t(rng() % 2000001) - 1000000) / 250000.0f;
+                            std::memcpy(&data[base + 4 * c], &x, 4);
+                        }
                     }
-                } else if (single) {
-                    const float x = float(int32_t(rng() % 2000001) - 1000000) / 250000.0f;
-                    std::memcpy(&data[i], &x, 4);
                 }
-            }
-            Device::Buffer vb = k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                VkDeviceSize zero = 0;
-                vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
-                vkCmdDraw(c, 16, 1, 0, 0);
-                vkCmdEndRenderPass(c);
-            }),
-                      VK_SUCCESS);
-            return k.read(t.image.image, 4, 4, 16);
-        });
+                Device::Buffer vb = k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
+                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                    VkDeviceSize zero = 0;
+                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    vkCmdDraw(c, 16, 1, 0, 0);
+                    vkCmdEndRenderPass(c);
+                }),
+                          VK_SUCCESS);
+                return k.read(t.image.image, 4, 4, 16);
+            });
+        }
     }
 }
 
