@@ -8,10 +8,13 @@
 #include <deque>
 
 #include "buffer.h"
+#include "buffer_view.h"
 #include "descriptor_pool.h"
 #include "execute.h"
+#include "formats.h"
 #include "framebuffer.h"
 #include "image.h"
+#include "physical_device.h"
 #include "pipeline.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/renderer.h"
@@ -223,6 +226,31 @@ const shader::ImageView* image_of(DrawContext& ctx, const ImageView* v) {
     return &out;
 }
 
+// A uniform texel buffer as shader/ reads it: one row of range / texel-size texels (level 0, one layer), fetched
+// with texelFetch like a 1D image.
+const shader::ImageView* texel_buffer_of(DrawContext& ctx, VkBufferView handle) {
+    const BufferView* v = from_handle<BufferView>(handle);
+    if (v == nullptr || v->buffer == nullptr || v->buffer->data() == nullptr) return nullptr;
+    const FormatInfo* f = find_format(v->format);
+    if (f == nullptr || !(f->buffer_features & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) return nullptr;
+    if (v->offset > v->buffer->size) return nullptr;
+    const VkDeviceSize range = std::min(v->range, v->buffer->size - v->offset);
+    const VkDeviceSize texels = std::min<VkDeviceSize>(range / f->texel_bytes, kMaxTexelBufferElements);
+    if (texels == 0) return nullptr;
+    shader::ImageView& out = ctx.views.emplace_back();
+    out.format = shader_format_of(v->format);
+    if (out.format == shader::Format::Undefined) return nullptr;
+    out.base = v->buffer->data() + v->offset;
+    out.width = uint32_t(texels);
+    out.height = 1;
+    out.levels = 1;
+    out.layers = 1;
+    out.level[0].offset = 0;
+    out.level[0].row_pitch = texels * f->texel_bytes;
+    out.level[0].layer_pitch = out.level[0].row_pitch;
+    return &out;
+}
+
 const shader::SamplerState* sampler_of(DrawContext& ctx, const Sampler* s) {
     if (s == nullptr) return nullptr;
     return &ctx.samplers.emplace_back(sampler_state_of(s->info));
@@ -264,6 +292,9 @@ void build_bindings(ExecState& st, shader::Bindings& b) {
                         break;
                     case VK_DESCRIPTOR_TYPE_SAMPLER:
                         out.sampler = sampler_of(ctx, smp);
+                        break;
+                    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+                        out.image = texel_buffer_of(ctx, d.buffer_view);
                         break;
                     default:
                         continue;  // not reported as supported

@@ -22,7 +22,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxImageDimension3D = 256;
     l.maxImageDimensionCube = 4096;
     l.maxImageArrayLayers = kMaxArrayLayers;
-    l.maxTexelBufferElements = 65536;
+    l.maxTexelBufferElements = kMaxTexelBufferElements;
     l.maxUniformBufferRange = 16384;
     l.maxStorageBufferRange = 1u << 27;
     l.maxPushConstantsSize = 128;

@@ -154,6 +154,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DemoteToHelperInvocation:
         case spv::Capability::Sampled1D:
         case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
+        case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::StorageImageExtendedFormats:
         case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
@@ -418,6 +419,13 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                         p_.io_in.push_back(IoCopy{IoSlot::FragCoord, 1, subpass_coord_word_ + 1});
                         iface_.builtins_read |= bit(BuiltIn::FragCoord);
                     }
+                    break;
+                }
+                if (spv::Dim(t.dim) == spv::Dim::Buffer) {
+                    // Uniform texel buffer: fetched like a 1D image of one level (the icd binds the buffer view
+                    // as one); storage texel buffers (imageLoad/imageStore) are not implemented.
+                    if (t.sampled == 2) fail("unsupported storage texel buffer (imageBuffer)");
+                    if (t.arrayed) fail("invalid arrayed texel buffer");
                     break;
                 }
                 if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D)

@@ -749,6 +749,10 @@ void Translator::op(const Instr& in) {
             if (it.arrayed) flags |= kSampleArray;
             if (spv::Dim(it.dim) == spv::Dim::Dim1D) flags |= kSample1D;
             const spv::Op o = in.op;
+            if (spv::Dim(it.dim) == spv::Dim::Buffer) {
+                if (o != spv::Op::OpImageFetch) fail("texel buffers are read with texelFetch only");
+                flags |= kSample1D;  // one row of `range / texel size` texels, level 0
+            }
             bool dref = o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleDrefExplicitLod ||
                         o == spv::Op::OpImageSampleProjDrefImplicitLod ||
                         o == spv::Op::OpImageSampleProjDrefExplicitLod;
@@ -851,8 +855,10 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpImageQuerySizeLod:
         case spv::Op::OpImageQuerySize: {
             const Type& it = type(val(in[3]).type);
-            uint32_t flags = (it.arrayed ? uint32_t(kSampleArray) : 0u) |
-                             (spv::Dim(it.dim) == spv::Dim::Dim1D ? uint32_t(kSample1D) : 0u);
+            uint32_t flags =
+                (it.arrayed ? uint32_t(kSampleArray) : 0u) |
+                (spv::Dim(it.dim) == spv::Dim::Dim1D || spv::Dim(it.dim) == spv::Dim::Buffer ? uint32_t(kSample1D)
+                                                                                             : 0u);
             uint32_t lod = in.op == spv::Op::OpImageQuerySizeLod ? reg(in[4]) : zero_;
             emit(SOp::QuerySize, def(), reg(in[3]), lod, kNoReg, flags, std::max(1u, type(in[1]).flat));
             return;

@@ -33,6 +33,7 @@ namespace {
 #include "ab_sample_frag.h"
 #include "ab_shadow_frag.h"
 #include "ab_spec_frag.h"
+#include "ab_storage_texel_frag.h"
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
@@ -232,6 +233,7 @@ class Kit {
                                               {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 4},
                                               {VK_DESCRIPTOR_TYPE_SAMPLER, 4},
                                               {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 4},
                                               {VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 4}};
         VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pci.maxSets = 1;
@@ -2228,6 +2230,75 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
     });
 }
 
+// Uniform texel buffers: every format tilevk reports UNIFORM_TEXEL_BUFFER for (lavapipe must too) is read with
+// texelFetch through a buffer view at a non-zero offset, and textureSize gives the view's texel count.
+TEST_F(ApiBreadth, UniformTexelBuffers) {
+    int tested = 0;
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        const VkFormat f = VkFormat(fi);
+        VkFormatProperties tp, lp;
+        vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), f, &tp);
+        vkGetPhysicalDeviceFormatProperties(lavapipe_->physical(), f, &lp);
+        EXPECT_FALSE(tp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT) << "format " << fi;
+        if (!(tp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) continue;
+        ASSERT_TRUE(lp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT) << "format " << fi;
+        ++tested;
+        SCOPED_TRACE("texel buffer format " + std::to_string(fi));
+        both([f](Kit& k) {
+            Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+            VkPhysicalDeviceProperties props;
+            vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
+            const VkDeviceSize offset = std::max<VkDeviceSize>(props.limits.minTexelBufferOffsetAlignment, 16);
+            const uint32_t n = texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT);
+            std::vector<uint8_t> data(offset, 0xEE);
+            const std::vector<uint8_t> texels = texel_data(f, 20, 300 + uint32_t(f));
+            data.insert(data.end(), texels.begin(), texels.end());
+            Device::Buffer buf = k.buffer_of(data, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+            VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+            bvci.buffer = buf.buffer;
+            bvci.format = f;
+            bvci.offset = offset;
+            bvci.range = VkDeviceSize(18) * n;  // 18 texels visible (2 more than the pixels)
+            VkBufferView view = VK_NULL_HANDLE;
+            EXPECT_EQ(vkCreateBufferView(k.d, &bvci, nullptr, &view), VK_SUCCESS);
+            VkDescriptorSetLayout dsl =
+                k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+            VkPipelineLayout layout = k.pipeline_layout({dsl});
+            VkDescriptorSet set = k.descriptor_set(dsl);
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = set;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+            w.pTexelBufferView = &view;
+            vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+            Pipe p;
+            p.vs = SPV(ab_fullscreen_vert);
+            p.fs = SPV(ab_texel_buffer_frag);
+            p.bindings = {};
+            p.attrs = {};
+            p.width = p.height = 4;
+            p.rp = tg.rp;
+            p.layout = layout;
+            VkPipeline pipe = k.pipeline(p);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+                vkCmdDraw(c, 3, 1, 0, 0);
+                vkCmdEndRenderPass(c);
+            }),
+                      VK_SUCCESS);
+            Bytes out = k.read(tg.image.image, 4, 4, 16);
+            float size;
+            std::memcpy(&size, out.data() + 12, 4);
+            EXPECT_EQ(size, 18.0f);  // textureSize = range / texel size
+            vkDestroyBufferView(k.d, view, nullptr);
+            return out;
+        });
+    }
+    EXPECT_GT(tested, 0);
+}
+
 // ---- Transfers -------------------------------------------------------------------------------------------------
 
 // Buffer <-> image copies with bufferRowLength / bufferImageHeight / offsets into mip levels and array layers,
@@ -2839,8 +2910,9 @@ TEST_F(ApiBreadth, FencesSemaphoresEvents) {
 }
 
 // Error paths on tilevk without the validation layer (these calls are valid but must fail cleanly): an allocation
-// larger than the heap, a pipeline whose shader reads a texel buffer (no format has texel-buffer features), a
-// compute pipeline (no compute queue); each returns an error code and a null handle, and the device keeps working.
+// larger than the heap, a pipeline whose shader reads a storage texel buffer (no imageLoad/imageStore), a geometry
+// stage, a compute pipeline (no compute queue); each returns an error code and a null handle, and the device keeps
+// working.
 TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
@@ -2859,9 +2931,9 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         Kit k(dev);
         Target t = target(k);
         VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
         Pipe p;
-        p.fs = SPV(ab_texel_buffer_frag);
+        p.fs = SPV(ab_storage_texel_frag);
         p.rp = t.rp;
         p.layout = k.pipeline_layout({dsl});
         VkResult r = VK_SUCCESS;
