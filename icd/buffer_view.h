@@ -1,6 +1,5 @@
-// VkBufferView: a typed view of a buffer range. No format reports UNIFORM/STORAGE_TEXEL_BUFFER features (shader/
-// has no texel-buffer access: no Buffer-dimension images), so no shader can read one; the object only holds what
-// it was created with, for vkUpdateDescriptorSets.
+// VkBufferView: a typed view of a buffer range. Uniform texel buffers are read by texelFetch as a one-row image
+// (execute_draw.cpp texel_buffer_of); no format reports STORAGE_TEXEL_BUFFER (shader/ has no imageLoad/imageStore).
 #pragma once
 #include "buffer.h"
 

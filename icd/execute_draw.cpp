@@ -8,10 +8,13 @@
 #include <deque>
 
 #include "buffer.h"
+#include "buffer_view.h"
 #include "descriptor_pool.h"
 #include "execute.h"
+#include "formats.h"
 #include "framebuffer.h"
 #include "image.h"
+#include "physical_device.h"
 #include "pipeline.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/renderer.h"
@@ -194,12 +197,57 @@ const shader::ImageView* image_of(DrawContext& ctx, const ImageView* v) {
     out.height = img.level_height(b);
     out.levels = std::min<uint32_t>(v->range.levelCount, uint32_t(out.level.size()));
     out.layers = v->range.layerCount;
+    const VkComponentSwizzle mapping[4] = {v->components.r, v->components.g, v->components.b, v->components.a};
+    for (uint8_t c = 0; c < 4; ++c) {
+        switch (mapping[c]) {
+            case VK_COMPONENT_SWIZZLE_ZERO:
+                out.swizzle[c] = shader::kSwizzleZero;
+                break;
+            case VK_COMPONENT_SWIZZLE_ONE:
+                out.swizzle[c] = shader::kSwizzleOne;
+                break;
+            case VK_COMPONENT_SWIZZLE_R:
+            case VK_COMPONENT_SWIZZLE_G:
+            case VK_COMPONENT_SWIZZLE_B:
+            case VK_COMPONENT_SWIZZLE_A:
+                out.swizzle[c] = uint8_t(mapping[c] - VK_COMPONENT_SWIZZLE_R);
+                break;
+            default:  // IDENTITY
+                out.swizzle[c] = c;
+                break;
+        }
+    }
     for (uint32_t i = 0; i < out.levels; ++i) {
         out.level[i].offset =
             img.layout.level_offset[b + i] + VkDeviceSize(v->range.baseArrayLayer) * img.layout.layer_pitch[b + i];
         out.level[i].row_pitch = img.layout.row_pitch[b + i];
         out.level[i].layer_pitch = img.layout.layer_pitch[b + i];
     }
+    return &out;
+}
+
+// A uniform texel buffer as shader/ reads it: one row of range / texel-size texels (level 0, one layer), fetched
+// with texelFetch like a 1D image.
+const shader::ImageView* texel_buffer_of(DrawContext& ctx, VkBufferView handle) {
+    const BufferView* v = from_handle<BufferView>(handle);
+    if (v == nullptr || v->buffer == nullptr || v->buffer->data() == nullptr) return nullptr;
+    const FormatInfo* f = find_format(v->format);
+    if (f == nullptr || !(f->buffer_features & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) return nullptr;
+    if (v->offset > v->buffer->size) return nullptr;
+    const VkDeviceSize range = std::min(v->range, v->buffer->size - v->offset);
+    const VkDeviceSize texels = std::min<VkDeviceSize>(range / f->texel_bytes, kMaxTexelBufferElements);
+    if (texels == 0) return nullptr;
+    shader::ImageView& out = ctx.views.emplace_back();
+    out.format = shader_format_of(v->format);
+    if (out.format == shader::Format::Undefined) return nullptr;
+    out.base = v->buffer->data() + v->offset;
+    out.width = uint32_t(texels);
+    out.height = 1;
+    out.levels = 1;
+    out.layers = 1;
+    out.level[0].offset = 0;
+    out.level[0].row_pitch = texels * f->texel_bytes;
+    out.level[0].layer_pitch = out.level[0].row_pitch;
     return &out;
 }
 
@@ -239,10 +287,14 @@ void build_bindings(ExecState& st, shader::Bindings& b) {
                         out.sampler = sampler_of(ctx, smp);
                         break;
                     case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+                    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:  // read by subpassLoad as a texel fetch
                         out.image = image_of(ctx, d.image_view);
                         break;
                     case VK_DESCRIPTOR_TYPE_SAMPLER:
                         out.sampler = sampler_of(ctx, smp);
+                        break;
+                    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+                        out.image = texel_buffer_of(ctx, d.buffer_view);
                         break;
                     default:
                         continue;  // not reported as supported

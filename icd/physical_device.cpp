@@ -22,7 +22,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxImageDimension3D = 256;
     l.maxImageDimensionCube = 4096;
     l.maxImageArrayLayers = kMaxArrayLayers;
-    l.maxTexelBufferElements = 65536;
+    l.maxTexelBufferElements = kMaxTexelBufferElements;
     l.maxUniformBufferRange = 16384;
     l.maxStorageBufferRange = 1u << 27;
     l.maxPushConstantsSize = 128;
@@ -64,8 +64,8 @@ VkPhysicalDeviceLimits make_limits() {
     l.subPixelPrecisionBits = 8;  // 15.8 fixed point, as lavapipe
     l.subTexelPrecisionBits = 4;
     l.mipmapPrecisionBits = 4;
-    l.maxDrawIndexedIndexValue = (1u << 24) - 1;  // fullDrawIndexUint32 is off
-    l.maxDrawIndirectCount = 1;                   // multiDrawIndirect is off
+    l.maxDrawIndexedIndexValue = UINT32_MAX;  // fullDrawIndexUint32: indices are 32-bit all the way
+    l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
     l.maxSamplerLodBias = 2.0f;
     l.maxSamplerAnisotropy = 1.0f;
     l.maxViewports = 1;
@@ -146,6 +146,11 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
     features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
     features.independentBlend = VK_TRUE;
+    // Indirect and indexed draws: execute_draw.cpp reads every record (drawCount, stride, firstInstance) and
+    // rast/render fetches 32-bit index values as they are (tests/icd/api_breadth_test.cpp IndirectDrawsWithStride).
+    features.fullDrawIndexUint32 = VK_TRUE;
+    features.multiDrawIndirect = VK_TRUE;
+    features.drawIndirectFirstInstance = VK_TRUE;
     features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
     features.wideLines = VK_TRUE;
     features.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
@@ -220,18 +225,24 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    // Storage images and input attachments are not implemented by the shader path.
-    if (usage & (VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
-        return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // Storage images are not implemented by the shader path. Input attachments are read by subpassLoad as a
+    // texel fetch (shader/translate_ops.cpp), so they need an attachment format the shader path can read.
+    if (usage & VK_IMAGE_USAGE_STORAGE_BIT) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (usage & VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) {
+        if (!(have & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+        if (!(have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)))
+            return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    }
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    // Multisampled images cannot be sampled (the shader path reads one sample per texel).
+    // Multisampled images cannot be sampled or read as input attachments (the shader path reads one sample per
+    // texel; subpassInputMS is refused).
     pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f) &&
-                                   !(usage & VK_IMAGE_USAGE_SAMPLED_BIT)
+                                   !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
                                ? kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;

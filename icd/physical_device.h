@@ -10,6 +10,7 @@ struct Instance;
 constexpr uint32_t kMaxImageDimension = 16384;
 constexpr uint32_t kMaxMipLevels = 15;  // log2(16384) + 1
 constexpr uint32_t kMaxArrayLayers = 256;
+constexpr uint32_t kMaxTexelBufferElements = 65536;  // the Vulkan 1.0 minimum; texel buffers are 1D views
 constexpr VkSampleCountFlags kSampleCounts = VK_SAMPLE_COUNT_1_BIT | VK_SAMPLE_COUNT_4_BIT;
 
 struct PhysicalDevice : DispatchableObject {

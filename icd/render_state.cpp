@@ -59,6 +59,10 @@ bool vertex_format_of(VkFormat f, VertexFormat* out) {
         TVK_VF(R32G32_SINT, kR32G32Sint)
         TVK_VF(R32G32B32_SINT, kR32G32B32Sint)
         TVK_VF(R32G32B32A32_SINT, kR32G32B32A32Sint)
+        TVK_VF(A2B10G10R10_UNORM_PACK32, kA2B10G10R10Unorm)
+        TVK_VF(A2B10G10R10_SNORM_PACK32, kA2B10G10R10Snorm)
+        TVK_VF(A2B10G10R10_UINT_PACK32, kA2B10G10R10Uint)
+        TVK_VF(A2B10G10R10_SINT_PACK32, kA2B10G10R10Sint)
 #undef TVK_VF
         default:
             return false;

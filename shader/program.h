@@ -182,7 +182,11 @@ struct ImageView {
     uint32_t levels = 1;                        // mip levels in the view
     uint32_t layers = 1;                        // array layers in the view
     std::array<ImageLevel, kMaxMipLevels> level{};
+    // The view's component mapping, applied to every fetched/filtered result (not to depth comparisons): per
+    // output channel, the source channel 0-3, or kSwizzleZero / kSwizzleOne.
+    std::array<uint8_t, 4> swizzle{0, 1, 2, 3};
 };
+inline constexpr uint8_t kSwizzleZero = 4, kSwizzleOne = 5;
 
 enum class Filter : uint8_t { Nearest, Linear };
 enum class MipmapMode : uint8_t { Nearest, Linear };

@@ -16,12 +16,18 @@ namespace {
 
 using Vec4 = std::array<float, 4>;
 
+// sRGB -> linear as llvmpipe decodes sampled texels (lp_bld_format_srgb.c lp_build_srgb_to_linear, reached from
+// lp_build_extract_soa_chan): x = float(c); x <= 15 ? x * fl(1/(12.6*255)) : a cubic polynomial evaluated with
+// fmuladd (fused, as on the FMA hosts this file's other lerps assume). Same rule as rast/fragment's blend decode.
 float srgb_to_linear(uint32_t c) {
     static const std::array<float, 256> table = [] {
+        const float c0 = 0.0023f, c1 = 0.0030f / 255.0f, c2 = 0.6935f / (255.0f * 255.0f),
+                    c3 = 0.3012f / (255.0f * 255.0f * 255.0f), lin_k = 1.0f / (12.6f * 255.0f);
         std::array<float, 256> t{};
         for (int i = 0; i < 256; ++i) {
-            double v = i / 255.0;
-            t[i] = float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+            const float x = float(i), x2 = x * x;
+            const float poly = std::fma(std::fma(x2, c3, c1), x, std::fma(x2, c2, c0));
+            t[size_t(i)] = x <= 15.0f ? x * lin_k : poly;
         }
         return t;
     }();
@@ -66,12 +72,15 @@ uint32_t texel_size(Format f) {
     }
 }
 
-// unorm8: c / 255
+// UNORM n-bit -> float as gallivm converts (lp_build_unsigned_norm_to_float): a multiply by the float constant
+// fl(1/(2^n-1)), not a division (they differ in the last bit for some values, visible in float render targets).
+constexpr float kUnorm8Scale = float(1.0 / 255.0);
+constexpr float kUnorm16Scale = float(1.0 / 65535.0);
+
 Vec4 decode(Format f, const uint8_t* p) {
-    // c / 255 from a table (the same float division, done once)
     static const std::array<float, 256> unorm = [] {
         std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = float(i) / 255.0f;
+        for (int i = 0; i < 256; ++i) t[size_t(i)] = float(i) * kUnorm8Scale;
         return t;
     }();
     auto un = [](uint8_t c) { return unorm[c]; };
@@ -106,7 +115,7 @@ Vec4 decode(Format f, const uint8_t* p) {
         case Format::D16_UNORM: {
             uint16_t x;
             std::memcpy(&x, p, 2);
-            return {float(x) / 65535.0f, 0.0f, 0.0f, 1.0f};
+            return {float(x) * kUnorm16Scale, 0.0f, 0.0f, 1.0f};
         }
         case Format::D32_SFLOAT:
             std::memcpy(v, p, 4);
@@ -359,7 +368,17 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
 }
 
 Vec4 bytes_to_float(const Bytes& b) {
-    return {float(b[0]) / 255.0f, float(b[1]) / 255.0f, float(b[2]) / 255.0f, float(b[3]) / 255.0f};
+    return {float(b[0]) * kUnorm8Scale, float(b[1]) * kUnorm8Scale, float(b[2]) * kUnorm8Scale,
+            float(b[3]) * kUnorm8Scale};
+}
+
+Vec4 swizzled(const Vec4& r, const ImageView& img) {
+    Vec4 out;
+    for (int c = 0; c < 4; ++c) {
+        const uint8_t w = img.swizzle[size_t(c)];
+        out[size_t(c)] = w < 4 ? r[w] : w == kSwizzleOne ? 1.0f : 0.0f;
+    }
+    return out;
 }
 
 bool image_ok(const ImageView* img) {
@@ -429,6 +448,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                     const ImageLevel& il = img->level[lv];
                     r = decode(img->format, img->base + il.offset + uint64_t(layer) * il.layer_pitch +
                                                 uint64_t(y) * il.row_pitch + uint64_t(x) * texel_size(img->format));
+                    r = swizzled(r, *img);
                 }
             }
             for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
@@ -549,6 +569,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                 }
                 r = a;
             }
+            if (!dref) r = swizzled(r, *img);  // a depth comparison's result is not remapped
         }
         for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
     }

@@ -153,6 +153,8 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::SampleRateShading:
         case spv::Capability::DemoteToHelperInvocation:
         case spv::Capability::Sampled1D:
+        case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
+        case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::StorageImageExtendedFormats:
         case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
@@ -406,6 +408,26 @@ void Translator::run(const std::vector<uint32_t>& words, std::string_view entry_
                 t.flat = 1;
                 is_type_[in[1]] = 1;
                 if (t.ms) fail("unsupported multisampled image type");
+                if (spv::Dim(t.dim) == spv::Dim::SubpassData) {
+                    // Input attachment (read by OpImageRead only): needs the fragment's pixel, copied in from
+                    // gl_FragCoord into two hidden local words.
+                    if (stage_ != Stage::Fragment) fail("input attachment outside a fragment shader");
+                    if (subpass_coord_word_ == kNoReg) {
+                        subpass_coord_word_ = local_words;
+                        local_words += 2;
+                        p_.io_in.push_back(IoCopy{IoSlot::FragCoord, 0, subpass_coord_word_});
+                        p_.io_in.push_back(IoCopy{IoSlot::FragCoord, 1, subpass_coord_word_ + 1});
+                        iface_.builtins_read |= bit(BuiltIn::FragCoord);
+                    }
+                    break;
+                }
+                if (spv::Dim(t.dim) == spv::Dim::Buffer) {
+                    // Uniform texel buffer: fetched like a 1D image of one level (the icd binds the buffer view
+                    // as one); storage texel buffers (imageLoad/imageStore) are not implemented.
+                    if (t.sampled == 2) fail("unsupported storage texel buffer (imageBuffer)");
+                    if (t.arrayed) fail("invalid arrayed texel buffer");
+                    break;
+                }
                 if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D)
                     fail("unsupported image dimension (only 1D and 2D, arrays included)");
                 if (t.sampled == 2) fail("unsupported storage image (imageLoad/imageStore)");

@@ -749,6 +749,10 @@ void Translator::op(const Instr& in) {
             if (it.arrayed) flags |= kSampleArray;
             if (spv::Dim(it.dim) == spv::Dim::Dim1D) flags |= kSample1D;
             const spv::Op o = in.op;
+            if (spv::Dim(it.dim) == spv::Dim::Buffer) {
+                if (o != spv::Op::OpImageFetch) fail("texel buffers are read with texelFetch only");
+                flags |= kSample1D;  // one row of `range / texel size` texels, level 0
+            }
             bool dref = o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleDrefExplicitLod ||
                         o == spv::Op::OpImageSampleProjDrefImplicitLod ||
                         o == spv::Op::OpImageSampleProjDrefExplicitLod;
@@ -829,11 +833,32 @@ void Translator::op(const Instr& in) {
                 sample(d);
             return;
         }
+        case spv::Op::OpImageRead: {
+            // subpassLoad(input, offset): texelFetch(input, ivec2(gl_FragCoord.xy) + offset, 0) on the bound
+            // view (lavapipe lowers it the same way, nir_lower_input_attachments with frag coords).
+            const Type& it = type(val(in[3]).type);
+            if (it.kind != Type::Image || spv::Dim(it.dim) != spv::Dim::SubpassData)
+                fail("unsupported storage image read (imageLoad)");
+            if (type(it.elem).kind != Type::Float) fail("unsupported integer input attachment");
+            if (in.n > 5 && in[5] != 0) fail("unsupported image operands on subpassLoad");
+            if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+            if (subpass_coord_word_ == kNoReg) fail("input attachment without its pixel coordinate");
+            uint32_t coords = alloc(2);
+            for (uint32_t i = 0; i < 2; ++i) {
+                uint32_t xy = alloc(1);
+                emit(SOp::LoadLocalFixed, xy, kNoReg, kNoReg, kNoReg, subpass_coord_word_ + i);
+                emit(SOp::IAdd, coords + i, emit1(SOp::F2S, xy), reg(in[4]) + i);
+            }
+            emit(SOp::Fetch, def(4), reg(in[3]), coords, zero_, 0u, 2u);
+            return;
+        }
         case spv::Op::OpImageQuerySizeLod:
         case spv::Op::OpImageQuerySize: {
             const Type& it = type(val(in[3]).type);
-            uint32_t flags = (it.arrayed ? uint32_t(kSampleArray) : 0u) |
-                             (spv::Dim(it.dim) == spv::Dim::Dim1D ? uint32_t(kSample1D) : 0u);
+            uint32_t flags =
+                (it.arrayed ? uint32_t(kSampleArray) : 0u) |
+                (spv::Dim(it.dim) == spv::Dim::Dim1D || spv::Dim(it.dim) == spv::Dim::Buffer ? uint32_t(kSample1D)
+                                                                                             : 0u);
             uint32_t lod = in.op == spv::Op::OpImageQuerySizeLod ? reg(in[4]) : zero_;
             emit(SOp::QuerySize, def(), reg(in[3]), lod, kNoReg, flags, std::max(1u, type(in[1]).flat));
             return;

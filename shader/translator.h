@@ -164,6 +164,9 @@ class Translator {
     uint32_t glsl_ext_ = 0;
     uint32_t cur_mask_ = kNoReg;  // mask register of the block being translated
     uint32_t zero_ = kNoReg;
+    // Local word of a hidden copy of gl_FragCoord.xy, made when the module declares a SubpassData image:
+    // subpassLoad reads the input attachment at the fragment's own pixel (kNoReg: none).
+    uint32_t subpass_coord_word_ = kNoReg;
     std::vector<uint32_t> store_masks_;  // per block: mask for side effects
     uint32_t store_mask_ = kNoReg;
     bool buffer_written_ = false;

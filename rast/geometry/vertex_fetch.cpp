@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstring>
+#include <iterator>
 
 namespace tilevk::rast::geometry {
 namespace {
@@ -25,7 +26,14 @@ constexpr VertexFormatInfo kInfo[] = {
     {ComponentKind::kSint, 1, 4, false},  {ComponentKind::kSint, 2, 4, false},  {ComponentKind::kSint, 3, 4, false},
     {ComponentKind::kSint, 4, 4, false},
 };
-static_assert(sizeof(kInfo) / sizeof(kInfo[0]) == static_cast<size_t>(VertexFormat::kCount));
+// The A2B10G10R10 formats (one 32-bit word), after the array formats in VertexFormat.
+constexpr VertexFormatInfo kPackedInfo[] = {
+    {ComponentKind::kUnorm, 4, 1, false, true},
+    {ComponentKind::kSnorm, 4, 1, false, true},
+    {ComponentKind::kUint, 4, 1, false, true},
+    {ComponentKind::kSint, 4, 1, false, true},
+};
+static_assert(std::size(kInfo) + std::size(kPackedInfo) == static_cast<size_t>(VertexFormat::kCount));
 
 uint32_t read_le(const uint8_t* p, int bytes) {
     uint32_t v = 0;
@@ -52,7 +60,8 @@ uint32_t fbits(float f) {
 }  // namespace
 
 VertexFormatInfo vertex_format_info(VertexFormat f) {
-    return kInfo[static_cast<size_t>(f)];
+    const size_t i = static_cast<size_t>(f);
+    return i < std::size(kInfo) ? kInfo[i] : kPackedInfo[i - std::size(kInfo)];
 }
 
 uint32_t vertex_format_size(VertexFormat f) {
@@ -70,10 +79,14 @@ FetchedAttrib convert_element(VertexFormat f, const uint8_t* src) {
     const bool integer = info.kind == ComponentKind::kUint || info.kind == ComponentKind::kSint;
     // Missing components: (0, 0, 0, 1), 1 being integer 1 for pure-integer formats.
     FetchedAttrib out{{0, 0, 0, integer ? 1u : fbits(1.0f)}};
-    const int bits = info.component_bytes * 8;
+    const uint32_t word = info.packed_2_10_10_10 ? read_le(src, 4) : 0;
     for (int c = 0; c < info.components; ++c) {
+        // Packed formats go through the same per-channel rules with their own widths (lp_build_extract_soa_chan
+        // shifts each channel out of the word, then converts it like any other channel of that width).
+        const int bits = info.packed_2_10_10_10 ? (c == 3 ? 2 : 10) : info.component_bytes * 8;
         const int mem_c = info.bgra ? (c == 3 ? 3 : 2 - c) : c;
-        const uint32_t raw = read_le(src + mem_c * info.component_bytes, info.component_bytes);
+        const uint32_t raw = info.packed_2_10_10_10 ? (word >> (10 * c)) & ((1u << bits) - 1u)
+                                                    : read_le(src + mem_c * info.component_bytes, info.component_bytes);
         switch (info.kind) {
             case ComponentKind::kFloat:
                 out.w[c] = raw;

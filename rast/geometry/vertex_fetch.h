@@ -58,6 +58,10 @@ enum class VertexFormat : uint8_t {
     kR32G32Sint,
     kR32G32B32Sint,
     kR32G32B32A32Sint,
+    kA2B10G10R10Unorm,  // one 32-bit word: R bits 0-9, G 10-19, B 20-29, A 30-31
+    kA2B10G10R10Snorm,
+    kA2B10G10R10Uint,
+    kA2B10G10R10Sint,
     kCount
 };
 
@@ -65,9 +69,10 @@ enum class ComponentKind : uint8_t { kFloat, kHalf, kUnorm, kSnorm, kUint, kSint
 
 struct VertexFormatInfo {
     ComponentKind kind;
-    uint8_t components;       // 1..4
-    uint8_t component_bytes;  // 1, 2 or 4
-    bool bgra;                // B8G8R8A8: memory order B,G,R,A
+    uint8_t components;              // 1..4
+    uint8_t component_bytes;         // 1, 2 or 4 (packed formats: element bytes / components)
+    bool bgra;                       // B8G8R8A8: memory order B,G,R,A
+    bool packed_2_10_10_10 = false;  // A2B10G10R10: 10-bit R, G, B and 2-bit A in one little-endian word
 };
 
 VertexFormatInfo vertex_format_info(VertexFormat f);

@@ -657,14 +657,14 @@ TEST_F(Queries, TimestampsAreMonotonicNanoseconds) {
     vkDestroyQueryPool(dev.device(), pool, nullptr);
 }
 
-// No texel-buffer format features are reported: shader/ cannot read texel buffers.
-TEST_F(Queries, NoTexelBufferFormatFeatures) {
+// No storage texel-buffer format features are reported: shader/ has no imageLoad/imageStore. (Uniform texel
+// buffers are read by texelFetch: tests/icd/api_breadth_test.cpp UniformTexelBuffers.)
+TEST_F(Queries, NoStorageTexelBufferFormatFeatures) {
     for (int f = 1; f <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++f) {
         VkFormatProperties fp;
         vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), VkFormat(f), &fp);
         EXPECT_EQ(fp.bufferFeatures &
-                      (VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT | VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT |
-                       VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_ATOMIC_BIT),
+                      (VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT | VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_ATOMIC_BIT),
                   0u)
             << "format " << f;
     }
@@ -679,7 +679,7 @@ TEST(QueriesInvalid, BufferViewsDispatchSparseStatistics) {
     Device dev(pd);
     ASSERT_TRUE(dev.ok());
     VkDevice d = dev.device();
-    // Buffer views: the object exists (a texel-buffer descriptor may name it), nothing can read it.
+    // Buffer views: the object exists; an offset past the buffer is refused.
     Device::Buffer buf = dev.make_buffer(256, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
     bvci.buffer = buf.buffer;

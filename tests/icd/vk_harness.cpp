@@ -87,7 +87,7 @@ VkPhysicalDevice Harness::find_device(const char* prefix) const {
     return VK_NULL_HANDLE;
 }
 
-Device::Device(VkPhysicalDevice pd) : pd_(pd) {
+Device::Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features) : pd_(pd) {
     float prio = 1.0f;
     VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     q.queueFamilyIndex = 0;
@@ -96,6 +96,7 @@ Device::Device(VkPhysicalDevice pd) : pd_(pd) {
     VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     ci.queueCreateInfoCount = 1;
     ci.pQueueCreateInfos = &q;
+    ci.pEnabledFeatures = features;
     if (vkCreateDevice(pd, &ci, nullptr, &device_) != VK_SUCCESS) {
         device_ = VK_NULL_HANDLE;
         return;

@@ -40,7 +40,8 @@ class Harness {
 // A logical device with its queue, a command pool, and helpers.
 class Device {
   public:
-    explicit Device(VkPhysicalDevice pd);
+    // `features`: what to enable (none when null).
+    explicit Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features = nullptr);
     ~Device();
     VkDevice device() const { return device_; }
     VkPhysicalDevice physical() const { return pd_; }

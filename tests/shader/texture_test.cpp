@@ -13,6 +13,17 @@ using namespace tilevk::shader;
 using tilevk::shader::test::make_program;
 
 namespace {
+// gallivm's UNORM8 -> float: a multiply by fl(1/255), not a division (lp_build_unsigned_norm_to_float).
+constexpr float kUnorm8 = float(1.0 / 255.0);
+// gallivm's sRGB8 -> linear (lp_build_srgb_to_linear): linear segment below 16, else the cubic
+// 0.0023 + 0.0030/255 x + 0.6935/255^2 x^2 + 0.3012/255^3 x^3 evaluated as fmuladd(fmuladd(x2, c3, c1), x,
+// fmuladd(x2, c2, c0)); tests/icd/api_breadth_test.cpp compares sampled sRGB texels with lavapipe itself.
+float srgb_decode(uint8_t u8) {
+    const float x = float(u8), x2 = x * x;
+    if (x <= 15.0f) return x * (1.0f / (12.6f * 255.0f));
+    return std::fma(std::fma(x2, 0.3012f / (255.0f * 255.0f * 255.0f), 0.0030f / 255.0f), x,
+                    std::fma(x2, 0.6935f / (255.0f * 255.0f), 0.0023f));
+}
 float f(uint32_t x) {
     return std::bit_cast<float>(x);
 }
@@ -48,7 +59,7 @@ struct TestImage {
     }
     float texel(uint32_t L, int x, int y, int c) const {
         uint32_t ww = std::max(1u, view.width >> L);
-        return float(bytes[view.level[L].offset + (uint32_t(y) * ww + uint32_t(x)) * 4 + uint32_t(c)]) / 255.0f;
+        return float(bytes[view.level[L].offset + (uint32_t(y) * ww + uint32_t(x)) * 4 + uint32_t(c)]) * kUnorm8;
     }
 };
 
@@ -173,7 +184,7 @@ TEST(ShaderTexture, ImplicitLodFromDerivatives) {
         }
         r.run();
         uint32_t level = uint32_t(std::log2(k));
-        for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), float(40 * level) / 255.0f) << "k " << k;
+        for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), float(40 * level) * kUnorm8) << "k " << k;
     }
     EXPECT_TRUE(r.prog->interface().uses_derivatives);
 }
@@ -213,9 +224,7 @@ TEST(ShaderTexture, SrgbAndFloatFormats) {
     }
     r.run();
     for (int l = 0; l < kLanes; ++l) {
-        double c = double(uint8_t((l % 4) * 16)) / 255.0;
-        double lin = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-        EXPECT_EQ(r.out(l, 0), float(lin));
+        EXPECT_EQ(r.out(l, 0), srgb_decode(uint8_t((l % 4) * 16)));
         EXPECT_EQ(r.out(l, 3), 1.0f);  // alpha is linear
     }
     // RGBA32F
@@ -359,7 +368,7 @@ TEST(ShaderTextureFixed8, BilinearClampToEdge) {
             auto b = [&](int i, int j) { return int(std::lround(img.texel(0, i, j, c) * 255.0f)); };
             int top = lerp_model(x.w, b(x.i0, y.i0), b(x.i1, y.i0));
             int bottom = lerp_model(x.w, b(x.i0, y.i1), b(x.i1, y.i1));
-            EXPECT_EQ(r.out(l, c), float(lerp_model(y.w, top, bottom)) / 255.0f) << l << " " << c;
+            EXPECT_EQ(r.out(l, c), float(lerp_model(y.w, top, bottom)) * kUnorm8) << l << " " << c;
         }
     }
 }
@@ -380,8 +389,8 @@ TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoWrapsFromTheFloatCoordinate) {
         // t = 0.5: c = 768 - 128 = 640: rows 2 and 3 with weight 128
         const int* k = e[l % 2];
         int top = lerp_model(k[2], k[0] * 16, k[1] * 16);  // red = x*16 on level 0
-        EXPECT_EQ(r.out(l, 0), float(top) / 255.0f) << l;
-        EXPECT_EQ(r.out(l, 1), float(lerp_model(128, 32, 48)) / 255.0f) << l;  // green = y*16
+        EXPECT_EQ(r.out(l, 0), float(top) * kUnorm8) << l;
+        EXPECT_EQ(r.out(l, 1), float(lerp_model(128, 32, 48)) * kUnorm8) << l;  // green = y*16
     }
 }
 
@@ -398,12 +407,12 @@ TEST(ShaderTextureFixed8, MipLinearUsesFastLog2AndEightBitWeight) {
         r.block.inputs[0][1][l] = u((float(lane_y(l)) + 0.5f) * 3.0f / 8.0f);
     }
     r.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), 63.0f / 255.0f) << l;
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), 63.0f * kUnorm8) << l;
     // explicit LOD 2.25 on RGBA8 + REPEAT: weight 64; 80 + ((64*40 + 128) >> 8) = 90
     FsTex e("color = textureLod(tex, vec2(0.01, 0.01), 2.25);");
     e.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
     e.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(e.out(l, 2), 90.0f / 255.0f) << l;
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(e.out(l, 2), 90.0f * kUnorm8) << l;
 }
 
 TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
@@ -415,8 +424,7 @@ TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
     FsTex r("color = textureLod(tex, vec2(0.125, 0.0625), 0.0);");  // halfway between texels 0 and 1, row 0
     r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
     r.run();
-    double c1 = 16.0 / 255.0;
-    float lin1 = float(std::pow((c1 + 0.055) / 1.055, 2.4));
+    float lin1 = srgb_decode(16);
     EXPECT_EQ(r.out(0, 0), 0.5f * 0.0f + 0.5f * lin1);
 }
 
@@ -448,5 +456,5 @@ TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoNearestTruncatesTheWrappedFraction)
     for (int l = 0; l < kLanes; ++l)
         r.block.inputs[0][0][l] = u(l % 2 ? 0x1.2aaaaap+0f : 0.25f), r.block.inputs[0][1][l] = u(0.5f);
     r.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : 16.0f / 255.0f) << l;  // 0.25*6 -> 1
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : 16.0f * kUnorm8) << l;  // 0.25*6 -> 1
 }

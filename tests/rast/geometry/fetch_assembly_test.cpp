@@ -68,6 +68,33 @@ TEST(VertexFetch, Unorm16AndSnorm) {
     }
 }
 
+// A2B10G10R10: R in bits 0-9, G 10-19, B 20-29, A 30-31 of one little-endian word; each channel converted with
+// its own width (unorm 10: c * fl(1/1023), snorm 2-bit alpha: max(c * 1, -1)).
+TEST(VertexFetch, Packed2101010) {
+    const uint32_t word = 1023u | (512u << 10) | (1u << 20) | (2u << 30);  // R max, G 512, B 1, A 0b10
+    uint8_t b[4];
+    for (int i = 0; i < 4; ++i) b[i] = static_cast<uint8_t>(word >> (8 * i));
+    EXPECT_EQ(vertex_format_size(VertexFormat::kA2B10G10R10Unorm), 4u);
+    const FetchedAttrib un = convert_element(VertexFormat::kA2B10G10R10Unorm, b);
+    EXPECT_EQ(as_f(un.w[0]), 1.0f);
+    EXPECT_EQ(un.w[1], bits(mul_round(512, 1.0 / 1023.0)));
+    EXPECT_EQ(un.w[2], bits(mul_round(1, 1.0 / 1023.0)));
+    EXPECT_EQ(un.w[3], bits(mul_round(2, 1.0 / 3.0)));
+    const FetchedAttrib sn = convert_element(VertexFormat::kA2B10G10R10Snorm, b);
+    EXPECT_EQ(as_f(sn.w[0]), -mul_round(1, 1.0 / 511.0));  // 1023 = -1 in 10-bit two's complement
+    EXPECT_EQ(as_f(sn.w[1]), -1.0f);                       // -512 * (1/511) < -1: clamped
+    EXPECT_EQ(as_f(sn.w[3]), -1.0f);                       // 2-bit 0b10 = -2, times 1, clamped
+    const FetchedAttrib ui = convert_element(VertexFormat::kA2B10G10R10Uint, b);
+    EXPECT_EQ(ui.w[0], 1023u);
+    EXPECT_EQ(ui.w[1], 512u);
+    EXPECT_EQ(ui.w[2], 1u);
+    EXPECT_EQ(ui.w[3], 2u);
+    const FetchedAttrib si = convert_element(VertexFormat::kA2B10G10R10Sint, b);
+    EXPECT_EQ(static_cast<int32_t>(si.w[0]), -1);
+    EXPECT_EQ(static_cast<int32_t>(si.w[1]), -512);
+    EXPECT_EQ(static_cast<int32_t>(si.w[3]), -2);
+}
+
 TEST(VertexFetch, IntegersHalfFloatsBgraAndFill) {
     const uint8_t s8[4] = {0x80, 0x7F, 0xFF, 0x00};
     const FetchedAttrib a = convert_element(VertexFormat::kR8G8B8A8Sint, s8);
