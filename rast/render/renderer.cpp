@@ -186,6 +186,10 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         rec.varyings.carry_point_size = true;
         rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
     }
+    if (pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::PointCoord))) {
+        rec.varyings.point_coord_slot = static_cast<int32_t>(rec.varyings.slot_interp.size());
+        rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
+    }
     rec.depth_stencil = pipe.depth_stencil;
     rec.depth_stencil.min_depth = std::min(pipe.viewport.min_depth, pipe.viewport.max_depth);
     rec.depth_stencil.max_depth = std::max(pipe.viewport.min_depth, pipe.viewport.max_depth);
@@ -688,6 +692,8 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     geometry::PointSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
     cfg.multisample = fb_.samples > 1;
+    cfg.point_coord_attrib = rec.varyings.point_coord_slot;
+    cfg.point_coord_perspective = true;  // PNTC has no interpolation qualifier: perspective in lavapipe
     geometry::PointSetup ps;
     if (geometry::setup_point(cfg, v, size, &ps, attrib_planes_.data()) != geometry::PrimSetupStatus::kOk) return;
     BoxInput in;
