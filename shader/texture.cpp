@@ -66,12 +66,17 @@ uint32_t texel_size(Format f) {
     }
 }
 
-// unorm8: c / 255
+// unorm8: float(c) * float(1/255), gallivm's lp_build_unsigned_norm_to_float (a multiply by the rounded
+// reciprocal, not a division: 14 gives 0x3d60e0e2 where 14/255 is 0x3d60e0e1). Only float targets show the
+// last bit; found by the random scene fuzzer (cases_random.cpp) on R32 targets.
+float unorm8_to_float(uint32_t c) {
+    return float(c) * float(1.0 / 255.0);
+}
+
 Vec4 decode(Format f, const uint8_t* p) {
-    // c / 255 from a table (the same float division, done once)
     static const std::array<float, 256> unorm = [] {
         std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = float(i) / 255.0f;
+        for (int i = 0; i < 256; ++i) t[size_t(i)] = unorm8_to_float(uint32_t(i));
         return t;
     }();
     auto un = [](uint8_t c) { return unorm[c]; };
@@ -359,7 +364,7 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
 }
 
 Vec4 bytes_to_float(const Bytes& b) {
-    return {float(b[0]) / 255.0f, float(b[1]) / 255.0f, float(b[2]) / 255.0f, float(b[3]) / 255.0f};
+    return {unorm8_to_float(b[0]), unorm8_to_float(b[1]), unorm8_to_float(b[2]), unorm8_to_float(b[3])};
 }
 
 bool image_ok(const ImageView* img) {

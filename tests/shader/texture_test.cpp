@@ -19,6 +19,11 @@ float f(uint32_t x) {
 uint32_t u(float x) {
     return std::bit_cast<uint32_t>(x);
 }
+// An RGBA8 texel channel as lavapipe hands it to the shader: float(c) times the rounded reciprocal (gallivm
+// lp_build_unsigned_norm_to_float), not c / 255 (they differ in the last bit for some c, e.g. 14).
+float unorm8(uint32_t c) {
+    return float(c) * float(1.0 / 255.0);
+}
 
 // An RGBA8 image 8x8 with a full mip chain; texel (x, y) of level L = (x*16+L, y*16, 40*L, 255).
 struct TestImage {
@@ -48,7 +53,7 @@ struct TestImage {
     }
     float texel(uint32_t L, int x, int y, int c) const {
         uint32_t ww = std::max(1u, view.width >> L);
-        return float(bytes[view.level[L].offset + (uint32_t(y) * ww + uint32_t(x)) * 4 + uint32_t(c)]) / 255.0f;
+        return unorm8(bytes[view.level[L].offset + (uint32_t(y) * ww + uint32_t(x)) * 4 + uint32_t(c)]);
     }
 };
 
@@ -173,7 +178,7 @@ TEST(ShaderTexture, ImplicitLodFromDerivatives) {
         }
         r.run();
         uint32_t level = uint32_t(std::log2(k));
-        for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), float(40 * level) / 255.0f) << "k " << k;
+        for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), unorm8(40 * level)) << "k " << k;
     }
     EXPECT_TRUE(r.prog->interface().uses_derivatives);
 }
@@ -359,7 +364,7 @@ TEST(ShaderTextureFixed8, BilinearClampToEdge) {
             auto b = [&](int i, int j) { return int(std::lround(img.texel(0, i, j, c) * 255.0f)); };
             int top = lerp_model(x.w, b(x.i0, y.i0), b(x.i1, y.i0));
             int bottom = lerp_model(x.w, b(x.i0, y.i1), b(x.i1, y.i1));
-            EXPECT_EQ(r.out(l, c), float(lerp_model(y.w, top, bottom)) / 255.0f) << l << " " << c;
+            EXPECT_EQ(r.out(l, c), unorm8(uint32_t(lerp_model(y.w, top, bottom)))) << l << " " << c;
         }
     }
 }
@@ -380,8 +385,8 @@ TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoWrapsFromTheFloatCoordinate) {
         // t = 0.5: c = 768 - 128 = 640: rows 2 and 3 with weight 128
         const int* k = e[l % 2];
         int top = lerp_model(k[2], k[0] * 16, k[1] * 16);  // red = x*16 on level 0
-        EXPECT_EQ(r.out(l, 0), float(top) / 255.0f) << l;
-        EXPECT_EQ(r.out(l, 1), float(lerp_model(128, 32, 48)) / 255.0f) << l;  // green = y*16
+        EXPECT_EQ(r.out(l, 0), unorm8(uint32_t(top))) << l;
+        EXPECT_EQ(r.out(l, 1), unorm8(uint32_t(lerp_model(128, 32, 48)))) << l;  // green = y*16
     }
 }
 
@@ -398,12 +403,12 @@ TEST(ShaderTextureFixed8, MipLinearUsesFastLog2AndEightBitWeight) {
         r.block.inputs[0][1][l] = u((float(lane_y(l)) + 0.5f) * 3.0f / 8.0f);
     }
     r.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), 63.0f / 255.0f) << l;
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 2), unorm8(63)) << l;
     // explicit LOD 2.25 on RGBA8 + REPEAT: weight 64; 80 + ((64*40 + 128) >> 8) = 90
     FsTex e("color = textureLod(tex, vec2(0.01, 0.01), 2.25);");
     e.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
     e.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(e.out(l, 2), 90.0f / 255.0f) << l;
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(e.out(l, 2), unorm8(90)) << l;
 }
 
 TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
@@ -448,5 +453,5 @@ TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoNearestTruncatesTheWrappedFraction)
     for (int l = 0; l < kLanes; ++l)
         r.block.inputs[0][0][l] = u(l % 2 ? 0x1.2aaaaap+0f : 0.25f), r.block.inputs[0][1][l] = u(0.5f);
     r.run();
-    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : 16.0f / 255.0f) << l;  // 0.25*6 -> 1
+    for (int l = 0; l < kLanes; ++l) EXPECT_EQ(r.out(l, 0), l % 2 ? 0.0f : unorm8(16)) << l;  // 0.25*6 -> 1
 }
