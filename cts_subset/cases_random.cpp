@@ -29,9 +29,11 @@
 //   1 px), 372 (polygon mode LINE, instanced, depth clamp, 1 px), 630 (wide 1.5 lines clipped at the viewport,
 //   1 px), 821 (indexed line strip with a 0.2-px segment, 1 px; tilevk covers samples lavapipe does not). All pass at
 //   1x.
-// - texture sampling on float targets (cause not established): 223 (LINEAR, last bits), 720 (one edge pixel takes
-//   another texel, plus last bits of filtered values; 119 px with blending), 787 (1 px).
-// - 1056 (2 px, not analysed).
+// - gallivm's float (SoA) sampling path on float targets (cause not established): 223 (32x21 texture, MIRRORED_REPEAT,
+//   min LINEAR, mip LINEAR: last bits of 4 px) and 720 (2x22, 5 mips, CLAMP_TO_BORDER, mip LINEAR, noperspective
+//   coordinates: last bits, and one edge pixel that takes the border where lavapipe takes a texel). With the target
+//   switched to RGBA8 both seeds pass.
+// - 787 (polygon mode POINT, instanced, RGBA32F, 1 px) and 1056 (2 px): not analysed.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -504,6 +506,11 @@ void dump_scene(uint32_t seed, const Scene& s) {
             d.blend_constants[2], d.blend_constants[3], d.depth_test, d.depth_write, d.depth_op, d.depth_clamp,
             d.depth_bias, d.bias_constant, d.bias_slope, d.bias_clamp, d.stencil_test, d.sample_mask,
             d.alpha_to_coverage);
+        if (d.texture)
+            std::fprintf(
+                stderr, "  texture %ux%u mips %u pattern %d mag %d min %d mip %d wrap %d border %d max lod %g\n",
+                d.texture->width, d.texture->height, d.texture->mip_levels, int(d.texture->pattern), d.texture->mag,
+                d.texture->min, d.texture->mip_mode, d.texture->wrap, d.texture->border, d.texture->max_lod);
         if (d.viewport)
             std::fprintf(stderr, "  viewport %g %g %g %g depth %g %g\n", d.viewport->x, d.viewport->y,
                          d.viewport->width, d.viewport->height, d.viewport->minDepth, d.viewport->maxDepth);
