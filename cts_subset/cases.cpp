@@ -4,6 +4,7 @@ namespace tilevk::cts {
 
 void add_quirk_cases(CaseList& out);   // cases_quirks.cpp
 void add_linear_cases(CaseList& out);  // cases_linear.cpp
+void add_random_cases(CaseList& out);  // cases_random.cpp
 
 CaseList all_cases() {
     CaseList out;
@@ -23,6 +24,7 @@ CaseList all_cases() {
     add_blit_cases(out);
     add_query_cases(out);
     add_linear_cases(out);
+    add_random_cases(out);
     return out;
 }
 

@@ -17,9 +17,49 @@ Scene random_primitives(VkPrimitiveTopology topo, uint32_t count, uint32_t seed,
     return one_draw(d, 128, 128);
 }
 
+// gl_PointCoord (found by cases_random.cpp: tilevk's shaders read 0 for it). One size-8 point centred on pixel
+// corner (32,32) at w = 1, then perspective points (w != 1) of several sizes, all writing vec4(gl_PointCoord, 0, 1).
+Scene point_coord_scene(VkSampleCountFlagBits samples) {
+    Draw d;
+    d.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+    d.vertex_glsl =
+        "#version 450\n"
+        "layout(location=0) in vec4 in_pos;\n"
+        "layout(location=1) in vec4 in_color;\n"  // every attribute of the runner's layout is consumed
+        "layout(location=2) in vec2 in_uv;\n"
+        "layout(location=3) in float in_psize;\n"
+        "void main() { gl_Position = in_pos; gl_PointSize = in_psize; }\n";
+    d.fragment_glsl =
+        "#version 450\n"
+        "layout(location=0) out vec4 o_color;\n"
+        "void main() { o_color = vec4(gl_PointCoord, 0.0, 1.0); }\n";
+    Vertex centre = vtx(0, 0);
+    centre.point_size = 8;
+    d.vertices.push_back(centre);
+    Lcg rng{4242};
+    for (int i = 0; i < 10; ++i) {  // right of x = 42 px: clear of the first point
+        Vertex v = vtx(rng.range(0.5f, 1.0f), rng.range(-1.0f, 1.0f), 0.5f, rng.range(0.5f, 3.0f));
+        v.point_size = rng.range(1.0f, 12.0f);
+        d.vertices.push_back(v);
+    }
+    Scene s = one_draw(d);
+    s.target.samples = samples;
+    return s;
+}
+
 }  // namespace
 
 void add_primitive_cases(CaseList& out) {
+    // 1x: the size-8 point covers pixels 28..35; PointCoord at pixel 28's centre is 0.5/8 (unorm8 16), at pixel 35's
+    // 7.5/8 (239), origin upper-left. At 4x lavapipe's point planes keep the 1x half-pixel offset (notes §6), so
+    // only the comparison judges it.
+    out.push_back({"rasterization.primitives.point_coord", [] { return point_coord_scene(VK_SAMPLE_COUNT_1_BIT); },
+                   all_of({pixel_is(28, 28, rgba8(16, 16, 0, 255)), pixel_is(35, 28, rgba8(239, 16, 0, 255)),
+                           pixel_is(28, 35, rgba8(16, 239, 0, 255)), pixel_is(35, 35, rgba8(239, 239, 0, 255)),
+                           pixel_is(27, 28, 0), pixel_is(36, 35, 0)}),
+                   ""});
+    out.push_back({"rasterization.primitives.point_coord_msaa4",
+                   [] { return point_coord_scene(VK_SAMPLE_COUNT_4_BIT); }, nullptr, ""});
     struct Row {
         const char* name;
         VkPrimitiveTopology topo;

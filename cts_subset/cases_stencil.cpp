@@ -102,6 +102,23 @@ void add_stencil_cases(CaseList& out) {
     out.push_back({"stencil.two_sided", [=] { return stencil_scene(fmt, front, back, false); }, nullptr, ""});
     out.push_back({"stencil.two_sided_d32s8",
                    [=] { return stencil_scene(VK_FORMAT_D32_SFLOAT_S8_UINT, front, back, false); }, nullptr, ""});
+    // Polygon modes LINE/POINT: lavapipe's edges and corners are front facing (front stencil state) unless the
+    // fragment shader reads gl_FrontFacing, which makes draw inject the triangle's facing (found by the random
+    // scene fuzzer, seeds 429/508/730/770 of 49..848: tilevk used the triangle's facing always).
+    for (VkPolygonMode mode : {VK_POLYGON_MODE_LINE, VK_POLYGON_MODE_POINT})
+        for (bool reads_facing : {false, true}) {
+            const std::string name = std::string("stencil.two_sided_polygon_mode_") +
+                                     (mode == VK_POLYGON_MODE_LINE ? "line" : "point") +
+                                     (reads_facing ? "_reads_facing" : "");
+            out.push_back({name,
+                           [=] {
+                               Scene s = stencil_scene(fmt, front, back, false);
+                               s.draws[1].polygon_mode = mode;
+                               if (reads_facing) s.draws[1].frag = Frag::kFacing;
+                               return s;
+                           },
+                           nullptr, ""});
+        }
 }
 
 }  // namespace tilevk::cts

@@ -88,6 +88,20 @@ void add_texture_cases(CaseList& out) {
     lod0.mip_levels = 7;
     lod0.max_lod = 0.0f;
     out.push_back({"texture.mipmap.max_lod_0", [=] { return textured(lod0, 0.0f, 1.0f, 0.3f); }, nullptr, ""});
+    // Float targets keep the shader's texel values unrounded: an RGBA8 texel is float(c) * float(1/255) in lavapipe
+    // (gallivm lp_build_unsigned_norm_to_float), which differs from c / 255 in the last bit for some c (found by the
+    // random scene fuzzer). The gradient has 16 values per channel.
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR})
+        out.push_back({std::string("texture.float_target.") + (f == VK_FILTER_NEAREST ? "nearest" : "linear"),
+                       [=] {
+                           TextureSpec t;
+                           t.pattern = TexPattern::kGradient;
+                           t.mag = t.min = f;
+                           Scene s = textured(t, 0.0f, 1.0f);
+                           s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
 }
 
 }  // namespace tilevk::cts

@@ -53,6 +53,7 @@ const char* qualifier(Interp i) {
 }  // namespace
 
 std::string vertex_source(const Draw& d) {
+    if (!d.vertex_glsl.empty()) return d.vertex_glsl;
     std::string q = qualifier(d.interp);
     std::string s =
         "#version 450\n"
@@ -77,6 +78,7 @@ std::string vertex_source(const Draw& d) {
 }
 
 std::string fragment_source(const Draw& d, bool color_output) {
+    if (!d.fragment_glsl.empty()) return d.fragment_glsl;
     std::string q = qualifier(d.interp);
     std::string s =
         "#version 450\n"

@@ -17,7 +17,7 @@ const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source
 
 // The vertex and fragment GLSL for a draw (depends on interpolation, fragment kind and topology only). A target
 // without a colour attachment gets a fragment shader without a colour output (the validation layer warns about
-// an output that no attachment consumes).
+// an output that no attachment consumes). A draw's own vertex_glsl / fragment_glsl, when set, is returned as is.
 std::string vertex_source(const Draw& d);
 std::string fragment_source(const Draw& d, bool color_output = true);
 

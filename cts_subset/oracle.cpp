@@ -75,6 +75,9 @@ std::string draw_domain(const Draw& d, Frag counting) {
         d.topology != VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN)
         return "not a triangle topology";
     if (d.polygon_mode != VK_POLYGON_MODE_FILL) return "polygon mode not FILL";
+    if (!d.vertex_glsl.empty() || !d.fragment_glsl.empty()) return "free-form shaders";
+    if (!d.indices.empty() || d.instances != 1) return "indexed or instanced draw";
+    if (d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT) return "packed colour attribute";
     if (d.texture || d.frag != counting) return "shading is not a plain colour (or mixed counting modes)";
     if (counting == Frag::kColor && (d.blend.blendEnable || d.blend.colorWriteMask != 0xF))
         return "blending or a partial write mask";

@@ -1,8 +1,11 @@
 #include "render.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <functional>
+#include <stdexcept>
 
 #include "glsl.hpp"
 
@@ -24,6 +27,67 @@ bool has_depth(VkFormat f) {
 }
 uint32_t depth_copy_bytes(VkFormat f) {
     return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4;
+}
+// Bytes per texel of a colour target as copied to a buffer.
+uint32_t color_bytes(VkFormat f) {
+    switch (f) {
+        case VK_FORMAT_R8_UNORM:
+            return 1;
+        case VK_FORMAT_R8G8_UNORM:
+        case VK_FORMAT_R5G6B5_UNORM_PACK16:
+            return 2;
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
+            return 8;
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return 16;
+        default:
+            return 4;
+    }
+}
+
+// A vertex colour packed into `f` (Draw::color_format): bytes appended to `out`; false for a format not handled.
+bool pack_color(VkFormat f, const float c[4], std::vector<uint8_t>& out) {
+    auto put = [&](const void* p, size_t n) {
+        out.insert(out.end(), static_cast<const uint8_t*>(p), static_cast<const uint8_t*>(p) + n);
+    };
+    auto unorm = [](float v, double max) { return std::lround(std::clamp(double(v), 0.0, 1.0) * max); };
+    auto snorm = [](float v, double max) { return std::lround(std::clamp(double(v), -1.0, 1.0) * max); };
+    switch (f) {
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8_UNORM:
+            for (int i = 0; i < (f == VK_FORMAT_R8G8_UNORM ? 2 : 4); ++i) out.push_back(uint8_t(unorm(c[i], 255)));
+            return true;
+        case VK_FORMAT_R8G8B8A8_SNORM:
+            for (int i = 0; i < 4; ++i) out.push_back(uint8_t(int8_t(snorm(c[i], 127))));
+            return true;
+        case VK_FORMAT_R16G16B16A16_UNORM:
+            for (int i = 0; i < 4; ++i) {
+                uint16_t v = uint16_t(unorm(c[i], 65535));
+                put(&v, 2);
+            }
+            return true;
+        case VK_FORMAT_R16G16B16A16_SNORM:
+        case VK_FORMAT_R16G16_SNORM:
+            for (int i = 0; i < (f == VK_FORMAT_R16G16_SNORM ? 2 : 4); ++i) {
+                int16_t v = int16_t(snorm(c[i], 32767));
+                put(&v, 2);
+            }
+            return true;
+        case VK_FORMAT_R32G32B32_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R32_SFLOAT:
+            put(c, 4 * (f == VK_FORMAT_R32G32B32_SFLOAT ? 3 : f == VK_FORMAT_R32G32_SFLOAT ? 2 : 1));
+            return true;
+        default:
+            return false;
+    }
+}
+uint32_t packed_color_bytes(VkFormat f) {
+    std::vector<uint8_t> b;
+    const float zero[4] = {};
+    if (!pack_color(f, zero, b)) throw std::runtime_error("Draw::color_format: unsupported vertex format");
+    return uint32_t(b.size());
 }
 
 // Destroys what was created, in reverse order, whether the scene finished or threw.
@@ -219,20 +283,25 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     stages[1].module = fs;
     stages[1].pName = "main";
 
-    VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const bool packed = d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT;
+    VkVertexInputBindingDescription bindings[2] = {
+        {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
+        {1, packed ? packed_color_bytes(d.color_format) : 0, VK_VERTEX_INPUT_RATE_VERTEX}};
     VkVertexInputAttributeDescription attrs[4] = {
         {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, pos)},
         {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
         {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
         {3, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, point_size)},
     };
+    if (packed) attrs[1] = {1, 1, d.color_format, 0};
     VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vi.vertexBindingDescriptionCount = 1;
-    vi.pVertexBindingDescriptions = &binding;
+    vi.vertexBindingDescriptionCount = packed ? 2 : 1;
+    vi.pVertexBindingDescriptions = bindings;
     vi.vertexAttributeDescriptionCount = 4;
     vi.pVertexAttributeDescriptions = attrs;
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     ia.topology = d.topology;
+    ia.primitiveRestartEnable = d.primitive_restart;
 
     const Target& t = s.target;
     VkViewport vp = d.viewport.value_or(VkViewport{0, 0, float(t.width), float(t.height), 0, 1});
@@ -411,7 +480,9 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
         VkImage img = make_image(c, gc, t.color, t.width, t.height, 1, t.samples,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (resolve ? 0 : copy_src));
         views.push_back(make_view(c, gc, img, t.color, VK_IMAGE_ASPECT_COLOR_BIT, 1));
-        if (!resolve) reads.push_back({img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, 4}, {}});
+        if (!resolve)
+            reads.push_back(
+                {img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, color_bytes(t.color)}, {}});
     }
     VkImage depth_img = VK_NULL_HANDLE;
     if (t.depth != VK_FORMAT_UNDEFINED) {
@@ -425,7 +496,8 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
         VkImage img = make_image(c, gc, t.color, t.width, t.height, 1, VK_SAMPLE_COUNT_1_BIT,
                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | copy_src);
         views.push_back(make_view(c, gc, img, t.color, VK_IMAGE_ASPECT_COLOR_BIT, 1));
-        reads.insert(reads.begin(), {img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, 4}, {}});
+        reads.insert(reads.begin(),
+                     {img, VK_IMAGE_ASPECT_COLOR_BIT, {"color", t.color, t.width, t.height, color_bytes(t.color)}, {}});
     }
     // Multisampled depth cannot be copied to a buffer; only single-sampled depth/stencil is judged.
     if (depth_img && t.samples == VK_SAMPLE_COUNT_1_BIT) {
@@ -453,54 +525,121 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
     vk_check(vkCreateFramebuffer(dev, &fci, nullptr, &fb), "vkCreateFramebuffer");
     gc.add([dev, fb] { vkDestroyFramebuffer(dev, fb, nullptr); });
 
-    // Per-draw texture, descriptor set and pipeline.
-    VkDescriptorSetLayoutBinding dslb{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                      nullptr};
-    VkDescriptorSetLayoutCreateInfo dslci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    dslci.bindingCount = 1;
-    dslci.pBindings = &dslb;
-    VkDescriptorSetLayout dsl;
-    vk_check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &dsl), "vkCreateDescriptorSetLayout");
-    gc.add([dev, dsl] { vkDestroyDescriptorSetLayout(dev, dsl, nullptr); });
+    // Per-draw texture, uniform buffer, descriptor sets and pipeline. The texture is set 0, the uniform buffer set 1:
+    // a set with an unwritten combined-image-sampler binding crashes lavapipe 22.3 when bound (valid Vulkan when
+    // the shader does not use it; found by cases_random.cpp), so a draw binds only sets whose every binding it
+    // writes. Set 1 and the push-constant range exist only when a draw uses them, so the scenes without them
+    // record exactly what they always did.
+    bool any_uniforms = false, any_push = false;
+    for (const Draw& d : s.draws) {
+        any_uniforms |= !d.uniforms.empty();
+        any_push |= !d.push_constants.empty();
+    }
+    const VkShaderStageFlags vf = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const VkDescriptorSetLayoutBinding dslb[2] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, vf, nullptr}};
+    VkDescriptorSetLayout dsl[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    for (uint32_t k = 0; k < (any_uniforms ? 2u : 1u); ++k) {
+        VkDescriptorSetLayoutCreateInfo dslci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        dslci.bindingCount = 1;
+        dslci.pBindings = &dslb[k];
+        vk_check(vkCreateDescriptorSetLayout(dev, &dslci, nullptr, &dsl[k]), "vkCreateDescriptorSetLayout");
+        gc.add([dev, l = dsl[k]] { vkDestroyDescriptorSetLayout(dev, l, nullptr); });
+    }
     VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &dsl;
+    plci.setLayoutCount = any_uniforms ? 2 : 1;
+    plci.pSetLayouts = dsl;
+    const VkPushConstantRange push_range{vf, 0, 128};
+    plci.pushConstantRangeCount = any_push ? 1 : 0;
+    plci.pPushConstantRanges = &push_range;
     VkPipelineLayout layout;
     vk_check(vkCreatePipelineLayout(dev, &plci, nullptr, &layout), "vkCreatePipelineLayout");
     gc.add([dev, layout] { vkDestroyPipelineLayout(dev, layout, nullptr); });
 
-    uint32_t ntex = 0;
-    for (const Draw& d : s.draws) ntex += d.texture ? 1 : 0;
+    uint32_t ntex = 0, nubo = 0;
+    for (const Draw& d : s.draws) {
+        ntex += d.texture ? 1 : 0;
+        nubo += d.uniforms.empty() ? 0 : 1;
+    }
     VkDescriptorPool dpool = VK_NULL_HANDLE;
-    if (ntex) {
-        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ntex};
+    if (ntex + nubo) {
+        VkDescriptorPoolSize sizes[2];
+        uint32_t nsizes = 0;
+        if (ntex) sizes[nsizes++] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ntex};
+        if (nubo) sizes[nsizes++] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nubo};
         VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        dpci.maxSets = ntex;
-        dpci.poolSizeCount = 1;
-        dpci.pPoolSizes = &size;
+        dpci.maxSets = ntex + nubo;
+        dpci.poolSizeCount = nsizes;
+        dpci.pPoolSizes = sizes;
         vk_check(vkCreateDescriptorPool(dev, &dpci, nullptr, &dpool), "vkCreateDescriptorPool");
         gc.add([dev, dpool] { vkDestroyDescriptorPool(dev, dpool, nullptr); });
     }
-    std::vector<VkPipeline> pipes;
-    std::vector<Texture> textures(s.draws.size());
-    std::vector<VkDescriptorSet> sets(s.draws.size(), VK_NULL_HANDLE);
-    for (size_t i = 0; i < s.draws.size(); ++i) {
-        const Draw& d = s.draws[i];
-        pipes.push_back(make_pipeline(c, gc, s, d, rp, layout, out.pipeline_ms));
-        if (!d.texture) continue;
-        textures[i] = make_texture(c, gc, *d.texture);
+    auto allocate_set = [&](VkDescriptorSetLayout l) {
         VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         dsai.descriptorPool = dpool;
         dsai.descriptorSetCount = 1;
-        dsai.pSetLayouts = &dsl;
-        vk_check(vkAllocateDescriptorSets(dev, &dsai, &sets[i]), "vkAllocateDescriptorSets");
-        VkDescriptorImageInfo ii{textures[i].sampler, textures[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = sets[i];
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        w.pImageInfo = &ii;
-        vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+        dsai.pSetLayouts = &l;
+        VkDescriptorSet set;
+        vk_check(vkAllocateDescriptorSets(dev, &dsai, &set), "vkAllocateDescriptorSets");
+        return set;
+    };
+    std::vector<VkPipeline> pipes;
+    std::vector<Texture> textures(s.draws.size());
+    std::vector<VkDescriptorSet> sets(s.draws.size(), VK_NULL_HANDLE), ubo_sets(s.draws.size(), VK_NULL_HANDLE);
+    for (size_t i = 0; i < s.draws.size(); ++i) {
+        const Draw& d = s.draws[i];
+        pipes.push_back(make_pipeline(c, gc, s, d, rp, layout, out.pipeline_ms));
+        if (d.texture) {
+            sets[i] = allocate_set(dsl[0]);
+            textures[i] = make_texture(c, gc, *d.texture);
+            VkDescriptorImageInfo ii{textures[i].sampler, textures[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = sets[i];
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            w.pImageInfo = &ii;
+            vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+        }
+        if (!d.uniforms.empty()) {
+            ubo_sets[i] = allocate_set(dsl[1]);
+            const VkDeviceSize bytes = (d.uniforms.size() * 4 + 15) / 16 * 16;  // whole vec4s (std140 arrays)
+            Buffer ubo = make_buffer(c, gc, bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+            std::memset(ubo.mapped, 0, bytes);
+            std::memcpy(ubo.mapped, d.uniforms.data(), d.uniforms.size() * 4);
+            VkDescriptorBufferInfo bi{ubo.buffer, 0, bytes};
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = ubo_sets[i];
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            w.pBufferInfo = &bi;
+            vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+        }
+    }
+    // Indexed draws and packed colour attributes: one buffer each per draw that has them.
+    std::vector<VkBuffer> index_buffers(s.draws.size(), VK_NULL_HANDLE), color_buffers(s.draws.size(), VK_NULL_HANDLE);
+    for (size_t i = 0; i < s.draws.size(); ++i) {
+        const Draw& d = s.draws[i];
+        if (!d.indices.empty()) {
+            const bool u16 = d.index_type == VK_INDEX_TYPE_UINT16;
+            Buffer ib = make_buffer(c, gc, d.indices.size() * (u16 ? 2 : 4), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            for (size_t k = 0; k < d.indices.size(); ++k) {
+                if (u16) {
+                    const uint16_t v = uint16_t(d.indices[k]);
+                    std::memcpy(static_cast<uint8_t*>(ib.mapped) + 2 * k, &v, 2);
+                } else {
+                    std::memcpy(static_cast<uint8_t*>(ib.mapped) + 4 * k, &d.indices[k], 4);
+                }
+            }
+            index_buffers[i] = ib.buffer;
+        }
+        if (d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT && !d.vertices.empty()) {
+            std::vector<uint8_t> bytes;
+            for (const Vertex& v : d.vertices) pack_color(d.color_format, v.color, bytes);
+            Buffer cbuf = make_buffer(c, gc, bytes.size(), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+            std::memcpy(cbuf.mapped, bytes.data(), bytes.size());
+            color_buffers[i] = cbuf.buffer;
+        }
     }
 
     // One command buffer: uploads, the pass, the read-back copies.
@@ -558,10 +697,24 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
     for (size_t i = 0; i < s.draws.size(); ++i) {
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes[i]);
         if (sets[i]) vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[i], 0, nullptr);
+        if (ubo_sets[i])
+            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &ubo_sets[i], 0, nullptr);
         VkDeviceSize offset = first * sizeof(Vertex);
         vkCmdBindVertexBuffers(cb, 0, 1, &vb.buffer, &offset);
+        const Draw& d = s.draws[i];
+        if (color_buffers[i]) {
+            const VkDeviceSize zero = 0;
+            vkCmdBindVertexBuffers(cb, 1, 1, &color_buffers[i], &zero);
+        }
+        if (!d.push_constants.empty())
+            vkCmdPushConstants(cb, layout, vf, 0, uint32_t(d.push_constants.size() * 4), d.push_constants.data());
         if (s.queries == QueryMode::kPerDraw) vkCmdBeginQuery(cb, qpool, uint32_t(i), qflags);
-        if (!s.draws[i].vertices.empty()) vkCmdDraw(cb, uint32_t(s.draws[i].vertices.size()), 1, 0, 0);
+        if (index_buffers[i]) {
+            vkCmdBindIndexBuffer(cb, index_buffers[i], 0, d.index_type);
+            vkCmdDrawIndexed(cb, uint32_t(d.indices.size()), d.instances, 0, 0, 0);
+        } else if (!d.vertices.empty()) {
+            vkCmdDraw(cb, uint32_t(d.vertices.size()), d.instances, 0, 0);
+        }
         if (s.queries == QueryMode::kPerDraw) vkCmdEndQuery(cb, qpool, uint32_t(i));
         first += s.draws[i].vertices.size();
     }

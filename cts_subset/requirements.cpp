@@ -63,6 +63,13 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         }
         if (d.polygon_mode != VK_POLYGON_MODE_FILL && !f.fillModeNonSolid) return "feature fillModeNonSolid";
         if (d.depth_clamp && !f.depthClamp) return "feature depthClamp";
+        if (d.push_constants.size() * 4 > lim.maxPushConstantsSize) return "maxPushConstantsSize";
+        if (d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT) {
+            VkFormatProperties fp;
+            vkGetPhysicalDeviceFormatProperties(c.physical, d.color_format, &fp);
+            if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT))
+                return std::string("vertex format ") + format_name(d.color_format) + " lacks VERTEX_BUFFER";
+        }
         if (d.depth_bias && d.bias_clamp != 0.0f && !f.depthBiasClamp) return "feature depthBiasClamp";
         const auto& b = d.blend;
         if (b.blendEnable && !f.dualSrcBlend &&

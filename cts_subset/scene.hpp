@@ -78,6 +78,21 @@ struct Draw {
     // Viewport and scissor; unset means the whole target.
     std::optional<VkViewport> viewport;
     std::optional<VkRect2D> scissor;
+    // Free-form shaders (cases_random.cpp): when set, they replace the generated GLSL. The vertex inputs are
+    // vertex_source's (locations 0-3); `push_constants` are one block of vec4s (VERTEX|FRAGMENT) and `uniforms` a
+    // uniform buffer of vec4s at set 0, binding 1 (VERTEX|FRAGMENT).
+    std::string vertex_glsl, fragment_glsl;
+    std::vector<float> push_constants;  // at most 32 floats (maxPushConstantsSize 128)
+    std::vector<float> uniforms;
+    // Indexed draw (vkCmdDrawIndexed) when non-empty; indices refer to this draw's vertices. Restart values
+    // (0xFFFF / 0xFFFFFFFF) are written by the case; restart needs a strip or fan topology (Vulkan 1.0).
+    std::vector<uint32_t> indices;
+    VkIndexType index_type = VK_INDEX_TYPE_UINT32;
+    bool primitive_restart = false;
+    uint32_t instances = 1;
+    // Format of the colour attribute (location 1): R32G32B32A32_SFLOAT reads Vertex::color in place; any other
+    // float/normalized format reads a second vertex binding packed from Vertex::color (render.cpp).
+    VkFormat color_format = VK_FORMAT_R32G32B32A32_SFLOAT;
 };
 
 struct Target {

@@ -27,12 +27,16 @@ struct FragmentStage::Worker {
     std::vector<uint64_t> samples_passed;  // per draw record of the current scene
 };
 
-// One shader input component the fast path interpolates.
+// One shader input component the fast path interpolates; loc kPointCoordLoc is gl_PointCoord (block.point_coord).
+constexpr uint32_t kPointCoordLoc = ~0u;
 struct InputPlan {
     uint32_t loc = 0, comp = 0;
     uint32_t plane = 0;  // float offset of its plane from the primitive's first attribute plane
     geometry::Interp interp = geometry::Interp::kPerspective;
 };
+uint32_t* input_lanes(shader::FragmentBlock& b, const InputPlan& in) {
+    return in.loc == kPointCoordLoc ? b.point_coord[in.comp] : b.inputs[in.loc][in.comp];
+}
 
 enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8, kRgba8 };
 
@@ -188,6 +192,13 @@ FragmentStage::DrawPlan make_plan(const DrawRecord& draw, const Framebuffer& fb)
             plan.perspective |= interp == geometry::Interp::kPerspective && (comps & 0xfu);
             for (uint32_t c = 0; c < 4; ++c)
                 if (comps & (1u << c)) plan.inputs.push_back({loc, c, uint32_t(slot * kPlaneFloats), interp});
+        }
+        if (draw.varyings.point_coord_slot >= 0) {
+            all_flat = false;
+            plan.perspective = true;
+            for (uint32_t c = 0; c < 2; ++c)
+                plan.inputs.push_back({kPointCoordLoc, c, uint32_t(draw.varyings.point_coord_slot * kPlaneFloats),
+                                       geometry::Interp::kPerspective});
         }
         // The outputs cannot vary across a primitive when every input is flat, no per-fragment built-in is read
         // (front facing is per primitive), nothing is discarded or written besides colour, and there are no
@@ -436,6 +447,14 @@ void FragmentStage::shade_block(Worker& w, const DrawRecord& draw, const PrimRec
                 }
             }
         }
+        if (draw.varyings.point_coord_slot >= 0) {  // gl_PointCoord: a perspective input (VaryingMap)
+            const float* p = attribs + size_t(draw.varyings.point_coord_slot) * kPlaneFloats;
+            for (int c = 0; c < 2; ++c) {
+                fragment::eval_plane(plane_of(p, c), x, y, centre, fused_, tmp);
+                fragment::perspective_divide(tmp, wlanes, out);
+                for (int l = 0; l < kBlockLanes; ++l) b.point_coord[c][l] = bits_of(out[l]);
+            }
+        }
         fs->run_fragment(draw.bindings, b, w.scratch);
         live = static_cast<uint16_t>(b.live_mask & shade_lanes);
         if (iface.writes_frag_depth && depth_active)
@@ -569,8 +588,7 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
             b.sample_id = 0;
             const float* attribs = planes + kPrimHeaderFloats;
             for (const InputPlan& in : plan.inputs)
-                for (int l = 0; l < kBlockLanes; ++l)
-                    b.inputs[in.loc][in.comp][l] = bits_of(attribs[in.plane + in.comp]);
+                for (int l = 0; l < kBlockLanes; ++l) input_lanes(b, in)[l] = bits_of(attribs[in.plane + in.comp]);
             fs->run_fragment(draw.bindings, b, w.scratch);
             w.uniform_prim = &prim;
             w.uniform_front = front_facing;
@@ -608,12 +626,12 @@ void FragmentStage::shade_block_fast(Worker& w, const DrawPlan& plan, const Draw
         for (const InputPlan& in : plan.inputs) {
             const float* p = attribs + in.plane;
             if (in.interp == geometry::Interp::kFlat) {
-                for (int l = 0; l < kBlockLanes; ++l) b.inputs[in.loc][in.comp][l] = bits_of(p[in.comp]);
+                for (int l = 0; l < kBlockLanes; ++l) input_lanes(b, in)[l] = bits_of(p[in.comp]);
                 continue;
             }
             fragment::interpolate_input(plane_of(p, int(in.comp)), centre, fused_,
                                         in.interp == geometry::Interp::kPerspective ? oow : nullptr,
-                                        b.inputs[in.loc][in.comp]);
+                                        input_lanes(b, in));
         }
         if (plan.copy_location >= 0) {
             std::memcpy(b.outputs[0], b.inputs[plan.copy_location], sizeof b.outputs[0]);  // what the run would do

@@ -186,6 +186,10 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         rec.varyings.carry_point_size = true;
         rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
     }
+    if (pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::PointCoord))) {
+        rec.varyings.point_coord_slot = static_cast<int32_t>(rec.varyings.slot_interp.size());
+        rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
+    }
     rec.depth_stencil = pipe.depth_stencil;
     rec.depth_stencil.min_depth = std::min(pipe.viewport.min_depth, pipe.viewport.max_depth);
     rec.depth_stencil.max_depth = std::max(pipe.viewport.min_depth, pipe.viewport.max_depth);
@@ -304,6 +308,8 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     const bool nine_vertex_candidate =
         !call.indexed && pipe.topology == geometry::Topology::kTriangleList && !has_flat_input;
 
+    const bool reads_front_facing =
+        pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::FrontFacing));
     // draw's batches: per instance, per restart run, per vsplit segment (draw_batches.h).
     geometry::draw_batches(src, pipe.topology, &batches_);
 
@@ -488,7 +494,11 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
                     // draw's offset, flatshade and unfilled stages (unfilled.h): edges / corners by edge flag.
                     const float* u[3];
                     geometry::prepare_unfilled_triangle(ucfg, out[t].v, unfilled_scratch_.data(), u);
-                    const bool front = geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(a),
+                    // llvmpipe's line/point setup takes the facing from the face slot draw's unfilled stage injects,
+                    // which exists only when the fragment shader reads gl_FrontFacing (lp_state_derived.c
+                    // face_slot); otherwise every edge/corner is front facing, for the two-sided stencil test too.
+                    const bool front = !reads_front_facing ||
+                                       geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(a),
                                                                        geometry::win_pos(b), geometry::win_pos(c));
                     if (pipe.polygon_mode == PolygonMode::kLine) {
                         uint8_t lines[3][2];
@@ -688,6 +698,8 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     geometry::PointSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
     cfg.multisample = fb_.samples > 1;
+    cfg.point_coord_attrib = rec.varyings.point_coord_slot;
+    cfg.point_coord_perspective = true;  // PNTC has no interpolation qualifier: perspective in lavapipe
     geometry::PointSetup ps;
     if (geometry::setup_point(cfg, v, size, &ps, attrib_planes_.data()) != geometry::PrimSetupStatus::kOk) return;
     BoxInput in;

@@ -76,6 +76,10 @@ void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indi
                 ps[0] = out->point_size[first + lane];
                 ps[1] = ps[2] = ps[3] = 0.0f;
             }
+            if (cfg.varyings->point_coord_slot >= 0) {
+                float* pc = rec + geometry::kAttribOffset + 4 * cfg.varyings->point_coord_slot;
+                pc[0] = pc[1] = pc[2] = pc[3] = 0.0f;
+            }
         }
     }
 }

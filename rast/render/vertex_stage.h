@@ -26,10 +26,14 @@ struct VertexInputState {
 // perspective-interpolated by the clipper as draw does for PSIZE (draw_pipe_clip.c find_interp's default), so a
 // vertex the clipper makes in polygonMode POINT gets lavapipe's interpolated size. slot_interp then has one more
 // entry than slot_location; the fragment stage reads slot_location.size() slots only.
+// `point_coord_slot` (>= 0 when the fragment shader reads gl_PointCoord) is one more attribute after those: lavapipe
+// turns PointCoord into a perspective fragment input (nir_lower_sysvals_to_varyings, VARYING_SLOT_PNTC) whose
+// planes point setup computes (lp_setup_point.c texcoord_coef); vertices carry zeros in it.
 struct VaryingMap {
     std::vector<uint32_t> slot_location;
     std::vector<geometry::Interp> slot_interp;
     bool carry_point_size = false;
+    int32_t point_coord_slot = -1;
     geometry::VertexLayout layout() const { return {static_cast<uint32_t>(slot_interp.size()), slot_interp.data()}; }
     uint32_t point_size_slot() const { return static_cast<uint32_t>(slot_location.size()); }
 };
