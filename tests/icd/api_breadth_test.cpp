@@ -2480,7 +2480,6 @@ TEST_F(ApiBreadth, IndirectDrawsWithStride) {
         for (int i = 0; i < 2; ++i) std::memcpy(&ind[20 + 6 * i], indexed[i], 20);
         Device::Buffer indirect = k.buffer_of(ind, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
             VkBuffer bufs[2] = {vb.buffer, cb.buffer};
