@@ -20,6 +20,29 @@ Draw random_triangles(uint32_t seed, VkPrimitiveTopology topo = VK_PRIMITIVE_TOP
     return d;
 }
 
+// Short width-1 lines whose x extent (y extent for the vertical ones; both for the tiny diagonals) lies inside one
+// pixel column (row), between two pixel boundaries, yet over a sample: lavapipe's line bbox (min rounded up, max
+// rounded up minus one) is then empty and u_rect_test_intersection drops the whole line, samples and all. The fifth
+// horizontal and vertical segments cross a pixel boundary instead and are drawn by both. Coordinates are window
+// pixels.
+Scene subpixel_lines() {
+    Draw d;
+    d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    auto ndc = [](float x, float y) { return vtx(x / 32.0f - 1.0f, y / 32.0f - 1.0f); };
+    const float starts[] = {0.30f, 0.20f, 0.55f, 0.05f, 0.80f};   // fraction where the segment starts
+    const float lengths[] = {0.20f, 0.45f, 0.40f, 0.30f, 0.35f};  // the last one ends past the pixel boundary
+    for (int i = 0; i < 5; ++i) {
+        const float x = 4.0f + 7.0f * i + starts[i], y = 6.0f + 0.1f * i;
+        d.vertices.push_back(ndc(x, y));  // horizontal, near a row boundary
+        d.vertices.push_back(ndc(x + lengths[i], y + 0.02f));
+        d.vertices.push_back(ndc(4.0f + 0.1f * i, 20.0f + 7.0f * i + starts[i]));  // vertical
+        d.vertices.push_back(ndc(4.0f + 0.1f * i - 0.03f, 20.0f + 7.0f * i + starts[i] + lengths[i]));
+        d.vertices.push_back(ndc(40.0f + starts[i], 30.0f + 7.0f * i + 0.5f));  // diagonal, inside one pixel
+        d.vertices.push_back(ndc(40.0f + starts[i] + 0.1f, 30.0f + 7.0f * i + 0.6f));
+    }
+    return ms_scene(d);
+}
+
 }  // namespace
 
 void add_multisample_cases(CaseList& out) {
@@ -30,6 +53,7 @@ void add_multisample_cases(CaseList& out) {
                    ""});
     out.push_back({g + "coverage_4x_lines",
                    [] { return ms_scene(random_triangles(13, VK_PRIMITIVE_TOPOLOGY_LINE_LIST)); }, nullptr, ""});
+    out.push_back({g + "subpixel_lines_4x", subpixel_lines, nullptr, ""});
     out.push_back({g + "coverage_4x_points",
                    [] {
                        Draw d = random_triangles(14, VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 16);

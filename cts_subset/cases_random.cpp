@@ -20,20 +20,19 @@
 // (rasterization.primitives.point_coord*); polygon-mode LINE/POINT primitives took the triangle's facing for the
 // two-sided stencil test where lavapipe makes them front facing unless the shader reads gl_FrontFacing
 // (stencil.two_sided_polygon_mode_*); RGBA8 texels were c/255 where gallivm multiplies by float(1/255)
-// (texture.float_target.*); and in the harness, a bound descriptor set with an unwritten combined-image-sampler
-// binding crashes lavapipe 22.3 (render.cpp now keeps the uniform buffer in its own set).
+// (texture.float_target.*); 4x lines whose fixed-point box holds no pixel boundary in x or in y, which lavapipe drops
+// whole (u_rect_test_intersection fails on the empty bbox) where tilevk drew the samples inside them: seeds 242, 369,
+// 372, 630, 821 and 1056 (multisample.subpixel_lines_4x, rast_core_scissor_msaa); and in the harness, a bound
+// descriptor set with an unwritten combined-image-sampler binding crashes lavapipe 22.3 (render.cpp now keeps the
+// uniform buffer in its own set).
 //
-// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1491 of 1500 pass; none is
+// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1497 of 1500 pass; none is
 // in the default list 1..56, which is simply the first seeds, every one passing):
-// - 4x lines (cause not established): seeds 242 (polygon mode LINE, 2 px), 369 (line strip, restart, blending,
-//   1 px), 372 (polygon mode LINE, instanced, depth clamp, 1 px), 630 (wide 1.5 lines clipped at the viewport,
-//   1 px), 821 (indexed line strip with a 0.2-px segment, 1 px; tilevk covers samples lavapipe does not). All pass at
-//   1x.
 // - gallivm's float (SoA) sampling path on float targets (cause not established): 223 (32x21 texture, MIRRORED_REPEAT,
 //   min LINEAR, mip LINEAR: last bits of 4 px) and 720 (2x22, 5 mips, CLAMP_TO_BORDER, mip LINEAR, noperspective
 //   coordinates: last bits, and one edge pixel that takes the border where lavapipe takes a texel). With the target
 //   switched to RGBA8 both seeds pass.
-// - 787 (polygon mode POINT, instanced, RGBA32F, 1 px) and 1056 (2 px): not analysed.
+// - 787 (1x, polygon modes LINE and POINT, instanced, RGBA32F, 1 px): not analysed.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -486,6 +485,9 @@ Scene random_scene(uint32_t seed) {
 
 // Minimisation aids for a failing seed (never set by the tests): TILEVK_CTS_RANDOM_DRAWS=MASK keeps only the draws
 // whose bit is set (the scene is generated in full first, so the kept draws are unchanged);
+// TILEVK_CTS_RANDOM_INDICES="5 4" replaces the index list of every kept indexed draw (to isolate one primitive; the
+// indices must stay below the draw's vertex count); TILEVK_CTS_RANDOM_SAMPLE_MASK=0x1 replaces every kept draw's
+// sample mask (one bit at a time tells which sample of a 4x pixel differs);
 // TILEVK_CTS_RANDOM_DUMP=1 prints the target, every draw's state, vertices, indices and GLSL to stderr.
 void dump_scene(uint32_t seed, const Scene& s) {
     const Target& t = s.target;
@@ -538,6 +540,20 @@ Scene minimised_scene(uint32_t seed) {
             if (mask >> i & 1) kept.push_back(s.draws[i]);
         s.draws = std::move(kept);
     }
+    if (const char* list = std::getenv("TILEVK_CTS_RANDOM_INDICES")) {
+        std::vector<uint32_t> indices;
+        for (const char* p = list;;) {
+            char* end = nullptr;
+            const unsigned long k = std::strtoul(p, &end, 10);
+            if (end == p) break;
+            indices.push_back(static_cast<uint32_t>(k));
+            p = end;
+        }
+        for (Draw& d : s.draws)
+            if (!d.indices.empty()) d.indices = indices;
+    }
+    if (const char* mask = std::getenv("TILEVK_CTS_RANDOM_SAMPLE_MASK"))
+        for (Draw& d : s.draws) d.sample_mask = static_cast<uint32_t>(std::strtoul(mask, nullptr, 0));
     if (std::getenv("TILEVK_CTS_RANDOM_DUMP")) dump_scene(seed, s);
     return s;
 }

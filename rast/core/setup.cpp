@@ -113,6 +113,10 @@ SetupStatus finish_box_msaa(int32_t px0, int32_t py0, int32_t px1, int32_t py1, 
     const ClipRect clip = intersect(common.clip, fb);
     const int32_t rx0 = clip.x0, ry0 = clip.y0, rx1 = clip.x1 - 1, ry1 = clip.y1 - 1;  // inclusive region
     if (rx0 > rx1 || ry0 > ry1) return SetupStatus::kClipped;
+    // u_rect_test_intersection also fails when either rectangle is empty. A line's box is empty when no pixel
+    // boundary lies in (minX, maxX] or (minY, maxY] (min rounds up, max rounds up minus one): lavapipe then drops
+    // the whole line although 4x samples inside it exist (a sub-pixel line between two sample columns or rows).
+    if (lp.x1 < lp.x0 || lp.y1 < lp.y0) return SetupStatus::kClipped;
     if (lp.x1 < rx0 || rx1 < lp.x0 || lp.y1 < ry0 || ry1 < lp.y0) return SetupStatus::kClipped;  // test_intersection
     const int32_t bx0 = std::max(lp.x0, 0), by0 = std::max(lp.y0, 0);
     const bool left = bx0<rx0, top = by0<ry0, right = lp.x1> rx1, bottom = lp.y1> ry1;

@@ -137,6 +137,40 @@ TEST(ScissorMsaa, LineBoxRoundsMinUp) {
     }
 }
 
+// An axis-aligned strip lo <= X < hi, 10*256 <= Y < 20*256 as a line's convex (left/top planes biased as the top-left
+// rule does).
+ConvexInput strip(int32_t lo, int32_t hi) {
+    ConvexInput cv;
+    cv.planes[0] = {-int64_t{lo} + 1, 1, 0};
+    cv.planes[1] = {hi, -1, 0};
+    cv.planes[2] = {-10 * 256 + 1, 0, 1};
+    cv.planes[3] = {20 * 256, 0, -1};
+    cv.num_planes = 4;
+    cv.min_x = lo, cv.max_x = hi, cv.min_y = 10 * 256, cv.max_y = 20 * 256;
+    cv.common.clip = {0, 0, 64, 64};
+    return cv;
+}
+
+// lavapipe's line bbox is empty when no pixel boundary lies in (minX, maxX] (x0 = ceil(minX), x1 = ceil(maxX) - 1),
+// and u_rect_test_intersection then drops the line although 4x samples lie inside: X in [5*256+70, 5*256+120)
+// holds sample 0 (sx 96) of column 5 in every row. The same strip moved to cross X = 6*256 keeps its samples.
+TEST(ScissorMsaa, LineWithEmptyBoxIsDropped) {
+    for (Method m : kAllExact) {
+        {
+            Scene s({.width = 64, .height = 64, .samples = 4});
+            EXPECT_EQ(s.add_convex(strip(5 * 256 + 70, 5 * 256 + 120)), SetupStatus::kClipped) << to_string(m);
+            EXPECT_EQ(covered(s, m), SampleSet{}) << to_string(m);
+        }
+        {
+            Scene s({.width = 64, .height = 64, .samples = 4});
+            ASSERT_EQ(s.add_convex(strip(5 * 256 + 200, 6 * 256 + 50)), SetupStatus::kAccepted);
+            SampleSet want;  // column 5: sample 1 (sx 224); column 6: sample 2 (sx 32)
+            for (int y = 10; y < 20; ++y) want.insert({5, y, 1}), want.insert({6, y, 2});
+            EXPECT_EQ(covered(s, m), want) << to_string(m);
+        }
+    }
+}
+
 // Boxes (points, rectangles) clip whole pixels at 4x too (lp_setup_point.c clamps its planes to the clipped bbox).
 TEST(ScissorMsaa, BoxesClipWholePixels) {
     BoxInput b;
