@@ -102,6 +102,25 @@ void add_texture_cases(CaseList& out) {
                            return s;
                        },
                        nullptr, ""});
+    // gallivm's float filter blends two mip levels with lp_build_lerp, a fused multiply-add fma(f, l1 - l0, l0),
+    // where tilevk computed l0 * (1 - f) + l1 * f: the last bits differ in float targets (found by the random
+    // scene fuzzer, seeds 223 and 720). MIRRORED_REPEAT and CLAMP_TO_BORDER keep lavapipe off its 8-bit path.
+    const Wrap float_wraps[] = {wraps[1], wraps[3]};
+    for (const Wrap& w : float_wraps)
+        out.push_back({std::string("texture.float_target.mip_linear_") + w.name,
+                       [=] {
+                           TextureSpec t;
+                           t.pattern = TexPattern::kGradient;
+                           t.width = 32, t.height = 21, t.mip_levels = 5;
+                           t.mag = t.min = VK_FILTER_LINEAR;
+                           t.mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+                           t.wrap = w.mode;
+                           t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+                           Scene s = textured(t, -0.2f, 1.3f, 0.7f);
+                           s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
 }
 
 }  // namespace tilevk::cts
