@@ -20,19 +20,19 @@
 // (rasterization.primitives.point_coord*); polygon-mode LINE/POINT primitives took the triangle's facing for the
 // two-sided stencil test where lavapipe makes them front facing unless the shader reads gl_FrontFacing
 // (stencil.two_sided_polygon_mode_*); RGBA8 texels were c/255 where gallivm multiplies by float(1/255)
-// (texture.float_target.*); and in the harness, a bound descriptor set with an unwritten combined-image-sampler
-// binding crashes lavapipe 22.3 (render.cpp now keeps the uniform buffer in its own set).
+// (texture.float_target.*); gallivm's float (SoA) filter lerps with fused multiply-adds, also between two mip
+// levels, where tilevk summed weighted texels (seed 223, texture.float_target.mip_linear_*); a NaN coordinate with
+// CLAMP_TO_BORDER reads the border in gallivm (its float-to-int conversion gives INT_MIN), texel 0 in tilevk (seed
+// 720, a clipped noperspective triangle, texture.float_target.nan_coordinate_*); and in the harness, a bound
+// descriptor set with an unwritten combined-image-sampler binding crashes lavapipe 22.3 (render.cpp now keeps the
+// uniform buffer in its own set).
 //
-// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1491 of 1500 pass; none is
+// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1493 of 1500 pass; none is
 // in the default list 1..56, which is simply the first seeds, every one passing):
 // - 4x lines (cause not established): seeds 242 (polygon mode LINE, 2 px), 369 (line strip, restart, blending,
 //   1 px), 372 (polygon mode LINE, instanced, depth clamp, 1 px), 630 (wide 1.5 lines clipped at the viewport,
 //   1 px), 821 (indexed line strip with a 0.2-px segment, 1 px; tilevk covers samples lavapipe does not). All pass at
 //   1x.
-// - gallivm's float (SoA) sampling path on float targets (cause not established): 223 (32x21 texture, MIRRORED_REPEAT,
-//   min LINEAR, mip LINEAR: last bits of 4 px) and 720 (2x22, 5 mips, CLAMP_TO_BORDER, mip LINEAR, noperspective
-//   coordinates: last bits, and one edge pixel that takes the border where lavapipe takes a texel). With the target
-//   switched to RGBA8 both seeds pass.
 // - 787 (polygon mode POINT, instanced, RGBA32F, 1 px) and 1056 (2 px): not analysed.
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,6 @@
 // texture.*: magnification and minification filters, mip selection and blending, and the wrap modes.
+#include <limits>
+
 #include "case.hpp"
 
 namespace tilevk::cts {
@@ -117,6 +119,25 @@ void add_texture_cases(CaseList& out) {
                            t.wrap = w.mode;
                            t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
                            Scene s = textured(t, -0.2f, 1.3f, 0.7f);
+                           s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
+    // A NaN coordinate (here every vertex's) with CLAMP_TO_BORDER: gallivm's float-to-int conversion gives INT_MIN,
+    // so lavapipe reads the border (nearest) or the border lerped with a NaN weight (linear: NaN); tilevk read
+    // texel 0 (found by the random scene fuzzer, seed 720, where a clipped noperspective triangle had NaN
+    // coordinates).
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR})
+        out.push_back({std::string("texture.float_target.nan_coordinate_clamp_to_border_") +
+                           (f == VK_FILTER_NEAREST ? "nearest" : "linear"),
+                       [=] {
+                           TextureSpec t;
+                           t.width = t.height = 8;
+                           t.mag = t.min = f;
+                           t.wrap = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+                           t.border = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // texel (0, 0) of the checker is white
+                           const float nan = std::numeric_limits<float>::quiet_NaN();
+                           Scene s = textured(t, nan, nan, 0.5f, false, 16);
                            s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
                            return s;
                        },

@@ -165,6 +165,14 @@ int32_t safe_floor(float u) {
     return int32_t(std::floor(u));
 }
 
+// gallivm converts texel coordinates with cvttps2dq, which turns a NaN into INT_MIN: CLAMP_TO_BORDER's bounds test
+// (lp_build_sample_texel_soa) then takes the border colour, where safe_floor's 0 would read texel 0. The stand-in
+// stays negative after any constant offset is added.
+constexpr int32_t kNanBorderIndex = INT32_MIN / 2;
+int32_t floor_index(float u, AddressMode m) {
+    return (m == AddressMode::ClampToBorder && !(u == u)) ? kNanBorderIndex : safe_floor(u);
+}
+
 struct Level {
     const uint8_t* base;  // layer already applied
     uint64_t row_pitch;
@@ -246,12 +254,17 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         if (args.dref) return {compare(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
-    if (!linear) return fetch(safe_floor(u), safe_floor(v));
-    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint
+    if (!linear) return fetch(floor_index(u, smp.address_u), one_d ? 0 : floor_index(v, smp.address_v));
+    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint. A NaN coordinate on a
+    // CLAMP_TO_BORDER axis reads the border with the weight NaN - floor(NaN) = NaN (lp_build_ifloor_fract), which
+    // the lerps carry into the result.
     float uu = u - 0.5f, vv = v - 0.5f;
-    int32_t i0 = safe_floor(uu), j0 = one_d ? 0 : safe_floor(vv);
-    float a = (uu == uu) ? uu - std::floor(uu) : 0.0f;
-    float b = one_d ? 0.0f : ((vv == vv) ? vv - std::floor(vv) : 0.0f);
+    int32_t i0 = floor_index(uu, smp.address_u), j0 = one_d ? 0 : floor_index(vv, smp.address_v);
+    auto weight = [](float x, AddressMode m) {
+        return (x == x) ? x - std::floor(x) : m == AddressMode::ClampToBorder ? x : 0.0f;
+    };
+    float a = weight(uu, smp.address_u);
+    float b = one_d ? 0.0f : weight(vv, smp.address_v);
     int32_t i1 = i0 + 1, j1 = j0 + 1;
     Axis ax = {i0 + args.off_x, i1 + args.off_x, a}, ay = {j0 + args.off_y, j1 + args.off_y, b};
     if (smp.address_u == AddressMode::MirroredRepeat && !smp.unnormalized) ax = mirror_axis(s, lv.w, args.off_x);

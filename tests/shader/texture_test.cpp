@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "glsl.h"
@@ -282,6 +283,29 @@ TEST(ShaderTexture, FloatTexelsBilinearAsTwoFusedLerps) {
         }
     }
     EXPECT_GT(differs, 0) << "no lane tells the fused lerps from the weighted sum";
+}
+
+// gallivm turns a NaN texel coordinate into INT_MIN (cvttps2dq in lp_build_ifloor / lp_build_ifloor_fract), which
+// CLAMP_TO_BORDER's bounds test sends to the border colour; the linear weight is NaN - floor(NaN) = NaN, carried by
+// the fused lerps.
+TEST(ShaderTexture, NanCoordinateWithClampToBorderReadsTheBorder) {
+    TestImage img;
+    SamplerState smp;
+    smp.address_u = smp.address_v = AddressMode::ClampToBorder;
+    smp.border = BorderColor::OpaqueWhite;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    // lanes alternate: NaN in s only, NaN in t only
+    for (int l = 0; l < kLanes; ++l)
+        r.block.inputs[0][0][l] = u(l % 2 ? 0.3f : nan), r.block.inputs[0][1][l] = u(l % 2 ? nan : 0.3f);
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(r.out(l, c), 1.0f) << "nearest " << l << " " << c;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) EXPECT_TRUE(std::isnan(r.out(l, c))) << "linear " << l << " " << c;
 }
 
 TEST(ShaderTexture, SrgbAndFloatFormats) {
