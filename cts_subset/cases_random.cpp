@@ -31,9 +31,14 @@
 // in the default list 1..56, which is simply the first seeds, every one passing):
 // - 4x lines (cause not established): seeds 242 (polygon mode LINE, 2 px), 369 (line strip, restart, blending,
 //   1 px), 372 (polygon mode LINE, instanced, depth clamp, 1 px), 630 (wide 1.5 lines clipped at the viewport,
-//   1 px), 821 (indexed line strip with a 0.2-px segment, 1 px; tilevk covers samples lavapipe does not). All pass at
-//   1x.
-// - 787 (polygon mode POINT, instanced, RGBA32F, 1 px) and 1056 (2 px): not analysed.
+//   1 px), 821 (indexed line strip with a 0.2-px segment, 1 px; tilevk covers samples lavapipe does not), 1056
+//   (instanced line strip on B8G8R8A8, 2 px; still fails with the fragment shader reduced to its colour). All pass
+//   at 1x.
+// - 787 (polygon mode POINT, instanced, RGBA32F, 1 px): one ulp in green, not the rasterizer. Every input of
+//   `mix(c.rg, gl_PointCoord, 0.5) + pc.p[1]` reads the same bits on both; lavapipe's result is the sum with the
+//   push constant added before the last product (x*0.5 + (y*0.5 + p), or (x*0.5 + p) + y*0.5), tilevk's the
+//   source order: consistent with one of NIR's inexact reassociations, which shader/ does not do (see the
+//   exclusions above; the NIR rule was not identified).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
