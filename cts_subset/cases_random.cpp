@@ -22,17 +22,20 @@
 // (stencil.two_sided_polygon_mode_*); RGBA8 texels were c/255 where gallivm multiplies by float(1/255)
 // (texture.float_target.*); 4x lines whose fixed-point box holds no pixel boundary in x or in y, which lavapipe drops
 // whole (u_rect_test_intersection fails on the empty bbox) where tilevk drew the samples inside them: seeds 242, 369,
-// 372, 630, 821 and 1056 (multisample.subpixel_lines_4x, rast_core_scissor_msaa); and in the harness, a bound
-// descriptor set with an unwritten combined-image-sampler binding crashes lavapipe 22.3 (render.cpp now keeps the
-// uniform buffer in its own set).
+// 372, 630, 821 and 1056 (multisample.subpixel_lines_4x, rast_core_scissor_msaa); gallivm's float (SoA) filter lerps
+// with fused multiply-adds, also between two mip levels, where tilevk summed weighted texels (seed 223,
+// texture.float_target.mip_linear_*); a NaN coordinate with CLAMP_TO_BORDER reads the border in gallivm (its
+// float-to-int conversion gives INT_MIN), texel 0 in tilevk (seed 720, a clipped noperspective triangle,
+// texture.float_target.nan_coordinate_*); and in the harness, a bound descriptor set with an unwritten
+// combined-image-sampler binding crashes lavapipe 22.3 (render.cpp now keeps the uniform buffer in its own set).
 //
-// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1497 of 1500 pass; none is
+// Known differences the exploration range still shows (TILEVK_CTS_RANDOM_SEEDS=1:1500: 1499 of 1500 pass; none is
 // in the default list 1..56, which is simply the first seeds, every one passing):
-// - gallivm's float (SoA) sampling path on float targets (cause not established): 223 (32x21 texture, MIRRORED_REPEAT,
-//   min LINEAR, mip LINEAR: last bits of 4 px) and 720 (2x22, 5 mips, CLAMP_TO_BORDER, mip LINEAR, noperspective
-//   coordinates: last bits, and one edge pixel that takes the border where lavapipe takes a texel). With the target
-//   switched to RGBA8 both seeds pass.
-// - 787 (1x, polygon modes LINE and POINT, instanced, RGBA32F, 1 px): not analysed.
+// - 787 (polygon mode POINT, instanced, RGBA32F, 1 px): one ulp in green, not the rasterizer. Every input of
+//   `mix(c.rg, gl_PointCoord, 0.5) + pc.p[1]` reads the same bits on both; lavapipe's result is the sum with the
+//   push constant added before the last product (x*0.5 + (y*0.5 + p), or (x*0.5 + p) + y*0.5), tilevk's the
+//   source order: consistent with one of NIR's inexact reassociations, which shader/ does not do (see the
+//   exclusions above; the NIR rule was not identified).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>

@@ -1,4 +1,6 @@
 // texture.*: magnification and minification filters, mip selection and blending, and the wrap modes.
+#include <limits>
+
 #include "case.hpp"
 
 namespace tilevk::cts {
@@ -98,6 +100,44 @@ void add_texture_cases(CaseList& out) {
                            t.pattern = TexPattern::kGradient;
                            t.mag = t.min = f;
                            Scene s = textured(t, 0.0f, 1.0f);
+                           s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
+    // gallivm's float filter blends two mip levels with lp_build_lerp, a fused multiply-add fma(f, l1 - l0, l0),
+    // where tilevk computed l0 * (1 - f) + l1 * f: the last bits differ in float targets (found by the random
+    // scene fuzzer, seeds 223 and 720). MIRRORED_REPEAT and CLAMP_TO_BORDER keep lavapipe off its 8-bit path.
+    const Wrap float_wraps[] = {wraps[1], wraps[3]};
+    for (const Wrap& w : float_wraps)
+        out.push_back({std::string("texture.float_target.mip_linear_") + w.name,
+                       [=] {
+                           TextureSpec t;
+                           t.pattern = TexPattern::kGradient;
+                           t.width = 32, t.height = 21, t.mip_levels = 5;
+                           t.mag = t.min = VK_FILTER_LINEAR;
+                           t.mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+                           t.wrap = w.mode;
+                           t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+                           Scene s = textured(t, -0.2f, 1.3f, 0.7f);
+                           s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
+    // A NaN coordinate (here every vertex's) with CLAMP_TO_BORDER: gallivm's float-to-int conversion gives INT_MIN,
+    // so lavapipe reads the border (nearest) or the border lerped with a NaN weight (linear: NaN); tilevk read
+    // texel 0 (found by the random scene fuzzer, seed 720, where a clipped noperspective triangle had NaN
+    // coordinates).
+    for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR})
+        out.push_back({std::string("texture.float_target.nan_coordinate_clamp_to_border_") +
+                           (f == VK_FILTER_NEAREST ? "nearest" : "linear"),
+                       [=] {
+                           TextureSpec t;
+                           t.width = t.height = 8;
+                           t.mag = t.min = f;
+                           t.wrap = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+                           t.border = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // texel (0, 0) of the checker is white
+                           const float nan = std::numeric_limits<float>::quiet_NaN();
+                           Scene s = textured(t, nan, nan, 0.5f, false, 16);
                            s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
                            return s;
                        },

@@ -165,6 +165,14 @@ int32_t safe_floor(float u) {
     return int32_t(std::floor(u));
 }
 
+// gallivm converts texel coordinates with cvttps2dq, which turns a NaN into INT_MIN: CLAMP_TO_BORDER's bounds test
+// (lp_build_sample_texel_soa) then takes the border colour, where safe_floor's 0 would read texel 0. The stand-in
+// stays negative after any constant offset is added.
+constexpr int32_t kNanBorderIndex = INT32_MIN / 2;
+int32_t floor_index(float u, AddressMode m) {
+    return (m == AddressMode::ClampToBorder && !(u == u)) ? kNanBorderIndex : safe_floor(u);
+}
+
 struct Level {
     const uint8_t* base;  // layer already applied
     uint64_t row_pitch;
@@ -206,10 +214,6 @@ struct SampleArgs {
     float ref = 0.0f;
 };
 
-bool fits_unorm8(Format f) {
-    return f == Format::RGBA8_UNORM || f == Format::BGRA8_UNORM || f == Format::R8_UNORM || f == Format::RG8_UNORM;
-}
-
 struct Axis {
     int32_t i0, i1;  // texel indices (i1 already wrapped when `wrapped`)
     float w;
@@ -250,12 +254,17 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         if (args.dref) return {compare(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
-    if (!linear) return fetch(safe_floor(u), safe_floor(v));
-    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint
+    if (!linear) return fetch(floor_index(u, smp.address_u), one_d ? 0 : floor_index(v, smp.address_v));
+    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint. A NaN coordinate on a
+    // CLAMP_TO_BORDER axis reads the border with the weight NaN - floor(NaN) = NaN (lp_build_ifloor_fract), which
+    // the lerps carry into the result.
     float uu = u - 0.5f, vv = v - 0.5f;
-    int32_t i0 = safe_floor(uu), j0 = one_d ? 0 : safe_floor(vv);
-    float a = (uu == uu) ? uu - std::floor(uu) : 0.0f;
-    float b = one_d ? 0.0f : ((vv == vv) ? vv - std::floor(vv) : 0.0f);
+    int32_t i0 = floor_index(uu, smp.address_u), j0 = one_d ? 0 : floor_index(vv, smp.address_v);
+    auto weight = [](float x, AddressMode m) {
+        return (x == x) ? x - std::floor(x) : m == AddressMode::ClampToBorder ? x : 0.0f;
+    };
+    float a = weight(uu, smp.address_u);
+    float b = one_d ? 0.0f : weight(vv, smp.address_v);
     int32_t i1 = i0 + 1, j1 = j0 + 1;
     Axis ax = {i0 + args.off_x, i1 + args.off_x, a}, ay = {j0 + args.off_y, j1 + args.off_y, b};
     if (smp.address_u == AddressMode::MirroredRepeat && !smp.unnormalized) ax = mirror_axis(s, lv.w, args.off_x);
@@ -267,19 +276,22 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     if (one_d) j1 = j0;
     Vec4 t00 = fetch(i0, j0), t10 = fetch(i1, j0), t01 = fetch(i0, j1), t11 = fetch(i1, j1);
     Vec4 r;
-    if (fits_unorm8(img.format) && !args.dref) {
-        // lavapipe's float (SoA) filter for 8-bit formats it could not take the 8-bit path with: texels are
-        // c * float(1/255), lerped along x then y with fused multiply-adds: lerp(w, p, q) = fma(w, q - p, p)
-        auto re = [](float x) { return float(int32_t(std::lround(x * 255.0f))) * (1.0f / 255.0f); };
-        auto lerp = [](float w, float p, float q) { return std::fma(w, q - p, p); };
-        for (int c = 0; c < 4; ++c) {
-            float x0 = lerp(a, re(t00[c]), re(t10[c]));
-            r[c] = one_d ? x0 : lerp(b, x0, lerp(a, re(t01[c]), re(t11[c])));
-        }
+    // lavapipe's float (SoA) filter: lerp(w, p, q) = fmuladd(w, q - p, p) (fused on FMA hosts), along x, then
+    // along y (lp_build_lerp_2d via lp_build_reduce_filter_2d), for every format that reaches it; never the
+    // weighted sum of the four texels, which differs in the last bits.
+    auto lerp = [](float w, float p, float q) { return std::fma(w, q - p, p); };
+    if (args.dref) {
+        // the compared texels are masks: each row is (m0 ? 1 - a : 0) + (m1 ? a : 0) (lp_build_masklerp2d), then
+        // the rows are lerped along y
+        auto row = [&](float m0, float m1) { return (m0 != 0.0f ? 1.0f - a : 0.0f) + (m1 != 0.0f ? a : 0.0f); };
+        float x0 = row(t00[0], t10[0]);
+        r = {one_d ? x0 : lerp(b, x0, row(t01[0], t11[0])), 0.0f, 0.0f, 1.0f};
         return r;
     }
-    for (int c = 0; c < 4; ++c)
-        r[c] = (1 - a) * (1 - b) * t00[c] + a * (1 - b) * t10[c] + (1 - a) * b * t01[c] + a * b * t11[c];
+    for (int c = 0; c < 4; ++c) {
+        float x0 = lerp(a, t00[c], t10[c]);
+        r[c] = one_d ? x0 : lerp(b, x0, lerp(a, t01[c], t11[c]));
+    }
     return r;
 }
 
@@ -565,7 +577,8 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
                 Vec4 a = sample_level(*img, *smp, lo, layer, s[l], t[l], linear, one_d, args);
                 if (hi != lo && frac > 0.0f) {
                     Vec4 b = sample_level(*img, *smp, hi, layer, s[l], t[l], linear, one_d, args);
-                    for (int c = 0; c < 4; ++c) a[c] = a[c] * (1.0f - frac) + b[c] * frac;
+                    // lp_build_sample_mipmap: lp_build_lerp(frac, level0, level1), a fused multiply-add
+                    for (int c = 0; c < 4; ++c) a[c] = std::fma(frac, b[c] - a[c], a[c]);
                 }
                 r = a;
             }

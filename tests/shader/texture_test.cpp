@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "glsl.h"
@@ -207,10 +208,104 @@ TEST(ShaderTexture, TrilinearBetweenLevels) {
             int lo = std::min(int(std::floor(lambda)), 3), hi = std::min(lo + 1, 3);
             float fr = lambda - std::floor(lambda);
             float a = img.texel(uint32_t(lo), 0, 0, 2), b = img.texel(uint32_t(hi), 0, 0, 2);
-            e = (hi != lo && fr > 0.0f) ? a * (1.0f - fr) + b * fr : a;
+            // lp_build_sample_mipmap: lp_build_lerp(frac, level0, level1) = fmuladd(frac, level1 - level0, level0)
+            e = (hi != lo && fr > 0.0f) ? std::fma(fr, b - a, a) : a;
         }
         EXPECT_EQ(r.out(l, 2), e) << l;
     }
+}
+
+// gallivm's float filter (lp_bld_sample_soa.c lp_build_sample_mipmap) blends the two levels with lp_build_lerp:
+// fmuladd(frac, level1 - level0, level0), fused on FMA hosts. The weighted sum level0 * (1 - frac) + level1 * frac
+// differs from it in the last bits for some frac, which float render targets keep (cts random seeds 223 and 720).
+TEST(ShaderTexture, MipLinearBlendIsOneFusedLerp) {
+    TestImage img;
+    SamplerState smp;  // nearest within each level: only the mip blend is under test
+    smp.mipmap_mode = MipmapMode::Linear;
+    smp.address_u = smp.address_v = AddressMode::MirroredRepeat;  // float filter (not lavapipe's 8-bit path)
+    FsTex r("color = textureLod(tex, vec2(0.01, 0.01), v.x);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    int differs = 0;
+    for (int base = 0; base < 2; ++base) {
+        for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(1.0f + float(base) + float(l + 1) / 17.0f);
+        r.run();
+        for (int l = 0; l < kLanes; ++l) {
+            const float lambda = 1.0f + float(base) + float(l + 1) / 17.0f, fr = lambda - std::floor(lambda);
+            const uint32_t lo = uint32_t(std::floor(lambda));
+            for (int c : {0, 2}) {  // red = (x*16 + L) / 255, blue = 40 L / 255 at texel (0, 0)
+                const float a = img.texel(lo, 0, 0, c), b = img.texel(lo + 1, 0, 0, c);
+                EXPECT_EQ(r.out(l, c), std::fma(fr, b - a, a)) << lambda << " " << c;
+                differs += std::fma(fr, b - a, a) != a * (1.0f - fr) + b * fr;
+            }
+        }
+    }
+    EXPECT_GT(differs, 0) << "no lane tells the fused lerp from the weighted sum";
+}
+
+// The float filter lerps every format's texels along x, then y, with fused multiply-adds (lp_build_lerp_2d via
+// lp_build_reduce_filter_2d), including 32-bit float texels; not the weighted sum of the four texels.
+TEST(ShaderTexture, FloatTexelsBilinearAsTwoFusedLerps) {
+    std::vector<float> texels(4 * 4 * 4);
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = std::sin(float(i) * 0.7f) * 3.0f + 0.1f * float(i);
+    ImageView fv;
+    fv.base = reinterpret_cast<const uint8_t*>(texels.data());
+    fv.format = Format::RGBA32F;
+    fv.width = fv.height = 4;
+    fv.level[0] = ImageLevel{0, 64, 256};
+    SamplerState smp;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &fv, &smp});
+    auto at = [&](int x, int y, int c) { return texels[size_t(y * 16 + x * 4 + c)]; };
+    int differs = 0;
+    for (int round = 0; round < 4; ++round) {
+        auto s_of = [&](int l) { return 0.13f + 0.047f * float(l) + 0.011f * float(round); };
+        auto t_of = [&](int l) { return 0.71f - 0.029f * float(l) + 0.017f * float(round); };
+        for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(s_of(l)), r.block.inputs[0][1][l] = u(t_of(l));
+        r.run();
+        for (int l = 0; l < kLanes; ++l) {
+            // CLAMP_TO_EDGE in gallivm's float path: u = max(min(s*n, n) - 0.5, 0); i0 = floor(u), i1 = min(i0+1, n-1)
+            const float uu = std::max(std::min(s_of(l) * 4.0f, 4.0f) - 0.5f, 0.0f);
+            const float vv = std::max(std::min(t_of(l) * 4.0f, 4.0f) - 0.5f, 0.0f);
+            const int i0 = int(std::floor(uu)), j0 = int(std::floor(vv));
+            const int i1 = std::min(i0 + 1, 3), j1 = std::min(j0 + 1, 3);
+            const float a = uu - std::floor(uu), b = vv - std::floor(vv);
+            for (int c = 0; c < 4; ++c) {
+                const float x0 = std::fma(a, at(i1, j0, c) - at(i0, j0, c), at(i0, j0, c));
+                const float x1 = std::fma(a, at(i1, j1, c) - at(i0, j1, c), at(i0, j1, c));
+                const float e = std::fma(b, x1 - x0, x0);
+                EXPECT_EQ(r.out(l, c), e) << l << " " << c;
+                const float sum = (1 - a) * (1 - b) * at(i0, j0, c) + a * (1 - b) * at(i1, j0, c) +
+                                  (1 - a) * b * at(i0, j1, c) + a * b * at(i1, j1, c);
+                differs += sum != e;
+            }
+        }
+    }
+    EXPECT_GT(differs, 0) << "no lane tells the fused lerps from the weighted sum";
+}
+
+// gallivm turns a NaN texel coordinate into INT_MIN (cvttps2dq in lp_build_ifloor / lp_build_ifloor_fract), which
+// CLAMP_TO_BORDER's bounds test sends to the border colour; the linear weight is NaN - floor(NaN) = NaN, carried by
+// the fused lerps.
+TEST(ShaderTexture, NanCoordinateWithClampToBorderReadsTheBorder) {
+    TestImage img;
+    SamplerState smp;
+    smp.address_u = smp.address_v = AddressMode::ClampToBorder;
+    smp.border = BorderColor::OpaqueWhite;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    // lanes alternate: NaN in s only, NaN in t only
+    for (int l = 0; l < kLanes; ++l)
+        r.block.inputs[0][0][l] = u(l % 2 ? 0.3f : nan), r.block.inputs[0][1][l] = u(l % 2 ? nan : 0.3f);
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(r.out(l, c), 1.0f) << "nearest " << l << " " << c;
+    smp.mag_filter = smp.min_filter = Filter::Linear;
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) EXPECT_TRUE(std::isnan(r.out(l, c))) << "linear " << l << " " << c;
 }
 
 TEST(ShaderTexture, SrgbAndFloatFormats) {
