@@ -479,6 +479,32 @@ VkPipelineDepthStencilStateCreateInfo depth_state(VkCompareOp compare) {
     return ds;
 }
 
+// A pipeline drawing ab_fullscreen.vert's one covering triangle (no vertex input) with fragment shader `fs` into
+// all of `tg`.
+Pipe fullscreen_pipe(Spv fs, const Target& tg, VkPipelineLayout layout) {
+    Pipe p;
+    p.vs = SPV(ab_fullscreen_vert);
+    p.fs = fs;
+    p.bindings = {};
+    p.attrs = {};
+    p.width = tg.w;
+    p.height = tg.h;
+    p.rp = tg.rp;
+    p.layout = layout;
+    return p;
+}
+
+// One pass over all of `tg` (cleared to -1, so unwritten texels show) drawing the fullscreen triangle of `pipe`
+// with descriptor set 0 = `set`.
+void draw_fullscreen(VkCommandBuffer c, const Target& tg, VkPipeline pipe, VkPipelineLayout layout,
+                     VkDescriptorSet set) {
+    begin_pass(c, tg.rp, tg.fb, tg.w, tg.h, {clear_color(-1, -1, -1, -1)});
+    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+    vkCmdDraw(c, 3, 1, 0, 0);
+    vkCmdEndRenderPass(c);
+}
+
 // Binds `vb` as vertex buffer 0 at offset 0.
 void bind_vertices(VkCommandBuffer c, const Device::Buffer& vb) {
     const VkDeviceSize zero = 0;
@@ -1393,21 +1419,27 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
     });
 }
 
+// Copies tight texels from `src` into level 0 (layers 0..layers-1, `aspect`) of a w x h image in UNDEFINED layout
+// and leaves it SHADER_READ_ONLY.
+void upload(Kit& k, const Device::Buffer& src, VkImage img, VkImageAspectFlags aspect, uint32_t w, uint32_t h,
+            uint32_t layers = 1) {
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        transition(c, img, aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy r{};
+        r.imageSubresource = {aspect, 0, 0, layers};
+        r.imageExtent = {w, h, 1};
+        vkCmdCopyBufferToImage(c, src.buffer, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+        transition(c, img, aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }),
+              VK_SUCCESS);
+}
+
 // Fills a w x h RGBA8 image (level 0, layer 0) with distinct texels and leaves it SHADER_READ_ONLY.
 void upload_rgba8(Kit& k, VkImage img, uint32_t w, uint32_t h, uint32_t seed, uint32_t layers = 1) {
     Device::Buffer src = k.buffer(VkDeviceSize(w) * h * 4 * layers);
     auto* p = static_cast<uint8_t*>(src.map);
     for (size_t i = 0; i < src.size; ++i) p[i] = uint8_t((i * 37 + seed * 101 + (i >> 5) * 11) & 255);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        transition(c, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        VkBufferImageCopy r{};
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
-        r.imageExtent = {w, h, 1};
-        vkCmdCopyBufferToImage(c, src.buffer, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-        transition(c, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }),
-              VK_SUCCESS);
+    upload(k, src, img, VK_IMAGE_ASPECT_COLOR_BIT, w, h, layers);
 }
 
 // Two sets, several bindings each: a uniform buffer, a combined image sampler, a dynamic uniform buffer (two draws
@@ -1600,17 +1632,7 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, 99), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-                    r.imageExtent = {4, 4, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
+                upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
                 VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
                 vci.image = tex.image;
                 vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -1625,23 +1647,9 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
                 VkDescriptorSet set = k.descriptor_set(dsl);
                 VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                Pipe p;
-                p.vs = SPV(ab_fullscreen_vert);
-                p.fs = SPV(ab_sample_frag);
-                p.bindings = {};
-                p.attrs = {};
-                p.width = p.height = 4;
-                p.rp = tg.rp;
-                p.layout = layout;
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
                 VkPipeline pipe = k.pipeline(p);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                    vkCmdDraw(c, 3, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
                 Bytes out = k.read(tg.image.image, 4, 4, 16);
                 vkDestroyImageView(k.d, view, nullptr);
                 return out;
@@ -1881,17 +1889,7 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT);
                 Device::Image tex = k.image(f, 8, 8, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 64, 7), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
-                    r.imageExtent = {8, 8, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
+                upload(k, src, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, 8, 8);
                 VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
                 sci.magFilter = sci.minFilter = filter;
                 sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
@@ -2155,14 +2153,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
         pcci.pInitialData = data.data();
         EXPECT_EQ(vkCreatePipelineCache(k.d, &pcci, nullptr, &cache2), VK_SUCCESS);
         EXPECT_EQ(vkMergePipelineCaches(k.d, cache2, 1, &cache), VK_SUCCESS);
-        Pipe p;
-        p.vs = SPV(ab_fullscreen_vert);
-        p.fs = SPV(ab_sample_frag);
-        p.bindings = {};
-        p.attrs = {};
-        p.width = p.height = 4;
-        p.rp = tg.rp;
-        p.layout = layout;
+        const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
         VkPipeline pipe = k.pipeline(p);  // (the builder passes no cache; the cache objects are checked above)
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -2175,11 +2166,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
             b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
                                  nullptr, 1, &b);
-            begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
+            draw_fullscreen(c, tg, pipe, layout, set);
         }),
                   VK_SUCCESS);
         Bytes out = k.read(tg.image.image, 4, 4, 16);
@@ -2236,23 +2223,9 @@ TEST_F(ApiBreadth, UniformTexelBuffers) {
             w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
             w.pTexelBufferView = &view;
             vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
-            Pipe p;
-            p.vs = SPV(ab_fullscreen_vert);
-            p.fs = SPV(ab_texel_buffer_frag);
-            p.bindings = {};
-            p.attrs = {};
-            p.width = p.height = 4;
-            p.rp = tg.rp;
-            p.layout = layout;
+            const Pipe p = fullscreen_pipe(SPV(ab_texel_buffer_frag), tg, layout);
             VkPipeline pipe = k.pipeline(p);
-            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                vkCmdDraw(c, 3, 1, 0, 0);
-                vkCmdEndRenderPass(c);
-            }),
-                      VK_SUCCESS);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
             Bytes out = k.read(tg.image.image, 4, 4, 16);
             float size;
             std::memcpy(&size, out.data() + 12, 4);
@@ -2640,16 +2613,7 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {aspect, 0, 0, 1};
-                    r.imageExtent = {4, 4, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
+                upload(k, src, tex.image, aspect, 4, 4);
                 VkDescriptorSetLayout dsl =
                     k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
                 VkPipelineLayout layout = k.pipeline_layout({dsl});
@@ -2657,23 +2621,9 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                Pipe p;
-                p.vs = SPV(ab_fullscreen_vert);
-                p.fs = SPV(ab_sample_frag);
-                p.bindings = {};
-                p.attrs = {};
-                p.width = p.height = 4;
-                p.rp = tg.rp;
-                p.layout = layout;
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
                 VkPipeline pipe = k.pipeline(p);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                    vkCmdDraw(c, 3, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
                 return k.read(tg.image.image, 4, 4, 16);
             });
         }
