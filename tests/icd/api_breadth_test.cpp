@@ -505,6 +505,20 @@ void draw_fullscreen(VkCommandBuffer c, const Target& tg, VkPipeline pipe, VkPip
     vkCmdEndRenderPass(c);
 }
 
+// A set layout with one combined image sampler (binding 0, fragment stage), a pipeline layout of it and a set.
+struct SamplerSet {
+    VkDescriptorSetLayout dsl;
+    VkPipelineLayout layout;
+    VkDescriptorSet set;
+};
+SamplerSet sampler_set(Kit& k) {
+    SamplerSet s{};
+    s.dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+    s.layout = k.pipeline_layout({s.dsl});
+    s.set = k.descriptor_set(s.dsl);
+    return s;
+}
+
 // Binds `vb` as vertex buffer 0 at offset 0.
 void bind_vertices(VkCommandBuffer c, const Device::Buffer& vb) {
     const VkDeviceSize zero = 0;
@@ -1586,10 +1600,7 @@ TEST_F(ApiBreadth, ArrayTextureViewOfLevelsAndLayers) {
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         }),
                   VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{k.sampler(),
                                  k.view(tex.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT,
                                         VK_IMAGE_VIEW_TYPE_2D_ARRAY, 1, 2, 1, 3),
@@ -1641,10 +1652,7 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
                 vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
                 VkImageView view = VK_NULL_HANDLE;
                 EXPECT_EQ(vkCreateImageView(k.d, &vci, nullptr, &view), VK_SUCCESS);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
                 const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
@@ -1898,10 +1906,7 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
                 sci.maxLod = 0.25f;
                 VkSampler smp = VK_NULL_HANDLE;
                 EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{smp, k.view(tex.image, f, VK_IMAGE_ASPECT_DEPTH_BIT),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
@@ -1973,10 +1978,7 @@ TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
         sci.compareOp = VK_COMPARE_OP_LESS;
         VkSampler smp = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{smp, sv, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
         Pipe lp;
@@ -2125,10 +2127,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
         vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         VkImageView view = VK_NULL_HANDLE;  // destroyed below, before its image
         EXPECT_EQ(vkCreateImageView(k.d, &vci, nullptr, &view), VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
         // Pipeline cache: the header round-trips into a new cache, which then builds the pipeline.
@@ -2614,10 +2613,7 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
                 upload(k, src, tex.image, aspect, 4, 4);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
