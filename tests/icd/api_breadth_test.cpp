@@ -91,17 +91,23 @@ VkPipelineColorBlendAttachmentState opaque() {
     s.colorWriteMask = 0xf;
     return s;
 }
-VkPipelineColorBlendAttachmentState alpha_over() {
+// Blending on, both ops ADD, all channels written.
+VkPipelineColorBlendAttachmentState blend_add(VkBlendFactor src_color, VkBlendFactor dst_color, VkBlendFactor src_alpha,
+                                              VkBlendFactor dst_alpha) {
     VkPipelineColorBlendAttachmentState s{};
     s.blendEnable = VK_TRUE;
-    s.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-    s.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    s.srcColorBlendFactor = src_color;
+    s.dstColorBlendFactor = dst_color;
     s.colorBlendOp = VK_BLEND_OP_ADD;
-    s.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    s.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    s.srcAlphaBlendFactor = src_alpha;
+    s.dstAlphaBlendFactor = dst_alpha;
     s.alphaBlendOp = VK_BLEND_OP_ADD;
     s.colorWriteMask = 0xf;
     return s;
+}
+VkPipelineColorBlendAttachmentState alpha_over() {
+    return blend_add(VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_FACTOR_ONE,
+                     VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
 }
 
 VkAttachmentDescription attachment(VkFormat f, VkAttachmentLoadOp load, VkAttachmentStoreOp store,
@@ -1101,15 +1107,9 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
         ds.stencilTestEnable = VK_TRUE;
         ds.front = ds.back = {
             VK_STENCIL_OP_KEEP, VK_STENCIL_OP_INCREMENT_AND_WRAP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL, 0, 0, 0};
-        VkPipelineColorBlendAttachmentState bl{};
-        bl.blendEnable = VK_TRUE;
-        bl.srcColorBlendFactor = VK_BLEND_FACTOR_CONSTANT_COLOR;
-        bl.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_COLOR;
-        bl.colorBlendOp = VK_BLEND_OP_ADD;
-        bl.srcAlphaBlendFactor = VK_BLEND_FACTOR_CONSTANT_ALPHA;
-        bl.dstAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-        bl.alphaBlendOp = VK_BLEND_OP_ADD;
-        bl.colorWriteMask = 0xf;
+        const VkPipelineColorBlendAttachmentState bl =
+            blend_add(VK_BLEND_FACTOR_CONSTANT_COLOR, VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_COLOR,
+                      VK_BLEND_FACTOR_CONSTANT_ALPHA, VK_BLEND_FACTOR_ZERO);
         Pipe p;
         p.rp = rp;
         p.ds = &ds;
