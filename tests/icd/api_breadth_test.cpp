@@ -91,17 +91,23 @@ VkPipelineColorBlendAttachmentState opaque() {
     s.colorWriteMask = 0xf;
     return s;
 }
-VkPipelineColorBlendAttachmentState alpha_over() {
+// Blending on, both ops ADD, all channels written.
+VkPipelineColorBlendAttachmentState blend_add(VkBlendFactor src_color, VkBlendFactor dst_color, VkBlendFactor src_alpha,
+                                              VkBlendFactor dst_alpha) {
     VkPipelineColorBlendAttachmentState s{};
     s.blendEnable = VK_TRUE;
-    s.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-    s.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    s.srcColorBlendFactor = src_color;
+    s.dstColorBlendFactor = dst_color;
     s.colorBlendOp = VK_BLEND_OP_ADD;
-    s.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    s.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    s.srcAlphaBlendFactor = src_alpha;
+    s.dstAlphaBlendFactor = dst_alpha;
     s.alphaBlendOp = VK_BLEND_OP_ADD;
     s.colorWriteMask = 0xf;
     return s;
+}
+VkPipelineColorBlendAttachmentState alpha_over() {
+    return blend_add(VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_FACTOR_ONE,
+                     VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
 }
 
 VkAttachmentDescription attachment(VkFormat f, VkAttachmentLoadOp load, VkAttachmentStoreOp store,
@@ -116,6 +122,19 @@ VkAttachmentDescription attachment(VkFormat f, VkAttachmentLoadOp load, VkAttach
     a.initialLayout = load == VK_ATTACHMENT_LOAD_OP_LOAD ? final_layout : VK_IMAGE_LAYOUT_UNDEFINED;
     a.finalLayout = final_layout;
     return a;
+}
+
+const VkAttachmentReference kColour0{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+const VkAttachmentReference kDepth1{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+
+// A graphics subpass writing at most one colour and one depth/stencil attachment (null: none).
+VkSubpassDescription subpass(const VkAttachmentReference* colour, const VkAttachmentReference* depth = nullptr) {
+    VkSubpassDescription s{};
+    s.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    s.colorAttachmentCount = colour != nullptr ? 1 : 0;
+    s.pColorAttachments = colour;
+    s.pDepthStencilAttachment = depth;
+    return s;
 }
 
 // Objects on one device, destroyed in reverse order of creation.
@@ -419,20 +438,109 @@ Target target(Kit& k, VkFormat f = VK_FORMAT_R8G8B8A8_UNORM, uint32_t w = 32, ui
     t.w = w;
     t.h = h;
     t.image = k.image(f, w, h, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub{};
-    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &ref;
-    t.rp = k.render_pass({attachment(f, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)}, {sub});
+    t.rp =
+        k.render_pass({attachment(f, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)}, {subpass(&kColour0)});
     t.fb = k.framebuffer(t.rp, {k.view(t.image.image, f, VK_IMAGE_ASPECT_COLOR_BIT)}, w, h);
     return t;
+}
+
+// A one-subpass render pass: colour attachment 0 (loaded or cleared) and depth/stencil attachment 1 (cleared),
+// both stored and left in TRANSFER_SRC_OPTIMAL.
+VkRenderPass colour_depth_pass(Kit& k, VkFormat colour, VkFormat depth,
+                               VkAttachmentLoadOp colour_load = VK_ATTACHMENT_LOAD_OP_CLEAR) {
+    return k.render_pass({attachment(colour, colour_load, VK_ATTACHMENT_STORE_OP_STORE),
+                          attachment(depth, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
+                         {subpass(&kColour0, &kDepth1)});
+}
+
+bool has_stencil(VkFormat f) {
+    return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT;
+}
+
+// An RGBA8 colour attachment and a depth (and stencil, if the format has it) attachment, 32x32, both cleared at
+// the start of a one-subpass render pass (colour_depth_pass).
+struct DepthTarget {
+    Device::Image col, dep;
+    VkRenderPass rp;
+    VkFramebuffer fb;
+};
+DepthTarget depth_target(Kit& k, VkFormat depth) {
+    const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM;
+    const VkImageAspectFlags aspects =
+        VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(depth) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+    DepthTarget t{};
+    t.col = k.image(C, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    t.dep = k.image(depth, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    t.rp = colour_depth_pass(k, C, depth);
+    t.fb = k.framebuffer(t.rp, {k.view(t.col.image, C, VK_IMAGE_ASPECT_COLOR_BIT), k.view(t.dep.image, depth, aspects)},
+                         32, 32);
+    return t;
+}
+
+// Depth test and write with `compare`, stencil off (callers that test stencil set it up on the result).
+VkPipelineDepthStencilStateCreateInfo depth_state(VkCompareOp compare) {
+    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+    ds.depthCompareOp = compare;
+    return ds;
+}
+
+// A pipeline drawing ab_fullscreen.vert's one covering triangle (no vertex input) with fragment shader `fs` into
+// all of `tg`.
+Pipe fullscreen_pipe(Spv fs, const Target& tg, VkPipelineLayout layout) {
+    Pipe p;
+    p.vs = SPV(ab_fullscreen_vert);
+    p.fs = fs;
+    p.bindings = {};
+    p.attrs = {};
+    p.width = tg.w;
+    p.height = tg.h;
+    p.rp = tg.rp;
+    p.layout = layout;
+    return p;
+}
+
+// One pass over all of `tg` (cleared to -1, so unwritten texels show) drawing the fullscreen triangle of `pipe`
+// with descriptor set 0 = `set`.
+void draw_fullscreen(VkCommandBuffer c, const Target& tg, VkPipeline pipe, VkPipelineLayout layout,
+                     VkDescriptorSet set) {
+    begin_pass(c, tg.rp, tg.fb, tg.w, tg.h, {clear_color(-1, -1, -1, -1)});
+    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+    vkCmdDraw(c, 3, 1, 0, 0);
+    vkCmdEndRenderPass(c);
+}
+
+// A set layout with one combined image sampler (binding 0, fragment stage), a pipeline layout of it and a set.
+struct SamplerSet {
+    VkDescriptorSetLayout dsl;
+    VkPipelineLayout layout;
+    VkDescriptorSet set;
+};
+SamplerSet sampler_set(Kit& k) {
+    SamplerSet s{};
+    s.dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+    s.layout = k.pipeline_layout({s.dsl});
+    s.set = k.descriptor_set(s.dsl);
+    return s;
+}
+
+// Binds `vb` as vertex buffer 0 at offset 0.
+void bind_vertices(VkCommandBuffer c, const Device::Buffer& vb) {
+    const VkDeviceSize zero = 0;
+    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
 }
 
 const std::vector<Vertex> kTriangle = {v(-0.8f, -0.8f, 0.2f, 1, 0, 0), v(0.8f, -0.6f, 0.4f, 0, 1, 0),
                                        v(-0.2f, 0.9f, 0.6f, 0, 0, 1)};
 const std::vector<Vertex> kTriangle2 = {v(0.9f, 0.9f, 0.5f, 1, 1, 0, 0.5f), v(-0.7f, 0.3f, 0.1f, 0, 1, 1, 0.8f),
                                         v(0.4f, -0.95f, 0.9f, 1, 0, 1, 0.3f)};
+// kTriangle then kTriangle2 (six vertices).
+const std::vector<Vertex> kBothTriangles = [] {
+    std::vector<Vertex> both = kTriangle;
+    both.insert(both.end(), kTriangle2.begin(), kTriangle2.end());
+    return both;
+}();
 
 class ApiBreadth : public TwoDriverSuite {
   protected:
@@ -505,9 +613,6 @@ uint32_t texel_bytes(VkFormat f, VkImageAspectFlags aspect) {
 bool is_depth(VkFormat f) {
     return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT ||
            f == VK_FORMAT_D24_UNORM_S8_UINT;
-}
-bool has_stencil(VkFormat f) {
-    return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT;
 }
 
 // Texel bytes with finite values for float formats (half exponents 10..20, floats in [-4,4]; depth floats [0,1]).
@@ -730,18 +835,17 @@ TEST_F(ApiBreadth, SubpassesPreserveAndMixedFormatAttachments) {
             vkCmdClearColorImage(c, imgs[2].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &cc, 1, &range);
             transition(c, imgs[2].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32,
                        {clear_color(0, 0, 0.25f, 1), clear_color(-2.5f, 0, 0, 0), clear_color(0, 0, 0, 0),
                         clear_color(0, 0, 0, 0), clear_color(1, 1, 1, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe0);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb1.buffer, &zero);
+            bind_vertices(c, vb1);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_INLINE);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe1full);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe1);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb2.buffer, &zero);
+            bind_vertices(c, vb2);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_INLINE);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe2);
@@ -805,9 +909,7 @@ TEST_F(ApiBreadth, InputAttachmentsReadThePreviousSubpass) {
             VK_DEPENDENCY_BY_REGION_BIT};
         VkRenderPass rp = k.render_pass(atts, subs, {dep01});
         VkFramebuffer fb = k.framebuffer(rp, {cv, dv, ov}, 32, 32);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
         Pipe p0;
         p0.rp = rp;
         p0.ds = &ds;
@@ -827,17 +929,15 @@ TEST_F(ApiBreadth, InputAttachmentsReadThePreviousSubpass) {
         p1.subpass = 1;
         p1.layout = layout;
         VkPipeline pipe1 = k.pipeline(p1);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        std::vector<Vertex> verts = kBothTriangles;
         verts.push_back(v(-1, -1, 0, 0.2f, 0.4f, 0.6f, 1));
         verts.push_back(v(3, -1, 0, 0.2f, 0.4f, 0.6f, 1));
         verts.push_back(v(-1, 3, 0, 0.2f, 0.4f, 0.6f, 1));
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.75f), clear_color(0, 0, 0, 0)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe0);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 6, 1, 0, 0);
             vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_INLINE);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe1);
@@ -948,26 +1048,14 @@ TEST_F(ApiBreadth, ClearAttachmentsRectsAndLayers) {
         Device::Image dep =
             k.image(VK_FORMAT_D32_SFLOAT, 32, 32,
                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 1, 2);
-        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 1;
-        sub.pColorAttachments = &cref;
-        sub.pDepthStencilAttachment = &dref;
-        VkRenderPass rp = k.render_pass(
-            {attachment(VK_FORMAT_R8G8B8A8_UNORM, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-             attachment(VK_FORMAT_D32_SFLOAT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-            {sub});
+        VkRenderPass rp = colour_depth_pass(k, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT);
         VkFramebuffer fb = k.framebuffer(rp,
                                          {k.view(col.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT,
                                                  VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, 2),
                                           k.view(dep.image, VK_FORMAT_D32_SFLOAT, VK_IMAGE_ASPECT_DEPTH_BIT,
                                                  VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, 1, 0, 2)},
                                          32, 32, 2);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
         Pipe p;
         p.rp = rp;
         p.ds = &ds;
@@ -975,10 +1063,9 @@ TEST_F(ApiBreadth, ClearAttachmentsRectsAndLayers) {
         Device::Buffer vb1 = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         Device::Buffer vb2 = k.buffer_of(kTriangle2, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(1.0f)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb1.buffer, &zero);
+            bind_vertices(c, vb1);
             vkCmdDraw(c, 3, 1, 0, 0);
             VkClearAttachment ca[2] = {{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}}, {VK_IMAGE_ASPECT_DEPTH_BIT, 0, {}}};
             ca[0].clearValue.color = {{0.5f, 1.0f, 0.0f, 1.0f}};
@@ -987,7 +1074,7 @@ TEST_F(ApiBreadth, ClearAttachmentsRectsAndLayers) {
             vkCmdClearAttachments(c, 1, &ca[0], 3, rects);
             VkClearRect drect{{{12, 10}, {10, 10}}, 0, 1};
             vkCmdClearAttachments(c, 1, &ca[1], 1, &drect);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb2.buffer, &zero);
+            bind_vertices(c, vb2);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
@@ -1015,42 +1102,14 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
     Device tdev(tilevk_->physical(), &features), ldev(lavapipe_->physical(), &features);
     ASSERT_TRUE(tdev.ok() && ldev.ok());
     both_on(tdev, ldev, [](Kit& k) {
-        const VkFormat DS = VK_FORMAT_D32_SFLOAT_S8_UINT;
-        Device::Image col = k.image(VK_FORMAT_R8G8B8A8_UNORM, 32, 32,
-                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        Device::Image dep =
-            k.image(DS, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 1;
-        sub.pColorAttachments = &cref;
-        sub.pDepthStencilAttachment = &dref;
-        VkRenderPass rp = k.render_pass(
-            {attachment(VK_FORMAT_R8G8B8A8_UNORM, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-             attachment(DS, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-            {sub});
-        VkFramebuffer fb =
-            k.framebuffer(rp,
-                          {k.view(col.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT),
-                           k.view(dep.image, DS, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)},
-                          32, 32);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+        const auto [col, dep, rp, fb] = depth_target(k, VK_FORMAT_D32_SFLOAT_S8_UINT);
+        VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS_OR_EQUAL);
         ds.stencilTestEnable = VK_TRUE;
         ds.front = ds.back = {
             VK_STENCIL_OP_KEEP, VK_STENCIL_OP_INCREMENT_AND_WRAP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL, 0, 0, 0};
-        VkPipelineColorBlendAttachmentState bl{};
-        bl.blendEnable = VK_TRUE;
-        bl.srcColorBlendFactor = VK_BLEND_FACTOR_CONSTANT_COLOR;
-        bl.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_COLOR;
-        bl.colorBlendOp = VK_BLEND_OP_ADD;
-        bl.srcAlphaBlendFactor = VK_BLEND_FACTOR_CONSTANT_ALPHA;
-        bl.dstAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-        bl.alphaBlendOp = VK_BLEND_OP_ADD;
-        bl.colorWriteMask = 0xf;
+        const VkPipelineColorBlendAttachmentState bl =
+            blend_add(VK_BLEND_FACTOR_CONSTANT_COLOR, VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_COLOR,
+                      VK_BLEND_FACTOR_CONSTANT_ALPHA, VK_BLEND_FACTOR_ZERO);
         Pipe p;
         p.rp = rp;
         p.ds = &ds;
@@ -1063,13 +1122,11 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
         VkPipeline tri = k.pipeline(p);
         p.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
         VkPipeline lines = k.pipeline(p);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        std::vector<Vertex> verts = kBothTriangles;
         verts.push_back(v(-0.9f, 0.8f, 0.0f, 1, 1, 1));
         verts.push_back(v(0.9f, -0.3f, 0.0f, 1, 0.5f, 0));
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.5f, 3)});
             // Before the bind.
             VkViewport vp{1, 2, 29, 27, 0, 1};
@@ -1084,7 +1141,7 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
             vkCmdSetStencilWriteMask(c, VK_STENCIL_FACE_FRONT_AND_BACK, 0xff);
             vkCmdSetStencilReference(c, VK_STENCIL_FACE_FRONT_AND_BACK, 0x7);  // 7&3 == 3&3: passes
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, tri);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 3, 1, 0, 0);
             // After the bind: new values for the second triangle.
             VkViewport vp2{0, 0, 32, 32, 0, 1};
@@ -1118,28 +1175,8 @@ TEST_F(ApiBreadth, DynamicStateBeforeAndAfterBind) {
 // cleared to 0) as reversed-Z renderers use it.
 TEST_F(ApiBreadth, PerFaceStencilAndReversedDepthRange) {
     both([](Kit& k) {
-        const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, DS = VK_FORMAT_D24_UNORM_S8_UINT;
-        Device::Image col = k.image(C, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        Device::Image dep =
-            k.image(DS, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 1;
-        sub.pColorAttachments = &cref;
-        sub.pDepthStencilAttachment = &dref;
-        VkRenderPass rp = k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-                                         attachment(DS, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-                                        {sub});
-        VkFramebuffer fb =
-            k.framebuffer(rp,
-                          {k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT),
-                           k.view(dep.image, DS, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)},
-                          32, 32);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_GREATER;
+        const auto [col, dep, rp, fb] = depth_target(k, VK_FORMAT_D24_UNORM_S8_UINT);
+        VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_GREATER);
         ds.stencilTestEnable = VK_TRUE;
         ds.front = {VK_STENCIL_OP_ZERO,
                     VK_STENCIL_OP_INCREMENT_AND_CLAMP,
@@ -1167,7 +1204,6 @@ TEST_F(ApiBreadth, PerFaceStencilAndReversedDepthRange) {
         verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.0f, 0x35)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
             VkViewport vp{0, 0, 32, 32, 1.0f, 0.0f};  // reversed depth range
@@ -1178,7 +1214,7 @@ TEST_F(ApiBreadth, PerFaceStencilAndReversedDepthRange) {
             vkCmdSetStencilCompareMask(c, VK_STENCIL_FACE_BACK_BIT, 0x0f);
             vkCmdSetStencilWriteMask(c, VK_STENCIL_FACE_FRONT_BIT, 0xff);
             vkCmdSetStencilWriteMask(c, VK_STENCIL_FACE_BACK_BIT, 0x3c);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 6, 1, 0, 0);
             vkCmdSetStencilReference(c, VK_STENCIL_FACE_BACK_BIT, 0x30);
             vkCmdDraw(c, 3, 1, 6, 0);
@@ -1210,14 +1246,13 @@ TEST_F(ApiBreadth, PushConstantsBothStagesWithOffsets) {
         VkPipeline blended = k.pipeline(p);  // same layout: the pushed values stay valid across the switch
         Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             // Pushed before the pipeline is bound.
             const float off[4] = {0.1f, -0.05f, 0, 0}, frag[8] = {1, 0.5f, 0.25f, 1, 0, 0.1f, 0.2f, 0};
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 16, off);
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 16, 32, frag);
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 3, 1, 0, 0);
             // Only the `add` vector and the x offset change.
             const float add[4] = {0.5f, 0, 0, 0.0f}, x = 0.6f;
@@ -1266,8 +1301,7 @@ TEST_F(ApiBreadth, SpecializationConstants) {
             p.fs_spec = i < 3 ? &infos[i] : nullptr;
             pipes.push_back(k.pipeline(p));
         }
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        std::vector<Vertex> verts = kBothTriangles;
         for (int i = 0; i < 3; ++i)
             verts.push_back(v(-1.0f + 0.9f * float(i), 1.0f - float(i == 1), 0.1f, 0.9f, 0.3f, 0.6f, 0.7f));
         verts.push_back(v(-0.3f, -1, 0, 0.1f, 0.8f, 0.2f, 0.9f));
@@ -1275,9 +1309,8 @@ TEST_F(ApiBreadth, SpecializationConstants) {
         verts.push_back(v(0.5f, 1, 0, 0.3f, 0.3f, 0.3f, 0.6f));
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             for (uint32_t i = 0; i < 4; ++i) {
                 vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes[i]);
                 vkCmdDraw(c, 3, 1, 3 * i, 0);
@@ -1400,21 +1433,27 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
     });
 }
 
+// Copies tight texels from `src` into level 0 (layers 0..layers-1, `aspect`) of a w x h image in UNDEFINED layout
+// and leaves it SHADER_READ_ONLY.
+void upload(Kit& k, const Device::Buffer& src, VkImage img, VkImageAspectFlags aspect, uint32_t w, uint32_t h,
+            uint32_t layers = 1) {
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        transition(c, img, aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy r{};
+        r.imageSubresource = {aspect, 0, 0, layers};
+        r.imageExtent = {w, h, 1};
+        vkCmdCopyBufferToImage(c, src.buffer, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+        transition(c, img, aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }),
+              VK_SUCCESS);
+}
+
 // Fills a w x h RGBA8 image (level 0, layer 0) with distinct texels and leaves it SHADER_READ_ONLY.
 void upload_rgba8(Kit& k, VkImage img, uint32_t w, uint32_t h, uint32_t seed, uint32_t layers = 1) {
     Device::Buffer src = k.buffer(VkDeviceSize(w) * h * 4 * layers);
     auto* p = static_cast<uint8_t*>(src.map);
     for (size_t i = 0; i < src.size; ++i) p[i] = uint8_t((i * 37 + seed * 101 + (i >> 5) * 11) & 255);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        transition(c, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        VkBufferImageCopy r{};
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
-        r.imageExtent = {w, h, 1};
-        vkCmdCopyBufferToImage(c, src.buffer, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-        transition(c, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }),
-              VK_SUCCESS);
+    upload(k, src, img, VK_IMAGE_ASPECT_COLOR_BIT, w, h, layers);
 }
 
 // Two sets, several bindings each: a uniform buffer, a combined image sampler, a dynamic uniform buffer (two draws
@@ -1464,10 +1503,9 @@ TEST_F(ApiBreadth, DescriptorSetsDynamicOffsetsSeparateSamplers) {
                                      v(1, 1, 0, 1, 1, 0),   v(1, -1, 0, 1.5f, 0, 0), v(-1, 1, 0, 0, 1.5f, 0)};
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             VkDescriptorSet sets[2] = {s0, s1};
             uint32_t dyn = uint32_t(align);
             vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 2, sets, 1, &dyn);
@@ -1518,14 +1556,11 @@ TEST_F(ApiBreadth, DynamicOffsetOrderAcrossSetsBindingsAndArrays) {
         p.rp = t.rp;
         p.layout = layout;
         VkPipeline pipe = k.pipeline(p);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
-        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             VkDescriptorSet sets[2] = {s0, s1};
             // Order: set 0 binding 0, set 0 binding 2 [0], [1], set 1 binding 1.
             uint32_t offs[4] = {uint32_t(1 * align), uint32_t(4 * align), uint32_t(6 * align), uint32_t(2 * align)};
@@ -1565,10 +1600,7 @@ TEST_F(ApiBreadth, ArrayTextureViewOfLevelsAndLayers) {
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         }),
                   VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{k.sampler(),
                                  k.view(tex.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT,
                                         VK_IMAGE_VIEW_TYPE_2D_ARRAY, 1, 2, 1, 3),
@@ -1583,10 +1615,9 @@ TEST_F(ApiBreadth, ArrayTextureViewOfLevelsAndLayers) {
         std::vector<Vertex> verts = {v(-1, -1, 0, 0, 0, 0), v(3, -1, 0, 2, 0, 0.5f), v(-1, 3, 0, 0, 2, 0.5f)};
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdEndRenderPass(c);
@@ -1612,17 +1643,7 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, 99), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-                    r.imageExtent = {4, 4, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
+                upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
                 VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
                 vci.image = tex.image;
                 vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -1631,29 +1652,12 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
                 vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
                 VkImageView view = VK_NULL_HANDLE;
                 EXPECT_EQ(vkCreateImageView(k.d, &vci, nullptr, &view), VK_SUCCESS);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                Pipe p;
-                p.vs = SPV(ab_fullscreen_vert);
-                p.fs = SPV(ab_sample_frag);
-                p.bindings = {};
-                p.attrs = {};
-                p.width = p.height = 4;
-                p.rp = tg.rp;
-                p.layout = layout;
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
                 VkPipeline pipe = k.pipeline(p);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                    vkCmdDraw(c, 3, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
                 Bytes out = k.read(tg.image.image, 4, 4, 16);
                 vkDestroyImageView(k.d, view, nullptr);
                 return out;
@@ -1865,8 +1869,7 @@ TEST_F(ApiBreadth, MsaaTwoResolvesAndPartialRenderArea) {
             bi.pClearValues = clears;
             vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            VkDeviceSize zero = 0;
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
@@ -1894,17 +1897,7 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT);
                 Device::Image tex = k.image(f, 8, 8, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 64, 7), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
-                    r.imageExtent = {8, 8, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
+                upload(k, src, tex.image, VK_IMAGE_ASPECT_DEPTH_BIT, 8, 8);
                 VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
                 sci.magFilter = sci.minFilter = filter;
                 sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
@@ -1913,10 +1906,7 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
                 sci.maxLod = 0.25f;
                 VkSampler smp = VK_NULL_HANDLE;
                 EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{smp, k.view(tex.image, f, VK_IMAGE_ASPECT_DEPTH_BIT),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
@@ -1930,10 +1920,9 @@ TEST_F(ApiBreadth, DepthCompareSampling) {
                                              v(-1, 3, 0, 0, 2.4f, 1.0f)};
                 Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    VkDeviceSize zero = 0;
                     begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(-1, -1, -1, -1)});
                     vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    bind_vertices(c, vb);
                     vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
                     vkCmdDraw(c, 3, 1, 0, 0);
                     vkCmdEndRenderPass(c);
@@ -1957,10 +1946,7 @@ TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
             D, 32, 32,
             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         VkImageView sv = k.view(shadow.image, D, VK_IMAGE_ASPECT_DEPTH_BIT);
-        VkAttachmentReference dref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.pDepthStencilAttachment = &dref;
+        const VkAttachmentReference dref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
         VkSubpassDependency dep{0,
                                 VK_SUBPASS_EXTERNAL,
                                 VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
@@ -1970,11 +1956,9 @@ TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
                                 0};
         VkRenderPass depth_rp = k.render_pass({attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
                                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)},
-                                              {sub}, {dep});
+                                              {subpass(nullptr, &dref)}, {dep});
         VkFramebuffer depth_fb = k.framebuffer(depth_rp, {sv}, 32, 32);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
         Pipe dp;
         dp.rp = depth_rp;
         dp.ds = &ds;
@@ -1994,10 +1978,7 @@ TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
         sci.compareOp = VK_COMPARE_OP_LESS;
         VkSampler smp = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateSampler(k.d, &sci, nullptr, &smp), VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{smp, sv, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
         Pipe lp;
@@ -2005,16 +1986,14 @@ TEST_F(ApiBreadth, DepthOnlyPassWithoutFragmentStageThenShadowLookup) {
         lp.rp = tg.rp;
         lp.layout = layout;
         VkPipeline lookup = k.pipeline(lp);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        std::vector<Vertex> verts = kBothTriangles;
         verts.push_back(v(-1, -1, 0, 0, 0, 0));
         verts.push_back(v(3, -1, 0, 2.0f, 0, 1.0f));
         verts.push_back(v(-1, 3, 0, 0, 2.0f, 1.0f));
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, depth_rp, depth_fb, 32, 32, {clear_depth(1.0f)});
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, discard_pipe);
             vkCmdSetDepthBias(c, 0.0f, 0.0f, 0.0f);
             vkCmdDraw(c, 3, 1, 6, 0);  // would cover everything at depth 0: discarded
@@ -2056,31 +2035,18 @@ TEST_F(ApiBreadth, RenderIntoLevelAndLayer) {
             3);
         Device::Image dep =
             k.image(D, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 1, 2);
-        VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 1;
-        sub.pColorAttachments = &cref;
-        sub.pDepthStencilAttachment = &dref;
-        VkRenderPass rp = k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE),
-                                         attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-                                        {sub});
+        VkRenderPass rp = colour_depth_pass(k, C, D, VK_ATTACHMENT_LOAD_OP_LOAD);
         VkFramebuffer fb =
             k.framebuffer(rp,
                           {k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_VIEW_TYPE_2D, 1, 1, 2, 1),
                            k.view(dep.image, D, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_VIEW_TYPE_2D, 0, 1, 1, 1)},
                           32, 32);
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
         Pipe p;
         p.rp = rp;
         p.ds = &ds;
         VkPipeline pipe = k.pipeline(p);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
-        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             // Every subresource of the colour image starts grey; the pass loads level 1 layer 2.
             transition(c, col.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -2090,10 +2056,9 @@ TEST_F(ApiBreadth, RenderIntoLevelAndLayer) {
             vkCmdClearColorImage(c, col.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &all);
             transition(c, col.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-            VkDeviceSize zero = 0;
             begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0, 0), clear_depth(1.0f)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 6, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
@@ -2162,10 +2127,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
         vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         VkImageView view = VK_NULL_HANDLE;  // destroyed below, before its image
         EXPECT_EQ(vkCreateImageView(k.d, &vci, nullptr, &view), VK_SUCCESS);
-        VkDescriptorSetLayout dsl =
-            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
+        const auto [dsl, layout, set] = sampler_set(k);
         VkDescriptorImageInfo ii{k.sampler(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
         // Pipeline cache: the header round-trips into a new cache, which then builds the pipeline.
@@ -2190,14 +2152,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
         pcci.pInitialData = data.data();
         EXPECT_EQ(vkCreatePipelineCache(k.d, &pcci, nullptr, &cache2), VK_SUCCESS);
         EXPECT_EQ(vkMergePipelineCaches(k.d, cache2, 1, &cache), VK_SUCCESS);
-        Pipe p;
-        p.vs = SPV(ab_fullscreen_vert);
-        p.fs = SPV(ab_sample_frag);
-        p.bindings = {};
-        p.attrs = {};
-        p.width = p.height = 4;
-        p.rp = tg.rp;
-        p.layout = layout;
+        const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
         VkPipeline pipe = k.pipeline(p);  // (the builder passes no cache; the cache objects are checked above)
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -2210,11 +2165,7 @@ TEST_F(ApiBreadth, LinearImageHostWritesAndPipelineCache) {
             b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
                                  nullptr, 1, &b);
-            begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
+            draw_fullscreen(c, tg, pipe, layout, set);
         }),
                   VK_SUCCESS);
         Bytes out = k.read(tg.image.image, 4, 4, 16);
@@ -2271,23 +2222,9 @@ TEST_F(ApiBreadth, UniformTexelBuffers) {
             w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
             w.pTexelBufferView = &view;
             vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
-            Pipe p;
-            p.vs = SPV(ab_fullscreen_vert);
-            p.fs = SPV(ab_texel_buffer_frag);
-            p.bindings = {};
-            p.attrs = {};
-            p.width = p.height = 4;
-            p.rp = tg.rp;
-            p.layout = layout;
+            const Pipe p = fullscreen_pipe(SPV(ab_texel_buffer_frag), tg, layout);
             VkPipeline pipe = k.pipeline(p);
-            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                vkCmdDraw(c, 3, 1, 0, 0);
-                vkCmdEndRenderPass(c);
-            }),
-                      VK_SUCCESS);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
             Bytes out = k.read(tg.image.image, 4, 4, 16);
             float size;
             std::memcpy(&size, out.data() + 12, 4);
@@ -2459,8 +2396,7 @@ TEST_F(ApiBreadth, IndirectDrawsWithStride) {
         p.attrs = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0}};
         p.blend = {alpha_over()};
         VkPipeline pipe = k.pipeline(p);
-        std::vector<Vertex> verts = kTriangle;
-        verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
+        std::vector<Vertex> verts = kBothTriangles;
         for (int i = 0; i < 3; ++i) verts.push_back(v(-1.0f + 0.4f * float(i), 1.0f - float(i == 1), 0, 0, 0, 0));
         Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         const std::vector<float> colours = {1, 0, 0, 0.5f, 0, 1, 0, 0.5f, 0, 0, 1, 0.5f, 1, 1, 0, 0.5f, 0, 1, 1, 0.5f};
@@ -2588,8 +2524,7 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) {
                     begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
                     vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    VkDeviceSize zero = 0;
-                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    bind_vertices(c, vb);
                     vkCmdDraw(c, 16, 1, 0, 0);
                     vkCmdEndRenderPass(c);
                 }),
@@ -2625,14 +2560,11 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 p.rp = tg.rp;
                 p.blend = {blend ? alpha_over() : opaque()};
                 VkPipeline pipe = k.pipeline(p);
-                std::vector<Vertex> verts = kTriangle;
-                verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
-                Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    VkDeviceSize zero = 0;
                     begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(0.1f, 0.2f, 0.3f, 0.4f)});
                     vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    bind_vertices(c, vb);
                     vkCmdDraw(c, 6, 1, 0, 0);
                     vkCmdEndRenderPass(c);
                 }),
@@ -2643,31 +2575,8 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
         if (t & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
             ++depth;
             both([&](Kit& k) {
-                const VkImageAspectFlags aspects =
-                    VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(f) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
-                Device::Image col = k.image(VK_FORMAT_R8G8B8A8_UNORM, 32, 32,
-                                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-                Device::Image dep =
-                    k.image(f, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-                VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-                VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-                VkSubpassDescription sub{};
-                sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-                sub.colorAttachmentCount = 1;
-                sub.pColorAttachments = &cref;
-                sub.pDepthStencilAttachment = &dref;
-                VkRenderPass rp = k.render_pass(
-                    {attachment(VK_FORMAT_R8G8B8A8_UNORM, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-                     attachment(f, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-                    {sub});
-                VkFramebuffer fb =
-                    k.framebuffer(rp,
-                                  {k.view(col.image, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_ASPECT_COLOR_BIT),
-                                   k.view(dep.image, f, aspects)},
-                                  32, 32);
-                VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-                ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-                ds.depthCompareOp = VK_COMPARE_OP_LESS;
+                const auto [col, dep, rp, fb] = depth_target(k, f);
+                VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
                 ds.stencilTestEnable = has_stencil(f);
                 ds.front = ds.back = {VK_STENCIL_OP_KEEP,
                                       VK_STENCIL_OP_REPLACE,
@@ -2680,14 +2589,11 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 p.rp = rp;
                 p.ds = &ds;
                 VkPipeline pipe = k.pipeline(p);
-                std::vector<Vertex> verts = kTriangle;
-                verts.insert(verts.end(), kTriangle2.begin(), kTriangle2.end());
-                Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    VkDeviceSize zero = 0;
                     begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.7f, 3)});
                     vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+                    bind_vertices(c, vb);
                     vkCmdDraw(c, 6, 1, 0, 0);
                     vkCmdEndRenderPass(c);
                 }),
@@ -2706,40 +2612,14 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    transition(c, tex.image, aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                    VkBufferImageCopy r{};
-                    r.imageSubresource = {aspect, 0, 0, 1};
-                    r.imageExtent = {4, 4, 1};
-                    vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-                    transition(c, tex.image, aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-                }),
-                          VK_SUCCESS);
-                VkDescriptorSetLayout dsl =
-                    k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-                VkPipelineLayout layout = k.pipeline_layout({dsl});
-                VkDescriptorSet set = k.descriptor_set(dsl);
+                upload(k, src, tex.image, aspect, 4, 4);
+                const auto [dsl, layout, set] = sampler_set(k);
                 VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                Pipe p;
-                p.vs = SPV(ab_fullscreen_vert);
-                p.fs = SPV(ab_sample_frag);
-                p.bindings = {};
-                p.attrs = {};
-                p.width = p.height = 4;
-                p.rp = tg.rp;
-                p.layout = layout;
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
                 VkPipeline pipe = k.pipeline(p);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, tg.rp, tg.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-                    vkCmdDraw(c, 3, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
                 return k.read(tg.image.image, 4, 4, 16);
             });
         }
@@ -3007,10 +2887,9 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         VkPipeline good = k.pipeline(ok);
         Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            VkDeviceSize zero = 0;
             begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, good);
-            vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+            bind_vertices(c, vb);
             vkCmdDraw(c, 3, 1, 0, 0);
             vkCmdEndRenderPass(c);
         }),
