@@ -1666,9 +1666,15 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
             // {ZERO,...} exactly 0.
             float px0[4];
             std::memcpy(px0, b.data(), 16);
-            if (m.a == VK_COMPONENT_SWIZZLE_ONE) EXPECT_EQ(px0[3], 1.0f);
-            if (m.r == VK_COMPONENT_SWIZZLE_ZERO) EXPECT_EQ(px0[0], 0.0f);
-            if (m.g == VK_COMPONENT_SWIZZLE_R) EXPECT_EQ(px0[1], px0[0]);
+            if (m.a == VK_COMPONENT_SWIZZLE_ONE) {
+                EXPECT_EQ(px0[3], 1.0f);
+            }
+            if (m.r == VK_COMPONENT_SWIZZLE_ZERO) {
+                EXPECT_EQ(px0[0], 0.0f);
+            }
+            if (m.g == VK_COMPONENT_SWIZZLE_R) {
+                EXPECT_EQ(px0[1], px0[0]);
+            }
         }
     }
 }
@@ -2696,7 +2702,9 @@ TEST_F(ApiBreadth, ImageFormatPropertiesMatchFeatures) {
             EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "format " << fi;
             continue;
         }
-        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) EXPECT_EQ(r, VK_SUCCESS) << "colour format " << fi;
+        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
+            EXPECT_EQ(r, VK_SUCCESS) << "colour format " << fi;
+        }
         if (r != VK_SUCCESS) continue;
         EXPECT_EQ(ip.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT)) << "format " << fi;
         Device::Image img = tilevk_->make_image(f, 16, 8, 1, 1, VK_SAMPLE_COUNT_1_BIT, usage);
