@@ -191,7 +191,9 @@ TEST(ShaderControl, DiscardInsideLoop) {
         if (8.0f * float(l) <= 20.0f) expect |= 1u << l;
     EXPECT_EQ(r.block.live_mask, expect);
     for (int l = 0; l < kLanes; ++l)
-        if (expect >> l & 1) EXPECT_EQ(r.out(l, 0), 8.0f * float(l));
+        if (expect >> l & 1) {
+            EXPECT_EQ(r.out(l, 0), 8.0f * float(l));
+        }
 }
 
 TEST(ShaderControl, DerivativesFineAndCoarse) {

@@ -236,7 +236,9 @@ TEST(ShaderDivergence, DiscardInsideLoopStopsLaterStores) {
         if (!killed) live |= 1u << l;
         EXPECT_EQ(r.data[size_t(l)], count) << l;
         EXPECT_EQ(r.data[size_t(16 + l)], killed ? 0u : 5u) << l;
-        if (!killed) EXPECT_EQ(r.out(l, 0), float(l));
+        if (!killed) {
+            EXPECT_EQ(r.out(l, 0), float(l));
+        }
     }
     EXPECT_EQ(r.block.live_mask, live);
 }

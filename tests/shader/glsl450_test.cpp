@@ -403,7 +403,9 @@ TEST(ShaderGlsl450, ModfAndFrexp) {
             int32_t eexp = (denormal || x == 0.0f) ? 0 : int32_t(field) - 126;
             EXPECT_EQ(vb.outputs[2][c][l], esig) << "frexp significand of " << x;
             EXPECT_EQ(int32_t(vb.outputs[3][c][l]), eexp) << "frexp exponent of " << x;
-            if (nonzero_finite) EXPECT_EQ(std::ldexp(f(esig), eexp), x);
+            if (nonzero_finite) {
+                EXPECT_EQ(std::ldexp(f(esig), eexp), x);
+            }
         }
 }
 
