@@ -1,0 +1,382 @@
+// API breadth (api_breadth.h): format honesty (every reported format works, image format properties match
+// the features) and synchronisation / error paths.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "api_breadth.h"
+
+namespace tilevk::test::breadth {
+namespace {
+
+// ---- Format honesty --------------------------------------------------------------------------------------------
+
+// Every format tilevk reports as COLOR_ATTACHMENT (+BLEND), DEPTH_STENCIL_ATTACHMENT or SAMPLED_IMAGE renders /
+// samples exactly as on lavapipe; lavapipe must report the same feature (else the test could not compare).
+TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
+    int colour = 0, depth = 0, sampled = 0;
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        const VkFormat f = VkFormat(fi);
+        VkFormatProperties tp, lp;
+        vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), f, &tp);
+        vkGetPhysicalDeviceFormatProperties(lavapipe_->physical(), f, &lp);
+        const VkFormatFeatureFlags t = tp.optimalTilingFeatures;
+        if (t == 0) continue;
+        SCOPED_TRACE("format " + std::to_string(fi));
+        EXPECT_EQ(t & ~lp.optimalTilingFeatures, 0u) << "tilevk reports features lavapipe lacks";
+        ASSERT_NE(texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT), 0u) << "the test does not know this format";
+        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
+            ++colour;
+            const bool blend = t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
+            both([&](Kit& k) {
+                Target tg = target(k, f);
+                Pipe p;
+                p.rp = tg.rp;
+                p.blend = {blend ? alpha_over() : opaque()};
+                VkPipeline pipe = k.pipeline(p);
+                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(0.1f, 0.2f, 0.3f, 0.4f)});
+                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                    bind_vertices(c, vb);
+                    vkCmdDraw(c, 6, 1, 0, 0);
+                    vkCmdEndRenderPass(c);
+                }),
+                          VK_SUCCESS);
+                return k.read(tg.image.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT));
+            });
+        }
+        if (t & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
+            ++depth;
+            both([&](Kit& k) {
+                const auto [col, dep, rp, fb] = depth_target(k, f);
+                VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
+                ds.stencilTestEnable = has_stencil(f);
+                ds.front = ds.back = {VK_STENCIL_OP_KEEP,
+                                      VK_STENCIL_OP_REPLACE,
+                                      VK_STENCIL_OP_INCREMENT_AND_CLAMP,
+                                      VK_COMPARE_OP_ALWAYS,
+                                      0xff,
+                                      0xff,
+                                      0x5a};
+                Pipe p;
+                p.rp = rp;
+                p.ds = &ds;
+                VkPipeline pipe = k.pipeline(p);
+                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.7f, 3)});
+                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                    bind_vertices(c, vb);
+                    vkCmdDraw(c, 6, 1, 0, 0);
+                    vkCmdEndRenderPass(c);
+                }),
+                          VK_SUCCESS);
+                Bytes out = concat(
+                    {k.read(col.image, 32, 32, 4),
+                     k.read(dep.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT), VK_IMAGE_ASPECT_DEPTH_BIT)});
+                if (has_stencil(f)) out = concat({out, k.read(dep.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT)});
+                return out;
+            });
+        }
+        if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
+            ++sampled;
+            both([&](Kit& k) {
+                const VkImageAspectFlags aspect = is_depth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+                Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+                Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+                Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
+                upload(k, src, tex.image, aspect, 4, 4);
+                const auto [dsl, layout, set] = sampler_set(k);
+                VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+                k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
+                VkPipeline pipe = k.pipeline(p);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+                return k.read(tg.image.image, 4, 4, 16);
+            });
+        }
+    }
+    EXPECT_GT(colour, 0);
+    EXPECT_GT(depth, 0);
+    EXPECT_GT(sampled, 0);
+}
+
+// vkGetPhysicalDeviceImageFormatProperties says VK_ERROR_FORMAT_NOT_SUPPORTED for every usage whose format feature
+// is not reported (and for formats with no features at all), and what it accepts, vkCreateImage makes.
+TEST_F(ApiBreadth, ImageFormatPropertiesMatchFeatures) {
+    VkPhysicalDevice pd = tilevk_->physical();
+    const std::pair<VkImageUsageFlags, VkFormatFeatureFlags> usages[] = {
+        {VK_IMAGE_USAGE_SAMPLED_BIT, VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT},
+        {VK_IMAGE_USAGE_STORAGE_BIT, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT},
+        {VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT},
+        {VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT},
+        {VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_FORMAT_FEATURE_TRANSFER_SRC_BIT},
+        {VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_FORMAT_FEATURE_TRANSFER_DST_BIT}};
+    int accepted = 0;
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        const VkFormat f = VkFormat(fi);
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(pd, f, &fp);
+        for (auto [usage, feature] : usages) {
+            VkImageFormatProperties ip;
+            const VkResult r = vkGetPhysicalDeviceImageFormatProperties(pd, f, VK_IMAGE_TYPE_2D,
+                                                                        VK_IMAGE_TILING_OPTIMAL, usage, 0, &ip);
+            if (!(fp.optimalTilingFeatures & feature)) {
+                EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "format " << fi << " usage " << usage;
+                continue;
+            }
+            EXPECT_EQ(r, VK_SUCCESS) << "format " << fi << " usage " << usage;
+            if (r != VK_SUCCESS) continue;
+            ++accepted;
+            Device::Image img = tilevk_->make_image(f, 16, 8, 1, 1, VK_SAMPLE_COUNT_1_BIT, usage);
+            EXPECT_NE(img.image, VK_NULL_HANDLE) << "format " << fi << " usage " << usage;
+            if (img.image) tilevk_->destroy(img);
+        }
+    }
+    EXPECT_GT(accepted, 20);
+    // LINEAR tiling: what the linear features do not have is refused too.
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(pd, VkFormat(fi), &fp);
+        for (auto [usage, feature] : usages) {
+            VkImageFormatProperties ip;
+            const VkResult r = vkGetPhysicalDeviceImageFormatProperties(pd, VkFormat(fi), VK_IMAGE_TYPE_2D,
+                                                                        VK_IMAGE_TILING_LINEAR, usage, 0, &ip);
+            if (!(fp.linearTilingFeatures & feature))
+                EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "linear format " << fi << " usage " << usage;
+            else
+                EXPECT_EQ(r, VK_SUCCESS) << "linear format " << fi << " usage " << usage;
+        }
+    }
+    // Input attachments: every colour-attachment format may be one (it is read by a texel fetch); a depth format
+    // only when it is also sampled; never multisampled. What is accepted, vkCreateImage makes.
+    for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
+        const VkFormat f = VkFormat(fi);
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(pd, f, &fp);
+        const VkFormatFeatureFlags t = fp.optimalTilingFeatures;
+        const VkImageUsageFlags att = (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT)
+                                          ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT
+                                          : VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        const VkImageUsageFlags usage = att | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;
+        VkImageFormatProperties ip;
+        const VkResult r =
+            vkGetPhysicalDeviceImageFormatProperties(pd, f, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0, &ip);
+        const bool attachment =
+            t & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        if (!attachment) {
+            EXPECT_EQ(r, VK_ERROR_FORMAT_NOT_SUPPORTED) << "format " << fi;
+            continue;
+        }
+        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
+            EXPECT_EQ(r, VK_SUCCESS) << "colour format " << fi;
+        }
+        if (r != VK_SUCCESS) continue;
+        EXPECT_EQ(ip.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT)) << "format " << fi;
+        Device::Image img = tilevk_->make_image(f, 16, 8, 1, 1, VK_SAMPLE_COUNT_1_BIT, usage);
+        EXPECT_NE(img.image, VK_NULL_HANDLE) << "format " << fi;
+        if (img.image) tilevk_->destroy(img);
+    }
+}
+
+// ---- Synchronisation and error paths ---------------------------------------------------------------------------
+
+// Fences (signalled at creation, reset, waited with and without timeout), a semaphore between two submissions,
+// events set by the host and by a command buffer, vkCmdWaitEvents, queue/device idle: same results on both.
+TEST_F(ApiBreadth, FencesSemaphoresEvents) {
+    both([](Kit& k) {
+        Bytes log;
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+        VkFence fence;
+        EXPECT_EQ(vkCreateFence(k.d, &fci, nullptr, &fence), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetFenceStatus(k.d, fence)));  // VK_SUCCESS
+        EXPECT_EQ(vkResetFences(k.d, 1, &fence), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetFenceStatus(k.d, fence)));                 // VK_NOT_READY
+        log.push_back(uint8_t(vkWaitForFences(k.d, 1, &fence, VK_TRUE, 0)));  // VK_TIMEOUT
+        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        VkSemaphore sem;
+        EXPECT_EQ(vkCreateSemaphore(k.d, &sci, nullptr, &sem), VK_SUCCESS);
+        VkEventCreateInfo eci{VK_STRUCTURE_TYPE_EVENT_CREATE_INFO};
+        VkEvent host_ev, dev_ev;
+        EXPECT_EQ(vkCreateEvent(k.d, &eci, nullptr, &host_ev), VK_SUCCESS);
+        EXPECT_EQ(vkCreateEvent(k.d, &eci, nullptr, &dev_ev), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetEventStatus(k.d, host_ev)));  // VK_EVENT_RESET
+        EXPECT_EQ(vkSetEvent(k.d, host_ev), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetEventStatus(k.d, host_ev)));  // VK_EVENT_SET
+        Device::Buffer buf = k.buffer(256);
+        VkCommandBuffer a = k.command_buffer(), b = k.command_buffer();
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        vkBeginCommandBuffer(a, &bi);
+        vkCmdFillBuffer(a, buf.buffer, 0, 64, 0x01020304u);
+        vkCmdSetEvent(a, dev_ev, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        vkEndCommandBuffer(a);
+        vkBeginCommandBuffer(b, &bi);
+        VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        mb.srcAccessMask = VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        VkEvent evs[2] = {host_ev, dev_ev};
+        vkCmdWaitEvents(b, 2, evs, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT, 1, &mb, 0, nullptr, 0, nullptr);
+        VkBufferCopy region{0, 128, 64};
+        vkCmdCopyBuffer(b, buf.buffer, buf.buffer, 1, &region);
+        vkCmdResetEvent(b, host_ev, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        vkEndCommandBuffer(b);
+        VkSubmitInfo s1{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        s1.commandBufferCount = 1;
+        s1.pCommandBuffers = &a;
+        s1.signalSemaphoreCount = 1;
+        s1.pSignalSemaphores = &sem;
+        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        VkSubmitInfo s2{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        s2.waitSemaphoreCount = 1;
+        s2.pWaitSemaphores = &sem;
+        s2.pWaitDstStageMask = &wait_stage;
+        s2.commandBufferCount = 1;
+        s2.pCommandBuffers = &b;
+        EXPECT_EQ(vkQueueSubmit(k.queue, 1, &s1, VK_NULL_HANDLE), VK_SUCCESS);
+        EXPECT_EQ(vkQueueSubmit(k.queue, 1, &s2, fence), VK_SUCCESS);
+        log.push_back(uint8_t(vkWaitForFences(k.d, 1, &fence, VK_TRUE, UINT64_MAX)));
+        log.push_back(uint8_t(vkGetFenceStatus(k.d, fence)));
+        EXPECT_EQ(vkQueueWaitIdle(k.queue), VK_SUCCESS);
+        EXPECT_EQ(vkDeviceWaitIdle(k.d), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetEventStatus(k.d, dev_ev)));   // set by command buffer a
+        log.push_back(uint8_t(vkGetEventStatus(k.d, host_ev)));  // reset by command buffer b
+        EXPECT_EQ(vkResetEvent(k.d, dev_ev), VK_SUCCESS);
+        log.push_back(uint8_t(vkGetEventStatus(k.d, dev_ev)));
+        // An empty submission only signals its fence.
+        EXPECT_EQ(vkResetFences(k.d, 1, &fence), VK_SUCCESS);
+        EXPECT_EQ(vkQueueSubmit(k.queue, 0, nullptr, fence), VK_SUCCESS);
+        log.push_back(uint8_t(vkWaitForFences(k.d, 1, &fence, VK_TRUE, UINT64_MAX)));
+        vkDestroyEvent(k.d, host_ev, nullptr);
+        vkDestroyEvent(k.d, dev_ev, nullptr);
+        vkDestroySemaphore(k.d, sem, nullptr);
+        vkDestroyFence(k.d, fence, nullptr);
+        const Bytes data = Kit::bytes(buf);
+        EXPECT_EQ(data[128], 4);  // the copy after the wait saw the fill
+        EXPECT_EQ(log[1], uint8_t(VK_NOT_READY));
+        EXPECT_EQ(log[2], uint8_t(VK_TIMEOUT));
+        EXPECT_EQ(log[7], uint8_t(VK_EVENT_SET));
+        EXPECT_EQ(log[8], uint8_t(VK_EVENT_RESET));
+        return concat({log, data});
+    });
+}
+
+// Error paths on tilevk without the validation layer (these calls are valid but must fail cleanly): an allocation
+// larger than the heap, a pipeline whose shader reads a storage texel buffer (no imageLoad/imageStore), a geometry
+// stage, a compute pipeline (no compute queue); each returns an error code and a null handle, and the device keeps
+// working.
+TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    Device dev(plain.find_device("tilevk"));
+    ASSERT_TRUE(dev.ok());
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(dev.physical(), &mp);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = mp.memoryHeaps[0].size + 4096;
+    ai.memoryTypeIndex = 0;
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    EXPECT_EQ(vkAllocateMemory(dev.device(), &ai, nullptr, &mem), VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    ai.allocationSize = uint64_t(1) << 62;
+    EXPECT_EQ(vkAllocateMemory(dev.device(), &ai, nullptr, &mem), VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    {
+        Kit k(dev);
+        Target t = target(k);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+        Pipe p;
+        p.fs = SPV(ab_storage_texel_frag);
+        p.rp = t.rp;
+        p.layout = k.pipeline_layout({dsl});
+        VkResult r = VK_SUCCESS;
+        VkPipeline pipe = k.pipeline(p, &r);
+        EXPECT_NE(r, VK_SUCCESS);
+        EXPECT_EQ(pipe, VK_NULL_HANDLE);
+        // Compute pipeline: refused.
+        VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        cci.stage.module = k.shader(SPV(ab_compute_comp));
+        cci.stage.pName = "main";
+        cci.layout = k.empty_layout();
+        VkPipeline cp = VK_NULL_HANDLE;
+        EXPECT_NE(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &cci, nullptr, &cp), VK_SUCCESS);
+        EXPECT_EQ(cp, VK_NULL_HANDLE);
+        // A geometry stage (the feature is not reported; without the layer nothing stops the call): refused.
+        {
+            VkPipelineShaderStageCreateInfo st[3] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+            const VkShaderStageFlagBits stages[3] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_GEOMETRY_BIT,
+                                                     VK_SHADER_STAGE_FRAGMENT_BIT};
+            const Spv code[3] = {SPV(draw_vert), SPV(ab_passthrough_geom), SPV(color_frag)};
+            for (int i = 0; i < 3; ++i) {
+                st[i].stage = stages[i];
+                st[i].module = k.shader(code[i]);
+                st[i].pName = "main";
+            }
+            VkVertexInputBindingDescription vb{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+            VkVertexInputAttributeDescription va[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+                                                       {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
+            VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+            vi.vertexBindingDescriptionCount = 1;
+            vi.pVertexBindingDescriptions = &vb;
+            vi.vertexAttributeDescriptionCount = 2;
+            vi.pVertexAttributeDescriptions = va;
+            VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+            ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+            VkViewport vp{0, 0, 32, 32, 0, 1};
+            VkRect2D sc{{0, 0}, {32, 32}};
+            VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+            vps.viewportCount = vps.scissorCount = 1;
+            vps.pViewports = &vp;
+            vps.pScissors = &sc;
+            VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+            rs.lineWidth = 1.0f;
+            VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+            ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+            VkPipelineColorBlendAttachmentState cba = opaque();
+            VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+            cb.attachmentCount = 1;
+            cb.pAttachments = &cba;
+            VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+            gci.stageCount = 3;
+            gci.pStages = st;
+            gci.pVertexInputState = &vi;
+            gci.pInputAssemblyState = &ia;
+            gci.pViewportState = &vps;
+            gci.pRasterizationState = &rs;
+            gci.pMultisampleState = &ms;
+            gci.pColorBlendState = &cb;
+            gci.layout = k.empty_layout();
+            gci.renderPass = t.rp;
+            VkPipeline gp = VK_NULL_HANDLE;
+            EXPECT_NE(vkCreateGraphicsPipelines(k.d, VK_NULL_HANDLE, 1, &gci, nullptr, &gp), VK_SUCCESS);
+            EXPECT_EQ(gp, VK_NULL_HANDLE);
+        }
+        // The device still draws.
+        Pipe ok;
+        ok.rp = t.rp;
+        VkPipeline good = k.pipeline(ok);
+        Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, good);
+            bind_vertices(c, vb);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        Bytes b = k.read(t.image.image, 32, 32, 4);
+        EXPECT_NE(px(b, 10, 12)[2], 64);
+    }
+    EXPECT_EQ(vkDeviceWaitIdle(dev.device()), VK_SUCCESS);
+}
+
+}  // namespace
+}  // namespace tilevk::test::breadth
