@@ -17,15 +17,20 @@ struct Case {
     std::function<Scene()> scene;  // built lazily: mesh cases load files only when they run
     Check check;                   // optional; applied to both devices' planes
     std::string note;              // e.g. "bgra-linear-path": deliberately hits lavapipe's linear rasterizer
-    // A read-back plane in which the reference (lavapipe) is known to violate the spec, documented with its reason
-    // (icd/README.md "Named differences"): it is not compared byte for byte; how many values differ is reported in
-    // the result's note instead. The plane must still be judged: by `check` and by a test that pins both drivers'
+    // A read-back plane in which the reference (lavapipe) is known to violate the spec, set from expectations.txt
+    // (CASE:PLANE,ReferenceDefect): it is not compared byte for byte; how many values differ is reported in the
+    // result's note instead. The plane must still be judged: by `check` and by a test that pins both drivers'
     // values (e.g. tests/icd/query_test.cpp). Everything else of the case is compared as usual.
     struct ReferenceDefect {
         std::string plane;
         std::string reason;
     };
     ReferenceDefect reference_defect;  // empty plane: none
+    // A named difference decided per frame (icd/README.md "Named differences"): when the planes differ from the
+    // reference, the case still passes if `check` holds on the device under test and fails on the reference (the
+    // reference is provably wrong); the note then says so with this text. `check` must hold on the device under
+    // test in any case.
+    std::string named_difference;
 };
 using CaseList = std::vector<Case>;
 
@@ -44,6 +49,10 @@ void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);
 CaseList all_cases();
+// The fuzzers' cases for one seed (tilevk-cts --fuzz): random.seed_N and extreme.random.seed_N, built from the
+// minimisation knobs in the environment at the time of the call (TILEVK_CTS_RANDOM_DRAWS, TILEVK_CTS_EXTREME_KEEP).
+Case random_seed_case(uint32_t seed);
+Case extreme_seed_case(uint32_t seed);
 
 // --- scene helpers ---
 inline Vertex vtx(float x, float y, float z = 0.0f, float w = 1.0f, std::array<float, 4> c = {1, 1, 1, 1}) {
@@ -69,7 +78,7 @@ inline Scene one_draw(Draw d, uint32_t w = 64, uint32_t h = 64) {
 
 // The analytic coverage check of the scene `make` builds (built again when the check runs, so that mesh files are
 // read only by cases that run). 1/64 px keeps clear of 8-bit sub-pixel snapping (at most 1/256 px).
-inline Check band_of(std::function<Scene()> make, float margin = 1.0f / 64.0f) {
+inline Check band_of(const std::function<Scene()>& make, float margin = 1.0f / 64.0f) {
     return [make, margin](const std::vector<Plane>& planes) { return coverage_band(make(), margin)(planes); };
 }
 

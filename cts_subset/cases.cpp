@@ -2,9 +2,36 @@
 
 namespace tilevk::cts {
 
-void add_quirk_cases(CaseList& out);   // cases_quirks.cpp
-void add_linear_cases(CaseList& out);  // cases_linear.cpp
-void add_random_cases(CaseList& out);  // cases_random.cpp
+void add_quirk_cases(CaseList& out);    // cases_quirks.cpp
+void add_linear_cases(CaseList& out);   // cases_linear.cpp
+void add_random_cases(CaseList& out);   // cases_random.cpp
+void add_feature_cases(CaseList& out);  // cases_features.cpp
+void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
+void add_format_cases(CaseList& out);   // cases_formats.cpp
+
+// dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
+// set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
+// fans, restart), depth, stencil, viewports and scissors, logic ops, list restart.
+void add_dynamic_state_cases(CaseList& out) {
+    const char* const groups[] = {
+        "rasterization.culling.", "rasterization.primitives.", "depth.", "stencil.", "viewport.", "scissor.partial",
+        "feature.logic_op.",      "feature.list_restart."};
+    const size_t n = out.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Case& c = out[i];
+        bool take = false;
+        for (const char* g : groups) take = take || c.name.rfind(g, 0) == 0;
+        if (!take) continue;
+        Case d = c;
+        d.name = "dynamic." + c.name;
+        d.scene = [make = c.scene] {
+            Scene s = make();
+            for (Draw& draw : s.draws) draw.dynamic = true;
+            return s;
+        };
+        out.push_back(std::move(d));
+    }
+}
 
 CaseList all_cases() {
     CaseList out;
@@ -23,8 +50,12 @@ CaseList all_cases() {
     add_quirk_cases(out);
     add_blit_cases(out);
     add_query_cases(out);
+    add_feature_cases(out);
+    add_format_cases(out);
     add_linear_cases(out);
     add_random_cases(out);
+    add_extreme_cases(out);
+    add_dynamic_state_cases(out);
     return out;
 }
 

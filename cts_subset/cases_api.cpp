@@ -20,7 +20,7 @@ void add_api_cases(CaseList& out) {
                    all_of({palette_only({clear, magenta}), pixel_is(128, 128, magenta), pixel_is(4, 4, clear),
                            band_of([=] { return smoke(VK_FORMAT_R8G8B8A8_UNORM); })}),
                    ""});
-    // B8G8R8A8 with no depth attachment: lavapipe's linear rasterizer (notes §0.3/§8) may take this frame.
+    // B8G8R8A8 with no depth attachment: lavapipe's linear rasterizer (lavapipe-rules §0.3/§8) may take this frame.
     out.push_back({"api.smoke.triangle_bgra_linear", [=] { return smoke(VK_FORMAT_B8G8R8A8_UNORM); },
                    all_of({palette_only({rgba8(191, 64, 32, 255), magenta}), pixel_is(128, 128, magenta)}),
                    "bgra-linear-path"});

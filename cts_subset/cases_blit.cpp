@@ -271,7 +271,7 @@ std::string blit_unsupported(const DeviceContext& c, const BlitSpec& s) {
     return {};
 }
 
-void add(CaseList& out, std::string name, BlitSpec s, std::string note = {}) {
+void add(CaseList& out, const std::string& name, BlitSpec s, std::string note = {}) {
     auto spec = std::make_shared<BlitSpec>(std::move(s));
     Case c;
     c.name = "blit." + name;

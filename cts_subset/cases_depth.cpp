@@ -1,5 +1,5 @@
-// depth.*: every compare op on D16 and D32, bias (constant, slope, clamp), depth clamp and near/far clipping.
-// Colour and the depth aspect are both compared byte for byte.
+// depth.*: every compare op on D16, D32 and X8_D24 (LESS on D24S8/D32S8, also at 4x), bias on each (constant, slope,
+// clamp), depth clamp and near/far clipping. Colour and the depth aspect are both compared byte for byte.
 #include "case.hpp"
 
 namespace tilevk::cts {
@@ -61,7 +61,8 @@ void add_depth_cases(CaseList& out) {
         const char* name;
         VkFormat format;
     };
-    const Fmt fmts[] = {{"d16", VK_FORMAT_D16_UNORM}, {"d32", VK_FORMAT_D32_SFLOAT}};
+    const Fmt fmts[] = {
+        {"d16", VK_FORMAT_D16_UNORM}, {"d32", VK_FORMAT_D32_SFLOAT}, {"x8d24", VK_FORMAT_X8_D24_UNORM_PACK32}};
     for (const Fmt& f : fmts)
         for (const Op& o : ops)
             out.push_back({std::string("depth.compare.") + f.name + "_" + o.name,
@@ -72,6 +73,18 @@ void add_depth_cases(CaseList& out) {
                    [] { return compare_scene(VK_FORMAT_D24_UNORM_S8_UINT, VK_COMPARE_OP_LESS); }, nullptr, ""});
     out.push_back({"depth.compare.d32s8_less",
                    [] { return compare_scene(VK_FORMAT_D32_SFLOAT_S8_UINT, VK_COMPARE_OP_LESS); }, nullptr, ""});
+    // The packed depth/stencil formats at 4x (the colour resolve is compared; multisampled depth is not read back).
+    const Fmt packed[] = {{"d24s8", VK_FORMAT_D24_UNORM_S8_UINT},
+                          {"d32s8", VK_FORMAT_D32_SFLOAT_S8_UINT},
+                          {"x8d24", VK_FORMAT_X8_D24_UNORM_PACK32}};
+    for (const Fmt& f : packed)
+        out.push_back({std::string("depth.compare.") + f.name + "_less_4x",
+                       [=] {
+                           Scene s = compare_scene(f.format, VK_COMPARE_OP_LESS);
+                           s.target.samples = VK_SAMPLE_COUNT_4_BIT;
+                           return s;
+                       },
+                       nullptr, ""});
     struct Bias {
         const char* name;
         float constant, slope, clamp;
@@ -81,6 +94,11 @@ void add_depth_cases(CaseList& out) {
                            {"slope", 0, 2, 0},
                            {"slope_neg", 0, -2, 0},
                            {"clamp", -100, -4, -0.001f}};
+    // Bias on the 24-bit formats (r = 2^-24) and on D32_SFLOAT_S8_UINT (r from the primitive's exponent).
+    for (const Fmt& f : packed)
+        for (const Bias& b : biases)
+            out.push_back({std::string("depth.bias.") + f.name + "_" + b.name,
+                           [=] { return bias_scene(f.format, b.constant, b.slope, b.clamp); }, nullptr, ""});
     for (const Fmt& f : fmts)
         for (const Bias& b : biases)
             out.push_back({std::string("depth.bias.") + f.name + "_" + b.name,

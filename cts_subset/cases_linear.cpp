@@ -1,10 +1,10 @@
 // linear.*: frames that put lavapipe in llvmpipe's "linear" mode (one single-sampled B8G8R8A8_UNORM colour
-// attachment, no depth/stencil attachment; notes §0.3/§8), one feature of the mode at a time.
+// attachment, no depth/stencil attachment; lavapipe-rules §0.3/§8), one feature of the mode at a time.
 //
 // linear.guard_band.*: in linear mode draw clips x/y against the 2x guard band |x|, |y| <= 2w instead of the
-// viewport (notes §1). Triangles and lines crossing the viewport edges, some also crossing the guard band, with
-// varying colours and w. The fragment shader is Frag::kColorSum (an fadd), which lavapipe's linear-shader
-// analysis refuses, so tiles lavapipe hands to its linear rasterizer are shaded by the general shader there
+// viewport (lavapipe-rules §1). Triangles and lines crossing the viewport edges, some also crossing the guard band,
+// with varying colours and w. The fragment shader is Frag::kColorSum (an fadd), which lavapipe's linear-shader analysis
+// refuses, so tiles lavapipe hands to its linear rasterizer are shaded by the general shader there
 // (lp_rast_linear_rect_fallback) and only the geometry is under test. Odd triangle counts keep llvmpipe's
 // 6N-vertex rectangle test (lp_setup_vbuf.c) out of the unclipped batches.
 #include <cstdio>
@@ -85,9 +85,8 @@ Scene bgra(Draw d, uint32_t w = 160, uint32_t h = 120) {
     return s;
 }
 
-}  // namespace
-
-void add_linear_cases(CaseList& out) {
+// linear.guard_band.*: draw's guard band (twice the viewport) instead of the viewport clip.
+void add_guard_band_cases(CaseList& out) {
     const char* note = "bgra-linear-path";
     // 45 triangles (135 vertices): reach 1.6 stays inside the guard band, 3.5 crosses it.
     for (uint32_t seed : {1u, 2u, 3u}) {
@@ -129,6 +128,11 @@ void add_linear_cases(CaseList& out) {
                        },
                        nullptr, note});
     }
+}
+
+// linear.rect.*: llvmpipe's rectangle setup.
+void add_rect_cases(CaseList& out) {
+    const char* note = "bgra-linear-path";
     // linear.rect.*: llvmpipe's rectangle path (lp_setup_rect.c): 6N-vertex lists, strips and 4-vertex fans whose
     // triangle pairs form axis-aligned rectangles with equal w and coplanar attributes are set up once from three
     // corners and cover the box of their util_iround-snapped corners. Corners sit on sub-pixel offsets where
@@ -171,7 +175,8 @@ void add_linear_cases(CaseList& out) {
                          d.cull = culls[c];
                          d.front_face = ff;
                          d.blend = additive();
-                         const float x = 1.5f + float(kind % 8) * 15.75f, y = 1.25f + float(kind / 8) * 15.5f;
+                         const uint32_t column = kind % 8, row = kind / 8;
+                         const float x = 1.5f + float(column) * 15.75f, y = 1.25f + float(row) * 15.5f;
                          push_rect(d, x, y, x + 13.5f + 1.0f / 512.0f, y + 12.5f, kind, kind % 5 != 4, kind);
                          for (Vertex& v : d.vertices)
                              for (float& ch : v.color) ch *= 0.25f;
@@ -268,12 +273,19 @@ void add_linear_cases(CaseList& out) {
                        return bgra(d, 128, 128);
                    },
                    nullptr, note});
+}
+
+// linear.shade.*: llvmpipe's 8-bit linear shading.
+// A case table (over 150 lines): one entry per case, in groups under their comments, sharing the scene builders
+// and constants declared at its top.
+void add_shade_cases(CaseList& out) {
+    const char* note = "bgra-linear-path";
     // linear.shade.*: llvmpipe's linear shading (lp_linear.c, lp_linear_interp.c) of bins holding only rectangles,
     // whole-tile triangle commands and clears, for the pass-through shader (o_color = v_color): 1.15 fixed-point
     // interpolation from each region's origin, truncated to 0.8. Where a region's colours leave [0, 1] or w varies,
     // llvmpipe falls back to its general shader; tiles with a partial triangle command use the general rasterizer.
     auto shade_case = [&](const std::string& name, std::function<Scene()> make) {
-        out.push_back({"linear.shade." + name, make, nullptr, note});
+        out.push_back({"linear.shade." + name, std::move(make), nullptr, note});
     };
     shade_case("rects", [] {
         Draw d;
@@ -417,6 +429,10 @@ void add_linear_cases(CaseList& out) {
             return s;
         });
     }
+}
+
+// 4-vertex fans through rect() in any mode, and a guard-band frame with depth (no linear mode).
+void add_fan_cases(CaseList& out) {
     // Any mode: a non-indexed 4-vertex fan without flat inputs reaches llvmpipe's setup through rect() as
     // (v0, v1, v2), (v0, v2, v3), not in the fan's provoking order (v1, v2, v0), (v2, v3, v0): the attribute
     // planes are set up from another first vertex. With a flat input the fan order stays.
@@ -443,6 +459,15 @@ void add_linear_cases(CaseList& out) {
                        return s;
                    },
                    nullptr, ""});
+}
+
+}  // namespace
+
+void add_linear_cases(CaseList& out) {
+    add_guard_band_cases(out);
+    add_rect_cases(out);
+    add_shade_cases(out);
+    add_fan_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -51,8 +51,8 @@ Scene point_coord_scene(VkSampleCountFlagBits samples) {
 
 void add_primitive_cases(CaseList& out) {
     // 1x: the size-8 point covers pixels 28..35; PointCoord at pixel 28's centre is 0.5/8 (unorm8 16), at pixel 35's
-    // 7.5/8 (239), origin upper-left. At 4x lavapipe's point planes keep the 1x half-pixel offset (notes §6), so
-    // only the comparison judges it.
+    // 7.5/8 (239), origin upper-left. At 4x lavapipe's point planes keep the 1x half-pixel offset (lavapipe-rules §6),
+    // so only the comparison judges it.
     out.push_back({"rasterization.primitives.point_coord", [] { return point_coord_scene(VK_SAMPLE_COUNT_1_BIT); },
                    all_of({pixel_is(28, 28, rgba8(16, 16, 0, 255)), pixel_is(35, 28, rgba8(239, 16, 0, 255)),
                            pixel_is(28, 35, rgba8(16, 239, 0, 255)), pixel_is(35, 35, rgba8(239, 239, 0, 255)),
@@ -66,7 +66,7 @@ void add_primitive_cases(CaseList& out) {
         uint32_t count;
         float line_width, psize;
     };
-    // Twelve-vertex lists: never nine (lavapipe's 9-vertex rectangle analysis, notes §8).
+    // Twelve-vertex lists: never nine (lavapipe's 9-vertex rectangle analysis, lavapipe-rules §8).
     const Row rows[] = {
         {"triangles", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 12, 1, 1},
         {"triangle_strip", VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, 10, 1, 1},

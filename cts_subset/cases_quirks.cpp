@@ -1,6 +1,7 @@
 // quirks.*: lavapipe behaviours that no Vulkan rule asks for but real applications run into — a zero sample
 // mask, llvmpipe's 9-vertex triangle-list analysis, draw's vertex batches (which decide the clipper/float-cull
 // path), and draw's pipeline stages for polygonMode LINE/POINT (clipper edge flags, offset, flatshade, point size).
+// GLSL normalize() as lavapipe's SPIR-V front end writes it (a division by the length).
 // Judged byte for byte against lavapipe; where an outcome is analytic (nothing drawn) it is also checked.
 #include "case.hpp"
 
@@ -190,6 +191,8 @@ void add_batch_cases(CaseList& out) {
 // polygonMode LINE / POINT: draw's clipper marks the edges it creates along frustum planes as hidden and the
 // vertices where a polygon leaves a plane as not drawn (draw_pipe_clip.c); offset, flatshade and the vertex's
 // point size apply through draw's stages (draw_pipe_offset.c, draw_pipe_flatshade.c, lp_setup_point.c).
+// A case table (over 150 lines): one entry per case, in groups under their comments, sharing the scene builders
+// and constants declared at its top.
 void add_unfilled_cases(CaseList& out) {
     auto big = [](VkPolygonMode mode) {
         Draw d;
@@ -353,9 +356,41 @@ void add_unfilled_cases(CaseList& out) {
                    Check(), ""});
 }
 
+// GLSL normalize(): lavapipe's SPIR-V front end divides by the length (v / sqrt(dot(v, v))); v * inversesqrt(...)
+// rounds some lanes differently by an ulp (a fifth of this triangle's pixels). The fragment shader scales n by 2^20
+// (exact) and keeps the fraction, so one ulp of n is ~16 units of the 8-bit output. Smooth colours give every pixel
+// another vector.
+Scene normalize_scene(int components) {
+    static const char* const kType[] = {"", "", "vec2", "vec3", "vec4"};
+    static const char* const kSwizzle[] = {"", "", ".xy", ".xyz", ""};
+    static const char* const kPad[] = {"", "", ", 0.0, 1.0", ", 1.0", ""};
+    const std::string body = std::string("  ") + kType[components] +
+                             " n = normalize((v_color - vec4(0.5, 0.3, 0.6, 0.4))" + kSwizzle[components] +
+                             ");\n  o_color = vec4(fract(n * 1048576.0)" + kPad[components] + ");\n";
+    Draw d;
+    d.fragment_glsl =
+        "#version 450\n"
+        "layout(location=0) in vec4 v_color;\n"
+        "layout(location=1) in vec2 v_uv;\n"
+        "layout(location=0) out vec4 o_color;\n"
+        "void main() {\n" +
+        body + "}\n";
+    d.vertices = {vtx(-0.9f, -0.9f, 0.5f, 1, {1.0f, 0.1f, 0.2f, 0.9f}),
+                  vtx(0.9f, -0.8f, 0.5f, 1, {0.0f, 0.9f, 0.4f, 0.1f}),
+                  vtx(-0.1f, 0.9f, 0.5f, 1, {0.3f, 0.2f, 1.0f, 0.6f})};
+    return one_draw(d);
+}
+
+void add_normalize_cases(CaseList& out) {
+    for (int n : {2, 3, 4})
+        out.push_back(
+            {"quirks.glsl.normalize_vec" + std::to_string(n), [n] { return normalize_scene(n); }, Check(), ""});
+}
+
 }  // namespace
 
 void add_quirk_cases(CaseList& out) {
+    add_normalize_cases(out);
     add_sample_mask_cases(out);
     add_nine_vertex_cases(out);
     add_batch_cases(out);

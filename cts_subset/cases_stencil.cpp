@@ -102,6 +102,15 @@ void add_stencil_cases(CaseList& out) {
     out.push_back({"stencil.two_sided", [=] { return stencil_scene(fmt, front, back, false); }, nullptr, ""});
     out.push_back({"stencil.two_sided_d32s8",
                    [=] { return stencil_scene(VK_FORMAT_D32_SFLOAT_S8_UINT, front, back, false); }, nullptr, ""});
+    // S8_UINT: stencil without depth (the scene's depth test has nothing to test), at 1x and 4x.
+    for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_4_BIT})
+        out.push_back({std::string("stencil.two_sided_s8") + (samples == VK_SAMPLE_COUNT_4_BIT ? "_4x" : ""),
+                       [=] {
+                           Scene s = stencil_scene(VK_FORMAT_S8_UINT, front, back, false);
+                           s.target.samples = samples;
+                           return s;
+                       },
+                       nullptr, ""});
     // Polygon modes LINE/POINT: lavapipe's edges and corners are front facing (front stencil state) unless the
     // fragment shader reads gl_FrontFacing, which makes draw inject the triangle's facing (found by the random
     // scene fuzzer, seeds 429/508/730/770 of 49..848: tilevk used the triangle's facing always).

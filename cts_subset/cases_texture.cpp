@@ -72,7 +72,7 @@ void add_texture_cases(CaseList& out) {
             out.push_back({std::string("texture.wrap.") + w.name + (f == VK_FILTER_NEAREST ? "_nearest" : "_linear"),
                            [=] { return textured(t, -1.25f, 2.5f); }, nullptr, ""});
         }
-    // The same textured rectangle on B8G8R8A8 without depth: lavapipe's linear path (notes §8) may shade it.
+    // The same textured rectangle on B8G8R8A8 without depth: lavapipe's linear path (lavapipe-rules §8) may shade it.
     for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
         TextureSpec t;
         t.mag = t.min = f;

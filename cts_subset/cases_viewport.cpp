@@ -18,6 +18,8 @@ Draw colourful(uint32_t seed, int n = 12) {
 
 }  // namespace
 
+// A case table (over 150 lines): one entry per case, in groups under their comments, sharing the scene builders
+// and constants declared at its top.
 void add_viewport_cases(CaseList& out) {
     const VkRect2D scissors[] = {
         {{10, 10}, {30, 20}}, {{0, 0}, {1, 1}}, {{40, 33}, {100, 100}}, {{63, 0}, {1, 64}}, {{0, 0}, {0, 0}}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace tilevk::cts {
@@ -65,7 +66,19 @@ PlaneDiff compare_planes(const Plane& a, const Plane& b) {
         const uint8_t* ta = a.data.data() + i * a.texel_bytes;
         const uint8_t* tb = b.data.data() + i * b.texel_bytes;
         if (std::memcmp(ta, tb, a.texel_bytes) == 0) continue;
-        ++d.differing;
+        if (d.differing++ == 0) {
+            auto values = [&](const Plane& p, const uint8_t* t) {
+                std::string v;
+                for (uint32_t c = 0; c < channels(p); ++c) {
+                    char buf[32];
+                    std::snprintf(buf, sizeof buf, "%s%.9g", c ? "," : "", channel(p, t, c));
+                    v += buf;
+                }
+                return v;
+            };
+            d.first = at(uint32_t(i % a.width), uint32_t(i / a.width)) + " ours " + values(a, ta) + " reference " +
+                      values(b, tb);
+        }
         for (uint32_t c = 0; c < channels(a); ++c) {
             double e = std::fabs(channel(a, ta, c) - channel(b, tb, c));
             if (std::isnan(e)) e = INFINITY;

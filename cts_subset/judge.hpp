@@ -16,6 +16,7 @@ struct PlaneDiff {
     uint64_t differing = 0;  // pixels with any differing byte
     uint64_t total = 0;
     double max_error = 0;  // largest per-channel difference in the format's units (unorm8 steps, D16 steps, ...)
+    std::string first;     // the first differing pixel: "(x,y) ours v0,v1,.. reference v0,v1,.." in format units
     std::string problem;   // non-empty when the planes cannot be compared (size/format mismatch)
 };
 

@@ -14,6 +14,8 @@
 #include <thread>
 
 #include "case.hpp"
+#include "expectations.hpp"
+#include "fuzz.hpp"
 #include "glsl.hpp"
 #include "oracle.hpp"
 #include "png_writer.hpp"
@@ -34,6 +36,9 @@ struct Options {
     bool selftest_validation = false;  // hidden: records one invalid barrier, which --validation must report
     int timing = 0;
     int case_timeout = 300;  // seconds; a hung driver ends the process (run_one.sh resumes after the case)
+    std::string expectations = TILEVK_CTS_EXPECTATIONS;  // the known differences (expectations.txt)
+    FuzzConfig fuzz;                                     // --fuzz: fuzz.hpp
+    bool fuzzing = false;
 };
 
 void usage() {
@@ -41,7 +46,8 @@ void usage() {
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
         "                  [--case-timeout SECONDS (default 300)]\n"
-        "                  [--selftest-perturb] [--validation] [--strict]\n"
+        "                  [--selftest-perturb] [--validation] [--strict] [--expectations FILE]\n"
+        "                  [--fuzz MINUTES [--fuzz-seed FIRST] [--fuzz-seeds COUNT] [--fuzz-log FILE]]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
         "  against 'llvmpipe'). Both may be the same device: two VkDevices are created on it.\n"
         "  --selftest-perturb flips one bit of the device-under-test's read-back (proves the comparison).\n"
@@ -49,6 +55,9 @@ void usage() {
         "  --strict fails a case that is NotSupported on the device under test but not on the reference, or\n"
         "  whose test data is missing (nothing is skipped silently; CI runs the subset this way).\n"
         "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
+        "  --expectations FILE: the known differences (default: the source tree's cts_subset/expectations.txt).\n"
+        "  --fuzz runs random, extreme-vertex and SPIR-V-mutation seeds from FIRST (default: today's, printed)\n"
+        "  for MINUTES or COUNT seeds; failures are minimised and printed with their reproduction (fuzz.hpp).\n"
         "  VK_ICD_FILENAMES defaults to this build's tilevk_icd.json and lavapipe's manifest.");
 }
 
@@ -88,7 +97,9 @@ bool parse(int argc, char** argv, Options& o) {
             o.validation = true;
         else if (a == "--selftest-validation")
             o.selftest_validation = true;
-        else if (a == "--start-after") {
+        else if (a == "--expectations") {
+            if (!value(o.expectations)) return false;
+        } else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
         } else if (a == "--case-timeout") {
             if (!value(n)) return false;
@@ -96,6 +107,19 @@ bool parse(int argc, char** argv, Options& o) {
             long v = std::strtol(n.c_str(), &end, 10);
             if (*end || v < 1 || v > 86400) return false;
             o.case_timeout = int(v);
+        } else if (a == "--fuzz" || a == "--fuzz-seed" || a == "--fuzz-seeds") {
+            if (!value(n)) return false;
+            char* end = nullptr;
+            const double v = std::strtod(n.c_str(), &end);
+            if (*end || !(v >= 0) || v > 4e9) return false;
+            if (a == "--fuzz")
+                o.fuzz.minutes = v, o.fuzzing = true;
+            else if (a == "--fuzz-seed")
+                o.fuzz.first_seed = uint32_t(v);
+            else
+                o.fuzz.max_seeds = uint32_t(v);
+        } else if (a == "--fuzz-log") {
+            if (!value(o.fuzz.log)) return false;
         } else if (a == "--timing") {
             if (!value(n)) return false;
             char* end = nullptr;
@@ -117,7 +141,7 @@ bool file_exists(const std::string& p) {
 std::string set_icd_filenames() {
     if (const char* env = std::getenv("VK_ICD_FILENAMES"); env && *env) return env;
     std::string list;
-    for (std::string p : {std::string(TILEVK_BUILD_ROOT) + "/tilevk_icd.json", std::string(TILEVK_LVP_ICD)})
+    for (const std::string& p : {std::string(TILEVK_BUILD_ROOT) + "/tilevk_icd.json", std::string(TILEVK_LVP_ICD)})
         if (file_exists(p)) list += (list.empty() ? "" : ":") + p;
     if (!list.empty()) setenv("VK_ICD_FILENAMES", list.c_str(), 1);
     return list;
@@ -170,6 +194,73 @@ std::string validation_verdict(const std::string& scope, const std::vector<Valid
         counts += (counts.empty() ? "" : ", ") + device + " " + std::to_string(n);
     return "validation: " + std::to_string(msgs.size()) + " message" + (msgs.size() == 1 ? "" : "s") + " (" + counts +
            "); first: " + format_message(msgs.front());
+}
+
+// The two frames' planes compared (reference defects and named differences applied), the case's independent check
+// and the coverage oracle run on both; fills r's counts, notes and verdicts and returns why the case fails, if it
+// does.
+std::string judge_frames(const Case& c, const DeviceContext& ours, const DeviceContext& ref, const Options& o,
+                         const Scene& scene, const RenderResult& a, const RenderResult& b, CaseResult& r) {
+    std::string why;
+    if (a.planes.size() != b.planes.size()) why = "different number of read-back planes";
+    // A per-frame named difference: the reference fails the independent check that the device under test passes.
+    std::string ca, cb;
+    if (c.check) ca = c.check(a.planes), cb = c.check(b.planes);
+    const bool reference_wrong =
+        c.check && !c.named_difference.empty() && !o.selftest_perturb && ca.empty() && !cb.empty();
+    for (size_t i = 0; i < a.planes.size() && i < b.planes.size(); ++i) {
+        PlaneDiff d = compare_planes(a.planes[i], b.planes[i]);
+        if (!c.reference_defect.plane.empty() && d.plane == c.reference_defect.plane) {
+            if (!d.problem.empty() && why.empty()) why = d.problem;  // shape mismatches still fail
+            r.note += (r.note.empty() ? "" : "; ") + std::string("reference defect in '") + d.plane + "' (" +
+                      c.reference_defect.reason + "): " + std::to_string(d.differing) + " of " +
+                      std::to_string(d.total) + " values differ, not compared";
+            continue;
+        }
+        if (!d.problem.empty() && why.empty()) why = d.problem;
+        r.differing += d.differing;
+        r.total += d.total;
+        r.max_error = std::max(r.max_error, d.max_error);
+        if (d.differing && reference_wrong) {
+            r.note += (r.note.empty() ? "" : "; ") + std::string("named difference (") + c.named_difference +
+                      "): " + d.plane + " " + std::to_string(d.differing) +
+                      " pixels differ; the reference fails the check: " + cb;
+            continue;
+        }
+        if (d.differing && why.empty()) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "%s: %llu of %llu pixels differ from the reference, max error %g",
+                          d.plane.c_str(), static_cast<unsigned long long>(d.differing),
+                          static_cast<unsigned long long>(d.total), d.max_error);
+            why = buf + std::string("; first ") + d.first;
+        }
+    }
+    // The harness's own proof (--device llvmpipe --ref llvmpipe): a case whose named difference says the reference
+    // is wrong expects the reference driver to fail its check, on both sides alike.
+    const bool reference_defect_on_both =
+        !c.named_difference.empty() && ours.name == ref.name && !ca.empty() && ca == cb;
+    if (reference_defect_on_both)
+        r.note += (r.note.empty() ? "" : "; ") + std::string("named difference (") + c.named_difference +
+                  "): the reference driver fails the check on both sides: " + ca;
+    if (c.check && !reference_defect_on_both) {
+        r.check = ca.empty() && cb.empty() ? "ok" : !ca.empty() ? ca : "reference: " + cb;
+        if (why.empty() && !ca.empty()) why = "independent check: " + ca;
+        if (why.empty() && !cb.empty() && !reference_wrong) why = "independent check failed on the reference: " + cb;
+    }
+    if (const CoverageOracle& oracle = coverage_oracle()) {
+        // Judged on both devices: the reference must agree with rast's reference coverage too.
+        const OracleVerdict va = oracle(scene, a.planes), vb = oracle(scene, b.planes);
+        if (!va.applies) {
+            r.oracle = "n/a: " + va.note;
+        } else {
+            r.oracle = va.error.empty() && vb.error.empty() ? "ok (" + va.note + ")"
+                       : !va.error.empty()                  ? va.error
+                                                            : "reference: " + vb.error;
+            if (why.empty() && !va.error.empty()) why = "coverage oracle: " + va.error;
+            if (why.empty() && !vb.error.empty()) why = "coverage oracle failed on the reference: " + vb.error;
+        }
+    }
+    return why;
 }
 
 CaseResult run_case_body(const Case& c, const DeviceContext* ours, const std::string& ours_missing,
@@ -276,48 +367,7 @@ CaseResult run_case_body(const Case& c, const DeviceContext* ours, const std::st
     r.ref_ms = median(b.frame_ms);
     r.ours_pipeline_ms = a.pipeline_ms;
     r.ref_pipeline_ms = b.pipeline_ms;
-    std::string why;
-    if (a.planes.size() != b.planes.size()) why = "different number of read-back planes";
-    for (size_t i = 0; i < a.planes.size() && i < b.planes.size(); ++i) {
-        PlaneDiff d = compare_planes(a.planes[i], b.planes[i]);
-        if (!c.reference_defect.plane.empty() && d.plane == c.reference_defect.plane) {
-            if (!d.problem.empty() && why.empty()) why = d.problem;  // shape mismatches still fail
-            r.note += (r.note.empty() ? "" : "; ") + std::string("reference defect in '") + d.plane + "' (" +
-                      c.reference_defect.reason + "): " + std::to_string(d.differing) + " of " +
-                      std::to_string(d.total) + " values differ, not compared";
-            continue;
-        }
-        if (!d.problem.empty() && why.empty()) why = d.problem;
-        r.differing += d.differing;
-        r.total += d.total;
-        r.max_error = std::max(r.max_error, d.max_error);
-        if (d.differing && why.empty()) {
-            char buf[160];
-            std::snprintf(buf, sizeof buf, "%s: %llu of %llu pixels differ from the reference, max error %g",
-                          d.plane.c_str(), static_cast<unsigned long long>(d.differing),
-                          static_cast<unsigned long long>(d.total), d.max_error);
-            why = buf;
-        }
-    }
-    if (c.check) {
-        std::string ca = c.check(a.planes), cb = c.check(b.planes);
-        r.check = ca.empty() && cb.empty() ? "ok" : !ca.empty() ? ca : "reference: " + cb;
-        if (why.empty() && !ca.empty()) why = "independent check: " + ca;
-        if (why.empty() && !cb.empty()) why = "independent check failed on the reference: " + cb;
-    }
-    if (const CoverageOracle& oracle = coverage_oracle()) {
-        // Judged on both devices: the reference must agree with rast's reference coverage too.
-        const OracleVerdict va = oracle(scene, a.planes), vb = oracle(scene, b.planes);
-        if (!va.applies) {
-            r.oracle = "n/a: " + va.note;
-        } else {
-            r.oracle = va.error.empty() && vb.error.empty() ? "ok (" + va.note + ")"
-                       : !va.error.empty()                  ? va.error
-                                                            : "reference: " + vb.error;
-            if (why.empty() && !va.error.empty()) why = "coverage oracle: " + va.error;
-            if (why.empty() && !vb.error.empty()) why = "coverage oracle failed on the reference: " + vb.error;
-        }
-    }
+    const std::string why = judge_frames(c, *ours, ref, o, scene, a, b, r);
     if (!o.png_dir.empty() && (!why.empty() || o.png_all)) save_pngs(o.png_dir, c.name, a.planes, b.planes);
     if (!why.empty()) return fail(why);
     return r;
@@ -344,15 +394,41 @@ CaseResult run_case(const Case& c, const DeviceContext* ours, const std::string&
     return judged(std::move(r));
 }
 
+// A failure expectations.txt lists is an ExpectedFail; a listed case that passes fails (the list must stay true).
+void apply_expected_fail(const Expectation& e, CaseResult& r) {
+    if (r.status == Status::kFail) {
+        r.status = Status::kExpectedFail;
+        r.reason = "known difference (" + e.reason + "): " + r.reason;
+    } else if (r.status == Status::kPass) {
+        r.status = Status::kFail;
+        r.reason = "unexpected pass: expectations.txt lists it as Fail (" + e.reason + ")";
+    }
+}
+
+// Loads the known differences and hands the reference defects to their cases; false (with a message) on a
+// malformed file.
+bool apply_expectations(const std::string& path, CaseList& cases, std::map<std::string, Expectation>& fails) {
+    std::map<std::string, Expectation> all;
+    std::string error;
+    if (!load_expectations(path, &all, &error)) {
+        std::fprintf(stderr, "tilevk-cts: %s\n", error.c_str());
+        return false;
+    }
+    for (Case& c : cases) {
+        const auto it = all.find(c.name);
+        if (it == all.end()) continue;
+        if (it->second.kind == Expectation::kReferenceDefect)
+            c.reference_defect = {it->second.plane, it->second.reason};
+        else
+            fails.emplace(c.name, it->second);
+    }
+    return true;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-    set_coverage_oracle(rast_reference_oracle);
-    Options o;
-    if (!parse(argc, argv, o)) {
-        usage();
-        return 2;
-    }
+// The cases --filter and --start-after select, in the list's order.
+CaseList select_cases(const Options& o) {
     CaseList cases;
     for (Case& c : all_cases())
         if (fnmatch(o.filter.c_str(), c.name.c_str(), 0) == 0) cases.push_back(std::move(c));
@@ -360,12 +436,11 @@ int main(int argc, char** argv) {
         auto it = std::find_if(cases.begin(), cases.end(), [&](const Case& c) { return c.name == o.start_after; });
         if (it != cases.end()) cases.erase(cases.begin(), it + 1);
     }
-    if (o.list) {
-        for (const Case& c : cases)
-            std::printf("%s%s\n", c.name.c_str(), c.note.empty() ? "" : ("  [" + c.note + "]").c_str());
-        return 0;
-    }
+    return cases;
+}
 
+// What the reports say about the run: devices asked for, ICD manifests, rasterizer method, thread counts.
+RunInfo run_info(const Options& o) {
     RunInfo info;
     info.device = o.device;
     info.ref = o.ref;
@@ -377,6 +452,26 @@ int main(int argc, char** argv) {
         return std::string(v ? v : "unset");
     };
     info.threads = "LP_NUM_THREADS=" + env("LP_NUM_THREADS") + " TILEVK_THREADS=" + env("TILEVK_THREADS");
+    return info;
+}
+
+int main(int argc, char** argv) {
+    set_coverage_oracle(rast_reference_oracle);
+    Options o;
+    if (!parse(argc, argv, o)) {
+        usage();
+        return 2;
+    }
+    CaseList cases = select_cases(o);
+    std::map<std::string, Expectation> expected_fails;
+    if (!apply_expectations(o.expectations, cases, expected_fails)) return 2;
+    if (o.list) {
+        for (const Case& c : cases)
+            std::printf("%s%s\n", c.name.c_str(), c.note.empty() ? "" : ("  [" + c.note + "]").c_str());
+        return 0;
+    }
+
+    RunInfo info = run_info(o);
 
     ValidationLog validation;  // outlives the instance: vkDestroyInstance may still report
     std::unique_ptr<Instance> instance;
@@ -414,6 +509,11 @@ int main(int argc, char** argv) {
     // Messages from instance and device creation belong to no case; they fail the run at the end.
     std::vector<ValidationMessage> outside = validation.take();
 
+    if (o.fuzzing && !have_ours) {  // fuzzing compares the device under test with the reference: nothing to do
+        Instance::close(ref);
+        return 1;
+    }
+
     // Watchdog: a driver that hangs inside a case must not hang the whole run. The JSON written before the case
     // names it as running, so run_one.sh records it as failed and resumes after it.
     std::atomic<int64_t> case_started{0};
@@ -432,6 +532,21 @@ int main(int argc, char** argv) {
             }
         }
     });
+    if (o.fuzzing) {
+        const int failures = run_fuzz(
+            o.fuzz, [&](const Case& c) { return run_case(c, &ours, ours_missing, ref, o, sides); },
+            [&](DeviceContext& d) {
+                std::string why;
+                return instance->open(o.device, o.device_is_prefix, d, why);
+            },
+            [](DeviceContext& d) { Instance::close(d); });
+        done = true;
+        watchdog.join();
+        Instance::close(ours);
+        Instance::close(ref);
+        instance.reset();
+        return failures ? 1 : 0;
+    }
     std::vector<CaseResult> results;
     int fails = 0;
     for (size_t i = 0; i < cases.size(); ++i) {
@@ -440,6 +555,7 @@ int main(int argc, char** argv) {
         case_started = std::chrono::duration_cast<std::chrono::seconds>(t0.time_since_epoch()).count();
         CaseResult r = run_case(cases[i], have_ours ? &ours : nullptr, ours_missing, ref, o, sides);
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (auto it = expected_fails.find(r.name); it != expected_fails.end()) apply_expected_fail(it->second, r);
         fails += r.status == Status::kFail;
         std::printf("[%3zu/%zu] %-58s %s%s%s\n", i + 1, cases.size(), r.name.c_str(), status_name(r.status),
                     r.reason.empty() ? "" : ": ", r.reason.substr(0, 160).c_str());
@@ -466,7 +582,10 @@ int main(int argc, char** argv) {
     if (!o.log.empty()) write_log(o.log, info, results);
     size_t ns =
         std::count_if(results.begin(), results.end(), [](auto& r) { return r.status == Status::kNotSupported; });
-    std::printf("tilevk-cts: %zu passed, %d failed, %zu not supported\n", results.size() - fails - ns, fails, ns);
+    size_t xf =
+        std::count_if(results.begin(), results.end(), [](auto& r) { return r.status == Status::kExpectedFail; });
+    std::printf("tilevk-cts: %zu passed, %d failed, %zu not supported%s\n", results.size() - fails - ns - xf, fails, ns,
+                xf ? (", " + std::to_string(xf) + " known differences (expectations.txt)").c_str() : "");
     if (o.validation) {
         std::map<std::string, int> totals = validation.totals();
         std::string counts;

@@ -62,6 +62,26 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
             if (v.point_size > lim.pointSizeRange[1]) return "pointSizeRange excludes " + std::to_string(v.point_size);
         }
         if (d.polygon_mode != VK_POLYGON_MODE_FILL && !f.fillModeNonSolid) return "feature fillModeNonSolid";
+        if (d.logic_op && !f.logicOp) return "feature logicOp";
+        if (d.dynamic &&
+            !(c.extended_dynamic_state.extendedDynamicState && c.extended_dynamic_state2.extendedDynamicState2))
+            return "VK_EXT_extended_dynamic_state(2) extendedDynamicState(2)";
+        if (d.dynamic && d.logic_op && !c.extended_dynamic_state2.extendedDynamicState2LogicOp)
+            return "VK_EXT_extended_dynamic_state2 extendedDynamicState2LogicOp";
+        if (d.alpha_to_one && !f.alphaToOne) return "feature alphaToOne";
+        if (d.viewport_count > 1 && !f.multiViewport) return "feature multiViewport";
+        if (d.viewport_count > lim.maxViewports) return "maxViewports " + std::to_string(lim.maxViewports);
+        if (d.negative_one_to_one && !c.depth_clip_control.depthClipControl)
+            return "VK_EXT_depth_clip_control depthClipControl";
+        if (d.index_type == VK_INDEX_TYPE_UINT8_EXT && !c.index_type_uint8.indexTypeUint8)
+            return "VK_EXT_index_type_uint8 indexTypeUint8";
+        const bool list = d.topology == VK_PRIMITIVE_TOPOLOGY_POINT_LIST ||
+                          d.topology == VK_PRIMITIVE_TOPOLOGY_LINE_LIST ||
+                          d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        if (d.primitive_restart && list && !c.list_restart.primitiveTopologyListRestart)
+            return "VK_EXT_primitive_topology_list_restart primitiveTopologyListRestart";
+        if (d.viewport && d.viewport->height < 0 && !c.has_extension(VK_KHR_MAINTENANCE_1_EXTENSION_NAME))
+            return "VK_KHR_maintenance1 (negative viewport height)";
         if (d.depth_clamp && !f.depthClamp) return "feature depthClamp";
         if (d.push_constants.size() * 4 > lim.maxPushConstantsSize) return "maxPushConstantsSize";
         if (d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT) {

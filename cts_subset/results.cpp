@@ -13,6 +13,8 @@ const char* status_name(Status s) {
             return "Pass";
         case Status::kFail:
             return "Fail";
+        case Status::kExpectedFail:
+            return "ExpectedFail";
         default:
             return "NotSupported";
     }
@@ -121,7 +123,7 @@ bool write_junit(const std::string& path, const RunInfo& info, const std::vector
     double total = 0;
     for (const CaseResult& r : results) {
         fails += r.status == Status::kFail;
-        skips += r.status == Status::kNotSupported;
+        skips += r.status == Status::kNotSupported || r.status == Status::kExpectedFail;
         total += r.seconds;
     }
     std::ostringstream o;
@@ -135,7 +137,7 @@ bool write_junit(const std::string& path, const RunInfo& info, const std::vector
           << num(r.seconds) << "\">";
         if (r.status == Status::kFail)
             o << "<failure message=\"" << xml_escape(r.reason) << "\"/>";
-        else if (r.status == Status::kNotSupported)
+        else if (r.status == Status::kNotSupported || r.status == Status::kExpectedFail)
             o << "<skipped message=\"" << xml_escape(r.reason) << "\"/>";
         o << "</testcase>\n";
     }
@@ -145,7 +147,7 @@ bool write_junit(const std::string& path, const RunInfo& info, const std::vector
 
 bool write_log(const std::string& path, const RunInfo& info, const std::vector<CaseResult>& results) {
     std::ostringstream o;
-    size_t n[3] = {0, 0, 0};
+    size_t n[4] = {0, 0, 0, 0};
     o << "#tilevk-cts device='" << info.device_name << "' ref='" << info.ref_name << "'\n";
     for (const CaseResult& r : results) {
         n[int(r.status)]++;
@@ -157,7 +159,8 @@ bool write_log(const std::string& path, const RunInfo& info, const std::vector<C
             o << "  " << status_name(r.status) << " (" << r.reason << ")\n";
     }
     o << "\nTest run totals:\n  Passed:        " << n[0] << "/" << results.size() << "\n  Failed:        " << n[1]
-      << "/" << results.size() << "\n  Not supported: " << n[2] << "/" << results.size() << "\n";
+      << "/" << results.size() << "\n  Not supported: " << n[2] << "/" << results.size()
+      << "\n  Expected fail: " << n[3] << "/" << results.size() << "\n";
     return write_atomically(path, o.str());
 }
 

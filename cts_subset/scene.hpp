@@ -64,6 +64,8 @@ struct Draw {
                                                  VK_BLEND_OP_ADD,
                                                  0xF};
     float blend_constants[4] = {0, 0, 0, 0};
+    // Logic op (feature logicOp; it replaces blending) when set.
+    std::optional<VkLogicOp> logic_op;
     // Depth and stencil.
     bool depth_test = false, depth_write = false;
     VkCompareOp depth_op = VK_COMPARE_OP_LESS;
@@ -75,17 +77,28 @@ struct Draw {
     // Multisample state (the sample count comes from the target).
     uint32_t sample_mask = 0xFFFFFFFFu;
     bool alpha_to_coverage = false;
-    // Viewport and scissor; unset means the whole target.
+    bool alpha_to_one = false;  // feature alphaToOne
+    // Viewport and scissor; unset means the whole target. negative_one_to_one: clip-space depth in [-w, w]
+    // (VK_EXT_depth_clip_control); viewport_count > 1 repeats the viewport and scissor (feature multiViewport;
+    // every primitive still uses viewport 0).
+    bool negative_one_to_one = false;
+    uint32_t viewport_count = 1;
+    // Everything extended dynamic state 1 and 2 can set is set with vkCmdSet* before the draw instead, on a
+    // pipeline created with other values (render.cpp dynamic_pipeline_state): the frame must not change.
+    bool dynamic = false;
     std::optional<VkViewport> viewport;
     std::optional<VkRect2D> scissor;
     // Free-form shaders (cases_random.cpp): when set, they replace the generated GLSL. The vertex inputs are
     // vertex_source's (locations 0-3); `push_constants` are one block of vec4s (VERTEX|FRAGMENT) and `uniforms` a
     // uniform buffer of vec4s at set 0, binding 1 (VERTEX|FRAGMENT).
     std::string vertex_glsl, fragment_glsl;
+    // SPIR-V used as is instead of the compiled GLSL (tilevk-cts --fuzz feeds mutated modules through it).
+    std::vector<uint32_t> vertex_spirv, fragment_spirv;
     std::vector<float> push_constants;  // at most 32 floats (maxPushConstantsSize 128)
     std::vector<float> uniforms;
     // Indexed draw (vkCmdDrawIndexed) when non-empty; indices refer to this draw's vertices. Restart values
-    // (0xFFFF / 0xFFFFFFFF) are written by the case; restart needs a strip or fan topology (Vulkan 1.0).
+    // (0xFF / 0xFFFF / 0xFFFFFFFF) are written by the case; restart on a list topology needs
+    // VK_EXT_primitive_topology_list_restart, VK_INDEX_TYPE_UINT8_EXT needs VK_EXT_index_type_uint8.
     std::vector<uint32_t> indices;
     VkIndexType index_type = VK_INDEX_TYPE_UINT32;
     bool primitive_restart = false;

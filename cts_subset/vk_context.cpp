@@ -1,6 +1,7 @@
 #include "vk_context.hpp"
 
 #include <cstring>
+#include <type_traits>
 
 #include "validation.hpp"
 #include "vk_names.hpp"
@@ -10,6 +11,51 @@ namespace tilevk::cts {
 void vk_check(VkResult r, const char* what) {
     if (r != VK_SUCCESS)
         throw VkError(std::string(what) + " returned " + result_name(r) + " (" + std::to_string(r) + ")");
+}
+
+namespace {
+
+// Device extensions cases may use, enabled on every device that offers them (requirements.cpp asks for them).
+const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
+                                         VK_EXT_INDEX_TYPE_UINT8_EXTENSION_NAME,
+                                         VK_EXT_PRIMITIVE_TOPOLOGY_LIST_RESTART_EXTENSION_NAME,
+                                         VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME,
+                                         VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME,
+                                         VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME};
+
+}  // namespace
+
+static void load_dynamic_state_commands(DeviceContext& c) {
+    auto get = [&c](auto& fn, const char* name) {
+        fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(c.device, name));
+    };
+    DeviceContext::DynamicStateCommands& d = c.cmd;
+    if (c.extended_dynamic_state.extendedDynamicState) {
+        get(d.cull_mode, "vkCmdSetCullModeEXT");
+        get(d.front_face, "vkCmdSetFrontFaceEXT");
+        get(d.topology, "vkCmdSetPrimitiveTopologyEXT");
+        get(d.viewport_with_count, "vkCmdSetViewportWithCountEXT");
+        get(d.scissor_with_count, "vkCmdSetScissorWithCountEXT");
+        get(d.bind_vertex_buffers2, "vkCmdBindVertexBuffers2EXT");
+        get(d.depth_test, "vkCmdSetDepthTestEnableEXT");
+        get(d.depth_write, "vkCmdSetDepthWriteEnableEXT");
+        get(d.depth_compare, "vkCmdSetDepthCompareOpEXT");
+        get(d.depth_bounds_test, "vkCmdSetDepthBoundsTestEnableEXT");
+        get(d.stencil_test, "vkCmdSetStencilTestEnableEXT");
+        get(d.stencil_op, "vkCmdSetStencilOpEXT");
+    }
+    if (c.extended_dynamic_state2.extendedDynamicState2) {
+        get(d.rasterizer_discard, "vkCmdSetRasterizerDiscardEnableEXT");
+        get(d.depth_bias, "vkCmdSetDepthBiasEnableEXT");
+        get(d.primitive_restart, "vkCmdSetPrimitiveRestartEnableEXT");
+    }
+    if (c.extended_dynamic_state2.extendedDynamicState2LogicOp) get(d.logic_op, "vkCmdSetLogicOpEXT");
+}
+
+bool DeviceContext::has_extension(const char* n) const {
+    for (const std::string& e : extensions)
+        if (e == n) return true;
+    return false;
 }
 
 uint32_t DeviceContext::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const {
@@ -26,7 +72,9 @@ Instance::Instance(ValidationLog* validation) {
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
     const char* layer = "VK_LAYER_KHRONOS_validation";
-    const char* exts[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    // get_physical_device_properties2 first: the feature structs of the device extensions are read through it.
+    const char* exts[] = {VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME, VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
+                          VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
     VkDebugUtilsMessengerCreateInfoEXT mci = ValidationLog::messenger_info(validation);
     // The layer's default checks plus synchronization validation (off by default): missing or wrong barriers are
     // harness bugs that a CPU driver, which runs commands in order, would never show in an image.
@@ -34,13 +82,14 @@ Instance::Instance(ValidationLog* validation) {
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
+    ci.enabledExtensionCount = 1;
+    ci.ppEnabledExtensionNames = exts;
     if (validation) {
         features.pNext = &mci;  // messages of vkCreateInstance/vkDestroyInstance themselves
         ci.pNext = &features;
         ci.enabledLayerCount = 1;
         ci.ppEnabledLayerNames = &layer;
-        ci.enabledExtensionCount = 2;
-        ci.ppEnabledExtensionNames = exts;
+        ci.enabledExtensionCount = 3;
     }
     vk_check(vkCreateInstance(&ci, nullptr, &instance_),
              validation ? "vkCreateInstance with VK_LAYER_KHRONOS_validation" : "vkCreateInstance");
@@ -124,8 +173,44 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         dci.queueCreateInfoCount = 1;
         dci.pQueueCreateInfos = &qci;
         dci.pEnabledFeatures = &out.features;
+        // The subset's device extensions that this device offers, with every feature their structs report.
+        uint32_t next = 0;
+        vkEnumerateDeviceExtensionProperties(p, nullptr, &next, nullptr);
+        std::vector<VkExtensionProperties> offered(next);
+        vkEnumerateDeviceExtensionProperties(p, nullptr, &next, offered.data());
+        std::vector<const char*> enable;
+        for (const char* want : kSubsetExtensions)
+            for (const VkExtensionProperties& e : offered)
+                if (std::strcmp(e.extensionName, want) == 0) {
+                    enable.push_back(want);
+                    out.extensions.emplace_back(want);
+                }
+        void* chain = nullptr;
+        auto link = [&](auto& feature_struct, const char* ext) {
+            if (!out.has_extension(ext)) return;
+            feature_struct.pNext = chain;
+            chain = &feature_struct;
+        };
+        link(out.index_type_uint8, VK_EXT_INDEX_TYPE_UINT8_EXTENSION_NAME);
+        link(out.list_restart, VK_EXT_PRIMITIVE_TOPOLOGY_LIST_RESTART_EXTENSION_NAME);
+        link(out.depth_clip_control, VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME);
+        link(out.extended_dynamic_state, VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME);
+        link(out.extended_dynamic_state2, VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME);
+        if (chain != nullptr) {
+            auto features2 = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
+                vkGetInstanceProcAddr(instance_, "vkGetPhysicalDeviceFeatures2KHR"));
+            VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+            f2.pNext = chain;
+            if (features2) features2(p, &f2);  // every reported feature is then enabled as reported
+        }
+        dci.pNext = chain;
+        dci.enabledExtensionCount = uint32_t(enable.size());
+        dci.ppEnabledExtensionNames = enable.data();
         try {
             vk_check(vkCreateDevice(p, &dci, nullptr, &out.device), ("vkCreateDevice on '" + name + "'").c_str());
+            out.index_type_uint8.pNext = out.list_restart.pNext = out.depth_clip_control.pNext = nullptr;
+            out.extended_dynamic_state.pNext = out.extended_dynamic_state2.pNext = nullptr;
+            load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);
             VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};

@@ -28,6 +28,39 @@ struct DeviceContext {
     VkPhysicalDeviceFeatures features{};
     VkPhysicalDeviceMemoryProperties memory{};
     std::string name;
+    // The device extensions of kSubsetExtensions (vk_context.cpp) the device offers, all enabled, and their
+    // feature structs with every reported feature enabled.
+    std::vector<std::string> extensions;
+    VkPhysicalDeviceIndexTypeUint8FeaturesEXT index_type_uint8{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_INDEX_TYPE_UINT8_FEATURES_EXT};
+    VkPhysicalDevicePrimitiveTopologyListRestartFeaturesEXT list_restart{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PRIMITIVE_TOPOLOGY_LIST_RESTART_FEATURES_EXT};
+    VkPhysicalDeviceDepthClipControlFeaturesEXT depth_clip_control{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT};
+    VkPhysicalDeviceExtendedDynamicStateFeaturesEXT extended_dynamic_state{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT};
+    VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT};
+    bool has_extension(const char* name) const;
+    // Extended dynamic state commands of the device (null when its extension is not enabled).
+    struct DynamicStateCommands {
+        PFN_vkCmdSetCullModeEXT cull_mode = nullptr;
+        PFN_vkCmdSetFrontFaceEXT front_face = nullptr;
+        PFN_vkCmdSetPrimitiveTopologyEXT topology = nullptr;
+        PFN_vkCmdSetViewportWithCountEXT viewport_with_count = nullptr;
+        PFN_vkCmdSetScissorWithCountEXT scissor_with_count = nullptr;
+        PFN_vkCmdBindVertexBuffers2EXT bind_vertex_buffers2 = nullptr;
+        PFN_vkCmdSetDepthTestEnableEXT depth_test = nullptr;
+        PFN_vkCmdSetDepthWriteEnableEXT depth_write = nullptr;
+        PFN_vkCmdSetDepthCompareOpEXT depth_compare = nullptr;
+        PFN_vkCmdSetDepthBoundsTestEnableEXT depth_bounds_test = nullptr;
+        PFN_vkCmdSetStencilTestEnableEXT stencil_test = nullptr;
+        PFN_vkCmdSetStencilOpEXT stencil_op = nullptr;
+        PFN_vkCmdSetRasterizerDiscardEnableEXT rasterizer_discard = nullptr;
+        PFN_vkCmdSetDepthBiasEnableEXT depth_bias = nullptr;
+        PFN_vkCmdSetPrimitiveRestartEnableEXT primitive_restart = nullptr;
+        PFN_vkCmdSetLogicOpEXT logic_op = nullptr;
+    } cmd;
 
     // The index of a memory type allowed by `bits` that has all of `flags`; throws if there is none.
     uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;

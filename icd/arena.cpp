@@ -10,6 +10,16 @@ void* Arena::allocate(size_t size, size_t align) {
             return head_->data + start;
         }
     }
+    // A rewound block large enough (blocks are kBlockSize unless one allocation was larger).
+    for (Block** link = &spare_; *link != nullptr; link = &(*link)->next) {
+        Block* b = *link;
+        if (b->size < size) continue;
+        *link = b->next;
+        b->next = head_;
+        b->used = size;
+        head_ = b;
+        return b->data;
+    }
     size_t capacity = size > kBlockSize ? size : kBlockSize;
     const VkAllocationCallbacks& a = callbacks_ != nullptr ? *callbacks_ : default_allocator();
     auto* block =
@@ -23,10 +33,25 @@ void* Arena::allocate(size_t size, size_t align) {
 }
 
 void Arena::release() {
+    rewind();
+    trim();
+}
+
+void Arena::trim() {
     const VkAllocationCallbacks& a = callbacks_ != nullptr ? *callbacks_ : default_allocator();
+    while (spare_ != nullptr) {
+        Block* next = spare_->next;
+        host_free(a, spare_);
+        spare_ = next;
+    }
+}
+
+void Arena::rewind() {
     while (head_ != nullptr) {
         Block* next = head_->next;
-        host_free(a, head_);
+        head_->used = 0;
+        head_->next = spare_;
+        spare_ = head_;
         head_ = next;
     }
 }

@@ -20,6 +20,11 @@ class Arena {
     void* allocate(size_t size, size_t align);
     // Frees every block.
     void release();
+    // Forgets every allocation but keeps the blocks for the next ones (a command buffer re-recorded every frame
+    // then allocates nothing); release() frees them.
+    void rewind();
+    // Frees the blocks rewind() kept.
+    void trim();
 
     template <class T>
     T* copy_array(const T* src, size_t count) {
@@ -39,6 +44,7 @@ class Arena {
     static constexpr size_t kBlockSize = 64 * 1024;
     const VkAllocationCallbacks* callbacks_;
     Block* head_ = nullptr;
+    Block* spare_ = nullptr;  // rewound blocks, reused before new ones are allocated
 };
 
 }  // namespace tilevk::icd

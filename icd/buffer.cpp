@@ -2,6 +2,7 @@
 
 #include "device.h"
 #include "entrypoints.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -12,8 +13,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateBuffer(VkDevice device, const VkBufferC
                                                 const VkAllocationCallbacks* pAllocator, VkBuffer* pBuffer) {
     Device* dev = from_handle<Device>(device);
     if (pCreateInfo->flags != 0) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateBuffer: sparse buffers (flags 0x%x) are not supported",
-                    pCreateInfo->flags);
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateBuffer: buffer create flags %s are not supported",
+                    vk_flags_name<VkBufferCreateFlagBits>(pCreateInfo->flags).c_str());
     }
     Buffer* buf = create_object<Buffer>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (buf == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateBuffer: out of host memory");

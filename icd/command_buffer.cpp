@@ -224,13 +224,12 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBindPipeline(VkCommandBuffer commandBuffer, Vk
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdBindDescriptorSets(VkCommandBuffer commandBuffer, VkPipelineBindPoint bindPoint,
-                                                     VkPipelineLayout layout, uint32_t firstSet,
-                                                     uint32_t descriptorSetCount, const VkDescriptorSet* pSets,
-                                                     uint32_t dynamicOffsetCount, const uint32_t* pDynamicOffsets) {
+                                                     VkPipelineLayout, uint32_t firstSet, uint32_t descriptorSetCount,
+                                                     const VkDescriptorSet* pSets, uint32_t dynamicOffsetCount,
+                                                     const uint32_t* pDynamicOffsets) {
     CommandBuffer* cb = cb_of(commandBuffer);
     if (auto* c = cb->append<CmdBindDescriptorSets>()) {
         c->bind_point = bindPoint;
-        c->layout = from_handle<PipelineLayout>(layout);
         c->first_set = firstSet;
         c->set_count = descriptorSetCount;
         c->sets = objects<DescriptorSet>(cb, pSets, descriptorSetCount);
@@ -251,6 +250,22 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBindVertexBuffers(VkCommandBuffer commandBuffe
     }
 }
 
+// Extended dynamic state: the bound ranges (pSizes) and, for VERTEX_INPUT_BINDING_STRIDE, the strides.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBindVertexBuffers2(VkCommandBuffer commandBuffer, uint32_t firstBinding,
+                                                     uint32_t bindingCount, const VkBuffer* pBuffers,
+                                                     const VkDeviceSize* pOffsets, const VkDeviceSize* pSizes,
+                                                     const VkDeviceSize* pStrides) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<CmdBindVertexBuffers>()) {
+        c->first_binding = firstBinding;
+        c->count = bindingCount;
+        c->buffers = objects<Buffer>(cb, pBuffers, bindingCount);
+        c->offsets = cb->copy(pOffsets, bindingCount);
+        if (pSizes != nullptr) c->sizes = cb->copy(pSizes, bindingCount);
+        if (pStrides != nullptr) c->strides = cb->copy(pStrides, bindingCount);
+    }
+}
+
 VKAPI_ATTR void VKAPI_CALL tvk_CmdBindIndexBuffer(VkCommandBuffer commandBuffer, VkBuffer buffer, VkDeviceSize offset,
                                                   VkIndexType indexType) {
     if (auto* c = cb_of(commandBuffer)->append<CmdBindIndexBuffer>()) {
@@ -260,12 +275,11 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBindIndexBuffer(VkCommandBuffer commandBuffer,
     }
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdPushConstants(VkCommandBuffer commandBuffer, VkPipelineLayout layout,
+VKAPI_ATTR void VKAPI_CALL tvk_CmdPushConstants(VkCommandBuffer commandBuffer, VkPipelineLayout,
                                                 VkShaderStageFlags stageFlags, uint32_t offset, uint32_t size,
                                                 const void* pValues) {
     CommandBuffer* cb = cb_of(commandBuffer);
     if (auto* c = cb->append<CmdPushConstants>()) {
-        c->layout = from_handle<PipelineLayout>(layout);
         c->stages = stageFlags;
         c->offset = offset;
         c->size = size;
@@ -386,6 +400,34 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexedIndirect(VkCommandBuffer commandBuf
     }
 }
 
+// VK_KHR_draw_indirect_count (core in Vulkan 1.2): the number of draws is read from countBuffer when they execute.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndirectCount(VkCommandBuffer commandBuffer, VkBuffer buffer, VkDeviceSize offset,
+                                                    VkBuffer countBuffer, VkDeviceSize countBufferOffset,
+                                                    uint32_t maxDrawCount, uint32_t stride) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDrawIndirect>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+        c->draw_count = maxDrawCount;
+        c->stride = stride;
+        c->count_buffer = from_handle<Buffer>(countBuffer);
+        c->count_offset = countBufferOffset;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexedIndirectCount(VkCommandBuffer commandBuffer, VkBuffer buffer,
+                                                           VkDeviceSize offset, VkBuffer countBuffer,
+                                                           VkDeviceSize countBufferOffset, uint32_t maxDrawCount,
+                                                           uint32_t stride) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDrawIndexedIndirect>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+        c->draw_count = maxDrawCount;
+        c->stride = stride;
+        c->count_buffer = from_handle<Buffer>(countBuffer);
+        c->count_offset = countBufferOffset;
+    }
+}
+
 // ---- queries (executed in execute_query.cpp) -----------------------------------------------------------------
 VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginQuery(VkCommandBuffer commandBuffer, VkQueryPool queryPool, uint32_t query,
                                              VkQueryControlFlags) {
@@ -437,22 +479,21 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyQueryPoolResults(VkCommandBuffer commandBu
 }
 
 // ---- compute ---------------------------------------------------------------------------------------------------
-// No queue family has VK_QUEUE_COMPUTE_BIT and compute pipelines cannot be created, so a dispatch has nothing to
-// run: it is not recorded, and said so once per process.
-namespace {
-void refuse_dispatch(const char* name) {
-    static std::atomic<bool> said{false};
-    if (!said.exchange(true))
-        log_error("%s: tilevk has no compute queue and runs no compute shaders; the dispatch does nothing", name);
-}
-}  // namespace
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatch(VkCommandBuffer, uint32_t, uint32_t, uint32_t) {
-    refuse_dispatch("vkCmdDispatch");
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatch(VkCommandBuffer commandBuffer, uint32_t groupCountX, uint32_t groupCountY,
+                                           uint32_t groupCountZ) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDispatch>()) {
+        c->group_count[0] = groupCountX;
+        c->group_count[1] = groupCountY;
+        c->group_count[2] = groupCountZ;
+    }
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatchIndirect(VkCommandBuffer, VkBuffer, VkDeviceSize) {
-    refuse_dispatch("vkCmdDispatchIndirect");
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatchIndirect(VkCommandBuffer commandBuffer, VkBuffer buffer,
+                                                   VkDeviceSize offset) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdDispatchIndirect>()) {
+        c->buffer = from_handle<Buffer>(buffer);
+        c->offset = offset;
+    }
 }
 
 }  // namespace tilevk::icd

@@ -1,5 +1,6 @@
 // VkCommandPool and VkCommandBuffer: recording into an arena of plain command structs (commands.h).
 #pragma once
+#include <new>
 #include <vector>
 
 #include "arena.h"
@@ -43,15 +44,13 @@ struct CommandBuffer : DispatchableObject {
             out_of_memory();
             return nullptr;
         }
-        std::memset(mem, 0, sizeof(T));
-        T* cmd = static_cast<T*>(mem);
-        cmd->type = T::kType;
-        cmd->next = nullptr;
+        T* cmd = new (mem) T();  // value-initialised: every field zero, the header typed by CmdOf
+        Cmd& header = cmd->header();
         if (last != nullptr)
-            last->next = cmd;
+            last->next = &header;
         else
-            first = cmd;
-        last = cmd;
+            first = &header;
+        last = &header;
         return cmd;
     }
     // Copies an array into the arena; nullptr for an empty array or on failure (then record_result is set).
@@ -63,7 +62,9 @@ struct CommandBuffer : DispatchableObject {
         return dst;
     }
     void out_of_memory();
-    void reset();
+    // Back to the initial state. The arena keeps its blocks for the next recording unless `release_memory`
+    // (VK_COMMAND_BUFFER_RESET_RELEASE_RESOURCES_BIT, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT).
+    void reset(bool release_memory = false);
 };
 TILEVK_ASSERT_DISPATCHABLE(CommandBuffer);
 

@@ -13,8 +13,11 @@ void CommandBuffer::out_of_memory() {
     }
 }
 
-void CommandBuffer::reset() {
-    arena.release();
+void CommandBuffer::reset(bool release_memory) {
+    if (release_memory)
+        arena.release();
+    else
+        arena.rewind();
     first = last = nullptr;
     record_result = VK_SUCCESS;
     state = State::kInitial;
@@ -44,9 +47,16 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyCommandPool(VkDevice, VkCommandPool comman
     destroy_object(pool);
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_ResetCommandPool(VkDevice, VkCommandPool commandPool, VkCommandPoolResetFlags) {
-    for (CommandBuffer* cb : from_handle<CommandPool>(commandPool)->buffers) cb->reset();
+VKAPI_ATTR VkResult VKAPI_CALL tvk_ResetCommandPool(VkDevice, VkCommandPool commandPool,
+                                                    VkCommandPoolResetFlags flags) {
+    for (CommandBuffer* cb : from_handle<CommandPool>(commandPool)->buffers)
+        cb->reset((flags & VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT) != 0);
     return VK_SUCCESS;
+}
+
+// maintenance1: the arena blocks command buffers keep for their next recording go back to the pool's allocator.
+VKAPI_ATTR void VKAPI_CALL tvk_TrimCommandPool(VkDevice, VkCommandPool commandPool, VkCommandPoolTrimFlags) {
+    for (CommandBuffer* cb : from_handle<CommandPool>(commandPool)->buffers) cb->arena.trim();
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateCommandBuffers(VkDevice, const VkCommandBufferAllocateInfo* ai,
@@ -107,8 +117,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_EndCommandBuffer(VkCommandBuffer commandBuffe
     return cb->record_result;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_ResetCommandBuffer(VkCommandBuffer commandBuffer, VkCommandBufferResetFlags) {
-    from_handle<CommandBuffer>(commandBuffer)->reset();
+VKAPI_ATTR VkResult VKAPI_CALL tvk_ResetCommandBuffer(VkCommandBuffer commandBuffer, VkCommandBufferResetFlags flags) {
+    from_handle<CommandBuffer>(commandBuffer)->reset((flags & VK_COMMAND_BUFFER_RESET_RELEASE_RESOURCES_BIT) != 0);
     return VK_SUCCESS;
 }
 

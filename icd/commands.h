@@ -6,78 +6,98 @@
 
 #include <cstdint>
 
+#include "dynamic_state.h"
+
 namespace tilevk::icd {
 
 struct Buffer;
 struct Image;
 struct Event;
 struct Pipeline;
-struct PipelineLayout;
 struct DescriptorSet;
 struct RenderPass;
 struct Framebuffer;
 struct CommandBuffer;
 struct QueryPool;
 
+// Every recorded command, in one list. Adding a command: a line here, its struct below
+// (`struct CmdName : CmdOf<CmdType::kName> { ... };`), and an overload `void operator()(const CmdName&)` in
+// execute.cpp's CommandRunner (the build fails until every command has one).
+// One line per command (not aligned), so that adding one touches one line.
+// clang-format off
+#define TILEVK_COMMANDS(X) \
+    X(CopyBuffer) \
+    X(CopyImage) \
+    X(CopyBufferToImage) \
+    X(CopyImageToBuffer) \
+    X(UpdateBuffer) \
+    X(FillBuffer) \
+    X(ClearColorImage) \
+    X(ClearDepthStencilImage) \
+    X(ResolveImage) \
+    X(BlitImage) \
+    X(PipelineBarrier) \
+    X(SetEvent) \
+    X(ResetEvent) \
+    X(WaitEvents) \
+    X(BeginRenderPass) \
+    X(NextSubpass) \
+    X(EndRenderPass) \
+    X(ClearAttachments) \
+    X(BindPipeline) \
+    X(BindDescriptorSets) \
+    X(BindVertexBuffers) \
+    X(BindIndexBuffer) \
+    X(PushConstants) \
+    X(SetViewport) \
+    X(SetScissor) \
+    X(SetLineWidth) \
+    X(SetDepthBias) \
+    X(SetBlendConstants) \
+    X(SetDepthBounds) \
+    X(SetStencilCompareMask) \
+    X(SetStencilWriteMask) \
+    X(SetStencilReference) \
+    X(SetDynamic) \
+    X(SetStencilOp) \
+    X(Draw) \
+    X(DrawIndexed) \
+    X(DrawIndirect) \
+    X(DrawIndexedIndirect) \
+    X(Dispatch) \
+    X(DispatchIndirect) \
+    X(ExecuteCommands) \
+    X(BeginQuery) \
+    X(EndQuery) \
+    X(ResetQueryPool) \
+    X(WriteTimestamp) \
+    X(CopyQueryPoolResults)
+// clang-format on
+
 enum class CmdType : uint8_t {
-    // transfer
-    kCopyBuffer,
-    kCopyImage,
-    kCopyBufferToImage,
-    kCopyImageToBuffer,
-    kUpdateBuffer,
-    kFillBuffer,
-    kClearColorImage,
-    kClearDepthStencilImage,
-    kResolveImage,
-    kBlitImage,
-    // synchronisation
-    kPipelineBarrier,
-    kSetEvent,
-    kResetEvent,
-    kWaitEvents,
-    // render passes
-    kBeginRenderPass,
-    kNextSubpass,
-    kEndRenderPass,
-    kClearAttachments,
-    // state and draws (executed by the render path)
-    kBindPipeline,
-    kBindDescriptorSets,
-    kBindVertexBuffers,
-    kBindIndexBuffer,
-    kPushConstants,
-    kSetViewport,
-    kSetScissor,
-    kSetLineWidth,
-    kSetDepthBias,
-    kSetBlendConstants,
-    kSetDepthBounds,
-    kSetStencilCompareMask,
-    kSetStencilWriteMask,
-    kSetStencilReference,
-    kDraw,
-    kDrawIndexed,
-    kDrawIndirect,
-    kDrawIndexedIndirect,
-    // secondary command buffers
-    kExecuteCommands,
-    // queries (execute_query.cpp)
-    kBeginQuery,
-    kEndQuery,
-    kResetQueryPool,
-    kWriteTimestamp,
-    kCopyQueryPoolResults,
+#define TILEVK_COMMAND_ENUM(name) k##name,
+    TILEVK_COMMANDS(TILEVK_COMMAND_ENUM)
+#undef TILEVK_COMMAND_ENUM
 };
 
+// The header of every recorded command: its type and the next command in recording order.
 struct Cmd {
     CmdType type;
     Cmd* next;
 };
 
+// Base of each command struct. The header is a private base, so code cannot cast a Cmd to a command struct:
+// the only way from a Cmd to its struct is visit_command below, which casts by the recorded type, so a command
+// can never be read through another command's layout.
 template <CmdType T>
-struct CmdOf : Cmd {
+class CmdOf : private Cmd {
+  public:
     static constexpr CmdType kType = T;
+    CmdOf() : Cmd{T, nullptr} {}
+    Cmd& header() { return *this; }
+
+  private:
+    friend struct CommandCast;
 };
 
 struct CmdCopyBuffer : CmdOf<CmdType::kCopyBuffer> {
@@ -167,9 +187,10 @@ struct CmdBindPipeline : CmdOf<CmdType::kBindPipeline> {
     VkPipelineBindPoint bind_point;
     Pipeline* pipeline;
 };
+// The pipeline layouts of vkCmdBindDescriptorSets and vkCmdPushConstants are not kept: they may be destroyed once
+// recording has ended (VUID-vkDestroyPipelineLayout-pipelineLayout-02004 forbids it only while recording).
 struct CmdBindDescriptorSets : CmdOf<CmdType::kBindDescriptorSets> {
     VkPipelineBindPoint bind_point;
-    PipelineLayout* layout;
     uint32_t first_set, set_count;
     DescriptorSet* const* sets;
     uint32_t dynamic_offset_count;
@@ -179,6 +200,8 @@ struct CmdBindVertexBuffers : CmdOf<CmdType::kBindVertexBuffers> {
     uint32_t first_binding, count;
     Buffer* const* buffers;
     const VkDeviceSize* offsets;
+    const VkDeviceSize* sizes = nullptr;    // vkCmdBindVertexBuffers2: the bound ranges (VK_WHOLE_SIZE: to the end)
+    const VkDeviceSize* strides = nullptr;  // vkCmdBindVertexBuffers2: VERTEX_INPUT_BINDING_STRIDE values
 };
 struct CmdBindIndexBuffer : CmdOf<CmdType::kBindIndexBuffer> {
     Buffer* buffer;
@@ -186,7 +209,6 @@ struct CmdBindIndexBuffer : CmdOf<CmdType::kBindIndexBuffer> {
     VkIndexType index_type;
 };
 struct CmdPushConstants : CmdOf<CmdType::kPushConstants> {
-    PipelineLayout* layout;
     VkShaderStageFlags stages;
     uint32_t offset, size;
     const uint8_t* values;
@@ -223,6 +245,16 @@ struct CmdSetStencilReference : CmdOf<CmdType::kSetStencilReference> {
     VkStencilFaceFlags faces;
     uint32_t value;
 };
+// One 32-bit dynamic state of extended dynamic state 1/2 (cull mode, front face, topology, depth/stencil/raster
+// enables, depth compare op, logic op): `value` is the VkCullModeFlags / VkFrontFace / VkBool32 / ... the command set.
+struct CmdSetDynamic : CmdOf<CmdType::kSetDynamic> {
+    DynamicState state;
+    uint32_t value;
+};
+struct CmdSetStencilOp : CmdOf<CmdType::kSetStencilOp> {
+    VkStencilFaceFlags faces;
+    VkStencilOpState ops;  // failOp, passOp, depthFailOp, compareOp (the masks and reference are not set)
+};
 struct CmdDraw : CmdOf<CmdType::kDraw> {
     uint32_t vertex_count, instance_count, first_vertex, first_instance;
 };
@@ -231,15 +263,31 @@ struct CmdDrawIndexed : CmdOf<CmdType::kDrawIndexed> {
     int32_t vertex_offset;
     uint32_t first_instance;
 };
+// vkCmdDraw[Indexed]Indirect, and the Count forms (VK_KHR_draw_indirect_count): with a count buffer the number of
+// draws is the uint32 there, at most draw_count (maxDrawCount).
 struct CmdDrawIndirect : CmdOf<CmdType::kDrawIndirect> {
     Buffer* buffer;
     VkDeviceSize offset;
     uint32_t draw_count, stride;
+    Buffer* count_buffer = nullptr;
+    VkDeviceSize count_offset = 0;
 };
 struct CmdDrawIndexedIndirect : CmdOf<CmdType::kDrawIndexedIndirect> {
     Buffer* buffer;
     VkDeviceSize offset;
     uint32_t draw_count, stride;
+    Buffer* count_buffer = nullptr;
+    VkDeviceSize count_offset = 0;
+};
+// vkCmdDispatch (base 0): group_count workgroups from base. vkCmdDispatchIndirect: the counts are the
+// VkDispatchIndirectCommand in buffer at offset when the command executes.
+struct CmdDispatch : CmdOf<CmdType::kDispatch> {
+    uint32_t base[3] = {0, 0, 0};
+    uint32_t group_count[3];
+};
+struct CmdDispatchIndirect : CmdOf<CmdType::kDispatchIndirect> {
+    Buffer* buffer;
+    VkDeviceSize offset;
 };
 struct CmdExecuteCommands : CmdOf<CmdType::kExecuteCommands> {
     uint32_t count;
@@ -269,5 +317,26 @@ struct CmdCopyQueryPoolResults : CmdOf<CmdType::kCopyQueryPoolResults> {
     VkDeviceSize offset, stride;
     VkQueryResultFlags flags;
 };
+
+// Reads a recorded command as its own struct: calls f(const CmdName&) for the type its header records. Every
+// command type must have an overload in f (a missing one does not compile).
+struct CommandCast {
+    template <class F>
+    static void visit(const Cmd& cmd, F& f) {
+        switch (cmd.type) {
+#define TILEVK_COMMAND_CASE(name)              \
+    case CmdType::k##name:                     \
+        f(static_cast<const Cmd##name&>(cmd)); \
+        return;
+            TILEVK_COMMANDS(TILEVK_COMMAND_CASE)
+#undef TILEVK_COMMAND_CASE
+        }
+    }
+};
+
+template <class F>
+void visit_command(const Cmd& cmd, F& f) {
+    CommandCast::visit(cmd, f);
+}
 
 }  // namespace tilevk::icd

@@ -60,7 +60,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
     DescriptorPool* pool = from_handle<DescriptorPool>(ai->descriptorPool);
     for (uint32_t i = 0; i < ai->descriptorSetCount; ++i) pDescriptorSets[i] = VK_NULL_HANDLE;
     for (uint32_t i = 0; i < ai->descriptorSetCount; ++i) {
-        const DescriptorSetLayout* layout = from_handle<DescriptorSetLayout>(ai->pSetLayouts[i]);
+        const std::shared_ptr<const SetLayout>& layout = from_handle<DescriptorSetLayout>(ai->pSetLayouts[i])->shared;
         DescriptorSet* set = create_object<DescriptorSet>(pool->allocator, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
         bool ok = set != nullptr;
         if (ok) {
@@ -87,11 +87,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
             return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateDescriptorSets: out of host memory");
         }
         for (const LayoutBinding& b : layout->bindings) {
-            for (uint32_t j = 0; j < b.count; ++j) {
-                Descriptor& d = set->slots[b.first_slot + j];
-                d.type = b.type;
-                if (!b.immutable_samplers.empty()) d.sampler = b.immutable_samplers[j];
-            }
+            for (uint32_t j = 0; j < b.count; ++j) set->slots[b.first_slot + j].type = b.type;
         }
         pDescriptorSets[i] = to_handle(set);
     }
@@ -134,7 +130,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCoun
                     const VkDescriptorImageInfo& ii = w.pImageInfo[j];
                     const bool has_sampler = w.descriptorType == VK_DESCRIPTOR_TYPE_SAMPLER ||
                                              w.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-                    // Immutable samplers stay; otherwise the written sampler is used.
+                    // Immutable samplers stay (the draw takes them from the layout); otherwise the written sampler is
+                    // used.
                     const LayoutBinding* b = set->layout->find(w.dstBinding);
                     if (has_sampler && (b == nullptr || b->immutable_samplers.empty())) {
                         d->sampler = from_handle<Sampler>(ii.sampler);

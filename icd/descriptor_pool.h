@@ -1,5 +1,6 @@
 // VkDescriptorPool and VkDescriptorSet: sets are arrays of plain descriptors, owned by their pool.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "descriptor_set_layout.h"
@@ -7,6 +8,7 @@
 namespace tilevk::icd {
 
 struct Buffer;
+struct Sampler;
 struct ImageView;
 struct DescriptorPool;
 
@@ -26,8 +28,8 @@ struct DescriptorSet : NonDispatchableObject {
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_DESCRIPTOR_SET;
     DescriptorSet() : NonDispatchableObject(kType) {}
     DescriptorPool* pool = nullptr;
-    const DescriptorSetLayout* layout = nullptr;
-    std::vector<Descriptor> slots;  // layout->slot_count entries
+    std::shared_ptr<const SetLayout> layout;  // shared with its layout object, which may be destroyed first
+    std::vector<Descriptor> slots;            // layout->slot_count entries
 };
 
 struct DescriptorPool : NonDispatchableObject {

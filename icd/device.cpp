@@ -1,7 +1,9 @@
 #include "device.h"
 #include "execute.h"
 
+#include "device_features.h"
 #include "entrypoints.h"
+#include "extensions.h"
 #include "physical_device.h"
 
 namespace tilevk::icd {
@@ -9,9 +11,11 @@ namespace tilevk::icd {
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice, const VkDeviceCreateInfo* pCreateInfo,
                                                 const VkAllocationCallbacks* pAllocator, VkDevice* pDevice) {
     PhysicalDevice* pd = from_handle<PhysicalDevice>(physicalDevice);
-    for (uint32_t i = 0; i < pCreateInfo->enabledExtensionCount; ++i) {
-        return fail(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateDevice: device extension '%s' is not supported",
-                    pCreateInfo->ppEnabledExtensionNames[i]);
+    ExtensionSet extensions_enabled;
+    if (VkResult r = enable_extensions("vkCreateDevice", true, pCreateInfo->enabledExtensionCount,
+                                       pCreateInfo->ppEnabledExtensionNames, &extensions_enabled);
+        r != VK_SUCCESS) {
+        return r;
     }
     for (uint32_t i = 0; i < pCreateInfo->queueCreateInfoCount; ++i) {
         const VkDeviceQueueCreateInfo& q = pCreateInfo->pQueueCreateInfos[i];
@@ -19,28 +23,27 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice,
             return fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateDevice: only queue family 0 with one queue exists");
         }
     }
-    if (pCreateInfo->pEnabledFeatures != nullptr) {
-        // VkPhysicalDeviceFeatures is an array of VkBool32: compare member by member.
-        const auto* want = reinterpret_cast<const VkBool32*>(pCreateInfo->pEnabledFeatures);
-        const auto* have = reinterpret_cast<const VkBool32*>(&pd->features);
-        for (size_t i = 0; i < sizeof(VkPhysicalDeviceFeatures) / sizeof(VkBool32); ++i) {
-            if (want[i] && !have[i]) {
-                return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                            "vkCreateDevice: feature #%zu of VkPhysicalDeviceFeatures is not supported", i);
-            }
-        }
-    }
+    Features features_enabled;
+    if (VkResult r = enable_features(*pCreateInfo, &features_enabled); r != VK_SUCCESS) return r;
     const VkAllocationCallbacks& a = pick_allocator(pAllocator, &pd->allocator);
     Device* dev = create_object<Device>(a, VK_SYSTEM_ALLOCATION_SCOPE_DEVICE);
     if (dev == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDevice: out of host memory");
     dev->physical_device = pd;
-    if (pCreateInfo->pEnabledFeatures != nullptr) dev->enabled_features = *pCreateInfo->pEnabledFeatures;
+    dev->enabled_extensions = extensions_enabled;
+    dev->enabled_features = features_enabled;
     dev->queue = create_object<Queue>(a, VK_SYSTEM_ALLOCATION_SCOPE_DEVICE);
     if (dev->queue == nullptr) {
         destroy_object(dev);
         return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDevice: out of host memory");
     }
     dev->queue->device = dev;
+    try {
+        dev->queue->timeout = std::make_unique<SubmitTimeout>(device_timeout_from_env());
+    } catch (const std::bad_alloc&) {
+        destroy_object(dev->queue);
+        destroy_object(dev);
+        return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDevice: out of host memory");
+    }
     *pDevice = to_handle(dev);
     return VK_SUCCESS;
 }

@@ -1,8 +1,12 @@
 // VkDevice and its single VkQueue.
 #pragma once
 #include <atomic>
+#include <memory>
 #include <mutex>
 
+#include "device_features.h"
+#include "device_timeout.h"
+#include "entrypoints.h"
 #include "object.h"
 #include "shader/program_cache.h"
 
@@ -18,8 +22,9 @@ struct Queue : DispatchableObject {
     Queue() : DispatchableObject(kType) {}
     Device* device = nullptr;
     std::mutex submit_mutex;
-    DrawContext* draw = nullptr;  // the queue's renderer, created at the first submission (execute_draw.cpp)  //
-                                  // vkQueueSubmit executes command buffers in order, one submission at a time
+    // vkQueueSubmit executes command buffers in order, one submission at a time, under submit_mutex.
+    DrawContext* draw = nullptr;             // the queue's renderer, created at the first submission (execute_draw.cpp)
+    std::unique_ptr<SubmitTimeout> timeout;  // the device's time limit per submission; outlives `draw`
 };
 TILEVK_ASSERT_DISPATCHABLE(Queue);
 
@@ -29,9 +34,10 @@ struct Device : DispatchableObject {
     Device() : DispatchableObject(kType) {}
     PhysicalDevice* physical_device = nullptr;
     Queue* queue = nullptr;
-    VkPhysicalDeviceFeatures enabled_features{};
-    // Set when a submission could not be executed faithfully (a shader that never terminated was cut short by the
-    // loop watchdog): from then on submissions and waits return VK_ERROR_DEVICE_LOST, as after a GPU hang.
+    Features enabled_features;        // every feature the application enabled (features.h)
+    ExtensionSet enabled_extensions;  // the device extensions the application enabled
+    // Set when a submission ran past the device's time limit (device_timeout.h; its work was cut short): from then
+    // on submissions and waits return VK_ERROR_DEVICE_LOST, as after a GPU hang and reset.
     std::atomic<bool> lost{false};
     // Shader programs by their exact inputs (module words, stage, entry point, specialization): pipelines that
     // share shaders build each program once per device (shader/program_cache.h).

@@ -6,8 +6,10 @@
 
 #include "framebuffer.h"
 #include "image.h"
+#include "rast/render/stage_timer.h"
 #include "render_pass.h"
 #include "sync.h"
+#include "vk_names.h"
 #include "workers.h"
 
 #include <algorithm>
@@ -44,8 +46,15 @@ constexpr uint32_t kClearBandRows = 64;
 // bands of rows; every band writes the same value to disjoint rows, so the result does not depend on the thread
 // count or the order the bands run in.
 void load_attachments(ExecState& st, uint32_t sp) {
+    const rast::render::StageScope timed(rast::render::Stage::kAttach);
     const RenderPass& rp = *st.render_pass;
-    std::vector<LoadClear> clears;
+    // Reused from pass to pass on the submitting thread (a steady frame allocates nothing). The worker tasks below
+    // read them through these references, not by name (a thread_local names each thread's own).
+    static thread_local std::vector<LoadClear> clears_storage;
+    static thread_local std::vector<size_t> first_task_storage;
+    std::vector<LoadClear>& clears = clears_storage;
+    std::vector<size_t>& first_task = first_task_storage;
+    clears.clear();
     for (uint32_t a = 0; a < rp.attachments.size(); ++a) {
         if (rp.first_use[a] != sp || a >= st.framebuffer->attachments.size()) continue;
         const VkAttachmentDescription& d = rp.attachments[a];
@@ -64,7 +73,7 @@ void load_attachments(ExecState& st, uint32_t sp) {
             clears.push_back({&v, v.range.baseArrayLayer + l, rect, aspects, st.clears[a]});
     }
     // Tasks: the bands of every clear, in order.
-    std::vector<size_t> first_task(clears.size() + 1, 0);
+    first_task.assign(clears.size() + 1, 0);
     for (size_t i = 0; i < clears.size(); ++i) {
         const uint32_t bands = (clears[i].rect.extent.height + kClearBandRows - 1) / kClearBandRows;
         first_task[i + 1] = first_task[i] + bands;
@@ -98,6 +107,7 @@ void load_attachments(ExecState& st, uint32_t sp) {
 
 // Resolves the subpass's colour attachments into its resolve attachments over the render area.
 void resolve_attachments(ExecState& st, uint32_t sp) {
+    const rast::render::StageScope timed(rast::render::Stage::kResolve);
     const Subpass& s = st.render_pass->subpasses[sp];
     for (size_t i = 0; i < s.resolves.size(); ++i) {
         uint32_t src_a = s.colors[i].attachment, dst_a = s.resolves[i].attachment;
@@ -105,8 +115,8 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
         const ImageView& src = *st.framebuffer->attachments[src_a];
         const ImageView& dst = *st.framebuffer->attachments[dst_a];
         if (!can_resolve(*src.format)) {
-            log_error("render pass resolve: format %d is not implemented; attachment %u not resolved",
-                      int(src.format->format), dst_a);
+            log_error("render pass resolve: resolving %s is not implemented; attachment %u not resolved",
+                      vk_enum_name(vk_format(*src.format)), dst_a);
             continue;
         }
         const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
@@ -145,106 +155,98 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
     }
 }
 
+// Runs each command as its own type (commands.h visit_command).
+struct CommandRunner {
+    ExecState& st;
+
+    void operator()(const CmdCopyBuffer& c) { exec_copy_buffer(c); }
+    void operator()(const CmdCopyImage& c) { exec_copy_image(c); }
+    void operator()(const CmdCopyBufferToImage& c) { exec_copy_buffer_to_image(c); }
+    void operator()(const CmdCopyImageToBuffer& c) { exec_copy_image_to_buffer(c); }
+    void operator()(const CmdUpdateBuffer& c) { exec_update_buffer(c); }
+    void operator()(const CmdFillBuffer& c) { exec_fill_buffer(c); }
+    void operator()(const CmdClearColorImage& c) { exec_clear_color_image(c); }
+    void operator()(const CmdClearDepthStencilImage& c) { exec_clear_depth_stencil_image(c); }
+    void operator()(const CmdResolveImage& c) { exec_resolve_image(c); }
+    void operator()(const CmdBlitImage& c) { exec_blit_image(st, c); }
+    // Execution is serial and in order, so barriers have nothing left to order.
+    void operator()(const CmdPipelineBarrier&) {}
+    void operator()(const CmdSetEvent& c) { c.event->set.store(true); }
+    void operator()(const CmdResetEvent& c) { c.event->set.store(false); }
+    // Device-side sets happened earlier in this serial stream; host sets must precede the submission.
+    void operator()(const CmdWaitEvents&) {}
+
+    void operator()(const CmdBeginRenderPass& c) {
+        st.render_pass = c.render_pass;
+        st.framebuffer = c.framebuffer;
+        st.area = c.area;
+        st.clears = c.clears;
+        st.subpass = 0;
+        load_attachments(st, 0);
+    }
+    void operator()(const CmdNextSubpass&) {
+        if (st.render_pass == nullptr) return;
+        finish_rendering(st);
+        st.query_command_pending = false;  // it belonged to the subpass that ended
+        resolve_attachments(st, st.subpass);
+        ++st.subpass;
+        load_attachments(st, st.subpass);
+    }
+    void operator()(const CmdEndRenderPass&) {
+        if (st.render_pass == nullptr) return;
+        finish_rendering(st);
+        st.query_command_pending = false;
+        resolve_attachments(st, st.subpass);
+        st.render_pass = nullptr;
+        st.framebuffer = nullptr;
+    }
+    void operator()(const CmdClearAttachments& c) {
+        // Binned draws render first, so the clear lands after them in API order.
+        finish_rendering(st);
+        clear_attachments(st, c);
+    }
+    void operator()(const CmdExecuteCommands& c) {
+        for (uint32_t i = 0; i < c.count; ++i) execute_command_buffer(c.buffers[i], st);
+    }
+
+    void operator()(const CmdBindPipeline& c) { exec_state(st, c); }
+    void operator()(const CmdBindDescriptorSets& c) { exec_state(st, c); }
+    void operator()(const CmdBindVertexBuffers& c) { exec_state(st, c); }
+    void operator()(const CmdBindIndexBuffer& c) { exec_state(st, c); }
+    void operator()(const CmdPushConstants& c) { exec_state(st, c); }
+    void operator()(const CmdSetViewport& c) { exec_state(st, c); }
+    void operator()(const CmdSetScissor& c) { exec_state(st, c); }
+    void operator()(const CmdSetLineWidth& c) { exec_state(st, c); }
+    void operator()(const CmdSetDepthBias& c) { exec_state(st, c); }
+    void operator()(const CmdSetBlendConstants& c) { exec_state(st, c); }
+    // Depth bounds are not reported (the feature is VK_FALSE), so nothing reads them.
+    void operator()(const CmdSetDepthBounds&) {}
+    void operator()(const CmdSetStencilCompareMask& c) { exec_state(st, c); }
+    void operator()(const CmdSetStencilWriteMask& c) { exec_state(st, c); }
+    void operator()(const CmdSetStencilReference& c) { exec_state(st, c); }
+    void operator()(const CmdSetDynamic& c) { exec_state(st, c); }
+    void operator()(const CmdSetStencilOp& c) { exec_state(st, c); }
+    void operator()(const CmdDraw& c) { exec_draw(st, c); }
+    void operator()(const CmdDrawIndexed& c) { exec_draw(st, c); }
+    void operator()(const CmdDrawIndirect& c) { exec_draw(st, c); }
+    void operator()(const CmdDrawIndexedIndirect& c) { exec_draw(st, c); }
+    void operator()(const CmdDispatch& c) { exec_dispatch(st, c); }
+    void operator()(const CmdDispatchIndirect& c) { exec_dispatch(st, c); }
+
+    void operator()(const CmdBeginQuery& c) { exec_query(st, c); }
+    void operator()(const CmdEndQuery& c) { exec_query(st, c); }
+    void operator()(const CmdResetQueryPool& c) { exec_query(st, c); }
+    void operator()(const CmdWriteTimestamp& c) { exec_query(st, c); }
+    void operator()(const CmdCopyQueryPoolResults& c) { exec_query(st, c); }
+};
+
 }  // namespace
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
-    for (Cmd* cmd = cb->first; cmd != nullptr; cmd = cmd->next) {
-        switch (cmd->type) {
-            case CmdType::kCopyBuffer:
-                exec_copy_buffer(*static_cast<CmdCopyBuffer*>(cmd));
-                break;
-            case CmdType::kCopyImage:
-                exec_copy_image(*static_cast<CmdCopyImage*>(cmd));
-                break;
-            case CmdType::kCopyBufferToImage:
-                exec_copy_buffer_to_image(*static_cast<CmdCopyBufferToImage*>(cmd));
-                break;
-            case CmdType::kCopyImageToBuffer:
-                exec_copy_image_to_buffer(*static_cast<CmdCopyImageToBuffer*>(cmd));
-                break;
-            case CmdType::kUpdateBuffer:
-                exec_update_buffer(*static_cast<CmdUpdateBuffer*>(cmd));
-                break;
-            case CmdType::kFillBuffer:
-                exec_fill_buffer(*static_cast<CmdFillBuffer*>(cmd));
-                break;
-            case CmdType::kClearColorImage:
-                exec_clear_color_image(*static_cast<CmdClearColorImage*>(cmd));
-                break;
-            case CmdType::kClearDepthStencilImage:
-                exec_clear_depth_stencil_image(*static_cast<CmdClearDepthStencilImage*>(cmd));
-                break;
-            case CmdType::kResolveImage:
-                exec_resolve_image(*static_cast<CmdResolveImage*>(cmd));
-                break;
-            case CmdType::kBlitImage:
-                exec_blit_image(*static_cast<CmdBlitImage*>(cmd));
-                break;
-            // Execution is serial and in order, so barriers have nothing left to order.
-            case CmdType::kPipelineBarrier:
-                break;
-            case CmdType::kSetEvent:
-                static_cast<CmdSetEvent*>(cmd)->event->set.store(true);
-                break;
-            case CmdType::kResetEvent:
-                static_cast<CmdResetEvent*>(cmd)->event->set.store(false);
-                break;
-            // Device-side sets happened earlier in this serial stream; host sets must precede the submission.
-            case CmdType::kWaitEvents:
-                break;
-            case CmdType::kBeginRenderPass: {
-                auto* c = static_cast<CmdBeginRenderPass*>(cmd);
-                st.render_pass = c->render_pass;
-                st.framebuffer = c->framebuffer;
-                st.area = c->area;
-                st.clears = c->clears;
-                st.subpass = 0;
-                load_attachments(st, 0);
-                break;
-            }
-            case CmdType::kNextSubpass:
-                if (st.render_pass == nullptr) break;
-                finish_rendering(st);
-                st.query_command_pending = false;  // it belonged to the subpass that ended
-                resolve_attachments(st, st.subpass);
-                ++st.subpass;
-                load_attachments(st, st.subpass);
-                break;
-            case CmdType::kEndRenderPass:
-                if (st.render_pass == nullptr) break;
-                finish_rendering(st);
-                st.query_command_pending = false;
-                resolve_attachments(st, st.subpass);
-                st.render_pass = nullptr;
-                st.framebuffer = nullptr;
-                break;
-            case CmdType::kClearAttachments:
-                // Binned draws render first, so the clear lands after them in API order.
-                finish_rendering(st);
-                clear_attachments(st, *static_cast<CmdClearAttachments*>(cmd));
-                break;
-            case CmdType::kExecuteCommands: {
-                auto* c = static_cast<CmdExecuteCommands*>(cmd);
-                for (uint32_t i = 0; i < c->count; ++i) execute_command_buffer(c->buffers[i], st);
-                break;
-            }
-            case CmdType::kBeginQuery:
-            case CmdType::kEndQuery:
-            case CmdType::kResetQueryPool:
-            case CmdType::kWriteTimestamp:
-            case CmdType::kCopyQueryPoolResults:
-                exec_query_command(st, *cmd);
-                break;
-            case CmdType::kDraw:
-            case CmdType::kDrawIndexed:
-            case CmdType::kDrawIndirect:
-            case CmdType::kDrawIndexedIndirect:
-                exec_draw_command(st, *cmd);
-                break;
-            default:  // vkCmdBind* / vkCmdSet*
-                exec_state_command(st, *cmd);
-                break;
-        }
+    CommandRunner run{st};
+    for (const Cmd* cmd = cb->first; cmd != nullptr; cmd = cmd->next) {
+        if (st.stop != nullptr && st.stop->load(std::memory_order_relaxed)) return;  // past the time limit
+        visit_command(*cmd, run);
     }
 }
 

@@ -3,13 +3,19 @@
 #include "command_buffer.h"
 #include "formats.h"
 
+#include <atomic>
+#include <optional>
 #include <utility>
 #include <vector>
+
+namespace tilevk::shader {
+class Program;
+class Bindings;
+}  // namespace tilevk::shader
 
 namespace tilevk::icd {
 
 struct Image;
-struct ImageView;
 struct RenderPass;
 struct Framebuffer;
 struct Pipeline;
@@ -18,24 +24,36 @@ struct Buffer;
 struct QueryPool;
 struct DrawContext;  // execute_draw.cpp: one renderer per queue
 
-// Bound draw state (vkCmdBind*, vkCmdSet*): lives for one command buffer.
-struct BoundState {
-    static constexpr uint32_t kMaxSets = 4, kMaxVertexBuffers = 16, kMaxDynamicOffsets = 64;
-    Pipeline* pipeline = nullptr;
+// The descriptor sets bound at one bind point (graphics or compute) and their dynamic offsets.
+struct BoundSets {
+    static constexpr uint32_t kMaxSets = 8, kMaxDynamicOffsets = 64;
     DescriptorSet* sets[kMaxSets] = {};
     uint32_t dynamic_offsets[kMaxSets][kMaxDynamicOffsets] = {};  // per set, in binding/element order
+};
+
+// Bound draw and dispatch state (vkCmdBind*, vkCmdSet*): lives for one command buffer. The graphics and compute
+// bind points have their own pipeline and sets; push constants are shared (they belong to the layout, not the
+// bind point).
+struct BoundState {
+    static constexpr uint32_t kMaxSets = BoundSets::kMaxSets, kMaxVertexBuffers = 16,
+                              kMaxDynamicOffsets = BoundSets::kMaxDynamicOffsets;
+    Pipeline* pipeline = nullptr;  // graphics
+    BoundSets graphics;
+    Pipeline* compute_pipeline = nullptr;
+    BoundSets compute;
     Buffer* vertex_buffers[kMaxVertexBuffers] = {};
     VkDeviceSize vertex_offsets[kMaxVertexBuffers] = {};
     Buffer* index_buffer = nullptr;
     VkDeviceSize index_offset = 0;
     VkIndexType index_type = VK_INDEX_TYPE_UINT16;
+    VkDeviceSize vertex_sizes[kMaxVertexBuffers] = {};  // bytes bound from the offset (VK_WHOLE_SIZE: to the end)
     alignas(16) uint8_t push_constants[128] = {};
-    VkViewport viewport{};
-    VkRect2D scissor{};
-    float line_width = 1.0f;
-    float depth_bias[3] = {0, 0, 0};  // constant, clamp, slope
-    float blend_constants[4] = {0, 0, 0, 0};
-    uint32_t stencil_compare[2] = {0xff, 0xff}, stencil_write[2] = {0xff, 0xff}, stencil_ref[2] = {0, 0};
+    DynamicValues dyn;  // vkCmdSet*: applied where the pipeline's state is dynamic (dynamic_state.cpp)
+    // What changed since the draw state was last translated (execute_draw.cpp draw_state): dynamic_bit(state) per
+    // vkCmdSet*, kDirtyPipeline for vkCmdBindPipeline. A draw translates the pipeline's state again only when the
+    // pipeline or one of the states it takes dynamically changed.
+    static constexpr uint32_t kDirtyPipeline = 1u << 31;
+    uint32_t dirty = ~0u;
 };
 
 // State that lives across commands while a queue runs one command buffer.
@@ -47,7 +65,6 @@ struct ExecState {
     uint32_t subpass = 0;
     VkRect2D area{};
     const VkClearValue* clears = nullptr;
-    bool draw_warned = false;
     // The active occlusion query (at most one per command buffer): draws add their passing samples to it.
     QueryPool* occlusion_pool = nullptr;
     uint32_t occlusion_query = 0;
@@ -57,6 +74,12 @@ struct ExecState {
     // A query command inside the render pass before the renderer's next scene began: that scene is not linear
     // (note_query_command_in_pass).
     bool query_command_pending = false;
+    // The submission's time limit (device_timeout.h): once true, the remaining commands are skipped.
+    const std::atomic<bool>* stop = nullptr;
+    // Where the running draw comes from, for the device-loss report: pSubmits[submit_index].pCommandBuffers[
+    // command_buffer_index], its draw_number-th draw so far (vkCmdDraw* of it and its secondaries, each draw of an
+    // indirect command counted).
+    uint32_t submit_index = 0, command_buffer_index = 0, draw_number = 0;
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
@@ -67,19 +90,55 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st);
 void note_query_command_in_pass(ExecState& st);
 
 // ---- draws (execute_draw.cpp) ----
-DrawContext* create_draw_context();
+// `stop`: the queue's time-limit flag, which the renderer and its shaders watch (outlives the context).
+DrawContext* create_draw_context(const std::atomic<bool>* stop);
 void destroy_draw_context(DrawContext* ctx);
-// Shader runs the loop watchdog has cut short on this context so far (shader::Scratch::loop_limit_hits).
-uint64_t shader_watchdog_hits(const DrawContext& ctx);
-// vkCmdBind* / vkCmdSet*: updates st.bound.
-void exec_state_command(ExecState& st, const Cmd& cmd);
-// vkCmdDraw*: renders into the current subpass (the renderer starts lazily at the subpass's first draw).
-void exec_draw_command(ExecState& st, const Cmd& cmd);
+// A draw of the current submission, as the device-loss report names it.
+struct DrawOrigin {
+    VkPipeline pipeline;
+    uint32_t submit, command_buffer, draw;
+};
+// Forgets the previous submission's draws.
+void begin_submission(DrawContext& ctx);
+// The draw the time limit interrupted in this submission, if the renderer was working on one.
+std::optional<DrawOrigin> interrupted_draw(const DrawContext& ctx);
+// vkCmdBind* / vkCmdSet*: update st.bound.
+void exec_state(ExecState& st, const CmdBindPipeline& c);
+void exec_state(ExecState& st, const CmdBindDescriptorSets& c);
+void exec_state(ExecState& st, const CmdBindVertexBuffers& c);
+void exec_state(ExecState& st, const CmdBindIndexBuffer& c);
+void exec_state(ExecState& st, const CmdPushConstants& c);
+void exec_state(ExecState& st, const CmdSetViewport& c);
+void exec_state(ExecState& st, const CmdSetScissor& c);
+void exec_state(ExecState& st, const CmdSetLineWidth& c);
+void exec_state(ExecState& st, const CmdSetDepthBias& c);
+void exec_state(ExecState& st, const CmdSetBlendConstants& c);
+void exec_state(ExecState& st, const CmdSetStencilCompareMask& c);
+void exec_state(ExecState& st, const CmdSetStencilWriteMask& c);
+void exec_state(ExecState& st, const CmdSetStencilReference& c);
+void exec_state(ExecState& st, const CmdSetDynamic& c);
+void exec_state(ExecState& st, const CmdSetStencilOp& c);
+// vkCmdDraw*: render into the current subpass (the renderer starts lazily at the subpass's first draw).
+void exec_draw(ExecState& st, const CmdDraw& c);
+void exec_draw(ExecState& st, const CmdDrawIndexed& c);
+void exec_draw(ExecState& st, const CmdDrawIndirect& c);
+void exec_draw(ExecState& st, const CmdDrawIndexedIndirect& c);
 // Ends the renderer's pass if one is running: renders what is binned and writes the targets back.
 void finish_rendering(ExecState& st);
+// The descriptors and push constants `program` reads, from the sets bound at the compute bind point (the graphics
+// path's translation, execute_draw.cpp). Outside render passes only.
+void build_compute_bindings(ExecState& st, const shader::Program& program, shader::Bindings& b);
+
+// ---- dispatches (execute_compute.cpp) ----
+void exec_dispatch(ExecState& st, const CmdDispatch& c);
+void exec_dispatch(ExecState& st, const CmdDispatchIndirect& c);
 
 // ---- queries (execute_query.cpp) ----
-void exec_query_command(ExecState& st, const Cmd& cmd);
+void exec_query(ExecState& st, const CmdBeginQuery& c);
+void exec_query(ExecState& st, const CmdEndQuery& c);
+void exec_query(ExecState& st, const CmdResetQueryPool& c);
+void exec_query(ExecState& st, const CmdWriteTimestamp& c);
+void exec_query(ExecState& st, const CmdCopyQueryPoolResults& c);
 // Makes the queries ended while draws were binned available (called once the binned draws are rendered).
 void publish_ended_queries(ExecState& st);
 // After a primary command buffer: a query left active (never ended: invalid usage) is ended with a message, so

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <initializer_list>
+#include <type_traits>
 
 #include "buffer.h"
 #include "buffer_view.h"
@@ -16,14 +18,21 @@
 #include "image.h"
 #include "physical_device.h"
 #include "pipeline.h"
+#include "rast/core/recycled_list.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/renderer.h"
+#include "rast/render/stage_timer.h"
 #include "render_pass.h"
 #include "render_state.h"
 #include "sampler.h"
 #include "workers.h"
 
 namespace tilevk::icd {
+
+// The limits physical_device.cpp reports are the sizes of what holds them here.
+static_assert(BoundState::kMaxSets == kMaxBoundDescriptorSets);
+static_assert(rast::render::kMaxColorTargets == int(kMaxColorAttachments) &&
+              shader::kMaxColorOutputs == int(kMaxColorAttachments));
 
 namespace rr = rast::render;
 
@@ -36,33 +45,51 @@ struct Staged {
     uint32_t samples = 1, texel_bytes = 0, byte_offset = 0, elem = 0, w = 0, h = 0;
     uint32_t copy_bytes = 0;  // bytes of each element that belong to this aspect (D24S8 depth: 3 of 4)
     std::vector<uint8_t> plane;
+    void reset() {}  // RecycledList: every field is set by plane_of; the plane keeps its storage
+};
+
+// A translated draw state (draw_state), reused from pass to pass.
+struct StateSlot {
+    rr::PipelineState state;
+    void reset() {}
 };
 
 struct DrawContext {
+    explicit DrawContext(const std::atomic<bool>* stop) { renderer.set_stop_flag(stop); }
     rast::ThreadPool pool{rast::ThreadPool::threads_from_env()};
     rr::Renderer renderer{pool};
+    std::vector<DrawOrigin> origins;  // this submission's draws; DrawCall::id indexes it
     bool active = false;
-    // Kept alive until the renderer's pass ends: DrawRecords point at these.
-    std::deque<rr::PipelineState> states;
-    std::deque<shader::ImageView> views;
-    std::deque<shader::SamplerState> samplers;
-    std::deque<Staged> staged;
+    // Kept alive until the renderer's pass ends: DrawRecords point at these. Reused from pass to pass: a steady
+    // frame allocates nothing here.
+    rast::RecycledList<StateSlot> states;
+    const rr::PipelineState* current_state = nullptr;  // the last translated state (states.back())
+    std::deque<shader::ImageView> views;               // views translated per draw (made before their image had memory)
+    rast::RecycledList<Staged> staged;
+    shader::Bindings bindings;  // the draw's descriptors, rebuilt per draw in reused storage
     bool warned = false;
 };
 
-DrawContext* create_draw_context() {
-    return new DrawContext();
+DrawContext* create_draw_context(const std::atomic<bool>* stop) {
+    return new DrawContext(stop);
 }
 void destroy_draw_context(DrawContext* ctx) {
     delete ctx;
 }
-uint64_t shader_watchdog_hits(const DrawContext& ctx) {
-    return ctx.renderer.shader_loop_limit_hits();
+void begin_submission(DrawContext& ctx) {
+    ctx.origins.clear();
+    ctx.renderer.reset_interruption();
+}
+std::optional<DrawOrigin> interrupted_draw(const DrawContext& ctx) {
+    const std::optional<uint32_t> id = ctx.renderer.interrupted_draw();
+    if (!id || *id >= ctx.origins.size()) return std::nullopt;
+    return ctx.origins[*id];
 }
 
 namespace {
 
 void copy_planes(Staged& s, bool to_staging) {
+    const rast::render::StageScope timed(rast::render::Stage::kAttach);
     const size_t plane_size = size_t(s.w) * s.h * s.elem;
     for (uint32_t sm = 0; sm < s.samples; ++sm)
         for (uint32_t y = 0; y < s.h; ++y)
@@ -89,34 +116,35 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t 
     uint8_t* base = img.texel(level, v.range.baseArrayLayer, 0, 0);
     const size_t pitch = img.layout.row_pitch[level];
     if (copy_bytes == 0) copy_bytes = elem;
-    if (img.samples == 1 && img.format->texel_bytes == elem && copy_bytes == elem)
-        return {base + byte_offset, pitch, 0};
+    if (img.samples == 1 && img.format->bytes == elem && copy_bytes == elem) return {base + byte_offset, pitch, 0};
     Staged& s = ctx.staged.emplace_back();
     s.image = base;
     s.row_pitch = pitch;
     s.samples = img.samples;
-    s.texel_bytes = img.format->texel_bytes;
+    s.texel_bytes = img.format->bytes;
     s.byte_offset = byte_offset;
     s.elem = elem;
     s.copy_bytes = copy_bytes;
     s.w = w;
     s.h = h;
     s.plane.resize(size_t(w) * h * elem * s.samples);
+    // The bytes of an element past copy_bytes (X8D24: the top byte) must read 0; a reused plane holds old ones.
+    if (copy_bytes < elem) std::memset(s.plane.data(), 0, s.plane.size());
     copy_planes(s, true);
     return {s.plane.data(), size_t(w) * elem, size_t(w) * h * elem};
 }
 
-// llvmpipe's linear mode (lp_state_derived.c check_linear_rasterizer, notes §0.3): lavapipe binds the subpass's
-// colour attachments as cbufs (VK_ATTACHMENT_UNUSED ones as NULL) and its depth/stencil attachment as zsbuf; the
-// mode needs exactly one cbuf, non-null, of format B8G8R8A8_UNORM (the view's format; B8G8R8X8_UNORM has no
-// Vulkan format lavapipe maps to it), single-sampled, whose resource is PIPE_TEXTURE_2D (lvp_image.c: a 2D image
-// with one array layer), no zsbuf, and no shader writing a viewport index (tilevk exposes no such output).
+// llvmpipe's linear mode (lp_state_derived.c check_linear_rasterizer, lavapipe-rules §0.3): lavapipe binds the
+// subpass's colour attachments as cbufs (VK_ATTACHMENT_UNUSED ones as NULL) and its depth/stencil attachment as zsbuf;
+// the mode needs exactly one cbuf, non-null, of format B8G8R8A8_UNORM (the view's format; B8G8R8X8_UNORM has no Vulkan
+// format lavapipe maps to it), single-sampled, whose resource is PIPE_TEXTURE_2D (lvp_image.c: a 2D image with one
+// array layer), no zsbuf, and no shader writing a viewport index (tilevk exposes no such output).
 bool lavapipe_linear_mode(const Subpass& sp, const Framebuffer& fbo) {
     if (sp.colors.size() != 1 || sp.depth_stencil.attachment != VK_ATTACHMENT_UNUSED) return false;
     const uint32_t a = sp.colors[0].attachment;
     if (a == VK_ATTACHMENT_UNUSED || a >= fbo.attachments.size()) return false;
     const ImageView& v = *fbo.attachments[a];
-    return v.format->format == VK_FORMAT_B8G8R8A8_UNORM && v.image->samples == 1 && v.image->array_layers == 1;
+    return v.format->id == format::Format::B8G8R8A8_UNORM && v.image->samples == 1 && v.image->array_layers == 1;
 }
 
 // Starts the renderer on the current subpass's attachments.
@@ -134,9 +162,10 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
         if (a == VK_ATTACHMENT_UNUSED || a >= fbo.attachments.size()) continue;
         const ImageView& v = *fbo.attachments[a];
         rr::ColorTarget& t = fb.color[i];
-        if (!color_format_of(v.format->format, &t.format)) continue;
+        if (!(image_features(*v.format) & format::kColorAttachment)) continue;
+        t.format = v.format->id;
         fb.samples = int(v.image->samples);
-        const PlaneRef p = plane_of(ctx, v, v.format->texel_bytes, 0, fbo.width, fbo.height);
+        const PlaneRef p = plane_of(ctx, v, v.format->bytes, 0, fbo.width, fbo.height);
         t.data = p.data;
         t.row_pitch = p.row_pitch;
         t.sample_stride = p.sample_stride;
@@ -146,7 +175,7 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
         const ImageView& v = *fbo.attachments[d];
         fb.samples = int(v.image->samples);
         rr::DepthStencilTarget& t = fb.depth_stencil;
-        t.format = depth_format_of(v.format->format);
+        t.format = v.format->depth;
         if (t.format != rast::fragment::DepthFormat::None) {
             // X8D24 (D24_UNORM_S8_UINT): the renderer's 32-bit depth words get the 24 depth bits, the top byte
             // (the image's stencil) stays 0 in staging and is never written back.
@@ -185,156 +214,100 @@ shader::Descriptor buffer_descriptor(const Descriptor& d, uint32_t dyn, bool wri
     return out;
 }
 
+// Translated when the view was made (vkCreateImageView, vkCreateBufferView: image_view.h); a view made before its
+// image had memory is translated here, per draw.
 const shader::ImageView* image_of(DrawContext& ctx, const ImageView* v) {
     if (v == nullptr || v->image == nullptr || v->image->memory == nullptr) return nullptr;
-    const Image& img = *v->image;
+    if (v->sampled_memory == v->image->memory) return v->sampled_ok ? &v->sampled : nullptr;
     shader::ImageView& out = ctx.views.emplace_back();
-    out.format = shader_format_of(v->format->format);
-    if (out.format == shader::Format::Undefined || img.samples != 1) return nullptr;
-    const uint32_t b = v->range.baseMipLevel;
-    out.base = img.memory->data + img.memory_offset;
-    out.width = img.level_width(b);
-    out.height = img.level_height(b);
-    out.levels = std::min<uint32_t>(v->range.levelCount, uint32_t(out.level.size()));
-    out.layers = v->range.layerCount;
-    const VkComponentSwizzle mapping[4] = {v->components.r, v->components.g, v->components.b, v->components.a};
-    for (uint8_t c = 0; c < 4; ++c) {
-        switch (mapping[c]) {
-            case VK_COMPONENT_SWIZZLE_ZERO:
-                out.swizzle[c] = shader::kSwizzleZero;
-                break;
-            case VK_COMPONENT_SWIZZLE_ONE:
-                out.swizzle[c] = shader::kSwizzleOne;
-                break;
-            case VK_COMPONENT_SWIZZLE_R:
-            case VK_COMPONENT_SWIZZLE_G:
-            case VK_COMPONENT_SWIZZLE_B:
-            case VK_COMPONENT_SWIZZLE_A:
-                out.swizzle[c] = uint8_t(mapping[c] - VK_COMPONENT_SWIZZLE_R);
-                break;
-            default:  // IDENTITY
-                out.swizzle[c] = c;
-                break;
-        }
-    }
-    for (uint32_t i = 0; i < out.levels; ++i) {
-        out.level[i].offset =
-            img.layout.level_offset[b + i] + VkDeviceSize(v->range.baseArrayLayer) * img.layout.layer_pitch[b + i];
-        out.level[i].row_pitch = img.layout.row_pitch[b + i];
-        out.level[i].layer_pitch = img.layout.layer_pitch[b + i];
-    }
-    return &out;
+    return shader_view_of(*v, &out) ? &out : nullptr;
 }
 
-// A uniform texel buffer as shader/ reads it: one row of range / texel-size texels (level 0, one layer), fetched
-// with texelFetch like a 1D image.
 const shader::ImageView* texel_buffer_of(DrawContext& ctx, VkBufferView handle) {
     const BufferView* v = from_handle<BufferView>(handle);
     if (v == nullptr || v->buffer == nullptr || v->buffer->data() == nullptr) return nullptr;
-    const FormatInfo* f = find_format(v->format);
-    if (f == nullptr || !(f->buffer_features & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) return nullptr;
-    if (v->offset > v->buffer->size) return nullptr;
-    const VkDeviceSize range = std::min(v->range, v->buffer->size - v->offset);
-    const VkDeviceSize texels = std::min<VkDeviceSize>(range / f->texel_bytes, kMaxTexelBufferElements);
-    if (texels == 0) return nullptr;
+    if (v->texel_memory == v->buffer->data()) return v->texel_ok ? &v->texel : nullptr;
     shader::ImageView& out = ctx.views.emplace_back();
-    out.format = shader_format_of(v->format);
-    if (out.format == shader::Format::Undefined) return nullptr;
-    out.base = v->buffer->data() + v->offset;
-    out.width = uint32_t(texels);
-    out.height = 1;
-    out.levels = 1;
-    out.layers = 1;
-    out.level[0].offset = 0;
-    out.level[0].row_pitch = texels * f->texel_bytes;
-    out.level[0].layer_pitch = out.level[0].row_pitch;
-    return &out;
+    return texel_buffer_view_of(*v, &out) ? &out : nullptr;
 }
 
-const shader::SamplerState* sampler_of(DrawContext& ctx, const Sampler* s) {
-    if (s == nullptr) return nullptr;
-    return &ctx.samplers.emplace_back(sampler_state_of(s->info));
+// Element e of binding lb of the set bound at index si, as shader/ reads it.
+shader::Descriptor descriptor_of(DrawContext& ctx, const BoundSets& bs, uint32_t si, const DescriptorSet& set,
+                                 const LayoutBinding& lb, uint32_t e) {
+    const Descriptor& d = set.slots[lb.first_slot + e];
+    const uint32_t dyn_index = lb.first_dynamic + e;
+    const uint32_t dyn =
+        lb.dynamic() && dyn_index < BoundState::kMaxDynamicOffsets ? bs.dynamic_offsets[si][dyn_index] : 0;
+    // Sampler states are translated when the sampler (or the layout holding immutable ones) was made.
+    const shader::SamplerState* smp = !lb.immutable_states.empty() ? &lb.immutable_states[e]
+                                      : d.sampler != nullptr       ? &d.sampler->state
+                                                                   : nullptr;
+    shader::Descriptor out;
+    switch (lb.type) {
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC:
+            return buffer_descriptor(d, dyn, false);
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC:
+            return buffer_descriptor(d, dyn, true);
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+            out.image = image_of(ctx, d.image_view);
+            out.sampler = smp;
+            break;
+        case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+        case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:  // read by subpassLoad as a texel fetch
+            out.image = image_of(ctx, d.image_view);
+            break;
+        case VK_DESCRIPTOR_TYPE_SAMPLER:
+            out.sampler = smp;
+            break;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+            out.image = texel_buffer_of(ctx, d.buffer_view);
+            break;
+        default:  // not reported as supported: reads as zero
+            break;
+    }
+    return out;
 }
 
-void build_bindings(ExecState& st, shader::Bindings& b) {
-    DrawContext& ctx = *st.draw;
-    const BoundState& bs = st.bound;
-    for (uint32_t si = 0; si < BoundState::kMaxSets; ++si) {
-        const DescriptorSet* set = bs.sets[si];
-        if (set == nullptr || set->layout == nullptr) continue;
-        uint32_t dyn_index = 0;
-        for (const LayoutBinding& lb : set->layout->bindings) {
-            for (uint32_t e = 0; e < lb.count; ++e) {
-                const Descriptor& d = set->slots[lb.first_slot + e];
-                const bool dynamic = lb.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC ||
-                                     lb.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC;
-                const uint32_t dyn =
-                    dynamic && dyn_index < BoundState::kMaxDynamicOffsets ? bs.dynamic_offsets[si][dyn_index] : 0;
-                if (dynamic) ++dyn_index;
-                const Sampler* smp = !lb.immutable_samplers.empty() ? lb.immutable_samplers[e] : d.sampler;
-                shader::Descriptor out;
-                switch (lb.type) {
-                    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
-                    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC:
-                        out = buffer_descriptor(d, dyn, false);
-                        break;
-                    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
-                    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC:
-                        out = buffer_descriptor(d, dyn, true);
-                        break;
-                    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
-                        out.image = image_of(ctx, d.image_view);
-                        out.sampler = sampler_of(ctx, smp);
-                        break;
-                    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
-                    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:  // read by subpassLoad as a texel fetch
-                        out.image = image_of(ctx, d.image_view);
-                        break;
-                    case VK_DESCRIPTOR_TYPE_SAMPLER:
-                        out.sampler = sampler_of(ctx, smp);
-                        break;
-                    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
-                        out.image = texel_buffer_of(ctx, d.buffer_view);
-                        break;
-                    default:
-                        continue;  // not reported as supported
-                }
-                b.set(si, lb.binding, e, out);
-            }
+// Only the bindings the pipeline's shaders declare are read: Vulkan requires valid descriptors only where a shader
+// statically uses them (VUID-vkCmdDraw-None-02699), so the others may name image views, buffers or samplers that
+// were destroyed since.
+void collect_bindings(DrawContext& ctx, const BoundSets& bound, std::initializer_list<const shader::Program*> programs,
+                      const BoundState& bs, shader::Bindings& b) {
+    for (const shader::Program* program : programs) {
+        if (program == nullptr) continue;
+        for (const shader::DescriptorUse& use : program->interface().descriptors) {
+            if (use.set >= BoundState::kMaxSets || b.find(use.set, use.binding, 0) != nullptr) continue;
+            const DescriptorSet* set = bound.sets[use.set];
+            const LayoutBinding* lb = set != nullptr && set->layout ? set->layout->find(use.binding) : nullptr;
+            if (lb == nullptr) continue;
+            for (uint32_t e = 0; e < lb->count; ++e)
+                b.set(use.set, lb->binding, e, descriptor_of(ctx, bound, use.set, *set, *lb, e));
         }
     }
     b.push_constants =
         std::span<const std::byte>(reinterpret_cast<const std::byte*>(bs.push_constants), sizeof bs.push_constants);
 }
 
-// The pipeline's state with the bound dynamic state applied.
-rr::PipelineState& draw_state(ExecState& st) {
-    const Pipeline& p = *st.bound.pipeline;
+void build_bindings(ExecState& st, shader::Bindings& b) {
     const BoundState& bs = st.bound;
-    rr::PipelineState& s = st.draw->states.emplace_back(p.state);
-    auto dyn = [&](VkDynamicState d) { return (p.dynamic & dynamic_bit(d)) != 0; };
-    if (dyn(VK_DYNAMIC_STATE_VIEWPORT)) {
-        const VkViewport& v = bs.viewport;
-        s.viewport = {v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
-    }
-    if (dyn(VK_DYNAMIC_STATE_SCISSOR)) {
-        const VkRect2D& r = bs.scissor;
-        s.scissor = {r.offset.x, r.offset.y, int32_t(r.offset.x + int64_t(r.extent.width)),
-                     int32_t(r.offset.y + int64_t(r.extent.height))};
-    }
-    if (dyn(VK_DYNAMIC_STATE_LINE_WIDTH)) s.line_width = bs.line_width;
-    if (dyn(VK_DYNAMIC_STATE_DEPTH_BIAS)) {
-        s.depth_bias.constant_factor = bs.depth_bias[0];
-        s.depth_bias.clamp = bs.depth_bias[1];
-        s.depth_bias.slope_factor = bs.depth_bias[2];
-    }
-    if (dyn(VK_DYNAMIC_STATE_BLEND_CONSTANTS)) std::memcpy(s.blend_constants, bs.blend_constants, 16);
-    rast::fragment::StencilFace* faces[2] = {&s.depth_stencil.front, &s.depth_stencil.back};
-    for (int f = 0; f < 2; ++f) {
-        if (dyn(VK_DYNAMIC_STATE_STENCIL_COMPARE_MASK)) faces[f]->compare_mask = uint8_t(bs.stencil_compare[f]);
-        if (dyn(VK_DYNAMIC_STATE_STENCIL_WRITE_MASK)) faces[f]->write_mask = uint8_t(bs.stencil_write[f]);
-        if (dyn(VK_DYNAMIC_STATE_STENCIL_REFERENCE)) faces[f]->reference = uint8_t(bs.stencil_ref[f]);
-    }
+    collect_bindings(*st.draw, bs.graphics, {bs.pipeline->vertex.get(), bs.pipeline->fragment.get()}, bs, b);
+}
+
+// The pipeline's state with the bound dynamic state applied: translated again only when the pipeline or a state it
+// takes dynamically changed since the last draw (BoundState::dirty); otherwise the last draw's state is reused.
+const rr::PipelineState& draw_state(ExecState& st) {
+    const Pipeline& p = *st.bound.pipeline;
+    BoundState& bs = st.bound;
+    DrawContext& ctx = *st.draw;
+    if (ctx.current_state != nullptr && !(bs.dirty & (BoundState::kDirtyPipeline | p.dynamic)))
+        return *ctx.current_state;
+    bs.dirty = 0;
+    rr::PipelineState& s = ctx.states.emplace_back().state;
+    s = p.state;
+    ctx.current_state = &s;
+    apply_dynamic_state(p.dynamic, p.statics, bs.dyn, s);
     // Rendering never leaves the framebuffer.
     s.scissor.x1 = std::min(s.scissor.x1, int32_t(st.framebuffer->width));
     s.scissor.y1 = std::min(s.scissor.y1, int32_t(st.framebuffer->height));
@@ -343,15 +316,20 @@ rr::PipelineState& draw_state(ExecState& st) {
 
 void run_draw(ExecState& st, rr::DrawCall& call) {
     const Pipeline* p = st.bound.pipeline;
-    if (st.render_pass == nullptr || p == nullptr || p->rasterizer_discard) return;
+    const uint32_t draw_number = st.draw_number++;
+    if (st.render_pass == nullptr || p == nullptr || discards(p->dynamic, p->statics, st.bound.dyn)) return;
     DrawContext& ctx = *st.draw;
+    call.id = uint32_t(ctx.origins.size());
+    ctx.origins.push_back({to_handle(const_cast<Pipeline*>(p)), st.submit_index, st.command_buffer_index, draw_number});
     if (!ctx.active) begin_rendering(st, p->state.samples);
     const BoundState& bs = st.bound;
     for (uint32_t i = 0; i < BoundState::kMaxVertexBuffers; ++i) {
         rr::VertexBufferBinding vb;
         if (const Buffer* b = bs.vertex_buffers[i]; b && b->memory && bs.vertex_offsets[i] <= b->size) {
             vb.data = b->data() + bs.vertex_offsets[i];
-            vb.size = uint32_t(std::min<VkDeviceSize>(b->size - bs.vertex_offsets[i], UINT32_MAX));
+            const VkDeviceSize left = b->size - bs.vertex_offsets[i];
+            const VkDeviceSize bound = bs.vertex_sizes[i] == VK_WHOLE_SIZE ? left : std::min(left, bs.vertex_sizes[i]);
+            vb.size = uint32_t(std::min<VkDeviceSize>(bound, UINT32_MAX));
         }
         call.vertex_buffers.push_back(vb);
     }
@@ -360,9 +338,10 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
         if (b == nullptr || b->memory == nullptr || bs.index_offset > b->size) return;
         call.index_data = b->data() + bs.index_offset;
         call.index_bytes = uint32_t(std::min<VkDeviceSize>(b->size - bs.index_offset, UINT32_MAX));
-        call.index_size = bs.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
+        call.index_size = bs.index_type == VK_INDEX_TYPE_UINT8_EXT ? 1 : bs.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
     }
-    shader::Bindings bindings;
+    shader::Bindings& bindings = ctx.bindings;
+    bindings.clear();
     build_bindings(st, bindings);
     call.samples_passed = active_occlusion_counter(st);
     const std::string err = ctx.renderer.draw(draw_state(st), call, bindings);
@@ -373,6 +352,15 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
 }
 
 }  // namespace
+
+void build_compute_bindings(ExecState& st, const shader::Program& program, shader::Bindings& b) {
+    DrawContext& ctx = *st.draw;
+    // Views translated for an earlier dispatch are no longer read (dispatches run outside render passes, so no
+    // binned draw points at them either).
+    if (!ctx.active) ctx.views.clear();
+    b.clear();
+    collect_bindings(ctx, st.bound.compute, {&program}, st.bound, b);
+}
 
 void note_query_command_in_pass(ExecState& st) {
     if (st.render_pass == nullptr) return;
@@ -386,18 +374,18 @@ void finish_rendering(ExecState& st) {
     DrawContext& ctx = *st.draw;
     if (ctx.active) {
         ctx.renderer.end();
-        for (Staged& s : ctx.staged) copy_planes(s, false);
+        for (size_t i = 0; i < ctx.staged.size(); ++i) copy_planes(ctx.staged[i], false);
         ctx.staged.clear();
         ctx.states.clear();
+        ctx.current_state = nullptr;
         ctx.views.clear();
-        ctx.samplers.clear();
         ctx.active = false;
     }
     // The draws of queries ended in this pass are rendered (and counted) now.
     publish_ended_queries(st);
 }
 
-void run_on_workers(ExecState& st, size_t num_tasks, const std::function<void(size_t task)>& fn) {
+void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size_t task)> fn) {
     if (num_tasks == 0) return;
     if (num_tasks == 1) {
         fn(0);
@@ -406,154 +394,239 @@ void run_on_workers(ExecState& st, size_t num_tasks, const std::function<void(si
     st.draw->pool.run(num_tasks, [&fn](unsigned, size_t task) { fn(task); });
 }
 
-void exec_state_command(ExecState& st, const Cmd& cmd) {
-    BoundState& bs = st.bound;
-    switch (cmd.type) {
-        case CmdType::kBindPipeline: {
-            const auto& c = static_cast<const CmdBindPipeline&>(cmd);
-            if (c.bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS) bs.pipeline = c.pipeline;
-            break;
-        }
-        case CmdType::kBindDescriptorSets: {
-            const auto& c = static_cast<const CmdBindDescriptorSets&>(cmd);
-            if (c.bind_point != VK_PIPELINE_BIND_POINT_GRAPHICS) break;
-            uint32_t next_dyn = 0;
-            for (uint32_t i = 0; i < c.set_count && c.first_set + i < BoundState::kMaxSets; ++i) {
-                DescriptorSet* set = c.sets[i];
-                const uint32_t si = c.first_set + i;
-                bs.sets[si] = set;
-                if (set == nullptr || set->layout == nullptr) continue;
-                uint32_t k = 0;
-                for (const LayoutBinding& lb : set->layout->bindings) {
-                    if (lb.type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC &&
-                        lb.type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC)
-                        continue;
-                    for (uint32_t e = 0; e < lb.count; ++e, ++k, ++next_dyn)
-                        if (k < BoundState::kMaxDynamicOffsets && next_dyn < c.dynamic_offset_count)
-                            bs.dynamic_offsets[si][k] = c.dynamic_offsets[next_dyn];
-                }
-            }
-            break;
-        }
-        case CmdType::kBindVertexBuffers: {
-            const auto& c = static_cast<const CmdBindVertexBuffers&>(cmd);
-            for (uint32_t i = 0; i < c.count && c.first_binding + i < BoundState::kMaxVertexBuffers; ++i) {
-                bs.vertex_buffers[c.first_binding + i] = c.buffers[i];
-                bs.vertex_offsets[c.first_binding + i] = c.offsets[i];
-            }
-            break;
-        }
-        case CmdType::kBindIndexBuffer: {
-            const auto& c = static_cast<const CmdBindIndexBuffer&>(cmd);
-            bs.index_buffer = c.buffer;
-            bs.index_offset = c.offset;
-            bs.index_type = c.index_type;
-            break;
-        }
-        case CmdType::kPushConstants: {
-            const auto& c = static_cast<const CmdPushConstants&>(cmd);
-            if (c.offset < sizeof bs.push_constants && c.values)
-                std::memcpy(bs.push_constants + c.offset, c.values,
-                            std::min<size_t>(c.size, sizeof bs.push_constants - c.offset));
-            break;
-        }
-        case CmdType::kSetViewport: {
-            const auto& c = static_cast<const CmdSetViewport&>(cmd);
-            if (c.first == 0 && c.count > 0) bs.viewport = c.viewports[0];
-            break;
-        }
-        case CmdType::kSetScissor: {
-            const auto& c = static_cast<const CmdSetScissor&>(cmd);
-            if (c.first == 0 && c.count > 0) bs.scissor = c.scissors[0];
-            break;
-        }
-        case CmdType::kSetLineWidth:
-            bs.line_width = static_cast<const CmdSetLineWidth&>(cmd).width;
-            break;
-        case CmdType::kSetDepthBias: {
-            const auto& c = static_cast<const CmdSetDepthBias&>(cmd);
-            bs.depth_bias[0] = c.constant_factor;
-            bs.depth_bias[1] = c.clamp;
-            bs.depth_bias[2] = c.slope_factor;
-            break;
-        }
-        case CmdType::kSetBlendConstants:
-            std::memcpy(bs.blend_constants, static_cast<const CmdSetBlendConstants&>(cmd).constants, 16);
-            break;
-        case CmdType::kSetStencilCompareMask:
-        case CmdType::kSetStencilWriteMask:
-        case CmdType::kSetStencilReference: {
-            // The three commands share one layout: faces, value.
-            const auto& c = static_cast<const CmdSetStencilReference&>(cmd);
-            uint32_t* v = cmd.type == CmdType::kSetStencilCompareMask ? bs.stencil_compare
-                          : cmd.type == CmdType::kSetStencilWriteMask ? bs.stencil_write
-                                                                      : bs.stencil_ref;
-            if (c.faces & VK_STENCIL_FACE_FRONT_BIT) v[0] = c.value;
-            if (c.faces & VK_STENCIL_FACE_BACK_BIT) v[1] = c.value;
-            break;
-        }
-        default:
-            break;
+rast::ThreadPool& worker_pool(ExecState& st) {
+    return st.draw->pool;
+}
+
+namespace {
+// A vkCmdSet* changed these dynamic states: the next draw whose pipeline takes one of them translates its state again.
+void mark_dirty(ExecState& st, DynamicMask states) {
+    st.bound.dirty |= states;
+}
+}  // namespace
+
+void exec_state(ExecState& st, const CmdBindPipeline& c) {
+    if (c.bind_point == VK_PIPELINE_BIND_POINT_COMPUTE) {
+        st.bound.compute_pipeline = c.pipeline;
+        return;
+    }
+    if (c.bind_point != VK_PIPELINE_BIND_POINT_GRAPHICS) return;
+    st.bound.pipeline = c.pipeline;
+    st.bound.dirty |= BoundState::kDirtyPipeline;
+}
+
+void exec_state(ExecState& st, const CmdBindDescriptorSets& c) {
+    if (c.bind_point != VK_PIPELINE_BIND_POINT_GRAPHICS && c.bind_point != VK_PIPELINE_BIND_POINT_COMPUTE) return;
+    BoundSets& bs = c.bind_point == VK_PIPELINE_BIND_POINT_COMPUTE ? st.bound.compute : st.bound.graphics;
+    uint32_t next_dyn = 0;
+    for (uint32_t i = 0; i < c.set_count && c.first_set + i < BoundSets::kMaxSets; ++i) {
+        DescriptorSet* set = c.sets[i];
+        const uint32_t si = c.first_set + i;
+        bs.sets[si] = set;
+        if (set == nullptr || set->layout == nullptr) continue;
+        // This set's dynamic offsets come next in pDynamicOffsets, in binding order.
+        for (uint32_t k = 0; k < set->layout->dynamic_count; ++k, ++next_dyn)
+            if (k < BoundSets::kMaxDynamicOffsets && next_dyn < c.dynamic_offset_count)
+                bs.dynamic_offsets[si][k] = c.dynamic_offsets[next_dyn];
     }
 }
 
-void exec_draw_command(ExecState& st, const Cmd& cmd) {
-    switch (cmd.type) {
-        case CmdType::kDraw: {
-            const auto& c = static_cast<const CmdDraw&>(cmd);
-            rr::DrawCall call;
-            call.count = c.vertex_count;
-            call.instance_count = c.instance_count;
-            call.first = c.first_vertex;
-            call.first_instance = c.first_instance;
-            run_draw(st, call);
-            break;
-        }
-        case CmdType::kDrawIndexed: {
-            const auto& c = static_cast<const CmdDrawIndexed&>(cmd);
-            rr::DrawCall call;
-            call.indexed = true;
-            call.count = c.index_count;
-            call.instance_count = c.instance_count;
-            call.first = c.first_index;
-            call.vertex_offset = c.vertex_offset;
-            call.first_instance = c.first_instance;
-            run_draw(st, call);
-            break;
-        }
-        case CmdType::kDrawIndirect:
-        case CmdType::kDrawIndexedIndirect: {
-            const auto& c = static_cast<const CmdDrawIndirect&>(cmd);  // same layout as CmdDrawIndexedIndirect
-            const bool indexed = cmd.type == CmdType::kDrawIndexedIndirect;
-            const size_t size = indexed ? sizeof(VkDrawIndexedIndirectCommand) : sizeof(VkDrawIndirectCommand);
-            for (uint32_t i = 0; i < c.draw_count; ++i) {
-                const VkDeviceSize off = c.offset + VkDeviceSize(i) * c.stride;
-                if (c.buffer == nullptr || off + size > c.buffer->size) break;
-                rr::DrawCall call;
-                call.indexed = indexed;
-                if (indexed) {
-                    VkDrawIndexedIndirectCommand d;
-                    std::memcpy(&d, c.buffer->data() + off, sizeof d);
-                    call.count = d.indexCount;
-                    call.instance_count = d.instanceCount;
-                    call.first = d.firstIndex;
-                    call.vertex_offset = d.vertexOffset;
-                    call.first_instance = d.firstInstance;
-                } else {
-                    VkDrawIndirectCommand d;
-                    std::memcpy(&d, c.buffer->data() + off, sizeof d);
-                    call.count = d.vertexCount;
-                    call.instance_count = d.instanceCount;
-                    call.first = d.firstVertex;
-                    call.first_instance = d.firstInstance;
-                }
-                run_draw(st, call);
-            }
-            break;
-        }
-        default:
-            break;
+void exec_state(ExecState& st, const CmdBindVertexBuffers& c) {
+    BoundState& bs = st.bound;
+    for (uint32_t i = 0; i < c.count && c.first_binding + i < BoundState::kMaxVertexBuffers; ++i) {
+        bs.vertex_buffers[c.first_binding + i] = c.buffers[i];
+        bs.vertex_offsets[c.first_binding + i] = c.offsets[i];
+        bs.vertex_sizes[c.first_binding + i] = c.sizes != nullptr ? c.sizes[i] : VK_WHOLE_SIZE;
+        if (c.strides != nullptr && c.first_binding + i < DynamicValues::kMaxBindings)
+            bs.dyn.strides[c.first_binding + i] = uint32_t(c.strides[i]);
     }
+    if (c.strides != nullptr) mark_dirty(st, dynamic_bit(DynamicState::kVertexInputBindingStride));
+}
+
+void exec_state(ExecState& st, const CmdBindIndexBuffer& c) {
+    st.bound.index_buffer = c.buffer;
+    st.bound.index_offset = c.offset;
+    st.bound.index_type = c.index_type;
+}
+
+void exec_state(ExecState& st, const CmdPushConstants& c) {
+    BoundState& bs = st.bound;
+    if (c.offset < sizeof bs.push_constants && c.values)
+        std::memcpy(bs.push_constants + c.offset, c.values,
+                    std::min<size_t>(c.size, sizeof bs.push_constants - c.offset));
+}
+
+void exec_state(ExecState& st, const CmdSetViewport& c) {
+    if (c.first == 0 && c.count > 0) st.bound.dyn.viewport = c.viewports[0];
+    mark_dirty(st, dynamic_bit(DynamicState::kViewport) | dynamic_bit(DynamicState::kViewportWithCount));
+}
+
+void exec_state(ExecState& st, const CmdSetScissor& c) {
+    if (c.first == 0 && c.count > 0) st.bound.dyn.scissor = c.scissors[0];
+    mark_dirty(st, dynamic_bit(DynamicState::kScissor) | dynamic_bit(DynamicState::kScissorWithCount));
+}
+
+void exec_state(ExecState& st, const CmdSetLineWidth& c) {
+    st.bound.dyn.line_width = c.width;
+    mark_dirty(st, dynamic_bit(DynamicState::kLineWidth));
+}
+
+void exec_state(ExecState& st, const CmdSetDepthBias& c) {
+    st.bound.dyn.depth_bias[0] = c.constant_factor;
+    st.bound.dyn.depth_bias[1] = c.clamp;
+    st.bound.dyn.depth_bias[2] = c.slope_factor;
+    mark_dirty(st, dynamic_bit(DynamicState::kDepthBias));
+}
+
+void exec_state(ExecState& st, const CmdSetBlendConstants& c) {
+    std::memcpy(st.bound.dyn.blend_constants, c.constants, 16);
+    mark_dirty(st, dynamic_bit(DynamicState::kBlendConstants));
+}
+
+namespace {
+// Front value in v[0], back value in v[1].
+void set_stencil_faces(uint32_t v[2], VkStencilFaceFlags faces, uint32_t value) {
+    if (faces & VK_STENCIL_FACE_FRONT_BIT) v[0] = value;
+    if (faces & VK_STENCIL_FACE_BACK_BIT) v[1] = value;
+}
+}  // namespace
+
+void exec_state(ExecState& st, const CmdSetStencilCompareMask& c) {
+    set_stencil_faces(st.bound.dyn.stencil_compare, c.faces, c.value);
+    mark_dirty(st, dynamic_bit(DynamicState::kStencilCompareMask));
+}
+
+void exec_state(ExecState& st, const CmdSetStencilWriteMask& c) {
+    set_stencil_faces(st.bound.dyn.stencil_write, c.faces, c.value);
+    mark_dirty(st, dynamic_bit(DynamicState::kStencilWriteMask));
+}
+
+void exec_state(ExecState& st, const CmdSetStencilReference& c) {
+    set_stencil_faces(st.bound.dyn.stencil_ref, c.faces, c.value);
+    mark_dirty(st, dynamic_bit(DynamicState::kStencilReference));
+}
+
+void exec_state(ExecState& st, const CmdSetDynamic& c) {
+    DynamicValues& v = st.bound.dyn;
+    switch (c.state) {
+        case DynamicState::kCullMode:
+            v.cull_mode = c.value;
+            break;
+        case DynamicState::kFrontFace:
+            v.front_face = VkFrontFace(c.value);
+            break;
+        case DynamicState::kPrimitiveTopology:
+            v.topology = VkPrimitiveTopology(c.value);
+            break;
+        case DynamicState::kDepthTestEnable:
+            v.depth_test = c.value != 0;
+            break;
+        case DynamicState::kDepthWriteEnable:
+            v.depth_write = c.value != 0;
+            break;
+        case DynamicState::kDepthCompareOp:
+            v.depth_compare = VkCompareOp(c.value);
+            break;
+        case DynamicState::kDepthBoundsTestEnable:
+            v.depth_bounds_test = c.value != 0;
+            break;
+        case DynamicState::kStencilTestEnable:
+            v.stencil_test = c.value != 0;
+            break;
+        case DynamicState::kRasterizerDiscardEnable:
+            v.rasterizer_discard = c.value != 0;
+            break;
+        case DynamicState::kDepthBiasEnable:
+            v.depth_bias_enable = c.value != 0;
+            break;
+        case DynamicState::kPrimitiveRestartEnable:
+            v.primitive_restart = c.value != 0;
+            break;
+        case DynamicState::kLogicOp:
+            v.logic_op = VkLogicOp(c.value);
+            break;
+        default:
+            break;  // the other states have commands of their own
+    }
+    mark_dirty(st, dynamic_bit(c.state));
+}
+
+void exec_state(ExecState& st, const CmdSetStencilOp& c) {
+    if (c.faces & VK_STENCIL_FACE_FRONT_BIT) st.bound.dyn.stencil_ops[0] = c.ops;
+    if (c.faces & VK_STENCIL_FACE_BACK_BIT) st.bound.dyn.stencil_ops[1] = c.ops;
+    mark_dirty(st, dynamic_bit(DynamicState::kStencilOp));
+}
+
+void exec_draw(ExecState& st, const CmdDraw& c) {
+    rr::DrawCall call;
+    call.count = c.vertex_count;
+    call.instance_count = c.instance_count;
+    call.first = c.first_vertex;
+    call.first_instance = c.first_instance;
+    run_draw(st, call);
+}
+
+void exec_draw(ExecState& st, const CmdDrawIndexed& c) {
+    rr::DrawCall call;
+    call.indexed = true;
+    call.count = c.index_count;
+    call.instance_count = c.instance_count;
+    call.first = c.first_index;
+    call.vertex_offset = c.vertex_offset;
+    call.first_instance = c.first_instance;
+    run_draw(st, call);
+}
+
+namespace {
+// The draws of vkCmdDrawIndirect (VkDrawIndirectCommand) or vkCmdDrawIndexedIndirect
+// (VkDrawIndexedIndirectCommand), read from the buffer when they execute.
+template <class IndirectCommand>
+void draw_indirect(ExecState& st, const Buffer* buffer, VkDeviceSize offset, uint32_t draw_count, uint32_t stride) {
+    constexpr bool kIndexed = std::is_same_v<IndirectCommand, VkDrawIndexedIndirectCommand>;
+    for (uint32_t i = 0; i < draw_count; ++i) {
+        const VkDeviceSize off = offset + VkDeviceSize(i) * stride;
+        if (buffer == nullptr || buffer->memory == nullptr || off + sizeof(IndirectCommand) > buffer->size) break;
+        IndirectCommand d;
+        std::memcpy(&d, buffer->data() + off, sizeof d);
+        rr::DrawCall call;
+        call.indexed = kIndexed;
+        call.instance_count = d.instanceCount;
+        call.first_instance = d.firstInstance;
+        if constexpr (kIndexed) {
+            call.count = d.indexCount;
+            call.first = d.firstIndex;
+            call.vertex_offset = d.vertexOffset;
+        } else {
+            call.count = d.vertexCount;
+            call.first = d.firstVertex;
+        }
+        run_draw(st, call);
+    }
+}
+}  // namespace
+
+namespace {
+// The number of draws of an indirect command: draw_count, or the count buffer's value capped at it.
+template <class IndirectCmd>
+uint32_t indirect_draw_count(const IndirectCmd& c) {
+    if (c.count_buffer == nullptr) return c.draw_count;
+    const Buffer* b = c.count_buffer;
+    if (b->memory == nullptr || c.count_offset + sizeof(uint32_t) > b->size) {
+        log_error("vkCmdDraw*IndirectCount: the count lies outside its buffer; no draws");
+        return 0;
+    }
+    uint32_t n;
+    std::memcpy(&n, b->data() + c.count_offset, sizeof n);
+    return std::min(n, c.draw_count);
+}
+}  // namespace
+
+void exec_draw(ExecState& st, const CmdDrawIndirect& c) {
+    draw_indirect<VkDrawIndirectCommand>(st, c.buffer, c.offset, indirect_draw_count(c), c.stride);
+}
+
+void exec_draw(ExecState& st, const CmdDrawIndexedIndirect& c) {
+    draw_indirect<VkDrawIndexedIndirectCommand>(st, c.buffer, c.offset, indirect_draw_count(c), c.stride);
 }
 
 }  // namespace tilevk::icd

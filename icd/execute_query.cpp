@@ -7,6 +7,7 @@
 #include "buffer.h"
 #include "execute.h"
 #include "query_pool.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -30,11 +31,9 @@ void finish_queries(ExecState& st) {
     finish_rendering(st);  // renders anything left binned (invalid usage: a render pass left open) and publishes
 }
 
-namespace {
-
-void begin_query(ExecState& st, const CmdBeginQuery& c) {
+void exec_query(ExecState& st, const CmdBeginQuery& c) {
     if (c.pool->type != VK_QUERY_TYPE_OCCLUSION) {
-        log_error("vkCmdBeginQuery: query pool of type %d cannot be begun; ignored", int(c.pool->type));
+        log_error("vkCmdBeginQuery: a %s pool cannot be begun; ignored", vk_enum_name(c.pool->type));
         return;
     }
     if (c.query >= c.pool->count) {
@@ -47,7 +46,7 @@ void begin_query(ExecState& st, const CmdBeginQuery& c) {
     st.occlusion_query = c.query;
 }
 
-void end_query(ExecState& st, const CmdEndQuery& c) {
+void exec_query(ExecState& st, const CmdEndQuery& c) {
     if (c.pool != st.occlusion_pool || c.query != st.occlusion_query) {
         log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", c.query);
         return;
@@ -60,20 +59,20 @@ void end_query(ExecState& st, const CmdEndQuery& c) {
         c.pool->make_available(c.query);
 }
 
-void write_timestamp(ExecState& st, const CmdWriteTimestamp& c) {
+void exec_query(ExecState& st, const CmdWriteTimestamp& c) {
     // Draws are binned until the renderer's pass ends; a timestamp after any stage but the top of the pipe must
     // follow their rendering, so it renders them first (lavapipe flushes its context the same way).
     if (c.stage != VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT) finish_rendering(st);
     if (c.pool->type != VK_QUERY_TYPE_TIMESTAMP || c.query >= c.pool->count) {
-        log_error("vkCmdWriteTimestamp: query %u of a pool of type %d and %u queries cannot take a timestamp; ignored",
-                  c.query, int(c.pool->type), c.pool->count);
+        log_error("vkCmdWriteTimestamp: query %u of a %s pool of %u queries cannot take a timestamp; ignored", c.query,
+                  vk_enum_name(c.pool->type), c.pool->count);
         return;
     }
     note_query_command_in_pass(st);
     c.pool->write_timestamp(c.query, timestamp_now_ns());
 }
 
-void copy_results(const CmdCopyQueryPoolResults& c) {
+void exec_query(ExecState&, const CmdCopyQueryPoolResults& c) {
     const Buffer* b = c.dst;
     if (b == nullptr || b->memory == nullptr || c.offset > b->size) {
         log_error("vkCmdCopyQueryPoolResults: destination buffer unbound or offset %" PRIu64 " out of range; skipped",
@@ -86,30 +85,8 @@ void copy_results(const CmdCopyQueryPoolResults& c) {
                         false);
 }
 
-}  // namespace
-
-void exec_query_command(ExecState& st, const Cmd& cmd) {
-    switch (cmd.type) {
-        case CmdType::kBeginQuery:
-            begin_query(st, static_cast<const CmdBeginQuery&>(cmd));
-            break;
-        case CmdType::kEndQuery:
-            end_query(st, static_cast<const CmdEndQuery&>(cmd));
-            break;
-        case CmdType::kResetQueryPool: {
-            const auto& c = static_cast<const CmdResetQueryPool&>(cmd);
-            c.pool->reset(c.first, c.count);
-            break;
-        }
-        case CmdType::kWriteTimestamp:
-            write_timestamp(st, static_cast<const CmdWriteTimestamp&>(cmd));
-            break;
-        case CmdType::kCopyQueryPoolResults:
-            copy_results(static_cast<const CmdCopyQueryPoolResults&>(cmd));
-            break;
-        default:
-            break;
-    }
+void exec_query(ExecState&, const CmdResetQueryPool& c) {
+    c.pool->reset(c.first, c.count);
 }
 
 }  // namespace tilevk::icd

@@ -4,9 +4,11 @@
 #include <cstring>
 
 #include "buffer.h"
-#include "clear_pack.h"
 #include "execute.h"
 #include "image.h"
+#include "rast/fragment/msaa.h"
+#include "rast/geometry/viewport.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 namespace {
@@ -50,7 +52,7 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
               bool to_image) {
     const FormatInfo& f = *img.format;
     const uint32_t bytes = buffer_texel_bytes(f, aspect);
-    if (f.pack == PackKind::kD24S8 && aspect == VK_IMAGE_ASPECT_DEPTH_BIT) {
+    if (f.depth == format::DepthFormat::X8D24 && aspect == VK_IMAGE_ASPECT_DEPTH_BIT) {
         // D24 depth in a 32-bit buffer word: the low 24 bits; the top byte (the image's stencil) is written as 0
         // (lavapipe's X8 bits) and never copied into the image.
         for (uint32_t x = 0; x < width; ++x) {
@@ -65,7 +67,7 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
         }
         return;
     }
-    if (bytes == f.texel_bytes) {
+    if (bytes == f.bytes) {
         if (to_image)
             std::memcpy(image_row, buffer_row, size_t(width) * bytes);
         else
@@ -75,7 +77,7 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
     // One aspect of an interleaved depth/stencil texel.
     const uint32_t off = aspect_offset(f, aspect);
     for (uint32_t x = 0; x < width; ++x) {
-        uint8_t* t = image_row + size_t(x) * f.texel_bytes + off;
+        uint8_t* t = image_row + size_t(x) * f.bytes + off;
         if (to_image)
             std::memcpy(t, buffer_row + size_t(x) * bytes, bytes);
         else
@@ -110,14 +112,6 @@ void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r
     }
 }
 
-// rne(fl(x * 255)) clamped to [0, 255], as the fragment output conversion (cvtps2dq, saturating packs).
-uint8_t unorm8_from_float(float x) {
-    float scaled = x * 255.0f;
-    if (!(scaled > 0.0f)) return 0;
-    if (scaled >= 255.0f) return 255;
-    return uint8_t(std::nearbyint(scaled));
-}
-
 }  // namespace
 
 void exec_copy_buffer(const CmdCopyBuffer& c) {
@@ -143,10 +137,10 @@ void exec_copy_image(const CmdCopyImage& c) {
                       r.srcOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
             !image_ok(c.dst, r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer, layers, r.dstOffset.x,
                       r.dstOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
-            c.dst->samples != c.src->samples || c.dst->format->texel_bytes != f.texel_bytes) {
+            c.dst->samples != c.src->samples || c.dst->format->bytes != f.bytes) {
             continue;
         }
-        const bool whole_texel = buffer_texel_bytes(f, aspect) == f.texel_bytes;
+        const bool whole_texel = buffer_texel_bytes(f, aspect) == f.bytes;
         const uint32_t off = aspect_offset(f, aspect), bytes = buffer_texel_bytes(f, aspect);
         for (uint32_t l = 0; l < layers; ++l) {
             for (uint32_t y = 0; y < r.extent.height; ++y) {
@@ -156,10 +150,10 @@ void exec_copy_image(const CmdCopyImage& c) {
                                           uint32_t(r.dstOffset.x), uint32_t(r.dstOffset.y) + y);
                 const size_t texels = size_t(r.extent.width) * c.src->samples;
                 if (whole_texel) {
-                    std::memmove(d, s, texels * f.texel_bytes);  // formats are size-compatible: a raw copy
+                    std::memmove(d, s, texels * f.bytes);  // formats are size-compatible: a raw copy
                 } else {
                     for (size_t x = 0; x < texels; ++x) {
-                        std::memmove(d + x * f.texel_bytes + off, s + x * f.texel_bytes + off, bytes);
+                        std::memmove(d + x * f.bytes + off, s + x * f.bytes + off, bytes);
                     }
                 }
             }
@@ -197,7 +191,7 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
                   "clear")) {
         return;
     }
-    const uint32_t tb = img.format->texel_bytes;
+    const uint32_t tb = img.format->bytes;
     const size_t texels = size_t(rect.extent.width) * img.samples;
     if (rect.extent.height == 0 || texels == 0) return;
     uint8_t* first = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y));
@@ -219,20 +213,21 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
 void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
                       const VkClearColorValue& color) {
     uint8_t texel[16] = {};
-    pack_clear_color(*img.format, color, texel);
-    for (uint32_t l = 0; l < layer_count; ++l)
-        fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->texel_bytes);
+    rast::fragment::pack_clear_color(*img.format, color.float32, texel);
+    for (uint32_t l = 0; l < layer_count; ++l) fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->bytes);
 }
 
 void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
                               const VkRect2D& rect, VkImageAspectFlags aspects, const VkClearDepthStencilValue& v) {
     const FormatInfo& f = *img.format;
     uint8_t texel[16] = {};
-    pack_clear_depth(f, v.depth, texel);
-    const bool separate_stencil = f.pack == PackKind::kD32FS8 || f.pack == PackKind::kD24S8;
-    texel[aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT)] = separate_stencil ? uint8_t(v.stencil) : texel[0];
-    // D24S8's depth is 3 bytes of its 4-byte texel: a depth clear keeps the stencil byte.
-    const uint32_t depth_bytes = f.pack == PackKind::kD24S8 ? 3 : buffer_texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT);
+    // D16: 2 bytes, D24: the low 3 bytes of its 4-byte texel (a depth clear keeps the stencil byte), D32F: 4.
+    const uint32_t depth_bits = rast::fragment::pack_clear_depth(f.depth, v.depth);
+    const uint32_t depth_bytes =
+        f.depth == format::DepthFormat::X8D24 ? 3 : buffer_texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT);
+    std::memcpy(texel, &depth_bits, depth_bytes);
+    if (f.aspects & VK_IMAGE_ASPECT_STENCIL_BIT)
+        texel[aspect_offset(f, VK_IMAGE_ASPECT_STENCIL_BIT)] = uint8_t(v.stencil);
     for (uint32_t l = 0; l < layer_count; ++l) {
         if ((aspects & VK_IMAGE_ASPECT_DEPTH_BIT) && (f.aspects & VK_IMAGE_ASPECT_DEPTH_BIT)) {
             fill_rect(img, level, base_layer + l, rect, texel, 0, depth_bytes);
@@ -271,47 +266,29 @@ void exec_clear_depth_stencil_image(const CmdClearDepthStencilImage& c) {
 }
 
 bool can_resolve(const FormatInfo& f) {
-    return f.pack == PackKind::kUnorm8 || f.pack == PackKind::kFloat32;
+    return f.kind != format::ChannelKind::None;
 }
 
-// lavapipe resolves with util_blitter's MSAA-resolve shader (NEAREST, notes §3):
-//   sum = 0; for s in 0..3: sum = fl(sum + texel_s)   with texel_s = fl(float(u8) * fl(1/255)) for UNORM8
-//   out = fl(sum * 0.25f); UNORM8 stores rne(fl(out * 255)), FLOAT32 stores out.
+// lavapipe resolves with util_blitter's MSAA-resolve shader (docs/lavapipe-rules.md, "Resolve"): rast/fragment's
+// resolve_rect, verified against lavapipe; the image's samples of a pixel are adjacent.
 void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOffset2D src_offset, const Image& dst,
                   uint32_t dst_level, uint32_t dst_layer, VkOffset2D dst_offset, VkExtent2D extent) {
     if (!image_ok(&src, src_level, src_layer, 1, src_offset.x, src_offset.y, extent.width, extent.height, "resolve") ||
         !image_ok(&dst, dst_level, dst_layer, 1, dst_offset.x, dst_offset.y, extent.width, extent.height, "resolve")) {
         return;
     }
-    const FormatInfo& f = *src.format;
-    const uint32_t samples = src.samples;
-    const float inv_samples = 1.0f / float(samples);
-    for (uint32_t y = 0; y < extent.height; ++y) {
-        const uint8_t* s = src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y) + y);
-        uint8_t* d = dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y) + y);
-        for (uint32_t x = 0; x < extent.width; ++x) {
-            const uint8_t* px = s + size_t(x) * samples * f.texel_bytes;
-            uint8_t* out = d + size_t(x) * f.texel_bytes;
-            for (uint32_t ch = 0; ch < f.channels; ++ch) {
-                float sum = 0.0f;
-                for (uint32_t k = 0; k < samples; ++k) {
-                    const uint8_t* t = px + size_t(k) * f.texel_bytes;
-                    float v;
-                    if (f.pack == PackKind::kUnorm8) {
-                        v = float(t[ch]) * (1.0f / 255.0f);
-                    } else {
-                        std::memcpy(&v, t + 4 * ch, 4);
-                    }
-                    sum = sum + v;
-                }
-                float avg = sum * inv_samples;
-                if (f.pack == PackKind::kUnorm8)
-                    out[ch] = unorm8_from_float(avg);
-                else
-                    std::memcpy(out + 4 * ch, &avg, 4);
-            }
-        }
+    if (src.samples != uint32_t(rast::fragment::kMaxSamples) || dst.samples != 1 ||
+        dst.format->bytes != src.format->bytes) {
+        log_error("resolve: %u samples into %u (only 4 into 1 are resolved); skipped", src.samples, dst.samples);
+        return;
     }
+    const uint32_t tb = src.format->bytes;
+    rast::fragment::resolve_rect(src.format->id,
+                                 src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y)), tb,
+                                 src.layout.row_pitch[src_level],
+                                 dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y)),
+                                 dst.layout.row_pitch[dst_level], int(extent.width), int(extent.height),
+                                 rast::geometry::host_has_fma(), size_t(src.samples) * tb);
 }
 
 void exec_resolve_image(const CmdResolveImage& c) {
@@ -319,8 +296,8 @@ void exec_resolve_image(const CmdResolveImage& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageResolve& r = c.regions[i];
         if (!can_resolve(*c.src->format)) {
-            log_error("vkCmdResolveImage: resolving format %d is not implemented; region skipped",
-                      int(c.src->format->format));
+            log_error("vkCmdResolveImage: resolving %s is not implemented; region skipped",
+                      vk_enum_name(vk_format(*c.src->format)));
             continue;
         }
         const uint32_t layers =
@@ -329,7 +306,7 @@ void exec_resolve_image(const CmdResolveImage& c) {
                       r.srcOffset.y, r.extent.width, r.extent.height, "vkCmdResolveImage") ||
             !image_ok(c.dst, r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer, layers, r.dstOffset.x,
                       r.dstOffset.y, r.extent.width, r.extent.height, "vkCmdResolveImage") ||
-            c.dst->format->texel_bytes != c.src->format->texel_bytes || c.dst->samples != 1) {
+            c.dst->format->bytes != c.src->format->bytes || c.dst->samples != 1) {
             continue;
         }
         for (uint32_t l = 0; l < layers; ++l) {

@@ -3,6 +3,7 @@
 #include "device.h"
 #include "entrypoints.h"
 #include "physical_device.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -17,7 +18,7 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
         VkDeviceSize h = extent.height >> level ? extent.height >> level : 1;
         offset = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
         l.level_offset[level] = offset;
-        l.row_pitch[level] = w * samples * f.texel_bytes;
+        l.row_pitch[level] = w * samples * f.bytes;
         l.layer_pitch[level] = l.row_pitch[level] * h;
         offset += l.layer_pitch[level] * layers;
     }
@@ -29,40 +30,35 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
                                                const VkAllocationCallbacks* pAllocator, VkImage* pImage) {
     Device* dev = from_handle<Device>(device);
     const FormatInfo* f = find_format(ci->format);
-    if (f == nullptr || f->aspects == 0) {
-        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImage: format %d is not supported for images",
-                    int(ci->format));
+    if (f == nullptr || !has_image_support(*f)) {
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImage: %s is not supported for images",
+                    vk_enum_name(ci->format));
     }
-    if (ci->imageType != VK_IMAGE_TYPE_2D || ci->extent.depth != 1) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: only 2D images are implemented (type %d)",
-                    int(ci->imageType));
-    }
-    if (ci->flags != 0) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: image create flags 0x%x are not supported",
-                    ci->flags);
-    }
-    if (ci->samples != VK_SAMPLE_COUNT_1_BIT && ci->samples != VK_SAMPLE_COUNT_4_BIT) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: %u samples (only 1 and 4)", unsigned(ci->samples));
-    }
-    // Anything vkGetPhysicalDeviceImageFormatProperties refuses (usage, tiling) is refused here too.
-    VkImageFormatProperties props;
-    if (tvk_GetPhysicalDeviceImageFormatProperties(to_handle(dev->physical_device), ci->format, ci->imageType,
-                                                   ci->tiling, ci->usage, ci->flags, &props) != VK_SUCCESS ||
-        ci->mipLevels > props.maxMipLevels || ci->arrayLayers > props.maxArrayLayers ||
+    // The spec bounds an image's parameters by what vkGetPhysicalDeviceImageFormatProperties reports for them
+    // (VUID-VkImageCreateInfo-imageCreateMaxMipLevels-02251, -extent-02252/02253, -samples-02258,
+    // -arrayLayers-02256, -imageCreateImageFormatPropertiesList-02251...): whatever that query refuses, or any value
+    // past its maxExtent/maxMipLevels/maxArrayLayers/sampleCounts (maxImageDimension2D included), is refused here
+    // with the query's own code, VK_ERROR_FORMAT_NOT_SUPPORTED (vkCreateImage has no code of its own for invalid
+    // parameters; this beats a half-working image).
+    VkImageFormatProperties props{};
+    const VkResult supported = tvk_GetPhysicalDeviceImageFormatProperties(
+        to_handle(dev->physical_device), ci->format, ci->imageType, ci->tiling, ci->usage, ci->flags, &props);
+    if (supported != VK_SUCCESS || ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.depth != 1 ||
+        ci->extent.width > props.maxExtent.width || ci->extent.height > props.maxExtent.height || ci->mipLevels == 0 ||
+        ci->mipLevels > props.maxMipLevels || ci->arrayLayers == 0 || ci->arrayLayers > props.maxArrayLayers ||
         (ci->samples & props.sampleCounts) == 0) {
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
-                    "vkCreateImage: format %d, tiling %d, usage 0x%x, %u levels, %u layers, %u samples unsupported",
-                    int(ci->format), int(ci->tiling), ci->usage, ci->mipLevels, ci->arrayLayers, unsigned(ci->samples));
-    }
-    if (ci->samples != VK_SAMPLE_COUNT_1_BIT && (!format_supports_msaa(*f) || ci->tiling != VK_IMAGE_TILING_OPTIMAL)) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: format %d cannot be multisampled in tilevk",
-                    int(ci->format));
-    }
-    if (ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.width > kMaxImageDimension ||
-        ci->extent.height > kMaxImageDimension || ci->mipLevels == 0 || ci->mipLevels > kMaxMipLevels ||
-        ci->arrayLayers == 0 || ci->arrayLayers > kMaxArrayLayers) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImage: extent %ux%u, %u levels, %u layers out of range",
-                    ci->extent.width, ci->extent.height, ci->mipLevels, ci->arrayLayers);
+                    "vkCreateImage: %s, %s, %s, usage %s, flags %s, extent %ux%ux%u, %u levels, "
+                    "%u layers, %s: not supported (vkGetPhysicalDeviceImageFormatProperties: %s; maxExtent "
+                    "%ux%u, %u levels, %u layers, sample counts %s)",
+                    vk_enum_name(ci->imageType), vk_enum_name(ci->format), vk_enum_name(ci->tiling),
+                    vk_flags_name<VkImageUsageFlagBits>(ci->usage).c_str(),
+                    vk_flags_name<VkImageCreateFlagBits>(ci->flags).c_str(), ci->extent.width, ci->extent.height,
+                    ci->extent.depth, ci->mipLevels, ci->arrayLayers,
+                    vk_flags_name<VkSampleCountFlagBits>(ci->samples).c_str(),
+                    supported == VK_SUCCESS ? "supported" : "VK_ERROR_FORMAT_NOT_SUPPORTED", props.maxExtent.width,
+                    props.maxExtent.height, props.maxMipLevels, props.maxArrayLayers,
+                    vk_flags_name<VkSampleCountFlagBits>(props.sampleCounts).c_str());
     }
     Image* img = create_object<Image>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (img == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateImage: out of host memory");
@@ -108,7 +104,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetImageSubresourceLayout(VkDevice, VkImage image
     const ImageLayout& l = img->layout;
     const uint32_t level = pSub->mipLevel;
     pLayout->offset = l.level_offset[level] + VkDeviceSize(pSub->arrayLayer) * l.layer_pitch[level];
-    if (img->format->pack == PackKind::kD32FS8 || img->format->pack == PackKind::kD24S8) {
+    if (has_depth_and_stencil(*img->format)) {
         pLayout->offset += aspect_offset(*img->format, pSub->aspectMask);  // interleaved depth/stencil texels
     }
     pLayout->size = l.layer_pitch[level];

@@ -39,7 +39,7 @@ struct Image : NonDispatchableObject {
     // Address of sample 0 of texel (x, y) of a subresource.
     uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
         return memory->data + memory_offset + layout.level_offset[level] + layer * layout.layer_pitch[level] +
-               y * layout.row_pitch[level] + VkDeviceSize(x) * samples * format->texel_bytes;
+               y * layout.row_pitch[level] + VkDeviceSize(x) * samples * format->bytes;
     }
 };
 

@@ -1,7 +1,10 @@
 #include "image_view.h"
 
+#include "render_state.h"
+
 #include "device.h"
 #include "entrypoints.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -10,12 +13,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
     Device* dev = from_handle<Device>(device);
     Image* img = from_handle<Image>(ci->image);
     if (ci->viewType != VK_IMAGE_VIEW_TYPE_2D && ci->viewType != VK_IMAGE_VIEW_TYPE_2D_ARRAY) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImageView: view type %d is not implemented (2D only)",
-                    int(ci->viewType));
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateImageView: %s is not implemented (2D and 2D arrays only)",
+                    vk_enum_name(ci->viewType));
     }
     const FormatInfo* f = find_format(ci->format);
-    if (f == nullptr || f->aspects == 0) {
-        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImageView: format %d is not supported", int(ci->format));
+    if (f == nullptr || !has_image_support(*f)) {
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImageView: %s is not supported", vk_enum_name(ci->format));
     }
     ImageView* view =
         create_object<ImageView>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
@@ -30,6 +33,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
     }
     if (view->range.layerCount == VK_REMAINING_ARRAY_LAYERS) {
         view->range.layerCount = img->array_layers - view->range.baseArrayLayer;
+    }
+    if (img->memory != nullptr) {  // bound already (Vulkan requires it for a non-sparse image)
+        view->sampled_ok = shader_view_of(*view, &view->sampled);
+        view->sampled_memory = img->memory;
     }
     *pView = to_handle(view);
     return VK_SUCCESS;

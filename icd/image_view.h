@@ -1,6 +1,7 @@
 // VkImageView: an image, a format, and a subresource range.
 #pragma once
 #include "image.h"
+#include "shader/program.h"
 
 namespace tilevk::icd {
 
@@ -13,6 +14,11 @@ struct ImageView : NonDispatchableObject {
     VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D;
     VkComponentMapping components{};
     VkImageSubresourceRange range{};  // VK_REMAINING_* resolved to real counts
+    // The view as shader/ samples it (render_state.h shader_view_of), translated at vkCreateImageView instead of
+    // at every draw; `sampled_memory` is the image memory it was made for (null: the image had none yet).
+    shader::ImageView sampled{};
+    bool sampled_ok = false;
+    const void* sampled_memory = nullptr;
 };
 
 }  // namespace tilevk::icd

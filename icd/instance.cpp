@@ -3,15 +3,15 @@
 #include <cstring>
 
 #include "entrypoints.h"
+#include "extensions.h"
 
 namespace tilevk::icd {
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceExtensionProperties(const char* pLayerName,
                                                                         uint32_t* pPropertyCount,
-                                                                        VkExtensionProperties*) {
+                                                                        VkExtensionProperties* pProperties) {
     if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
-    *pPropertyCount = 0;  // tilevk implements no instance extension
-    return VK_SUCCESS;
+    return enumerate_extensions(false, pPropertyCount, pProperties);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceLayerProperties(uint32_t* pPropertyCount, VkLayerProperties*) {
@@ -25,9 +25,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pC
         return fail(VK_ERROR_LAYER_NOT_PRESENT, "vkCreateInstance: layer '%s' is not provided by tilevk",
                     pCreateInfo->ppEnabledLayerNames[i]);
     }
-    for (uint32_t i = 0; i < pCreateInfo->enabledExtensionCount; ++i) {
-        return fail(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateInstance: instance extension '%s' is not supported",
-                    pCreateInfo->ppEnabledExtensionNames[i]);
+    ExtensionSet enabled;
+    if (VkResult r = enable_extensions("vkCreateInstance", false, pCreateInfo->enabledExtensionCount,
+                                       pCreateInfo->ppEnabledExtensionNames, &enabled);
+        r != VK_SUCCESS) {
+        return r;
     }
     uint32_t app_version = VK_API_VERSION_1_0;
     if (pCreateInfo->pApplicationInfo != nullptr && pCreateInfo->pApplicationInfo->apiVersion != 0) {
@@ -39,6 +41,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pC
     Instance* inst = create_object<Instance>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
     if (inst == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateInstance: out of host memory");
     inst->app_api_version = app_version;
+    inst->enabled_extensions = enabled;
     inst->physical_device = create_object<PhysicalDevice>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
     if (inst->physical_device == nullptr) {
         destroy_object(inst);

@@ -1,5 +1,6 @@
 // VkInstance: owns the one physical device tilevk exposes.
 #pragma once
+#include "entrypoints.h"
 #include "object.h"
 #include "physical_device.h"
 
@@ -14,7 +15,8 @@ struct Instance : DispatchableObject {
 
     Instance() : DispatchableObject(kType) {}
     PhysicalDevice* physical_device = nullptr;
-    uint32_t app_api_version = VK_API_VERSION_1_0;
+    uint32_t app_api_version = VK_API_VERSION_1_0;  // VkApplicationInfo::apiVersion (0 means 1.0)
+    ExtensionSet enabled_extensions;                // the instance extensions the application enabled
 };
 TILEVK_ASSERT_DISPATCHABLE(Instance);
 

@@ -1,5 +1,8 @@
 #include "object.h"
 
+#include <malloc.h>
+
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
@@ -15,14 +18,20 @@ void* VKAPI_CALL default_alloc(void*, size_t size, size_t align, VkSystemAllocat
     return p;
 }
 
+// The spec's pfnReallocation contract: null old -> allocate; size 0 -> free and return null; otherwise a block of
+// `size` bytes aligned to `align` holding the old contents up to the smaller size (the old block is freed only on
+// success). tilevk itself never reallocates through the callbacks.
 void* VKAPI_CALL default_realloc(void* user, void* old, size_t size, size_t align, VkSystemAllocationScope s) {
-    // Not used by tilevk itself (it never reallocates through the callbacks); provided for completeness.
     if (old == nullptr) return default_alloc(user, size, align, s);
     if (size == 0) {
         free(old);
         return nullptr;
     }
-    return nullptr;
+    void* p = default_alloc(user, size, align, s);
+    if (p == nullptr) return nullptr;
+    std::memcpy(p, old, std::min(size, malloc_usable_size(old)));
+    free(old);
+    return p;
 }
 
 void VKAPI_CALL default_free(void*, void* p) {

@@ -50,9 +50,13 @@ T* create_object(const VkAllocationCallbacks& a, VkSystemAllocationScope scope, 
     return obj;
 }
 
+// Drops the private data (private_data.cpp) attached to the object at `handle`, if any has ever been set.
+void forget_private_data(const void* handle);
+
 template <class T>
 void destroy_object(T* obj) {
     if (obj == nullptr) return;
+    forget_private_data(obj);
     VkAllocationCallbacks a = obj->allocator;
     obj->~T();
     host_free(a, obj);

@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <cstring>
 
+#include "device_features.h"
+#include "device_properties.h"
 #include "entrypoints.h"
+#include "extensions.h"
 #include "formats.h"
 #include "instance.h"
 
@@ -30,7 +33,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxSamplerAllocationCount = 4000;
     l.bufferImageGranularity = 1;  // linear and optimal resources share one plain layout: no aliasing hazard
     l.sparseAddressSpaceSize = 0;
-    l.maxBoundDescriptorSets = 4;
+    l.maxBoundDescriptorSets = kMaxBoundDescriptorSets;  // lavapipe's 8
     l.maxPerStageDescriptorSamplers = 16;
     l.maxPerStageDescriptorUniformBuffers = 12;
     l.maxPerStageDescriptorStorageBuffers = 4;
@@ -52,15 +55,15 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxVertexInputBindingStride = 2048;
     l.maxVertexOutputComponents = 64;
     l.maxFragmentInputComponents = 64;
-    l.maxFragmentOutputAttachments = 4;
+    l.maxFragmentOutputAttachments = kMaxColorAttachments;
     l.maxFragmentDualSrcAttachments = 0;  // dualSrcBlend is off
-    l.maxFragmentCombinedOutputResources = 4;
-    l.maxComputeSharedMemorySize = 16384;
-    l.maxComputeWorkGroupCount[0] = l.maxComputeWorkGroupCount[1] = l.maxComputeWorkGroupCount[2] = 65535;
-    l.maxComputeWorkGroupInvocations = 128;
-    l.maxComputeWorkGroupSize[0] = 128;
-    l.maxComputeWorkGroupSize[1] = 128;
-    l.maxComputeWorkGroupSize[2] = 64;
+    l.maxFragmentCombinedOutputResources = kMaxColorAttachments;
+    l.maxComputeSharedMemorySize = 16384;  // the minimum; Workgroup storage is refused at pipeline creation
+    for (int i = 0; i < 3; ++i) {
+        l.maxComputeWorkGroupCount[i] = kMaxComputeWorkGroupCount;
+        l.maxComputeWorkGroupSize[i] = kMaxComputeWorkGroupSize;
+    }
+    l.maxComputeWorkGroupInvocations = kMaxComputeWorkGroupInvocations;
     l.subPixelPrecisionBits = 8;  // 15.8 fixed point, as lavapipe
     l.subTexelPrecisionBits = 4;
     l.mipmapPrecisionBits = 4;
@@ -68,7 +71,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
     l.maxSamplerLodBias = 2.0f;
     l.maxSamplerAnisotropy = 1.0f;
-    l.maxViewports = 1;
+    l.maxViewports = kMaxViewports;
     l.maxViewportDimensions[0] = l.maxViewportDimensions[1] = kMaxImageDimension;
     // viewportBoundsRange must hold [-2*maxViewportDimension, 2*maxViewportDimension - 1].
     l.viewportBoundsRange[0] = -2.0f * kMaxImageDimension;
@@ -92,7 +95,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.framebufferDepthSampleCounts = kSampleCounts;
     l.framebufferStencilSampleCounts = kSampleCounts;
     l.framebufferNoAttachmentsSampleCounts = kSampleCounts;
-    l.maxColorAttachments = 4;
+    l.maxColorAttachments = kMaxColorAttachments;
     l.sampledImageColorSampleCounts = kSampleCounts;
     l.sampledImageIntegerSampleCounts = VK_SAMPLE_COUNT_1_BIT;
     l.sampledImageDepthSampleCounts = kSampleCounts;
@@ -106,14 +109,14 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxCullDistances = 0;
     l.maxCombinedClipAndCullDistances = 0;
     l.discreteQueuePriorities = 2;
-    // lavapipe's ranges (notes §6): point sizes clamp at 255, line widths in [1, 255].
+    // lavapipe's ranges (lavapipe-rules §6): point sizes clamp at 255, line widths in [1, 255].
     l.pointSizeRange[0] = 0.0f;
     l.pointSizeRange[1] = 255.0f;
     l.lineWidthRange[0] = 1.0f;
     l.lineWidthRange[1] = 255.0f;
     l.pointSizeGranularity = 0.125f;
     l.lineWidthGranularity = 0.0078125f;
-    l.strictLines = VK_FALSE;
+    l.strictLines = VK_TRUE;  // lines are rectangles, drawn exactly as lavapipe's (which reports strictLines)
     l.standardSampleLocations = VK_TRUE;  // lavapipe's 4x positions are the standard ones
     l.optimalBufferCopyOffsetAlignment = 1;
     l.optimalBufferCopyRowPitchAlignment = 1;
@@ -141,22 +144,6 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     properties.limits = make_limits();
     properties.sparseProperties = {};
 
-    // Features: only what the render path implements (see icd/README.md).
-    features = {};
-    features.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
-    features.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
-    features.independentBlend = VK_TRUE;
-    // Indirect and indexed draws: execute_draw.cpp reads every record (drawCount, stride, firstInstance) and
-    // rast/render fetches 32-bit index values as they are (tests/icd/api_breadth_test.cpp IndirectDrawsWithStride).
-    features.fullDrawIndexUint32 = VK_TRUE;
-    features.multiDrawIndirect = VK_TRUE;
-    features.drawIndirectFirstInstance = VK_TRUE;
-    features.largePoints = VK_TRUE;  // rast/geometry setup_point: sizes up to 255
-    features.wideLines = VK_TRUE;
-    features.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
-    features.fillModeNonSolid = VK_TRUE;  // rast/render: draw's unfilled stage (edges / corners after culling)    //
-                                          // rast/geometry setup_line: rectangular lines of any width
-
     memory.memoryTypeCount = 1;
     memory.memoryTypes[0].propertyFlags = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                           VK_MEMORY_PROPERTY_HOST_COHERENT_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
@@ -164,6 +151,7 @@ PhysicalDevice::PhysicalDevice() : DispatchableObject(kType) {
     memory.memoryHeapCount = 1;
     memory.memoryHeaps[0].size = heap_size();
     memory.memoryHeaps[0].flags = VK_MEMORY_HEAP_DEVICE_LOCAL_BIT;
+    core_properties = make_core_properties(*this);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceProperties(VkPhysicalDevice physicalDevice,
@@ -171,9 +159,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceProperties(VkPhysicalDevice phys
     *pProperties = from_handle<PhysicalDevice>(physicalDevice)->properties;
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFeatures(VkPhysicalDevice physicalDevice,
-                                                         VkPhysicalDeviceFeatures* pFeatures) {
-    *pFeatures = from_handle<PhysicalDevice>(physicalDevice)->features;
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFeatures(VkPhysicalDevice, VkPhysicalDeviceFeatures* pFeatures) {
+    *pFeatures = supported_features().core10;
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceMemoryProperties(VkPhysicalDevice physicalDevice,
@@ -188,8 +175,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceQueueFamilyProperties(VkPhysical
         return;
     }
     if (*pCount == 0) return;
-    // No compute: tilevk does not dispatch compute shaders, so it does not claim the bit.
-    pProps[0].queueFlags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_TRANSFER_BIT;
+    // Graphics and compute in one family, as Vulkan requires of a device with graphics (and the CTS and vkrunner
+    // look for).
+    pProps[0].queueFlags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT | VK_QUEUE_TRANSFER_BIT;
     pProps[0].queueCount = 1;
     pProps[0].timestampValidBits = 64;  // nanoseconds of CLOCK_MONOTONIC
     pProps[0].minImageTransferGranularity = {1, 1, 1};
@@ -201,9 +189,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFormatProperties(VkPhysicalDevic
     const FormatInfo* f = find_format(format);
     *pFormatProperties = {};
     if (f == nullptr) return;
-    pFormatProperties->linearTilingFeatures = f->linear_features;
-    pFormatProperties->optimalTilingFeatures = f->optimal_features;
-    pFormatProperties->bufferFeatures = f->buffer_features;
+    pFormatProperties->linearTilingFeatures = VkFormatFeatureFlags(f->linear);
+    pFormatProperties->optimalTilingFeatures = VkFormatFeatureFlags(f->optimal);
+    pFormatProperties->bufferFeatures = VkFormatFeatureFlags(f->buffer);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhysicalDevice, VkFormat format,
@@ -213,11 +201,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
                                                                           VkImageFormatProperties* pProps) {
     *pProps = {};
     const FormatInfo* f = find_format(format);
-    if (f == nullptr || f->aspects == 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (f == nullptr || !has_image_support(*f)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     if (type != VK_IMAGE_TYPE_2D) return VK_ERROR_FORMAT_NOT_SUPPORTED;  // only 2D images are implemented
     if (flags != 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;                // no cube/mutable/sparse/alias images
-    VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? f->optimal_features
-                                : tiling == VK_IMAGE_TILING_LINEAR ? f->linear_features
+    VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? VkFormatFeatureFlags(f->optimal)
+                                : tiling == VK_IMAGE_TILING_LINEAR ? VkFormatFeatureFlags(f->linear)
                                                                    : 0;
     VkFormatFeatureFlags need = 0;
     if (usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) need |= VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
@@ -241,9 +229,9 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
     // Multisampled images cannot be sampled or read as input attachments (the shader path reads one sample per
     // texel; subpassInputMS is refused).
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && format_supports_msaa(*f) &&
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment &&
                                    !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
-                               ? kSampleCounts
+                               ? VkSampleCountFlags(f->sample_counts) & kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;
     return VK_SUCCESS;
@@ -258,10 +246,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceSparseImageFormatProperties(VkPh
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceExtensionProperties(VkPhysicalDevice, const char* pLayerName,
                                                                       uint32_t* pPropertyCount,
-                                                                      VkExtensionProperties*) {
+                                                                      VkExtensionProperties* pProperties) {
     if (pLayerName != nullptr) return fail(VK_ERROR_LAYER_NOT_PRESENT, "no layer '%s' in tilevk", pLayerName);
-    *pPropertyCount = 0;  // no device extension is implemented
-    return VK_SUCCESS;
+    return enumerate_extensions(true, pPropertyCount, pProperties);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateDeviceLayerProperties(VkPhysicalDevice, uint32_t* pPropertyCount,

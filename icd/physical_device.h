@@ -1,5 +1,6 @@
 // VkPhysicalDevice: the one CPU device. Properties, limits, features, queues, memory and formats.
 #pragma once
+#include "core_structs.h"
 #include "object.h"
 
 namespace tilevk::icd {
@@ -12,6 +13,14 @@ constexpr uint32_t kMaxMipLevels = 15;  // log2(16384) + 1
 constexpr uint32_t kMaxArrayLayers = 256;
 constexpr uint32_t kMaxTexelBufferElements = 65536;  // the Vulkan 1.0 minimum; texel buffers are 1D views
 constexpr VkSampleCountFlags kSampleCounts = VK_SAMPLE_COUNT_1_BIT | VK_SAMPLE_COUNT_4_BIT;
+constexpr uint32_t kMaxViewports = 16;           // multiViewport: all accepted, viewport 0 used (pipeline.cpp)
+constexpr uint32_t kMaxBoundDescriptorSets = 8;  // BoundState::kMaxSets (execute.h)
+constexpr uint32_t kMaxColorAttachments = 8;     // rast/render kMaxColorTargets, shader/ kMaxColorOutputs
+// Compute (lavapipe's values): a workgroup runs 16 invocations at a time, so its size only sets how many batches it
+// has; vkCreateComputePipelines refuses a local size past these, a dispatch counts past kMaxComputeWorkGroupCount.
+constexpr uint32_t kMaxComputeWorkGroupInvocations = 1024;
+constexpr uint32_t kMaxComputeWorkGroupSize = 1024;  // each of x, y, z
+constexpr uint32_t kMaxComputeWorkGroupCount = 65535;
 
 struct PhysicalDevice : DispatchableObject {
     using Handle = VkPhysicalDevice;
@@ -20,8 +29,8 @@ struct PhysicalDevice : DispatchableObject {
 
     Instance* instance = nullptr;
     VkPhysicalDeviceProperties properties{};
-    VkPhysicalDeviceFeatures features{};
     VkPhysicalDeviceMemoryProperties memory{};
+    CoreProperties core_properties;  // Vulkan 1.1-1.3 properties (device_properties.cpp)
 };
 TILEVK_ASSERT_DISPATCHABLE(PhysicalDevice);
 

@@ -1,6 +1,7 @@
 #include "pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -10,9 +11,11 @@
 #include "descriptor_set_layout.h"
 #include "device.h"
 #include "entrypoints.h"
+#include "formats.h"
 #include "physical_device.h"
 #include "render_state.h"
 #include "shader_module.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -99,8 +102,8 @@ fr::StencilFace stencil_face(const VkStencilOpState& s) {
     return f;
 }
 
-// Translates one create info; returns an empty string or the reason it is unsupported.
-std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+// The shader stages (programs from the device's cache) and lavapipe's fragment UBO 0 size.
+std::string translate_stages(Device& dev, const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     std::string why;
     PipelineState& s = p.state;
     // lavapipe's UBO 0 for the fragment stage (lvp_execute.c has_pcbuf, fill_ubo0): the layout's whole push-constant
@@ -121,18 +124,20 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
         } else if (st.stage == VK_SHADER_STAGE_FRAGMENT_BIT) {
             if (!make_program(dev, st, shader::Stage::Fragment, p, &p.fragment, &why)) return "fragment shader: " + why;
         } else {
-            return "only vertex and fragment stages are supported (stage bit " + std::to_string(st.stage) + ")";
+            return std::string("only vertex and fragment stages are supported, not ") +
+                   vk_flags_name<VkShaderStageFlagBits>(st.stage);
         }
     }
     if (!p.vertex) return "no vertex shader";
     s.vertex = p.vertex.get();
     s.fragment = p.fragment.get();
+    return {};
+}
 
-    if (const VkPipelineDynamicStateCreateInfo* d = ci.pDynamicState)
-        for (uint32_t i = 0; i < d->dynamicStateCount; ++i)
-            if (d->pDynamicStates[i] <= VK_DYNAMIC_STATE_STENCIL_REFERENCE)
-                p.dynamic |= dynamic_bit(d->pDynamicStates[i]);
+bool is_dynamic(const Pipeline& p, DynamicState d) { return (p.dynamic & dynamic_bit(d)) != 0; }
 
+// Vertex bindings and attributes (formats with VERTEX_BUFFER support only), topology and restart.
+std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
     const VkPipelineVertexInputStateCreateInfo* vi = ci.pVertexInputState;
     for (uint32_t i = 0; vi && i < vi->vertexBindingDescriptionCount; ++i) {
         const VkVertexInputBindingDescription& b = vi->pVertexBindingDescriptions[i];
@@ -144,109 +149,157 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
     for (uint32_t i = 0; vi && i < vi->vertexAttributeDescriptionCount; ++i) {
         const VkVertexInputAttributeDescription& a = vi->pVertexAttributeDescriptions[i];
         rast::geometry::VertexAttribDesc d;
-        if (!vertex_format_of(a.format, &d.format))
-            return "vertex attribute format " + std::to_string(a.format) + " is not supported";
+        const FormatInfo* vf = find_format(a.format);
+        if (vf == nullptr || !(vf->buffer & format::kVertexBuffer))
+            return std::string("vertex attribute format ") + vk_enum_name(a.format) + " is not supported";
+        d.format = vf->id;
         d.binding = a.binding;
         d.offset = a.offset;
         s.attribs.push_back(d);
         s.attrib_locations.push_back(a.location);
     }
-
     const VkPipelineInputAssemblyStateCreateInfo& ia = *ci.pInputAssemblyState;
-    switch (ia.topology) {
-        case VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST:
-            s.topology = rast::geometry::Topology::kTriangleList;
-            break;
-        case VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP:
-            s.topology = rast::geometry::Topology::kTriangleStrip;
-            break;
-        case VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN:
-            s.topology = rast::geometry::Topology::kTriangleFan;
-            break;
-        case VK_PRIMITIVE_TOPOLOGY_POINT_LIST:
-            s.topology = rast::geometry::Topology::kPointList;
-            break;
-        case VK_PRIMITIVE_TOPOLOGY_LINE_LIST:
-            s.topology = rast::geometry::Topology::kLineList;
-            break;
-        case VK_PRIMITIVE_TOPOLOGY_LINE_STRIP:
-            s.topology = rast::geometry::Topology::kLineStrip;
-            break;
-        default:
-            return "primitive topology " + std::to_string(ia.topology) + " (adjacency / patches) is not supported";
-    }
+    // With a dynamic topology this is only its class; the draw's topology comes from vkCmdSetPrimitiveTopology.
+    if (!topology_of(ia.topology, &s.topology))
+        return std::string("primitive topology ") + vk_enum_name(ia.topology) + " is not supported";
     s.primitive_restart = ia.primitiveRestartEnable;
 
-    const VkPipelineRasterizationStateCreateInfo& rs = *ci.pRasterizationState;
-    p.rasterizer_discard = rs.rasterizerDiscardEnable;
-    if (!p.rasterizer_discard) {
-        if (rs.polygonMode > VK_POLYGON_MODE_POINT) return "polygon mode is not supported";
-        s.polygon_mode = rs.polygonMode == VK_POLYGON_MODE_LINE    ? rast::render::PolygonMode::kLine
-                         : rs.polygonMode == VK_POLYGON_MODE_POINT ? rast::render::PolygonMode::kPoint
-                                                                   : rast::render::PolygonMode::kFill;
-        s.cull = rast::CullMode(rs.cullMode & 3);
-        s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
-        s.depth_clamp = rs.depthClampEnable;
-        s.depth_bias_enable = rs.depthBiasEnable;
-        s.depth_bias.constant_factor = rs.depthBiasConstantFactor;
-        s.depth_bias.slope_factor = rs.depthBiasSlopeFactor;
-        s.depth_bias.clamp = rs.depthBiasClamp;
-        s.line_width = rs.lineWidth;
+    return {};
+}
 
-        if (const VkPipelineViewportStateCreateInfo* vp = ci.pViewportState) {
-            if (vp->viewportCount > 1 || vp->scissorCount > 1) return "more than one viewport is not supported";
-            if (vp->pViewports && !(p.dynamic & dynamic_bit(VK_DYNAMIC_STATE_VIEWPORT))) {
-                const VkViewport& v = vp->pViewports[0];
-                s.viewport = {v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
-            }
-            if (vp->pScissors && !(p.dynamic & dynamic_bit(VK_DYNAMIC_STATE_SCISSOR))) {
-                const VkRect2D& r = vp->pScissors[0];
-                s.scissor = {r.offset.x, r.offset.y, int32_t(r.offset.x + int64_t(r.extent.width)),
-                             int32_t(r.offset.y + int64_t(r.extent.height))};
-            }
+// Rasterization state, the fixed viewport/scissor and depth clip control.
+std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+    PipelineState& s = p.state;
+    const VkPipelineRasterizationStateCreateInfo& rs = *ci.pRasterizationState;
+    if (rs.polygonMode > VK_POLYGON_MODE_POINT)
+        return std::string("polygon mode ") + vk_enum_name(rs.polygonMode) + " is not supported";
+    s.polygon_mode = rs.polygonMode == VK_POLYGON_MODE_LINE    ? rast::render::PolygonMode::kLine
+                     : rs.polygonMode == VK_POLYGON_MODE_POINT ? rast::render::PolygonMode::kPoint
+                                                               : rast::render::PolygonMode::kFill;
+    s.cull = rast::CullMode(rs.cullMode & 3);
+    s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    s.depth_clamp = rs.depthClampEnable;
+    s.depth_bias_enable = rs.depthBiasEnable;
+    s.depth_bias.constant_factor = rs.depthBiasConstantFactor;
+    s.depth_bias.slope_factor = rs.depthBiasSlopeFactor;
+    s.depth_bias.clamp = rs.depthBiasClamp;
+    s.line_width = rs.lineWidth;
+    if (const VkPipelineViewportStateCreateInfo* vp = ci.pViewportState) {
+        // multiViewport: up to maxViewports are accepted; without a viewport-index output (no geometry stage,
+        // no shaderOutputViewportIndex) every primitive uses viewport and scissor 0, as in lavapipe.
+        const bool with_count = is_dynamic(p, DynamicState::kViewportWithCount);
+        if ((!with_count && vp->viewportCount > kMaxViewports) ||
+            (!is_dynamic(p, DynamicState::kScissorWithCount) && vp->scissorCount > kMaxViewports))
+            return "viewportCount/scissorCount exceeds maxViewports";
+        for (auto* e = static_cast<const VkBaseInStructure*>(vp->pNext); e != nullptr; e = e->pNext)
+            if (e->sType == VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT)
+                s.clip_halfz =
+                    !reinterpret_cast<const VkPipelineViewportDepthClipControlCreateInfoEXT*>(e)->negativeOneToOne;
+        if (vp->pViewports && vp->viewportCount > 0 && !is_dynamic(p, DynamicState::kViewport) && !with_count) {
+            const VkViewport& v = vp->pViewports[0];
+            s.viewport = {v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
         }
-        if (const VkPipelineMultisampleStateCreateInfo* ms = ci.pMultisampleState) {
-            if (ms->rasterizationSamples != VK_SAMPLE_COUNT_1_BIT && ms->rasterizationSamples != VK_SAMPLE_COUNT_4_BIT)
-                return "only 1 and 4 samples are supported";
-            s.samples = int(ms->rasterizationSamples);
-            if (ms->sampleShadingEnable && ms->minSampleShading > 0.0f)
-                return "sample-rate shading (minSampleShading > 0) is not implemented";
-            if (ms->alphaToOneEnable) return "alphaToOne is not implemented";
-            if (ms->pSampleMask) s.sample_mask = ms->pSampleMask[0];
-            s.alpha_to_coverage = ms->alphaToCoverageEnable;
-        }
-        if (const VkPipelineDepthStencilStateCreateInfo* ds = ci.pDepthStencilState) {
-            if (ds->depthBoundsTestEnable) return "depth bounds test is not implemented";
-            s.depth_stencil.depth_test = ds->depthTestEnable;
-            s.depth_stencil.depth_write = ds->depthTestEnable && ds->depthWriteEnable;
-            s.depth_stencil.depth_compare = fr::CompareOp(ds->depthCompareOp);
-            s.depth_stencil.stencil_test = ds->stencilTestEnable;
-            s.depth_stencil.front = stencil_face(ds->front);
-            s.depth_stencil.back = stencil_face(ds->back);
-        }
-        if (const VkPipelineColorBlendStateCreateInfo* cb = ci.pColorBlendState) {
-            if (cb->logicOpEnable) return "logic ops are not implemented";
-            if (cb->attachmentCount > uint32_t(rast::render::kMaxColorTargets)) return "too many colour attachments";
-            for (uint32_t i = 0; i < cb->attachmentCount; ++i) {
-                const VkPipelineColorBlendAttachmentState& a = cb->pAttachments[i];
-                fr::BlendAttachment& b = s.blend[i];
-                b.blend_enable = a.blendEnable;
-                if (a.colorBlendOp > VK_BLEND_OP_MAX || a.alphaBlendOp > VK_BLEND_OP_MAX)
-                    return "blend op is not supported";
-                // VkBlendFactor and VkBlendOp number their values as rast/fragment does.
-                b.src_color = fr::BlendFactor(a.srcColorBlendFactor);
-                b.dst_color = fr::BlendFactor(a.dstColorBlendFactor);
-                b.color_op = fr::BlendOp(a.colorBlendOp);
-                b.src_alpha = fr::BlendFactor(a.srcAlphaBlendFactor);
-                b.dst_alpha = fr::BlendFactor(a.dstAlphaBlendFactor);
-                b.alpha_op = fr::BlendOp(a.alphaBlendOp);
-                b.write_mask = uint8_t(a.colorWriteMask & 0xf);
-                if (a.blendEnable && !fr::blend_supported(b)) return "dual-source blend factors are not supported";
-            }
-            std::memcpy(s.blend_constants, cb->blendConstants, sizeof s.blend_constants);
+        if (vp->pScissors && vp->scissorCount > 0 && !is_dynamic(p, DynamicState::kScissor) &&
+            !is_dynamic(p, DynamicState::kScissorWithCount)) {
+            const VkRect2D& r = vp->pScissors[0];
+            s.scissor = {r.offset.x, r.offset.y, int32_t(r.offset.x + int64_t(r.extent.width)),
+                         int32_t(r.offset.y + int64_t(r.extent.height))};
         }
     }
     return {};
+}
+
+// Sample count, sample mask, alpha to coverage and to one; depth and stencil tests.
+std::string translate_multisample_depth(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+    PipelineState& s = p.state;
+    if (const VkPipelineMultisampleStateCreateInfo* ms = ci.pMultisampleState) {
+        if (ms->rasterizationSamples != VK_SAMPLE_COUNT_1_BIT && ms->rasterizationSamples != VK_SAMPLE_COUNT_4_BIT)
+            return std::string("rasterizationSamples ") +
+                   vk_flags_name<VkSampleCountFlagBits>(ms->rasterizationSamples) +
+                   " is not supported (VK_SAMPLE_COUNT_1_BIT or VK_SAMPLE_COUNT_4_BIT)";
+        s.samples = int(ms->rasterizationSamples);
+        if (ms->sampleShadingEnable && ms->minSampleShading > 0.0f)
+            return "sampleShadingEnable with minSampleShading > 0 (feature sampleRateShading) is not supported";
+        s.alpha_to_one = ms->alphaToOneEnable;
+        if (ms->pSampleMask) s.sample_mask = ms->pSampleMask[0];
+        s.alpha_to_coverage = ms->alphaToCoverageEnable;
+    }
+    if (const VkPipelineDepthStencilStateCreateInfo* ds = ci.pDepthStencilState) {
+        if (ds->depthBoundsTestEnable && !is_dynamic(p, DynamicState::kDepthBoundsTestEnable))
+            return "depthBoundsTestEnable (feature depthBounds) is not supported";
+        p.statics.depth_test = ds->depthTestEnable;
+        p.statics.depth_write = ds->depthWriteEnable;
+        s.depth_stencil.depth_test = ds->depthTestEnable;
+        s.depth_stencil.depth_write = ds->depthTestEnable && ds->depthWriteEnable;
+        s.depth_stencil.depth_compare = fr::CompareOp(ds->depthCompareOp);
+        s.depth_stencil.stencil_test = ds->stencilTestEnable;
+        s.depth_stencil.front = stencil_face(ds->front);
+        s.depth_stencil.back = stencil_face(ds->back);
+    }
+    return {};
+}
+
+// Per-attachment blend state, the logic op and the blend constants.
+std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
+    const VkPipelineColorBlendStateCreateInfo* cb = ci.pColorBlendState;
+    if (!cb) return {};
+    if (cb->logicOpEnable && cb->logicOp > VK_LOGIC_OP_SET)
+        return std::string("logic op ") + vk_enum_name(cb->logicOp) + " is not supported";
+    if (cb->attachmentCount > uint32_t(rast::render::kMaxColorTargets))
+        return "attachmentCount exceeds maxColorAttachments";
+    for (uint32_t i = 0; i < cb->attachmentCount; ++i) {
+        const VkPipelineColorBlendAttachmentState& a = cb->pAttachments[i];
+        fr::BlendAttachment& b = s.blend[i];
+        b.blend_enable = a.blendEnable;
+        if (a.colorBlendOp > VK_BLEND_OP_MAX || a.alphaBlendOp > VK_BLEND_OP_MAX)
+            return std::string("blend op ") +
+                   vk_enum_name(a.colorBlendOp > VK_BLEND_OP_MAX ? a.colorBlendOp : a.alphaBlendOp) +
+                   " is not supported";
+        // VkBlendFactor and VkBlendOp number their values as rast/fragment does.
+        b.src_color = fr::BlendFactor(a.srcColorBlendFactor);
+        b.dst_color = fr::BlendFactor(a.dstColorBlendFactor);
+        b.color_op = fr::BlendOp(a.colorBlendOp);
+        b.src_alpha = fr::BlendFactor(a.srcAlphaBlendFactor);
+        b.dst_alpha = fr::BlendFactor(a.dstAlphaBlendFactor);
+        b.alpha_op = fr::BlendOp(a.alphaBlendOp);
+        b.write_mask = uint8_t(a.colorWriteMask & 0xf);
+        b.logic_op_enable = cb->logicOpEnable;  // VkLogicOp numbers its values as rast/fragment does
+        b.logic_op = fr::LogicOp(cb->logicOp);
+        if (a.blendEnable && !fr::blend_supported(b))
+            return "dual-source blend factors (feature dualSrcBlend) are not supported";
+    }
+    std::memcpy(s.blend_constants, cb->blendConstants, sizeof s.blend_constants);
+    return {};
+}
+
+// Translates one create info; returns an empty string or the reason it is unsupported.
+std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+    // Without a render pass the attachments would come from VkPipelineRenderingCreateInfo (dynamic rendering).
+    if (ci.renderPass == VK_NULL_HANDLE)
+        return "no render pass: dynamic rendering (VkPipelineRenderingCreateInfo) is not supported";
+    if (std::string why = translate_stages(dev, ci, p); !why.empty()) return why;
+    if (std::string why = dynamic_mask_of(ci.pDynamicState, &p.dynamic); !why.empty()) return why;
+    if (std::string why = translate_vertex_input(ci, p.state); !why.empty()) return why;
+    const bool discard = ci.pRasterizationState->rasterizerDiscardEnable;
+    p.statics.rasterizer_discard = discard;
+    // A pipeline that discards everything needs no more state, unless the discard can be switched off per draw.
+    if (discard && !is_dynamic(p, DynamicState::kRasterizerDiscardEnable)) return {};
+    if (std::string why = translate_rasterization(ci, p); !why.empty()) return why;
+    if (std::string why = translate_multisample_depth(ci, p); !why.empty()) return why;
+    return translate_blend(ci, p.state);
+}
+
+// VK_EXT_pipeline_creation_feedback: the pipeline's creation time. Per-stage feedback is left invalid (flags 0):
+// shader programs are built inside the pipeline's time and may come from the device's program cache.
+void write_creation_feedback(const void* chain, uint64_t nanoseconds) {
+    for (auto* s = static_cast<const VkBaseInStructure*>(chain); s != nullptr; s = s->pNext) {
+        if (s->sType != VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO) continue;
+        const auto* f = reinterpret_cast<const VkPipelineCreationFeedbackCreateInfo*>(s);
+        f->pPipelineCreationFeedback->flags = VK_PIPELINE_CREATION_FEEDBACK_VALID_BIT;
+        f->pPipelineCreationFeedback->duration = nanoseconds;
+        for (uint32_t i = 0; i < f->pipelineStageCreationFeedbackCount; ++i)
+            f->pPipelineStageCreationFeedbacks[i] = {0, 0};
+    }
 }
 
 }  // namespace
@@ -257,23 +310,37 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
                                                            VkPipeline* pPipelines) {
     Device* dev = from_handle<Device>(device);
     VkResult result = VK_SUCCESS;
+    for (uint32_t i = 0; i < count; ++i) pPipelines[i] = VK_NULL_HANDLE;
     for (uint32_t i = 0; i < count; ++i) {
-        pPipelines[i] = VK_NULL_HANDLE;
+        const VkGraphicsPipelineCreateInfo& ci = pCreateInfos[i];
+        // Pipeline creation cache control: every tilevk pipeline is built when created (the program cache is the
+        // device's own, not the application's VkPipelineCache), so a pipeline that must not compile fails, as
+        // lavapipe's does.
+        if (ci.flags & VK_PIPELINE_CREATE_FAIL_ON_PIPELINE_COMPILE_REQUIRED_BIT) {
+            result = VK_PIPELINE_COMPILE_REQUIRED;
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            continue;
+        }
         const auto t0 = std::chrono::steady_clock::now();
         auto* p =
             create_object<Pipeline>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
         if (p == nullptr) {
             result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateGraphicsPipelines: out of host memory");
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
             continue;
         }
-        const std::string why = build_pipeline(*dev, pCreateInfos[i], *p);
+        const std::string why = build_pipeline(*dev, ci, *p);
         if (!why.empty()) {
             destroy_object(p);
             // Vulkan 1.0 has no "unsupported" code for pipelines: the message says what is going on.
             result = fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateGraphicsPipelines: %s", why.c_str());
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
             continue;
         }
-        p->create_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const auto elapsed = std::chrono::steady_clock::now() - t0;
+        p->create_ms = std::chrono::duration<double, std::milli>(elapsed).count();
+        write_creation_feedback(ci.pNext,
+                                uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()));
         if (std::getenv("TILEVK_LOG_PIPELINES"))
             std::fprintf(stderr,
                          "tilevk: graphics pipeline created in %.3f ms (%u shader programs built, %u from the cache)\n",
@@ -283,12 +350,75 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
     return result;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateComputePipelines(VkDevice, VkPipelineCache, uint32_t count,
-                                                          const VkComputePipelineCreateInfo*,
-                                                          const VkAllocationCallbacks*, VkPipeline* pPipelines) {
+namespace {
+
+// The compute stage's program, checked against the limits tilevk reports (physical_device.h): a local size past
+// them is refused here, naming the limit, rather than run.
+std::string build_compute_pipeline(Device& dev, const VkComputePipelineCreateInfo& ci, Pipeline& p) {
+    if (ci.stage.stage != VK_SHADER_STAGE_COMPUTE_BIT)
+        return std::string("the stage of a compute pipeline must be VK_SHADER_STAGE_COMPUTE_BIT, not ") +
+               vk_flags_name<VkShaderStageFlagBits>(ci.stage.stage);
+    std::string why;
+    if (!make_program(dev, ci.stage, shader::Stage::Compute, p, &p.compute, &why)) return "compute shader: " + why;
+    const std::array<uint32_t, 3>& size = p.compute->interface().local_size;
+    static const char* const kAxis[3] = {"x", "y", "z"};
+    uint64_t invocations = 1;
+    for (int i = 0; i < 3; ++i) {
+        if (size[i] == 0 || size[i] > kMaxComputeWorkGroupSize)
+            return "compute shader: local size " + std::string(kAxis[i]) + " = " + std::to_string(size[i]) +
+                   " is outside 1..VkPhysicalDeviceLimits::maxComputeWorkGroupSize[" + std::to_string(i) +
+                   "] = " + std::to_string(kMaxComputeWorkGroupSize);
+        invocations *= size[i];
+    }
+    if (invocations > kMaxComputeWorkGroupInvocations)
+        return "compute shader: local size " + std::to_string(size[0]) + "x" + std::to_string(size[1]) + "x" +
+               std::to_string(size[2]) + " = " + std::to_string(invocations) +
+               " invocations is more than VkPhysicalDeviceLimits::maxComputeWorkGroupInvocations = " +
+               std::to_string(kMaxComputeWorkGroupInvocations);
+    return {};
+}
+
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateComputePipelines(VkDevice device, VkPipelineCache, uint32_t count,
+                                                          const VkComputePipelineCreateInfo* pCreateInfos,
+                                                          const VkAllocationCallbacks* pAllocator,
+                                                          VkPipeline* pPipelines) {
+    Device* dev = from_handle<Device>(device);
+    VkResult result = VK_SUCCESS;
     for (uint32_t i = 0; i < count; ++i) pPipelines[i] = VK_NULL_HANDLE;
-    return fail(VK_ERROR_INITIALIZATION_FAILED,
-                "vkCreateComputePipelines: tilevk has no compute queue and runs no compute shaders");
+    for (uint32_t i = 0; i < count; ++i) {
+        const VkComputePipelineCreateInfo& ci = pCreateInfos[i];
+        if (ci.flags & VK_PIPELINE_CREATE_FAIL_ON_PIPELINE_COMPILE_REQUIRED_BIT) {  // as for graphics pipelines
+            result = VK_PIPELINE_COMPILE_REQUIRED;
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            continue;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        auto* p =
+            create_object<Pipeline>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+        if (p == nullptr) {
+            result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateComputePipelines: out of host memory");
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            continue;
+        }
+        const std::string why = build_compute_pipeline(*dev, ci, *p);
+        if (!why.empty()) {
+            destroy_object(p);
+            result = fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateComputePipelines: %s", why.c_str());
+            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            continue;
+        }
+        const auto elapsed = std::chrono::steady_clock::now() - t0;
+        p->create_ms = std::chrono::duration<double, std::milli>(elapsed).count();
+        write_creation_feedback(ci.pNext,
+                                uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()));
+        if (std::getenv("TILEVK_LOG_PIPELINES"))
+            std::fprintf(stderr, "tilevk: compute pipeline created in %.3f ms (%s)\n", p->create_ms,
+                         p->programs_built != 0 ? "program built" : "program from the cache");
+        pPipelines[i] = to_handle(p);
+    }
+    return result;
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_DestroyPipeline(VkDevice, VkPipeline pipeline, const VkAllocationCallbacks*) {

@@ -7,6 +7,7 @@
 
 #include "device.h"
 #include "entrypoints.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -95,8 +96,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateQueryPool(VkDevice device, const VkQuer
                     "vkCreateQueryPool: pipeline statistics queries are not supported (pipelineStatisticsQuery is "
                     "not reported)");
     if (pCreateInfo->queryType != VK_QUERY_TYPE_OCCLUSION && pCreateInfo->queryType != VK_QUERY_TYPE_TIMESTAMP)
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: query type %d is not supported",
-                    int(pCreateInfo->queryType));
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: %s is not supported",
+                    vk_enum_name(pCreateInfo->queryType));
     QueryPool* pool =
         create_object<QueryPool>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (pool == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateQueryPool: out of host memory");
@@ -122,6 +123,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetQueryPoolResults(VkDevice device, VkQueryP
     if (from_handle<Device>(device)->lost.load()) return VK_ERROR_DEVICE_LOST;
     return write_query_results(*from_handle<QueryPool>(queryPool), firstQuery, queryCount, static_cast<uint8_t*>(pData),
                                dataSize, stride, flags, true);
+}
+
+// hostQueryReset (VK_EXT_host_query_reset, core in Vulkan 1.2): the same reset vkCmdResetQueryPool performs.
+VKAPI_ATTR void VKAPI_CALL tvk_ResetQueryPool(VkDevice, VkQueryPool queryPool, uint32_t firstQuery,
+                                              uint32_t queryCount) {
+    from_handle<QueryPool>(queryPool)->reset(firstQuery, queryCount);
 }
 
 }  // namespace tilevk::icd

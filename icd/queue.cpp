@@ -1,11 +1,38 @@
 // vkQueueSubmit / vkQueueWaitIdle: command buffers run synchronously, in order, on the submitting thread.
 #include "command_buffer.h"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
 #include "device.h"
 #include "entrypoints.h"
 #include "execute.h"
+#include "rast/render/stage_timer.h"
 #include "sync.h"
 
 namespace tilevk::icd {
+
+namespace {
+
+// The one stderr line of a device loss: the limit, and what the renderer was working on when it passed.
+void report_timeout(const Queue& q, uint32_t submit, uint32_t command_buffer) {
+    const long long ms = static_cast<long long>(q.timeout->limit().count());
+    if (const std::optional<DrawOrigin> d = interrupted_draw(*q.draw)) {
+        log_error(
+            "vkQueueSubmit: the submission ran longer than the device timeout (%lld ms, TILEVK_DEVICE_TIMEOUT_MS), "
+            "interrupted in draw %u of pSubmits[%u].pCommandBuffers[%u] (VkPipeline 0x%llx); the device is lost",
+            ms, d->draw, d->submit, d->command_buffer,
+            static_cast<unsigned long long>(reinterpret_cast<uintptr_t>(d->pipeline)));
+    } else {
+        log_error(
+            "vkQueueSubmit: the submission ran longer than the device timeout (%lld ms, TILEVK_DEVICE_TIMEOUT_MS), "
+            "interrupted in pSubmits[%u].pCommandBuffers[%u]; the device is lost",
+            ms, submit, command_buffer);
+    }
+}
+
+}  // namespace
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCount, const VkSubmitInfo* pSubmits,
                                                VkFence fence) {
@@ -17,6 +44,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
         if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
         return VK_ERROR_DEVICE_LOST;
     }
+    if (q->draw == nullptr) q->draw = create_draw_context(q->timeout->flag());
+    begin_submission(*q->draw);
+    // The time limit covers the whole call: a GPU would reset after this long without the work finishing.
+    q->timeout->arm();
     for (uint32_t i = 0; i < submitCount; ++i) {
         const VkSubmitInfo& s = pSubmits[i];
         // Waits on semaphores are satisfied: everything submitted earlier has already finished.
@@ -24,18 +55,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
             from_handle<Semaphore>(s.pWaitSemaphores[j])->signaled = false;
         for (uint32_t j = 0; j < s.commandBufferCount; ++j) {
             ExecState st;
-            if (q->draw == nullptr) q->draw = create_draw_context();
             st.draw = q->draw;
-            const uint64_t hits_before = shader_watchdog_hits(*q->draw);
+            st.stop = q->timeout->flag();
+            st.submit_index = i;
+            st.command_buffer_index = j;
             execute_command_buffer(from_handle<CommandBuffer>(s.pCommandBuffers[j]), st);
             finish_queries(st);
-            if (const uint64_t hits = shader_watchdog_hits(*q->draw) - hits_before; hits != 0) {
-                // A shader looped past the watchdog (shader/README.md): its results are incomplete. A GPU would
-                // hang here; tilevk reports the device as lost instead of presenting a wrong image as valid.
-                log_error(
-                    "vkQueueSubmit: %llu shader invocation batch(es) did not terminate within the loop "
-                    "watchdog's limit; the device is lost",
-                    static_cast<unsigned long long>(hits));
+            if (q->timeout->expired()) {
+                // The work was cut short (shader runs ended at a loop back edge, tiles and draws skipped): its
+                // results are incomplete. A GPU would hang and reset; tilevk reports the device lost.
+                q->timeout->disarm();
+                report_timeout(*q, i, j);
                 dev->lost = true;
                 if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
                 return VK_ERROR_DEVICE_LOST;
@@ -45,6 +75,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
             from_handle<Semaphore>(s.pSignalSemaphores[j])->signaled = true;
         }
     }
+    q->timeout->disarm();
+    rast::render::report_stage_times();  // TILEVK_STAGE_TIMES (the frame benchmark); nothing when off
     if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
     return VK_SUCCESS;
 }
@@ -61,6 +93,35 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueBindSparse(VkQueue, uint32_t bindInfoCou
     return fail(VK_ERROR_FEATURE_NOT_PRESENT,
                 "vkQueueBindSparse: tilevk's queue does not support sparse binding (%u bind info(s) refused)",
                 bindInfoCount);
+}
+
+// synchronization2: each VkSubmitInfo2 is the VkSubmitInfo of the same semaphores and command buffers (binary
+// semaphores; their stage masks order nothing in a queue that runs submissions in order).
+VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit2(VkQueue queue, uint32_t submitCount, const VkSubmitInfo2* pSubmits,
+                                                VkFence fence) {
+    std::vector<VkSubmitInfo> infos(submitCount, {VK_STRUCTURE_TYPE_SUBMIT_INFO});
+    std::vector<std::vector<VkSemaphore>> waits(submitCount), signals(submitCount);
+    std::vector<std::vector<VkPipelineStageFlags>> stages(submitCount);
+    std::vector<std::vector<VkCommandBuffer>> buffers(submitCount);
+    for (uint32_t i = 0; i < submitCount; ++i) {
+        const VkSubmitInfo2& s = pSubmits[i];
+        for (uint32_t j = 0; j < s.waitSemaphoreInfoCount; ++j) {
+            waits[i].push_back(s.pWaitSemaphoreInfos[j].semaphore);
+            stages[i].push_back(VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+        }
+        for (uint32_t j = 0; j < s.commandBufferInfoCount; ++j)
+            buffers[i].push_back(s.pCommandBufferInfos[j].commandBuffer);
+        for (uint32_t j = 0; j < s.signalSemaphoreInfoCount; ++j)
+            signals[i].push_back(s.pSignalSemaphoreInfos[j].semaphore);
+        infos[i].waitSemaphoreCount = uint32_t(waits[i].size());
+        infos[i].pWaitSemaphores = waits[i].data();
+        infos[i].pWaitDstStageMask = stages[i].data();
+        infos[i].commandBufferCount = uint32_t(buffers[i].size());
+        infos[i].pCommandBuffers = buffers[i].data();
+        infos[i].signalSemaphoreCount = uint32_t(signals[i].size());
+        infos[i].pSignalSemaphores = signals[i].data();
+    }
+    return tvk_QueueSubmit(queue, submitCount, infos.data(), fence);
 }
 
 }  // namespace tilevk::icd

@@ -1,22 +1,20 @@
-// Vulkan -> render-core translations shared by pipeline creation and draw execution: formats and samplers.
+// Vulkan -> render-core translations shared by pipeline creation and draw execution (formats: formats.h).
 #pragma once
 #include <vulkan/vulkan.h>
 
-#include "rast/fragment/color.h"
-#include "rast/fragment/depth_stencil.h"
-#include "rast/geometry/vertex_fetch.h"
 #include "shader/program.h"
 
 namespace tilevk::icd {
 
-// False if the format cannot be fetched as a vertex attribute.
-bool vertex_format_of(VkFormat f, rast::geometry::VertexFormat* out);
-// False if the format is not a colour format the fragment stage can write.
-bool color_format_of(VkFormat f, rast::fragment::ColorFormat* out);
-// DepthFormat::None for formats without a depth aspect.
-rast::fragment::DepthFormat depth_format_of(VkFormat f);
-// Format::Undefined if the shader cannot sample the format.
-shader::Format shader_format_of(VkFormat f);
 shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& info);
+
+struct ImageView;
+struct BufferView;
+// A sampled image view as shader/ reads it; false when the view cannot be sampled (format, samples) or its image
+// has no memory yet.
+bool shader_view_of(const ImageView& v, shader::ImageView* out);
+// A uniform texel buffer as shader/ reads it: one row of range / texel-size texels (level 0, one layer), fetched
+// with texelFetch like a 1D image; false when the view cannot be read that way.
+bool texel_buffer_view_of(const BufferView& v, shader::ImageView* out);
 
 }  // namespace tilevk::icd

@@ -2,6 +2,7 @@
 
 #include "device.h"
 #include "entrypoints.h"
+#include "render_state.h"
 
 namespace tilevk::icd {
 
@@ -15,6 +16,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSampler(VkDevice device, const VkSample
     if (s == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateSampler: out of host memory");
     s->info = *ci;
     s->info.pNext = nullptr;
+    s->state = sampler_state_of(s->info);
     *pSampler = to_handle(s);
     return VK_SUCCESS;
 }

@@ -2,7 +2,12 @@
 #pragma once
 
 #include <cstddef>
-#include <functional>
+
+#include "rast/core/function_ref.h"
+
+namespace tilevk::rast {
+class ThreadPool;
+}
 
 namespace tilevk::icd {
 
@@ -10,6 +15,9 @@ struct ExecState;
 
 // Calls fn(task) for every task in [0, num_tasks) on the queue's worker threads and returns when all are done.
 // Only while the renderer is idle (outside begin_rendering..finish_rendering): the pool is the renderer's.
-void run_on_workers(ExecState& st, size_t num_tasks, const std::function<void(size_t task)>& fn);
+// `fn` is only referenced (no allocation).
+void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size_t task)> fn);
+// The pool itself, for rast/ work that schedules its own tasks (blits); the same condition applies.
+rast::ThreadPool& worker_pool(ExecState& st);
 
 }  // namespace tilevk::icd

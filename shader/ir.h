@@ -3,12 +3,17 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "shader/program.h"
 
 namespace tilevk::shader {
+
+namespace jit {
+struct Code;  // shader/jit/jit.h
+}
 
 enum class Op : uint16_t {
     // moves and selects
@@ -205,6 +210,11 @@ enum class IoSlot : uint8_t {
     SampleMaskIn,
     SampleId,
     HelperInvocation,
+    LocalInvocationId,
+    LocalInvocationIndex,
+    GlobalInvocationId,
+    WorkgroupId,
+    NumWorkgroups,
 };
 struct IoCopy {
     IoSlot slot;
@@ -230,6 +240,8 @@ struct ProgramImpl {
     // registers with fixed meaning
     uint32_t reg_entry_mask = 0;  // lanes that run (vertex: lanes < count; fragment: all 16)
     uint32_t reg_live = 0;        // lanes not killed (fragment: covered and not discarded)
+    // The compiled tier's native code for this program (shader/jit/), or null: the interpreter runs it.
+    std::shared_ptr<const jit::Code> jit;
 };
 
 // Per-thread working memory.
@@ -239,10 +251,13 @@ struct Scratch::Impl {
     std::vector<const Descriptor*> slots;
     uint64_t last = 0;  // serial of the program the registers were prepared for
     uint64_t loop_limit_hits = 0;
+    const std::atomic<bool>* stop = nullptr;  // Scratch::set_stop_flag
 };
 
 // Interpret the program (exec.cpp).
 void execute(const ProgramImpl& p, Scratch::Impl& s);
+// Interpret from code[0] until Halt (the compiled tier runs single instructions this way).
+void execute_code(const Inst* code, Scratch::Impl& s);
 
 // Translate optimized, valid SPIR-V into `out`. Returns an empty string or an error message.
 std::string translate(const std::vector<uint32_t>& spirv, Stage stage, std::string_view entry, ProgramImpl& out,

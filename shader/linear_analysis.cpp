@@ -10,7 +10,7 @@
 
 namespace tilevk::shader {
 
-Program::LinearShader Program::linear_shader() const {
+Program::LinearShader Program::analyze_linear_shader() const {
     LinearShader out;
     const ProgramImpl& p = *impl_;
     if (p.stage != Stage::Fragment) return out;

@@ -8,6 +8,7 @@
 #include <spirv-tools/optimizer.hpp>
 
 #include "shader/ir.h"
+#include "shader/jit/jit.h"
 
 namespace tilevk::shader {
 
@@ -75,11 +76,21 @@ uint64_t Scratch::loop_limit_hits() const {
     return impl_->loop_limit_hits;
 }
 
+void Scratch::set_stop_flag(const std::atomic<bool>* stop) {
+    impl_->stop = stop;
+}
+
 Program::Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface)
-    : impl_(std::move(impl)), interface_(std::move(iface)) {}
+    : impl_(std::move(impl)), interface_(std::move(iface)), linear_(analyze_linear_shader()) {}
 Program::~Program() = default;
 size_t Program::instruction_count() const {
     return impl_->code.size();
+}
+bool Program::compiled() const {
+    return impl_->jit != nullptr;
+}
+const ProgramImpl& Program::internal() const {
+    return *impl_;
 }
 
 Result Program::create(std::span<const uint32_t> spirv, Stage stage, std::string_view entry,
@@ -127,6 +138,8 @@ Result Program::create(std::span<const uint32_t> spirv, Stage stage, std::string
     ProgramInterface iface;
     std::string err = translate(optimized, stage, entry, *impl, iface);
     if (!err.empty()) return finish(err);
+    std::string why_not;
+    impl->jit = jit::compile(*impl, &why_not);  // null: the interpreter runs it (why under TILEVK_LOG_PIPELINES)
     res.program = std::make_shared<Program>(std::move(impl), std::move(iface));
     return finish("");
 }

@@ -1,6 +1,6 @@
 // tilevk::shader — the program interface rast/ and icd/ code against.
 //
-// A Program is a SPIR-V vertex or fragment entry point translated into an internal SIMD program that runs
+// A Program is a SPIR-V vertex, fragment or compute entry point translated into an internal SIMD program that runs
 // kLanes invocations at once, structure-of-arrays: every value is kLanes 32-bit words, one instruction covers all
 // lanes, control flow is carried by per-lane execution masks. shader/ knows SPIR-V, never Vulkan.
 //
@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -19,6 +20,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "format/format.h"
 
 namespace tilevk::shader {
 
@@ -40,7 +43,7 @@ constexpr int lane_y(int lane) {
     return ((lane >> 3) & 1) * 2 + ((lane >> 1) & 1);
 }
 
-enum class Stage : uint8_t { Vertex, Fragment };
+enum class Stage : uint8_t { Vertex, Fragment, Compute };
 
 // ---------------------------------------------------------------------------------------------------------------
 // Creation
@@ -102,6 +105,11 @@ enum class BuiltIn : uint32_t {
     SampleId = 1u << 14,
     SamplePosition = 1u << 15,
     HelperInvocation = 1u << 16,
+    LocalInvocationId = 1u << 17,
+    LocalInvocationIndex = 1u << 18,
+    GlobalInvocationId = 1u << 19,
+    WorkgroupId = 1u << 20,
+    NumWorkgroups = 1u << 21,
 };
 constexpr uint32_t bit(BuiltIn b) {
     return static_cast<uint32_t>(b);
@@ -141,6 +149,9 @@ struct ProgramInterface {
     bool early_fragment_tests = false;  // ExecutionMode EarlyFragmentTests
     bool depth_replacing = false;
     bool origin_upper_left = true;
+    // Compute: the workgroup size, from LocalSize / LocalSizeId or the WorkgroupSize built-in constant (which wins),
+    // specialization constants applied.
+    std::array<uint32_t, 3> local_size{1, 1, 1};
 };
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -153,21 +164,9 @@ struct BufferView {
     uint64_t size = 0;           // bytes; accesses at or past size read 0 / are dropped
 };
 
-enum class Format : uint8_t {
-    Undefined,
-    RGBA8_UNORM,
-    RGBA8_SRGB,
-    BGRA8_UNORM,
-    BGRA8_SRGB,
-    R8_UNORM,
-    RG8_UNORM,
-    RGBA16F,
-    R32F,
-    RG32F,
-    RGBA32F,
-    D16_UNORM,  // depth: sampled as (d, 0, 0, 1)
-    D32_SFLOAT,
-};
+// Image formats are the format table's (format/format.h); the ones shader/ samples are those with a colour codec
+// and the D16/D32F depth formats (sampled as (d, 0, 0, 1)).
+using format::Format;
 
 struct ImageLevel {
     uint64_t offset = 0;       // bytes from ImageView::base to texel (0,0) of layer 0
@@ -177,7 +176,7 @@ struct ImageLevel {
 
 struct ImageView {
     const uint8_t* base = nullptr;
-    Format format = Format::Undefined;
+    Format format = Format::UNDEFINED;
     uint32_t width = 0, height = 0, depth = 1;  // of level 0 of the view
     uint32_t levels = 1;                        // mip levels in the view
     uint32_t layers = 1;                        // array layers in the view
@@ -205,11 +204,19 @@ struct SamplerState {
     float mip_lod_bias = 0.0f;
     float min_lod = 0.0f;
     float max_lod = 1000.0f;
-    BorderColor border = BorderColor::TransparentBlack;  // int and float borders read the same bits for 0/1
+    BorderColor border = BorderColor::TransparentBlack;
+    bool integer_border = false;  // VK_BORDER_COLOR_INT_*: the opaque alpha is the integer 1, not 1.0f
     bool unnormalized = false;
     bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
     CompareOp compare_op = CompareOp::Never;
 };
+
+// One texture lookup outside a program (rast/'s blitter: lavapipe's u_blitter runs a TEX or TXF shader): what
+// textureLod(img, vec2(s, t), 0.0) and texelFetch(img, ivec2(x, y), 0) on array layer `layer` return in a fragment
+// shader, through the same sampler code. A view without a decodable format, or a fetch outside the level, gives
+// (0, 0, 0, 0).
+std::array<float, 4> sample_2d(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer);
+std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer);
 
 // What one (set, binding, array element) holds. Unused members stay null.
 struct Descriptor {
@@ -270,6 +277,16 @@ struct alignas(64) FragmentBlock {
     alignas(64) Lanes sample_mask{};                   // out: gl_SampleMask[0] when written
 };
 
+// Up to 16 invocations of one compute workgroup (lanes >= count do not run: their stores are dropped). The
+// program computes GlobalInvocationId = workgroup_id * local_size + local_id itself.
+struct alignas(64) ComputeBatch {
+    uint32_t count = kLanes;
+    uint32_t workgroup_id[3] = {0, 0, 0};
+    uint32_t num_workgroups[3] = {1, 1, 1};
+    alignas(64) Lanes local_id[3]{};  // LocalInvocationId x, y, z
+    alignas(64) Lanes local_index{};  // LocalInvocationIndex
+};
+
 // Per-thread working memory (registers, local variables). Reuse one per thread; it grows on demand.
 class Scratch {
   public:
@@ -283,6 +300,10 @@ class Scratch {
     // kMaxLoopBackEdges times ends there (outputs as written so far) instead of hanging. Never happens for a
     // shader whose loops terminate in reasonable time; the driver may treat a non-zero count as a lost device.
     uint64_t loop_limit_hits() const;
+    // The driver's time limit: once *stop is true, a run ends at its next loop back edge (counted in
+    // loop_limit_hits) and the loop-count watchdog is off, so time, not iterations, bounds a run. Null (the
+    // default): the loop-count watchdog only.
+    void set_stop_flag(const std::atomic<bool>* stop);
 
   private:
     std::unique_ptr<Impl> impl_;
@@ -290,6 +311,11 @@ class Scratch {
 constexpr uint64_t kMaxLoopBackEdges = uint64_t(1) << 22;  // per run (batch of 16 lanes): ~4M iterations
 
 struct ProgramImpl;  // internal: the translated SIMD program
+
+// The compiled tier (shader/jit/README.md): Program::create also compiles the program to native AVX2/FMA code when
+// the CPU has it, unless TILEVK_JIT=0 or this process-wide switch turned it off. Programs keep the tier they were
+// created with (a ProgramCache may hand out a program created before a switch).
+void set_jit_enabled(bool on);
 
 class Program {
   public:
@@ -302,9 +328,18 @@ class Program {
     // Runs one batch. Thread-safe (the Program is immutable); each thread needs its own Scratch.
     void run_vertex(const Bindings& bindings, VertexBatch& batch, Scratch& scratch) const;
     void run_fragment(const Bindings& bindings, FragmentBlock& block, Scratch& scratch) const;
+    void run_compute(const Bindings& bindings, const ComputeBatch& batch, Scratch& scratch) const;
+    // Grows `scratch` to what a run of this program needs, so the runs themselves allocate nothing (the renderer
+    // calls it for every worker before a scene, since which worker runs which program depends on timing).
+    void reserve(Scratch& scratch) const;
 
     // Internal, for tests and benchmarks: number of SIMD instructions after translation.
     size_t instruction_count() const;
+    // Internal, for tests and benchmarks: the program runs as native code (shader/jit/), not in the interpreter.
+    // Both give the same bits; see set_jit_enabled.
+    bool compiled() const;
+    // Internal, for tests and the compiled tier: the translated program (shader/ir.h).
+    const ProgramImpl& internal() const;
 
     // llvmpipe's linear shader class as far as tilevk reproduces it (shader/README.md, "Linear analysis"): colour
     // output location 0 whose every channel c is either component c of one float input, unchanged, or a constant
@@ -316,7 +351,7 @@ class Program {
         int8_t source[4] = {};  // per output channel: input component 0..3, or -1 for a constant
         float constant[4] = {};
     };
-    LinearShader linear_shader() const;
+    LinearShader linear_shader() const { return linear_; }
     // The plain copy (channel c = component c of one input): its location, else -1.
     int linear_copy_input() const;
 
@@ -324,8 +359,11 @@ class Program {
     Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface);
 
   private:
+    LinearShader analyze_linear_shader() const;  // once, when the program is made (the renderer asks per draw)
+
     std::unique_ptr<ProgramImpl> impl_;
     ProgramInterface interface_;
+    LinearShader linear_;
 };
 
 }  // namespace tilevk::shader

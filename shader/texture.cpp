@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "format/texel_codec.h"
 #include "shader/ir.h"
 #include "shader/texture_fixed8.h"
 
@@ -16,124 +17,32 @@ namespace {
 
 using Vec4 = std::array<float, 4>;
 
-// sRGB -> linear as llvmpipe decodes sampled texels (lp_bld_format_srgb.c lp_build_srgb_to_linear, reached from
-// lp_build_extract_soa_chan): x = float(c); x <= 15 ? x * fl(1/(12.6*255)) : a cubic polynomial evaluated with
-// fmuladd (fused, as on the FMA hosts this file's other lerps assume). Same rule as rast/fragment's blend decode.
-float srgb_to_linear(uint32_t c) {
-    static const std::array<float, 256> table = [] {
-        const float c0 = 0.0023f, c1 = 0.0030f / 255.0f, c2 = 0.6935f / (255.0f * 255.0f),
-                    c3 = 0.3012f / (255.0f * 255.0f * 255.0f), lin_k = 1.0f / (12.6f * 255.0f);
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) {
-            const float x = float(i), x2 = x * x;
-            const float poly = std::fma(std::fma(x2, c3, c1), x, std::fma(x2, c2, c0));
-            t[size_t(i)] = x <= 15.0f ? x * lin_k : poly;
-        }
-        return t;
-    }();
-    return table[c & 0xff];
+// Texels are converted by the texel codec (format/texel_codec.h): UNORM c * fl(1/(2^n-1)), sRGB llvmpipe's cubic
+// polynomial evaluated with fmuladd (fused, as on the FMA hosts this file's other lerps assume), half as VCVTPH2PS,
+// D16 c * fl(1/65535) (gallivm's lp_build_unsigned_norm_to_float and lp_build_srgb_to_linear).
+Vec4 decode(const format::FormatInfo& f, const uint8_t* p) {
+    Vec4 r;
+    format::decode_color(f, p, r.data(), true);
+    return r;
 }
 
-float half_to_float(uint16_t h) {
-    uint32_t s = (h >> 15) & 1, e = (h >> 10) & 31, m = h & 1023;
-    float v;
-    if (e == 0)
-        v = std::ldexp(float(m), -24);
-    else if (e == 31)
-        v = m ? NAN : INFINITY;
-    else
-        v = std::ldexp(float(m | 1024), int(e) - 25);
-    return s ? -v : v;
-}
-
-uint32_t texel_size(Format f) {
-    switch (f) {
-        case Format::R8_UNORM:
-            return 1;
-        case Format::RG8_UNORM:
-            return 2;
-        case Format::RGBA8_UNORM:
-        case Format::RGBA8_SRGB:
-        case Format::BGRA8_UNORM:
-        case Format::BGRA8_SRGB:
-        case Format::R32F:
-            return 4;
-        case Format::RGBA16F:
-        case Format::RG32F:
-            return 8;
-        case Format::RGBA32F:
-            return 16;
-        case Format::D16_UNORM:
-            return 2;
-        case Format::D32_SFLOAT:
-            return 4;
-        default:
-            return 0;
-    }
-}
-
-// UNORM n-bit -> float as gallivm converts (lp_build_unsigned_norm_to_float): a multiply by the float constant
-// fl(1/(2^n-1)), not a division (they differ in the last bit for some values, visible in float render targets).
-constexpr float kUnorm8Scale = float(1.0 / 255.0);
-constexpr float kUnorm16Scale = float(1.0 / 65535.0);
-
-Vec4 decode(Format f, const uint8_t* p) {
-    static const std::array<float, 256> unorm = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = float(i) * kUnorm8Scale;
-        return t;
-    }();
-    auto un = [](uint8_t c) { return unorm[c]; };
-    float v[4];
-    switch (f) {
-        case Format::RGBA8_UNORM:
-            return {un(p[0]), un(p[1]), un(p[2]), un(p[3])};
-        case Format::BGRA8_UNORM:
-            return {un(p[2]), un(p[1]), un(p[0]), un(p[3])};
-        case Format::RGBA8_SRGB:
-            return {srgb_to_linear(p[0]), srgb_to_linear(p[1]), srgb_to_linear(p[2]), un(p[3])};
-        case Format::BGRA8_SRGB:
-            return {srgb_to_linear(p[2]), srgb_to_linear(p[1]), srgb_to_linear(p[0]), un(p[3])};
-        case Format::R8_UNORM:
-            return {un(p[0]), 0.0f, 0.0f, 1.0f};
-        case Format::RG8_UNORM:
-            return {un(p[0]), un(p[1]), 0.0f, 1.0f};
-        case Format::RGBA16F: {
-            uint16_t h[4];
-            std::memcpy(h, p, 8);
-            return {half_to_float(h[0]), half_to_float(h[1]), half_to_float(h[2]), half_to_float(h[3])};
-        }
-        case Format::R32F:
-            std::memcpy(v, p, 4);
-            return {v[0], 0.0f, 0.0f, 1.0f};
-        case Format::RG32F:
-            std::memcpy(v, p, 8);
-            return {v[0], v[1], 0.0f, 1.0f};
-        case Format::RGBA32F:
-            std::memcpy(v, p, 16);
-            return {v[0], v[1], v[2], v[3]};
-        case Format::D16_UNORM: {
-            uint16_t x;
-            std::memcpy(&x, p, 2);
-            return {float(x) * kUnorm16Scale, 0.0f, 0.0f, 1.0f};
-        }
-        case Format::D32_SFLOAT:
-            std::memcpy(v, p, 4);
-            return {v[0], 0.0f, 0.0f, 1.0f};
-        default:
-            return {0, 0, 0, 0};
-    }
-}
-
-Vec4 border_color(BorderColor b) {
-    switch (b) {
+// The sampler's border colour as gallivm returns it: its bits whatever the format (an INT border's 1 is the integer
+// 1, a FLOAT border's 1.0f its float bits, also on integer images).
+Vec4 border_color(const SamplerState& smp) {
+    const float one = smp.integer_border ? std::bit_cast<float>(1u) : 1.0f;
+    switch (smp.border) {
         case BorderColor::OpaqueBlack:
-            return {0, 0, 0, 1};
+            return {0, 0, 0, one};
         case BorderColor::OpaqueWhite:
-            return {1, 1, 1, 1};
+            return {one, one, one, one};
         default:
             return {0, 0, 0, 0};
     }
+}
+
+// The view's format returns integers (UINT/SINT): a swizzle's ONE is the integer 1 there (the texel type's one).
+bool integer_format(const ImageView& img) {
+    return format::is_integer(format::format_info(img.format));
 }
 
 // Texel index after addressing; -1 means "border".
@@ -174,6 +83,7 @@ int32_t floor_index(float u, AddressMode m) {
 }
 
 struct Level {
+    const format::FormatInfo* fi;
     const uint8_t* base;  // layer already applied
     uint64_t row_pitch;
     int32_t w, h;
@@ -181,9 +91,9 @@ struct Level {
     uint64_t bytes;  // readable bytes from base
 };
 
-Vec4 texel(const ImageView& img, const Level& lv, int32_t x, int32_t y) {
+Vec4 texel(const Level& lv, int32_t x, int32_t y) {
     uint64_t off = uint64_t(y) * lv.row_pitch + uint64_t(x) * lv.bpp;
-    return decode(img.format, lv.base + off);
+    return decode(*lv.fi, lv.base + off);
 }
 
 bool compare(CompareOp op, float ref, float d) {
@@ -234,23 +144,38 @@ Axis mirror_axis(float s, int32_t n, int32_t off) {
     return {std::max(i, 0), std::min(i + 1, n - 1), u - fl};
 }
 
+// CLAMP_TO_EDGE in lavapipe's float filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear): on the scaled
+// coordinate c (texels), c = min(c + off, n) with a NaN c giving n, then max(c - 0.5, 0); i0 = floor, weight =
+// frac, i1 = min(i0 + 1, n - 1). Next to an edge that is texels 0 and 1 with weight 0 (an infinite texel 1 makes
+// the lerp NaN), not texel 0 twice.
+Axis clamp_edge_axis(float c, int32_t n, int32_t off) {
+    if (off) c = c + float(off);
+    c = c < float(n) ? c : float(n);
+    c = c - 0.5f;
+    c = c > 0.0f ? c : 0.0f;
+    const float fl = std::floor(c);
+    const int32_t i = int32_t(fl);
+    return {i, std::min(i + 1, n - 1), c - fl};
+}
+
 Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
                   bool linear, bool one_d, const SampleArgs& args) {
     const ImageLevel& il = img.level[level];
     Level lv;
     lv.w = int32_t(std::max(1u, img.width >> level));
     lv.h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
-    lv.bpp = texel_size(img.format);
+    lv.fi = &format::format_info(img.format);
+    lv.bpp = lv.fi->bytes;
     lv.row_pitch = il.row_pitch;
     lv.base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
-    Vec4 border = border_color(smp.border);
+    Vec4 border = border_color(smp);
     // unnormalized: coordinates are already in texels
     float u = smp.unnormalized ? s : s * float(lv.w);
     float v = smp.unnormalized ? t : t * float(lv.h);
     auto fetch = [&](int32_t x, int32_t y) -> Vec4 {
         int32_t wx = wrap(x + args.off_x, lv.w, smp.address_u);
         int32_t wy = one_d ? 0 : wrap(y + args.off_y, lv.h, smp.address_v);
-        Vec4 c = (wx < 0 || wy < 0) ? border : texel(img, lv, wx, wy);
+        Vec4 c = (wx < 0 || wy < 0) ? border : texel(lv, wx, wy);
         if (args.dref) return {compare(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
@@ -270,6 +195,8 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     if (smp.address_u == AddressMode::MirroredRepeat && !smp.unnormalized) ax = mirror_axis(s, lv.w, args.off_x);
     if (!one_d && smp.address_v == AddressMode::MirroredRepeat && !smp.unnormalized)
         ay = mirror_axis(t, lv.h, args.off_y);
+    if (smp.address_u == AddressMode::ClampToEdge) ax = clamp_edge_axis(u, lv.w, args.off_x);
+    if (!one_d && smp.address_v == AddressMode::ClampToEdge) ay = clamp_edge_axis(v, lv.h, args.off_y);
     a = ax.w, b = one_d ? 0.0f : ay.w;
     // fetch() adds the offsets again: hand it offset-free indices
     i0 = ax.i0 - args.off_x, i1 = ax.i1 - args.off_x, j0 = ay.i0 - args.off_y, j1 = ay.i1 - args.off_y;
@@ -297,31 +224,37 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
 
 using Bytes = std::array<int32_t, 4>;
 
-// The 8-bit channels of one texel in RGBA order (absent channels read 0, 0, 0, 255), for fits_8unorm formats.
-Bytes texel_bytes(Format f, const uint8_t* p) {
-    switch (f) {
-        case Format::RGBA8_UNORM:
-            return {p[0], p[1], p[2], p[3]};
-        case Format::BGRA8_UNORM:
-            return {p[2], p[1], p[0], p[3]};
-        case Format::R8_UNORM:
-            return {p[0], 0, 0, 255};
-        case Format::RG8_UNORM:
-            return {p[0], p[1], 0, 255};
-        default:
-            return {0, 0, 0, 0};
+// The 8-bit channels of one texel in RGBA order (absent channels read 0, 0, 0, 255), for Unorm8 formats.
+// A texel as lavapipe's 8-bit path fetches it (lp_build_fetch_rgba_aos): 8-bit channels as they are, narrower
+// UNORM channels widened to 8 bits by bit replication (the 8-bit blend type's widening).
+Bytes texel_bytes(const format::FormatInfo& f, const uint8_t* p) {
+    if (f.kind == format::ChannelKind::PackedUnorm) {
+        uint32_t w[4];
+        format::load_blend_type(f, p, w);
+        return {uint8_t(w[0]), uint8_t(w[1]), uint8_t(w[2]), uint8_t(w[3])};
     }
+    uint8_t c[4];
+    format::load_unorm8(f, p, c);
+    return {c[0], c[1], c[2], c[3]};
+}
+
+// util_format_fits_8unorm: every channel UNORM of at most 8 bits, not sRGB.
+bool fits_8unorm(const format::FormatInfo& f) {
+    if (f.kind == format::ChannelKind::Unorm8) return true;
+    if (f.kind != format::ChannelKind::PackedUnorm) return false;
+    for (int i = 0; i < f.channels; ++i)
+        if (f.channel[i].bits > 8) return false;
+    return true;
 }
 
 bool simple_wrap(AddressMode m) {
     return m == AddressMode::Repeat || m == AddressMode::ClampToEdge;
 }
 
-// lavapipe's choice of the 8-bit fixed-point filter (lp_bld_sample_soa.c use_aos): an 8-bit UNORM non-sRGB
-// format, no depth compare, REPEAT or CLAMP_TO_EDGE on every used axis.
+// lavapipe's choice of the 8-bit fixed-point filter (lp_bld_sample_soa.c use_aos): a format that fits 8-bit UNORM
+// (8-bit UNORM, 565, 5551, 4444), no depth compare, REPEAT or CLAMP_TO_EDGE on every used axis.
 bool use_fixed8(const ImageView& img, const SamplerState& smp, bool one_d, bool dref) {
-    bool fits = img.format == Format::RGBA8_UNORM || img.format == Format::BGRA8_UNORM ||
-                img.format == Format::R8_UNORM || img.format == Format::RG8_UNORM;
+    const bool fits = fits_8unorm(format::format_info(img.format));
     return fits && !(dref && smp.compare_enable) && simple_wrap(smp.address_u) && (one_d || simple_wrap(smp.address_v));
 }
 
@@ -345,10 +278,11 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     const ImageLevel& il = img.level[level];
     int32_t w = int32_t(std::max(1u, img.width >> level));
     int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
-    uint32_t bpp = texel_size(img.format);
+    const format::FormatInfo& fi = format::format_info(img.format);
+    const uint32_t bpp = fi.bytes;
     const uint8_t* base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
     auto at = [&](int32_t x, int32_t y) {
-        return texel_bytes(img.format, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
+        return texel_bytes(fi, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
     };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
@@ -380,212 +314,279 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
 }
 
 Vec4 bytes_to_float(const Bytes& b) {
-    return {float(b[0]) * kUnorm8Scale, float(b[1]) * kUnorm8Scale, float(b[2]) * kUnorm8Scale,
-            float(b[3]) * kUnorm8Scale};
+    return {format::unorm8_to_float(uint8_t(b[0])), format::unorm8_to_float(uint8_t(b[1])),
+            format::unorm8_to_float(uint8_t(b[2])), format::unorm8_to_float(uint8_t(b[3]))};
 }
 
 Vec4 swizzled(const Vec4& r, const ImageView& img) {
+    const float one = integer_format(img) ? std::bit_cast<float>(1u) : 1.0f;
     Vec4 out;
     for (int c = 0; c < 4; ++c) {
         const uint8_t w = img.swizzle[size_t(c)];
-        out[size_t(c)] = w < 4 ? r[w] : w == kSwizzleOne ? 1.0f : 0.0f;
+        out[size_t(c)] = w < 4 ? r[w] : w == kSwizzleOne ? one : 0.0f;
     }
     return out;
 }
 
 bool image_ok(const ImageView* img) {
-    return img && img->base && texel_size(img->format) && img->width && img->height && img->levels &&
-           img->levels <= kMaxMipLevels && img->layers;
+    return img && img->base && format::can_decode_color(format::format_info(img->format)) && img->width &&
+           img->height && img->levels && img->levels <= kMaxMipLevels && img->layers;
 }
 
-}  // namespace
+// The texel at (x, y, layer) of level lv, swizzled; (0, 0, 0, 0) outside the level or the view's layers.
+Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d) {
+    if (lv >= img.levels) return {0, 0, 0, 0};
+    const int32_t w = int32_t(std::max(1u, img.width >> lv));
+    const int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> lv));
+    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return {0, 0, 0, 0};
+    const ImageLevel& il = img.level[lv];
+    const format::FormatInfo& fi = format::format_info(img.format);
+    const Vec4 r = decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
+                                  uint64_t(x) * fi.bytes);
+    return swizzled(r, img);
+}
 
-void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
-    auto reg = [&](uint32_t r) { return R + size_t(r) * kLanes; };
-    auto fl = [&](uint32_t r, int l) { return std::bit_cast<float>(reg(r)[l]); };
-    const uint32_t* h = reg(in.a);
-    uint32_t* d[4] = {reg(in.d), nullptr, nullptr, nullptr};
-    auto image_of = [&](int l) -> const ImageView* {
-        uint32_t s = h[l] & 0xFFFF;
+// The level of detail before bias and clamps, in texels of level 0: implicit (per 2x2 quad from its top-left
+// lane's differences), from explicit gradients, or the explicit LOD operand.
+struct LodInput {
+    bool explicit_lod = false, grad = false, one_d = false;
+    float lod = 0.0f;                              // explicit LOD
+    float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;  // derivatives in normalized coordinates
+};
+
+float raw_lambda(const ImageView& img, const SamplerState& smp, const LodInput& in) {
+    if (smp.unnormalized) return 0.0f;
+    if (in.explicit_lod) return in.lod;
+    const float w0 = float(img.width), h0 = in.one_d ? 1.0f : float(img.height);
+    const float dsdx = in.dsdx * w0, dsdy = in.dsdy * w0, dtdx = in.dtdx * h0, dtdy = in.dtdy * h0;
+    if (smp.mipmap_mode == MipmapMode::Linear) {
+        // lavapipe (lp_bld_sample.c lp_build_lod_selector, no rho_approx/brilinear):
+        // lambda = 0.5 * fast_log2(max(dsdx^2 + dtdx^2, dsdy^2 + dtdy^2)), 1D: rho = max(|dsdx|, |dsdy|)
+        float rho2;
+        if (in.one_d) {
+            const float rho = std::max(std::fabs(dsdx), std::fabs(dsdy));
+            rho2 = rho * rho;
+        } else {
+            rho2 = std::max(dsdx * dsdx + dtdx * dtdx, dsdy * dsdy + dtdy * dtdy);
+        }
+        if (in.grad && !std::isfinite(rho2)) rho2 = 0.0f;
+        return fixed8::fast_log2(rho2) * 0.5f;
+    }
+    // rho = max(|d(s,t)/dx|, |d(s,t)/dy|) in texels; lambda = log2(rho)
+    const float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
+    return std::log2(std::max(rx, ry));
+}
+
+// lambda with the sampler's bias and clamps (NaN -> 0).
+float final_lambda(const SamplerState& smp, float lambda) {
+    if (!smp.unnormalized) lambda += smp.mip_lod_bias;
+    if (!(lambda == lambda)) lambda = 0.0f;
+    return std::min(std::max(lambda, smp.min_lod), smp.max_lod);
+}
+
+// One filtered lookup at a final lambda: level selection (mag / nearest / linear mip), lavapipe's 8-bit path or
+// its float path, the view's swizzle (not for depth comparisons).
+Vec4 sample_lambda(const ImageView& img, const SamplerState& smp, float lambda, float s, float t, float layer_f,
+                   bool one_d, bool dref, const SampleArgs& args) {
+    const bool mag = lambda <= 0.0f;
+    const bool linear = (mag ? smp.mag_filter : smp.min_filter) == Filter::Linear;
+    const uint32_t max_level = img.levels - 1;
+    const float lyr = std::nearbyint(std::clamp(layer_f == layer_f ? layer_f : 0.0f, 0.0f, float(img.layers - 1)));
+    const uint32_t layer = uint32_t(lyr);
+    Vec4 r;
+    if (integer_format(img) && (smp.min_filter == Filter::Linear || smp.mag_filter == Filter::Linear ||
+                                smp.mipmap_mode == MipmapMode::Linear)) {
+        // gallivm returns zeros for a linear filter on an integer format (lp_build_sample_soa_code: "impossible
+        // filtering"); Vulkan makes such a sampler invalid there
+        return {0, 0, 0, 0};
+    }
+    if (use_fixed8(img, smp, one_d, dref)) {
+        // lod = lo + frac: levels clamped to the view (frac dropped there), weight trunc(frac*256)
+        uint32_t lv = 0, hi = 0;
+        int32_t mw = 0;
+        if (smp.unnormalized || mag) {
+        } else if (smp.mipmap_mode == MipmapMode::Nearest) {
+            lv = uint32_t(std::clamp(std::ceil(lambda + 0.5f) - 1.0f, 0.0f, float(max_level)));
+        } else {
+            const float fl0 = std::floor(lambda);
+            if (fl0 >= float(max_level)) {
+                lv = max_level;
+            } else if (fl0 >= 0.0f) {
+                lv = uint32_t(fl0);
+                hi = lv + 1;
+                mw = fixed8::mip_weight(lambda - fl0);
+            }
+        }
+        Bytes a = sample_level_fixed8(img, smp, lv, layer, s, t, linear, one_d, args);
+        if (mw > 0) {
+            const Bytes b = sample_level_fixed8(img, smp, hi, layer, s, t, linear, one_d, args);
+            for (int c = 0; c < 4; ++c) a[c] = fixed8::lerp(mw, a[c], b[c]);
+        }
+        r = bytes_to_float(a);
+    } else if (smp.unnormalized || mag) {
+        r = sample_level(img, smp, 0, layer, s, t, linear, one_d, args);
+    } else if (smp.mipmap_mode == MipmapMode::Nearest) {
+        // d = ceil(lambda + 0.5) - 1, clamped to the view's levels
+        const float dl = std::ceil(lambda + 0.5f) - 1.0f;
+        const uint32_t lv = uint32_t(std::clamp(dl, 0.0f, float(max_level)));
+        r = sample_level(img, smp, lv, layer, s, t, linear, one_d, args);
+    } else {
+        const float fl0 = std::floor(lambda);
+        const uint32_t lo = uint32_t(std::clamp(fl0, 0.0f, float(max_level)));
+        const uint32_t hi = std::min(lo + 1, max_level);
+        const float frac = lambda - fl0;
+        Vec4 a = sample_level(img, smp, lo, layer, s, t, linear, one_d, args);
+        if (hi != lo && frac > 0.0f) {
+            const Vec4 b = sample_level(img, smp, hi, layer, s, t, linear, one_d, args);
+            // lp_build_sample_mipmap: lp_build_lerp(frac, level0, level1), a fused multiply-add
+            for (int c = 0; c < 4; ++c) a[c] = std::fma(frac, b[c] - a[c], a[c]);
+        }
+        r = a;
+    }
+    return dref ? r : swizzled(r, img);  // a depth comparison's result is not remapped
+}
+
+// One image instruction's operands: the register file, the descriptor slots and the decoded immediate.
+struct ImageOperands {
+    const Inst& in;
+    uint32_t* R;
+    const Descriptor* const* slots;
+    uint32_t num_slots;
+
+    uint32_t* reg(uint32_t r) const { return R + size_t(r) * kLanes; }
+    float fl(uint32_t r, int l) const { return std::bit_cast<float>(reg(r)[l]); }
+    const ImageView* image(int l) const {
+        const uint32_t s = reg(in.a)[l] & 0xFFFF;
         return s < num_slots && slots[s] && image_ok(slots[s]->image) ? slots[s]->image : nullptr;
-    };
-
-    if (in.op == Op::QueryLevels) {
-        for (int l = 0; l < kLanes; ++l) {
-            const ImageView* img = image_of(l);
-            d[0][l] = img ? img->levels : 0;
-        }
-        return;
     }
-    if (in.op == Op::QuerySize) {
-        const uint32_t* lod = reg(in.b);
-        for (int l = 0; l < kLanes; ++l) {
-            const ImageView* img = image_of(l);
-            uint32_t lv = lod[l];
-            uint32_t vals[3] = {0, 0, 0};
-            if (img && lv < img->levels) {
-                vals[0] = std::max(1u, img->width >> lv);
-                int k = 1;
-                if (!(in.imm & kSample1D)) vals[k++] = std::max(1u, img->height >> lv);
-                if (in.imm & kSampleArray) vals[k++] = img->layers;
-            }
-            for (uint32_t c = 0; c < in.extra && c < 3; ++c) reg(in.d + c)[l] = vals[c];
-        }
-        return;
+    const SamplerState* sampler(int l) const {
+        const uint32_t s = reg(in.a)[l] >> 16;
+        return s < num_slots && slots[s] ? slots[s]->sampler : nullptr;
     }
-    for (int c = 1; c < 4; ++c) d[c] = reg(in.d + c);
-    bool one_d = in.imm & kSample1D;
-    bool arrayed = in.imm & kSampleArray;
-    uint32_t layer_comp = one_d ? 1 : 2;
-    bool has_offset = in.imm & kSampleOffset;
-    int32_t off_x = has_offset ? int32_t(int8_t(uint8_t(in.imm >> 16))) : 0;
-    int32_t off_y = has_offset ? int32_t(int8_t(uint8_t(in.imm >> 24))) : 0;
-    bool dref = in.imm & kSampleDref;
+    bool one_d() const { return in.imm & kSample1D; }
+    bool arrayed() const { return in.imm & kSampleArray; }
+    bool dref() const { return in.imm & kSampleDref; }
+    bool proj() const { return in.imm & kSampleProj; }
+    uint32_t layer_comp() const { return one_d() ? 1 : 2; }
+    int32_t off_x() const { return (in.imm & kSampleOffset) ? int32_t(int8_t(uint8_t(in.imm >> 16))) : 0; }
+    int32_t off_y() const { return (in.imm & kSampleOffset) ? int32_t(int8_t(uint8_t(in.imm >> 24))) : 0; }
     // register run: coordinates [, q for projection] [, depth reference]
-    uint32_t q_reg = in.b + in.extra - 1 - (dref ? 1 : 0);
-
-    if (in.op == Op::Fetch) {
-        const uint32_t* lod = reg(in.c);
-        for (int l = 0; l < kLanes; ++l) {
-            Vec4 r{0, 0, 0, 0};
-            const ImageView* img = image_of(l);
-            int32_t x = int32_t(reg(in.b)[l]) + off_x;
-            int32_t y = one_d ? 0 : int32_t(reg(in.b + 1)[l]) + off_y;
-            int32_t layer = arrayed ? int32_t(reg(in.b + layer_comp)[l]) : 0;
-            uint32_t lv = lod[l];
-            if (img && lv < img->levels) {
-                int32_t w = int32_t(std::max(1u, img->width >> lv)), hh = int32_t(std::max(1u, img->height >> lv));
-                if (one_d) hh = 1;
-                if (x >= 0 && y >= 0 && x < w && y < hh && layer >= 0 && uint32_t(layer) < img->layers) {
-                    const ImageLevel& il = img->level[lv];
-                    r = decode(img->format, img->base + il.offset + uint64_t(layer) * il.layer_pitch +
-                                                uint64_t(y) * il.row_pitch + uint64_t(x) * texel_size(img->format));
-                    r = swizzled(r, *img);
-                }
-            }
-            for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
-        }
-        return;
+    uint32_t q_reg() const { return in.b + in.extra - 1 - (dref() ? 1 : 0); }
+    void write(int l, const Vec4& r) const {
+        for (int c = 0; c < 4; ++c) reg(in.d + uint32_t(c))[l] = std::bit_cast<uint32_t>(r[c]);
     }
+};
 
-    // Sample: coordinates (projected if asked).
+void exec_query_levels(const ImageOperands& op) {
+    for (int l = 0; l < kLanes; ++l) {
+        const ImageView* img = op.image(l);
+        op.reg(op.in.d)[l] = img ? img->levels : 0;
+    }
+}
+
+void exec_query_size(const ImageOperands& op) {
+    const uint32_t* lod = op.reg(op.in.b);
+    for (int l = 0; l < kLanes; ++l) {
+        const ImageView* img = op.image(l);
+        const uint32_t lv = lod[l];
+        uint32_t vals[3] = {0, 0, 0};
+        if (img && lv < img->levels) {
+            vals[0] = std::max(1u, img->width >> lv);
+            int k = 1;
+            if (!op.one_d()) vals[k++] = std::max(1u, img->height >> lv);
+            if (op.arrayed()) vals[k++] = img->layers;
+        }
+        for (uint32_t c = 0; c < op.in.extra && c < 3; ++c) op.reg(op.in.d + c)[l] = vals[c];
+    }
+}
+
+void exec_fetch(const ImageOperands& op) {
+    const uint32_t* lod = op.reg(op.in.c);
+    for (int l = 0; l < kLanes; ++l) {
+        const ImageView* img = op.image(l);
+        const int32_t x = int32_t(op.reg(op.in.b)[l]) + op.off_x();
+        const int32_t y = op.one_d() ? 0 : int32_t(op.reg(op.in.b + 1)[l]) + op.off_y();
+        const int32_t layer = op.arrayed() ? int32_t(op.reg(op.in.b + op.layer_comp())[l]) : 0;
+        op.write(l, img ? fetch_at(*img, x, y, layer, lod[l], op.one_d()) : Vec4{0, 0, 0, 0});
+    }
+}
+
+void exec_sample(const ImageOperands& op) {
+    const Inst& in = op.in;
+    const bool one_d = op.one_d();
+    // coordinates, projected if asked
     float s[kLanes], t[kLanes], layer_f[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-        float q = (in.imm & kSampleProj) ? fl(q_reg, l) : 1.0f;
-        s[l] = fl(in.b, l);
-        t[l] = one_d ? 0.0f : fl(in.b + 1, l);
-        layer_f[l] = arrayed ? fl(in.b + layer_comp, l) : 0.0f;
-        if (in.imm & kSampleProj) {
+        const float q = op.proj() ? op.fl(op.q_reg(), l) : 1.0f;
+        s[l] = op.fl(in.b, l);
+        t[l] = one_d ? 0.0f : op.fl(in.b + 1, l);
+        layer_f[l] = op.arrayed() ? op.fl(in.b + op.layer_comp(), l) : 0.0f;
+        if (op.proj()) {
             s[l] = s[l] / q;
             t[l] = t[l] / q;
         }
     }
     for (int l = 0; l < kLanes; ++l) {
-        Vec4 r{0, 0, 0, 0};
-        const ImageView* img = image_of(l);
-        uint32_t ss = h[l] >> 16;
-        const SamplerState* smp = ss < num_slots && slots[ss] ? slots[ss]->sampler : nullptr;
+        const ImageView* img = op.image(l);
+        const SamplerState* smp = op.sampler(l);
         SampleArgs args;
-        args.off_x = off_x, args.off_y = off_y;
-        if (dref && smp) {
+        args.off_x = op.off_x(), args.off_y = op.off_y();
+        if (op.dref() && smp) {
             args.dref = smp->compare_enable;
-            args.ref = fl(in.b + in.extra - 1, l);
-            if (in.imm & kSampleProj) args.ref = args.ref / fl(q_reg, l);
+            args.ref = op.fl(in.b + in.extra - 1, l);
+            if (op.proj()) args.ref = args.ref / op.fl(op.q_reg(), l);
             if (img && img->format == Format::D16_UNORM) args.ref = std::clamp(args.ref, 0.0f, 1.0f);
         }
-        if (img && smp) {
-            float w0 = float(img->width), h0 = one_d ? 1.0f : float(img->height);
-            float lambda;
-            if (smp->unnormalized) {
-                lambda = 0.0f;
-            } else if (in.imm & kSampleExplicitLod) {
-                lambda = fl(in.c, l);
-            } else {
-                // rho = max(|d(s,t)/dx|, |d(s,t)/dy|) in texels; lambda = log2(rho)
-                float dsdx, dtdx, dsdy, dtdy;
-                if (in.imm & kSampleGrad) {
-                    dsdx = fl(in.n, l), dtdx = fl(in.n + 1, l), dsdy = fl(in.n + 2, l), dtdy = fl(in.n + 3, l);
-                } else {
-                    // implicit: one LOD per 2x2 quad from the quad's top-left pixel (coarse derivatives)
-                    int q = l & ~3;
-                    dsdx = s[q + 1] - s[q], dtdx = t[q + 1] - t[q];
-                    dsdy = s[q + 2] - s[q], dtdy = t[q + 2] - t[q];
-                }
-                dsdx *= w0, dsdy *= w0, dtdx *= h0, dtdy *= h0;
-                if (smp->mipmap_mode == MipmapMode::Linear) {
-                    // lavapipe (lp_bld_sample.c lp_build_lod_selector, no rho_approx/brilinear):
-                    // lambda = 0.5 * fast_log2(max(dsdx^2 + dtdx^2, dsdy^2 + dtdy^2)), 1D: rho = max(|dsdx|, |dsdy|)
-                    float rho2;
-                    if (one_d) {
-                        float rho = std::max(std::fabs(dsdx), std::fabs(dsdy));
-                        rho2 = rho * rho;
-                    } else {
-                        rho2 = std::max(dsdx * dsdx + dtdx * dtdx, dsdy * dsdy + dtdy * dtdy);
-                    }
-                    if ((in.imm & kSampleGrad) && !std::isfinite(rho2)) rho2 = 0.0f;
-                    lambda = fixed8::fast_log2(rho2) * 0.5f;
-                } else {
-                    float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
-                    lambda = std::log2(std::max(rx, ry));
-                }
-                if (in.imm & kSampleBias) lambda += fl(in.c, l);
-            }
-            if (!smp->unnormalized) lambda += smp->mip_lod_bias;
-            if (!(lambda == lambda)) lambda = 0.0f;
-            lambda = std::min(std::max(lambda, smp->min_lod), smp->max_lod);
-            bool mag = lambda <= 0.0f;
-            bool linear = (mag ? smp->mag_filter : smp->min_filter) == Filter::Linear;
-            uint32_t max_level = img->levels - 1;
-            float lyr =
-                std::nearbyint(std::clamp(layer_f[l] == layer_f[l] ? layer_f[l] : 0.0f, 0.0f, float(img->layers - 1)));
-            uint32_t layer = uint32_t(lyr);
-            if (use_fixed8(*img, *smp, one_d, dref)) {
-                // lod = lo + frac: levels clamped to the view (frac dropped there), weight trunc(frac*256)
-                uint32_t lv = 0, hi = 0;
-                int32_t mw = 0;
-                if (smp->unnormalized || mag) {
-                } else if (smp->mipmap_mode == MipmapMode::Nearest) {
-                    lv = uint32_t(std::clamp(std::ceil(lambda + 0.5f) - 1.0f, 0.0f, float(max_level)));
-                } else {
-                    float fl0 = std::floor(lambda);
-                    if (fl0 >= float(max_level)) {
-                        lv = max_level;
-                    } else if (fl0 >= 0.0f) {
-                        lv = uint32_t(fl0);
-                        hi = lv + 1;
-                        mw = fixed8::mip_weight(lambda - fl0);
-                    }
-                }
-                Bytes a = sample_level_fixed8(*img, *smp, lv, layer, s[l], t[l], linear, one_d, args);
-                if (mw > 0) {
-                    Bytes b = sample_level_fixed8(*img, *smp, hi, layer, s[l], t[l], linear, one_d, args);
-                    for (int c = 0; c < 4; ++c) a[c] = fixed8::lerp(mw, a[c], b[c]);
-                }
-                r = bytes_to_float(a);
-            } else if (smp->unnormalized || mag) {
-                r = sample_level(*img, *smp, 0, layer, s[l], t[l], linear, one_d, args);
-            } else if (smp->mipmap_mode == MipmapMode::Nearest) {
-                // d = ceil(lambda + 0.5) - 1, clamped to the view's levels
-                float dl = std::ceil(lambda + 0.5f) - 1.0f;
-                uint32_t lv = uint32_t(std::clamp(dl, 0.0f, float(max_level)));
-                r = sample_level(*img, *smp, lv, layer, s[l], t[l], linear, one_d, args);
-            } else {
-                float fl0 = std::floor(lambda);
-                uint32_t lo = uint32_t(std::clamp(fl0, 0.0f, float(max_level)));
-                uint32_t hi = std::min(lo + 1, max_level);
-                float frac = lambda - fl0;
-                Vec4 a = sample_level(*img, *smp, lo, layer, s[l], t[l], linear, one_d, args);
-                if (hi != lo && frac > 0.0f) {
-                    Vec4 b = sample_level(*img, *smp, hi, layer, s[l], t[l], linear, one_d, args);
-                    // lp_build_sample_mipmap: lp_build_lerp(frac, level0, level1), a fused multiply-add
-                    for (int c = 0; c < 4; ++c) a[c] = std::fma(frac, b[c] - a[c], a[c]);
-                }
-                r = a;
-            }
-            if (!dref) r = swizzled(r, *img);  // a depth comparison's result is not remapped
+        if (!img || !smp) {
+            op.write(l, {0, 0, 0, 0});
+            continue;
         }
-        for (int c = 0; c < 4; ++c) d[c][l] = std::bit_cast<uint32_t>(r[c]);
+        LodInput lod;
+        lod.one_d = one_d;
+        lod.explicit_lod = in.imm & kSampleExplicitLod;
+        lod.grad = in.imm & kSampleGrad;
+        if (lod.explicit_lod) {
+            lod.lod = op.fl(in.c, l);
+        } else if (lod.grad) {
+            lod.dsdx = op.fl(in.n, l), lod.dtdx = op.fl(in.n + 1, l);
+            lod.dsdy = op.fl(in.n + 2, l), lod.dtdy = op.fl(in.n + 3, l);
+        } else {
+            // implicit: one LOD per 2x2 quad from the quad's top-left pixel (coarse derivatives)
+            const int q = l & ~3;
+            lod.dsdx = s[q + 1] - s[q], lod.dtdx = t[q + 1] - t[q];
+            lod.dsdy = s[q + 2] - s[q], lod.dtdy = t[q + 2] - t[q];
+        }
+        float lambda = raw_lambda(*img, *smp, lod);
+        if (!smp->unnormalized && !lod.explicit_lod && (in.imm & kSampleBias)) lambda += op.fl(in.c, l);
+        op.write(l,
+                 sample_lambda(*img, *smp, final_lambda(*smp, lambda), s[l], t[l], layer_f[l], one_d, op.dref(), args));
     }
+}
+
+}  // namespace
+
+void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
+    const ImageOperands op{in, R, slots, num_slots};
+    switch (in.op) {
+        case Op::QueryLevels:
+            return exec_query_levels(op);
+        case Op::QuerySize:
+            return exec_query_size(op);
+        case Op::Fetch:
+            return exec_fetch(op);
+        default:
+            return exec_sample(op);
+    }
+}
+
+std::array<float, 4> sample_2d(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer) {
+    if (!image_ok(&img)) return {0, 0, 0, 0};
+    return sample_lambda(img, smp, final_lambda(smp, 0.0f), s, t, float(layer), false, false, SampleArgs{});
+}
+
+std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer) {
+    if (!image_ok(&img)) return {0, 0, 0, 0};
+    return fetch_at(img, x, y, int32_t(layer), 0, false);
 }
 
 }  // namespace tilevk::shader

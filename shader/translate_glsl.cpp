@@ -105,6 +105,8 @@ const char* glsl_std450_name(uint32_t e) {
     return e < GLSLstd450Count ? kGlslNames[e] : "(unknown)";
 }
 
+// One switch over the GLSL.std.450 instructions (over 150 lines): a case per instruction, a few lines each, sharing
+// the def/operand helpers declared at its top; a split by family would only move the cases into smaller switches.
 void Translator::glsl_op(const Instr& in) {
     auto def = [&](uint32_t n = 0) {
         uint32_t f = n ? n : std::max(1u, type(in[1]).flat);
@@ -362,11 +364,12 @@ void Translator::glsl_op(const Instr& in) {
             return;
         }
         case GLSLstd450Normalize: {
-            // normalize(v) = v * inversesqrt(dot(v, v))
+            // normalize(v) = v / sqrt(dot(v, v)): a division by the length, as lavapipe's SPIR-V front end
+            // writes it (each lane rounds differently from v * inversesqrt(dot(v, v)), by up to an ulp)
             uint32_t a = arg(0);
-            uint32_t r = emit1(SOp::InvSqrt, dot(a, a, n));
+            uint32_t len = emit1(SOp::Sqrt, dot(a, a, n));
             uint32_t d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::FMul, d + i, a + i, r);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FDiv, d + i, a + i, len);
             return;
         }
         case GLSLstd450Cross: {

@@ -11,6 +11,7 @@
 #include <spirv/unified1/spirv.hpp11>
 
 #include "shader/ir.h"
+#include "shader/spirv_names.h"
 
 namespace tilevk::shader {
 
@@ -95,14 +96,61 @@ struct Instr {
     uint32_t operator[](size_t i) const { return w[i]; }
 };
 
+// The literal string starting at word `at` of an instruction (translate_module.cpp).
+std::string literal_string(const Instr& in, size_t at);
+// "vertex", "fragment", "compute", for messages.
+inline const char* stage_name(Stage s) {
+    return s == Stage::Vertex ? "vertex" : s == Stage::Fragment ? "fragment" : "compute";
+}
+// "OpFAdd", ... for messages.
+inline std::string opname(spv::Op op) {
+    return names::opcode(uint32_t(op));
+}
+
 class Translator {
   public:
     Translator(Stage stage, ProgramImpl& out, ProgramInterface& iface) : stage_(stage), p_(out), iface_(iface) {}
     void run(const std::vector<uint32_t>& words, std::string_view entry);
 
-    // translate_ops.cpp
+    // phases (translate.cpp, translate_module.cpp, translate_interface.cpp, translate_control.cpp)
+    void find_entry_point(std::string_view entry);
+    void declare(const Instr& in);  // one module-level instruction
+    void declare_execution_mode(const Instr& in);
+    void decorate(const Instr& in);
+    void declare_type(const Instr& in);
+    void declare_composite_type(const Instr& in, Type& t);
+    void declare_image_type(const Instr& in, Type& t);
+    void declare_constant(const Instr& in);
+    void resolve_local_size();  // compute: LocalSizeId operands, once the constants are declared
+    void declare_variable(const Instr& in);
+    void walk_interface(bool out, uint32_t ty, uint32_t word, int loc, int comp, const Decorations& dd, int builtin);
+    void declare_resource(spv::StorageClass sc, const Decorations& d, Pointer& p);
+    void collect_blocks(size_t fn_begin);
+    void order_blocks();
+    void init_masks_and_phis();
+    void emit_blocks();
+    std::vector<std::pair<uint32_t, uint32_t>> edges_of(const Block& b, const Instr& term);
+    void emit_terminator(Block& b, const Instr& term);
+    void finish_interface();
+
+    // one instruction (translate_ops.cpp), by family; each returns false for an opcode outside it
     void op(const Instr& in);
+    bool op_arith(const Instr& in);
+    bool op_logic(const Instr& in);
+    bool op_composite(const Instr& in);
+    bool op_fragment(const Instr& in);
+    bool op_memory(const Instr& in);  // translate_memory.cpp
+    bool op_image(const Instr& in);   // translate_image.cpp
+    bool image_sample(const Instr& in);
     void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450
+    // helpers for instructions with a result (type in[1], id in[2])
+    uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result
+    void alias(const Instr& in, uint32_t r);        // the result is register run r
+    uint32_t flat_of(uint32_t id);                  // registers of a value
+    bool unary(const Instr& in, Op o);              // o per component
+    bool binary(const Instr& in, Op o);             // o per component; a scalar operand is broadcast
+    bool swapped(const Instr& in, Op o);            // o with the operands swapped (a > b == b < a)
+    uint32_t dot(uint32_t a, uint32_t b, uint32_t n);
 
     [[noreturn]] static void fail(const std::string& m) { throw TranslateError{m}; }
 
@@ -141,6 +189,15 @@ class Translator {
     ProgramImpl& p_;
     ProgramInterface& iface_;
     uint32_t bound_ = 0;
+    std::vector<Instr> ins_;
+    uint32_t entry_fn_ = 0;
+    std::vector<uint32_t> entry_iface_;  // the entry point's interface variables
+    uint32_t local_words_ = 0;           // SoA local memory words allocated so far
+    uint32_t next_slot_ = 1;             // next descriptor slot (slot 0: push constants)
+    std::vector<Block> blocks_;
+    std::unordered_map<uint32_t, uint32_t> block_of_;  // label -> index into blocks_
+    std::vector<uint32_t> order_;                      // blocks_ indices in layout order
+    std::vector<uint8_t> block_in_loop_;               // per block: lies inside a loop construct
     std::vector<Type> types_;
     std::vector<uint8_t> is_type_;
     std::vector<Decorations> deco_;
@@ -162,6 +219,8 @@ class Translator {
         reg_value_[reg] = v;
     }
     uint32_t glsl_ext_ = 0;
+    uint32_t local_size_ids_[3] = {0, 0, 0};  // ExecutionModeId LocalSizeId operands (0: none)
+    bool workgroup_size_builtin_ = false;     // a constant decorated BuiltIn WorkgroupSize set the local size
     uint32_t cur_mask_ = kNoReg;  // mask register of the block being translated
     uint32_t zero_ = kNoReg;
     // Local word of a hidden copy of gl_FragCoord.xy, made when the module declares a SubpassData image:

@@ -7,6 +7,9 @@
 #   TILEVK_RAST_METHODS rasterization methods compared once tilevk draws (default "reference bbox hier float")
 #   TILEVK_CTS_FILTER   case glob (default all)
 #   TILEVK_SWEEP_TRIANGLES triangles per point of bench/rast's stability_sweep, when built (default 1000)
+#   TILEVK_FRAME_ROUNDS, TILEVK_FRAME_FRAMES, TILEVK_FRAME_SCENES  the frame benchmark's rounds (default 3), timed
+#                       frames per process (default 5) and scene list (default: bench/frame/run_frame_bench.py's)
+#   TILEVK_FUZZ_MINUTES time for the day's fuzzing window (tilevk-cts --fuzz; default 10, 0 skips it)
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(cd "$1" && pwd)"
@@ -51,4 +54,34 @@ if [[ -x "$sweep" ]]; then
         sweep_args=(--stability "$out/stability_sweep.csv")
     fi
 fi
-/usr/bin/python3 "$report/make_report.py" --out "$out" "${sweep_args[@]}" "${results[@]}"
+# The frame benchmark (whole frames, tilevk and lavapipe alternating): the report opens with its table.
+frame_args=()
+frame_bench="$build/bench/frame/tilevk-frame-bench"
+if [[ -x "$frame_bench" ]]; then
+    scenes_arg=()
+    [[ -n "${TILEVK_FRAME_SCENES:-}" ]] && scenes_arg=(--scenes "$TILEVK_FRAME_SCENES")
+    if /usr/bin/python3 "$here/bench/frame/run_frame_bench.py" --build "$build" --out "$out/frame_bench.json" \
+        --threads "$threads" --rounds "${TILEVK_FRAME_ROUNDS:-3}" --frames "${TILEVK_FRAME_FRAMES:-5}" \
+        "${scenes_arg[@]}" >"$out/frame_bench.txt" 2>&1 && [[ -s "$out/frame_bench.json" ]]; then
+        frame_args=(--frames "$out/frame_bench.json")
+    else
+        echo "tilevk: the frame benchmark failed (see $out/frame_bench.txt); the report has no frame table" >&2
+    fi
+fi
+/usr/bin/python3 "$report/make_report.py" --out "$out" "${frame_args[@]}" "${sweep_args[@]}" "${results[@]}"
+
+# Fuzzing that keeps running: a fresh window of seeds every run (the start seed comes from the date and is printed),
+# failures minimised with the commands that reproduce them (report/fuzz.txt, report/fuzz-failures.txt).
+fuzz_minutes="${TILEVK_FUZZ_MINUTES:-10}"
+if [[ "$fuzz_minutes" != 0 ]]; then
+    spirv_seed=$(( $(date -u +%s) / 86400 * 10000 ))
+    {
+        echo "## Fuzzing (tilevk-cts --fuzz $fuzz_minutes, TILEVK_FUZZ_SPIRV_SEED=$spirv_seed)"
+        "$runner" --fuzz "$fuzz_minutes" --fuzz-log "$out/fuzz-failures.txt" 2>/dev/null | grep -v '^fuzz: spirv seed'
+        if [[ -x "$build/tests/shader/shader_fuzz_test" ]]; then
+            TILEVK_FUZZ_SPIRV_SEED="$spirv_seed" timeout 900 "$build/tests/shader/shader_fuzz_test" 2>&1 |
+                grep -E '^fuzz:|PASSED|FAILED'
+        fi
+    } >"$out/fuzz.txt" 2>&1
+    { echo; cat "$out/fuzz.txt"; } >>"$out/summary.md"
+fi

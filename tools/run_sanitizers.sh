@@ -2,7 +2,10 @@
 # CI step after ./tilevk.sh test (.ci/run calls both): the project under the sanitizers. Any finding fails the run.
 #   1. ASan+UBSan build (build-asan/, also the portable -Dsimd=none build): every meson test but icd_vulkaninfo.
 #   2. The full conformance subset under ASan+UBSan, tilevk (the ASan build's ICD) against lavapipe.
-#   3. TSan build (build-tsan/, only the two test programs): the tile thread pool and the renderer on it.
+#   3. TSan build (build-tsan/, only the test programs it runs): the tile thread pool and the renderer on it, the
+#      swapchain tests (their presentation threads, presenting from another thread), the whole driver under a
+#      multi-threaded application (icd_concurrency), the device timeout's timer thread against the renderer and a
+#      second device (icd_device_loss) and the object lifetime rules (icd_lifetime), with the TSan build's ICD.
 # tools/keep_loaded.cpp is preloaded in the ASan runs so that LeakSanitizer sees and names the libraries the Vulkan
 # loader unloads; tools/lsan.supp suppresses only leaks of the validation layer's own. Every other leak, ASan or
 # UBSan report or TSan race fails its step. Every step runs; the exit status is non-zero if any step failed,
@@ -36,12 +39,14 @@ export LD_PRELOAD="$asan/keep_loaded.so${LD_PRELOAD:+:$LD_PRELOAD}"
 
 all_tests=$(meson test -C "$asan" --list 2>/dev/null | sed -n 's/^.* \/ //p')
 [[ -n "$all_tests" ]] || { echo "run_sanitizers: meson test --list found no test in $asan" >&2; exit 1; }
-tests=$(grep -vx 'icd_vulkaninfo' <<<"$all_tests")
+tests=$(grep -vx -e 'icd_vulkaninfo' -e 'icd_wsi_vkcube' <<<"$all_tests")
 step "ASan+UBSan: $(wc -l <<<"$tests") meson tests"
-if grep -qx 'icd_vulkaninfo' <<<"$all_tests"; then
-    echo "run_sanitizers: EXCLUDED icd_vulkaninfo: it loads the ICD into Debian's vulkaninfo, which is not built with"
-    echo "  ASan, and an instrumented ICD cannot be loaded into an uninstrumented program. ./tilevk.sh test runs it."
-fi
+for t in icd_vulkaninfo icd_wsi_vkcube; do
+    if grep -qx "$t" <<<"$all_tests"; then
+        echo "run_sanitizers: EXCLUDED $t: it loads the ICD into Debian's $([[ $t == icd_vulkaninfo ]] && echo vulkaninfo || echo vkcube), which is not built with"
+        echo "  ASan, and an instrumented ICD cannot be loaded into an uninstrumented program. ./tilevk.sh test runs it."
+    fi
+done
 rm -f "$asan/meson-logs/testlog.json" "$asan/meson-logs/testlog-sanitizers.json"  # never count a stale log
 # shellcheck disable=SC2086  # one test name per word
 "$here/tools/run_tests.sh" "$asan" --no-rebuild --timeout-multiplier 6 $tests || failed_steps+=("ASan+UBSan meson tests")
@@ -58,14 +63,22 @@ else
 fi
 unset LD_PRELOAD ASAN_OPTIONS LSAN_OPTIONS UBSAN_OPTIONS
 
-# --- 3. TSan: the thread pool and the renderer --------------------------------------------------------------------
-step "TSan build in $tsan (rast_core_threads, rast_render)"
+# --- 3. TSan: the thread pool, the renderer, the swapchains' presentation threads, a multi-threaded application ---
+tsan_tests=(rast_core_threads rast_render icd_wsi_swapchain icd_wsi_x11 icd_concurrency icd_device_loss icd_lifetime)
+step "TSan build in $tsan (${tsan_tests[*]})"
 [[ -f "$tsan/build.ninja" ]] ||
     meson setup "$tsan" "$here" -Db_sanitize=thread -Db_lundef=false -Dbenchmarks=disabled
-ninja -C "$tsan" "${jobs[@]}" tests/rast/core/rast_core_threads_test tests/rast/render/rast_render_test
+ninja -C "$tsan" "${jobs[@]}" tests/rast/core/rast_core_threads_test tests/rast/render/rast_render_test \
+    icd/libvulkan_tilevk.so tests/icd/icd_wsi_swapchain_test tests/icd/icd_wsi_x11_test tests/icd/icd_concurrency_test \
+    tests/icd/icd_device_loss_test tests/icd/icd_lifetime_test
+c++ -O2 -shared -fPIC -o "$tsan/keep_loaded.so" "$here/tools/keep_loaded.cpp"
 rm -f "$tsan/meson-logs/testlog.json"
-TSAN_OPTIONS="halt_on_error=1" "$here/tools/run_tests.sh" "$tsan" --no-rebuild --timeout-multiplier 6 \
-    rast_core_threads rast_render || failed_steps+=("TSan tests")
+# The swapchain tests load Debian's (uninstrumented) validation layer: tools/tsan.supp ignores the locks and frees
+# the layer's own threads make, which TSan cannot see paired; keep_loaded.so keeps the layer mapped (TSan aborts when
+# a library named in a called_from_lib suppression is unloaded).
+LD_PRELOAD="$tsan/keep_loaded.so" TSAN_OPTIONS="halt_on_error=1 suppressions=$here/tools/tsan.supp" \
+    "$here/tools/run_tests.sh" "$tsan" --no-rebuild --timeout-multiplier 6 \
+    "${tsan_tests[@]}" || failed_steps+=("TSan tests")
 
 # --- Summary -------------------------------------------------------------------------------------------------------
 step "summary"

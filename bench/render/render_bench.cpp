@@ -78,8 +78,8 @@ void BM_Render(benchmark::State& state) {
     PipelineState p;
     p.vertex = f.vs.get();
     p.fragment = f.fs.get();
-    p.attribs = {{geometry::VertexFormat::kR32G32B32A32Float, 0, 0},
-                 {geometry::VertexFormat::kR32G32B32A32Float, 0, 16}};
+    p.attribs = {{geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 0},
+                 {geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 16}};
     p.attrib_locations = {0, 1};
     p.bindings = {{sizeof(Vertex), geometry::InputRate::kVertex}};
     p.viewport = {0, 0, float(kSize), float(kSize), 0, 1};

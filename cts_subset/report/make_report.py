@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Builds report/index.html and report/summary.md from tilevk-cts --json result files.
+"""Builds report/index.html and report/summary.md from tilevk-cts --json result files
+(and, with --frames, the frame benchmark's JSON, which then opens the report: frame_section.py).
 
 Each results file is one run of the conformance subset (tilevk against lavapipe), possibly with a different
 rasterization method (TILEVK_RAST); the first file is the main run whose per-case table is shown. Charts: speed
@@ -19,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import frame_section  # noqa: E402
 
 
 def load(path):
@@ -220,6 +224,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--out", required=True, help="output folder (index.html, summary.md, *.png)")
     ap.add_argument("--stability", help="stability sweep CSV (optional)")
+    ap.add_argument("--frames", help="bench/frame/run_frame_bench.py JSON: the frame table opens the report")
     ap.add_argument("--title", default="tilevk conformance subset")
     ap.add_argument("results", nargs="+", help="tilevk-cts --json files; the first is the main run")
     a = ap.parse_args()
@@ -231,6 +236,16 @@ def main():
             print(f"make_report: cannot read {p}: {e}", file=sys.stderr)
             return 1
     os.makedirs(a.out, exist_ok=True)
+    frames = None
+    if a.frames:
+        try:
+            with open(a.frames) as f:
+                frames = json.load(f)
+            frame_section.stage_chart(frames, os.path.join(a.out, "frame_stages.png"))
+            frame_section.scaling_chart(frames, os.path.join(a.out, "frame_scaling.png"))
+        except (OSError, ValueError, KeyError) as e:
+            print(f"make_report: frame benchmark results unreadable ({a.frames}): {e}", file=sys.stderr)
+            frames = None
     main_run = runs[0]
     speed_accuracy_chart(runs, os.path.join(a.out, "speed_accuracy.png"))
     names = [c["name"] for c in main_run["cases"]]
@@ -251,11 +266,14 @@ def main():
 
     # --- summary.md ---
     md = [f"# {a.title}", ""]
+    if frames:
+        md += frame_section.markdown(frames) + ["## Conformance subset", ""]
     md.append(f"Device under test: **{main_run['device_name']}**; reference: **{main_run['ref_name']}**; "
               f"{main_run['threads']}; timing repetitions: {main_run['timing_reps']}.")
     md += ["", "Times are medians of the timed repetitions, the two devices alternating; a frame is one submit of "
            "the case's command buffer to its fence (uploads, the pass, read-back copies). Most cases are 64x64, so "
-           "their times are dominated by per-submit overhead; `scene.perf.*` (1024x1024) measure rasterization."]
+           "their times, and the geomean time ratio below, are dominated by per-submit overhead, not rendering "
+           "speed: the frame benchmark above measures that; `scene.perf.*` (1024x1024) measure rasterization."]
     md.append("")
     if not main_run.get("device_found", True):
         md += ["**The tilevk device was not available (or cannot draw yet): every case fails with the driver's "
@@ -321,7 +339,10 @@ def main():
          "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;font-size:13px}"
          "td,th{border:1px solid #ccc;padding:2px 6px}.Pass{background:#dfd}.Fail{background:#fdd}"
          ".NotSupported{background:#eee}</style></head><body>", f"<h1>{esc(a.title)}</h1>"]
-    intro = [line for line in md[2:] if not line.startswith("## Cases")]
+    if frames:
+        h += frame_section.html_section(frames) + ["<h2>Conformance subset</h2>"]
+    start = md.index("## Conformance subset") + 2 if frames else 2
+    intro = [line for line in md[start:] if not line.startswith("## Cases")]
     cut = intro.index("## Runs") if "## Runs" in intro else len(intro)
     h += [f"<p>{esc(line).replace('**', '')}</p>" for line in intro[:cut] if line]
     h.append("<h2>Runs</h2><table><tr><th>run</th><th>passed</th><th>failed</th><th>not supported</th>"

@@ -82,6 +82,19 @@ class CoverageConsumer {
     virtual void begin_tile(unsigned worker, const TileInfo& tile) = 0;
     virtual void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) = 0;
     virtual void end_tile(unsigned worker, const TileInfo& tile) = 0;
+    // Asked every kStopCheckInterval commands of a tile's walk, with the payload of the next primitive: true ends
+    // the walk there (end_tile still follows). A consumer that can be stopped from outside (a lost device) answers
+    // from its stop flag, so a huge bin is abandoned in microseconds instead of being walked to its end.
+    virtual bool stop_tile(unsigned /*worker*/, uint32_t /*next_payload*/) { return false; }
+    static constexpr size_t kStopCheckInterval = 64;
+    // A hint from the tile loop, a few commands before primitive() may be called with this payload in the same
+    // tile: step 0 first, step 1 some commands later (by then what step 0 fetched has arrived), so a consumer that
+    // reaches its per-primitive data through a per-primitive record can prefetch the record at step 0 and the data
+    // at step 1. Called on the tile's worker; it must not change anything primitive() depends on. Default: nothing.
+    virtual void prefetch(uint32_t payload, int step) const {
+        (void)payload;
+        (void)step;
+    }
 };
 
 }  // namespace tilevk::rast

@@ -1,4 +1,4 @@
-// Fixed point 15.8 window coordinates, snapped exactly as lavapipe does (notes §1 "Snapping to fixed point").
+// Fixed point 15.8 window coordinates, snapped exactly as lavapipe does (lavapipe-rules §1 "Snapping to fixed point").
 #pragma once
 
 #include <cmath>
@@ -32,6 +32,21 @@ inline bool snap_triangle_coord(float x, float offset, int32_t* out) {
     return *out > -kMaxFixed && *out < kMaxFixed;
 }
 
+// lavapipe's own range for triangles (lp_setup_tri.c calc_fixed_position: cvtps2dq, exact for |X| < 2^31; larger
+// values, NaN and Inf become INT_MIN there): the same snap without the 2^22 bound. Triangles with a coordinate past
+// 2^22 take setup's wide range (setup.cpp: edges must then stay inside llvmpipe's exact integer range).
+inline constexpr int64_t kMaxFixedLavapipe = int64_t{1} << 31;
+inline constexpr int64_t kMaxLavapipeEdge = int64_t{1} << 23;  // |DX| + |DY| of an edge, fixed point (setup.cpp)
+inline constexpr float kMaxLavapipePixels = 8388608.0f;        // 2^31 / 256
+inline constexpr float kMaxLavapipeEdgePixels = 32768.0f;      // 2^23 / 256
+inline bool snap_triangle_coord_lavapipe(float x, float offset, int32_t* out) {
+    const float shifted = x - offset;
+    const float scaled = shifted * 256.0f;
+    if (!(std::fabs(scaled) < static_cast<float>(kMaxFixedLavapipe))) return false;  // NaN fails too
+    *out = static_cast<int32_t>(std::nearbyint(scaled));  // |scaled| <= 2^31 - 128: no overflow
+    return true;
+}
+
 // Line/point/rect snap: util_iround(256*a), half away from zero with a float add first (u_math.h):
 // f >= 0 ? (int)(f + 0.5f) : (int)(f - 0.5f). Same range rule as snap_triangle_coord.
 inline bool snap_round_half_away(float a, int32_t* out) {
@@ -43,10 +58,7 @@ inline bool snap_round_half_away(float a, int32_t* out) {
     return true;
 }
 
-// floor(a / 2^k) and ceil(a / 2^k) for signed 64-bit a (arithmetic shift is floor in C++20).
-inline constexpr int64_t floor_shift(int64_t a, int k) {
-    return a >> k;
-}
+// ceil(a / 2^k) for signed 64-bit a (arithmetic shift is floor in C++20).
 inline constexpr int64_t ceil_shift(int64_t a, int k) {
     return -((-a) >> k);
 }

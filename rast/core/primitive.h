@@ -33,11 +33,21 @@ struct TriangleInput {
     CullMode cull = CullMode::kNone;
     bool front_ccw = true;        // VK_FRONT_FACE_COUNTER_CLOCKWISE: area > 0 ("ccw" in lavapipe) is front
     bool flatshade_first = true;  // provoking vertex first (Vulkan default): CW fix-up swaps v1,v2 else v0,v1
+    // lavapipe's bottom_edge_rule (u_blitter's rasterizer state; lp_setup_tri.c): a horizontal edge gets the
+    // bias when it runs right-to-left (a bottom edge) instead of left-to-right, and the pixel box's y range moves
+    // one fixed-point unit down ((minY + 1) >> 8 .. maxY >> 8).
+    bool bottom_edge_rule = false;
 };
 
+// The vertex order rast/core rasterizes a triangle in (its CW -> CCW fix-up keeps the provoking vertex): order[i]
+// is the input vertex at position i. Attribute planes must be built in this order. Identity for triangles that
+// are out of range or degenerate (they are never rasterized).
+void triangle_vertex_order(const TriangleInput& in, int samples, int order[3]);
+
 // One edge plane in fixed point: a sample at fixed (X, Y) is inside iff c + a*X + b*Y > 0.
-// For a triangle edge i->j: a = -(y_i - y_j), b = (x_i - x_j), c = DY*x_i - DX*y_i + bias (notes §2).
-// |a|, |b| must be < 2^23 and |c| < 2^47 (true for any plane built from coordinates with |X| < 2^22).
+// For a triangle edge i->j: a = -(y_i - y_j), b = (x_i - x_j), c = DY*x_i - DX*y_i + bias (lavapipe-rules §2).
+// |a|, |b| must be < 2^23 and |c| < 2^47 (true for any plane built from coordinates with |X| < 2^22); triangles in
+// setup's wide range (coordinates below 2^31, edges below 2^23) reach |c| < 2^55.
 struct EdgePlane {
     int64_t c = 0;
     int32_t a = 0, b = 0;
@@ -56,7 +66,7 @@ struct ConvexInput {
 };
 
 // Axis-aligned box (point sprite or rectangle) in fixed point, half-open [x0, x1) x [y0, y1) with the top-left
-// rule: sample X covered iff x0 <= X < x1 (lavapipe's point planes with c++ on left and top, notes §6).
+// rule: sample X covered iff x0 <= X < x1 (lavapipe's point planes with c++ on left and top, lavapipe-rules §6).
 struct BoxInput {
     int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     PrimCommon common;
@@ -69,7 +79,7 @@ enum class SetupStatus : uint8_t {
     kCulled,      // facing culled
     kDegenerate,  // zero area / empty box / empty sample mask
     kClipped,     // bbox ∩ clip rect is empty
-    kOutOfRange,  // NaN/Inf or |coordinate| >= 16384 px (never overflowed, rejected)
+    kOutOfRange,  // NaN/Inf or |coordinate| >= 16384 px (triangles: 2^23 px, or an edge spanning >= 32768 px)
     kInvalid,     // bad plane count or plane magnitudes
 };
 

@@ -23,7 +23,7 @@ Scene::Scene(const SceneConfig& config) : config_(config) {
 Scene::~Scene() = default;
 
 void Scene::reset() {
-    prims_.clear();
+    num_prims_ = 0;
     for (auto& b : bins_) b.clear();
     stats_ = {};
 }
@@ -46,47 +46,99 @@ SetupStatus Scene::add_box(const BoxInput& in) {
     return st == SetupStatus::kAccepted ? bin(p) : st;
 }
 
-// Small primitives (box within one tile) go to that tile's bin directly; larger ones walk the tiles of their box,
-// rejecting tiles outside an edge and turning tiles inside every edge into whole-tile commands (64-bit corner
-// tests in tile_setup).
-SetupStatus Scene::bin(Prim& prim) {
+Scene::TileBox Scene::tile_box(const Prim& prim) const {
+    const int32_t T = config_.tile_size;  // the box lies in the framebuffer: tile indices below 1024
+    return {uint16_t(prim.x0 / T), uint16_t(prim.y0 / T), uint16_t(prim.x1 / T), uint16_t(prim.y1 / T), prim.payload};
+}
+
+// Small primitives (box within one tile) go to that tile's bin directly, from the box alone; larger ones walk the
+// tiles of their box, rejecting tiles outside an edge and turning tiles inside every edge into whole-tile commands
+// (64-bit corner tests in tile_setup).
+bool Scene::bin_rows(uint32_t index, const TileBox& box, int32_t ty_begin, int32_t ty_end, SceneStats* stats) {
     const int32_t T = config_.tile_size;
-    const int32_t tx0 = prim.x0 / T, tx1 = prim.x1 / T, ty0 = prim.y0 / T, ty1 = prim.y1 / T;
-    const auto index = static_cast<uint32_t>(prims_.size());
+    const int32_t tx0 = box.tx0, tx1 = box.tx1;
+    const int32_t ty0 = std::max<int32_t>(box.ty0, ty_begin), ty1 = std::min<int32_t>(box.ty1, ty_end - 1);
     bool any = false;
-    if (tx0 == tx1 && ty0 == ty1) {
-        bins_[static_cast<size_t>(ty0) * tiles_x_ + tx0].push_back({index, kBinPartial});
-        any = true;
-        ++stats_.bin_cmds;
-    } else {
-        for (int32_t ty = ty0; ty <= ty1; ++ty) {
-            for (int32_t tx = tx0; tx <= tx1; ++tx) {
-                int n = 0;
-                const TileGeom geom{tx * T, ty * T, T, config_.samples};
-                const TileClass cls = tile_setup(prim, geom, nullptr, &n);
-                if (cls == TileClass::kReject) continue;
-                // A whole tile must also lie inside the framebuffer (box planes guarantee it, see setup.cpp).
-                const bool whole = cls == TileClass::kWhole;
-                bins_[static_cast<size_t>(ty) * tiles_x_ + tx].push_back({index, whole ? kBinWholeTile : kBinPartial});
-                any = true;
-                ++stats_.bin_cmds;
-                stats_.whole_tiles += whole;
-            }
+    if (tx0 == tx1 && box.ty0 == box.ty1) {
+        if (ty0 > ty1) return false;
+        bins_[static_cast<size_t>(ty0) * tiles_x_ + tx0].push_back({index, 0, box.payload});
+        ++stats->bin_cmds;
+        return true;
+    }
+    const Prim& prim = prims_[index];
+    for (int32_t ty = ty0; ty <= ty1; ++ty) {
+        for (int32_t tx = tx0; tx <= tx1; ++tx) {
+            int n = 0;
+            const TileGeom geom{tx * T, ty * T, T, config_.samples};
+            const TileClass cls = tile_setup(prim, geom, nullptr, &n);
+            if (cls == TileClass::kReject) continue;
+            // A whole tile must also lie inside the framebuffer (box planes guarantee it, see setup.cpp).
+            const bool whole = cls == TileClass::kWhole;
+            bins_[static_cast<size_t>(ty) * tiles_x_ + tx].push_back({index, whole ? 1u : 0u, box.payload});
+            any = true;
+            ++stats->bin_cmds;
+            stats->whole_tiles += whole;
         }
     }
-    if (!any) return SetupStatus::kClipped;
-    prims_.push_back(prim);
+    return any;
+}
+
+SetupStatus Scene::bin(Prim& prim) {
+    if (num_prims_ == prims_.size()) prims_.emplace_back();
+    prims_[num_prims_] = prim;
+    if (!bin_rows(num_prims_, tile_box(prim), 0, tiles_y_, &stats_)) return SetupStatus::kClipped;
+    ++num_prims_;
     ++stats_.prims;
     return SetupStatus::kAccepted;
 }
 
+uint32_t Scene::reserve(uint32_t n) {
+    const uint32_t first = num_prims_;
+    if (prims_.size() < size_t(first) + n) prims_.resize(size_t(first) + n);
+    reserved_boxes_.assign(n, {0, 1, 0, 0, 0});  // rows 1..0: not accepted
+    num_prims_ += n;
+    return first;
+}
+
+SetupStatus Scene::setup_triangle_at(uint32_t slot, const TriangleInput& tri, bool* ccw) {
+    Prim& p = prims_[slot];
+    p = Prim{};
+    const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p);
+    if (st != SetupStatus::kAccepted) return st;
+    reserved_boxes_[slot - (num_prims_ - reserved_boxes_.size())] = tile_box(p);
+    *ccw = p.front_facing == tri.front_ccw;  // setup's front = (ccw == front_ccw)
+    return st;
+}
+
+void Scene::bin_reserved(uint32_t first, uint32_t n, ThreadPool& pool) {
+    // Bands of tile rows: each task walks every reserved primitive in API order and bins it into the band's rows
+    // only, so every bin gets its commands in API order whatever the number of tasks or threads.
+    const int32_t rows_per_band =
+        pool.num_workers() == 1 ? tiles_y_ : std::max<int32_t>(1, tiles_y_ / int32_t(4 * pool.num_workers()));
+    const size_t bands = size_t((tiles_y_ + rows_per_band - 1) / rows_per_band);
+    band_stats_.assign(bands, SceneStats{});
+    pool.run(bands, [&](unsigned, size_t band) {
+        const int32_t ty_begin = int32_t(band) * rows_per_band, ty_end = std::min(tiles_y_, ty_begin + rows_per_band);
+        for (uint32_t i = 0; i < n; ++i) {
+            const TileBox& b = reserved_boxes_[i];  // an empty row range for a slot not accepted
+            if (b.ty1 < ty_begin || b.ty0 >= ty_end || b.ty0 > b.ty1) continue;
+            bin_rows(first + i, b, ty_begin, ty_end, &band_stats_[band]);
+        }
+    });
+    for (const SceneStats& b : band_stats_) {
+        stats_.bin_cmds += b.bin_cmds;
+        stats_.whole_tiles += b.whole_tiles;
+    }
+    for (uint32_t i = 0; i < n; ++i) stats_.prims += reserved_boxes_[i].ty0 <= reserved_boxes_[i].ty1;
+}
+
 void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_empty_tiles) {
-    std::vector<uint32_t> tiles;
-    tiles.reserve(bins_.size());
+    std::vector<uint32_t>& tiles = tiles_to_render_;
+    tiles.clear();
     for (uint32_t i = 0; i < bins_.size(); ++i)
         if (visit_empty_tiles || !bins_[i].empty()) tiles.push_back(i);
-    std::vector<std::unique_ptr<TileScratch>> scratch(pool.num_workers());
-    for (auto& p : scratch) p = std::make_unique<TileScratch>();
+    while (scratch_.size() < pool.num_workers()) scratch_.push_back(std::make_unique<TileScratch>());
+    const std::vector<std::unique_ptr<TileScratch>>& scratch = scratch_;
     const Method method = config_.method;
     const int32_t T = config_.tile_size;
     pool.run(tiles.size(), [&](unsigned worker, size_t task) {
@@ -97,17 +149,27 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
         TileScratch& s = *scratch[worker];
         consumer.begin_tile(worker, info);
         const std::vector<BinCmd>& bin = bins_[index];
+        // Primitives are read in API order with gaps, each a cache miss of its own, and so are the consumer's
+        // records they lead to: the hot lines of a primitive and the consumer's record are fetched kAhead
+        // commands ahead, what that record points to kDataAhead commands ahead (the record has arrived by then).
+        constexpr size_t kAhead = 6, kDataAhead = 3;
+        auto fetch = [&](size_t k) {
+            const char* p = reinterpret_cast<const char*>(&prims_[bin[k].prim]);
+            __builtin_prefetch(p);
+            __builtin_prefetch(p + 64);
+            __builtin_prefetch(p + 128);
+            consumer.prefetch(bin[k].payload, 0);
+        };
+        for (size_t k = 0; k < std::min(kAhead, bin.size()); ++k) fetch(k);
         for (size_t i = 0; i < bin.size(); ++i) {
             const BinCmd& cmd = bin[i];
-            // Primitives are read in API order with gaps: fetch the hot lines of one two commands ahead.
-            if (i + 2 < bin.size()) {
-                const char* next = reinterpret_cast<const char*>(&prims_[bin[i + 2].prim]);
-                __builtin_prefetch(next);
-                __builtin_prefetch(next + 64);
-                __builtin_prefetch(next + 128);
-            }
+            if (i % CoverageConsumer::kStopCheckInterval == CoverageConsumer::kStopCheckInterval - 1 &&
+                consumer.stop_tile(worker, cmd.payload))
+                break;
+            if (i + kAhead < bin.size()) fetch(i + kAhead);
+            if (i + kDataAhead < bin.size()) consumer.prefetch(bin[i + kDataAhead].payload, 1);
             const Prim& prim = prims_[cmd.prim];
-            raster_prim_in_tile(method, prim, geom, cmd.flags & kBinWholeTile, &s);
+            raster_prim_in_tile(method, prim, geom, cmd.whole_tile, &s);
             if (s.num_blocks == 0 && s.num_full == 0 && s.num_blocks16 == 0) continue;
             PrimCoverage cov;
             cov.payload = prim.payload;

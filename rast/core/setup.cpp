@@ -2,10 +2,14 @@
 // do_triangle_ccw; lp_setup_point.c for boxes).
 //
 // Range proof for the 64-bit arithmetic here: |X|,|Y| < 2^22, so deltas are < 2^23 and every product DY*x is
-// < 2^45; c = DY*x_i - DX*y_i + 1 < 2^46 + 1. Nothing here needs more than 64 bits.
+// < 2^45; c = DY*x_i - DX*y_i + 1 < 2^46 + 1. Nothing here needs more than 64 bits. Triangles in the wide range
+// (a coordinate past 2^22, all below 2^31 as in llvmpipe) must have |DX| + |DY| < 2^23 on every edge, so the same
+// delta bound holds and c < 2^23 * 2^31 * 2 = 2^55; the rasterizer's in-tile 32-bit proof depends only on the
+// deltas (tile_kernels.h), and its 64-bit tile setup on |c0| < 2^48.
 #include "rast/core/setup.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace tilevk::rast {
 
@@ -174,29 +178,64 @@ void compute_pixel_planes(int samples, Prim* prim) {
     }
 }
 
-SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out) {
+namespace {
+
+// Snapped coordinates (lavapipe's range) and the exact area dx01*dy20 - dx20*dy01 (|d| < 2^23, products < 2^46);
+// false out of range.
+bool snap_triangle(const TriangleInput& in, int samples, int32_t x[3], int32_t y[3], int64_t* area) {
     const float offset = triangle_snap_offset(samples);
-    int32_t x[3], y[3];
+    bool wide = false;
     for (int i = 0; i < 3; ++i) {
-        if (!snap_triangle_coord(in.x[i], offset, &x[i]) || !snap_triangle_coord(in.y[i], offset, &y[i]))
-            return SetupStatus::kOutOfRange;
+        if (!snap_triangle_coord_lavapipe(in.x[i], offset, &x[i]) ||
+            !snap_triangle_coord_lavapipe(in.y[i], offset, &y[i]))
+            return false;
+        wide |= x[i] <= -kMaxFixed || x[i] >= kMaxFixed || y[i] <= -kMaxFixed || y[i] >= kMaxFixed;
     }
-    // area = dx01*dy20 - dx20*dy01, exact (|d| < 2^23, products < 2^46).
-    const int64_t area = int64_t{x[0] - x[1]} * (y[2] - y[0]) - int64_t{x[2] - x[0]} * (y[0] - y[1]);
+    if (wide) {
+        // llvmpipe computes every edge's dcdx, dcdy (deltas times 256) and their trivial-reject offset eo
+        // (|dcdx| + |dcdy| at worst) in 32 bits: exact while |DX| + |DY| < 2^23, which is also what keeps tilevk's
+        // 32-bit in-tile evaluation exact. Past it llvmpipe's planes wrap; such a triangle is not set up (it can
+        // only come from the clipper's cancellation on enormous inputs, rast/geometry/README.md).
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3;
+            if (std::abs(int64_t{x[i]} - x[j]) + std::abs(int64_t{y[i]} - y[j]) >= kMaxLavapipeEdge)
+                return false;
+        }
+    }
+    *area = int64_t{x[0] - x[1]} * (y[2] - y[0]) - int64_t{x[2] - x[0]} * (y[0] - y[1]);
+    return true;
+}
+
+// CW -> CCW keeping the provoking vertex: (v0,v2,v1) with flatshade_first, else (v1,v0,v2).
+void ccw_order(bool ccw, bool flatshade_first, int order[3]) {
+    order[0] = 0, order[1] = 1, order[2] = 2;
+    if (ccw) return;
+    if (flatshade_first)
+        std::swap(order[1], order[2]);
+    else
+        std::swap(order[0], order[1]);
+}
+
+}  // namespace
+
+void triangle_vertex_order(const TriangleInput& in, int samples, int order[3]) {
+    int32_t x[3], y[3];
+    int64_t area = 0;
+    ccw_order(!snap_triangle(in, samples, x, y, &area) || area >= 0, in.flatshade_first, order);
+}
+
+SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out) {
+    int32_t x[3], y[3];
+    int64_t area = 0;
+    if (!snap_triangle(in, samples, x, y, &area)) return SetupStatus::kOutOfRange;
     if (area == 0) return SetupStatus::kDegenerate;
     const bool ccw = area > 0;
     const bool front = ccw == in.front_ccw;
     if ((front && (static_cast<int>(in.cull) & static_cast<int>(CullMode::kFront))) ||
         (!front && (static_cast<int>(in.cull) & static_cast<int>(CullMode::kBack))))
         return SetupStatus::kCulled;
-    int order[3] = {0, 1, 2};
-    if (!ccw) {
-        // CW -> CCW keeping the provoking vertex: (v0,v2,v1) with flatshade_first, else (v1,v0,v2).
-        if (in.flatshade_first)
-            std::swap(order[1], order[2]);
-        else
-            std::swap(order[0], order[1]);
-    }
+    int order[3];
+    ccw_order(ccw, in.flatshade_first, order);
     int32_t vx[3], vy[3];
     for (int i = 0; i < 3; ++i) {
         vx[i] = x[order[i]], vy[i] = y[order[i]];
@@ -205,19 +244,22 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
     out->front_facing = front;
     out->is_triangle = true;
     // Edge i -> j: E = DY*(x_i - X) - DX*(y_i - Y) + bias, i.e. a = -DY, b = DX, c = DY*x_i - DX*y_i + bias,
-    // bias = 1 when DY < 0 || (DY == 0 && DX > 0) (top-left rule, y down).
+    // bias = 1 when DY < 0 || (DY == 0 && DX > 0) (top-left rule, y down); DX < 0 with the bottom-left rule.
     for (int i = 0; i < 3; ++i) {
         const int j = (i + 1) % 3;
         const int32_t dy = vy[i] - vy[j], dx = vx[i] - vx[j];
-        const int64_t bias = (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
+        const bool horizontal_bias = in.bottom_edge_rule ? dx < 0 : dx > 0;
+        const int64_t bias = (dy < 0 || (dy == 0 && horizontal_bias)) ? 1 : 0;
         out->planes[i] = {int64_t{dy} * vx[i] - int64_t{dx} * vy[i] + bias, -dy, dx};
     }
     out->num_shape_planes = 3;
-    // Inclusive pixel box: x0 = minX>>8, x1 = (maxX-1)>>8 (arithmetic shifts = floor).
+    // Inclusive pixel box: x0 = minX>>8, x1 = (maxX-1)>>8 (arithmetic shifts = floor); y likewise, one unit
+    // lower with the bottom-left rule (lp_setup_tri.c's adj).
     const int32_t minx = std::min({vx[0], vx[1], vx[2]}), maxx = std::max({vx[0], vx[1], vx[2]});
     const int32_t miny = std::min({vy[0], vy[1], vy[2]}), maxy = std::max({vy[0], vy[1], vy[2]});
-    const int32_t px0 = minx >> kSubpixelBits, py0 = miny >> kSubpixelBits;
-    const int32_t px1 = (maxx - 1) >> kSubpixelBits, py1 = (maxy - 1) >> kSubpixelBits;
+    const int32_t adj = in.bottom_edge_rule ? 1 : 0;
+    const int32_t px0 = minx >> kSubpixelBits, py0 = (miny + adj) >> kSubpixelBits;
+    const int32_t px1 = (maxx - 1) >> kSubpixelBits, py1 = (maxy - 1 + adj) >> kSubpixelBits;
     if (samples > 1)  // lp_setup_tri.c's bbox is the pixel box itself
         return finish_box_msaa(px0, py0, px1, py1, {px0, py0, px1, py1}, in.common, samples, fb, false, false, out);
     return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/false, /*force_max=*/false, out);

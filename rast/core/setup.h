@@ -14,7 +14,7 @@ namespace tilevk::rast {
 // At most one plane per side beyond the shape planes, so kMaxPlanes = 4 + 4.
 // A plane in pixel units (see tile_kernels.h): with d[s] the sample offsets, the plane at pixel (px, py) and sample s
 // is > 0 iff c0 + d[s] + a*px + b*py > 0, where c0 + d[s] = ceil((c + a*sx_s + b*sy_s) / 256). Precomputed once per
-// primitive so that a tile costs one 64-bit multiply-add per plane and no division. |c0| < 2^39, |d| < 2^24.
+// primitive so that a tile costs one 64-bit multiply-add per plane and no division. |c0| < 2^39 (2^48 in the wide range), |d| < 2^24.
 struct PixelPlane {
     int64_t c0;
     int32_t a, b;
@@ -40,12 +40,15 @@ struct Prim {
     float fx[3] = {}, fy[3] = {};  // float window coords in plane order (float method only)
 };
 
-enum BinCmdFlags : uint32_t { kBinPartial = 0, kBinWholeTile = 1 };
-
+// A tile's command: primitive `prim` of the scene, binned as a whole-tile command or not. The primitive's payload
+// is copied here so that the tile loop can hand it to the consumer's prefetch hint commands ahead without first
+// reading the primitive (a cache miss of its own).
 struct BinCmd {
-    uint32_t prim;
-    uint32_t flags;
+    uint32_t prim : 31;
+    uint32_t whole_tile : 1;
+    uint32_t payload;
 };
+static_assert(sizeof(BinCmd) == 8);
 
 // Setup entry points; `fb` is the framebuffer as a clip rect. On kAccepted, *out is complete.
 SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out);

@@ -35,7 +35,7 @@ ThreadPool::~ThreadPool() {
 void ThreadPool::work(unsigned worker) {
     for (;;) {
         size_t task;
-        const std::function<void(unsigned, size_t)>* fn;
+        const FunctionRef<void(unsigned, size_t)>* fn;
         {
             std::lock_guard<std::mutex> lock(mutex_);
             if (next_task_ >= num_tasks_) return;
@@ -65,7 +65,7 @@ void ThreadPool::worker_main(unsigned worker) {
     }
 }
 
-void ThreadPool::run(size_t num_tasks, const std::function<void(unsigned, size_t)>& fn) {
+void ThreadPool::run(size_t num_tasks, FunctionRef<void(unsigned, size_t)> fn) {
     if (num_tasks == 0) return;
     if (threads_.empty() || num_tasks == 1) {
         for (size_t i = 0; i < num_tasks; ++i) fn(0, i);

@@ -3,10 +3,11 @@
 
 #include <condition_variable>
 #include <cstddef>
-#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "rast/core/function_ref.h"
 
 namespace tilevk::rast {
 
@@ -22,8 +23,9 @@ class ThreadPool {
     unsigned num_workers() const { return static_cast<unsigned>(threads_.size()) + 1; }
 
     // Calls fn(worker, task) for every task in [0, num_tasks), each exactly once, and returns when all are done.
-    // Tasks are claimed in increasing order from an atomic counter; a task runs wholly on one worker.
-    void run(size_t num_tasks, const std::function<void(unsigned worker, size_t task)>& fn);
+    // Tasks are claimed in increasing order from an atomic counter; a task runs wholly on one worker. `fn` is
+    // only referenced (no allocation, whatever the lambda captures).
+    void run(size_t num_tasks, FunctionRef<void(unsigned worker, size_t task)> fn);
 
     static unsigned threads_from_env();  // TILEVK_THREADS or std::thread::hardware_concurrency()
 
@@ -34,7 +36,7 @@ class ThreadPool {
     std::vector<std::thread> threads_;
     std::mutex mutex_;
     std::condition_variable start_cv_, done_cv_;
-    const std::function<void(unsigned, size_t)>* fn_ = nullptr;
+    const FunctionRef<void(unsigned, size_t)>* fn_ = nullptr;
     size_t num_tasks_ = 0;
     size_t next_task_ = 0;     // guarded by mutex_
     unsigned generation_ = 0;  // guarded by mutex_

@@ -14,6 +14,8 @@
 // (-2^30, 2^30]. Lane offsets a*dx + b*dy with dx, dy <= 63 are below 2^30 too, so no sum overflows.
 #pragma once
 
+#include "rast/core/isa.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -47,7 +49,7 @@ inline constexpr int32_t kLaneRow[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 
 // Fills p->step, step4, up, dn from a, b (once per plane per tile; the levels reuse the tables). step4 is used at 4x
 // only; kStep4 = false skips it (1x).
 template <bool kStep4 = true>
-inline void fill_step_table_scalar(TilePlane* p) {
+TILEVK_KERNEL void fill_step_table_scalar(TilePlane* p) {
     p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
     p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
     for (int i = 0; i < 16; ++i) {
@@ -59,7 +61,7 @@ inline void fill_step_table_scalar(TilePlane* p) {
 #if TILEVK_SIMD_AVX2
 // The same integer products and sums as the scalar loop, eight lanes at a time.
 template <bool kStep4 = true>
-inline void fill_step_table_avx2(TilePlane* p) {
+TILEVK_KERNEL void fill_step_table_avx2(TilePlane* p) {
     p->up = (p->a > 0 ? p->a : 0) + (p->b > 0 ? p->b : 0);
     p->dn = (p->a < 0 ? p->a : 0) + (p->b < 0 ? p->b : 0);
     const __m256i a = _mm256_set1_epi32(p->a), b = _mm256_set1_epi32(p->b);
@@ -76,7 +78,7 @@ inline void fill_step_table_avx2(TilePlane* p) {
 #endif
 
 template <bool kStep4 = true>
-inline void fill_step_table(TilePlane* p) {
+TILEVK_KERNEL void fill_step_table(TilePlane* p) {
 #if TILEVK_SIMD_AVX2
     fill_step_table_avx2<kStep4>(p);
 #else
@@ -93,7 +95,7 @@ inline constexpr int32_t kRowOrder[16] = {0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7, 
 // not: q <= -31 or q >= 33 for integer r'). With AVX2 it is the hardware estimate (rcpss, 4 cycles), not a division
 // (11+ cycles once per plane and tile, on the path to every block's kernel); the portable build divides. The two can
 // differ in rinv, never in a mask: the estimate only picks T_est, which the integer tests make exact.
-inline float row_inverse(int32_t a) {
+TILEVK_KERNEL float row_inverse(int32_t a) {
     const int32_t ra = a < 0 ? -a : a;  // |a| < 2^23
     if (ra == 0) return -64.0f;
 #if TILEVK_SIMD_AVX2
@@ -103,8 +105,8 @@ inline float row_inverse(int32_t a) {
 #endif
 }
 
-// Fills the row-threshold fields (once per plane per tile, hier at 1x only; the shared tile_setup stays as it was).
-inline void fill_row_table(TilePlane* p) {
+// Fills the row-threshold fields (once per plane per tile, hier at 1x only; tile_setup does not touch them).
+TILEVK_KERNEL void fill_row_table(TilePlane* p) {
     const int32_t flip = p->a < 0 ? -1 : 0;
     const int32_t b = (p->b ^ flip) - flip;  // -b when negated
     p->ra = (p->a ^ flip) - flip;
@@ -118,8 +120,8 @@ inline void fill_row_table(TilePlane* p) {
 // bit i of *reject: the plane's maximum over sub-block i is <= 0; bit i of *accept: its minimum is > 0.
 // Corner value = base + (step[i] << shift) (one vector add over the step table), where base includes the extreme
 // corner offset (2^shift - 1)*(max(a,0)+max(b,0)) (reject) or (2^shift - 1)*(min(a,0)+min(b,0)) (accept).
-inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
-                              uint32_t* accept) {
+TILEVK_KERNEL void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
+                                     uint32_t* accept) {
     const int32_t origin = p.a * ox + p.b * oy;
     const int32_t hi = p.hi + origin + ((p.up << shift) - p.up);  // + (2^shift - 1)*up
     const int32_t lo = p.lo + origin + ((p.dn << shift) - p.dn);
@@ -133,7 +135,7 @@ inline void classify16_scalar(const TilePlane& p, int32_t ox, int32_t oy, int sh
 }
 
 // Pixel mask of one plane over a 4x4 block whose top-left pixel has value `base`: bit i set iff base + step[i] > 0.
-inline uint32_t plane_mask4x4_scalar(const TilePlane& p, int32_t base) {
+TILEVK_KERNEL uint32_t plane_mask4x4_scalar(const TilePlane& p, int32_t base) {
     uint32_t bits = 0;
     for (int i = 0; i < 16; ++i) bits |= static_cast<uint32_t>(base + p.step[i] > 0) << i;
     return bits;
@@ -141,7 +143,7 @@ inline uint32_t plane_mask4x4_scalar(const TilePlane& p, int32_t base) {
 
 // Pixel mask of a 4x4 block at tile-relative (ox, oy) for sample s: bit (y*4+x) set iff c[s] + a*(ox+x) +
 // b*(oy+y) > 0 for every plane.
-inline uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
+TILEVK_KERNEL uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
@@ -159,7 +161,7 @@ struct Block16Masks {
     uint32_t full, empty;
 };
 
-inline void block16_masks_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_masks_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     uint32_t full = 0, empty = 0;
     for (int lane = 0; lane < 16; ++lane) {
         uint32_t m = 0xFFFF;
@@ -193,7 +195,7 @@ inline void block16_masks_scalar(const TilePlane* const* planes, int n, const in
 // windows reach at most 15 px past the tile; negation adds 1); a'*T_est <= 18*2^23 < 2^28; so r + a'*T_est and
 // r + a'*(T_est - 1) stay below 2^30 + 2^25 + 2^28 < 2^31. The rows' masks of the planes are ANDed, and the sixteen
 // 16-bit rows are transposed into the sixteen 4x4 block masks (nibble x/4 of rows 4*by..4*by+3).
-inline uint32_t row_mask_scalar(const TilePlane& p, int32_t r) {
+TILEVK_KERNEL uint32_t row_mask_scalar(const TilePlane& p, int32_t r) {
     float q = std::fma(static_cast<float>(r), p.rinv, p.roff);
     q = std::min(std::max(q, 1.0f), 18.0f);
     int32_t t = static_cast<int32_t>(q);
@@ -202,7 +204,7 @@ inline uint32_t row_mask_scalar(const TilePlane& p, int32_t r) {
     return ((0xFFFFu << t) ^ static_cast<uint32_t>(p.rflip)) & 0xFFFFu;
 }
 
-inline void block16_rows_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_rows_scalar(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     uint32_t rows[16];
     for (int y = 0; y < 16; ++y) rows[y] = 0xFFFF;
     for (int k = 0; k < n; ++k) {
@@ -227,7 +229,7 @@ namespace avx2 {
 
 // Bit i set iff lane i of (v0, v1) is negative: one movemask per 8 lanes (the sign bit), no compare.
 // With v = value - 1 this is "value <= 0" (no overflow: every value is in (-2^30, 2^30], tile_kernels.h).
-inline uint32_t sign_bits(__m256i v0, __m256i v1) {
+TILEVK_KERNEL uint32_t sign_bits(__m256i v0, __m256i v1) {
     const uint32_t m0 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(v0)));
     const uint32_t m1 = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(v1)));
     return m0 | (m1 << 8);
@@ -235,7 +237,8 @@ inline uint32_t sign_bits(__m256i v0, __m256i v1) {
 
 }  // namespace avx2
 
-inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
+TILEVK_KERNEL void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
+                                   uint32_t* accept) {
     const int32_t origin = p.a * ox + p.b * oy;
     const int32_t hi = p.hi + origin + ((p.up << shift) - p.up);  // + (2^shift - 1)*up
     const int32_t lo = p.lo + origin + ((p.dn << shift) - p.dn);
@@ -250,14 +253,14 @@ inline void classify16_avx2(const TilePlane& p, int32_t ox, int32_t oy, int shif
     *accept = ~avx2::sign_bits(_mm256_add_epi32(vlo, t0), _mm256_add_epi32(vlo, t1)) & 0xFFFF;
 }
 
-inline uint32_t plane_mask4x4_avx2(const TilePlane& p, int32_t base) {
+TILEVK_KERNEL uint32_t plane_mask4x4_avx2(const TilePlane& p, int32_t base) {
     const __m256i b = _mm256_set1_epi32(base - 1);  // base + step > 0  <=>  base - 1 + step >= 0
     const __m256i t0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step));
     const __m256i t1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8));
     return ~avx2::sign_bits(_mm256_add_epi32(b, t0), _mm256_add_epi32(b, t1)) & 0xFFFF;
 }
 
-inline uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
+TILEVK_KERNEL uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
     uint32_t m = 0xFFFF;
     for (int k = 0; k < n; ++k) {
         const TilePlane& p = *planes[k];
@@ -271,7 +274,7 @@ inline uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s, int32
 // movemask gives the two 4x4 blocks of that half, in the block mask's bit order (y*4 + x), lane order by word.
 // kN = plane count known at compile time (0: use n, up to Prim::kMaxPlanes = 8).
 template <int kN>
-inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_masks_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     if constexpr (kN != 0) n = kN;
     constexpr int kMax = kN != 0 ? kN : 8;
     // Rows 1-3 of a block row and the next block row from the first row with one add each (short dependency chains).
@@ -337,7 +340,7 @@ inline void block16_masks_avx2(const TilePlane* const* planes, int n, const int3
 // leaks out, nothing below); the 16 rows are merged into words and transposed by nibbles (one shuffle, two
 // maddubs/madd pairs); full and empty lanes as in block16_masks_avx2.
 template <int kN>
-inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_rows_avx2(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
     if constexpr (kN != 0) n = kN;
     const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1), high = _mm256_set1_epi32(-65536);
     const __m256 flo = _mm256_set1_ps(1.0f), fhi = _mm256_set1_ps(18.0f);
@@ -372,7 +375,7 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
     const __m256i even = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(s, nib), m1), m2);
     const __m256i odd = _mm256_madd_epi16(_mm256_maddubs_epi16(_mm256_and_si256(_mm256_srli_epi16(s, 4), nib), m1), m2);
     const __m256i cov = _mm256_or_si256(even, _mm256_slli_epi32(odd, 16));
-    // One 32-byte store: the 1x emission (emit_partial_avx2) reads the masks back as one vector.
+    // One 32-byte store: the 1x emission (tile_raster.cpp emit_block16_1x) reads the masks back as one vector.
     _mm256_store_si256(reinterpret_cast<__m256i*>(out->mask), cov);
     const __m256i is_full = _mm256_cmpeq_epi16(cov, _mm256_set1_epi32(-1));
     const __m256i is_empty = _mm256_cmpeq_epi16(cov, zero);
@@ -384,7 +387,7 @@ inline void block16_rows_avx2(const TilePlane* const* planes, int n, const int32
 
 // The 1x 16x16 kernel the rasterizer uses (planes need fill_row_table): AVX2 when built with it, else the twin.
 template <int kN>
-inline void block16_rows(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_rows(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
 #if TILEVK_SIMD_AVX2
     block16_rows_avx2<kN>(planes, n, base, out);
 #else
@@ -394,7 +397,7 @@ inline void block16_rows(const TilePlane* const* planes, int n, const int32_t* b
 
 // The kernels the rasterizer uses: AVX2 when built with it, else the scalar twin.
 template <int kN>
-inline void block16_masks(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
+TILEVK_KERNEL void block16_masks(const TilePlane* const* planes, int n, const int32_t* base, Block16Masks* out) {
 #if TILEVK_SIMD_AVX2
     block16_masks_avx2<kN>(planes, n, base, out);
 #else
@@ -402,7 +405,8 @@ inline void block16_masks(const TilePlane* const* planes, int n, const int32_t* 
 #endif
 }
 
-inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject, uint32_t* accept) {
+TILEVK_KERNEL void classify16(const TilePlane& p, int32_t ox, int32_t oy, int shift, uint32_t* reject,
+                              uint32_t* accept) {
 #if TILEVK_SIMD_AVX2
     classify16_avx2(p, ox, oy, shift, reject, accept);
 #else
@@ -410,7 +414,7 @@ inline void classify16(const TilePlane& p, int32_t ox, int32_t oy, int shift, ui
 #endif
 }
 
-inline uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
+TILEVK_KERNEL uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int32_t ox, int32_t oy) {
 #if TILEVK_SIMD_AVX2
     return mask4x4_avx2(planes, n, s, ox, oy);
 #else
@@ -418,7 +422,7 @@ inline uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int32_t ox
 #endif
 }
 
-inline uint32_t plane_mask4x4(const TilePlane& p, int32_t base) {
+TILEVK_KERNEL uint32_t plane_mask4x4(const TilePlane& p, int32_t base) {
 #if TILEVK_SIMD_AVX2
     return plane_mask4x4_avx2(p, base);
 #else

@@ -1,5 +1,6 @@
 // Per-tile rasterization of one primitive: the hierarchy (hier), the bounding-box scan (bbox), the brute-force
-// oracle (reference) and the unsnapped float baseline (float).
+// oracle (reference) and the unsnapped float baseline (float). Built once per instruction set (rast/core/isa.h);
+// tile_dispatch.cpp calls the one the CPU runs.
 #include "rast/core/tile_raster.h"
 
 #include <algorithm>
@@ -11,7 +12,7 @@
 #include <immintrin.h>
 #endif
 
-namespace tilevk::rast {
+namespace tilevk::rast::TILEVK_ISA {
 
 namespace {
 
@@ -411,7 +412,7 @@ TileClass tile_setup_n(const Prim& prim, const TileGeom& tile, TilePlane* out, i
     const int64_t span = tile.size - 1;
     for (int k = 0; k < prim.num_planes; ++k) {
         const PixelPlane& p = prim.pix[k];
-        // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^39 + 2^38: 64-bit).
+        // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^48 + 2^38: 64-bit).
         const int64_t c = p.c0 + int64_t{p.a} * tile.x0 + int64_t{p.b} * tile.y0;
         const int64_t lo = c + p.dlo, hi = c + p.dhi;
         const int64_t min_v = lo + span * p.dn, max_v = hi + span * p.up;  // extremes over the tile
@@ -453,7 +454,7 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     }
     TilePlane planes[Prim::kMaxPlanes];
     int n = 0;
-    const TileClass cls = tile_setup(prim, tile, planes, &n);
+    const TileClass cls = TILEVK_ISA::tile_setup(prim, tile, planes, &n);
     const TilePlane* list[Prim::kMaxPlanes];
     for (int k = 0; k < Prim::kMaxPlanes; ++k) list[k] = &planes[k];  // all slots: a fixed loop, no branch on n
     if (cls == TileClass::kReject) return;
@@ -466,4 +467,4 @@ void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, 
     scan_blocks(prim, tile, list, n, r, scratch);  // bbox; hier's small-primitive path
 }
 
-}  // namespace tilevk::rast
+}  // namespace tilevk::rast::TILEVK_ISA

@@ -24,6 +24,7 @@ enum class TileClass { kReject, kWhole, kPartial };
 // if a plane is <= 0 over all of it, drops planes that are > 0 over all of it, and writes the others as 32-bit
 // TilePlanes (see tile_kernels.h for the proof); out may be null to classify only (binning). kWhole: no plane left and
 // the tile lies inside the prim's box.
+// Both run the instruction-set build cpu.h picks (tile_dispatch.cpp); isa_base:: and isa_avx2:: name the builds.
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
 
 // Fixed capacity: one primitive covers each 4x4 block of a tile at most once (<= (64/4)^2 = 256 blocks), and full
@@ -41,5 +42,14 @@ struct TileScratch {
 
 // Appends the coverage of `prim` in `tile` to scratch (cleared first). `whole` = binned as a whole-tile command.
 void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+
+namespace isa_base {
+TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
+void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+}  // namespace isa_base
+namespace isa_avx2 {
+TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
+void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+}  // namespace isa_avx2
 
 }  // namespace tilevk::rast

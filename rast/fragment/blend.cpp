@@ -3,32 +3,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "rast/fragment/blend_codes.h"
 #include "rast/fragment/block_kernels.h"
 
 namespace tilevk::rast::fragment {
 
 namespace {
-
-// Gallium's PIPE_BLENDFACTOR numbering: lavapipe's shortcut rules depend on it (complement = value ^ 0x10,
-// "src < dst" picks the lerp direction).
-enum PipeFactor : uint8_t {
-    kOne = 0x01,
-    kSrcColor = 0x02,
-    kSrcAlpha = 0x03,
-    kDstAlpha = 0x04,
-    kDstColor = 0x05,
-    kSrcAlphaSat = 0x06,
-    kConstColor = 0x07,
-    kConstAlpha = 0x08,
-    kZero = 0x11,
-    kInvSrcColor = 0x12,
-    kInvSrcAlpha = 0x13,
-    kInvDstAlpha = 0x14,
-    kInvDstColor = 0x15,
-    kInvConstColor = 0x17,
-    kInvConstAlpha = 0x18,
-    kUnsupported = 0xff,
-};
 
 PipeFactor to_pipe(BlendFactor f) {
     switch (f) {
@@ -81,7 +61,10 @@ PipeBlend lower(const BlendAttachment& a, const FormatInfo& fi) {
     if (b.a_op == BlendOp::Min || b.a_op == BlendOp::Max) b.a_src = b.a_dst = kOne;
     if (!fi.has_alpha) {
         // lp_state_fs.c force_dst_alpha_one; alpha equation := rgb equation
-        const bool clamped_zero = fi.kind == ChannelKind::Unorm8 || fi.kind == ChannelKind::Srgb8;
+        // clamped_zero: neither a float nor an SNORM format
+        const bool clamped_zero = fi.kind != ChannelKind::Half && fi.kind != ChannelKind::Float32 &&
+                                  fi.kind != ChannelKind::Ufloat11 && fi.kind != ChannelKind::Snorm8 &&
+                                  fi.kind != ChannelKind::Snorm16 && fi.kind != ChannelKind::PackedSnorm;
         auto fix = [&](PipeFactor f) {
             if (f == kDstAlpha) return kOne;
             if (f == kInvDstAlpha) return kZero;
@@ -104,6 +87,11 @@ bool complementary(PipeFactor s, PipeFactor d) {
 inline float sse_min(float a, float b) {
     return a < b ? a : b;
 }
+inline uint32_t bits_of(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
 inline float sse_max(float a, float b) {
     return a > b ? a : b;
 }
@@ -118,19 +106,46 @@ inline int mem_to_rgba(const FormatInfo& fi, int i) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// UNORM8
+// Integer blend types: UNORM8 (8 bits) and the 16-bit normalized ones (UNORM16, 2_10_10_10 widened to 16 bits);
+// the narrow packs (565, 4444, 5551) blend in 8 bits like UNORM8 (texel_codec.h, "integer blend types").
 
-struct Px8 {
-    uint8_t s[4], d[4], k[4];  // src, dst, constant (RGBA order; d[3] valid only with alpha)
-    uint8_t sa, ka;
+template <int N>
+struct PxN {
+    static constexpr uint32_t kMax = (1u << N) - 1u;
+    uint32_t s[4], d[4], k[4];  // src, dst, constant (RGBA order; d[3] valid only with alpha)
+    uint32_t sa, ka;
 };
 
-[[gnu::always_inline]] inline uint8_t factor8(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const Px8& p) {
+// lp_build_mul_norm: p = a*b; p += p >> N; p += 2^(N-1); p >> N
+template <int N>
+constexpr uint32_t mul_norm(uint32_t a, uint32_t b) {
+    uint32_t p = a * b;
+    p += p >> N;
+    p += 1u << (N - 1);
+    return p >> N;
+}
+
+// lp_build_lerp on a normalized type: 8 bits through PMULHRSW (lerp8); 16 bits widened to 32:
+// v0 + ((x + (x >> 15)) * (v1 - v0)) >> 16, the product and the sum wrapping like the vector lanes.
+template <int N>
+uint32_t lerp_norm(uint32_t x, uint32_t v0, uint32_t v1) {
+    if constexpr (N == 8) {
+        return lerp8(uint8_t(x), uint8_t(v0), uint8_t(v1));
+    } else {
+        const uint32_t xs = x + (x >> 15);
+        const uint32_t prod = xs * (v1 - v0);  // mod 2^32, as the 32-bit lanes
+        return (v0 + (prod >> 16)) & 0xffffu;
+    }
+}
+
+template <int N>
+[[gnu::always_inline]] inline uint32_t factor_n(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const PxN<N>& p) {
+    constexpr uint32_t kMax = PxN<N>::kMax;
     switch (f) {
         case kZero:
             return 0;
         case kOne:
-            return 255;
+            return kMax;
         case kSrcColor:
             return p.s[c];
         case kSrcAlpha:
@@ -140,38 +155,40 @@ struct Px8 {
         case kDstAlpha:
             return p.d[3];
         case kSrcAlphaSat:
-            if (alpha_chan) return 255;
+            if (alpha_chan) return kMax;
             if (!has_alpha) return 0;
-            return p.sa < uint8_t(255 - p.d[3]) ? p.sa : uint8_t(255 - p.d[3]);
+            return p.sa < kMax - p.d[3] ? p.sa : kMax - p.d[3];
         case kConstColor:
             return p.k[c];
         case kConstAlpha:
             return p.ka;
         case kInvSrcColor:
-            return uint8_t(255 - p.s[c]);
+            return kMax - p.s[c];
         case kInvSrcAlpha:
-            return uint8_t(255 - p.sa);
+            return kMax - p.sa;
         case kInvDstColor:
-            return uint8_t(255 - p.d[c]);
+            return kMax - p.d[c];
         case kInvDstAlpha:
-            return uint8_t(255 - p.d[3]);
+            return kMax - p.d[3];
         case kInvConstColor:
-            return uint8_t(255 - p.k[c]);
+            return kMax - p.k[c];
         case kInvConstAlpha:
-            return uint8_t(255 - p.ka);
+            return kMax - p.ka;
         default:
             return 0;
     }
 }
 
-[[gnu::always_inline]] inline uint8_t func8(BlendOp op, uint8_t a, uint8_t b) {
+template <int N>
+[[gnu::always_inline]] inline uint32_t func_n(BlendOp op, uint32_t a, uint32_t b) {
+    constexpr uint32_t kMax = PxN<N>::kMax;
     switch (op) {
         case BlendOp::Add:
-            return uint8_t(a + b > 255 ? 255 : a + b);  // uadd.sat
+            return a + b > kMax ? kMax : a + b;  // uadd.sat
         case BlendOp::Subtract:
-            return uint8_t(a > b ? a - b : 0);  // usub.sat
+            return a > b ? a - b : 0;  // usub.sat
         case BlendOp::ReverseSubtract:
-            return uint8_t(b > a ? b - a : 0);
+            return b > a ? b - a : 0;
         case BlendOp::Min:
             return a < b ? a : b;
         case BlendOp::Max:
@@ -180,27 +197,40 @@ struct Px8 {
     return 0;
 }
 
-void blend_unorm8(const PipeBlend& b, const FormatInfo& fi, Px8& p, uint8_t out[4]) {
-    const int n = fi.channels;
-    const int chans[4] = {0, 1, 2, 3};
+// `n` colour channels, RGBA indices 0..n-1 (every channel when the format has alpha).
+template <int N>
+void blend_norm(const PipeBlend& b, const FormatInfo& fi, int n, const PxN<N>& p, uint32_t out[4]) {
     // Single-channel targets: lavapipe's "not alpha dependent" lerp for complementary factors with ADD.
     if (n == 1 && b.rgb_op == BlendOp::Add && complementary(b.rgb_src, b.rgb_dst)) {
         if (b.rgb_src < b.rgb_dst)
-            out[0] = lerp8(factor8(b.rgb_src, 0, false, false, p), p.d[0], p.s[0]);
+            out[0] = lerp_norm<N>(factor_n<N>(b.rgb_src, 0, false, false, p), p.d[0], p.s[0]);
         else
-            out[0] = lerp8(factor8(b.rgb_dst, 0, false, false, p), p.s[0], p.d[0]);
+            out[0] = lerp_norm<N>(factor_n<N>(b.rgb_dst, 0, false, false, p), p.s[0], p.d[0]);
         return;
     }
-    for (int i = 0; i < n; ++i) {
-        const int c = chans[i];
+    for (int c = 0; c < n; ++c) {
         const bool alpha_chan = fi.has_alpha && c == 3;
         const PipeFactor sf = alpha_chan ? b.a_src : b.rgb_src;
         const PipeFactor df = alpha_chan ? b.a_dst : b.rgb_dst;
         const BlendOp op = alpha_chan ? b.a_op : b.rgb_op;
-        const uint8_t st = mul_norm8(p.s[c], factor8(sf, c, alpha_chan, fi.has_alpha, p));
-        const uint8_t dt = mul_norm8(p.d[c], factor8(df, c, alpha_chan, fi.has_alpha, p));
-        out[c] = func8(op, st, dt);
+        const uint32_t st = mul_norm<N>(p.s[c], factor_n<N>(sf, c, alpha_chan, fi.has_alpha, p));
+        const uint32_t dt = mul_norm<N>(p.d[c], factor_n<N>(df, c, alpha_chan, fi.has_alpha, p));
+        out[c] = func_n<N>(op, st, dt);
     }
+}
+
+// The number of colour channels a format blends (RGBA indices 0..n-1).
+inline int colour_channels(const FormatInfo& fi) {
+    return fi.has_alpha ? 4 : fi.channels;
+}
+
+// A logic op on one channel of an integer blend type of `bits` bits (lp_build_logicop on the lanes' bits).
+inline uint32_t logic_op_bits(LogicOp op, uint32_t s, uint32_t d, int bits) {
+    const uint32_t mask = bits >= 32 ? 0xffffffffu : (1u << bits) - 1u;
+    uint32_t r = 0;
+    for (int byte = 0; byte < 4; ++byte)
+        r |= uint32_t(logic_op8(op, uint8_t(s >> (8 * byte)), uint8_t(d >> (8 * byte)))) << (8 * byte);
+    return r & mask;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -364,66 +394,8 @@ void blend_float(const PipeBlend& b, const FormatInfo& fi, const PxF& p, float o
 // ---------------------------------------------------------------------------------------------------------------
 // Storage
 
-void load_u8(const FormatInfo& fi, const uint8_t* px, uint8_t rgba[4]) {
-    rgba[0] = rgba[1] = rgba[2] = 0;
-    rgba[3] = 255;
-    for (int i = 0; i < fi.channels; ++i) rgba[mem_to_rgba(fi, i)] = px[i];
-}
-
-void store_u8(const FormatInfo& fi, const uint8_t rgba[4], uint8_t mask, uint8_t* px) {
-    for (int i = 0; i < fi.channels; ++i) {
-        const int c = mem_to_rgba(fi, i);
-        if (mask & (1u << c)) px[i] = rgba[c];
-    }
-}
-
-void load_f(const FormatInfo& fi, const uint8_t* px, float rgba[4], bool fused) {
-    rgba[0] = rgba[1] = rgba[2] = 0.0f;
-    rgba[3] = 1.0f;
-    for (int i = 0; i < fi.channels; ++i) {
-        const int c = mem_to_rgba(fi, i);
-        switch (fi.kind) {
-            case ChannelKind::Srgb8:
-                rgba[c] = c == 3 ? unorm8_to_float(px[i]) : srgb8_to_linear(px[i], fused);
-                break;
-            case ChannelKind::Half: {
-                uint16_t h;
-                std::memcpy(&h, px + 2 * i, 2);
-                rgba[c] = half_to_float(h);
-                break;
-            }
-            case ChannelKind::Float32:
-                std::memcpy(&rgba[c], px + 4 * i, 4);
-                break;
-            case ChannelKind::Unorm8:
-                rgba[c] = unorm8_to_float(px[i]);
-                break;
-        }
-    }
-}
-
-void store_f(const FormatInfo& fi, const float rgba[4], uint8_t mask, uint8_t* px, bool fused) {
-    for (int i = 0; i < fi.channels; ++i) {
-        const int c = mem_to_rgba(fi, i);
-        if (!(mask & (1u << c))) continue;
-        switch (fi.kind) {
-            case ChannelKind::Srgb8:
-                px[i] = c == 3 ? srgb_alpha_to_u8(rgba[c]) : linear_to_srgb8(rgba[c], fused);
-                break;
-            case ChannelKind::Half: {
-                const uint16_t h = float_to_half_rz(rgba[c]);
-                std::memcpy(px + 2 * i, &h, 2);
-                break;
-            }
-            case ChannelKind::Float32:
-                std::memcpy(px + 4 * i, &rgba[c], 4);
-                break;
-            case ChannelKind::Unorm8:
-                px[i] = float_to_unorm8(rgba[c]);
-                break;
-        }
-    }
-}
+// Stored pixels are read and written by the texel codec: UNORM8 bytes as they are (load_unorm8/store_unorm8),
+// sRGB/half/float through decode_color (the blend destination read) and encode_color (the fragment output).
 
 uint8_t format_write_mask(const FormatInfo& fi, uint8_t m) {
     uint8_t present = 0;
@@ -455,49 +427,104 @@ namespace {
 
 // Everything blend_pixel derives from the state alone, computed once per block instead of once per pixel.
 struct PreparedBlend {
-    FormatInfo fi;
+    const FormatInfo* fi;
     uint8_t wmask;  // write mask restricted to the format's channels
     bool blend;
-    PipeBlend pb;   // lowered state (valid when blend)
-    uint8_t k8[4];  // UNORM8 constants
-    float kf[4];    // float constants (sRGB: clamped)
+    bool logic;    // logic_op_enable on a target with an integer blend type
+    int int_bits;  // the integer blend type's bits (format::blend_type_bits), 0: float blending
+    LogicOp logic_op;
+    PipeBlend pb;    // lowered state (valid when blend)
+    uint8_t k8[4];   // UNORM8 constants
+    uint32_t kn[4];  // constants in the integer blend type
+    float kf[4];     // float constants (sRGB: clamped)
     bool ftz;
 };
 
 PreparedBlend prepare_blend(const BlendAttachment& a, ColorFormat f, const float constants[4],
                             const BlendOptions& opt) {
     PreparedBlend pr{};
-    pr.fi = format_info(f);
-    pr.wmask = format_write_mask(pr.fi, a.write_mask);
-    pr.blend = a.blend_enable;
-    if (pr.blend) pr.pb = lower(a, pr.fi);
-    pr.ftz = pr.fi.kind != ChannelKind::Half;  // half targets run with denormals enabled (lp_build_fpstate)
+    pr.fi = &format_info(f);
+    pr.wmask = format_write_mask(*pr.fi, a.write_mask);
+    pr.int_bits = format::blend_type_bits(*pr.fi);
+    // A logic op disables blending on every target; it combines the bits of targets with an integer blend type
+    // (lp_bld_blend_aos.c: "if (!type.floating)"), float targets take the source. Only UNORM kinds blend (lavapipe
+    // reports no COLOR_ATTACHMENT_BLEND for SNORM and integer formats).
+    const bool unorm = pr.fi->kind == ChannelKind::Unorm8 || pr.fi->kind == ChannelKind::Unorm16 ||
+                       pr.fi->kind == ChannelKind::PackedUnorm;
+    pr.blend = a.blend_enable && !a.logic_op_enable && (unorm || pr.int_bits == 0);
+    pr.logic = a.logic_op_enable && pr.int_bits != 0;
+    pr.logic_op = a.logic_op;
+    if (pr.blend) pr.pb = lower(a, *pr.fi);
+    // half and B10G11R11 targets run with denormals enabled (lp_build_fpstate around small-float formats)
+    pr.ftz = pr.fi->kind != ChannelKind::Half && pr.fi->kind != ChannelKind::Ufloat11;
     for (int c = 0; c < 4; ++c) {
         pr.k8[c] = float_to_unorm8(constants[c], opt.unorm_path);
+        if (pr.int_bits) pr.kn[c] = format::output_to_blend_type(*pr.fi, bits_of(constants[c]), opt.unorm_path);
         // constants: lp_build_clamp (min then max) for sRGB
-        pr.kf[c] = pr.fi.kind == ChannelKind::Srgb8 ? sse_max(sse_min(constants[c], 1.0f), 0.0f) : constants[c];
+        pr.kf[c] = pr.fi->kind == ChannelKind::Srgb8 ? sse_max(sse_min(constants[c], 1.0f), 0.0f) : constants[c];
     }
     return pr;
 }
 
+template <int N>
+void blend_norm_pixel(const PreparedBlend& pr, const uint32_t s[4], const uint32_t d[4], uint32_t out[4]) {
+    PxN<N> p;
+    for (int c = 0; c < 4; ++c) {
+        p.s[c] = s[c];
+        p.d[c] = d[c];
+        p.k[c] = pr.kn[c];
+    }
+    p.sa = p.s[3];
+    p.ka = p.k[3];
+    blend_norm<N>(pr.pb, *pr.fi, colour_channels(*pr.fi), p, out);
+}
+
+// Targets with an integer blend type other than UNORM8: the source in the blend type, the stored texel widened to
+// it, blend or logic op, the write mask selecting the stored value, and every channel narrowed back.
+void blend_int_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, const BlendOptions& opt) {
+    const FormatInfo& fi = *pr.fi;
+    uint32_t s[4], d[4], out[4];
+    for (int c = 0; c < 4; ++c) s[c] = out[c] = format::output_to_blend_type(fi, bits_of(src[c]), opt.unorm_path);
+    format::load_blend_type(fi, dst, d);
+    if (pr.blend) {
+        if (pr.int_bits == 8)
+            blend_norm_pixel<8>(pr, s, d, out);
+        else
+            blend_norm_pixel<16>(pr, s, d, out);
+    } else if (pr.logic) {
+        for (int c = 0; c < 4; ++c) out[c] = logic_op_bits(pr.logic_op, s[c], d[c], pr.int_bits);
+    }
+    for (int c = 0; c < 4; ++c)
+        if (!(pr.wmask & (1u << c))) out[c] = d[c];
+    format::store_blend_type(fi, out, dst);
+}
+
 void blend_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, const BlendOptions& opt) {
-    const FormatInfo& fi = pr.fi;
+    const FormatInfo& fi = *pr.fi;
     if (fi.kind == ChannelKind::Unorm8) {
-        Px8 p;
+        PxN<8> p;
         for (int c = 0; c < 4; ++c) {
             p.s[c] = float_to_unorm8(src[c], opt.unorm_path);
             p.k[c] = pr.k8[c];
         }
         p.sa = p.s[3];
         p.ka = p.k[3];
-        uint8_t out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
-        if (pr.blend) {
-            load_u8(fi, dst, p.d);
-            blend_unorm8(pr.pb, fi, p, out);
+        uint32_t out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
+        if (pr.blend || pr.logic) {
+            uint8_t d8[4];
+            format::load_unorm8(fi, dst, d8);
+            for (int c = 0; c < 4; ++c) p.d[c] = d8[c];
         }
-        store_u8(fi, out, pr.wmask, dst);
+        if (pr.blend) {
+            blend_norm<8>(pr.pb, fi, fi.channels, p, out);
+        } else if (pr.logic) {
+            for (int c = 0; c < 4; ++c) out[c] = logic_op8(pr.logic_op, uint8_t(p.s[c]), uint8_t(p.d[c]));
+        }
+        const uint8_t out8[4] = {uint8_t(out[0]), uint8_t(out[1]), uint8_t(out[2]), uint8_t(out[3])};
+        format::store_unorm8(fi, out8, dst, pr.wmask);
         return;
     }
+    if (pr.int_bits) return blend_int_prepared(pr, src, dst, opt);
     PxF p;
     p.ftz = pr.ftz;
     for (int c = 0; c < 4; ++c) {
@@ -513,12 +540,12 @@ void blend_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, c
     p.ka = p.k[3];
     float out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
     if (pr.blend) {
-        load_f(fi, dst, p.d, opt.fused);
+        format::decode_color(fi, dst, p.d, opt.fused);
         blend_float(pr.pb, fi, p, out, opt.fused);
     }
     // Masked-out channels keep their stored bits (lavapipe re-encodes the decoded dst; the round trip is exact,
     // see the sRGB round-trip test).
-    store_f(fi, out, pr.wmask, dst, opt.fused);
+    format::encode_color(fi, out, dst, opt.fused, UnormPath::Avx8, pr.wmask);
 }
 
 // Opaque RGBA8/BGRA8 UNORM write of every channel: the bytes are the converted source, nothing is read.
@@ -549,14 +576,14 @@ void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[
                  uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt) {
     const PreparedBlend pr = prepare_blend(a, f, constants, opt);
     if (pr.wmask == 0 || lane_mask == 0) return;
-    if (pr.fi.kind == ChannelKind::Unorm8 && !pr.blend && pr.fi.channels == 4 && pr.wmask == 0xf) {
-        store_rgba8_block(pr.fi.bgra, src, lane_mask, block, pitch, opt.unorm_path);
+    if (pr.fi->kind == ChannelKind::Unorm8 && !pr.blend && !pr.logic && pr.fi->channels == 4 && pr.wmask == 0xf) {
+        store_rgba8_block(pr.fi->bgra, src, lane_mask, block, pitch, opt.unorm_path);
         return;
     }
     for (int l = 0; l < kBlockLanes; ++l) {
         if (!(lane_mask & (1u << l))) continue;
         const float s[4] = {src[0][l], src[1][l], src[2][l], src[3][l]};
-        uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * pr.fi.bytes;
+        uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * pr.fi->bytes;
         blend_prepared(pr, s, px, opt);
     }
 }
@@ -568,11 +595,11 @@ Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const fl
                                const BlendOptions& opt) {
     Rgba8Blend b;
     if ((f != ColorFormat::R8G8B8A8_UNORM && f != ColorFormat::B8G8R8A8_UNORM) || opt.unorm_path != UnormPath::Avx8 ||
-        !blend_supported(a))
+        !blend_supported(a) || a.logic_op_enable)
         return b;
     const PreparedBlend pr = prepare_blend(a, f, constants, opt);
     b.ok = true;
-    b.bgra = pr.fi.bgra;
+    b.bgra = pr.fi->bgra;
     b.blend = pr.blend;
     if (pr.blend) {
         b.rgb_src = pr.pb.rgb_src;
@@ -583,138 +610,11 @@ Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const fl
         b.a_op = pr.pb.a_op;
     }
     for (int i = 0; i < 4; ++i) {
-        const int c = mem_to_rgba(pr.fi, i);
+        const int c = mem_to_rgba(*pr.fi, i);
         b.k[i] = pr.k8[c];
         if (pr.wmask & (1u << c)) b.wmask_mem |= uint8_t(1u << i);
     }
     return b;
-}
-
-#if TILEVK_SIMD_AVX2
-namespace {
-
-// mul_norm8 on 32 bytes: p = a*b; p += p >> 8; p += 0x80; p >> 8, in 16-bit lanes.
-inline __m256i mul_norm_epu8(__m256i a, __m256i b) {
-    const __m256i zero = _mm256_setzero_si256(), half = _mm256_set1_epi16(0x80);
-    auto part = [&](__m256i x, __m256i y) {
-        __m256i p = _mm256_mullo_epi16(x, y);
-        p = _mm256_add_epi16(p, _mm256_srli_epi16(p, 8));
-        return _mm256_srli_epi16(_mm256_add_epi16(p, half), 8);
-    };
-    const __m256i lo = part(_mm256_unpacklo_epi8(a, zero), _mm256_unpacklo_epi8(b, zero));
-    const __m256i hi = part(_mm256_unpackhi_epi8(a, zero), _mm256_unpackhi_epi8(b, zero));
-    return _mm256_packus_epi16(lo, hi);
-}
-
-// factor8 for every byte: `alpha` selects the alpha channel's rules (SRC_ALPHA_SATURATE is ONE there).
-inline __m256i factor_epu8(uint8_t f, bool alpha, __m256i s, __m256i d, __m256i k) {
-    const __m256i ones = _mm256_set1_epi8(-1);
-    const __m256i bcast_alpha = _mm256_setr_epi8(3, 3, 3, 3, 7, 7, 7, 7, 11, 11, 11, 11, 15, 15, 15, 15, 3, 3, 3, 3, 7,
-                                                 7, 7, 7, 11, 11, 11, 11, 15, 15, 15, 15);
-    switch (PipeFactor(f)) {
-        case kZero:
-            return _mm256_setzero_si256();
-        case kOne:
-            return ones;
-        case kSrcColor:
-            return s;
-        case kSrcAlpha:
-            return _mm256_shuffle_epi8(s, bcast_alpha);
-        case kDstColor:
-            return d;
-        case kDstAlpha:
-            return _mm256_shuffle_epi8(d, bcast_alpha);
-        case kSrcAlphaSat:
-            // min(src alpha, 255 - dst alpha)
-            if (alpha) return ones;
-            return _mm256_min_epu8(_mm256_shuffle_epi8(s, bcast_alpha),
-                                   _mm256_xor_si256(_mm256_shuffle_epi8(d, bcast_alpha), ones));
-        case kConstColor:
-            return k;
-        case kConstAlpha:
-            return _mm256_shuffle_epi8(k, bcast_alpha);
-        case kInvSrcColor:
-            return _mm256_xor_si256(s, ones);  // 255 - x
-        case kInvSrcAlpha:
-            return _mm256_xor_si256(_mm256_shuffle_epi8(s, bcast_alpha), ones);
-        case kInvDstColor:
-            return _mm256_xor_si256(d, ones);
-        case kInvDstAlpha:
-            return _mm256_xor_si256(_mm256_shuffle_epi8(d, bcast_alpha), ones);
-        case kInvConstColor:
-            return _mm256_xor_si256(k, ones);
-        case kInvConstAlpha:
-            return _mm256_xor_si256(_mm256_shuffle_epi8(k, bcast_alpha), ones);
-        default:
-            return _mm256_setzero_si256();
-    }
-}
-
-// func8 on bytes: saturating add / subtract, min, max.
-inline __m256i op_epu8(BlendOp op, __m256i a, __m256i b) {
-    switch (op) {
-        case BlendOp::Add:
-            return _mm256_adds_epu8(a, b);
-        case BlendOp::Subtract:
-            return _mm256_subs_epu8(a, b);
-        case BlendOp::ReverseSubtract:
-            return _mm256_subs_epu8(b, a);
-        case BlendOp::Min:
-            return _mm256_min_epu8(a, b);
-        case BlendOp::Max:
-            return _mm256_max_epu8(a, b);
-    }
-    return a;
-}
-
-// Bytes of the channels in `mem_mask` (bit i = memory channel i) of every pixel.
-inline __m256i channel_bytes(uint8_t mem_mask) {
-    uint32_t word = 0;
-    for (int i = 0; i < 4; ++i)
-        if (mem_mask & (1u << i)) word |= 0xffu << (8 * i);
-    return _mm256_set1_epi32(int(word));
-}
-
-}  // namespace
-#endif
-
-bool blend_rgba8_block(const Rgba8Blend& b, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block,
-                       size_t pitch) {
-#if TILEVK_SIMD_AVX2
-    __m128i rows[4];
-    detail::pack_rgba8_rows(b.bgra, src, rows);
-    const uint32_t raster = lanes_to_raster(lane_mask);
-    const __m256i k = _mm256_set1_epi32(
-        int(uint32_t(b.k[0]) | uint32_t(b.k[1]) << 8 | uint32_t(b.k[2]) << 16 | uint32_t(b.k[3]) << 24));
-    const __m256i alpha_bytes = channel_bytes(0x8), write_bytes = channel_bytes(b.wmask_mem);
-    for (int pair = 0; pair < 2; ++pair) {
-        const uint32_t pixels = (raster >> (8 * pair)) & 0xffu;  // rows 2*pair and 2*pair+1, 4 pixels each
-        if (!pixels) continue;
-        uint8_t* row0 = block + size_t(2 * pair) * pitch;
-        uint8_t* row1 = row0 + pitch;
-        const __m256i s = _mm256_set_m128i(rows[2 * pair + 1], rows[2 * pair]);
-        const __m256i d = _mm256_set_m128i(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row1)),
-                                           _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0)));
-        __m256i res = s;
-        if (b.blend) {
-            // per channel: func(mul_norm(s, src factor), mul_norm(d, dst factor)), the alpha channel by its own rules
-            const __m256i sf = _mm256_blendv_epi8(factor_epu8(b.rgb_src, false, s, d, k),
-                                                  factor_epu8(b.a_src, true, s, d, k), alpha_bytes);
-            const __m256i df = _mm256_blendv_epi8(factor_epu8(b.rgb_dst, false, s, d, k),
-                                                  factor_epu8(b.a_dst, true, s, d, k), alpha_bytes);
-            const __m256i st = mul_norm_epu8(s, sf), dt = mul_norm_epu8(d, df);
-            res = _mm256_blendv_epi8(op_epu8(b.rgb_op, st, dt), op_epu8(b.a_op, st, dt), alpha_bytes);
-        }
-        const __m256i keep = _mm256_and_si256(write_bytes, detail::lane_mask8(pixels));
-        res = _mm256_blendv_epi8(d, res, keep);
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(row0), _mm256_castsi256_si128(res));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(row1), _mm256_extracti128_si256(res, 1));
-    }
-    return true;
-#else
-    (void)b, (void)src, (void)lane_mask, (void)block, (void)pitch;
-    return false;
-#endif
 }
 
 }  // namespace tilevk::rast::fragment

@@ -45,9 +45,75 @@ enum class BlendFactor : uint8_t {
 // Numbering mirrors VkBlendOp's first five values.
 enum class BlendOp : uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
 
+// Numbering mirrors VkLogicOp (s = source, d = destination): CLEAR 0, AND s&d, AND_REVERSE s&~d, COPY s,
+// AND_INVERTED ~s&d, NO_OP d, XOR, OR, NOR, EQUIVALENT ~(s^d), INVERT ~d, OR_REVERSE s|~d, COPY_INVERTED ~s,
+// OR_INVERTED ~s|d, NAND, SET.
+enum class LogicOp : uint8_t {
+    Clear,
+    And,
+    AndReverse,
+    Copy,
+    AndInverted,
+    NoOp,
+    Xor,
+    Or,
+    Nor,
+    Equivalent,
+    Invert,
+    OrReverse,
+    CopyInverted,
+    OrInverted,
+    Nand,
+    Set,
+};
+
+// The logic op on one 8-bit channel.
+constexpr uint8_t logic_op8(LogicOp op, uint8_t s, uint8_t d) {
+    switch (op) {
+        case LogicOp::Clear:
+            return 0;
+        case LogicOp::And:
+            return uint8_t(s & d);
+        case LogicOp::AndReverse:
+            return uint8_t(s & ~d);
+        case LogicOp::Copy:
+            return s;
+        case LogicOp::AndInverted:
+            return uint8_t(~s & d);
+        case LogicOp::NoOp:
+            return d;
+        case LogicOp::Xor:
+            return uint8_t(s ^ d);
+        case LogicOp::Or:
+            return uint8_t(s | d);
+        case LogicOp::Nor:
+            return uint8_t(~(s | d));
+        case LogicOp::Equivalent:
+            return uint8_t(~(s ^ d));
+        case LogicOp::Invert:
+            return uint8_t(~d);
+        case LogicOp::OrReverse:
+            return uint8_t(s | ~d);
+        case LogicOp::CopyInverted:
+            return uint8_t(~s);
+        case LogicOp::OrInverted:
+            return uint8_t(~s | d);
+        case LogicOp::Nand:
+            return uint8_t(~(s & d));
+        case LogicOp::Set:
+            return 0xff;
+    }
+    return s;
+}
+
 inline constexpr uint8_t kWriteR = 1, kWriteG = 2, kWriteB = 4, kWriteA = 8;
 
 struct BlendAttachment {
+    // A logic op replaces blending (lavapipe lp_bld_blend_aos.c): on UNORM8 targets it combines the converted
+    // source bytes with the stored bytes; float, half and sRGB targets take the source unblended (Vulkan: logic ops
+    // do not apply to those formats).
+    bool logic_op_enable = false;
+    LogicOp logic_op = LogicOp::Copy;
     bool blend_enable = false;
     BlendFactor src_color = BlendFactor::One;
     BlendFactor dst_color = BlendFactor::Zero;
@@ -89,12 +155,6 @@ struct Rgba8Blend {
 };
 Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const float constants[4],
                                const BlendOptions& opt = {});
-
-// blend_block for a prepared RGBA8 / BGRA8 state on a block whose 16 pixels all exist: 16 pixels at once with
-// AVX2 (mul_norm in 16-bit lanes, saturating 8-bit ops). Returns false, writing nothing, when built without AVX2:
-// blend_block is its scalar twin (tests/rast/fragment/kernel_test.cpp compares them).
-bool blend_rgba8_block(const Rgba8Blend& b, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block,
-                       size_t pitch);
 
 // 8-bit helpers, exposed for tests.
 // mul_norm(a, b) = (p + (p >> 8) + 0x80) >> 8 with p = a*b  (lp_build_mul_norm, 16-bit lanes)

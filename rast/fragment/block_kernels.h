@@ -8,6 +8,8 @@
 //   row 0 = lanes {0,1,4,5}, row 1 = {2,3,6,7}, row 2 = {8,9,12,13}, row 3 = {10,11,14,15}.
 #pragma once
 
+#include "rast/core/isa.h"
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -36,7 +38,7 @@ struct alignas(32) LaneCoords {
 inline constexpr float kLaneXf[kBlockLanes] = {0, 1, 0, 1, 2, 3, 2, 3, 0, 1, 0, 1, 2, 3, 2, 3};
 inline constexpr float kLaneYf[kBlockLanes] = {0, 0, 1, 1, 0, 0, 1, 1, 2, 2, 3, 3, 2, 2, 3, 3};
 
-inline void eval_plane_scalar(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
+TILEVK_KERNEL void eval_plane_scalar(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
     for (int l = 0; l < kBlockLanes; ++l) {
         // a = fmuladd(dady, py, fmuladd(dadx, px, a0))
         const float a = fused ? std::fma(p.dadx, c.x[l], p.a0) : p.dadx * c.x[l] + p.a0;
@@ -45,17 +47,17 @@ inline void eval_plane_scalar(const Plane& p, const LaneCoords& c, bool fused, f
 }
 
 // oow = fl(1 / w) per lane.
-inline void reciprocal_scalar(const float w[kBlockLanes], float oow[kBlockLanes]) {
+TILEVK_KERNEL void reciprocal_scalar(const float w[kBlockLanes], float oow[kBlockLanes]) {
     for (int l = 0; l < kBlockLanes; ++l) oow[l] = 1.0f / w[l];
 }
 
 // a = fl(a * oow) per lane (perspective_divide with the reciprocal hoisted; the same two roundings).
-inline void mul_lanes_scalar(float a[kBlockLanes], const float oow[kBlockLanes]) {
+TILEVK_KERNEL void mul_lanes_scalar(float a[kBlockLanes], const float oow[kBlockLanes]) {
     for (int l = 0; l < kBlockLanes; ++l) a[l] = a[l] * oow[l];
 }
 
 #if TILEVK_SIMD_AVX2
-inline void eval_plane_avx2(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
+TILEVK_KERNEL void eval_plane_avx2(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
     const __m256 dadx = _mm256_set1_ps(p.dadx), dady = _mm256_set1_ps(p.dady), a0 = _mm256_set1_ps(p.a0);
     for (int h = 0; h < kBlockLanes; h += 8) {
         const __m256 px = _mm256_load_ps(c.x + h), py = _mm256_load_ps(c.y + h);
@@ -71,27 +73,27 @@ inline void eval_plane_avx2(const Plane& p, const LaneCoords& c, bool fused, flo
     }
 }
 
-inline void reciprocal_avx2(const float w[kBlockLanes], float oow[kBlockLanes]) {
+TILEVK_KERNEL void reciprocal_avx2(const float w[kBlockLanes], float oow[kBlockLanes]) {
     const __m256 one = _mm256_set1_ps(1.0f);
     for (int h = 0; h < kBlockLanes; h += 8) _mm256_storeu_ps(oow + h, _mm256_div_ps(one, _mm256_loadu_ps(w + h)));
 }
 
 // a * oow with the reference's NaN choice: when both are NaN the result is oow's (quieted), as the scalar loop's
 // VMULSS (oow first) returns it. A plain _mm256_mul_ps would leave that to the compiler's operand order.
-inline __m256 mul_oow(__m256 a, __m256 oow) {
+TILEVK_KERNEL __m256 mul_oow(__m256 a, __m256 oow) {
     const __m256 oow_nan = _mm256_cmp_ps(oow, oow, _CMP_UNORD_Q);
     const __m256 quiet = _mm256_or_ps(oow, _mm256_castsi256_ps(_mm256_set1_epi32(0x00400000)));
     return _mm256_blendv_ps(_mm256_mul_ps(a, oow), quiet, oow_nan);
 }
 
-inline void mul_lanes_avx2(float a[kBlockLanes], const float oow[kBlockLanes]) {
+TILEVK_KERNEL void mul_lanes_avx2(float a[kBlockLanes], const float oow[kBlockLanes]) {
     for (int h = 0; h < kBlockLanes; h += 8)
         _mm256_storeu_ps(a + h, mul_oow(_mm256_loadu_ps(a + h), _mm256_loadu_ps(oow + h)));
 }
 #endif
 
 // lane coordinates: px = fl(fl(lane_x) + fl(block_x)) + off.x (exact for |coords| < 2^22)
-inline void make_lane_coords(int block_x, int block_y, EvalOffset off, LaneCoords& c) {
+TILEVK_KERNEL void make_lane_coords(int block_x, int block_y, EvalOffset off, LaneCoords& c) {
     const float bx = float(block_x), by = float(block_y);
     for (int l = 0; l < kBlockLanes; ++l) {
         c.x[l] = (kLaneXf[l] + bx) + off.x;
@@ -99,21 +101,21 @@ inline void make_lane_coords(int block_x, int block_y, EvalOffset off, LaneCoord
     }
 }
 
-inline void eval_plane_fast(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
+TILEVK_KERNEL void eval_plane_fast(const Plane& p, const LaneCoords& c, bool fused, float out[kBlockLanes]) {
 #if TILEVK_SIMD_AVX2
     eval_plane_avx2(p, c, fused, out);
 #else
     eval_plane_scalar(p, c, fused, out);
 #endif
 }
-inline void reciprocal_fast(const float w[kBlockLanes], float oow[kBlockLanes]) {
+TILEVK_KERNEL void reciprocal_fast(const float w[kBlockLanes], float oow[kBlockLanes]) {
 #if TILEVK_SIMD_AVX2
     reciprocal_avx2(w, oow);
 #else
     reciprocal_scalar(w, oow);
 #endif
 }
-inline void mul_lanes_fast(float a[kBlockLanes], const float oow[kBlockLanes]) {
+TILEVK_KERNEL void mul_lanes_fast(float a[kBlockLanes], const float oow[kBlockLanes]) {
 #if TILEVK_SIMD_AVX2
     mul_lanes_avx2(a, oow);
 #else
@@ -123,8 +125,8 @@ inline void mul_lanes_fast(float a[kBlockLanes], const float oow[kBlockLanes]) {
 
 // One shader input component straight into the shader's lane words (float bits): eval_plane, then * oow when
 // `oow` is not null (perspective). The AVX2 form stores through may_alias vector types; the scalar form copies.
-inline void interpolate_input(const Plane& p, const LaneCoords& c, bool fused, const float* oow,
-                              uint32_t out[kBlockLanes]) {
+TILEVK_KERNEL void interpolate_input(const Plane& p, const LaneCoords& c, bool fused, const float* oow,
+                                     uint32_t out[kBlockLanes]) {
 #if TILEVK_SIMD_AVX2
     const __m256 dadx = _mm256_set1_ps(p.dadx), dady = _mm256_set1_ps(p.dady), a0 = _mm256_set1_ps(p.a0);
     for (int h = 0; h < kBlockLanes; h += 8) {
@@ -157,11 +159,11 @@ struct DepthFast {
 };
 
 // True when `s` with format `f` can use the kernels below.
-inline bool depth_fast_supported(const DepthStencilState& s, DepthFormat f) {
+TILEVK_KERNEL bool depth_fast_supported(const DepthStencilState& s, DepthFormat f) {
     return s.depth_test && !s.stencil_test && (f == DepthFormat::D16 || f == DepthFormat::D32F);
 }
 
-inline DepthFast make_depth_fast(const DepthStencilState& s, DepthFormat f) {
+TILEVK_KERNEL DepthFast make_depth_fast(const DepthStencilState& s, DepthFormat f) {
     DepthFast d;
     d.state = &s;
     d.format = f;
@@ -177,8 +179,8 @@ inline DepthFast make_depth_fast(const DepthStencilState& s, DepthFormat f) {
 // Tests the lanes of `mask` of the block whose texel (0,0) is at `origin` (rows `pitch` bytes apart) against the
 // stored depth; with `write` (and depth writes enabled) passing lanes store their depth. Returns the passing lanes.
 // Only texels of `mask` lanes are touched. Equals depth_stencil_test with the stencil test off.
-inline uint16_t depth_block_scalar(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
-                                   size_t pitch, bool write) {
+TILEVK_KERNEL uint16_t depth_block_scalar(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
+                                          uint8_t* origin, size_t pitch, bool write) {
     const size_t bytes = d.format == DepthFormat::D16 ? 2 : 4;
     uint16_t pass = 0;
     for (int l = 0; l < kBlockLanes; ++l) {
@@ -206,19 +208,19 @@ inline uint16_t depth_block_scalar(const DepthFast& d, const float z[kBlockLanes
 #if TILEVK_SIMD_AVX2
 namespace detail {
 // Lanes of `bits` (8 lanes from bit 0) as an all-ones / zero vector.
-inline __m256i lane_mask8(uint32_t bits) {
+TILEVK_KERNEL __m256i lane_mask8(uint32_t bits) {
     const __m256i sel = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
     return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(bits)), sel), sel);
 }
 // Denormals (not zero) -> +0, as the DAZ clamps and compares see them.
-inline __m256 daz(__m256 v) {
+TILEVK_KERNEL __m256 daz(__m256 v) {
     const __m256 abs = _mm256_and_ps(v, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff)));
     const __m256 tiny = _mm256_cmp_ps(abs, _mm256_set1_ps(0x1p-126f), _CMP_LT_OQ);
     const __m256 nonzero = _mm256_cmp_ps(v, _mm256_setzero_ps(), _CMP_NEQ_UQ);
     return _mm256_andnot_ps(_mm256_and_ps(tiny, nonzero), v);
 }
 // a OP b on floats, unordered (NaN passes all but NEVER), as compare_float after DAZ.
-inline __m256 compare_ps(CompareOp op, __m256 a, __m256 b) {
+TILEVK_KERNEL __m256 compare_ps(CompareOp op, __m256 a, __m256 b) {
     switch (op) {
         case CompareOp::Never:
             return _mm256_setzero_ps();
@@ -240,7 +242,7 @@ inline __m256 compare_ps(CompareOp op, __m256 a, __m256 b) {
     return _mm256_castsi256_ps(_mm256_set1_epi32(-1));
 }
 // a OP b on non-negative int32 (D16 values < 2^16: the signed compares are the unsigned ones).
-inline __m256i compare_epi32(CompareOp op, __m256i a, __m256i b) {
+TILEVK_KERNEL __m256i compare_epi32(CompareOp op, __m256i a, __m256i b) {
     const __m256i ones = _mm256_set1_epi32(-1);
     switch (op) {
         case CompareOp::Never:
@@ -266,8 +268,8 @@ inline __m256i compare_epi32(CompareOp op, __m256i a, __m256i b) {
 
 // All 16 texels of the block must exist (the caller checks the framebuffer edge): whole rows are read and, when
 // a lane passes with writes on, written back (unchanged texels keep their bytes).
-inline uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
-                                 size_t pitch, bool write) {
+TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
+                                        size_t pitch, bool write) {
     const bool d16 = d.format == DepthFormat::D16;
     __m256i stored[2];
     if (d16) {
@@ -331,8 +333,8 @@ inline uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes],
 #endif
 
 // `inside`: all 16 texels of the block exist (else the scalar twin, which touches only `mask` lanes, runs).
-inline uint16_t depth_block_fast(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
-                                 size_t pitch, bool write, bool inside) {
+TILEVK_KERNEL uint16_t depth_block_fast(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
+                                        size_t pitch, bool write, bool inside) {
 #if TILEVK_SIMD_AVX2
     if (inside) return depth_block_avx2(d, z, mask, origin, pitch, write);
 #endif
@@ -344,8 +346,8 @@ inline uint16_t depth_block_fast(const DepthFast& d, const float z[kBlockLanes],
 // Opaque RGBA8 / BGRA8 store
 
 // The lanes of `mask` get float_to_unorm8(src) of every channel (bgra: stored B, G, R, A).
-inline void store_rgba8_scalar(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch,
-                               UnormPath path) {
+TILEVK_KERNEL void store_rgba8_scalar(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
+                                      size_t pitch, UnormPath path) {
     for (int l = 0; l < kBlockLanes; ++l) {
         if (!(mask & (1u << l))) continue;
         uint8_t* px = origin + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * 4;
@@ -362,7 +364,7 @@ inline void store_rgba8_scalar(bool bgra, const float src[4][kBlockLanes], uint1
 namespace detail {
 // The block's source colours as UNORM8 pixels in memory order (R G B A, or B G R A), raster rows 0..3.
 // u8 = packus(packs(cvtps2dq(fl(min(1, x) * 255)))): float_to_unorm8 with UnormPath::Avx8.
-inline void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i rows[4]) {
+TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i rows[4]) {
     const __m256 one = _mm256_set1_ps(1.0f), k255 = _mm256_set1_ps(255.0f);
     // bytes r0..r3 g0..g3 b0..b3 a0..a3 (per 128-bit half) -> pixels r g b a (or b g r a)
     const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
@@ -387,8 +389,8 @@ inline void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i 
 
 // UnormPath::Avx8 only. `inside`: all 16 pixels exist, so a partly covered row is read, merged and written back
 // whole (VPMASKMOVD stores are microcoded and slow on some CPUs); otherwise masked stores touch only `mask` pixels.
-inline void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch,
-                             bool inside) {
+TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
+                                    size_t pitch, bool inside) {
     __m128i rows[4];
     detail::pack_rgba8_rows(bgra, src, rows);
     const uint32_t raster = lanes_to_raster(mask);
@@ -412,8 +414,8 @@ inline void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_
 }
 #endif
 
-inline void store_rgba8_fast(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin, size_t pitch,
-                             UnormPath path, bool inside) {
+TILEVK_KERNEL void store_rgba8_fast(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
+                                    size_t pitch, UnormPath path, bool inside) {
 #if TILEVK_SIMD_AVX2
     if (path == UnormPath::Avx8) return store_rgba8_avx2(bgra, src, mask, origin, pitch, inside);
 #endif

@@ -14,22 +14,12 @@ inline float sse_max(float a, float b) {
     return a > b ? a : b;
 }
 
-inline uint32_t float_bits(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
 inline float bits_float(uint32_t u) {
     float f;
     std::memcpy(&f, &u, 4);
     return f;
 }
 
-// cvtps2dq: round half to even (MXCSR default), 0x80000000 for NaN and out-of-range.
-inline int32_t cvtps2dq(float f) {
-    if (!(f >= -2147483648.0f && f < 2147483648.0f)) return INT32_MIN;
-    return int32_t(std::nearbyint(f));
-}
 }  // namespace
 
 float clamp_depth(float z, const DepthStencilState& s, DepthFormat f) {
@@ -40,39 +30,6 @@ float clamp_depth(float z, const DepthStencilState& s, DepthFormat f) {
     if (restrict01) z = sse_max(sse_min(z, 1.0f), 0.0f);
     if (s.depth_clamp) z = sse_max(sse_min(z, s.max_depth), s.min_depth);
     return z;
-}
-
-uint32_t depth_to_stored(float z, DepthFormat f) {
-    switch (f) {
-        case DepthFormat::D16: {
-            // t = fl(z * (1 - 2^-16)); u = fl(t + 2^7); the low 16 mantissa bits are rne(t * 2^16)
-            const float t = z * (65535.0f / 65536.0f);
-            const float u = t + 128.0f;
-            return float_bits(u) & 0xffffu;
-        }
-        case DepthFormat::X8D24:
-            // rne(fl(z * (2^24 - 1)))
-            return uint32_t(cvtps2dq(z * 16777215.0f)) & 0xffffffu;
-        case DepthFormat::D32F:
-            return float_bits(z);
-        case DepthFormat::None:
-            break;
-    }
-    return 0;
-}
-
-float stored_to_depth(uint32_t bits, DepthFormat f) {
-    switch (f) {
-        case DepthFormat::D16:
-            return float(double(bits & 0xffffu) / 65535.0);
-        case DepthFormat::X8D24:
-            return float(double(bits & 0xffffffu) / 16777215.0);
-        case DepthFormat::D32F:
-            return bits_float(bits);
-        case DepthFormat::None:
-            break;
-    }
-    return 0.0f;
 }
 
 bool compare(CompareOp op, uint32_t a, uint32_t b) {

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "format/texel_codec.h"
 #include "rast/fragment/block.h"
 
 namespace tilevk::rast::fragment {
@@ -29,9 +30,10 @@ enum class StencilOp : uint8_t {
     DecrementAndWrap
 };
 
-// Depth storage. Stencil (S8) is always a separate 8-bit value per sample for these kernels;
-// D24S8 packing is the storage layer's business (z in bits 0..23, stencil in 24..31 for lavapipe's Z24_S8).
-enum class DepthFormat : uint8_t { None, D16, X8D24, D32F };
+// Depth storage (format/format.h): D16, X8D24 (24 bits in the low bits of a 32-bit word), D32F. Stencil (S8) is
+// always a separate 8-bit value per sample for these kernels; D24S8 packing is the storage layer's business (z in
+// bits 0..23, stencil in 24..31 for lavapipe's Z24_S8).
+using format::DepthFormat;
 
 struct StencilFace {
     StencilOp fail_op = StencilOp::Keep;
@@ -65,15 +67,11 @@ struct DepthStencilBlock {
 // z after lavapipe's restriction and depthClamp (lp_build_depth_clamp).
 float clamp_depth(float z, const DepthStencilState& s, DepthFormat f);
 
-// Float depth (already clamped to [0,1]) to the stored integer / bits.
+// Float depth (already clamped to [0,1]) to the stored integer / bits (format/texel_codec.h):
 //   D16: t = fl(z * (65535/65536)); u = fl(t + 128.0f); bits(u) & 0xFFFF   (== rne(t * 65536))
 //   D24: cvtps2dq(fl(z * 16777215.0f))  (round half to even)
 //   D32F: the float bits unchanged
-uint32_t depth_to_stored(float z, DepthFormat f);
-
-// Stored value back to float (for readback / resolve checks): D16 u/65535 etc. are NOT part of the
-// test path; this returns exact float(u) / (2^n - 1) in double rounded once, for tools and tests only.
-float stored_to_depth(uint32_t bits, DepthFormat f);
+using format::depth_to_stored;
 
 bool compare(CompareOp op, uint32_t a, uint32_t b);  // unsigned integer compare: a OP b
 bool compare_float(CompareOp op, float a, float b);  // unordered compares (NaN -> true), denormals as zero

@@ -50,15 +50,7 @@ float max4(float a, float b, float c, float d) {
 }  // namespace
 
 float unorm8_source(uint8_t u) {
-    return static_cast<float>(u) / 255.0f;
-}
-
-uint8_t float_to_ubyte(float f) {
-    if (!(f > 0.0f)) return 0;
-    if (f >= 1.0f) return 255;
-    const float t = f * (255.0f / 256.0f);
-    const float u = t + 32768.0f;
-    return static_cast<uint8_t>(std::bit_cast<uint32_t>(u) & 0xFF);
+    return unorm8_to_float(u);
 }
 
 bool linear_shade_copy(const LinearRegion& r, const float pos[12], const float input[12], bool perspective,

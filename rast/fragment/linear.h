@@ -47,10 +47,8 @@ bool linear_shade(const LinearRegion& r, const float pos[12], const float* input
                   const LinearChannels& ch, uint8_t* bgra, size_t row_pitch, const BlendAttachment* blend = nullptr,
                   const float blend_constants[4] = nullptr);
 
-// util/u_math.h float_to_ubyte: 0 for !(f > 0), 255 for f >= 1, else the low byte of fl(fl(f*255/256) + 32768).
-uint8_t float_to_ubyte(float f);
-
-// u / 255 as a float whose UNORM8 conversion (rne(x*255)) is u again (exposed for tests).
+// The float handed to blend_pixel for the 8-bit colour u: unorm8_to_float(u), whose UNORM8 fragment-output
+// conversion (rne(x*255)) is u again (exposed for tests).
 float unorm8_source(uint8_t u);
 
 }  // namespace tilevk::rast::fragment

@@ -1,8 +1,11 @@
 #include "rast/geometry/clip.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <utility>
+#include <vector>
 
 namespace tilevk::rast::geometry {
 namespace {
@@ -78,6 +81,90 @@ void interp(const ClipConfig& cfg, float* dst, float t, const float* out, const 
             interp4(dst + kAttribOffset + 4 * i, t_nopersp, attrib(in, i), attrib(out, i));
 }
 
+// Whether the float interpolation of a new vertex's position (interp4: out + t*(in - out), three roundings per
+// component) may be off by more than 1/1024 px in window x or y: each rounding errs by at most 2^-24 of its result,
+// so a component errs by about 2^-24 (|d t| + |t d| + |dst|) <= 2^-23 (|t d| + |dst|), and the window position
+// x/w * scale by (e_x + |x/w| e_w) / |w| * scale. Only cancellation between huge inputs gets there: ordinary
+// vertices err by 1e-5 px.
+bool interp_imprecise(const ClipConfig& cfg, const float* dst, float t, const float* in, const float* out) {
+    float e[4];
+    for (int i = 0; i < 4; ++i) e[i] = 0x1p-23f * (std::fabs(t * (in[i] - out[i])) + std::fabs(dst[i]));
+    const float w = std::fabs(dst[3]);
+    for (int i = 0; i < 2; ++i) {
+        const float px = (e[i] + std::fabs(dst[i] / dst[3]) * e[3]) / w * std::fabs(cfg.vp.scale[i]);
+        if (!(px <= 1.0f / 1024)) return true;  // NaN too
+    }
+    return false;
+}
+
+// The polygon a fan of clipped triangles came from, in window coordinates (clip_triangle_float's emit order).
+std::vector<std::array<double, 2>> fan_polygon(const ClipConfig& cfg, const ClippedTriangle* tri, uint32_t n) {
+    std::vector<std::array<double, 2>> p;
+    auto add = [&](const float* r) { p.push_back({win_pos(r)[0], win_pos(r)[1]}); };
+    if (cfg.flatshade_first) {
+        add(tri[0].v[0]);
+        for (uint32_t t = 0; t < n; ++t) add(tri[t].v[1]);
+        add(tri[n - 1].v[2]);
+    } else {
+        add(tri[0].v[2]);
+        for (uint32_t t = 0; t < n; ++t) add(tri[t].v[0]);
+        add(tri[n - 1].v[1]);
+    }
+    return p;
+}
+
+// The part of a polygon inside the viewport rectangle (Sutherland-Hodgman in double, in window coordinates).
+std::vector<std::array<double, 2>> inside_viewport(const ClipConfig& cfg, std::vector<std::array<double, 2>> p) {
+    const double lo[2] = {double(cfg.vp.translate[0]) - std::fabs(cfg.vp.scale[0]),
+                          double(cfg.vp.translate[1]) - std::fabs(cfg.vp.scale[1])};
+    const double hi[2] = {double(cfg.vp.translate[0]) + std::fabs(cfg.vp.scale[0]),
+                          double(cfg.vp.translate[1]) + std::fabs(cfg.vp.scale[1])};
+    for (int side = 0; side < 4 && !p.empty(); ++side) {
+        const int axis = side / 2;
+        const double limit = side % 2 ? hi[axis] : lo[axis];
+        auto inside = [&](const std::array<double, 2>& q) { return side % 2 ? q[axis] <= limit : q[axis] >= limit; };
+        std::vector<std::array<double, 2>> out;
+        for (size_t i = 0; i < p.size(); ++i) {
+            const std::array<double, 2>&a = p[i], &b = p[(i + 1) % p.size()];
+            if (inside(a)) out.push_back(a);
+            if (inside(a) != inside(b)) {
+                const double t = (limit - a[axis]) / (b[axis] - a[axis]);
+                out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+            }
+        }
+        p = std::move(out);
+    }
+    return p;
+}
+
+// Whether point q lies in polygon p (crossing test) or within `tol` of its boundary.
+bool near_polygon(const std::array<double, 2>& q, const std::vector<std::array<double, 2>>& p, double tol) {
+    bool in = false;
+    for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+        const std::array<double, 2>&a = p[i], &b = p[j];
+        if ((a[1] > q[1]) != (b[1] > q[1]) && q[0] < (b[0] - a[0]) * (q[1] - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
+        const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+        const double t = len2 > 0 ? std::clamp(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
+        const double ex = a[0] + t * dx - q[0], ey = a[1] + t * dy - q[1];
+        if (ex * ex + ey * ey <= tol * tol) return true;
+    }
+    return in;
+}
+
+// Whether two clip results cover the same part of the viewport up to half a fixed-point step (1/512 px): every
+// corner of either region lies in the other or that close to it (lavapipe's float result then rasterizes as the
+// precise one would, e.g. when its imprecise vertex lies far outside the viewport on a shared edge).
+bool same_visible_region(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
+                         uint32_t nb) {
+    const auto pa = inside_viewport(cfg, fan_polygon(cfg, a, na)), pb = inside_viewport(cfg, fan_polygon(cfg, b, nb));
+    if (pa.empty() || pb.empty()) return pa.empty() == pb.empty();
+    for (const auto& q : pa)
+        if (!near_polygon(q, pb, 1.0 / 512)) return false;
+    for (const auto& q : pb)
+        if (!near_polygon(q, pa, 1.0 / 512)) return false;
+    return true;
+}
+
 }  // namespace
 
 float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz, bool guard_band_xy) {
@@ -90,16 +177,12 @@ float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz, boo
     return s012 + m3;
 }
 
-uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,
-                       uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out) {
-    uint32_t clipmask = m0 | m1 | m2;
-    if (clipmask == 0) {
-        out[0] = {{v0, v1, v2}, kAllEdges, kAllEdges};
-        return 1;
-    }
-    if ((m0 & m1 & m2) != 0) return 0;
-    clipmask &= 0x3Fu;  // only the six frustum planes exist here (no user clip planes)
+namespace {
 
+// draw's do_clip_tri in float. *imprecise: a plane distance overflowed to Inf/NaN, or an intersection parameter
+// underflowed to 0 (FTZ) although the vertex was off the plane: the float result is not the triangle's clip.
+uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2,
+                             uint32_t clipmask, float* scratch, ClippedTriangle* out, bool* imprecise) {
     const uint32_t stride = vertex_floats(cfg.layout);
     // Vertex lists with, per position, the vertex's own edge flag (vertex_header.edgeflag: 1 for shaded
     // vertices) and the flag of the edge from this position to the next (the header's DRAW_PIPE_EDGE_FLAG_k).
@@ -131,7 +214,10 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         bool edge_prev = in_edge[0];
         bool xy_prev = in_xy[0];
         float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz, cfg.guard_band_xy);
-        if (is_inf_or_nan(dp_prev)) return 0;
+        if (is_inf_or_nan(dp_prev)) {
+            *imprecise = true;
+            return 0;
+        }
         if (n >= kMaxClippedVertices) return 0;
         inlist[n] = inlist[0];  // close the polygon without rotating it
         in_vflag[n] = in_vflag[0];
@@ -141,7 +227,10 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         for (uint32_t i = 1; i <= n; ++i) {
             const float* vert = inlist[i];
             const float dp = clip_plane_distance(clip_pos(vert), plane, cfg.clip_halfz, cfg.guard_band_xy);
-            if (is_inf_or_nan(dp)) return 0;
+            if (is_inf_or_nan(dp)) {
+                *imprecise = true;
+                return 0;
+            }
             bool different_sign;
             if (dp_prev >= 0.0f) {
                 if (outcount >= kMaxClippedVertices) return 0;
@@ -166,19 +255,17 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
                 outlist[outcount++] = nv;
                 const float denom = dp - dp_prev;
                 // Interpolate from the vertex nearer the plane so |t| <= 0.5.
-                if (dp < 0.0f) {  // going out
-                    if (-dp < dp_prev) {
-                        interp(cfg, nv, dp / denom, vert, vert_prev);
-                    } else {
-                        interp(cfg, nv, -dp_prev / denom, vert_prev, vert);
-                    }
-                } else {  // coming back in
-                    if (-dp_prev < dp) {
-                        interp(cfg, nv, -dp_prev / denom, vert_prev, vert);
-                    } else {
-                        interp(cfg, nv, dp / denom, vert, vert_prev);
-                    }
-                }
+                const bool from_vert = dp < 0.0f ? -dp < dp_prev : !(-dp_prev < dp);  // going out / coming back in
+                const float num = from_vert ? dp : -dp_prev;
+                const float t = num / denom;
+                *imprecise |= t == 0.0f && num != 0.0f;  // underflow, or flushed by FTZ as in lavapipe
+                if (from_vert)
+                    interp(cfg, nv, t, vert, vert_prev);
+                else
+                    interp(cfg, nv, t, vert_prev, vert);
+                if (!*imprecise)
+                    *imprecise = interp_imprecise(cfg, clip_pos(nv), t, clip_pos(from_vert ? vert_prev : vert),
+                                                  clip_pos(from_vert ? vert : vert_prev));
             }
             vert_prev = vert;
             vflag_prev = in_vflag[i];
@@ -230,6 +317,40 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         out[count++] = {{inlist[pos[0]], inlist[pos[1]], inlist[pos[2]]}, edges, corners};
     }
     return count;
+}
+
+}  // namespace
+
+uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,
+                       uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out) {
+    uint32_t clipmask = m0 | m1 | m2;
+    if (clipmask == 0) {
+        out[0] = {{v0, v1, v2}, kAllEdges, kAllEdges};
+        return 1;
+    }
+    if ((m0 & m1 & m2) != 0) return 0;
+    clipmask &= 0x3Fu;  // only the six frustum planes exist here (no user clip planes)
+    bool imprecise = false;
+    const uint32_t n = clip_triangle_float(cfg, v0, v1, v2, clipmask, scratch, out, &imprecise);
+    if (!cfg.precise_fallback || cfg.guard_band_xy || !clip_inputs_finite(v0, v1, v2)) return n;
+    const bool unrepresentable = clip_needs_precision(v0, v1, v2, out, n);
+    if (!imprecise && !unrepresentable) return n;
+    // The precise clip, into scratch of its own; adopted only when lavapipe's result is materially wrong: not
+    // rasterizable faithfully, or another polygon, or a vertex more than half a fixed-point step away.
+    const uint32_t stride = vertex_floats(cfg.layout);
+    thread_local std::vector<float> precise_scratch;
+    precise_scratch.resize(size_t(kClipScratchVertices) * stride);
+    ClippedTriangle precise[kMaxClippedTriangles];
+    const uint32_t pn = clip_triangle_precise(cfg, v0, v1, v2, clipmask, precise_scratch.data(), precise);
+    if (!unrepresentable && (pn == 0 || (n != 0 && same_visible_region(cfg, out, n, precise, pn)))) return n;
+    std::memcpy(scratch, precise_scratch.data(), sizeof(float) * precise_scratch.size());
+    const float* base = precise_scratch.data();
+    for (uint32_t t = 0; t < pn; ++t) {
+        out[t] = precise[t];
+        for (const float*& r : out[t].v)
+            if (r >= base && r < base + precise_scratch.size()) r = scratch + (r - base);
+    }
+    return pn;
 }
 
 bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t m0, uint32_t m1, float* scratch,

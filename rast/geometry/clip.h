@@ -25,6 +25,9 @@ struct ClipConfig {
     // |x|, |y| <= 2w. The clip mask (compute_clipmask) still tests the viewport, so a triangle crossing the
     // viewport edge enters the clipper, is cut only beyond the guard band, and is re-emitted as a fan.
     bool guard_band_xy = false;
+    // Re-clip in extended precision the triangles lavapipe's float clipper provably gets wrong (filled polygons;
+    // clip_triangle_precise). Off: draw's result always, e.g. for polygonMode LINE/POINT (edge flags).
+    bool precise_fallback = false;
 };
 
 // Edge bit k: the edge from v[k] to v[(k+1)%3] (k = 0, 1, 2) is drawn by polygonMode LINE, and v[k] is drawn by
@@ -56,6 +59,19 @@ struct ClippedTriangle {
 // the inputs or to scratch, so scratch must outlive the use of out[].
 uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2, uint32_t m0,
                        uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out);
+
+// A named difference from lavapipe (rast/geometry/README.md, "Extreme coordinates"): for a triangle with finite
+// clip coordinates whose float clip (draw's, above) overflowed (a plane distance of Inf), flushed an intersection
+// parameter to 0 (FTZ; a vertex beyond ~1e38 of a plane), or produced a vertex lavapipe's setup cannot snap
+// (|window coordinate| >= 2^23 px: INT_MIN) or an edge it cannot hold (>= 32768 px: wrapped 32-bit planes),
+// lavapipe draws the wrong pixels (often none); with ClipConfig::precise_fallback, clip_triangle clips such a
+// triangle again with 237-bit positions (clip_precise.cpp) and hands setup the rounded result.
+uint32_t clip_triangle_precise(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2,
+                               uint32_t clipmask, float* scratch, ClippedTriangle* out);
+// The tests of that decision: inputs with an exact answer in lavapipe's float environment (finite, |w| < 2^126),
+// and float output that lavapipe's setup cannot rasterize faithfully.
+bool clip_inputs_finite(const float* v0, const float* v1, const float* v2);
+bool clip_needs_precision(const float* v0, const float* v1, const float* v2, const ClippedTriangle* out, uint32_t n);
 
 // Line clip (do_clip_line: parametric t0/t1 per plane, discard when t0 + t1 >= 1). Returns false when discarded.
 // A clipped end is replaced by a scratch vertex (scratch: 2 records) with the provoking vertex's flat attributes.

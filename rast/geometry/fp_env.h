@@ -1,6 +1,6 @@
 // lavapipe runs draw (vertex shader, clipping, viewport, setup) and its rasterizer threads with denormals flushed:
-// FTZ and DAZ set in MXCSR, round to nearest even (notes §0.2). Wrap the geometry stage in this guard so the same
-// float operations give the same results, e.g. a subnormal clip distance or plane term becomes 0 as in lavapipe.
+// FTZ and DAZ set in MXCSR, round to nearest even (lavapipe-rules §0.2). Wrap the geometry stage in this guard so the
+// same float operations give the same results, e.g. a subnormal clip distance or plane term becomes 0 as in lavapipe.
 #pragma once
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -9,18 +9,30 @@
 
 namespace tilevk::rast::geometry {
 
+// The same for a span that is not one scope (a worker's tile, from begin_tile to end_tile): returns the state that
+// flush_denormals_end restores.
+inline unsigned flush_denormals_begin() {
+#if defined(__x86_64__) || defined(__i386__)
+    const unsigned saved = _mm_getcsr();
+    _mm_setcsr((saved | 0x8000u | 0x0040u) & ~0x6000u);  // FTZ | DAZ, round to nearest even
+    return saved;
+#else
+    return 0;
+#endif
+}
+inline void flush_denormals_end(unsigned saved) {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_setcsr(saved);
+#else
+    (void)saved;
+#endif
+}
+
 class ScopedFlushDenormals {
   public:
 #if defined(__x86_64__) || defined(__i386__)
-    static constexpr unsigned kFtz = 0x8000u;  // MXCSR flush-to-zero
-    static constexpr unsigned kDaz = 0x0040u;  // MXCSR denormals-are-zero
-    static constexpr unsigned kRoundMask = 0x6000u;
-    ScopedFlushDenormals() : saved_(_mm_getcsr()) {
-        _mm_setcsr((saved_ | kFtz | kDaz) & ~kRoundMask);
-    }
-    ~ScopedFlushDenormals() {
-        _mm_setcsr(saved_);
-    }
+    ScopedFlushDenormals() : saved_(flush_denormals_begin()) {}
+    ~ScopedFlushDenormals() { flush_denormals_end(saved_); }
 
   private:
     unsigned saved_;

@@ -17,7 +17,7 @@ int32_t cvtt(float f, bool* ok) {
     return static_cast<int32_t>(f);
 }
 
-// Edge plane from corner i to j with the top-left bias (lp_setup_line.c, also notes §2).
+// Edge plane from corner i to j with the top-left bias (lp_setup_line.c, also lavapipe-rules §2).
 FixedPlane edge(int32_t xi, int32_t yi, int32_t xj, int32_t yj) {
     const int64_t dy = static_cast<int64_t>(yi) - yj;  // dcdx before the << 8
     const int64_t dx = static_cast<int64_t>(xi) - xj;  // dcdy
@@ -65,170 +65,196 @@ int32_t subpixel_snap(float a, bool* ok) {
     return util_iround(256.0f * a, ok);
 }
 
-PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const float* v1, LineSetup* out,
-                           AttribPlane* attribs) {
-    const float* w1 = win_pos(v0);  // lavapipe's v1 = first vertex
-    const float* w2 = win_pos(v1);
-    const float* pv = cfg.flatshade_first ? v0 : v1;
-    float dx = w1[0] - w2[0];
-    float dy = w1[1] - w2[1];
-    const float area = dx * dx + dy * dy;
-    if (area == 0.0f) return PrimSetupStatus::kEmpty;
-    const float ooa = 1.0f / area;
-    float info_dx = dx, info_dy = dy;
-    // line and point snapping ignore the 0.5 offset in MSAA; coefficients below always use 0.5
-    const float po = cfg.multisample ? 0.0f : 0.5f;
-    // The attribute planes always use the draw-order vertices and the pre-swap dx/dy: lavapipe's lp_line_info
-    // keeps v1/v2 from before the Bresenham swap.
-    const float* c1 = v0;
-    const float* c2 = v1;
+namespace {
+
+// The Bresenham line's diamond-exit inputs (lp_setup_line.c): the ends' offsets from their pixel centres.
+struct DiamondLine {
+    const float* w1;
+    const float* w2;
+    float dx, dy;
+    float x1diff, y1diff, x2diff, y2diff;
+    int32_t fixed_width;  // util_iround(width) pixels, in fixed point
+    float po;             // the snap's pixel offset
+};
+
+// x-major Bresenham line: ends moved along x by the diamond-exit rule, util_iround(width) tall. Sets info_dx/dy
+// (lp_line_info's gradient inputs) and the corners; false when a snap is out of range.
+bool bresenham_x_major(DiamondLine l, float* info_dx, float* info_dy, int32_t x[4], int32_t y[4]) {
+    const float* w1 = l.w1;
+    const float* w2 = l.w2;
+    const float dx = l.dx, dy = l.dy;
+    float x1diff = l.x1diff, y1diff = l.y1diff, x2diff = l.x2diff, y2diff = l.y2diff;
+    const int32_t fixed_width = l.fixed_width;
+    const float po = l.po;
+    float x_off = 0, y_off = 0, x_off_end = 0, y_off_end = 0;
+    bool draw_start, draw_end;
     bool ok = true;
-    int32_t x[4], y[4];
-    if (cfg.mode == LineMode::kRectangular) {
-        // scale = (width*0.5)/sqrt(area); corners = snap(end) -/+ (snap(-dy*scale), snap(dx*scale))
-        const float scale = (cfg.width * 0.5f) / std::sqrt(area);
-        const int32_t tx = subpixel_snap(-dy * scale, &ok);
-        const int32_t ty = subpixel_snap(dx * scale, &ok);
-        const int32_t sx1 = subpixel_snap(w1[0] - po, &ok), sx2 = subpixel_snap(w2[0] - po, &ok);
-        const int32_t sy1 = subpixel_snap(w1[1] - po, &ok), sy2 = subpixel_snap(w2[1] - po, &ok);
-        if (!ok) return PrimSetupStatus::kOutOfRange;
-        const int64_t xs[4] = {int64_t{sx1} - tx, int64_t{sx2} - tx, int64_t{sx2} + tx, int64_t{sx1} + tx};
-        const int64_t ys[4] = {int64_t{sy1} - ty, int64_t{sy2} - ty, int64_t{sy2} + ty, int64_t{sy1} + ty};
-        for (int i = 0; i < 4; ++i) {
-            if (xs[i] < INT32_MIN || xs[i] > INT32_MAX || ys[i] < INT32_MIN || ys[i] > INT32_MAX)
-                return PrimSetupStatus::kOutOfRange;
-            x[i] = static_cast<int32_t>(xs[i]);
-            y[i] = static_cast<int32_t>(ys[i]);
+    const float* p1 = w1;
+    const float* p2 = w2;
+    const float dydx = dy / dx;
+    if (y2diff == -0.5f && dy < 0) y2diff = 0.5f;
+    if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
+        draw_start = true;
+    } else if (sign(x1diff) == sign(-dx)) {
+        draw_start = false;
+    } else if (sign(-y1diff) != sign(dy)) {
+        draw_start = true;
+    } else {
+        const float yi = fracf(w1[1]) + x1diff * dydx;
+        draw_start = yi < 1.0f && yi > 0.0f;
+    }
+    if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
+        draw_end = false;
+    } else if (sign(x2diff) != sign(-dx)) {
+        draw_end = false;
+    } else if (sign(-y2diff) == sign(dy)) {
+        draw_end = true;
+    } else {
+        const float yi = fracf(w2[1]) + x2diff * dydx;
+        draw_end = yi < 1.0f && yi > 0.0f;
+    }
+    const bool will_start = sign(-x1diff) != sign(dx);
+    const bool will_end = (sign(x2diff) == sign(-dx)) || x2diff == 0;
+    *info_dx = *info_dx * (1 + dydx * dydx);
+    *info_dy = 0;
+    // the offsets are C doubles (0.5 literal) stored to float
+    if (dx < 0) {
+        p1 = w2, p2 = w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
+        if (will_start != draw_start) {
+            x_off_end = static_cast<float>(static_cast<double>(-x1diff) - 0.5);
+            y_off_end = x_off_end * dydx;
+        }
+        if (will_end != draw_end) {
+            x_off = static_cast<float>(static_cast<double>(-x2diff) - 0.5);
+            y_off = x_off * dydx;
         }
     } else {
-        // Bresenham (VK_EXT_line_rasterization): a parallelogram along the major axis whose ends are moved by the
-        // diamond-exit rule, util_iround(width) pixels thick.
-        const float width = cfg.width < 1.0f ? 1.0f : cfg.width;  // MAX2(1.0, width)
-        const int32_t fixed_width = util_iround(width, &ok) * kFixedOne;
-        float x_off = 0, y_off = 0, x_off_end = 0, y_off_end = 0;
-        float x1diff = fracf(w1[0]) - 0.5f;
-        float y1diff = fracf(w1[1]) - 0.5f;
-        float x2diff = fracf(w2[0]) - 0.5f;
-        float y2diff = fracf(w2[1]) - 0.5f;
-        bool draw_start, draw_end;
-        const float* p1 = w1;
-        const float* p2 = w2;
-        if (std::fabs(dx) >= std::fabs(dy)) {  // x-major
-            const float dydx = dy / dx;
-            if (y2diff == -0.5f && dy < 0) y2diff = 0.5f;
-            if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
-                draw_start = true;
-            } else if (sign(x1diff) == sign(-dx)) {
-                draw_start = false;
-            } else if (sign(-y1diff) != sign(dy)) {
-                draw_start = true;
-            } else {
-                const float yi = fracf(w1[1]) + x1diff * dydx;
-                draw_start = yi < 1.0f && yi > 0.0f;
-            }
-            if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
-                draw_end = false;
-            } else if (sign(x2diff) != sign(-dx)) {
-                draw_end = false;
-            } else if (sign(-y2diff) == sign(dy)) {
-                draw_end = true;
-            } else {
-                const float yi = fracf(w2[1]) + x2diff * dydx;
-                draw_end = yi < 1.0f && yi > 0.0f;
-            }
-            const bool will_start = sign(-x1diff) != sign(dx);
-            const bool will_end = (sign(x2diff) == sign(-dx)) || x2diff == 0;
-            info_dx = info_dx * (1 + dydx * dydx);
-            info_dy = 0;
-            // the offsets are C doubles (0.5 literal) stored to float
-            if (dx < 0) {
-                p1 = w2, p2 = w1;
-                dx = -dx, dy = -dy;
-                if (will_start != draw_start) {
-                    x_off_end = static_cast<float>(static_cast<double>(-x1diff) - 0.5);
-                    y_off_end = x_off_end * dydx;
-                }
-                if (will_end != draw_end) {
-                    x_off = static_cast<float>(static_cast<double>(-x2diff) - 0.5);
-                    y_off = x_off * dydx;
-                }
-            } else {
-                if (will_start != draw_start) {
-                    x_off = static_cast<float>(static_cast<double>(-x1diff) + 0.5);
-                    y_off = x_off * dydx;
-                }
-                if (will_end != draw_end) {
-                    x_off_end = static_cast<float>(static_cast<double>(-x2diff) + 0.5);
-                    y_off_end = x_off_end * dydx;
-                }
-            }
-            const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
-            const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
-            const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
-            const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
-            if (!ok) return PrimSetupStatus::kOutOfRange;
-            x[0] = ax, x[1] = bx, x[2] = bx, x[3] = ax;
-            y[0] = ay - fixed_width / 2, y[1] = by - fixed_width / 2;
-            y[2] = by + fixed_width / 2, y[3] = ay + fixed_width / 2;
-        } else {  // y-major
-            const float dxdy = dx / dy;
-            if (x2diff == -0.5f && dx < 0) x2diff = 0.5f;
-            if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
-                draw_start = true;
-            } else if (sign(-y1diff) == sign(dy)) {
-                draw_start = false;
-            } else if (sign(x1diff) != sign(-dx)) {
-                draw_start = true;
-            } else {
-                const float xi = fracf(w1[0]) + y1diff * dxdy;
-                draw_start = xi < 1.0f && xi > 0.0f;
-            }
-            if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
-                draw_end = false;
-            } else if (sign(-y2diff) != sign(dy)) {
-                draw_end = false;
-            } else if (sign(x2diff) == sign(-dx)) {
-                draw_end = true;
-            } else {
-                const float xi = fracf(w2[0]) + y2diff * dxdy;
-                draw_end = xi < 1.0f && xi >= 0.0f;
-            }
-            const bool will_start = sign(y1diff) == sign(dy);
-            const bool will_end = (sign(-y2diff) == sign(dy)) || y2diff == 0;
-            info_dx = 0;
-            info_dy = info_dy * (1 + dxdy * dxdy);
-            if (dy > 0) {
-                p1 = w2, p2 = w1;
-                dx = -dx, dy = -dy;
-                if (will_start != draw_start) {
-                    y_off_end = static_cast<float>(static_cast<double>(-y1diff) + 0.5);
-                    x_off_end = y_off_end * dxdy;
-                }
-                if (will_end != draw_end) {
-                    y_off = static_cast<float>(static_cast<double>(-y2diff) + 0.5);
-                    x_off = y_off * dxdy;
-                }
-            } else {
-                if (will_start != draw_start) {
-                    y_off = static_cast<float>(static_cast<double>(-y1diff) - 0.5);
-                    x_off = y_off * dxdy;
-                }
-                if (will_end != draw_end) {
-                    y_off_end = static_cast<float>(static_cast<double>(-y2diff) - 0.5);
-                    x_off_end = y_off_end * dxdy;
-                }
-            }
-            const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
-            const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
-            const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
-            const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
-            if (!ok) return PrimSetupStatus::kOutOfRange;
-            x[0] = ax - fixed_width / 2, x[1] = bx - fixed_width / 2;
-            x[2] = bx + fixed_width / 2, x[3] = ax + fixed_width / 2;
-            y[0] = ay, y[1] = by, y[2] = by, y[3] = ay;
+        if (will_start != draw_start) {
+            x_off = static_cast<float>(static_cast<double>(-x1diff) + 0.5);
+            y_off = x_off * dydx;
+        }
+        if (will_end != draw_end) {
+            x_off_end = static_cast<float>(static_cast<double>(-x2diff) + 0.5);
+            y_off_end = x_off_end * dydx;
         }
     }
+    const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
+    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
+    const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
+    const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
+    if (!ok) return false;
+    x[0] = ax, x[1] = bx, x[2] = bx, x[3] = ax;
+    y[0] = ay - fixed_width / 2, y[1] = by - fixed_width / 2;
+    y[2] = by + fixed_width / 2, y[3] = ay + fixed_width / 2;
+    return true;
+}
 
+// y-major Bresenham line: the same rule with the axes exchanged. A deliberate twin of bresenham_x_major, line for
+// line as lp_setup_line.c writes its two branches, so that each can be checked against its Mesa branch.
+bool bresenham_y_major(DiamondLine l, float* info_dx, float* info_dy, int32_t x[4], int32_t y[4]) {
+    const float* w1 = l.w1;
+    const float* w2 = l.w2;
+    const float dx = l.dx, dy = l.dy;
+    float x1diff = l.x1diff, y1diff = l.y1diff, x2diff = l.x2diff, y2diff = l.y2diff;
+    const int32_t fixed_width = l.fixed_width;
+    const float po = l.po;
+    float x_off = 0, y_off = 0, x_off_end = 0, y_off_end = 0;
+    bool draw_start, draw_end;
+    bool ok = true;
+    const float* p1 = w1;
+    const float* p2 = w2;
+    const float dxdy = dx / dy;
+    if (x2diff == -0.5f && dx < 0) x2diff = 0.5f;
+    if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
+        draw_start = true;
+    } else if (sign(-y1diff) == sign(dy)) {
+        draw_start = false;
+    } else if (sign(x1diff) != sign(-dx)) {
+        draw_start = true;
+    } else {
+        const float xi = fracf(w1[0]) + y1diff * dxdy;
+        draw_start = xi < 1.0f && xi > 0.0f;
+    }
+    if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
+        draw_end = false;
+    } else if (sign(-y2diff) != sign(dy)) {
+        draw_end = false;
+    } else if (sign(x2diff) == sign(-dx)) {
+        draw_end = true;
+    } else {
+        const float xi = fracf(w2[0]) + y2diff * dxdy;
+        draw_end = xi < 1.0f && xi >= 0.0f;
+    }
+    const bool will_start = sign(y1diff) == sign(dy);
+    const bool will_end = (sign(-y2diff) == sign(dy)) || y2diff == 0;
+    *info_dx = 0;
+    *info_dy = *info_dy * (1 + dxdy * dxdy);
+    if (dy > 0) {
+        p1 = w2, p2 = w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
+        if (will_start != draw_start) {
+            y_off_end = static_cast<float>(static_cast<double>(-y1diff) + 0.5);
+            x_off_end = y_off_end * dxdy;
+        }
+        if (will_end != draw_end) {
+            y_off = static_cast<float>(static_cast<double>(-y2diff) + 0.5);
+            x_off = y_off * dxdy;
+        }
+    } else {
+        if (will_start != draw_start) {
+            y_off = static_cast<float>(static_cast<double>(-y1diff) - 0.5);
+            x_off = y_off * dxdy;
+        }
+        if (will_end != draw_end) {
+            y_off_end = static_cast<float>(static_cast<double>(-y2diff) - 0.5);
+            x_off_end = y_off_end * dxdy;
+        }
+    }
+    const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
+    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
+    const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
+    const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
+    if (!ok) return false;
+    x[0] = ax - fixed_width / 2, x[1] = bx - fixed_width / 2;
+    x[2] = bx + fixed_width / 2, x[3] = ax + fixed_width / 2;
+    y[0] = ay, y[1] = by, y[2] = by, y[3] = ay;
+    return true;
+}
+
+// Rectangular line (Vulkan's default mode): scale = (width*0.5)/sqrt(area); corners = snap(end) -/+
+// (snap(-dy*scale), snap(dx*scale)). False when a corner is out of range.
+bool rectangular_corners(float width, const float* w1, const float* w2, float dx, float dy, float area, float po,
+                         int32_t x[4], int32_t y[4]) {
+    bool ok = true;
+    const float scale = (width * 0.5f) / std::sqrt(area);
+    const int32_t tx = subpixel_snap(-dy * scale, &ok);
+    const int32_t ty = subpixel_snap(dx * scale, &ok);
+    const int32_t sx1 = subpixel_snap(w1[0] - po, &ok), sx2 = subpixel_snap(w2[0] - po, &ok);
+    const int32_t sy1 = subpixel_snap(w1[1] - po, &ok), sy2 = subpixel_snap(w2[1] - po, &ok);
+    if (!ok) return false;
+    const int64_t xs[4] = {int64_t{sx1} - tx, int64_t{sx2} - tx, int64_t{sx2} + tx, int64_t{sx1} + tx};
+    const int64_t ys[4] = {int64_t{sy1} - ty, int64_t{sy2} - ty, int64_t{sy2} + ty, int64_t{sy1} + ty};
+    for (int i = 0; i < 4; ++i) {
+        if (xs[i] < INT32_MIN || xs[i] > INT32_MAX || ys[i] < INT32_MIN || ys[i] > INT32_MAX) return false;
+        x[i] = static_cast<int32_t>(xs[i]);
+        y[i] = static_cast<int32_t>(ys[i]);
+    }
+    return true;
+}
+
+// Bresenham (VK_EXT_line_rasterization): a parallelogram along the major axis whose ends are moved by the
+// diamond-exit rule, util_iround(width) pixels thick.
+bool bresenham_corners(float width, const float* w1, const float* w2, float dx, float dy, float po, float* info_dx,
+                       float* info_dy, int32_t x[4], int32_t y[4]) {
+    bool ok = true;
+    width = width < 1.0f ? 1.0f : width;  // MAX2(1.0, width)
+    DiamondLine l{w1, w2, dx, dy, fracf(w1[0]) - 0.5f, fracf(w1[1]) - 0.5f, fracf(w2[0]) - 0.5f,
+                  fracf(w2[1]) - 0.5f, util_iround(width, &ok) * kFixedOne, po};
+    if (std::fabs(dx) >= std::fabs(dy)) return bresenham_x_major(l, info_dx, info_dy, x, y) && ok;
+    return bresenham_y_major(l, info_dx, info_dy, x, y) && ok;
+}
+
+// The four edges (corner i to i + 1) and the fixed-point box of the corners.
+void line_planes(const int32_t x[4], const int32_t y[4], LineSetup* out) {
     out->min_x = out->max_x = x[0];
     out->min_y = out->max_y = y[0];
     for (int i = 0; i < 4; ++i) {
@@ -240,8 +266,12 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
         out->min_y = std::min(out->min_y, y[i]);
         out->max_y = std::max(out->max_y, y[i]);
     }
+}
 
-    // Attribute planes relative to the first vertex, with setup->pixel_offset (0.5, also in MSAA).
+// Attribute planes relative to the first vertex c1, with setup->pixel_offset (0.5, also in MSAA), from
+// lp_line_info's gradient inputs (info_dx, info_dy) and ooa = 1 / |d|^2; flat attributes from the provoking vertex.
+void line_attrib_planes(const LineSetupConfig& cfg, const float* c1, const float* c2, const float* pv, float info_dx,
+                        float info_dy, float ooa, LineSetup* out, AttribPlane* attribs) {
     const float* q1 = win_pos(c1);
     const float* q2 = win_pos(c2);
     const float x1c = q1[0] - 0.5f;
@@ -274,6 +304,31 @@ PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const fl
                 break;
         }
     }
+}
+
+}  // namespace
+
+PrimSetupStatus setup_line(const LineSetupConfig& cfg, const float* v0, const float* v1, LineSetup* out,
+                           AttribPlane* attribs) {
+    const float* w1 = win_pos(v0);  // lavapipe's v1 = first vertex
+    const float* w2 = win_pos(v1);
+    const float dx = w1[0] - w2[0];
+    const float dy = w1[1] - w2[1];
+    const float area = dx * dx + dy * dy;
+    if (area == 0.0f) return PrimSetupStatus::kEmpty;
+    const float ooa = 1.0f / area;
+    float info_dx = dx, info_dy = dy;
+    // line and point snapping ignore the 0.5 offset in MSAA; coefficients below always use 0.5
+    const float po = cfg.multisample ? 0.0f : 0.5f;
+    int32_t x[4], y[4];
+    const bool ok = cfg.mode == LineMode::kRectangular
+                        ? rectangular_corners(cfg.width, w1, w2, dx, dy, area, po, x, y)
+                        : bresenham_corners(cfg.width, w1, w2, dx, dy, po, &info_dx, &info_dy, x, y);
+    if (!ok) return PrimSetupStatus::kOutOfRange;
+    line_planes(x, y, out);
+    // The attribute planes always use the draw-order vertices and the pre-swap dx/dy: lavapipe's lp_line_info
+    // keeps v1/v2 from before the Bresenham swap.
+    line_attrib_planes(cfg, v0, v1, cfg.flatshade_first ? v0 : v1, info_dx, info_dy, ooa, out, attribs);
     return PrimSetupStatus::kOk;
 }
 

@@ -10,7 +10,7 @@ namespace tilevk::rast::geometry {
 
 // A plane per vec4 lane: value(px, py) = a0 + dadx*px + dady*py, with (px, py) measured from pixel (0,0)'s
 // centre at 1x (pc = 0.5) or from the framebuffer corner in MSAA (pc = 0). The fragment stage evaluates it with
-// fmuladd (notes §4) and, for perspective inputs, multiplies by 1/(1/w plane).
+// fmuladd (lavapipe-rules §4) and, for perspective inputs, multiplies by 1/(1/w plane).
 struct AttribPlane {
     float a0[4];
     float dadx[4];

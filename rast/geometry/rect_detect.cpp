@@ -161,7 +161,7 @@ int32_t subpixel_snap_iround(float a) {
     return f >= 0.0f ? cvtt(f + 0.5f) : cvtt(f - 0.5f);
 }
 
-RectBox rect_box(const float* w0, const float* w1, const float* w2, float pixel_offset) {
+RectBox rect_box(const float* w0, const float* w1, const float* w2, float pixel_offset, bool bottom_edge_rule) {
     RectBox b;
     const int32_t x0 = subpixel_snap_iround(w0[0] - pixel_offset), y0 = subpixel_snap_iround(w0[1] - pixel_offset);
     const int32_t x1 = subpixel_snap_iround(w1[0] - pixel_offset), y1 = subpixel_snap_iround(w1[1] - pixel_offset);
@@ -169,12 +169,13 @@ RectBox rect_box(const float* w0, const float* w1, const float* w2, float pixel_
     if ((x2 < x1) != (y0 < y2)) return b;  // "cull clockwise rects"
     // (v + FIXED_ONE - 1) >> FIXED_ORDER in 32-bit int with an arithmetic shift; the sums cannot overflow for
     // coordinates inside draw's guard band (|x| < 2^24 fixed).
-    auto ceil_px = [](int32_t v) { return static_cast<int32_t>((int64_t{v} + 255) >> 8); };
+    auto ceil_px = [](int32_t v, int32_t adj) { return static_cast<int32_t>((int64_t{v} + 255 + adj) >> 8); };
+    const int32_t adj = bottom_edge_rule ? 1 : 0;
     b.culled = false;
-    b.x0 = ceil_px(std::min({x0, x1, x2}));
-    b.x1 = ceil_px(std::max({x0, x1, x2})) - 1;
-    b.y0 = ceil_px(std::min({y0, y1, y2}));
-    b.y1 = ceil_px(std::max({y0, y1, y2})) - 1;
+    b.x0 = ceil_px(std::min({x0, x1, x2}), 0);
+    b.x1 = ceil_px(std::max({x0, x1, x2}), 0) - 1;
+    b.y0 = ceil_px(std::min({y0, y1, y2}), adj);
+    b.y1 = ceil_px(std::max({y0, y1, y2}), adj) - 1;
     return b;
 }
 

@@ -44,12 +44,14 @@ bool match_rect_ccw(const VertexLayout& layout, const float* const v[6], const f
 
 // try_rect_cw's coverage: corners snapped with util_iround(256 * fl(x - pixel_offset)) (half away from zero,
 // after a float add), culled when (x2 < x1) ^ (y0 < y2), else the inclusive pixel box
-// x0 = (min + 255) >> 8, x1 = ((max + 255) >> 8) - 1 (same for y; lavapipe's top-left rule, no bottom_edge_rule).
+// x0 = (min + 255) >> 8, x1 = ((max + 255) >> 8) - 1 (same for y with the top-left rule; with lavapipe's
+// bottom_edge_rule, u_blitter's, y adds one more unit: (min + 256) >> 8, ((max + 256) >> 8) - 1).
 struct RectBox {
     bool culled = true;
     int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive; may be empty (x0 > x1) for sub-pixel rectangles
 };
-RectBox rect_box(const float* win0, const float* win1, const float* win2, float pixel_offset);
+RectBox rect_box(const float* win0, const float* win1, const float* win2, float pixel_offset,
+                 bool bottom_edge_rule = false);
 
 // util_iround(256 * a) on x86-64 (u_math.h): (int)(f + 0.5f) for f >= 0, else (int)(f - 0.5f). Out-of-int and
 // NaN values give INT32_MIN (cvttss2si), like the C cast on x86-64.

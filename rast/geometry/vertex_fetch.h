@@ -5,80 +5,13 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "format/texel_codec.h"
+
 namespace tilevk::rast::geometry {
 
-// Vertex formats as a plain enum (the icd maps VkFormat onto these). Components are little-endian, tightly packed.
-enum class VertexFormat : uint8_t {
-    kR32Float,
-    kR32G32Float,
-    kR32G32B32Float,
-    kR32G32B32A32Float,
-    kR16Float,
-    kR16G16Float,
-    kR16G16B16Float,
-    kR16G16B16A16Float,
-    kR8Unorm,
-    kR8G8Unorm,
-    kR8G8B8Unorm,
-    kR8G8B8A8Unorm,
-    kB8G8R8A8Unorm,
-    kR8Snorm,
-    kR8G8Snorm,
-    kR8G8B8Snorm,
-    kR8G8B8A8Snorm,
-    kR16Unorm,
-    kR16G16Unorm,
-    kR16G16B16Unorm,
-    kR16G16B16A16Unorm,
-    kR16Snorm,
-    kR16G16Snorm,
-    kR16G16B16Snorm,
-    kR16G16B16A16Snorm,
-    kR8Uint,
-    kR8G8Uint,
-    kR8G8B8Uint,
-    kR8G8B8A8Uint,
-    kR8Sint,
-    kR8G8Sint,
-    kR8G8B8Sint,
-    kR8G8B8A8Sint,
-    kR16Uint,
-    kR16G16Uint,
-    kR16G16B16Uint,
-    kR16G16B16A16Uint,
-    kR16Sint,
-    kR16G16Sint,
-    kR16G16B16Sint,
-    kR16G16B16A16Sint,
-    kR32Uint,
-    kR32G32Uint,
-    kR32G32B32Uint,
-    kR32G32B32A32Uint,
-    kR32Sint,
-    kR32G32Sint,
-    kR32G32B32Sint,
-    kR32G32B32A32Sint,
-    kA2B10G10R10Unorm,  // one 32-bit word: R bits 0-9, G 10-19, B 20-29, A 30-31
-    kA2B10G10R10Snorm,
-    kA2B10G10R10Uint,
-    kA2B10G10R10Sint,
-    kCount
-};
-
-enum class ComponentKind : uint8_t { kFloat, kHalf, kUnorm, kSnorm, kUint, kSint };
-
-struct VertexFormatInfo {
-    ComponentKind kind;
-    uint8_t components;              // 1..4
-    uint8_t component_bytes;         // 1, 2 or 4 (packed formats: element bytes / components)
-    bool bgra;                       // B8G8R8A8: memory order B,G,R,A
-    bool packed_2_10_10_10 = false;  // A2B10G10R10: 10-bit R, G, B and 2-bit A in one little-endian word
-};
-
-VertexFormatInfo vertex_format_info(VertexFormat f);
-uint32_t vertex_format_size(VertexFormat f);  // bytes of one element
-// True for uint/sint formats: the fetched words are integers (missing components filled with integer 0,0,0,1).
-bool vertex_format_is_integer(VertexFormat f);
+// A vertex attribute's format: a row of the format table (format/format.h) with VERTEX_BUFFER support. Its
+// channels say where each component sits; format::fetch_words converts them as lavapipe's fetch does.
+using VertexFormat = format::Format;
 
 enum class InputRate : uint8_t { kVertex, kInstance };
 
@@ -94,7 +27,7 @@ struct VertexBufferView {
 };
 
 struct VertexAttribDesc {
-    VertexFormat format = VertexFormat::kR32G32B32A32Float;
+    VertexFormat format = VertexFormat::R32G32B32A32_SFLOAT;
     uint32_t binding = 0;
     uint32_t offset = 0;  // attribute offset inside the element
 };
@@ -122,8 +55,30 @@ ElementIndex element_index(const VertexBufferView& vb, uint32_t vertex_index, ui
 // Never reads outside [data, data + size).
 FetchedAttrib fetch_attribute(const VertexAttribDesc& attrib, const VertexBufferView& vb, ElementIndex index);
 
-// Conversion of one element from memory (exposed for tests): reads vertex_format_size(f) bytes at `src`.
+// Conversion of one element from memory (exposed for tests): reads format_info(f).bytes bytes at `src`.
 FetchedAttrib convert_element(VertexFormat f, const uint8_t* src);
+
+// One attribute of up to 16 vertices at a time, prepared once per draw: the bounds rule of fetch_attribute hoisted
+// (size_adj), the conversion specialised for the format. fetch_lanes(plan, indices, n, out) gives, for every lane,
+// exactly fetch_attribute(attrib, vb, element_index(vb, indices[lane], ...)) as SoA words out[component][lane].
+struct AttribFetchPlan {
+    using LanesFn = void (*)(const AttribFetchPlan& plan, const uint32_t* element, const bool* valid, uint32_t n,
+                             uint32_t (*out)[16]);
+    LanesFn lanes = nullptr;
+    VertexFormat format = VertexFormat::R32G32B32A32_SFLOAT;
+    const uint8_t* base = nullptr;  // vb.data + vb.offset + attrib.offset (null: every element out of bounds)
+    uint64_t size_adj = 0;          // element in bounds iff (uint32)(stride * index) < size_adj
+    uint32_t stride = 0;
+    bool per_instance = false;
+    FetchedAttrib out_of_bounds{};  // the result for an element out of bounds (per the rate)
+};
+AttribFetchPlan make_attrib_fetch_plan(const VertexAttribDesc& attrib, const VertexBufferView& vb);
+
+// Element indices (element_index) of `n` <= 16 vertices for one attribute, then the SoA fetch.
+inline void fetch_lanes(const AttribFetchPlan& plan, const uint32_t* element, const bool* valid, uint32_t n,
+                        uint32_t (*out)[16]) {
+    plan.lanes(plan, element, valid, n, out);
+}
 
 // Fetches `count` attributes for one vertex into out[count] (plain loop over fetch_attribute).
 void fetch_vertex(const VertexAttribDesc* attribs, uint32_t count, const VertexBufferView* buffers,

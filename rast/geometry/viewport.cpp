@@ -25,6 +25,13 @@ Viewport make_viewport(float x, float y, float width, float height, float min_de
     return v;
 }
 
+void viewport_depth_range(const Viewport& vp, bool clip_halfz, float* zmin, float* zmax) {
+    const float a = clip_halfz ? vp.translate[2] : vp.translate[2] - vp.scale[2];
+    const float b = vp.translate[2] + vp.scale[2];
+    *zmin = a < b ? a : b;
+    *zmax = a < b ? b : a;
+}
+
 bool is_identity_viewport(const Viewport& vp) {
     return vp.scale[0] == 1.0f && vp.scale[1] == 1.0f && vp.scale[2] == 1.0f && vp.translate[0] == 0.0f &&
            vp.translate[1] == 0.0f && vp.translate[2] == 0.0f;

@@ -18,8 +18,13 @@ struct Viewport {
 Viewport make_viewport(float x, float y, float width, float height, float min_depth, float max_depth,
                        bool clip_halfz = true);
 
+// The depth range llvmpipe clamps to (lp_setup.c lp_setup_set_viewports, util_viewport_zmin_zmax): computed from
+// the float scale and translate, so it may lie an ulp off the viewport's minDepth/maxDepth:
+//   halfz: a = tz, b = fl(tz + sz); else a = fl(tz - sz), b = fl(tz + sz); zmin = min(a, b), zmax = max(a, b).
+void viewport_depth_range(const Viewport& vp, bool clip_halfz, float* zmin, float* zmax);
+
 // draw->identity_viewport: exactly one viewport with scale (1,1,1) and translate (0,0,0). lavapipe then bypasses
-// the viewport entirely: the window position is the raw clip position, w not inverted (quirk, notes §1).
+// the viewport entirely: the window position is the raw clip position, w not inverted (quirk, lavapipe-rules §1).
 bool is_identity_viewport(const Viewport& vp);
 
 // The whole-pixel rectangle llvmpipe derives from viewport 0 (lp_setup.c lp_setup_set_viewports, "vpwh") and

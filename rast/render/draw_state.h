@@ -6,12 +6,14 @@
 #include <vector>
 
 #include "rast/core/primitive.h"
+#include "rast/core/static_vector.h"
 #include "rast/fragment/blend.h"
 #include "rast/fragment/depth_stencil.h"
 #include "rast/geometry/planes.h"
 #include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
 #include "rast/render/targets.h"
+#include "rast/render/vertex_stage.h"
 #include "shader/program.h"
 
 namespace tilevk::rast::render {
@@ -23,19 +25,20 @@ struct ViewportRect {
     float x = 0, y = 0, width = 0, height = 0, min_depth = 0, max_depth = 1;
 };
 
-// The pipeline's state. Lives at least until the render pass that uses it has ended (Renderer::end).
+// The pipeline's state. Lives at least until the render pass that uses it has ended (Renderer::end). Plain data
+// without heap storage: copying it (once per state change) never allocates.
 struct PipelineState {
     const shader::Program* vertex = nullptr;
     const shader::Program* fragment = nullptr;  // may be null: no colour output, depth/stencil only
 
     // Vertex input: attribute i reads `attribs[i]` for shader input location `attrib_locations[i]`.
-    std::vector<geometry::VertexAttribDesc> attribs;
-    std::vector<uint32_t> attrib_locations;
+    StaticVector<geometry::VertexAttribDesc, kMaxVertexInputs> attribs;
+    StaticVector<uint32_t, kMaxVertexInputs> attrib_locations;
     struct Binding {
         uint32_t stride = 0;
         geometry::InputRate rate = geometry::InputRate::kVertex;
     };
-    std::vector<Binding> bindings;  // indexed by binding number
+    StaticVector<Binding, kMaxVertexInputs> bindings;  // indexed by binding number
 
     geometry::Topology topology = geometry::Topology::kTriangleList;
     bool primitive_restart = false;
@@ -44,6 +47,8 @@ struct PipelineState {
     CullMode cull = CullMode::kNone;
     bool front_ccw = true;
     bool depth_clamp = false;
+    // Clip-space depth range: [0, w] (Vulkan) or [-w, w] (VK_EXT_depth_clip_control negativeOneToOne).
+    bool clip_halfz = true;
     bool depth_bias_enable = false;
     geometry::DepthBias depth_bias;  // factors; format fields are filled by the renderer from the target
     float line_width = 1.0f;
@@ -53,6 +58,8 @@ struct PipelineState {
     int samples = 1;
     uint32_t sample_mask = 0xffffffffu;
     bool alpha_to_coverage = false;
+    // Every colour output's alpha becomes 1.0 after alpha to coverage, before blending (lp_state_fs.c).
+    bool alpha_to_one = false;
 
     fragment::DepthStencilState depth_stencil;  // min/max_depth are filled from the viewport by the renderer
     fragment::BlendAttachment blend[kMaxColorTargets];
@@ -79,14 +86,16 @@ struct DrawCall {
     uint32_t first = 0;  // firstVertex / firstIndex
     int32_t vertex_offset = 0;
     uint32_t first_instance = 0;
-    const uint8_t* index_data = nullptr;              // from the bind offset
-    uint32_t index_bytes = 0;                         // bytes available from index_data
-    uint32_t index_size = 4;                          // 2 or 4
-    std::vector<VertexBufferBinding> vertex_buffers;  // indexed by binding number
+    const uint8_t* index_data = nullptr;                                 // from the bind offset
+    uint32_t index_bytes = 0;                                            // bytes available from index_data
+    uint32_t index_size = 4;                                             // 1, 2 or 4
+    StaticVector<VertexBufferBinding, kMaxVertexInputs> vertex_buffers;  // indexed by binding number
     // Occlusion query: when set, the number of samples of this draw that pass every per-sample test (the final
     // per-sample masks after the late depth/stencil test, as lavapipe counts them) is added here when the draw's
     // tiles are rendered (Renderer::end or a mid-pass flush). Must stay valid until then.
     uint64_t* samples_passed = nullptr;
+    // The caller's number for this draw, reported by Renderer::interrupted_draw when the stop flag cut it short.
+    uint32_t id = 0;
 };
 
 }  // namespace tilevk::rast::render

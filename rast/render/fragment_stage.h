@@ -16,6 +16,7 @@
 
 #include "rast/core/coverage.h"
 #include "rast/fragment/linear.h"
+#include "rast/render/fragment_plan.h"
 #include "rast/render/scene_records.h"
 #include "rast/render/targets.h"
 
@@ -32,16 +33,19 @@ class FragmentStage final : public CoverageConsumer {
     ~FragmentStage() override;
 
     // Points the stage at the scene about to be rasterized (the references must outlive rasterize()).
-    void prepare(const Framebuffer& fb, const std::deque<DrawRecord>& draws, const std::vector<PrimRecord>& prims,
+    void prepare(const Framebuffer& fb, const DrawRecords& draws, const std::vector<PrimRecord>& prims,
                  const std::vector<float>& planes, bool fused, unsigned workers);
 
-    // Linear mode: per 64x64 tile (row-major) whether its bin can be llvmpipe's linear bin (only rectangles and
-    // clears touch it), and each rectangle's pixel box. Null pointers: not in linear mode.
+    // Linear mode: per 64x64 tile (row-major) whether its bin can be llvmpipe's linear bin (only rectangles
+    // touch it), and each rectangle's pixel box. Null pointers: not in linear mode.
     void set_linear(const std::vector<uint8_t>* tile_linear, const std::vector<fragment::LinearRegion>* rect_boxes);
 
     void begin_tile(unsigned worker, const TileInfo& tile) override;
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
+    bool stop_tile(unsigned worker, uint32_t next_payload) override;
     void end_tile(unsigned worker, const TileInfo& tile) override;
+    // Step 0: the primitive record; step 1: the head of its plane record (the first read of every block).
+    void prefetch(uint32_t payload, int step) const override;
 
     // Samples of draw record `draw` that passed every per-sample test in the scene last rasterized: the sum of
     // popcount(final mask) per sample plane over all blocks. Counted per (draw, worker), so no two threads share a
@@ -50,27 +54,30 @@ class FragmentStage final : public CoverageConsumer {
 
     // Fragment-shader runs the loop watchdog cut short so far (shader::Scratch::loop_limit_hits of every worker).
     uint64_t loop_limit_hits() const;
-
-    struct DrawPlan;  // what the fast path derived from one draw's state (fragment_stage.cpp)
+    // The driver's stop flag (Renderer::set_stop_flag): once set, the remaining primitives and blocks of the scene
+    // are skipped and shader runs end at their next loop back edge; what was interrupted goes to `interruption`.
+    void set_stop_flag(const std::atomic<bool>* stop, Interruption* interruption);
 
   private:
-    struct Worker;
-    void shade_block(Worker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x, int32_t y,
-                     const uint16_t raster_masks[4]);
-    void shade_block_fast(Worker& w, const DrawPlan& plan, const DrawRecord& draw, const PrimRecord& prim,
-                          bool front_facing, int32_t x, int32_t y, const uint16_t raster_masks[4]);
-    void clear_block(const ClearRecord& clear, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+    // The reference pipeline: every step in full, for every state (TILEVK_FRAG=reference, and what the fast path
+    // falls back to).
+    void shade_block(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
+                     int32_t y, const uint16_t raster_masks[4]);
 
     Framebuffer fb_;
-    const std::deque<DrawRecord>* draws_ = nullptr;
+    const DrawRecords* draws_ = nullptr;
     const std::vector<PrimRecord>* prims_ = nullptr;
     const std::vector<float>* planes_ = nullptr;
     bool fused_ = true;
     bool fast_ = true;
     std::vector<DrawPlan> plans_;  // per draw record (fast path)
+    BlockFn block_fn_ = nullptr;   // the fast path's block function (fragment_plan.h)
     const std::vector<uint8_t>* tile_linear_ = nullptr;
     const std::vector<fragment::LinearRegion>* rect_boxes_ = nullptr;
-    std::vector<std::unique_ptr<Worker>> workers_;
+    std::vector<std::unique_ptr<FragmentWorker>> workers_;
+    const std::atomic<bool>* stop_ = nullptr;
+    Interruption* interruption_ = nullptr;
+    bool stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
 };
 
 }  // namespace tilevk::rast::render

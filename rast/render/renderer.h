@@ -4,12 +4,13 @@
 //   Renderer r(pool);
 //   r.begin(framebuffer);
 //   r.draw(pipeline, call, bindings);   // vertex stage, primitive assembly, clipping, setup, binning
-//   r.clear(rect, values);               // vkCmdClearAttachments, ordered with the draws
 //   r.end();                             // tiles -> fragment stage -> targets
 #pragma once
 
+#include <atomic>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "rast/core/scene.h"
 #include "rast/core/thread_pool.h"
 #include "rast/fragment/linear.h"
+#include "rast/geometry/clip.h"
+#include "rast/geometry/planes.h"
 #include "rast/geometry/rect_detect.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/scene_records.h"
@@ -34,8 +37,6 @@ class Renderer {
     void begin(const Framebuffer& fb);
     // Returns an empty string on success, else why the draw could not be rendered (nothing was drawn).
     std::string draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings);
-    // Clears `rect` (pixels, half-open) of the targets named in `clear`.
-    void clear(const ClipRect& rect, const ClearRecord& clear);
     void end();
 
     // Whether lavapipe's viewport/interpolation fmuladds are fused (host FMA) — one decision for the process.
@@ -45,6 +46,15 @@ class Renderer {
     // increase means some shader did not terminate: its outputs are incomplete and the driver must say so.
     uint64_t shader_loop_limit_hits() const;
 
+    // The driver's time limit: once *stop is true, draws are dropped, the scene's remaining primitives and blocks
+    // are skipped and shader runs end at their next loop back edge (the loop-count watchdog is then off), so the
+    // pass ends soon after; what was drawn is undefined (the driver reports the device lost). Null: never stop.
+    void set_stop_flag(const std::atomic<bool>* stop);
+    // The DrawCall::id of the draw the stop interrupted since reset_interruption(): one whose shader run was cut
+    // short if any, else one whose work was skipped; nullopt if the stop interrupted nothing.
+    std::optional<uint32_t> interrupted_draw() const;
+    void reset_interruption();
+
     // lavapipe bins a query command (begin/end, timestamp) into every tile of its current scene, so no bin of that
     // scene is linear-only (lp_setup.c lp_setup_begin_query / lp_setup_end_query): the icd calls this for a query
     // command inside a render pass. Applies to the scene being built (until the next begin() or flush()).
@@ -52,9 +62,33 @@ class Renderer {
 
   private:
     void flush();
+    void render_scene();
+    // A draw that alone fills a scene: renders what is binned and goes on in a fresh scene with its record, now
+    // draw 0 (memory stays bounded, and a lost device is noticed between instances, not after a huge binning).
+    void flush_within_draw(uint32_t* draw_index, const DrawRecord& rec);
     void reset_linear_tiles();
+    void unique_vertices(size_t n);
+    // Renderer::draw's jobs (renderer.cpp).
+    void record_draw(DrawRecord& rec, const PipelineState& pipe, const DrawCall& call,
+                     const shader::Bindings& bindings);
+    void triangle_records(uint32_t p, const float* v[3]) const;
+    bool emit_direct_pairs(uint32_t draw_index, const DrawRecord& rec, geometry::Topology topology, bool indexed,
+                           uint32_t first_prim, uint32_t end_prim, size_t batch_verts);
+    uint32_t nine_vertex_batch_end(uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim,
+                                   const uint32_t* batch_ids);
 
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
+    // Triangles prim_slots[3*i .. 3*i+2] (shaded record slots), i in [0, n), as the primitive loop of draw()
+    // treats them one after the other (pipeline[i]: the triangle's batch went through draw's pipeline: clipper,
+    // float cull), set up on the workers and binned by tile bands in API order.
+    struct TrianglePipeline {
+        const uint8_t* pipeline;
+        const geometry::ClipConfig* clip;
+        const geometry::FloatCull* float_cull;
+        bool any_cull;
+    };
+    void add_triangles_parallel(uint32_t draw, const DrawRecord& rec, const uint32_t* prim_slots, uint32_t n,
+                                const TrianglePipeline& cfg);
     void add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing = true);
     void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
     // llvmpipe's rectangle (lp_setup_rect.c try_rect_cw): box of the snapped corners, planes from (c0, c1, c2).
@@ -71,23 +105,31 @@ class Renderer {
     // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
     void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
     geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
+    geometry::PlaneSetupConfig plane_setup_config(const DrawRecord& rec) const;
     // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
     void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
                    uint32_t num_attribs);
 
+    bool stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
+
     ThreadPool& pool_;
     Method method_;
+    const std::atomic<bool>* stop_ = nullptr;
+    Interruption interruption_;
     Framebuffer fb_;
     std::unique_ptr<Scene> scene_;
-    std::deque<DrawRecord> draws_;
+    DrawRecords draws_;
     std::vector<PrimRecord> prims_;
     std::vector<float> planes_;
     std::unique_ptr<FragmentStage> fragment_;
-    std::vector<std::unique_ptr<shader::Scratch>> scratch_;  // per worker
+    std::vector<std::unique_ptr<VertexWorker>> vertex_workers_;  // per worker
     // Per-draw temporaries, kept to reuse their memory.
-    std::vector<uint32_t> assembled_, unique_;
+    std::vector<uint32_t> assembled_, unique_, slot_of_;
     ShadedVertices shaded_;
     std::vector<float> clip_scratch_;
+    std::vector<std::vector<float>> clip_workers_;  // clip scratch per worker (add_triangles_parallel)
+    std::vector<uint8_t> tri_pipeline_;             // per triangle of a parallel draw: its batch took draw's pipeline
+    std::vector<uint32_t> piece_first_;             // per triangle of a parallel draw: its first slot
     std::vector<geometry::AttribPlane> attrib_planes_;
     std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
     std::vector<float> unfilled_scratch_;  // 3 records: a polygonMode LINE/POINT triangle after offset/flatshade

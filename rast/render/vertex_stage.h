@@ -2,10 +2,14 @@
 // record per shaded vertex (clip position, window position, the varyings the fragment shader reads).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
+#include "rast/core/static_vector.h"
+#include "rast/core/thread_pool.h"
 #include "rast/geometry/vertex.h"
 #include "rast/geometry/vertex_fetch.h"
 #include "rast/geometry/viewport.h"
@@ -13,11 +17,14 @@
 
 namespace tilevk::rast::render {
 
+// At most this many vertex attributes, vertex buffer bindings and bound vertex buffers (the driver reports 16).
+inline constexpr size_t kMaxVertexInputs = 32;
+
 // Where the vertex shader's inputs come from: one attribute per shader input location.
 struct VertexInputState {
-    std::vector<geometry::VertexAttribDesc> attribs;  // indexed like `locations`
-    std::vector<uint32_t> locations;                  // shader input location of attribs[i]
-    std::vector<geometry::VertexBufferView> buffers;  // indexed by binding
+    StaticVector<geometry::VertexAttribDesc, kMaxVertexInputs> attribs;  // indexed like `locations`
+    StaticVector<uint32_t, kMaxVertexInputs> locations;                  // shader input location of attribs[i]
+    StaticVector<geometry::VertexBufferView, kMaxVertexInputs> buffers;  // indexed by binding
 };
 
 // How vertex-shader outputs become geometry records: record attribute slot i carries VS output location
@@ -57,11 +64,20 @@ struct VertexStageConfig {
     uint32_t first_instance = 0;
     uint32_t instance = 0;  // instance id within the draw (InstanceIndex = first_instance + instance)
     uint32_t base_vertex = 0;
+    const std::atomic<bool>* stop = nullptr;  // Renderer::set_stop_flag: once true, the remaining batches are skipped
+};
+
+// One worker's working memory for the vertex stage (reused from draw to draw: nothing is allocated per draw).
+struct VertexWorker {
+    shader::Scratch scratch;
+    shader::VertexBatch batch;
 };
 
 // Shades the vertices whose indices are `indices` (any order, may repeat); vertex k of the result belongs to
-// indices[k]. Runs the shader in batches of shader::kLanes on the calling thread with `scratch`.
-void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indices, shader::Scratch& scratch,
-                    ShadedVertices* out);
+// indices[k]. Runs the shader in batches of shader::kLanes: on workers[0] (the calling thread), or, for many
+// vertices of a shader without memory writes, in chunks on `pool` (worker w uses workers[w]). Every vertex is
+// shaded alone, so the result is the same for any thread count.
+void shade_vertices(const VertexStageConfig& cfg, std::span<const uint32_t> indices, ThreadPool& pool,
+                    std::span<const std::unique_ptr<VertexWorker>> workers, ShadedVertices* out);
 
 }  // namespace tilevk::rast::render

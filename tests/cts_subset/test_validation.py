@@ -1,4 +1,4 @@
-"""The conformance subset under VK_LAYER_KHRONOS_validation (issue #5: zero messages on both drivers).
+"""The conformance subset under VK_LAYER_KHRONOS_validation (zero messages on both drivers).
 
   test_validation.py RUNNER full      every case, tilevk vs lavapipe, with --validation: no case may carry a
                                       message, none may arrive outside a case, every case must have run.

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -15,6 +17,8 @@
 namespace tilevk::test::breadth {
 
 #include "ab_array_frag.h"
+#include "ab_color_sint_frag.h"
+#include "ab_color_uint_frag.h"
 #include "ab_compute_comp.h"
 #include "ab_descriptors_frag.h"
 #include "ab_dynamic_frag.h"
@@ -30,7 +34,10 @@ namespace tilevk::test::breadth {
 #include "ab_pull_vert.h"
 #include "ab_push_frag.h"
 #include "ab_push_vert.h"
+#include "ab_sample_edges_frag.h"
 #include "ab_sample_frag.h"
+#include "ab_sample_sint_frag.h"
+#include "ab_sample_uint_frag.h"
 #include "ab_shadow_frag.h"
 #include "ab_spec_frag.h"
 #include "ab_storage_texel_frag.h"
@@ -84,6 +91,9 @@ struct Pipe {
     const VkSpecializationInfo* fs_spec = nullptr;  // fragment stage specialization
     bool no_fragment_stage = false;                 // vertex stage only (depth-only passes)
     bool rasterizer_discard = false;
+    const void* pnext = nullptr;  // VkGraphicsPipelineCreateInfo::pNext
+    VkPipelineCache cache = VK_NULL_HANDLE;
+    VkPipelineCreateFlags flags = 0;
 };
 
 inline VkPipelineColorBlendAttachmentState opaque() {
@@ -147,16 +157,39 @@ class Kit {
         vkCreateCommandPool(d, &pci, nullptr, &pool);
     }
     ~Kit() {
-        for (auto it = undo_.rbegin(); it != undo_.rend(); ++it) (*it)();
+        for (auto it = undo_.rbegin(); it != undo_.rend(); ++it) it->destroy();
         vkDestroyCommandPool(d, pool, nullptr);
     }
     Device& dev() { return dev_; }
+    // Registers how to destroy an object made outside the Kit (run at the end, or by destroy_now).
+    template <class H>
+    void undo(VkObjectType type, H handle, std::function<void()> destroy) {
+        undo_.push_back({type, uint64_t(handle), std::move(destroy)});
+    }
+    // Drops an object from the Kit's list without destroying it (the test destroyed it itself).
+    template <class H>
+    void forget(VkObjectType type, H handle) {
+        std::erase_if(undo_, [&](const Undo& u) { return u.type == type && u.handle == uint64_t(handle); });
+    }
+    // Destroys an object made here now instead of at the end (all objects of `type` when `handle` is null):
+    // lifetime tests destroy objects while others made from them live on.
+    template <class H>
+    void destroy_now(VkObjectType type, H handle) {
+        for (auto it = undo_.begin(); it != undo_.end();) {
+            if (it->type == type && (handle == VK_NULL_HANDLE || it->handle == uint64_t(handle))) {
+                it->destroy();
+                it = undo_.erase(it);
+            } else {
+                ++it;
+            }
+        }
+    }
     VkResult run(const std::function<void(VkCommandBuffer)>& record) { return dev_.run(record); }
 
     Device::Buffer buffer(VkDeviceSize n, VkBufferUsageFlags usage = 0) {
         Device::Buffer b = dev_.make_buffer(n, usage);
         std::memset(b.map, 0, n);
-        undo_.push_back([this, b]() mutable { dev_.destroy(b); });
+        undo(VK_OBJECT_TYPE_BUFFER, b.buffer, [this, b]() mutable { dev_.destroy(b); });
         return b;
     }
     template <class T>
@@ -169,7 +202,7 @@ class Kit {
                         uint32_t layers = 1) {
         Device::Image i = dev_.make_image(f, w, h, levels, layers, VK_SAMPLE_COUNT_1_BIT, usage);
         EXPECT_NE(i.image, VK_NULL_HANDLE) << "format " << f;
-        undo_.push_back([this, i]() mutable {
+        undo(VK_OBJECT_TYPE_IMAGE, i.image, [this, i]() mutable {
             if (i.image) dev_.destroy(i);
         });
         return i;
@@ -183,7 +216,7 @@ class Kit {
         ci.subresourceRange = {aspect, base_level, levels, base_layer, layers};
         VkImageView vw = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateImageView(d, &ci, nullptr, &vw), VK_SUCCESS);
-        undo_.push_back([this, vw] { vkDestroyImageView(d, vw, nullptr); });
+        undo(VK_OBJECT_TYPE_IMAGE_VIEW, vw, [this, vw] { vkDestroyImageView(d, vw, nullptr); });
         return vw;
     }
     VkShaderModule shader(Spv s) {
@@ -192,7 +225,7 @@ class Kit {
         ci.pCode = s.code;
         VkShaderModule m = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateShaderModule(d, &ci, nullptr, &m), VK_SUCCESS);
-        undo_.push_back([this, m] { vkDestroyShaderModule(d, m, nullptr); });
+        undo(VK_OBJECT_TYPE_SHADER_MODULE, m, [this, m] { vkDestroyShaderModule(d, m, nullptr); });
         return m;
     }
     VkRenderPass render_pass(const std::vector<VkAttachmentDescription>& atts,
@@ -207,7 +240,7 @@ class Kit {
         ci.pDependencies = deps.data();
         VkRenderPass rp = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateRenderPass(d, &ci, nullptr, &rp), VK_SUCCESS);
-        undo_.push_back([this, rp] { vkDestroyRenderPass(d, rp, nullptr); });
+        undo(VK_OBJECT_TYPE_RENDER_PASS, rp, [this, rp] { vkDestroyRenderPass(d, rp, nullptr); });
         return rp;
     }
     VkFramebuffer framebuffer(VkRenderPass rp, const std::vector<VkImageView>& views, uint32_t w, uint32_t h,
@@ -221,7 +254,7 @@ class Kit {
         ci.layers = layers;
         VkFramebuffer fb = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateFramebuffer(d, &ci, nullptr, &fb), VK_SUCCESS);
-        undo_.push_back([this, fb] { vkDestroyFramebuffer(d, fb, nullptr); });
+        undo(VK_OBJECT_TYPE_FRAMEBUFFER, fb, [this, fb] { vkDestroyFramebuffer(d, fb, nullptr); });
         return fb;
     }
     VkDescriptorSetLayout set_layout(const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
@@ -230,7 +263,7 @@ class Kit {
         ci.pBindings = bindings.data();
         VkDescriptorSetLayout l = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateDescriptorSetLayout(d, &ci, nullptr, &l), VK_SUCCESS);
-        undo_.push_back([this, l] { vkDestroyDescriptorSetLayout(d, l, nullptr); });
+        undo(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, l, [this, l] { vkDestroyDescriptorSetLayout(d, l, nullptr); });
         return l;
     }
     VkPipelineLayout pipeline_layout(const std::vector<VkDescriptorSetLayout>& sets,
@@ -242,11 +275,13 @@ class Kit {
         ci.pPushConstantRanges = push.data();
         VkPipelineLayout l = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreatePipelineLayout(d, &ci, nullptr, &l), VK_SUCCESS);
-        undo_.push_back([this, l] { vkDestroyPipelineLayout(d, l, nullptr); });
+        undo(VK_OBJECT_TYPE_PIPELINE_LAYOUT, l, [this, l] { vkDestroyPipelineLayout(d, l, nullptr); });
         return l;
     }
     VkDescriptorSet descriptor_set(VkDescriptorSetLayout layout) {
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 4},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 4},
                                               {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 4},
                                               {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
                                               {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 4},
@@ -260,7 +295,7 @@ class Kit {
         pci.pPoolSizes = sizes;
         VkDescriptorPool p = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateDescriptorPool(d, &pci, nullptr, &p), VK_SUCCESS);
-        undo_.push_back([this, p] { vkDestroyDescriptorPool(d, p, nullptr); });
+        undo(VK_OBJECT_TYPE_DESCRIPTOR_POOL, p, [this, p] { vkDestroyDescriptorPool(d, p, nullptr); });
         VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         ai.descriptorPool = p;
         ai.descriptorSetCount = 1;
@@ -288,7 +323,7 @@ class Kit {
         ci.maxLod = 0.25f;
         VkSampler s = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateSampler(d, &ci, nullptr, &s), VK_SUCCESS);
-        undo_.push_back([this, s] { vkDestroySampler(d, s, nullptr); });
+        undo(VK_OBJECT_TYPE_SAMPLER, s, [this, s] { vkDestroySampler(d, s, nullptr); });
         return s;
     }
     VkPipeline pipeline(const Pipe& p, VkResult* result = nullptr) {
@@ -334,6 +369,8 @@ class Kit {
         dyn.pDynamicStates = p.dynamic.data();
         rs.rasterizerDiscardEnable = p.rasterizer_discard;
         VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+        gci.pNext = p.pnext;
+        gci.flags = p.flags;
         gci.stageCount = p.no_fragment_stage ? 1 : 2;
         gci.pStages = stages;
         gci.pVertexInputState = &vi;
@@ -348,12 +385,12 @@ class Kit {
         gci.renderPass = p.rp;
         gci.subpass = p.subpass;
         VkPipeline pipe = VK_NULL_HANDLE;
-        const VkResult r = vkCreateGraphicsPipelines(d, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe);
+        const VkResult r = vkCreateGraphicsPipelines(d, p.cache, 1, &gci, nullptr, &pipe);
         if (result != nullptr)
             *result = r;
         else
             EXPECT_EQ(r, VK_SUCCESS);
-        undo_.push_back([this, pipe] { vkDestroyPipeline(d, pipe, nullptr); });
+        undo(VK_OBJECT_TYPE_PIPELINE, pipe, [this, pipe] { vkDestroyPipeline(d, pipe, nullptr); });
         return pipe;
     }
     VkPipelineLayout empty_layout() {
@@ -400,7 +437,12 @@ class Kit {
 
   private:
     Device& dev_;
-    std::vector<std::function<void()>> undo_;
+    struct Undo {
+        VkObjectType type;
+        uint64_t handle;
+        std::function<void()> destroy;
+    };
+    std::vector<Undo> undo_;
     VkPipelineLayout empty_layout_ = VK_NULL_HANDLE;
 };
 
@@ -455,7 +497,7 @@ inline VkRenderPass colour_depth_pass(Kit& k, VkFormat colour, VkFormat depth,
 }
 
 inline bool has_stencil(VkFormat f) {
-    return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT;
+    return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_S8_UINT;
 }
 
 // An RGBA8 colour attachment and a depth (and stencil, if the format has it) attachment, 32x32, both cleared at
@@ -467,8 +509,8 @@ struct DepthTarget {
 };
 inline DepthTarget depth_target(Kit& k, VkFormat depth) {
     const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM;
-    const VkImageAspectFlags aspects =
-        VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(depth) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+    const VkImageAspectFlags aspects = (depth == VK_FORMAT_S8_UINT ? 0 : VK_IMAGE_ASPECT_DEPTH_BIT) |
+                                       (has_stencil(depth) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
     DepthTarget t{};
     t.col = k.image(C, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     t.dep = k.image(depth, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -566,6 +608,13 @@ class ApiBreadth : public TwoDriverSuite {
         size_t diffs = 0, first = 0;
         for (size_t i = 0; i < std::min(t.size(), l.size()); ++i)
             if (t[i] != l[i] && diffs++ == 0) first = i;
+        if (std::getenv("TILEVK_TEST_DUMP_DIFFS"))
+            for (size_t i = 0, shown = 0;
+                 i + 4 <= std::min(t.size(), l.size()) && shown < (std::getenv("TILEVK_TEST_DUMP_ALL") ? 100000u : 12u);
+                 i += 4)
+                if ((std::getenv("TILEVK_TEST_DUMP_ALL") || std::memcmp(&t[i], &l[i], 4) != 0) && ++shown)
+                    std::fprintf(stderr, "word %zu: tilevk %02x%02x%02x%02x lavapipe %02x%02x%02x%02x\n", i / 4,
+                                 t[i + 3], t[i + 2], t[i + 1], t[i], l[i + 3], l[i + 2], l[i + 1], l[i]);
         EXPECT_EQ(diffs, 0u) << what << ": first difference at byte " << first << ": "
                              << (first < t.size() ? int(t[first]) : -1) << " vs "
                              << (first < l.size() ? int(l[first]) : -1);
@@ -583,52 +632,79 @@ inline const uint8_t* px(const Bytes& b, uint32_t x, uint32_t y, uint32_t w = 32
 
 // ---- Texel data helpers ----------------------------------------------------------------------------------------
 
-// Bytes of one texel of `aspect` in a buffer copy, for the formats tilevk reports; 0 if the test does not know it.
+// Bytes of one texel of `aspect` in a buffer copy (the spec's texel block sizes, by VkFormat ranges of the core
+// uncompressed formats); 0 for formats the test does not know (compressed, planar, 64-bit channels).
 inline uint32_t texel_bytes(VkFormat f, VkImageAspectFlags aspect) {
-    switch (f) {
-        case VK_FORMAT_R8_UNORM:
-            return 1;
-        case VK_FORMAT_R8G8_UNORM:
-            return 2;
-        case VK_FORMAT_R8G8B8A8_UNORM:
-        case VK_FORMAT_B8G8R8A8_UNORM:
-        case VK_FORMAT_R8G8B8A8_SRGB:
-        case VK_FORMAT_B8G8R8A8_SRGB:
-        case VK_FORMAT_R32_SFLOAT:
-        case VK_FORMAT_D32_SFLOAT:
-            return 4;
-        case VK_FORMAT_R16G16B16A16_SFLOAT:
-        case VK_FORMAT_R32G32_SFLOAT:
-            return 8;
-        case VK_FORMAT_R32G32B32A32_SFLOAT:
-            return 16;
-        case VK_FORMAT_D16_UNORM:
-            return 2;
-        case VK_FORMAT_D32_SFLOAT_S8_UINT:
-        case VK_FORMAT_D24_UNORM_S8_UINT:
-            return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : 4;
-        default:
-            return 0;
-    }
+    const int v = int(f);
+    if (f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT)
+        return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4;
+    if (v == 1 || (v >= 9 && v <= 15) || f == VK_FORMAT_S8_UINT) return 1;
+    if ((v >= 2 && v <= 8) || (v >= 16 && v <= 22) || (v >= 70 && v <= 76) || f == VK_FORMAT_D16_UNORM) return 2;
+    if (v >= 23 && v <= 36) return 3;
+    if ((v >= 37 && v <= 69) || (v >= 77 && v <= 83) || (v >= 98 && v <= 100) || (v >= 122 && v <= 123) ||
+        f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT)
+        return 4;
+    if (v >= 84 && v <= 90) return 6;
+    if ((v >= 91 && v <= 97) || (v >= 101 && v <= 103)) return 8;
+    if (v >= 104 && v <= 106) return 12;
+    if (v >= 107 && v <= 109) return 16;
+    return 0;
 }
 inline bool is_depth(VkFormat f) {
     return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT ||
-           f == VK_FORMAT_D24_UNORM_S8_UINT;
+           f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D16_UNORM_S8_UINT;
+}
+// Pure-integer colour formats (their shaders read and write uvec4 / ivec4): the core UINT formats, each followed by
+// its SINT twin.
+inline bool is_uint_format(VkFormat f) {
+    switch (f) {
+        case VK_FORMAT_R8_UINT:
+        case VK_FORMAT_R8G8_UINT:
+        case VK_FORMAT_R8G8B8_UINT:
+        case VK_FORMAT_B8G8R8_UINT:
+        case VK_FORMAT_R8G8B8A8_UINT:
+        case VK_FORMAT_B8G8R8A8_UINT:
+        case VK_FORMAT_A8B8G8R8_UINT_PACK32:
+        case VK_FORMAT_A2R10G10B10_UINT_PACK32:
+        case VK_FORMAT_A2B10G10R10_UINT_PACK32:
+        case VK_FORMAT_R16_UINT:
+        case VK_FORMAT_R16G16_UINT:
+        case VK_FORMAT_R16G16B16_UINT:
+        case VK_FORMAT_R16G16B16A16_UINT:
+        case VK_FORMAT_R32_UINT:
+        case VK_FORMAT_R32G32_UINT:
+        case VK_FORMAT_R32G32B32_UINT:
+        case VK_FORMAT_R32G32B32A32_UINT:
+            return true;
+        default:
+            return false;
+    }
+}
+inline bool is_sint_format(VkFormat f) {
+    return f != VK_FORMAT_R8_UINT && is_uint_format(VkFormat(int(f) - 1));
+}
+inline bool is_half_format(VkFormat f) {
+    return f == VK_FORMAT_R16_SFLOAT || f == VK_FORMAT_R16G16_SFLOAT || f == VK_FORMAT_R16G16B16_SFLOAT ||
+           f == VK_FORMAT_R16G16B16A16_SFLOAT;
+}
+inline bool is_float32_format(VkFormat f) {
+    return f == VK_FORMAT_R32_SFLOAT || f == VK_FORMAT_R32G32_SFLOAT || f == VK_FORMAT_R32G32B32_SFLOAT ||
+           f == VK_FORMAT_R32G32B32A32_SFLOAT || f == VK_FORMAT_D32_SFLOAT;
 }
 
-// Texel bytes with finite values for float formats (half exponents 10..20, floats in [-4,4]; depth floats [0,1]).
+// Texel bytes with finite values for float formats (half exponents 10..20, floats in [-4,4]; depth floats [0,1]);
+// every other format (normalized, integer, packed, the small floats B10G11R11 and E5B9G9R9) takes any bytes.
 inline std::vector<uint8_t> texel_data(VkFormat f, size_t texels, uint32_t seed) {
     const uint32_t n = texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT | VK_IMAGE_ASPECT_DEPTH_BIT);
     std::vector<uint8_t> data(texels * n);
     std::mt19937 rng(seed);
     for (auto& b : data) b = uint8_t(rng());
-    if (f == VK_FORMAT_R16G16B16A16_SFLOAT) {
+    if (is_half_format(f)) {
         for (size_t i = 0; i + 2 <= data.size(); i += 2) {
             const uint16_t bits = uint16_t(((rng() & 1) << 15) | ((10 + rng() % 11) << 10) | (rng() & 1023));
             std::memcpy(&data[i], &bits, 2);
         }
-    } else if (f == VK_FORMAT_R32_SFLOAT || f == VK_FORMAT_R32G32_SFLOAT || f == VK_FORMAT_R32G32B32A32_SFLOAT ||
-               f == VK_FORMAT_D32_SFLOAT) {
+    } else if (is_float32_format(f)) {
         for (size_t i = 0; i + 4 <= data.size(); i += 4) {
             const float x = f == VK_FORMAT_D32_SFLOAT ? float(rng() % 1000001) / 1000000.0f
                                                       : float(int32_t(rng() % 2000001) - 1000000) / 250000.0f;

@@ -108,8 +108,8 @@ TEST_F(ApiBreadth, SpecializationConstants) {
 }
 
 // The limits tilevk reports are usable at their value: 16 vertex attributes from 16 bindings (mixed formats and
-// rates), 56 varying components, 128 bytes of push constants visible to both stages, 4 descriptor sets, 4 colour
-// attachments of 4 formats.
+// rates), 56 varying components, 128 bytes of push constants visible to both stages, 8 descriptor sets, 8 colour
+// attachments of 4 formats (lavapipe's 8 and 8).
 TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(tilevk_->physical(), &props);
@@ -118,8 +118,8 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
     ASSERT_GE(lim.maxVertexInputBindings, 16u);
     ASSERT_GE(lim.maxVertexOutputComponents, 56u);
     ASSERT_GE(lim.maxPushConstantsSize, 128u);
-    ASSERT_GE(lim.maxBoundDescriptorSets, 4u);
-    ASSERT_GE(lim.maxColorAttachments, 4u);
+    ASSERT_GE(lim.maxBoundDescriptorSets, 8u);
+    ASSERT_GE(lim.maxColorAttachments, 8u);
     VkPhysicalDeviceFeatures features{};
     features.independentBlend = VK_TRUE;
     Device tdev(tilevk_->physical(), &features), ldev(lavapipe_->physical(), &features);
@@ -132,16 +132,16 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
         std::vector<VkImageView> views;
         std::vector<VkAttachmentDescription> atts;
         std::vector<VkAttachmentReference> refs;
-        for (uint32_t i = 0; i < 4; ++i) {
+        for (uint32_t i = 0; i < 8; ++i) {
             imgs.push_back(
-                k.image(fmts[i], 16, 16, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT));
-            views.push_back(k.view(imgs.back().image, fmts[i], VK_IMAGE_ASPECT_COLOR_BIT));
-            atts.push_back(attachment(fmts[i], VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE));
+                k.image(fmts[i % 4], 16, 16, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT));
+            views.push_back(k.view(imgs.back().image, fmts[i % 4], VK_IMAGE_ASPECT_COLOR_BIT));
+            atts.push_back(attachment(fmts[i % 4], VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE));
             refs.push_back({i, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
         }
         VkSubpassDescription sub{};
         sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 4;
+        sub.colorAttachmentCount = 8;
         sub.pColorAttachments = refs.data();
         VkRenderPass rp = k.render_pass(atts, {sub});
         VkFramebuffer fb = k.framebuffer(rp, views, 16, 16);
@@ -150,8 +150,8 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
         VkPhysicalDeviceProperties props;
         vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
         const VkDeviceSize align = std::max<VkDeviceSize>(props.limits.minUniformBufferOffsetAlignment, 16);
-        Device::Buffer ubo = k.buffer(4 * align, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-        for (uint32_t i = 0; i < 4; ++i) {
+        Device::Buffer ubo = k.buffer(8 * align, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        for (uint32_t i = 0; i < 8; ++i) {
             const float u[4] = {0.1f * float(i + 1), 0.5f, 1.0f - 0.2f * float(i), 0.25f};
             std::memcpy(static_cast<uint8_t*>(ubo.map) + i * align, u, 16);
             dsls.push_back(k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}}));
@@ -171,7 +171,7 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
         p.rp = rp;
         p.layout = layout;
         p.width = p.height = 16;
-        p.color_count = 4;
+        p.color_count = 8;
         p.bindings.clear();
         p.attrs.clear();
         std::vector<Device::Buffer> vbs;
@@ -194,13 +194,14 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             begin_pass(c, rp, fb, 16, 16,
                        {clear_color(0, 0, 0.25f, 1), clear_color(-1, 0, 1, 0), clear_color(0.5f, 0, 0, 1),
-                        clear_color(0, 1, 0, 1)});
+                        clear_color(0, 1, 0, 1), clear_color(0.25f, 0.5f, 0, 1), clear_color(2, -3, 0.5f, 1),
+                        clear_color(0, 0, 0, 0), clear_color(1, 1, 1, 1)});
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
             std::vector<VkBuffer> bufs;
             std::vector<VkDeviceSize> offs(16, 0);
             for (auto& b : vbs) bufs.push_back(b.buffer);
             vkCmdBindVertexBuffers(c, 0, 16, bufs.data(), offs.data());
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 4, sets.data(), 0, nullptr);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 8, sets.data(), 0, nullptr);
             float pc[32];
             for (int i = 0; i < 32; ++i) pc[i] = float((i * 7) % 11) / 10.0f - 0.2f;
             pc[0] = pc[1] = 0.0f;  // no position offset
@@ -210,7 +211,7 @@ TEST_F(ApiBreadth, ReportedLimitsAreUsable) {
         }),
                   VK_SUCCESS);
         Bytes out;
-        for (uint32_t i = 0; i < 4; ++i) out = concat({out, k.read(imgs[i].image, 16, 16, texel[i])});
+        for (uint32_t i = 0; i < 8; ++i) out = concat({out, k.read(imgs[i].image, 16, 16, texel[i % 4])});
         EXPECT_NE(px(out, 8, 8, 16)[2], 64);  // attachment 0 drawn in the middle
         return out;
     });

@@ -253,18 +253,7 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
                 // alignment rule for vertex input): stride 21, offset 3, so most elements start at odd addresses.
                 const uint32_t stride = unaligned ? 21 : 20, offset = unaligned ? 3 : 4;
                 Pipe p;
-                const bool is_uint = f == VK_FORMAT_R8_UINT || f == VK_FORMAT_R8G8_UINT || f == VK_FORMAT_R8G8B8_UINT ||
-                                     f == VK_FORMAT_R8G8B8A8_UINT || f == VK_FORMAT_R16_UINT ||
-                                     f == VK_FORMAT_R16G16_UINT || f == VK_FORMAT_R16G16B16_UINT ||
-                                     f == VK_FORMAT_R16G16B16A16_UINT || f == VK_FORMAT_R32_UINT ||
-                                     f == VK_FORMAT_R32G32_UINT || f == VK_FORMAT_R32G32B32_UINT ||
-                                     f == VK_FORMAT_R32G32B32A32_UINT || f == VK_FORMAT_A2B10G10R10_UINT_PACK32;
-                const bool is_sint = f == VK_FORMAT_R8_SINT || f == VK_FORMAT_R8G8_SINT || f == VK_FORMAT_R8G8B8_SINT ||
-                                     f == VK_FORMAT_R8G8B8A8_SINT || f == VK_FORMAT_R16_SINT ||
-                                     f == VK_FORMAT_R16G16_SINT || f == VK_FORMAT_R16G16B16_SINT ||
-                                     f == VK_FORMAT_R16G16B16A16_SINT || f == VK_FORMAT_R32_SINT ||
-                                     f == VK_FORMAT_R32G32_SINT || f == VK_FORMAT_R32G32B32_SINT ||
-                                     f == VK_FORMAT_R32G32B32A32_SINT || f == VK_FORMAT_A2B10G10R10_SINT_PACK32;
+                const bool is_uint = is_uint_format(f), is_sint = is_sint_format(f);
                 p.vs = is_uint ? SPV(ab_point_uint_vert) : is_sint ? SPV(ab_point_sint_vert) : SPV(ab_point_float_vert);
                 p.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
                 p.width = p.height = 4;
@@ -277,10 +266,7 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
                 std::vector<uint8_t> data(16 * stride + 16);
                 std::mt19937 rng(uint32_t(f) * 7919u);
                 for (auto& b : data) b = uint8_t(rng());
-                const bool half = f == VK_FORMAT_R16_SFLOAT || f == VK_FORMAT_R16G16_SFLOAT ||
-                                  f == VK_FORMAT_R16G16B16_SFLOAT || f == VK_FORMAT_R16G16B16A16_SFLOAT;
-                const bool single = f == VK_FORMAT_R32_SFLOAT || f == VK_FORMAT_R32G32_SFLOAT ||
-                                    f == VK_FORMAT_R32G32B32_SFLOAT || f == VK_FORMAT_R32G32B32A32_SFLOAT;
+                const bool half = is_half_format(f), single = is_float32_format(f);
                 for (uint32_t e = 0; e < 16; ++e) {  // components of each element, wherever it starts
                     const size_t base = size_t(offset) + size_t(e) * stride;
                     for (int c = 0; c < 4; ++c) {
@@ -307,6 +293,54 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
             });
         }
     }
+}
+
+// Half-float vertex attributes that are NaN (signalling and quiet, with payloads), infinite or denormal reach the
+// shader as VCVTPH2PS converts them (lavapipe's SoA fetch: lp_build_half_to_float on F16C hosts): signalling NaNs
+// quieted, payloads kept. The RGBA32F target carries the bits; 16 points, one per pixel. (Whether the fetch itself
+// quiets a signalling NaN is not observable here: the first arithmetic on the value quiets it in both drivers; a
+// canonical NaN instead of the payload fails.)
+TEST_F(ApiBreadth, HalfVertexSpecialsFetchLikeLavapipe) {
+    const uint16_t specials[] = {0x7c01, 0x7d55, 0xfc01, 0xfdff, 0x7e00, 0x7e01, 0x7fff, 0xffff,
+                                 0x7c00, 0xfc00, 0x0001, 0x03ff, 0x83ff, 0x7bff, 0x3c00, 0xbc00};
+    std::vector<uint8_t> data(16 * 8);
+    for (size_t i = 0; i < 64; ++i) {
+        const uint16_t h = specials[(i * 5 + i / 16) % 16];
+        std::memcpy(&data[2 * i], &h, 2);
+    }
+    const Bytes out = both([&](Kit& k) {
+        Target t = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+        Pipe p;
+        p.vs = SPV(ab_point_float_vert);
+        p.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+        p.width = p.height = 4;
+        p.rp = t.rp;
+        p.bindings = {{0, 8, VK_VERTEX_INPUT_RATE_VERTEX}};
+        p.attrs = {{0, 0, VK_FORMAT_R16G16B16A16_SFLOAT, 0}};
+        VkPipeline pipe = k.pipeline(p);
+        Device::Buffer vb = k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            bind_vertices(c, vb);
+            vkCmdDraw(c, 16, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        return k.read(t.image.image, 4, 4, 16);
+    });
+    // Independent spot check: the signalling NaN 0x7c01 arrives as the quiet float NaN 0x7fc02000.
+    int found = 0;
+    for (size_t i = 0; i < 64; ++i) {
+        uint16_t h;
+        std::memcpy(&h, &data[2 * i], 2);
+        if (h != 0x7c01) continue;
+        uint32_t got;
+        std::memcpy(&got, &out[4 * i], 4);
+        EXPECT_EQ(got, 0x7fc02000u) << i;
+        ++found;
+    }
+    EXPECT_GT(found, 0);
 }
 
 }  // namespace

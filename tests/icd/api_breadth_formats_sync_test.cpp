@@ -29,12 +29,15 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
         ASSERT_NE(texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT), 0u) << "the test does not know this format";
         if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
             ++colour;
+            SCOPED_TRACE("colour attachment");
             const bool blend = t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
             both([&](Kit& k) {
                 Target tg = target(k, f);
                 Pipe p;
                 p.rp = tg.rp;
                 p.blend = {blend ? alpha_over() : opaque()};
+                if (is_uint_format(f)) p.fs = SPV(ab_color_uint_frag);
+                if (is_sint_format(f)) p.fs = SPV(ab_color_sint_frag);
                 VkPipeline pipe = k.pipeline(p);
                 Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) {
@@ -50,6 +53,7 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
         }
         if (t & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
             ++depth;
+            SCOPED_TRACE("depth/stencil attachment");
             both([&](Kit& k) {
                 const auto [col, dep, rp, fb] = depth_target(k, f);
                 VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
@@ -74,18 +78,22 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                     vkCmdEndRenderPass(c);
                 }),
                           VK_SUCCESS);
-                Bytes out = concat(
-                    {k.read(col.image, 32, 32, 4),
-                     k.read(dep.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT), VK_IMAGE_ASPECT_DEPTH_BIT)});
+                Bytes out = k.read(col.image, 32, 32, 4);
+                if (f != VK_FORMAT_S8_UINT)
+                    out = concat({out, k.read(dep.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT),
+                                              VK_IMAGE_ASPECT_DEPTH_BIT)});
                 if (has_stencil(f)) out = concat({out, k.read(dep.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT)});
                 return out;
             });
         }
         if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
             ++sampled;
+            SCOPED_TRACE("sampled image");
             both([&](Kit& k) {
                 const VkImageAspectFlags aspect = is_depth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-                Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+                // integer texels are read as integers into an integer target (their bits, NaN patterns untouched)
+                const bool integer = is_uint_format(f) || is_sint_format(f);
+                Target tg = target(k, integer ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
                 upload(k, src, tex.image, aspect, 4, 4);
@@ -93,16 +101,114 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
                 VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
+                const Pipe p = fullscreen_pipe(is_uint_format(f)   ? SPV(ab_sample_uint_frag)
+                                               : is_sint_format(f) ? SPV(ab_sample_sint_frag)
+                                                                   : SPV(ab_sample_frag),
+                                               tg, layout);
                 VkPipeline pipe = k.pipeline(p);
                 EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
                 return k.read(tg.image.image, 4, 4, 16);
+            });
+        }
+        if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) {
+            SCOPED_TRACE("linear filtering");
+            both([&](Kit& k) {  // bilinear footprints near and past the edges (REPEAT and CLAMP_TO_EDGE)
+                Bytes out;
+                for (VkSamplerAddressMode mode :
+                     {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
+                    Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8);
+                    Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+                    Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f) + 77), 0);
+                    upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
+                    const auto [dsl, layout, set] = sampler_set(k);
+                    VkDescriptorImageInfo ii{k.sampler(VK_FILTER_LINEAR, mode),
+                                             k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
+                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+                    k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+                    const Pipe p = fullscreen_pipe(SPV(ab_sample_edges_frag), tg, layout);
+                    VkPipeline pipe = k.pipeline(p);
+                    EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+                    out = concat({out, k.read(tg.image.image, 8, 8, 16)});
+                }
+                return out;
             });
         }
     }
     EXPECT_GT(colour, 0);
     EXPECT_GT(depth, 0);
     EXPECT_GT(sampled, 0);
+}
+
+// Half-float texels that are NaN (signalling and quiet, with payloads), infinite, zero or denormal, sampled into an
+// RGBA32F target: lavapipe converts them as VCVTPH2PS does (signalling NaNs quieted, payload kept), and so must
+// tilevk's texel codec; the bytes of the float target carry every NaN payload bit. (-0 is left out: the shader's
+// `texture(...) + v_color * 0.0` is folded away by NIR's inexact algebraic rules in lavapipe, keeping -0, while
+// tilevk evaluates it, giving +0 — a shader-arithmetic difference, not a texel conversion.)
+TEST_F(ApiBreadth, HalfTexelSpecialsSampleLikeLavapipe) {
+    const uint16_t specials[] = {0x7c01, 0x7d55, 0xfc01, 0xfdff, 0x7e00, 0x7e01, 0x7fff, 0xffff,
+                                 0x7c00, 0xfc00, 0x0000, 0x8001, 0x0001, 0x03ff, 0x83ff, 0x7bff};
+    std::vector<uint8_t> data(16 * 8);
+    for (size_t i = 0; i < 64; ++i) {
+        const uint16_t h = specials[(i * 5 + i / 16) % 16];
+        std::memcpy(&data[2 * i], &h, 2);
+    }
+    const VkFormat f = VK_FORMAT_R16G16B16A16_SFLOAT;
+    const Bytes out = both([&](Kit& k) {
+        Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+        Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        Device::Buffer src = k.buffer_of(data, 0);
+        upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
+        const auto [dsl, layout, set] = sampler_set(k);
+        VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        const Pipe p = fullscreen_pipe(SPV(ab_sample_frag), tg, layout);
+        VkPipeline pipe = k.pipeline(p);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+        return k.read(tg.image.image, 4, 4, 16);
+    });
+    // Independent spot check: the signalling NaN 0x7c01 becomes the quiet float NaN 0x7fc02000.
+    int found = 0;
+    for (size_t i = 0; i < 64; ++i) {
+        uint16_t h;
+        std::memcpy(&h, &data[2 * i], 2);
+        if (h != 0x7c01) continue;
+        uint32_t got;
+        std::memcpy(&got, &out[4 * i], 4);
+        EXPECT_EQ(got, 0x7fc02000u) << i;
+        ++found;
+    }
+    EXPECT_GT(found, 0);
+}
+
+// Bilinear CLAMP_TO_EDGE sampling near and past the edges of a float texture holding infinities: lavapipe clamps
+// the scaled coordinate to [0.5, n - 0.5] before the filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear), so
+// next to an edge it lerps texels 0 and 1 with weight 0 — an infinite texel 1 then makes the result NaN — where
+// clamping the two texel indices instead would read texel 0 twice.
+TEST_F(ApiBreadth, LinearClampToEdgeNearInfinitiesLikeLavapipe) {
+    const VkFormat f = VK_FORMAT_R32G32B32A32_SFLOAT;
+    std::vector<uint8_t> data(16 * 16);
+    for (size_t i = 0; i < 64; ++i) {
+        const float x = float(int(i * 37 % 41) - 20) / 8.0f;
+        std::memcpy(&data[4 * i], &x, 4);
+    }
+    const float inf = INFINITY;
+    for (size_t texel : {1u, 4u, 7u, 13u}) std::memcpy(&data[16 * texel + 4 * (texel % 4)], &inf, 4);
+    both([&](Kit& k) {
+        Target tg = target(k, f, 8, 8);
+        Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        Device::Buffer src = k.buffer_of(data, 0);
+        upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
+        const auto [dsl, layout, set] = sampler_set(k);
+        VkDescriptorImageInfo ii{k.sampler(VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+                                 k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        const Pipe p = fullscreen_pipe(SPV(ab_sample_edges_frag), tg, layout);
+        VkPipeline pipe = k.pipeline(p);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+        return k.read(tg.image.image, 8, 8, 16);
+    });
 }
 
 // vkGetPhysicalDeviceImageFormatProperties says VK_ERROR_FORMAT_NOT_SUPPORTED for every usage whose format feature
@@ -268,8 +374,8 @@ TEST_F(ApiBreadth, FencesSemaphoresEvents) {
 
 // Error paths on tilevk without the validation layer (these calls are valid but must fail cleanly): an allocation
 // larger than the heap, a pipeline whose shader reads a storage texel buffer (no imageLoad/imageStore), a geometry
-// stage, a compute pipeline (no compute queue); each returns an error code and a null handle, and the device keeps
-// working.
+// stage, a compute pipeline whose workgroup is larger than maxComputeWorkGroupInvocations; each returns an error
+// code and a null handle, and the device keeps working.
 TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
@@ -297,7 +403,7 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         VkPipeline pipe = k.pipeline(p, &r);
         EXPECT_NE(r, VK_SUCCESS);
         EXPECT_EQ(pipe, VK_NULL_HANDLE);
-        // Compute pipeline: refused.
+        // Compute pipeline past the workgroup limits: refused.
         VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
         cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
         cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -376,6 +482,50 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         EXPECT_NE(px(b, 10, 12)[2], 64);
     }
     EXPECT_EQ(vkDeviceWaitIdle(dev.device()), VK_SUCCESS);
+}
+
+// What the issue found accepted silently, refused now (no validation layer: invalid usage on purpose): a pipeline
+// for dynamic rendering (no render pass, VkPipelineRenderingCreateInfo) while tilevk has no dynamic rendering, and a
+// buffer view on a STORAGE_TEXEL_BUFFER buffer (no format has the feature). The same requests with a render pass /
+// a UNIFORM_TEXEL_BUFFER buffer succeed.
+TEST_F(ApiBreadth, DynamicRenderingPipelinesAndStorageTexelViewsAreRefused) {
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    Device dev(plain.find_device("tilevk"));
+    ASSERT_TRUE(dev.ok());
+    Kit k(dev);
+    Target t = target(k);
+    const VkFormat color = VK_FORMAT_R8G8B8A8_UNORM;
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachmentFormats = &color;
+    Pipe p;
+    p.pnext = &rendering;
+    VkResult r = VK_SUCCESS;
+    EXPECT_EQ(k.pipeline(p, &r), VkPipeline(VK_NULL_HANDLE));
+    EXPECT_EQ(r, VK_ERROR_INITIALIZATION_FAILED);
+    p.pnext = nullptr;
+    p.rp = t.rp;
+    EXPECT_NE(k.pipeline(p, &r), VkPipeline(VK_NULL_HANDLE));
+    EXPECT_EQ(r, VK_SUCCESS);
+
+    for (VkBufferUsageFlags usage : {VkBufferUsageFlags(VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT),
+                                     VkBufferUsageFlags(VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT)}) {
+        Device::Buffer b = dev.make_buffer(256, usage);
+        VkBufferViewCreateInfo vci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+        vci.buffer = b.buffer;
+        vci.format = VK_FORMAT_R32_SFLOAT;
+        vci.range = VK_WHOLE_SIZE;
+        VkBufferView view = VK_NULL_HANDLE;
+        const VkResult vr = vkCreateBufferView(dev.device(), &vci, nullptr, &view);
+        if (usage == VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT) {
+            EXPECT_EQ(vr, VK_ERROR_FORMAT_NOT_SUPPORTED);
+        } else {
+            EXPECT_EQ(vr, VK_SUCCESS);
+            vkDestroyBufferView(dev.device(), view, nullptr);
+        }
+        dev.destroy(b);
+    }
 }
 
 }  // namespace

@@ -306,7 +306,7 @@ std::vector<Spec> specs() {
         f.src_levels = 5;
         v.push_back(f);
     }
-    // B8G8R8A8_UNORM single-layer destinations: lavapipe's "linear" mode (one rectangle, notes §8); a 2-layer
+    // B8G8R8A8_UNORM single-layer destinations: lavapipe's "linear" mode (one rectangle, lavapipe-rules §8); a 2-layer
     // destination is a 2D array there and takes the triangle path
     v.push_back(whole("bgra_dst_nearest_scale", kRgba8, 32, 32, kBgra8, 45, 21, kNearest));
     v.push_back(whole("bgra_dst_from_float_nearest", VK_FORMAT_R32_SFLOAT, 32, 32, kBgra8, 45, 21, kNearest));

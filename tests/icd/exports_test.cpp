@@ -69,11 +69,17 @@ TEST_F(Exports, InstanceProcAddrWithoutInstance) {
 }
 
 TEST_F(Exports, UnknownAndExtensionNamesAreNull) {
-    for (const char* name : {"", "vk", "vkNotACommand", "vkCreateInstanceX", "vkGetPhysicalDeviceProperties2KHR",
-                             "vkCreateSwapchainKHR", "vkCreateDebugUtilsMessengerEXT", "vk_icdGetInstanceProcAddr"}) {
+    for (const char* name :
+         {"", "vk", "vkNotACommand", "vkCreateInstanceX", "vkGetPhysicalDeviceMultisamplePropertiesEXT",
+          "vkCreateSwapchainKHR", "vkCreateDebugUtilsMessengerEXT", "vk_icdGetInstanceProcAddr"}) {
         EXPECT_EQ(gipa_(VK_NULL_HANDLE, name), nullptr) << name;
         EXPECT_EQ(gpdpa_(VK_NULL_HANDLE, name), nullptr) << name;
     }
+    // An exposed instance extension's command needs an instance (where the extension is enabled) through
+    // vk_icdGetInstanceProcAddr; vk_icdGetPhysicalDeviceProcAddr, which the loader calls with no instance to learn
+    // what the driver has, answers.
+    EXPECT_EQ(gipa_(VK_NULL_HANDLE, "vkGetPhysicalDeviceProperties2KHR"), nullptr);
+    EXPECT_NE(gpdpa_(VK_NULL_HANDLE, "vkGetPhysicalDeviceProperties2KHR"), nullptr);
 }
 
 // vk_icdGetPhysicalDeviceProcAddr answers only for commands whose first parameter is a VkPhysicalDevice.

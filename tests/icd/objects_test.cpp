@@ -260,4 +260,43 @@ TEST(Versions, Vulkan13ApplicationSeesTilevk) {
     vkDestroyInstance(inst, nullptr);
 }
 
+// Image parameters beyond what vkGetPhysicalDeviceImageFormatProperties reports (maxExtent = maxImageDimension2D,
+// other image types, flags, sample counts) are invalid usage; tilevk refuses them with that query's code,
+// VK_ERROR_FORMAT_NOT_SUPPORTED, as icd/README.md says (no validation layer: the calls are invalid on purpose).
+TEST(Images, ParametersPastImageFormatPropertiesAreFormatNotSupported) {
+    Harness h(false);
+    ASSERT_TRUE(h.ok());
+    VkPhysicalDevice pd = h.find_device("tilevk");
+    ASSERT_NE(pd, VK_NULL_HANDLE);
+    Device dev(pd);
+    ASSERT_TRUE(dev.ok());
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(pd, &props);
+    const uint32_t max2d = props.limits.maxImageDimension2D;
+    auto create = [&](VkImageType type, uint32_t w, uint32_t hgt, VkImageCreateFlags flags,
+                      VkSampleCountFlagBits samples) {
+        VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ci.imageType = type;
+        ci.format = VK_FORMAT_R8G8B8A8_UNORM;
+        ci.extent = {w, hgt, 1};
+        ci.mipLevels = 1;
+        ci.arrayLayers = 1;
+        ci.samples = samples;
+        ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+        ci.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        ci.flags = flags;
+        VkImage img = VK_NULL_HANDLE;
+        const VkResult r = vkCreateImage(dev.device(), &ci, nullptr, &img);
+        if (img != VK_NULL_HANDLE) vkDestroyImage(dev.device(), img, nullptr);
+        return r;
+    };
+    EXPECT_EQ(create(VK_IMAGE_TYPE_2D, max2d, max2d, 0, VK_SAMPLE_COUNT_1_BIT), VK_SUCCESS);
+    EXPECT_EQ(create(VK_IMAGE_TYPE_2D, max2d + 1, 16, 0, VK_SAMPLE_COUNT_1_BIT), VK_ERROR_FORMAT_NOT_SUPPORTED);
+    EXPECT_EQ(create(VK_IMAGE_TYPE_2D, 16, max2d + 1, 0, VK_SAMPLE_COUNT_1_BIT), VK_ERROR_FORMAT_NOT_SUPPORTED);
+    EXPECT_EQ(create(VK_IMAGE_TYPE_3D, 16, 16, 0, VK_SAMPLE_COUNT_1_BIT), VK_ERROR_FORMAT_NOT_SUPPORTED);
+    EXPECT_EQ(create(VK_IMAGE_TYPE_2D, 16, 16, VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT, VK_SAMPLE_COUNT_1_BIT),
+              VK_ERROR_FORMAT_NOT_SUPPORTED);
+    EXPECT_EQ(create(VK_IMAGE_TYPE_2D, 16, 16, 0, VK_SAMPLE_COUNT_8_BIT), VK_ERROR_FORMAT_NOT_SUPPORTED);
+}
+
 }  // namespace

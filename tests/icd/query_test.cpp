@@ -658,7 +658,7 @@ TEST_F(Queries, TimestampsAreMonotonicNanoseconds) {
 }
 
 // No storage texel-buffer format features are reported: shader/ has no imageLoad/imageStore. (Uniform texel
-// buffers are read by texelFetch: tests/icd/api_breadth_test.cpp UniformTexelBuffers.)
+// buffers are read by texelFetch: tests/icd/api_breadth_descriptors_test.cpp UniformTexelBuffers.)
 TEST_F(Queries, NoStorageTexelBufferFormatFeatures) {
     for (int f = 1; f <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++f) {
         VkFormatProperties fp;
@@ -691,7 +691,7 @@ TEST(QueriesInvalid, BufferViewsDispatchSparseStatistics) {
     vkDestroyBufferView(d, view, nullptr);
     bvci.offset = 512;  // past the end
     EXPECT_NE(vkCreateBufferView(d, &bvci, nullptr, &view), VK_SUCCESS);
-    // Dispatches do nothing (no compute queue) and the submission still succeeds.
+    // Dispatches with no compute pipeline bound (invalid usage) do nothing and the submission still succeeds.
     EXPECT_EQ(dev.run([&](VkCommandBuffer cb) {
         vkCmdDispatch(cb, 4, 4, 1);
         vkCmdDispatchIndirect(cb, buf.buffer, 0);

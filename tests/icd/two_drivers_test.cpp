@@ -148,7 +148,7 @@ TEST(TwoDrivers, TilevkProperties) {
     ASSERT_EQ(nq, 1u);
     VkQueueFamilyProperties q;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, &q);
-    EXPECT_EQ(q.queueFlags, VkQueueFlags(VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_TRANSFER_BIT));
+    EXPECT_EQ(q.queueFlags, VkQueueFlags(VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT | VK_QUEUE_TRANSFER_BIT));
     EXPECT_EQ(q.queueCount, 1u);
     VkPhysicalDeviceMemoryProperties m;
     vkGetPhysicalDeviceMemoryProperties(pd, &m);
@@ -197,7 +197,7 @@ TEST(TwoDrivers, TilevkRefusesWhatItLacks) {
     VkDevice dev = VK_NULL_HANDLE;
     EXPECT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_ERROR_FEATURE_NOT_PRESENT);
     ci.pEnabledFeatures = nullptr;
-    const char* ext = "VK_KHR_swapchain";
+    const char* ext = "VK_EXT_mesh_shader";
     ci.enabledExtensionCount = 1;
     ci.ppEnabledExtensionNames = &ext;
     EXPECT_EQ(vkCreateDevice(pd, &ci, nullptr, &dev), VK_ERROR_EXTENSION_NOT_PRESENT);

@@ -1,113 +1,49 @@
-// Unit tests of icd/ internals: clear-value packing, the image layout and the generated entry-point table.
+// Unit tests of icd/ internals: the format mapping, the image layout and the generated entry-point table.
 #include <gtest/gtest.h>
-#include <immintrin.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "clear_pack.h"
 #include "entrypoints.h"
 #include "formats.h"
 #include "image.h"
+#include "object.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 namespace {
 
-float from_bits(uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, 4);
-    return f;
+// The generated VkFormat <-> table mapping covers every registry format both ways, and names the row.
+TEST(FormatMap, EveryRowMapsBothWays) {
+    for (size_t i = 1; i < size_t(format::Format::kCount); ++i) {
+        const format::Format f = format::Format(i);
+        const VkFormat vk = to_vk_format(f);
+        ASSERT_NE(vk, VK_FORMAT_UNDEFINED) << i;
+        EXPECT_EQ(to_format(vk), f) << vk_enum_name(vk);
+        EXPECT_STREQ(vk_enum_name(vk) + 10, format::format_info(f).name);  // after "VK_FORMAT_"
+        EXPECT_EQ(find_format(vk), &format::format_info(f));
+    }
+    EXPECT_EQ(find_format(VK_FORMAT_UNDEFINED), nullptr);
+    EXPECT_EQ(find_format(VkFormat(987654)), nullptr);
 }
 
-// float_to_ubyte: the low byte of fl(f*fl(255/256)) + 32768 is round-half-even(x * 256) for x = fl(f*fl(255/256)),
-// because the ulp of 32768.0f is exactly 1/256. Expected value computed in double from that statement.
-TEST(ClearPack, FloatToUbyteMatchesItsDefinition) {
-    const float k = 255.0f / 256.0f;
-    for (uint32_t u = 0; u <= 0x3f800000u; u += 61) {
-        float f = from_bits(u);
-        float x = f * k;
-        int expected = f >= 1.0f ? 255 : f > 0.0f ? int(std::nearbyint(double(x) * 256.0)) & 0xff : 0;
-        ASSERT_EQ(float_to_ubyte(f), expected) << "f = " << f;
-    }
-    EXPECT_EQ(float_to_ubyte(-1.0f), 0);
-    EXPECT_EQ(float_to_ubyte(NAN), 0);
-    EXPECT_EQ(float_to_ubyte(INFINITY), 255);
-    EXPECT_EQ(float_to_ubyte(2.0f), 255);
-    EXPECT_EQ(float_to_ubyte(0.5f), 128);  // fl(0.5*255/256)*256 = 127.5 -> 128 (half to even)
-}
-
-// Against the CPU's own F16C conversion in round-toward-zero mode (the instruction Mesa uses) as the reference.
-__attribute__((target("f16c"))) uint16_t f16c_rtz(float f) {
-    return uint16_t(_cvtss_sh(f, _MM_FROUND_TO_ZERO));
-}
-
-TEST(ClearPack, HalfConversionRoundsTowardZeroLikeF16c) {
-    if (!__builtin_cpu_supports("f16c")) GTEST_SKIP() << "no F16C on this CPU: no hardware reference";
-    for (uint64_t u = 0; u <= 0xffffffffull; u += 9973) {
-        float f = from_bits(uint32_t(u));
-        ASSERT_EQ(float_to_half_rtz(f), f16c_rtz(f)) << std::hexfloat << f << " bits " << std::hex << u;
-    }
-    for (float f : {65504.0f, 65519.0f, 65520.0f, 1e9f, -1e9f, INFINITY, -INFINITY, NAN, 5.9604645e-08f, 1e-9f}) {
-        EXPECT_EQ(float_to_half_rtz(f), f16c_rtz(f)) << f;
-    }
-    for (uint32_t h = 0; h < 0x10000; ++h) {
-        _Float16 v;
-        uint16_t b = uint16_t(h);
-        std::memcpy(&v, &b, 2);
-        float want = static_cast<float>(v);  // half -> float is exact
-        if (std::isnan(want)) {
-            EXPECT_TRUE(std::isnan(half_to_float(b)));
-            continue;
-        }
-        ASSERT_EQ(half_to_float(b), want) << h;
-    }
-}
-
-// The bucketed sRGB encoder stays within one step of the exact curve, and hits the ends exactly.
-TEST(ClearPack, SrgbEncodeCloseToExactCurve) {
-    EXPECT_EQ(linear_float_to_srgb8(0.0f), 0);
-    EXPECT_EQ(linear_float_to_srgb8(1.0f), 255);
-    EXPECT_EQ(linear_float_to_srgb8(-3.0f), 0);
-    EXPECT_EQ(linear_float_to_srgb8(7.0f), 255);
-    EXPECT_EQ(linear_float_to_srgb8(NAN), 0);
-    for (int i = 0; i <= 10000; ++i) {
-        double x = i / 10000.0;
-        double s = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-        int exact = int(std::floor(s * 255.0 + 0.5));
-        ASSERT_LE(std::abs(int(linear_float_to_srgb8(float(x))) - exact), 1) << x;
-    }
-}
-
-TEST(ClearPack, DepthPacking) {
-    const FormatInfo* d16 = find_format(VK_FORMAT_D16_UNORM);
-    ASSERT_NE(d16, nullptr);
-    struct Case {
-        float z;
-        uint16_t want;
-    } cases[] = {{0.0f, 0}, {-1.0f, 0}, {1.0f, 65535}, {2.0f, 65535}, {0.5f, 32768}, {0.25f, 16384}};
-    // 0.5*65535 = 32767.5 -> lrint (half to even) = 32768; 0.25*65535 = 16383.75 -> 16384.
-    for (const Case& c : cases) {
-        uint8_t t[4] = {};
-        pack_clear_depth(*d16, c.z, t);
-        uint16_t v;
-        std::memcpy(&v, t, 2);
-        EXPECT_EQ(v, c.want) << c.z;
-    }
-}
-
-TEST(ClearPack, ColorChannelOrder) {
-    VkClearColorValue c{};
-    c.float32[0] = 1.0f;  // red
-    c.float32[3] = 1.0f;
-    uint8_t t[16] = {};
-    pack_clear_color(*find_format(VK_FORMAT_B8G8R8A8_UNORM), c, t);
-    EXPECT_EQ(t[0], 0);  // blue first in memory
-    EXPECT_EQ(t[2], 255);
-    EXPECT_EQ(t[3], 255);
-    pack_clear_color(*find_format(VK_FORMAT_R32G32_SFLOAT), c, t);
-    float g;
-    std::memcpy(&g, t + 4, 4);
-    EXPECT_EQ(g, 0.0f);
+// The default allocation callbacks keep the spec's pfnReallocation contract: growing and shrinking keep the
+// contents and the alignment, size 0 frees, a null old pointer allocates.
+TEST(DefaultAllocator, ReallocationKeepsContentsAndAlignment) {
+    const VkAllocationCallbacks& a = default_allocator();
+    const VkSystemAllocationScope scope = VK_SYSTEM_ALLOCATION_SCOPE_OBJECT;
+    auto* p = static_cast<uint8_t*>(a.pfnReallocation(a.pUserData, nullptr, 100, 64, scope));
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(p) % 64, 0u);
+    for (int i = 0; i < 100; ++i) p[i] = uint8_t(i * 7);
+    auto* q = static_cast<uint8_t*>(a.pfnReallocation(a.pUserData, p, 100000, 256, scope));
+    ASSERT_NE(q, nullptr);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(q) % 256, 0u);
+    for (int i = 0; i < 100; ++i) ASSERT_EQ(q[i], uint8_t(i * 7)) << i;
+    auto* r = static_cast<uint8_t*>(a.pfnReallocation(a.pUserData, q, 10, 16, scope));
+    ASSERT_NE(r, nullptr);
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(r[i], uint8_t(i * 7)) << i;
+    EXPECT_EQ(a.pfnReallocation(a.pUserData, r, 0, 16, scope), nullptr);  // frees
 }
 
 // Hand-computed: 5x3 RGBA8, 3 levels, 2 layers. Level 0: rows of 20 B, layers of 60 B -> 120 B.
@@ -153,9 +89,51 @@ TEST(EntryPoints, TableIsSortedAndLevelsFollowTheFirstParameter) {
         EXPECT_EQ(p->core_version, VK_MAKE_API_VERSION(0, 1, 0, 0)) << c.name;
     }
     EXPECT_NE(find_entry_point("vkCmdBlitImage"), nullptr);
-    EXPECT_NE(find_entry_point("vkCmdDispatch"), nullptr);  // exists: logs that there is no compute, does nothing
+    EXPECT_NE(find_entry_point("vkCmdDispatch"), nullptr);
     EXPECT_EQ(find_entry_point("vkCmdDrawIndirectCount"), nullptr);  // Vulkan 1.2: not in the table
     EXPECT_EQ(find_entry_point(nullptr), nullptr);
+}
+
+// The generated names come from vk.xml: spot checks against the spec's spelling, and offsets that agree with the
+// compiler's layout of the structs.
+TEST(VkNames, EnumsFlagsAndFeatureMembers) {
+    EXPECT_STREQ(vk_enum_name(VK_FORMAT_R8G8B8A8_UINT), "VK_FORMAT_R8G8B8A8_UINT");
+    EXPECT_STREQ(vk_enum_name(VK_FORMAT_D24_UNORM_S8_UINT), "VK_FORMAT_D24_UNORM_S8_UINT");
+    EXPECT_STREQ(vk_enum_name(VK_FORMAT_G8_B8R8_2PLANE_420_UNORM), "VK_FORMAT_G8_B8R8_2PLANE_420_UNORM");
+    EXPECT_STREQ(vk_enum_name(VK_ERROR_OUT_OF_DATE_KHR), "VK_ERROR_OUT_OF_DATE_KHR");
+    EXPECT_STREQ(vk_enum_name(VkFormat(987654)), "VkFormat(987654)");
+    EXPECT_EQ(vk_flags_name<VkShaderStageFlagBits>(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT),
+              "VK_SHADER_STAGE_VERTEX_BIT|VK_SHADER_STAGE_COMPUTE_BIT");
+    EXPECT_EQ(vk_flags_name<VkShaderStageFlagBits>(0), "0");
+    EXPECT_EQ(vk_flags_name<VkSampleCountFlagBits>(VK_SAMPLE_COUNT_4_BIT | 0x10000000u),
+              "VK_SAMPLE_COUNT_4_BIT|0x10000000");
+    EXPECT_EQ(vk_VkPipelineStageFlagBits2_name(VK_PIPELINE_STAGE_2_COPY_BIT), "VK_PIPELINE_STAGE_2_COPY_BIT");
+
+    const FeatureStruct& f10 = features10();
+    ASSERT_EQ(f10.count, sizeof(VkPhysicalDeviceFeatures) / sizeof(VkBool32));
+    EXPECT_STREQ(f10.members[0], "robustBufferAccess");
+    EXPECT_EQ(f10.offsets[4], offsetof(VkPhysicalDeviceFeatures, geometryShader));
+    EXPECT_STREQ(f10.members[4], "geometryShader");
+
+    const FeatureStruct* v11 = find_feature_struct(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES);
+    ASSERT_NE(v11, nullptr);
+    EXPECT_STREQ(v11->name, "VkPhysicalDeviceVulkan11Features");
+    EXPECT_EQ(v11->size, sizeof(VkPhysicalDeviceVulkan11Features));
+    EXPECT_STREQ(v11->members[v11->count - 1], "shaderDrawParameters");
+    EXPECT_EQ(v11->offsets[v11->count - 1], offsetof(VkPhysicalDeviceVulkan11Features, shaderDrawParameters));
+    const FeatureStruct* dr = find_feature_struct(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES);
+    ASSERT_NE(dr, nullptr);
+    EXPECT_EQ(dr->count, 1u);
+    EXPECT_EQ(find_feature_struct(VK_STRUCTURE_TYPE_APPLICATION_INFO), nullptr);
+    size_t n = 0;
+    const FeatureStruct* all = feature_structs(&n);
+    EXPECT_GT(n, 100u);
+    for (size_t i = 0; i < n; ++i) {  // every member is a VkBool32 inside the struct, after sType and pNext
+        for (uint32_t m = 0; m < all[i].count; ++m) {
+            EXPECT_GE(all[i].offsets[m], sizeof(VkBaseOutStructure)) << all[i].name;
+            EXPECT_LE(all[i].offsets[m] + sizeof(VkBool32), all[i].size) << all[i].name;
+        }
+    }
 }
 
 }  // namespace

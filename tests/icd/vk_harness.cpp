@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 
 namespace tilevk::test {
 namespace {
@@ -22,9 +23,17 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
 
 }  // namespace
 
-Harness::Harness(bool validation) {
+Harness::Harness(bool validation, const std::vector<const char*>& extensions) {
     const char* layers[] = {"VK_LAYER_KHRONOS_validation"};
-    const char* exts[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    // The instance extensions of Vulkan 1.1 (physical-device queries of extensions, device groups, external
+    // handle capabilities): both drivers offer them.
+    std::vector<const char*> exts = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
+                          VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME,
+                          VK_KHR_DEVICE_GROUP_CREATION_EXTENSION_NAME,
+                          VK_KHR_EXTERNAL_MEMORY_CAPABILITIES_EXTENSION_NAME,
+                          VK_KHR_EXTERNAL_FENCE_CAPABILITIES_EXTENSION_NAME,
+                          VK_KHR_EXTERNAL_SEMAPHORE_CAPABILITIES_EXTENSION_NAME};
+    exts.insert(exts.end(), extensions.begin(), extensions.end());
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     // Every warning and error, of every type (validation, performance, general: the loader's own warnings too).
     mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT |
@@ -42,8 +51,8 @@ Harness::Harness(bool validation) {
     ci.pApplicationInfo = &app;
     ci.enabledLayerCount = validation ? 1 : 0;
     ci.ppEnabledLayerNames = layers;
-    ci.enabledExtensionCount = 1;
-    ci.ppEnabledExtensionNames = exts;
+    ci.enabledExtensionCount = uint32_t(exts.size());
+    ci.ppEnabledExtensionNames = exts.data();
     if (vkCreateInstance(&ci, nullptr, &instance_) != VK_SUCCESS) {
         instance_ = VK_NULL_HANDLE;
         return;
@@ -87,7 +96,9 @@ VkPhysicalDevice Harness::find_device(const char* prefix) const {
     return VK_NULL_HANDLE;
 }
 
-Device::Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features) : pd_(pd) {
+Device::Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features,
+               const std::vector<const char*>& extensions, const void* chain)
+    : pd_(pd) {
     float prio = 1.0f;
     VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     q.queueFamilyIndex = 0;
@@ -97,6 +108,9 @@ Device::Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features) : 
     ci.queueCreateInfoCount = 1;
     ci.pQueueCreateInfos = &q;
     ci.pEnabledFeatures = features;
+    ci.pNext = chain;
+    ci.enabledExtensionCount = uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
     if (vkCreateDevice(pd, &ci, nullptr, &device_) != VK_SUCCESS) {
         device_ = VK_NULL_HANDLE;
         return;

@@ -21,7 +21,8 @@ class Harness {
   public:
     // Creates the instance (Vulkan 1.0, validation + debug utils). ok() tells whether it worked, including the
     // messenger: without it the layer would print to stdout and message_count() would stay 0.
-    explicit Harness(bool validation = true);
+    // `extensions`: instance extensions to enable besides VK_EXT_debug_utils.
+    explicit Harness(bool validation = true, const std::vector<const char*>& extensions = {});
     ~Harness();
     bool ok() const { return instance_ != VK_NULL_HANDLE && messenger_ != VK_NULL_HANDLE; }
     VkInstance instance() const { return instance_; }
@@ -40,11 +41,15 @@ class Harness {
 // A logical device with its queue, a command pool, and helpers.
 class Device {
   public:
-    // `features`: what to enable (none when null).
-    explicit Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features = nullptr);
+    // `features`: what to enable (none when null); `extensions`: device extensions to enable; `chain`: the
+    // VkDeviceCreateInfo pNext chain (feature structs).
+    explicit Device(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures* features = nullptr,
+                    const std::vector<const char*>& extensions = {}, const void* chain = nullptr);
     ~Device();
     VkDevice device() const { return device_; }
     VkPhysicalDevice physical() const { return pd_; }
+    VkQueue queue() const { return queue_; }
+    VkCommandPool pool() const { return pool_; }
     bool ok() const { return device_ != VK_NULL_HANDLE; }
 
     struct Buffer {

@@ -161,9 +161,9 @@ TEST(ShaderArith, VectorsMatricesAndGeometry) {
         m[3][0] = b[1], m[3][1] = b[0], m[3][2] = b[3], m[3][3] = b[2];
         float vin[4] = {1.0f, 2.0f, -1.0f, 0.5f};
         float v[4], w[4];
-        for (int row = 0; row < 4; ++row) {
-            float s = m[0][row] * vin[0];
-            for (int c = 1; c < 4; ++c) s = s + m[c][row] * vin[c];
+        for (int row = 0; row < 4; ++row) {  // last column first, as Mesa's vtn matrix_multiply
+            float s = m[3][row] * vin[3];
+            for (int c = 2; c >= 0; --c) s = m[c][row] * vin[c] + s;
             v[row] = s;
         }
         for (int c = 0; c < 4; ++c) {
@@ -178,9 +178,32 @@ TEST(ShaderArith, VectorsMatricesAndGeometry) {
         EXPECT_EQ(r.o0(l, 1), std::sqrt(a[0] * a[0] + a[1] * a[1]));
         EXPECT_EQ(r.o0(l, 2), a[2] * b[0] - a[0] * b[2]);
         float bl = (b[0] * b[0] + b[1] * b[1]) + b[2] * b[2];
-        EXPECT_EQ(r.o0(l, 3), b[2] * (1.0f / std::sqrt(bl)));
+        // normalize divides by the length (Mesa's vtn_glsl450.c: nir_fast_normalize), not v * inversesqrt
+        EXPECT_EQ(r.o0(l, 3), b[2] / std::sqrt(bl));
         float sw[4] = {a[1], a[1], a[0], a[0]};
         for (int c = 0; c < 4; ++c) EXPECT_EQ(r.o1(l, c), int32_t(sw[c] * 4.0f));
+    }
+}
+
+// lavapipe sums M*v from the last column to the first (Mesa's spirv/vtn_alu.c matrix_multiply): with the terms
+// 1, 2^-24, 2^-24, -1 the two orders give 2^-23 and 0. M*M takes each result column the same way.
+TEST(ShaderArith, MatrixProductsSumFromTheLastColumn) {
+    VsRun r(R"(
+        mat4 m = mat4(vec4(a.x), vec4(a.y), vec4(a.z), vec4(a.w));
+        gl_Position = m * vec4(1.0);
+        o0 = (m * mat4(1.0, 1.0, 1.0, 1.0,  0.0, 0.0, 0.0, 0.0,  0.0, 0.0, 0.0, 0.0,  0.0, 0.0, 0.0, 0.0))[0];
+    )");
+    const float tiny = std::ldexp(1.0f, -24);
+    for (int l = 0; l < kLanes; ++l) r.set_a(l, 1.0f, tiny, tiny, -1.0f);
+    r.run();
+    const float last_first = ((-1.0f + tiny) + tiny) + 1.0f;
+    ASSERT_EQ(last_first, std::ldexp(1.0f, -23));
+    ASSERT_NE(last_first, ((1.0f + tiny) + tiny) + -1.0f);  // the first-column order: 0
+    for (int l = 0; l < kLanes; ++l) {
+        for (int c = 0; c < 4; ++c) {
+            EXPECT_EQ(f(r.batch.position[c][l]), last_first) << "M*v lane " << l;
+            EXPECT_EQ(r.o0(l, c), last_first) << "M*M lane " << l;
+        }
     }
 }
 

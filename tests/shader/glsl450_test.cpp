@@ -1,6 +1,6 @@
 // GLSL.std.450 coverage: every extended instruction is either translated or rejected with its name; the ones
-// added for issue #4 (determinant, inverse, modf, frexp) and the extended-arithmetic / array-length core opcodes
-// against values computed here in C++ (lavapipe's operation order, see shader/README.md).
+// with a lavapipe construction (determinant, inverse, modf, frexp) and the extended-arithmetic / array-length core
+// opcodes against values computed here in C++ (lavapipe's operation order, see shader/README.md).
 #include <gtest/gtest.h>
 
 #include <spirv-tools/libspirv.hpp>

@@ -18,7 +18,8 @@ namespace {
 constexpr float kUnorm8 = float(1.0 / 255.0);
 // gallivm's sRGB8 -> linear (lp_build_srgb_to_linear): linear segment below 16, else the cubic
 // 0.0023 + 0.0030/255 x + 0.6935/255^2 x^2 + 0.3012/255^3 x^3 evaluated as fmuladd(fmuladd(x2, c3, c1), x,
-// fmuladd(x2, c2, c0)); tests/icd/api_breadth_test.cpp compares sampled sRGB texels with lavapipe itself.
+// fmuladd(x2, c2, c0)); tests/icd/api_breadth_formats_sync_test.cpp (EveryReportedImageFormatWorks) compares sampled
+// sRGB texels with lavapipe itself.
 float srgb_decode(uint8_t u8) {
     const float x = float(u8), x2 = x * x;
     if (x <= 15.0f) return x * (1.0f / (12.6f * 255.0f));
@@ -36,7 +37,7 @@ uint32_t u(float x) {
 struct TestImage {
     std::vector<uint8_t> bytes;
     ImageView view;
-    explicit TestImage(Format fmt = Format::RGBA8_UNORM, uint32_t w = 8, uint32_t h = 8) {
+    explicit TestImage(Format fmt = Format::R8G8B8A8_UNORM, uint32_t w = 8, uint32_t h = 8) {
         view.format = fmt;
         view.width = w, view.height = h;
         uint32_t lw = w, lh = h, off = 0, level = 0;
@@ -249,7 +250,7 @@ TEST(ShaderTexture, FloatTexelsBilinearAsTwoFusedLerps) {
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = std::sin(float(i) * 0.7f) * 3.0f + 0.1f * float(i);
     ImageView fv;
     fv.base = reinterpret_cast<const uint8_t*>(texels.data());
-    fv.format = Format::RGBA32F;
+    fv.format = Format::R32G32B32A32_SFLOAT;
     fv.width = fv.height = 4;
     fv.level[0] = ImageLevel{0, 64, 256};
     SamplerState smp;
@@ -309,7 +310,7 @@ TEST(ShaderTexture, NanCoordinateWithClampToBorderReadsTheBorder) {
 }
 
 TEST(ShaderTexture, SrgbAndFloatFormats) {
-    TestImage srgb(Format::RGBA8_SRGB, 4, 4);
+    TestImage srgb(Format::R8G8B8A8_SRGB, 4, 4);
     SamplerState smp;
     FsTex r("color = texelFetch(tex, ivec2(v.xy), 0);");
     r.bindings.set(0, 0, 0, Descriptor{{}, &srgb.view, &smp});
@@ -327,7 +328,7 @@ TEST(ShaderTexture, SrgbAndFloatFormats) {
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = float(i) * 0.125f - 3.0f;
     ImageView fv;
     fv.base = reinterpret_cast<const uint8_t*>(texels.data());
-    fv.format = Format::RGBA32F;
+    fv.format = Format::R32G32B32A32_SFLOAT;
     fv.width = fv.height = 4;
     fv.level[0] = ImageLevel{0, 64, 256};
     r.bindings.set(0, 0, 0, Descriptor{{}, &fv, &smp});
@@ -469,7 +470,7 @@ TEST(ShaderTextureFixed8, BilinearClampToEdge) {
 }
 
 TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoWrapsFromTheFloatCoordinate) {
-    TestImage img(Format::RGBA8_UNORM, 6, 6);
+    TestImage img(Format::R8G8B8A8_UNORM, 6, 6);
     SamplerState smp;
     smp.mag_filter = smp.min_filter = Filter::Linear;
     FsTex r("color = textureLod(tex, v.xy, 0.0);");
@@ -512,7 +513,7 @@ TEST(ShaderTextureFixed8, MipLinearUsesFastLog2AndEightBitWeight) {
 
 TEST(ShaderTextureFixed8, SrgbStaysInFloat) {
     // sRGB does not fit 8-bit UNORM after decoding: lavapipe blends the linear floats
-    TestImage img(Format::RGBA8_SRGB, 8, 8);
+    TestImage img(Format::R8G8B8A8_SRGB, 8, 8);
     SamplerState smp;
     smp.mag_filter = smp.min_filter = Filter::Linear;
     smp.address_u = smp.address_v = AddressMode::ClampToEdge;
@@ -544,7 +545,7 @@ TEST(ShaderTextureFixed8, MirroredRepeatLinearMirrorsTheCoordinateFirst) {
 TEST(ShaderTextureFixed8, RepeatNonPowerOfTwoNearestTruncatesTheWrappedFraction) {
     // s = 0x1.2aaaaap+0: s*6 rounds to 7.0 (texel 1 after floor and mod), but lavapipe's 8-bit path takes
     // fract(s) = 0x0.2aaaaap+0 = 0.16666663, times 6 = 0.99999976, truncated: texel 0 (red = x*16 = 0)
-    TestImage img(Format::RGBA8_UNORM, 6, 6);
+    TestImage img(Format::R8G8B8A8_UNORM, 6, 6);
     SamplerState smp;
     FsTex r("color = textureLod(tex, v.xy, 0.0);");
     r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &smp});

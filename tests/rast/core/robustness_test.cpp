@@ -2,6 +2,7 @@
 // status; primitives at the +-16K extremes are rasterized identically by every exact method.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -17,11 +18,13 @@ TriangleInput tri(float x0, float y0, float x1, float y1, float x2, float y2) {
     return t;
 }
 
+// Rejected: non-finite or past llvmpipe's 2^31 fixed-point range (8M px), or an edge spanning 32768 px or more
+// (|DX| + |DY| >= 2^23, where llvmpipe's 32-bit plane values wrap).
 TEST(Robustness, NonFiniteAndHugeTrianglesAreRejected) {
     Scene scene({.width = 100, .height = 100, .samples = 1});
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    for (float bad :
-         {nan, inf, -inf, 1e30f, -1e30f, 16384.5f, 16385.0f, -16384.5f, std::numeric_limits<float>::max()}) {
+    for (float bad : {nan, inf, -inf, 1e30f, -1e30f, 8388608.0f, -8388609.0f, 32800.0f, -32800.0f,
+                      std::numeric_limits<float>::max()}) {
         for (int v = 0; v < 3; ++v) {
             for (int axis = 0; axis < 2; ++axis) {
                 TriangleInput t = tri(1, 1, 50, 2, 3, 60);
@@ -34,6 +37,35 @@ TEST(Robustness, NonFiniteAndHugeTrianglesAreRejected) {
     ThreadPool pool(1);
     GridConsumer g = render(scene, Method::kHier, pool);
     for (uint32_t c : g.count) ASSERT_EQ(c, 0u);
+}
+
+// The wide range: a vertex past 16384 px is set up (as llvmpipe does, up to 2^31 fixed) while every edge stays
+// below 32768 px, and rasterized by every exact method identically, also when all three vertices are outside.
+TEST(Robustness, WideRangeTrianglesAreRasterizedExactly) {
+    for (int samples : {1, 4}) {
+        Scene scene({.width = 300, .height = 200, .samples = samples});
+        std::mt19937 rng(11 + samples);
+        std::uniform_real_distribution<float> far(16384.5f, 24000.0f), near(-500.0f, 800.0f);
+        uint32_t accepted = 0;
+        for (uint32_t i = 0; i < 300; ++i) {
+            const float s = i % 2 ? -1.0f : 1.0f;
+            TriangleInput t = i % 4 == 0 ? tri(near(rng), s * far(rng), near(rng), near(rng), near(rng), near(rng))
+                                         : tri(s * far(rng), near(rng), near(rng), near(rng), near(rng), near(rng));
+            t.common.clip = {0, 0, 300, 200};
+            t.common.payload = i;
+            accepted += scene.add_triangle(t) == SetupStatus::kAccepted;
+        }
+        TriangleInput around = tri(-14000.0f, -100.0f, 150.0f, 12000.0f, 9000.0f, -9000.0f);  // all outside
+        around.common.clip = {0, 0, 300, 200};
+        around.common.payload = 1000;
+        EXPECT_EQ(scene.add_triangle(around), SetupStatus::kAccepted);
+        EXPECT_GT(accepted, 100u);  // the others miss the framebuffer
+        ThreadPool pool(1);
+        const GridConsumer ref = render(scene, Method::kReference, pool);
+        EXPECT_EQ(render(scene, Method::kHier, pool).diff(ref), "");
+        EXPECT_EQ(render(scene, Method::kBBox, pool).diff(ref), "");
+        EXPECT_GT(scene.stats().whole_tiles, 0u);
+    }
 }
 
 TEST(Robustness, EmptyClipAndSampleMask) {
@@ -116,6 +148,37 @@ TEST(Robustness, MethodNames) {
     EXPECT_EQ(parse_method("float"), Method::kFloat);
     EXPECT_FALSE(parse_method("Hier").has_value());
     EXPECT_FALSE(parse_method("").has_value());
+}
+
+// A consumer that asks to stop (a lost device) ends a tile's walk at the next check: the rest of a huge bin is never
+// rasterized, and every begun tile is still ended.
+TEST(Robustness, StopTileEndsTheWalkOfEveryTile) {
+    struct Stopping : CoverageConsumer {
+        std::atomic<uint32_t> prims{0}, begun{0}, ended{0}, asked{0};
+        void begin_tile(unsigned, const TileInfo&) override { ++begun; }
+        void primitive(unsigned, const TileInfo&, const PrimCoverage&) override { ++prims; }
+        void end_tile(unsigned, const TileInfo&) override { ++ended; }
+        bool stop_tile(unsigned, uint32_t) override {
+            ++asked;
+            return true;
+        }
+    };
+    Scene scene({.width = 128, .height = 128, .samples = 1});  // 2x2 tiles
+    for (uint32_t i = 0; i < 10000; ++i) {
+        TriangleInput t = tri(-10, -10, 400, -10, -10, 400);
+        t.common.clip = {0, 0, 128, 128};
+        t.common.payload = i;
+        ASSERT_EQ(scene.add_triangle(t), SetupStatus::kAccepted);
+    }
+    for (unsigned threads : {1u, 2u}) {
+        ThreadPool pool(threads);
+        Stopping c;
+        scene.rasterize(c, pool);
+        EXPECT_EQ(c.begun.load(), 4u);
+        EXPECT_EQ(c.ended.load(), 4u);
+        EXPECT_EQ(c.asked.load(), 4u);
+        EXPECT_EQ(c.prims.load(), 4u * (CoverageConsumer::kStopCheckInterval - 1));
+    }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 //       && build-tsan/tests/rast/core/rast_core_threads_test   (see bench/rast/README.md for the recorded run)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 
@@ -31,6 +32,57 @@ TEST(Threads, IdenticalOutputFor1_2_7Threads) {
             }
         }
     }
+}
+
+// The tile loop's prefetch hints (CoverageConsumer::prefetch) name the tile's own primitives by payload, in API
+// order, ahead of their primitive() calls: step 0 before every call, step 1 before all but a tile's first few
+// (kDataAhead in scene.cpp). The payloads differ from the scene's primitive indices, so hinting an index fails.
+TEST(Threads, PrefetchHintsNameEachTilesPrimitivesAhead) {
+    struct Hints final : CoverageConsumer {
+        struct Tile {
+            std::vector<uint32_t> step[2];
+            size_t calls = 0, late = 0;  // primitive() calls; those without a step-1 hint before them
+            bool ok = true;
+        };
+        std::vector<Tile> tiles;
+        Tile* current = nullptr;  // one worker: hints come from the tile begun last
+        explicit Hints(size_t n) : tiles(n) {}
+        static bool has(const std::vector<uint32_t>& v, uint32_t p) {
+            return std::find(v.begin(), v.end(), p) != v.end();
+        }
+        void begin_tile(unsigned, const TileInfo& t) override { current = &tiles[t.index]; }
+        void end_tile(unsigned, const TileInfo&) override { current = nullptr; }
+        void primitive(unsigned, const TileInfo& t, const PrimCoverage& c) override {
+            Tile& tile = tiles[t.index];
+            tile.ok = tile.ok && &tile == current && has(tile.step[0], c.payload);
+            ++tile.calls;
+            tile.late += !has(tile.step[1], c.payload);
+        }
+        void prefetch(uint32_t payload, int step) const override {
+            ASSERT_TRUE(current != nullptr && (step == 0 || step == 1));
+            std::vector<uint32_t>& v = current->step[step];
+            // API order within each step; a step-1 hint follows the same payload's step-0 hint.
+            current->ok =
+                current->ok && (v.empty() || v.back() < payload) && (step == 0 || has(current->step[0], payload));
+            v.push_back(payload);
+        }
+    };
+    TriGen gen(77, 300, 200);
+    Scene scene({.width = 300, .height = 200, .samples = 1});
+    for (uint32_t i = 0; i < 4000; ++i)
+        scene.add_triangle(gen.make(i % 2 ? TriKind::kTiny : TriKind::kMedium, 10 + 3 * i));
+    ThreadPool pool(1);
+    Hints h(size_t(scene.tiles_x()) * scene.tiles_y());
+    scene.rasterize(h, pool);
+    size_t calls = 0, late = 0;
+    for (const Hints::Tile& t : h.tiles) {
+        EXPECT_TRUE(t.ok);
+        EXPECT_LE(t.late, 3u);
+        calls += t.calls;
+        late += t.late;
+    }
+    EXPECT_GT(calls, 2000u);
+    EXPECT_LT(late, calls / 10);
 }
 
 TEST(Threads, PoolRunsEveryTaskOnceAndIsReusable) {

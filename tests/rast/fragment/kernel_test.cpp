@@ -10,8 +10,21 @@
 #include <random>
 #include <vector>
 
+#include "rast/core/cpu.h"
 #include "rast/fragment/blend.h"
+#include "rast/fragment/blend_rgba8.h"
 #include "rast/fragment/block_kernels.h"
+
+#if TILEVK_SIMD_AVX2
+// Built with the AVX2/FMA translation units' flags: on a CPU without them every test here is skipped.
+class RequireAvx2 : public ::testing::Environment {
+  public:
+    void SetUp() override {
+        if (!tilevk::rast::cpu_has_avx2_kernels()) GTEST_SKIP() << "this CPU cannot run the AVX2/FMA kernels";
+    }
+};
+[[maybe_unused]] const auto* const kRequireAvx2 = ::testing::AddGlobalTestEnvironment(new RequireAvx2);
+#endif
 
 using namespace tilevk::rast::fragment;
 

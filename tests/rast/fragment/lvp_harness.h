@@ -56,6 +56,8 @@ VkFormat to_vk(ColorFormat f) {
             return VK_FORMAT_R32G32_SFLOAT;
         case ColorFormat::R32G32B32A32_SFLOAT:
             return VK_FORMAT_R32G32B32A32_SFLOAT;
+        default:  // the colour formats the fragment stage writes are the ones above
+            break;
     }
     return VK_FORMAT_UNDEFINED;
 }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "rast/core/cpu.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/fragment_stage.h"
 #include "rast/render/renderer.h"
@@ -143,8 +144,8 @@ class FragmentStageTest : public ::testing::Test {
             p.vertex = vs_.get();
             d.shaders.push_back(int(rng() % kNumFs));
             p.fragment = fs_[size_t(d.shaders.back())].get();
-            p.attribs = {{geometry::VertexFormat::kR32G32B32A32Float, 0, 0},
-                         {geometry::VertexFormat::kR32G32B32A32Float, 0, 16}};
+            p.attribs = {{geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 0},
+                         {geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 16}};
             p.attrib_locations = {0, 1};
             p.bindings = {{sizeof(Vertex), geometry::InputRate::kVertex}};
             p.viewport = {0, 0, float(d.width), float(d.height), 0, 1};
@@ -278,6 +279,34 @@ TEST_F(FragmentStageTest, FastPathWritesTheReferenceBytes) {
     }
     EXPECT_GT(changed, 200);
     EXPECT_GT(counted, 300);
+}
+
+// The portable and the AVX2/FMA builds of the kernels (rast/core/cpu.h: tile set-up and coverage, the fast block
+// pipeline, the RGBA8 blend) write the same bytes, and both those of the reference path.
+TEST_F(FragmentStageTest, BothInstructionSetsWriteTheSameBytes) {
+    const Isa before = kernel_isa();
+    if (!set_kernel_isa_for_testing(Isa::kAvx2)) GTEST_SKIP() << "the AVX2/FMA build cannot run here";
+    std::mt19937 rng(77);
+    int changed = 0;
+    for (int iter = 0; iter < 150; ++iter) {
+        const SceneDesc d = random_scene(rng, iter);
+        ASSERT_TRUE(set_kernel_isa_for_testing(Isa::kAvx2));
+        const Targets avx2 = render(d, true, 1 + unsigned(iter % 2));
+        ASSERT_TRUE(set_kernel_isa_for_testing(Isa::kPortable));
+        const Targets portable = render(d, true, 1 + unsigned(iter % 2));
+        const Targets ref = render(d, false, 1);
+        for (const Targets* t : {&avx2, &portable}) {
+            const char* name = t == &avx2 ? "avx2" : "portable";
+            ASSERT_TRUE(t->color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(t->color1 == ref.color1) << name << " colour 1, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(t->depth == ref.depth) << name << " depth, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(t->stencil == ref.stencil) << name << " stencil, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(t->passed == ref.passed) << name << " samples passed, iter " << iter << ": " << describe(d);
+        }
+        changed += ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35);
+    }
+    set_kernel_isa_for_testing(before);
+    EXPECT_GT(changed, 100);
 }
 
 TEST_F(FragmentStageTest, SwitchReadsBack) {

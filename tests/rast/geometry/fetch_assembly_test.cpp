@@ -33,7 +33,7 @@ TEST(VertexFetch, Unorm8IsMultiplyByRoundedReciprocalForAll256) {
     int differs_from_divide = 0;
     for (int c = 0; c < 256; ++c) {
         const uint8_t byte = static_cast<uint8_t>(c);
-        const FetchedAttrib a = convert_element(VertexFormat::kR8Unorm, &byte);
+        const FetchedAttrib a = convert_element(VertexFormat::R8_UNORM, &byte);
         const float expect = mul_round(c, 1.0 / 255.0);
         EXPECT_EQ(a.w[0], bits(expect)) << c;
         if (expect != static_cast<float>(c / 255.0)) ++differs_from_divide;
@@ -43,28 +43,28 @@ TEST(VertexFetch, Unorm8IsMultiplyByRoundedReciprocalForAll256) {
     }
     EXPECT_GT(differs_from_divide, 0);  // the rule is observable: a divide would give other values
     const uint8_t max = 255;
-    EXPECT_EQ(as_f(convert_element(VertexFormat::kR8Unorm, &max).w[0]), 1.0f);
+    EXPECT_EQ(as_f(convert_element(VertexFormat::R8_UNORM, &max).w[0]), 1.0f);
 }
 
 TEST(VertexFetch, Unorm16AndSnorm) {
     for (uint32_t c : {0u, 1u, 257u, 32767u, 65534u, 65535u}) {
         uint8_t b[2] = {static_cast<uint8_t>(c), static_cast<uint8_t>(c >> 8)};
-        EXPECT_EQ(convert_element(VertexFormat::kR16Unorm, b).w[0], bits(mul_round(c, 1.0 / 65535.0))) << c;
+        EXPECT_EQ(convert_element(VertexFormat::R16_UNORM, b).w[0], bits(mul_round(c, 1.0 / 65535.0))) << c;
     }
     for (int c : {-128, -127, -1, 0, 1, 64, 127}) {
         const uint8_t b = static_cast<uint8_t>(static_cast<int8_t>(c));
         float expect = mul_round(c, 1.0 / 127.0);
         if (expect < -1.0f) expect = -1.0f;
-        EXPECT_EQ(convert_element(VertexFormat::kR8Snorm, &b).w[0], bits(expect)) << c;
+        EXPECT_EQ(convert_element(VertexFormat::R8_SNORM, &b).w[0], bits(expect)) << c;
     }
     const uint8_t m128 = 0x80;
-    EXPECT_EQ(as_f(convert_element(VertexFormat::kR8Snorm, &m128).w[0]), -1.0f);
+    EXPECT_EQ(as_f(convert_element(VertexFormat::R8_SNORM, &m128).w[0]), -1.0f);
     for (int c : {-32768, -32767, -2, 0, 5, 32767}) {
         const uint16_t u = static_cast<uint16_t>(static_cast<int16_t>(c));
         uint8_t b[2] = {static_cast<uint8_t>(u), static_cast<uint8_t>(u >> 8)};
         float expect = mul_round(c, 1.0 / 32767.0);
         if (expect < -1.0f) expect = -1.0f;
-        EXPECT_EQ(convert_element(VertexFormat::kR16Snorm, b).w[0], bits(expect)) << c;
+        EXPECT_EQ(convert_element(VertexFormat::R16_SNORM, b).w[0], bits(expect)) << c;
     }
 }
 
@@ -74,22 +74,22 @@ TEST(VertexFetch, Packed2101010) {
     const uint32_t word = 1023u | (512u << 10) | (1u << 20) | (2u << 30);  // R max, G 512, B 1, A 0b10
     uint8_t b[4];
     for (int i = 0; i < 4; ++i) b[i] = static_cast<uint8_t>(word >> (8 * i));
-    EXPECT_EQ(vertex_format_size(VertexFormat::kA2B10G10R10Unorm), 4u);
-    const FetchedAttrib un = convert_element(VertexFormat::kA2B10G10R10Unorm, b);
+    EXPECT_EQ(format_info(VertexFormat::A2B10G10R10_UNORM_PACK32).bytes, 4u);
+    const FetchedAttrib un = convert_element(VertexFormat::A2B10G10R10_UNORM_PACK32, b);
     EXPECT_EQ(as_f(un.w[0]), 1.0f);
     EXPECT_EQ(un.w[1], bits(mul_round(512, 1.0 / 1023.0)));
     EXPECT_EQ(un.w[2], bits(mul_round(1, 1.0 / 1023.0)));
     EXPECT_EQ(un.w[3], bits(mul_round(2, 1.0 / 3.0)));
-    const FetchedAttrib sn = convert_element(VertexFormat::kA2B10G10R10Snorm, b);
+    const FetchedAttrib sn = convert_element(VertexFormat::A2B10G10R10_SNORM_PACK32, b);
     EXPECT_EQ(as_f(sn.w[0]), -mul_round(1, 1.0 / 511.0));  // 1023 = -1 in 10-bit two's complement
     EXPECT_EQ(as_f(sn.w[1]), -1.0f);                       // -512 * (1/511) < -1: clamped
     EXPECT_EQ(as_f(sn.w[3]), -1.0f);                       // 2-bit 0b10 = -2, times 1, clamped
-    const FetchedAttrib ui = convert_element(VertexFormat::kA2B10G10R10Uint, b);
+    const FetchedAttrib ui = convert_element(VertexFormat::A2B10G10R10_UINT_PACK32, b);
     EXPECT_EQ(ui.w[0], 1023u);
     EXPECT_EQ(ui.w[1], 512u);
     EXPECT_EQ(ui.w[2], 1u);
     EXPECT_EQ(ui.w[3], 2u);
-    const FetchedAttrib si = convert_element(VertexFormat::kA2B10G10R10Sint, b);
+    const FetchedAttrib si = convert_element(VertexFormat::A2B10G10R10_SINT_PACK32, b);
     EXPECT_EQ(static_cast<int32_t>(si.w[0]), -1);
     EXPECT_EQ(static_cast<int32_t>(si.w[1]), -512);
     EXPECT_EQ(static_cast<int32_t>(si.w[3]), -2);
@@ -97,21 +97,21 @@ TEST(VertexFetch, Packed2101010) {
 
 TEST(VertexFetch, IntegersHalfFloatsBgraAndFill) {
     const uint8_t s8[4] = {0x80, 0x7F, 0xFF, 0x00};
-    const FetchedAttrib a = convert_element(VertexFormat::kR8G8B8A8Sint, s8);
+    const FetchedAttrib a = convert_element(VertexFormat::R8G8B8A8_SINT, s8);
     EXPECT_EQ(static_cast<int32_t>(a.w[0]), -128);
     EXPECT_EQ(static_cast<int32_t>(a.w[1]), 127);
     EXPECT_EQ(static_cast<int32_t>(a.w[2]), -1);
     EXPECT_EQ(a.w[3], 0u);
-    const FetchedAttrib u = convert_element(VertexFormat::kR8G8B8A8Uint, s8);
+    const FetchedAttrib u = convert_element(VertexFormat::R8G8B8A8_UINT, s8);
     EXPECT_EQ(u.w[0], 128u);
     EXPECT_EQ(u.w[2], 255u);
     const uint8_t s16[2] = {0x00, 0x80};
-    const FetchedAttrib b = convert_element(VertexFormat::kR16Sint, s16);
+    const FetchedAttrib b = convert_element(VertexFormat::R16_SINT, s16);
     EXPECT_EQ(static_cast<int32_t>(b.w[0]), -32768);
     EXPECT_EQ(b.w[1], 0u);
     EXPECT_EQ(b.w[3], 1u);  // integer formats fill w with integer 1
     const uint8_t u32[8] = {0xFF, 0xFF, 0xFF, 0xFF, 1, 0, 0, 0};
-    const FetchedAttrib c = convert_element(VertexFormat::kR32G32Uint, u32);
+    const FetchedAttrib c = convert_element(VertexFormat::R32G32_UINT, u32);
     EXPECT_EQ(c.w[0], 0xFFFFFFFFu);
     EXPECT_EQ(c.w[1], 1u);
     EXPECT_EQ(c.w[2], 0u);
@@ -120,14 +120,14 @@ TEST(VertexFetch, IntegersHalfFloatsBgraAndFill) {
     const uint16_t h[4] = {0x3C00, 0xC000, 0x0001, 0x7C00};
     uint8_t hb[8];
     std::memcpy(hb, h, 8);
-    const FetchedAttrib d = convert_element(VertexFormat::kR16G16B16A16Float, hb);
+    const FetchedAttrib d = convert_element(VertexFormat::R16G16B16A16_SFLOAT, hb);
     EXPECT_EQ(as_f(d.w[0]), 1.0f);
     EXPECT_EQ(as_f(d.w[1]), -2.0f);
     EXPECT_EQ(as_f(d.w[2]), std::ldexp(1.0f, -24));
     EXPECT_TRUE(std::isinf(as_f(d.w[3])));
     // BGRA: memory B,G,R,A -> (R,G,B,A)
     const uint8_t bgra[4] = {10, 20, 30, 40};
-    const FetchedAttrib e = convert_element(VertexFormat::kB8G8R8A8Unorm, bgra);
+    const FetchedAttrib e = convert_element(VertexFormat::B8G8R8A8_UNORM, bgra);
     EXPECT_EQ(e.w[0], bits(mul_round(30, 1.0 / 255)));
     EXPECT_EQ(e.w[1], bits(mul_round(20, 1.0 / 255)));
     EXPECT_EQ(e.w[2], bits(mul_round(10, 1.0 / 255)));
@@ -136,7 +136,7 @@ TEST(VertexFetch, IntegersHalfFloatsBgraAndFill) {
     const float f3[3] = {1.5f, -0.0f, 3.0f};
     uint8_t fb[12];
     std::memcpy(fb, f3, 12);
-    const FetchedAttrib f = convert_element(VertexFormat::kR32G32B32Float, fb);
+    const FetchedAttrib f = convert_element(VertexFormat::R32G32B32_SFLOAT, fb);
     EXPECT_EQ(f.w[1], 0x80000000u);
     EXPECT_EQ(as_f(f.w[3]), 1.0f);
 }
@@ -147,7 +147,7 @@ TEST(VertexFetch, BoundsStrideZeroAndInstanceRate) {
     vb.data = reinterpret_cast<const uint8_t*>(data.data());
     vb.size = 28;
     vb.stride = 8;
-    VertexAttribDesc at{VertexFormat::kR32G32B32Float, 0, 4};  // reads floats [2i+1, 2i+4)
+    VertexAttribDesc at{VertexFormat::R32G32B32_SFLOAT, 0, 4};  // reads floats [2i+1, 2i+4)
     // element i in bounds iff 8i + 4 + 12 <= 28 -> i <= 1
     FetchedAttrib a = fetch_attribute(at, vb, {1, true});
     EXPECT_EQ(as_f(a.w[0]), 4.0f);
@@ -172,7 +172,7 @@ TEST(VertexFetch, BoundsStrideZeroAndInstanceRate) {
     a = fetch_attribute(at, vb, {1000, true});
     EXPECT_EQ(as_f(a.w[0]), 2.0f);
     // attribute offset past the buffer, and a null buffer
-    VertexAttribDesc far{VertexFormat::kR32Float, 0, 100};
+    VertexAttribDesc far{VertexFormat::R32_SFLOAT, 0, 100};
     EXPECT_EQ(fetch_attribute(far, vb, {0, true}).w[0], 0u);
     VertexBufferView empty;
     EXPECT_EQ(as_f(fetch_attribute(at, empty, {0, true}).w[3]), 1.0f);
@@ -205,6 +205,51 @@ std::vector<uint32_t> seq(uint32_t n) {
 }
 
 }  // namespace
+
+// The per-draw lane fetch (16 vertices, hoisted bounds, per-format conversions) is fetch_attribute lane by lane:
+// every format, both rates, random bytes, strides and offsets, indices in and out of bounds, invalid elements.
+TEST(VertexFetch, LaneFetchIsFetchAttributeForEveryFormat) {
+    uint64_t state = 12345;
+    auto rnd = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return uint32_t(state >> 33);
+    };
+    std::vector<uint8_t> bytes(512);
+    for (uint8_t& b : bytes) b = uint8_t(rnd());
+    int checked = 0;
+    for (int f = 0; f < int(VertexFormat::kCount); ++f)
+        for (int trial = 0; trial < 24; ++trial) {
+            VertexAttribDesc a;
+            a.format = VertexFormat(f);
+            a.binding = 0;
+            a.offset = rnd() % 24;
+            VertexBufferView vb;
+            vb.data = trial == 5 ? nullptr : bytes.data();
+            vb.size = rnd() % 400;
+            vb.offset = trial == 7 ? 0xFFFFFFF0u : rnd() % 32;
+            vb.stride = trial == 3 ? 0 : rnd() % 40;
+            vb.rate = trial % 2 ? InputRate::kInstance : InputRate::kVertex;
+            const AttribFetchPlan plan = make_attrib_fetch_plan(a, vb);
+            uint32_t element[16];
+            bool valid[16];
+            for (int l = 0; l < 16; ++l) {
+                element[l] = trial == 9 ? 0xFFFFFFFFu - uint32_t(l) : rnd() % 20;
+                valid[l] = trial != 11 || l % 3 != 0;
+            }
+            const uint32_t n = 1 + rnd() % 16;
+            uint32_t out[4][16];
+            std::memset(out, 0xAB, sizeof out);
+            fetch_lanes(plan, element, valid, n, out);
+            for (uint32_t l = 0; l < n; ++l) {
+                const FetchedAttrib want = fetch_attribute(a, vb, ElementIndex{element[l], valid[l]});
+                for (int c = 0; c < 4; ++c) {
+                    ASSERT_EQ(out[c][l], want.w[c]) << "format " << f << " trial " << trial << " lane " << l;
+                    ++checked;
+                }
+            }
+        }
+    EXPECT_GT(checked, 10000);
+}
 
 TEST(PrimitiveAssembly, OrdersForEveryTopology) {
     using V = std::vector<uint32_t>;

@@ -175,17 +175,17 @@ TEST(LavapipeCrossCheck, VertexFormatConversions) {
         VkFormat vk;
         VertexFormat ours;
     } formats[] = {
-        {VK_FORMAT_R8G8B8A8_UNORM, VertexFormat::kR8G8B8A8Unorm},
-        {VK_FORMAT_R8G8B8A8_SNORM, VertexFormat::kR8G8B8A8Snorm},
-        {VK_FORMAT_B8G8R8A8_UNORM, VertexFormat::kB8G8R8A8Unorm},
-        {VK_FORMAT_R8G8_UNORM, VertexFormat::kR8G8Unorm},
-        {VK_FORMAT_R8G8B8_SNORM, VertexFormat::kR8G8B8Snorm},
-        {VK_FORMAT_R16G16B16A16_UNORM, VertexFormat::kR16G16B16A16Unorm},
-        {VK_FORMAT_R16G16B16A16_SNORM, VertexFormat::kR16G16B16A16Snorm},
-        {VK_FORMAT_R16G16_SNORM, VertexFormat::kR16G16Snorm},
-        {VK_FORMAT_R16G16B16A16_SFLOAT, VertexFormat::kR16G16B16A16Float},
-        {VK_FORMAT_R32G32B32_SFLOAT, VertexFormat::kR32G32B32Float},
-        {VK_FORMAT_R32_SFLOAT, VertexFormat::kR32Float},
+        {VK_FORMAT_R8G8B8A8_UNORM, VertexFormat::R8G8B8A8_UNORM},
+        {VK_FORMAT_R8G8B8A8_SNORM, VertexFormat::R8G8B8A8_SNORM},
+        {VK_FORMAT_B8G8R8A8_UNORM, VertexFormat::B8G8R8A8_UNORM},
+        {VK_FORMAT_R8G8_UNORM, VertexFormat::R8G8_UNORM},
+        {VK_FORMAT_R8G8B8_SNORM, VertexFormat::R8G8B8_SNORM},
+        {VK_FORMAT_R16G16B16A16_UNORM, VertexFormat::R16G16B16A16_UNORM},
+        {VK_FORMAT_R16G16B16A16_SNORM, VertexFormat::R16G16B16A16_SNORM},
+        {VK_FORMAT_R16G16_SNORM, VertexFormat::R16G16_SNORM},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, VertexFormat::R16G16B16A16_SFLOAT},
+        {VK_FORMAT_R32G32B32_SFLOAT, VertexFormat::R32G32B32_SFLOAT},
+        {VK_FORMAT_R32_SFLOAT, VertexFormat::R32_SFLOAT},
     };
     std::mt19937 rng(404);
     const bool fma = host_has_fma();
@@ -197,12 +197,12 @@ TEST(LavapipeCrossCheck, VertexFormatConversions) {
             uint8_t bytes[16];
             for (auto& b : bytes) b = static_cast<uint8_t>(rng());
             if (k < 4) std::memset(bytes, k == 0 ? 0x00 : k == 1 ? 0xFF : k == 2 ? 0x80 : 0x7F, 16);  // extremes
-            if (f.ours == VertexFormat::kR16G16B16A16Float || f.ours == VertexFormat::kR32G32B32Float ||
-                f.ours == VertexFormat::kR32Float) {
+            if (f.ours == VertexFormat::R16G16B16A16_SFLOAT || f.ours == VertexFormat::R32G32B32_SFLOAT ||
+                f.ours == VertexFormat::R32_SFLOAT) {
                 // finite values in [0, 1): random mantissa bits
                 for (int c = 0; c < 4; ++c) {
                     const float x = static_cast<float>(rng() % 1000000) / 1000000.0f;
-                    if (f.ours == VertexFormat::kR16G16B16A16Float) {
+                    if (f.ours == VertexFormat::R16G16B16A16_SFLOAT) {
                         const uint16_t h = static_cast<uint16_t>(0x3800 | (rng() & 0x3FF));  // [0.5, 1)
                         std::memcpy(bytes + 2 * c, &h, 2);
                     } else {
@@ -405,7 +405,8 @@ TEST(LavapipeCrossCheck, FractionalViewportLimitsEveryPrimitive) {
                     << "lines vp " << vpv[0] << " scene " << s << " mode " << mode << " pixel " << first / 4;
                 got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 1, false, VK_FORMAT_R32G32B32A32_SFLOAT,
                                  nullptr, x);
-                EXPECT_EQ(count_diff(got, model_points(sc, mode, fma, VertexFormat::kR32G32B32A32Float, mx), &first), 0)
+                EXPECT_EQ(count_diff(got, model_points(sc, mode, fma, VertexFormat::R32G32B32A32_SFLOAT, mx), &first),
+                          0)
                     << "points vp " << vpv[0] << " scene " << s << " mode " << mode << " pixel " << first / 4;
                 for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
             }
@@ -416,8 +417,8 @@ TEST(LavapipeCrossCheck, FractionalViewportLimitsEveryPrimitive) {
 }
 
 TEST(LavapipeCrossCheck, NineVertexTriangleListQuirk) {
-    // notes §8: a non-indexed, unclipped TRIANGLE_LIST draw of exactly 9 vertices without flat inputs whose third
-    // triangle has three equal window y values is swallowed by lp_setup_analyse_triangles (unless the first six
+    // lavapipe-rules §8: a non-indexed, unclipped TRIANGLE_LIST draw of exactly 9 vertices without flat inputs whose
+    // third triangle has three equal window y values is swallowed by lp_setup_analyse_triangles (unless the first six
     // vertices form its "aero" rectangle). Check what lavapipe really does.
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
@@ -507,7 +508,7 @@ TEST(LavapipeCrossCheck, Msaa4xClippedTrianglesAfterResolve) {
 
 TEST(LavapipeCrossCheck, Msaa4xLinesAndPoints) {
     // 4x lines (rectangular) and points: snap offset 0, but attribute planes keep setup->pixel_offset 0.5 while the
-    // shader evaluates at the pixel centre (the half-pixel attribute shift of notes §6).
+    // shader evaluates at the pixel centre (the half-pixel attribute shift of lavapipe-rules §6).
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(8080);
@@ -536,7 +537,7 @@ TEST(LavapipeCrossCheck, Msaa4xLinesAndPoints) {
             }
             const auto got = lvp.render(sc, mode, VK_PRIMITIVE_TOPOLOGY_POINT_LIST, 1, false,
                                         VK_FORMAT_R32G32B32A32_SFLOAT, nullptr, x);
-            EXPECT_EQ(count_diff(got, model_points(sc, mode, fma, VertexFormat::kR32G32B32A32Float, mx), &first), 0)
+            EXPECT_EQ(count_diff(got, model_points(sc, mode, fma, VertexFormat::R32G32B32A32_SFLOAT, mx), &first), 0)
                 << "points scene " << s << " mode " << mode << " pixel " << first / 4;
             for (size_t i = 3; i < got.size(); i += 4) lit += got[i] != 0;
         }

@@ -1,5 +1,5 @@
 // The CPU model the cross-check compares lavapipe with: this folder's geometry functions plus the notes' snap,
-// edge, interpolation and colour rules (notes §1, §2, §4, §5), written out here.
+// edge, interpolation and colour rules (lavapipe-rules §1, §2, §4, §5), written out here.
 #pragma once
 
 #include <cmath>
@@ -25,7 +25,7 @@ using namespace tilevk::rast::geometry;
 constexpr uint32_t kFloats = 8 + 4 * 3;
 const Interp kModes[3] = {Interp::kPerspective, Interp::kNoPerspective, Interp::kFlat};
 
-// u8 = sat(rne(fl(x*255))), NaN -> 0 (notes §5)
+// u8 = sat(rne(fl(x*255))), NaN -> 0 (lavapipe-rules §5)
 inline uint8_t to_unorm8(float x) {
     const float s = x * 255.0f;
     if (!(s > 0.0f)) return 0;
@@ -167,7 +167,7 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
         }
     }
     if (msaa) {
-        // resolve (notes §3): sum of fl(u8 * fl(1/255)) in sample order, * 0.25, back with rne(x*255)
+        // resolve (lavapipe-rules §3): sum of fl(u8 * fl(1/255)) in sample order, * 0.25, back with rne(x*255)
         const float inv255 = static_cast<float>(1.0 / 255.0);
         for (int p = 0; p < kSize * kSize; ++p)
             for (int c = 0; c < 4; ++c) {
@@ -179,8 +179,8 @@ inline std::vector<uint8_t> model(const std::vector<InVertex>& verts, int mode, 
     return img;
 }
 
-// Fragment evaluation (notes §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w plane).
-// Colour target with per-sample storage; resolve() is lavapipe's blitter resolve (notes §3).
+// Fragment evaluation (lavapipe-rules §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w
+// plane). Colour target with per-sample storage; resolve() is lavapipe's blitter resolve (lavapipe-rules §3).
 struct Target {
     int samples;
     std::vector<uint8_t> px;  // [pixel][sample][channel]
@@ -210,8 +210,8 @@ inline void sample_point(int samples, int px, int py, int smp, int64_t* x, int64
     *y = py * 256 + (samples > 1 ? kPos[smp][1] : 0);
 }
 
-// Fragment evaluation (notes §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w plane);
-// in MSAA the shader evaluates at the pixel centre (px + 0.5).
+// Fragment evaluation (lavapipe-rules §4): a = fmuladd(dady, py, fmuladd(dadx, px, a0)); perspective a *= 1/(1/w
+// plane); in MSAA the shader evaluates at the pixel centre (px + 0.5).
 inline void shade(Target& t, int px, int py, unsigned cover, const AttribPlane& pos, const AttribPlane& a, int mode,
                   bool fma) {
     auto mad = [fma](float x, float y, float z) { return fma ? std::fma(x, y, z) : x * y + z; };
@@ -288,7 +288,7 @@ inline std::vector<uint8_t> model_lines(const std::vector<InVertex>& verts, int 
 
 // col_format: the colour bytes of each InVertex are an element of this format, converted by vertex_fetch.
 inline std::vector<uint8_t> model_points(const std::vector<InVertex>& verts, int mode, bool fma,
-                                         VertexFormat col_format = VertexFormat::kR32G32B32A32Float,
+                                         VertexFormat col_format = VertexFormat::R32G32B32A32_SFLOAT,
                                          const ModelExtra& mx = ModelExtra{}) {
     Target img(mx.samples);
     ModelState st(fma, mx);

@@ -2,6 +2,7 @@
 // colours computed independently here (the top-left rule on snapped coordinates, exact UNORM8 conversions).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -41,8 +42,8 @@ PipelineState make_pipeline(const shader::Program* vs, const shader::Program* fs
     PipelineState p;
     p.vertex = vs;
     p.fragment = fs;
-    p.attribs = {{geometry::VertexFormat::kR32G32B32A32Float, 0, 0},
-                 {geometry::VertexFormat::kR32G32B32A32Float, 0, 16}};
+    p.attribs = {{geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 0},
+                 {geometry::VertexFormat::R32G32B32A32_SFLOAT, 0, 16}};
     p.attrib_locations = {0, 1};
     p.bindings = {{sizeof(Vertex), geometry::InputRate::kVertex}};
     p.viewport = {0, 0, float(w), float(h), 0, 1};
@@ -225,6 +226,107 @@ TEST_F(RenderTest, LineAndPointCoverage) {
             }
         }
     EXPECT_EQ(mismatches, 0);
+}
+
+// Large draws set up and bin on the workers (Renderer::add_triangles_parallel, Scene::bin_reserved); a pool of one
+// runs them one triangle after the other. Every thread count must give the same bytes: random triangles from
+// sub-pixel to larger than the target (degenerate ones, back faces culled in one draw), overlapping depth-tested
+// and blended draws whose order shows, small draws between the large ones, an indexed instanced draw, a draw with
+// clipped vertices (x, y and z: the clipper's pieces, with and without the float cull), at 1x and 4x.
+TEST_F(RenderTest, LargeDrawsGiveTheSameBytesForEveryThreadCount) {
+    const int w = 300, h = 200;
+    uint64_t state = 99;
+    auto rnd = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(uint32_t(state >> 40)) / float(1u << 24);
+    };
+    auto triangles = [&](int n, float size, float reach, float z_lo = 0, float z_hi = 1) {
+        std::vector<Vertex> v;
+        for (int t = 0; t < n; ++t) {
+            const float cx = rnd() * 2 - 1, cy = rnd() * 2 - 1, z = z_lo + (z_hi - z_lo) * rnd();
+            const float s = size * (0.2f + rnd());
+            const float c[4] = {rnd(), rnd(), rnd(), 0.6f};
+            for (int k = 0; k < 3; ++k) {
+                // inside the view (no clipping) unless reach > 1; every 97th triangle is degenerate
+                const float px = std::clamp(t % 97 == 0 ? cx : cx + (rnd() - 0.5f) * s, -0.999f, 0.999f);
+                const float py = std::clamp(cy + (rnd() - 0.5f) * s, -0.999f, 0.999f);
+                v.push_back({{px * reach, py * reach, z, 1}, {c[0], c[1], c[2], c[3]}});
+            }
+        }
+        return v;
+    };
+    const std::vector<Vertex> small = triangles(6000, 0.04f, 1.0f), mixed = triangles(3000, 0.6f, 1.0f),
+                              tiny = triangles(40, 0.1f, 1.0f), clipped = triangles(3000, 0.3f, 1.3f, -0.3f, 1.3f),
+                              layered = triangles(4000, 0.15f, 1.0f);
+    // Slivers whose float and snapped orientations disagree (as in
+    // LavapipeCrossCheck.FloatCullOnlyOnDrawsPipelinePath): in a batch with clipped vertices the float cull decides
+    // them, elsewhere the integer area does.
+    std::vector<Vertex> clipped_slivers;
+    for (int k = 0; k < 40; ++k) {
+        const float ox = float(k % 5) * 55, oy = float(k / 5) * 23;
+        auto at = [&](float wx, float wy) {
+            return Vertex{{(wx + ox) / 150.0f - 1.0f, (wy + oy) / 100.0f - 1.0f, 0.01f, 1}, {1, 1, 1, 1}};
+        };
+        const Vertex a = at(10.5f, 10.5f), b = at(30.5f, 10.5017f), c = at(50.5f, 10.503f);
+        for (const Vertex& v : k % 2 ? std::vector<Vertex>{a, b, c} : std::vector<Vertex>{a, c, b})
+            clipped_slivers.push_back(v);
+    }
+    clipped_slivers.insert(clipped_slivers.end(), clipped.begin(), clipped.end());
+    std::vector<Vertex> strip = triangles(1500, 0.05f, 1.0f);
+    std::vector<uint32_t> indices;
+    for (uint32_t i = 0; i < strip.size(); ++i) indices.push_back(uint32_t((i * 7919) % strip.size()));
+    auto render = [&](unsigned threads, int samples) {
+        const size_t planes = size_t(samples);
+        Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4 * planes, 0),
+                  std::vector<float>(size_t(w) * h * planes, 1.0f)};
+        ThreadPool pool(threads);
+        Renderer r(pool, Method::kHier);
+        PipelineState depth = make_pipeline(vs.get(), fs.get(), w, h);
+        depth.samples = samples;
+        depth.depth_stencil.depth_test = depth.depth_stencil.depth_write = true;
+        depth.depth_stencil.depth_compare = fragment::CompareOp::Less;
+        PipelineState blend = depth;  // no depth test: the order of overlapping triangles shows in the colours
+        blend.depth_stencil.depth_test = blend.depth_stencil.depth_write = false;
+        blend.blend[0].blend_enable = true;
+        blend.blend[0].src_color = blend.blend[0].src_alpha = fragment::BlendFactor::SrcAlpha;
+        blend.blend[0].dst_color = blend.blend[0].dst_alpha = fragment::BlendFactor::OneMinusSrcAlpha;
+        PipelineState culled = depth;
+        culled.cull = CullMode::kBack;
+        Framebuffer fb = make_fb(img, true);
+        fb.samples = samples;
+        fb.color[0].sample_stride = size_t(w) * h * 4;
+        fb.depth_stencil.depth_sample_stride = size_t(w) * h * 4;
+        r.begin(fb);
+        draw(r, depth, small);
+        draw(r, blend, tiny);
+        draw(r, culled, mixed);
+        draw(r, blend, layered);
+        draw(r, depth, clipped);
+        draw(r, culled, clipped_slivers);
+        DrawCall call;
+        call.indexed = true;
+        call.count = uint32_t(indices.size());
+        call.instance_count = 2;
+        call.index_data = reinterpret_cast<const uint8_t*>(indices.data());
+        call.index_bytes = uint32_t(indices.size() * 4);
+        call.index_size = 4;
+        call.vertex_buffers = {
+            {reinterpret_cast<const uint8_t*>(strip.data()), uint32_t(strip.size() * sizeof(Vertex))}};
+        EXPECT_EQ(r.draw(blend, call, shader::Bindings{}), "");
+        r.end();
+        return img;
+    };
+    for (int samples : {1, 4}) {
+        const Image one = render(1, samples);
+        size_t lit = 0;
+        for (size_t i = 0; i < one.rgba.size(); i += 4) lit += one.rgba[i + 3] != 0;
+        EXPECT_GT(lit, one.rgba.size() / 4 / 2) << "the scene should cover most of the target";
+        for (unsigned threads : {2u, 5u}) {
+            const Image many = render(threads, samples);
+            EXPECT_EQ(one.rgba, many.rgba) << threads << " threads, " << samples << "x";
+            EXPECT_EQ(one.depth, many.depth) << threads << " threads, " << samples << "x";
+        }
+    }
 }
 
 }  // namespace

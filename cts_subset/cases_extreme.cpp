@@ -1,0 +1,290 @@
+// extreme.*: triangles with extreme clip-space vertices, decided class by class (rast/geometry/README.md,
+// "Extreme coordinates"): huge |x| or |y| up to FLT_MAX, tiny or huge w, w = +-Inf, NaN, denormal z. Every case is
+// compared byte for byte with lavapipe; where the exact pixel-centre answer exists (finite inputs), it is also
+// checked independently with exact integer arithmetic (exact_coverage.hpp).
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "case.hpp"
+#include "exact_coverage.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+float bits(uint32_t b) {
+    return std::bit_cast<float>(b);
+}
+
+Vertex raw(float x, float y, float z, float w, std::array<float, 4> c) {
+    Vertex v;
+    v.pos[0] = x;
+    v.pos[1] = y;
+    v.pos[2] = z;
+    v.pos[3] = w;
+    for (int i = 0; i < 4; ++i) v.color[i] = c[i];
+    return v;
+}
+
+const std::array<float, 4> kRed = {1, 0, 0, 1}, kGreen = {0, 1, 0, 1}, kBlue = {0, 0, 1, 1};
+
+// One smooth-coloured triangle on a 256x256 target with a D32 LESS depth test (cleared to 1).
+Scene depth_tested(std::vector<Vertex> v) {
+    Scene s;
+    s.target.width = s.target.height = 256;
+    s.target.depth = VK_FORMAT_D32_SFLOAT;
+    Draw d;
+    d.vertices = std::move(v);
+    d.depth_test = d.depth_write = true;
+    d.depth_op = VK_COMPARE_OP_LESS;
+    s.draws.push_back(std::move(d));
+    return s;
+}
+
+// The issue's triangle: a huge-y vertex with tiny w (y = -1e10, w = 1e-7) and one with y = +1e10, all w > 0 and
+// z/w in [0, 1) where visible. 14 080 pixel centres are inside.
+Scene huge_y_tiny_w() {
+    return depth_tested({raw(bits(0xbeb69e15), bits(0x3f265ecf), bits(0x3b6d059e), bits(0x3f6a91ca), kRed),
+                         raw(bits(0xbf2f9c14), bits(0xd01502f9), bits(0x3d8c1320), bits(0x33d6bf95), kGreen),
+                         raw(bits(0xbf046fad), bits(0x501502f9), bits(0x3ddcca1b), bits(0x3fbb898d), kBlue)});
+}
+
+// --- the random group: extreme vertices mixed into ordinary ones ------------------------------------------------
+
+// xorshift32 seeded through one splitmix step (identical on every platform).
+struct Rng {
+    uint32_t s;
+    explicit Rng(uint32_t seed) {
+        uint64_t z = seed + 0x9E3779B97F4A7C15ull;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        s = uint32_t(z ^ (z >> 31)) | 1u;
+    }
+    uint32_t next() {
+        s ^= s << 13;
+        s ^= s >> 17;
+        s ^= s << 5;
+        return s;
+    }
+    uint32_t below(uint32_t n) { return next() % n; }
+    float unit() { return float(next() >> 8) * (1.0f / 16777216.0f); }
+    float range(float a, float b) { return a + (b - a) * unit(); }
+    float sign() { return next() & 1 ? -1.0f : 1.0f; }
+    template <typename T, size_t N>
+    T pick(const T (&a)[N]) {
+        return a[below(N)];
+    }
+};
+
+// The vertex classes of the random group (rast/geometry/README.md, "Extreme coordinates").
+enum class VertexClass { kOrdinary, kHugeXY, kTinyW, kHugeW, kInfW, kInfXY, kNaN, kDenormZ, kNegativeW, kZeroW };
+constexpr const char* kClassNames[] = {"ordinary", "huge_xy", "tiny_w",   "huge_w",     "inf_w",
+                                       "inf_xy",   "nan",     "denorm_z", "negative_w", "zero_w"};
+constexpr uint32_t kClasses = 10;
+
+Vertex random_vertex(Rng& r, VertexClass c) {
+    const float inf = std::numeric_limits<float>::infinity();
+    // NDC position and depth, then scaled by w as a vertex shader would.
+    float w = r.range(0.5f, 2.0f);
+    float x = r.range(-1.5f, 1.5f) * w, y = r.range(-1.5f, 1.5f) * w, z = r.range(0.0f, 1.0f) * w;
+    static const float kHuge[] = {1e5f, 1e10f, 1e20f, 1e30f, 1e37f, 1e38f, 3e38f, std::numeric_limits<float>::max()};
+    static const float kTiny[] = {1e-7f, 1e-20f, 1e-30f, 1.17549435e-38f, 1e-40f, 1e-45f};
+    static const float kDenorm[] = {1e-40f, 1e-45f, 5e-39f};
+    switch (c) {
+        case VertexClass::kOrdinary:
+            break;
+        case VertexClass::kHugeXY:
+            if (r.below(3) != 1) x = r.sign() * r.pick(kHuge);
+            if (r.below(3) != 0) y = r.sign() * r.pick(kHuge);
+            break;
+        case VertexClass::kTinyW:
+            w = r.sign() * r.pick(kTiny);
+            x = r.range(-1.5f, 1.5f), y = r.range(-1.5f, 1.5f), z = r.range(0.0f, 1.0f);
+            break;
+        case VertexClass::kHugeW:
+            w = r.pick(kHuge) * (r.below(4) == 0 ? -1.0f : 1.0f);
+            if (r.below(2)) x *= w, y *= w, z *= w;  // else the NDC values stay tiny next to w
+            break;
+        case VertexClass::kInfW:
+            w = r.sign() * inf;
+            break;
+        case VertexClass::kInfXY:
+            (r.below(2) ? x : y) = r.sign() * inf;
+            break;
+        case VertexClass::kNaN: {
+            float* comp[4] = {&x, &y, &z, &w};
+            *comp[r.below(4)] = std::numeric_limits<float>::quiet_NaN();
+            break;
+        }
+        case VertexClass::kDenormZ:
+            z = r.sign() * r.pick(kDenorm);
+            break;
+        case VertexClass::kNegativeW:
+            w = -w;
+            break;
+        case VertexClass::kZeroW:
+            w = r.sign() * 0.0f;
+            break;
+    }
+    Vertex v = raw(x, y, z, w, {r.unit(), r.unit(), r.unit(), 1.0f});
+    return v;
+}
+
+// One random scene on a 64x64 (or 256x256) target with a D32 LESS depth test: up to two ordinary triangles inside
+// the viewport, then one triangle with one to three vertices of a random extreme class (the others ordinary).
+Scene random_scene(uint32_t seed) {
+    Rng r(seed);
+    std::vector<Vertex> v;
+    const uint32_t ordinary = r.below(3);
+    for (uint32_t t = 0; t < 3 * ordinary; ++t) {
+        const float w = r.range(0.5f, 2.0f);
+        v.push_back(raw(r.range(-0.9f, 0.9f) * w, r.range(-0.9f, 0.9f) * w, r.range(0.05f, 0.95f) * w, w,
+                        {r.unit(), r.unit(), r.unit(), 1.0f}));
+    }
+    const uint32_t extreme = 1 + r.below(3);
+    const VertexClass c = VertexClass(1 + r.below(kClasses - 1));
+    for (uint32_t k = 0; k < 3; ++k)
+        v.push_back(random_vertex(
+            r, k < extreme ? (r.below(4) == 0 ? VertexClass(1 + r.below(kClasses - 1)) : c) : VertexClass::kOrdinary));
+    std::rotate(v.end() - 3, v.end() - 3 + r.below(3), v.end());  // the extreme vertices are not always first
+    // Minimisation: TILEVK_CTS_EXTREME_KEEP=MASK keeps the triangles whose bit is set.
+    if (const char* keep = std::getenv("TILEVK_CTS_EXTREME_KEEP")) {
+        const unsigned long mask = std::strtoul(keep, nullptr, 0);
+        std::vector<Vertex> kept;
+        for (size_t t = 0; t < v.size() / 3; ++t)
+            if (mask >> t & 1) kept.insert(kept.end(), v.begin() + 3 * t, v.begin() + 3 * t + 3);
+        v = std::move(kept);
+    }
+    const uint32_t size = r.below(4) == 0 ? 256 : 64;
+    Scene s = depth_tested(std::move(v));
+    s.target.width = s.target.height = size;
+    if (std::getenv("TILEVK_CTS_EXTREME_DUMP")) {
+        std::printf("extreme.random.seed_%u: %ux%u\n", seed, s.target.width, s.target.height);
+        for (const Vertex& vx : s.draws[0].vertices)
+            std::printf("  (%.9g, %.9g, %.9g, %.9g) = {0x%08x, 0x%08x, 0x%08x, 0x%08x},\n", double(vx.pos[0]),
+                        double(vx.pos[1]), double(vx.pos[2]), double(vx.pos[3]), std::bit_cast<uint32_t>(vx.pos[0]),
+                        std::bit_cast<uint32_t>(vx.pos[1]), std::bit_cast<uint32_t>(vx.pos[2]),
+                        std::bit_cast<uint32_t>(vx.pos[3]));
+    }
+    return s;
+}
+
+// One class each: an ordinary triangle with one vertex (the middle one) replaced. The hand-checked expectations are
+// in tests/rast/geometry/extreme_test.cpp; here both drivers draw them through Vulkan.
+Scene one_extreme(float x, float y, float z, float w) {
+    return depth_tested(
+        {raw(-0.6f, -0.5f, 0.3f, 1.0f, kRed), raw(x, y, z, w, kGreen), raw(0.1f, 0.7f, 0.6f, 1.0f, kBlue)});
+}
+
+struct HandCase {
+    const char* name;
+    float x, y, z, w;
+};
+const float kInf = std::numeric_limits<float>::infinity(), kNan = std::numeric_limits<float>::quiet_NaN(),
+            kMax = std::numeric_limits<float>::max();
+const HandCase kHandCases[] = {
+    {"w_pos_inf", 0.5f, -0.4f, 0.5f, kInf},
+    {"w_neg_inf", 0.5f, -0.4f, 0.5f, -kInf},
+    {"x_pos_inf", kInf, -0.4f, 0.5f, 1.0f},
+    {"y_neg_inf", 0.5f, -kInf, 0.5f, 1.0f},
+    {"x_nan", kNan, -0.4f, 0.5f, 1.0f},
+    {"w_nan", 0.5f, -0.4f, 0.5f, kNan},
+    {"z_nan", 0.5f, -0.4f, kNan, 1.0f},
+    {"z_negative_denormal", 0.5f, -0.4f, -1e-40f, 1.0f},
+    {"z_positive_denormal", 0.5f, -0.4f, 1e-40f, 1.0f},
+    {"x_3e38", 3e38f, -0.4f, 0.5f, 1.0f},
+    {"x_flt_max", kMax, -0.4f, 0.5f, 1.0f},
+    {"xy_flt_max", kMax, -kMax, 0.5f, 1.0f},
+    {"w_flt_max", 0.5f, -0.4f, 0.5f, kMax},
+    {"w_tiny", 0.5f, -0.4f, 0.5f, 1e-30f},
+    {"w_denormal", 0.5f, -0.4f, 0.5f, 1e-40f},
+    {"w_negative_tiny", 0.5f, -0.4f, 0.5f, -1e-30f},
+    {"w_zero", 0.5f, -0.4f, 0.5f, 0.0f},
+    {"w_negative_zero", 0.5f, -0.4f, 0.5f, -0.0f},
+    {"x_flt_max_w_flt_max", kMax, -0.4f, 0.5f, kMax},
+};
+
+// Frozen scenes the fuzzer found (the reproduction tilevk-cts --fuzz prints for a minimised failure dumps its
+// vertices in this form, TILEVK_CTS_EXTREME_DUMP): each broke tilevk or showed a new class before its fix. Seeds
+// alone would not do: the generator may change.
+struct Regression {
+    const char* name;
+    uint32_t size;                                  // square target
+    std::vector<std::array<uint32_t, 4>> vertices;  // clip-space position bits, three per triangle
+};
+const Regression kRegressions[] = {
+    // (-1e38, 1e38) at w = 1.5: lavapipe's clip of the edges to it cancels; lavapipe misses 19 of its pixel
+    // centres, tilevk (precise fallback) draws them (extreme.random.seed_2 of the first generator).
+    {"huge_xy_cancellation",
+     64,
+     {{0xbecf6d0e, 0x3ebcbb30, 0x3ea44ce8, 0x3f9f702e},
+      {0xbfc607a9, 0x3fbc6c60, 0x3fb82e04, 0x3fb8b512},
+      {0xfe967699, 0x7e967699, 0x3f0ba4e3, 0x3fc33e88}}},
+    // y = 3e38 with x = 1e5 beside a vertex at x = -1e37: the intersection parameter flushes (FTZ); lavapipe draws
+    // about half the exact pixels (extreme.random.seed_3, its extreme triangle).
+    {"flushed_t_y_3e38",
+     64,
+     {{0xfcf0bdc2, 0x3fa14020, 0x3eb2ad94, 0x3fa08fc2},
+      {0x47c35000, 0x7f61b1e6, 0x3ec61d3e, 0x3f4ff24c},
+      {0x4008fa7c, 0xf149f2ca, 0x3f914982, 0x3fdcdf28}}},
+};
+
+Scene regression_scene(const Regression& g) {
+    std::vector<Vertex> v;
+    const std::array<float, 4> colours[3] = {kRed, kGreen, kBlue};
+    for (size_t i = 0; i < g.vertices.size(); ++i) {
+        const auto& b = g.vertices[i];
+        v.push_back(raw(bits(b[0]), bits(b[1]), bits(b[2]), bits(b[3]), colours[i % 3]));
+    }
+    Scene s = depth_tested(std::move(v));
+    s.target.width = s.target.height = g.size;
+    return s;
+}
+
+// The named difference of this group (rast/geometry/README.md, "Extreme coordinates").
+constexpr const char* kReferenceWrong =
+    "lavapipe's float clipper or viewport overflows, flushes or cancels on extreme finite inputs; tilevk draws the "
+    "exact pixel centres";
+
+// A case on `make`'s scene: byte-equal to lavapipe, or, with finite vertices, the exact coverage on tilevk and
+// either byte equality or a lavapipe frame that fails the same exact check.
+Case extreme_case(std::string name, std::function<Scene()> make) {
+    const Scene s = make();
+    const bool finite = exact_applies(s).empty();
+    return {
+        std::move(name), std::move(make), finite ? exact_coverage(s) : Check(), "", {}, finite ? kReferenceWrong : ""};
+}
+
+}  // namespace
+
+void add_extreme_cases(CaseList& out) {
+    Case issue = extreme_case("extreme.huge_y_tiny_w", huge_y_tiny_w);
+    issue.check = exact_coverage(huge_y_tiny_w(), 14080);
+    out.push_back(std::move(issue));
+    for (const Regression& g : kRegressions)
+        out.push_back(extreme_case(std::string("extreme.regression.") + g.name, [&g] { return regression_scene(g); }));
+    for (const HandCase& h : kHandCases)
+        out.push_back(
+            extreme_case(std::string("extreme.class.") + h.name, [h] { return one_extreme(h.x, h.y, h.z, h.w); }));
+    // The default list is fixed (seeds 1..200); TILEVK_CTS_EXTREME_SEEDS=FIRST:COUNT explores others (the main job's
+    // fuzzing window, tools/run_main.sh).
+    uint32_t first = 1, count = 200;
+    if (const char* env = std::getenv("TILEVK_CTS_EXTREME_SEEDS")) {
+        if (std::sscanf(env, "%u:%u", &first, &count) != 2)
+            throw std::runtime_error("TILEVK_CTS_EXTREME_SEEDS: expected FIRST:COUNT, got " + std::string(env));
+    }
+    for (uint32_t seed = first; seed < first + count; ++seed) out.push_back(extreme_seed_case(seed));
+}
+
+Case extreme_seed_case(uint32_t seed) {
+    return extreme_case("extreme.random.seed_" + std::to_string(seed), [seed] { return random_scene(seed); });
+}
+
+}  // namespace tilevk::cts

@@ -1,0 +1,70 @@
+// The Vulkan objects a conformance-subset frame is made of (render.cpp builds and records the frame from them):
+// buffers and images with their cleanup, texture contents, shader modules, pipelines and the render pass of a
+// scene, and the formats' byte layouts.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "render.hpp"
+
+namespace tilevk::cts::frame {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0);
+
+bool has_stencil(VkFormat f);
+bool has_depth(VkFormat f);
+// Bytes of one depth texel in a buffer copy.
+uint32_t depth_copy_bytes(VkFormat f);
+// Bytes of one texel of a colour target.
+uint32_t color_bytes(VkFormat f);
+// Appends the colour c packed as the vertex format f (Draw::color_format); false for a format it does not know.
+bool pack_color(VkFormat f, const float c[4], std::vector<uint8_t>& out);
+// Bytes of one colour packed as the vertex format f (throws for a format pack_color does not know).
+uint32_t packed_color_bytes(VkFormat f);
+
+// Destroys what was created, in reverse order, whether the scene finished or threw.
+struct Cleanup {
+    std::vector<std::function<void()>> steps;
+    ~Cleanup() {
+        for (auto it = steps.rbegin(); it != steps.rend(); ++it) (*it)();
+    }
+    void add(std::function<void()> f) { steps.push_back(std::move(f)); }
+};
+
+// A host-visible, coherent, mapped buffer.
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* mapped = nullptr;
+};
+Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBufferUsageFlags usage);
+VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
+                   VkSampleCountFlagBits samples, VkImageUsageFlags usage);
+VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
+                      uint32_t mips);
+void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_t mips, VkImageLayout from,
+             VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
+             VkPipelineStageFlags dst_stage);
+
+// A sampled RGBA8 texture with its mip chain in a staging buffer, to be uploaded with `copies`.
+struct Texture {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    Buffer staging;
+    std::vector<VkBufferImageCopy> copies;
+    uint32_t mips = 1;
+};
+Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t);
+
+// The draw's pipeline (its GLSL compiled here); the creation time is added to pipeline_ms.
+VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,
+                         VkPipelineLayout layout, double& pipeline_ms);
+// The target's render pass: colour, depth/stencil and resolve attachments, cleared, ready for the copies.
+VkRenderPass make_render_pass(const DeviceContext& c, Cleanup& gc, const Target& t);
+
+}  // namespace tilevk::cts::frame

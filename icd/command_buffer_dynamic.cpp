@@ -1,0 +1,105 @@
+// The vkCmdSet* of extended dynamic state 1 and 2 (VK_EXT_extended_dynamic_state[2], core in Vulkan 1.3). Each
+// records the value it sets; execution applies it where the bound pipeline declared the state dynamic
+// (dynamic_state.cpp). vkCmdBindVertexBuffers2 is with the other binds (command_buffer.cpp).
+#include "command_buffer.h"
+#include "entrypoints.h"
+#include "object.h"
+
+namespace tilevk::icd {
+namespace {
+
+void set(VkCommandBuffer commandBuffer, DynamicState state, uint32_t value) {
+    if (auto* c = from_handle<CommandBuffer>(commandBuffer)->append<CmdSetDynamic>()) {
+        c->state = state;
+        c->value = value;
+    }
+}
+
+}  // namespace
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCullMode(VkCommandBuffer commandBuffer, VkCullModeFlags cullMode) {
+    set(commandBuffer, DynamicState::kCullMode, cullMode);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetFrontFace(VkCommandBuffer commandBuffer, VkFrontFace frontFace) {
+    set(commandBuffer, DynamicState::kFrontFace, uint32_t(frontFace));
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPrimitiveTopology(VkCommandBuffer commandBuffer,
+                                                       VkPrimitiveTopology primitiveTopology) {
+    set(commandBuffer, DynamicState::kPrimitiveTopology, uint32_t(primitiveTopology));
+}
+
+// The WithCount forms set the viewports / scissors exactly as vkCmdSetViewport/vkCmdSetScissor from index 0 do.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetViewportWithCount(VkCommandBuffer commandBuffer, uint32_t viewportCount,
+                                                       const VkViewport* pViewports) {
+    tvk_CmdSetViewport(commandBuffer, 0, viewportCount, pViewports);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetScissorWithCount(VkCommandBuffer commandBuffer, uint32_t scissorCount,
+                                                      const VkRect2D* pScissors) {
+    tvk_CmdSetScissor(commandBuffer, 0, scissorCount, pScissors);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthTestEnable(VkCommandBuffer commandBuffer, VkBool32 depthTestEnable) {
+    set(commandBuffer, DynamicState::kDepthTestEnable, depthTestEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthWriteEnable(VkCommandBuffer commandBuffer, VkBool32 depthWriteEnable) {
+    set(commandBuffer, DynamicState::kDepthWriteEnable, depthWriteEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthCompareOp(VkCommandBuffer commandBuffer, VkCompareOp depthCompareOp) {
+    set(commandBuffer, DynamicState::kDepthCompareOp, uint32_t(depthCompareOp));
+}
+
+// depthBounds is not a reported feature, so only VK_FALSE is valid here; the value is kept and unused.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBoundsTestEnable(VkCommandBuffer commandBuffer,
+                                                           VkBool32 depthBoundsTestEnable) {
+    set(commandBuffer, DynamicState::kDepthBoundsTestEnable, depthBoundsTestEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilTestEnable(VkCommandBuffer commandBuffer, VkBool32 stencilTestEnable) {
+    set(commandBuffer, DynamicState::kStencilTestEnable, stencilTestEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilOp(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
+                                               VkStencilOp failOp, VkStencilOp passOp, VkStencilOp depthFailOp,
+                                               VkCompareOp compareOp) {
+    if (auto* c = from_handle<CommandBuffer>(commandBuffer)->append<CmdSetStencilOp>()) {
+        c->faces = faceMask;
+        c->ops.failOp = failOp;
+        c->ops.passOp = passOp;
+        c->ops.depthFailOp = depthFailOp;
+        c->ops.compareOp = compareOp;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetRasterizerDiscardEnable(VkCommandBuffer commandBuffer,
+                                                             VkBool32 rasterizerDiscardEnable) {
+    set(commandBuffer, DynamicState::kRasterizerDiscardEnable, rasterizerDiscardEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBiasEnable(VkCommandBuffer commandBuffer, VkBool32 depthBiasEnable) {
+    set(commandBuffer, DynamicState::kDepthBiasEnable, depthBiasEnable);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPrimitiveRestartEnable(VkCommandBuffer commandBuffer,
+                                                            VkBool32 primitiveRestartEnable) {
+    set(commandBuffer, DynamicState::kPrimitiveRestartEnable, primitiveRestartEnable);
+}
+
+// extendedDynamicState2LogicOp.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLogicOpEXT(VkCommandBuffer commandBuffer, VkLogicOp logicOp) {
+    set(commandBuffer, DynamicState::kLogicOp, uint32_t(logicOp));
+}
+
+// extendedDynamicState2PatchControlPoints is VK_FALSE (no tessellation): calling this is invalid usage, and there
+// is no patch to control.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPatchControlPointsEXT(VkCommandBuffer, uint32_t) {
+    log_error(
+        "vkCmdSetPatchControlPointsEXT: tilevk has no tessellation (extendedDynamicState2PatchControlPoints "
+        "is not supported); ignored");
+}
+
+}  // namespace tilevk::icd

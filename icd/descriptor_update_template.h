@@ -1,0 +1,17 @@
+// VkDescriptorUpdateTemplate (VK_KHR_descriptor_update_template, core in Vulkan 1.1): the template's entries;
+// vkUpdateDescriptorSetWithTemplate turns them into the VkWriteDescriptorSets vkUpdateDescriptorSets applies.
+#pragma once
+#include <vector>
+
+#include "object.h"
+
+namespace tilevk::icd {
+
+struct DescriptorUpdateTemplate : NonDispatchableObject {
+    using Handle = VkDescriptorUpdateTemplate;
+    static constexpr VkObjectType kType = VK_OBJECT_TYPE_DESCRIPTOR_UPDATE_TEMPLATE;
+    DescriptorUpdateTemplate() : NonDispatchableObject(kType) {}
+    std::vector<VkDescriptorUpdateTemplateEntry> entries;
+};
+
+}  // namespace tilevk::icd

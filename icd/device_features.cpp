@@ -1,0 +1,203 @@
+#include "device_features.h"
+
+#include <cstring>
+#include <type_traits>
+#include <vector>
+
+#include "object.h"
+#include "vk_names.h"
+
+namespace tilevk::icd {
+namespace {
+
+constexpr size_t kHeader = sizeof(VkBaseOutStructure);  // sType + pNext, ahead of every feature struct's members
+
+template <class T>
+void init(T& s, VkStructureType t) {
+    s = {};
+    s.sType = t;
+}
+
+// The members of `s` after sType/pNext, copied from `from` (a struct of the same type); `size` is the struct's size.
+void copy_body(VkBaseOutStructure* s, const void* from, size_t size) {
+    std::memcpy(reinterpret_cast<char*>(s) + kHeader, static_cast<const char*>(from) + kHeader, size - kHeader);
+}
+
+// The Vulkan 1.1/1.2/1.3 structs themselves (the structs promoted into them go through core_structs.cpp).
+template <class Core>
+auto* core_struct(Core& core, VkStructureType t) {
+    using Ptr = std::conditional_t<std::is_const_v<Core>, const void*, void*>;
+    switch (t) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES:
+            return Ptr(&core.v11);
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES:
+            return Ptr(&core.v12);
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES:
+            return Ptr(&core.v13);
+        default:
+            return Ptr(nullptr);
+    }
+}
+
+Features make_supported() {
+    Features f;
+    VkPhysicalDeviceFeatures& c = f.core10;
+    c.depthClamp = VK_TRUE;      // rast/fragment clamp_depth + no near/far clipping
+    c.depthBiasClamp = VK_TRUE;  // rast/geometry depth bias with clamp
+    c.independentBlend = VK_TRUE;
+    // Indirect and indexed draws: execute_draw.cpp reads every record (drawCount, stride, firstInstance) and
+    // rast/render fetches 32-bit index values as they are (tests/icd/api_breadth_draws_test.cpp
+    // IndirectDrawsWithStride).
+    c.fullDrawIndexUint32 = VK_TRUE;
+    c.multiDrawIndirect = VK_TRUE;
+    c.drawIndirectFirstInstance = VK_TRUE;
+    c.largePoints = VK_TRUE;            // rast/geometry setup_point: sizes up to 255
+    c.wideLines = VK_TRUE;              // rast/geometry setup_line: rectangular lines of any width
+    c.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
+    c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
+    c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
+    c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
+    c.multiViewport = VK_TRUE;          // 16 viewports accepted; with no viewport-index output viewport 0 is used
+
+    f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
+    // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.
+    f.list_restart.primitiveTopologyListRestart = VK_TRUE;
+    f.depth_clip_control.depthClipControl = VK_TRUE;  // rast/geometry clip_halfz = false: [-w, w], scale (f-n)/2
+    // Extended dynamic state 1 and 2 (dynamic_state.cpp); no patch control points (no tessellation).
+    f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
+    f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
+    f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    f.core.v12.drawIndirectCount = VK_TRUE;             // vkCmdDraw[Indexed]IndirectCount: the count read at execution
+    f.core.v12.hostQueryReset = VK_TRUE;                // vkResetQueryPool: the reset vkCmdResetQueryPool does
+    f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
+    f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
+    f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
+    return f;
+}
+
+}  // namespace
+
+Features::Features() {
+    init(index_type_uint8, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_INDEX_TYPE_UINT8_FEATURES_EXT);
+    init(list_restart, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PRIMITIVE_TOPOLOGY_LIST_RESTART_FEATURES_EXT);
+    init(depth_clip_control, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT);
+    init(extended_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT);
+    init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
+}
+
+VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
+    VkBaseOutStructure* all[] = {reinterpret_cast<VkBaseOutStructure*>(&index_type_uint8),
+                                 reinterpret_cast<VkBaseOutStructure*>(&list_restart),
+                                 reinterpret_cast<VkBaseOutStructure*>(&depth_clip_control),
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2)};
+    for (VkBaseOutStructure* s : all)
+        if (s->sType == t) return s;
+    return nullptr;
+}
+
+const VkBaseOutStructure* Features::extension_struct(VkStructureType t) const {
+    return const_cast<Features*>(this)->extension_struct(t);
+}
+
+const Features& supported_features() {
+    static const Features kSupported = make_supported();
+    return kSupported;
+}
+
+void write_feature_struct(const Features& from, VkBaseOutStructure* s) {
+    if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2) {
+        reinterpret_cast<VkPhysicalDeviceFeatures2*>(s)->features = from.core10;
+        return;
+    }
+    const FeatureStruct* fs = find_feature_struct(s->sType);
+    if (fs == nullptr) return;  // not a feature struct vk.xml knows: skipped
+    if (const void* core = core_struct(from.core, s->sType)) {
+        copy_body(s, core, fs->size);
+    } else if (read_core_features(from.core, s)) {
+        // a struct promoted into Vulkan 1.1-1.3: filled from the Vulkan1x struct
+    } else if (const VkBaseOutStructure* ext = from.extension_struct(s->sType)) {
+        copy_body(s, ext, fs->size);
+    } else {
+        for (uint32_t m = 0; m < fs->count; ++m) {
+            const VkBool32 no = VK_FALSE;
+            std::memcpy(reinterpret_cast<char*>(s) + fs->offsets[m], &no, sizeof no);
+        }
+    }
+}
+
+namespace {
+
+VkBool32 member(const void* s, size_t offset) {
+    VkBool32 v;
+    std::memcpy(&v, static_cast<const char*>(s) + offset, sizeof v);
+    return v;
+}
+
+// The first member `requested` sets that `supported` does not, or -1.
+int first_unsupported(const FeatureStruct& fs, const void* requested, const void* supported) {
+    for (uint32_t m = 0; m < fs.count; ++m)
+        if (member(requested, fs.offsets[m]) && !member(supported, fs.offsets[m])) return int(m);
+    return -1;
+}
+
+VkResult check_features10(const VkPhysicalDeviceFeatures& want, VkPhysicalDeviceFeatures* enabled) {
+    const FeatureStruct& fs = features10();
+    const int bad = first_unsupported(fs, &want, &supported_features().core10);
+    if (bad >= 0) {
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                    "vkCreateDevice: VkPhysicalDeviceFeatures::%s is not supported by tilevk", fs.members[bad]);
+    }
+    auto* out = reinterpret_cast<VkBool32*>(enabled);
+    const auto* in = reinterpret_cast<const VkBool32*>(&want);
+    for (size_t i = 0; i < sizeof want / sizeof(VkBool32); ++i) out[i] |= in[i];
+    return VK_SUCCESS;
+}
+
+// OR-s the VkBool32 members of `s` into the same struct inside `enabled`.
+void merge(const FeatureStruct& fs, const VkBaseInStructure* s, Features* enabled) {
+    void* target = core_struct(enabled->core, s->sType);
+    if (target == nullptr) target = enabled->extension_struct(s->sType);
+    if (target == nullptr) {
+        merge_core_features(reinterpret_cast<const VkBaseOutStructure*>(s), &enabled->core);
+        return;  // promoted structs are merged into the Vulkan1x struct; unknown ones have nothing set
+    }
+    for (uint32_t m = 0; m < fs.count; ++m) {
+        const VkBool32 v = member(target, fs.offsets[m]) | member(s, fs.offsets[m]);
+        std::memcpy(static_cast<char*>(target) + fs.offsets[m], &v, sizeof v);
+    }
+}
+
+}  // namespace
+
+VkResult enable_features(const VkDeviceCreateInfo& ci, Features* enabled) {
+    *enabled = Features{};
+    if (ci.pEnabledFeatures != nullptr) {
+        if (VkResult r = check_features10(*ci.pEnabledFeatures, &enabled->core10); r != VK_SUCCESS) return r;
+    }
+    const Features& supported = supported_features();
+    std::vector<unsigned char> answer;
+    for (auto* s = static_cast<const VkBaseInStructure*>(ci.pNext); s != nullptr; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2) {
+            const auto& f2 = *reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s);
+            if (VkResult r = check_features10(f2.features, &enabled->core10); r != VK_SUCCESS) return r;
+            continue;
+        }
+        const FeatureStruct* fs = find_feature_struct(s->sType);
+        if (fs == nullptr) continue;  // not a feature struct: what it asks for is checked where it is used
+        // tilevk's answer for this struct, written exactly as vkGetPhysicalDeviceFeatures2 would write it.
+        answer.assign(fs->size, 0);
+        auto* mine = reinterpret_cast<VkBaseOutStructure*>(answer.data());
+        mine->sType = s->sType;
+        write_feature_struct(supported, mine);
+        const int bad = first_unsupported(*fs, s, mine);
+        if (bad >= 0) {
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateDevice: %s::%s is not supported by tilevk", fs->name,
+                        fs->members[bad]);
+        }
+        merge(*fs, s, enabled);
+    }
+    return VK_SUCCESS;
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,104 @@
+#include "device_properties.h"
+
+#include <cstdio>
+#include <cstring>
+
+#include "physical_device.h"
+
+namespace tilevk::icd {
+namespace {
+
+// Vulkan 1.1: identity, subgroups, point clipping, multiview, descriptor-set and allocation sizes.
+void fill_v11(const PhysicalDevice& pd, VkPhysicalDeviceVulkan11Properties& p) {
+    // No external memory sharing exists (no handle types), so the UUIDs only have to be stable and distinct.
+    static const uint8_t kDevice[VK_UUID_SIZE] = {'t', 'i', 'l', 'e', 'v', 'k', '-', 'd', 'e', 'v', 0, 0, 0, 0, 0, 1};
+    static const uint8_t kDriver[VK_UUID_SIZE] = {'t', 'i', 'l', 'e', 'v', 'k', '-', 'd', 'r', 'v', 0, 0, 0, 0, 0, 1};
+    std::memcpy(p.deviceUUID, kDevice, VK_UUID_SIZE);
+    std::memcpy(p.driverUUID, kDriver, VK_UUID_SIZE);
+    p.deviceLUIDValid = VK_FALSE;  // LUIDs identify Windows adapters
+    p.deviceNodeMask = 0;
+    // No subgroup operation is implemented in any stage. (Vulkan 1.1 would want BASIC in the compute stage of a
+    // compute queue; tilevk reports Vulkan 1.0, where the struct is informative.)
+    p.subgroupSize = 1;
+    p.subgroupSupportedStages = 0;
+    p.subgroupSupportedOperations = 0;
+    p.subgroupQuadOperationsInAllStages = VK_FALSE;
+    // rast/geometry clips points as draw does (clip_point_keep: dropped by the z planes, x/y by the guard band), which
+    // is what lavapipe reports as ALL_CLIP_PLANES.
+    p.pointClippingBehavior = VK_POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES;
+    p.maxMultiviewViewCount = 0;  // multiview is not implemented
+    p.maxMultiviewInstanceIndex = 0;
+    p.protectedNoFault = VK_FALSE;
+    // Descriptor sets are plain arrays sized by their layout: 1024 (the Vulkan minimum) is always satisfiable.
+    p.maxPerSetDescriptors = 1024;
+    p.maxMemoryAllocationSize = pd.memory.memoryHeaps[0].size;  // vkAllocateMemory refuses more than the heap
+}
+
+// Vulkan 1.2: driver identity, float controls, descriptor indexing, resolves, timeline semaphores.
+void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
+    // tilevk has no Khronos-registered VkDriverId; 0 (no VkDriverId value) rather than another driver's id.
+    p.driverID = VkDriverId(0);
+    std::snprintf(p.driverName, sizeof p.driverName, "tilevk");
+    std::snprintf(p.driverInfo, sizeof p.driverInfo, "binned Larrabee-style rasterizer, held to lavapipe 22.3.6");
+    p.conformanceVersion = {0, 0, 0, 0};  // never run through the Khronos conformance process
+    // Shader float controls: no execution mode is offered (shader/ always flushes denormals, rounds to nearest).
+    p.denormBehaviorIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
+    p.roundingModeIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
+    // Descriptor indexing (update-after-bind) is not implemented: its limits are 0.
+    // Depth/stencil resolve modes: none beyond Vulkan 1.0's colour resolves.
+    p.supportedDepthResolveModes = 0;
+    p.supportedStencilResolveModes = 0;
+    p.filterMinmaxSingleComponentFormats = VK_FALSE;
+    p.filterMinmaxImageComponentMapping = VK_FALSE;
+    p.maxTimelineSemaphoreValueDifference = 0;  // no timeline semaphores
+    p.framebufferIntegerColorSampleCounts = VK_SAMPLE_COUNT_1_BIT;
+}
+
+// Vulkan 1.3: subgroup size control, inline uniform blocks, dot products, texel-buffer alignment, buffer size.
+void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
+    const VkPhysicalDeviceLimits& limits = pd.properties.limits;
+    p.minSubgroupSize = 1;
+    p.maxSubgroupSize = 1;
+    p.maxComputeWorkgroupSubgroups = 0;
+    p.requiredSubgroupSizeStages = 0;
+    // Inline uniform blocks: not implemented (limits 0). Integer dot products: none accelerated (all VK_FALSE).
+    p.storageTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
+    p.storageTexelBufferOffsetSingleTexelAlignment = VK_FALSE;
+    p.uniformTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
+    p.uniformTexelBufferOffsetSingleTexelAlignment = VK_FALSE;
+    p.maxBufferSize = pd.memory.memoryHeaps[0].size;  // no buffer larger than the heap can be bound
+}
+
+}  // namespace
+
+CoreProperties make_core_properties(const PhysicalDevice& pd) {
+    CoreProperties c;
+    fill_v11(pd, c.v11);
+    fill_v12(c.v12);
+    fill_v13(pd, c.v13);
+    return c;
+}
+
+void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
+    const CoreProperties& core = pd.core_properties;
+    auto copy_body = [s](const void* from, size_t size) {
+        std::memcpy(reinterpret_cast<char*>(s) + sizeof(VkBaseOutStructure),
+                    static_cast<const char*>(from) + sizeof(VkBaseOutStructure), size - sizeof(VkBaseOutStructure));
+    };
+    switch (s->sType) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES:
+            copy_body(&core.v11, sizeof core.v11);
+            return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES:
+            copy_body(&core.v12, sizeof core.v12);
+            return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES:
+            copy_body(&core.v13, sizeof core.v13);
+            return;
+        default:
+            read_core_properties(core, s);  // the promoted structs; anything else is left untouched
+            return;
+    }
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,62 @@
+// The extensible forms of the buffer and image memory commands: vkBind{Buffer,Image}Memory2 (VK_KHR_bind_memory2),
+// vkGet{Buffer,Image,ImageSparse}MemoryRequirements2 (VK_KHR_get_memory_requirements2) with
+// VkMemoryDedicatedRequirements (VK_KHR_dedicated_allocation). Each is the Vulkan 1.0 command it extends.
+#include "buffer.h"
+#include "device.h"
+#include "entrypoints.h"
+#include "image.h"
+
+namespace tilevk::icd {
+namespace {
+
+// One memory type, plain host memory: nothing prefers or requires a dedicated allocation.
+void write_requirements_chain(void* chain) {
+    for (auto* s = static_cast<VkBaseOutStructure*>(chain); s != nullptr; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS) {
+            auto* d = reinterpret_cast<VkMemoryDedicatedRequirements*>(s);
+            d->prefersDedicatedAllocation = VK_FALSE;
+            d->requiresDedicatedAllocation = VK_FALSE;
+        }
+    }
+}
+
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory2(VkDevice device, uint32_t count,
+                                                     const VkBindBufferMemoryInfo* pInfos) {
+    // VkBindBufferMemoryDeviceGroupInfo may only name device 0 of a one-device group: nothing to do.
+    for (uint32_t i = 0; i < count; ++i)
+        if (VkResult r = tvk_BindBufferMemory(device, pInfos[i].buffer, pInfos[i].memory, pInfos[i].memoryOffset);
+            r != VK_SUCCESS)
+            return r;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_BindImageMemory2(VkDevice device, uint32_t count,
+                                                    const VkBindImageMemoryInfo* pInfos) {
+    for (uint32_t i = 0; i < count; ++i)
+        if (VkResult r = tvk_BindImageMemory(device, pInfos[i].image, pInfos[i].memory, pInfos[i].memoryOffset);
+            r != VK_SUCCESS)
+            return r;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetBufferMemoryRequirements2(VkDevice device,
+                                                            const VkBufferMemoryRequirementsInfo2* pInfo,
+                                                            VkMemoryRequirements2* pReqs) {
+    tvk_GetBufferMemoryRequirements(device, pInfo->buffer, &pReqs->memoryRequirements);
+    write_requirements_chain(pReqs->pNext);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetImageMemoryRequirements2(VkDevice device, const VkImageMemoryRequirementsInfo2* pInfo,
+                                                           VkMemoryRequirements2* pReqs) {
+    tvk_GetImageMemoryRequirements(device, pInfo->image, &pReqs->memoryRequirements);
+    write_requirements_chain(pReqs->pNext);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetImageSparseMemoryRequirements2(VkDevice, const VkImageSparseMemoryRequirementsInfo2*,
+                                                                 uint32_t* pCount, VkSparseImageMemoryRequirements2*) {
+    *pCount = 0;  // no sparse images
+}
+
+}  // namespace tilevk::icd

@@ -1,0 +1,254 @@
+// The fast block pipeline (fragment_plan.h): the reference pipeline of FragmentStage::shade_block with each step
+// replaced by what the draw's plan allows. Built once per instruction set (rast/meson.build: this file is
+// compiled as TILEVK_ISA = isa_base and, where the compiler can, isa_avx2 with -mavx2 -mfma); the kernels it
+// inlines (block_kernels.h, blend_rgba8.h) follow TILEVK_SIMD_AVX2 of that build.
+//
+// Per block, in lavapipe's order: coverage -> depth values -> early depth/stencil -> interpolation and shader (or
+// the per-primitive run of a uniform shader, or the copy of a copied input) -> alpha to coverage and the shader's
+// sample mask -> late depth/stencil -> occlusion count -> blend and store.
+#include <algorithm>
+#include <cstring>
+
+#include "rast/fragment/blend_rgba8.h"
+#include "rast/fragment/block.h"
+#include "rast/render/fragment_plan.h"
+
+namespace tilevk::rast::render::TILEVK_ISA {
+namespace {
+
+using fragment::kBlockLanes;
+
+// What one block carries from step to step.
+struct Block {
+    int32_t x = 0, y = 0;
+    int samples = 1;
+    bool inside = true;      // the whole block lies in the framebuffer
+    uint16_t cover[4] = {};  // per sample, lane order
+    uint16_t pass[4] = {};   // survivors of the early test (cover without one)
+    uint16_t final_mask[4] = {};
+    fragment::LaneCoords centre;  // lane coordinates at the pixel centres (1x: also the depth sample positions)
+    alignas(32) float z[4][kBlockLanes];
+    fragment::DepthStencilBlock zs[4];
+};
+
+bool coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) {
+    uint16_t any = 0;
+    for (int s = 0; s < k.samples; ++s) any |= k.cover[s] = fragment::raster_to_lanes(raster_masks[s]);
+    if (!any) return false;
+    k.inside = k.x + 4 <= a.fb->width && k.y + 4 <= a.fb->height;
+    fragment::make_lane_coords(k.x, k.y, fragment::plane_offset(k.samples, -1), k.centre);
+    return true;
+}
+
+// z per sample: 1x at the pixel centre, 4x at each sample position, plus the depth offset (eval_depth's plain add).
+void depth_values(const BlockArgs& a, Block& k) {
+    const fragment::Plane zplane = plane_of(a.planes, 2);
+    const float depth_offset = a.planes[kPlaneFloats];
+    for (int s = 0; s < k.samples; ++s) {
+        if (k.samples > 1) {
+            fragment::LaneCoords at;
+            fragment::make_lane_coords(k.x, k.y, fragment::plane_offset(k.samples, s), at);
+            fragment::eval_plane_fast(zplane, at, a.fused, k.z[s]);
+        } else {
+            fragment::eval_plane_fast(zplane, k.centre, a.fused, k.z[s]);
+        }
+        for (int l = 0; l < kBlockLanes; ++l) k.z[s][l] = k.z[s][l] + depth_offset;
+    }
+}
+
+uint8_t* depth_origin(const BlockArgs& a, const Block& k, int s) {
+    const DepthStencilTarget& dst = a.fb->depth_stencil;
+    return dst.depth + size_t(s) * dst.depth_sample_stride + size_t(k.y) * dst.depth_row_pitch +
+           size_t(k.x) * depth_bytes(dst.format);
+}
+
+// The early test when the depth mode has one (its write too when allowed); otherwise the depth/stencil values
+// the late test will need. Returns the lanes that go on to the shader.
+uint16_t early_depth(const BlockArgs& a, Block& k) {
+    const DrawRecord& draw = *a.draw;
+    const DrawPlan& plan = *a.plan;
+    const DepthStencilTarget& dst = a.fb->depth_stencil;
+    const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
+    const bool early_write = draw.depth_mode & fragment::kEarlyDepthWrite;
+    for (int s = 0; s < 4; ++s) k.pass[s] = k.cover[s];
+    if (early) {
+        for (int s = 0; s < k.samples; ++s) {
+            if (plan.depth_fast) {
+                if (k.cover[s])
+                    k.pass[s] = fragment::depth_block_fast(plan.depth, k.z[s], k.cover[s], depth_origin(a, k, s),
+                                                           dst.depth_row_pitch, early_write, k.inside);
+                continue;
+            }
+            load_depth_stencil(dst, s, k.x, k.y, k.cover[s], k.zs[s]);
+            k.pass[s] = fragment::depth_stencil_test(draw.depth_stencil, dst.format, a.front_facing, k.z[s], k.cover[s],
+                                                     k.zs[s], early_write);
+            if (early_write) store_depth_stencil(dst, s, k.x, k.y, k.cover[s], k.zs[s]);
+        }
+    } else if (!plan.depth_fast) {
+        for (int s = 0; s < k.samples; ++s) load_depth_stencil(dst, s, k.x, k.y, k.cover[s], k.zs[s]);
+    }
+    uint16_t lanes = 0;
+    for (int s = 0; s < k.samples; ++s) lanes |= k.pass[s];
+    return lanes;
+}
+
+// A uniform shader (plan.uniform_shader): one run per primitive and worker; block.outputs stays valid for every
+// block of the primitive, since every lane sees the same flat inputs.
+void run_uniform(FragmentWorker& w, const BlockArgs& a) {
+    if (w.uniform_prim == a.prim && w.uniform_front == a.front_facing) return;
+    shader::FragmentBlock& b = w.block;
+    b.cover_mask = shader::kAllLanes;
+    b.front_facing = a.front_facing ? 1u : 0u;
+    b.sample_id = 0;
+    const float* attribs = a.planes + kPrimHeaderFloats;
+    for (const InputPlan& in : a.plan->inputs) {
+        uint32_t* lanes = input_lanes(b, in);
+        const uint32_t v = bits_of(attribs[in.plane + in.comp]);
+        for (int l = 0; l < kBlockLanes; ++l) lanes[l] = v;
+    }
+    a.draw->pipe->fragment->run_fragment(a.draw->bindings, b, w.scratch);
+    w.uniform_prim = a.prim;
+    w.uniform_front = a.front_facing;
+}
+
+// The shader's inputs for `lanes` (built-ins it reads, then the planned components: a * fl(1/w) for perspective
+// ones, the reciprocal once per block), then its run (or the copy of a copied input). Returns the live lanes.
+uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+    const DrawPlan& plan = *a.plan;
+    const shader::Program* fs = a.draw->pipe->fragment;
+    shader::FragmentBlock& b = w.block;
+    w.uniform_prim = nullptr;  // block.inputs/outputs are about to change
+    b.cover_mask = lanes;
+    b.front_facing = a.front_facing ? 1u : 0u;
+    b.sample_id = 0;
+    const shader::ProgramInterface& iface = fs->interface();
+    const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);
+    alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
+    if (plan.perspective || frag_coord) fragment::eval_plane_fast(plane_of(a.planes, 3), k.centre, a.fused, wlanes);
+    if (frag_coord) {
+        const fragment::EvalOffset off = fragment::plane_offset(k.samples, -1);
+        float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
+        fragment::frag_coord_xy(k.x, k.y, fragment::frag_coord_offset(k.samples, -1), fx, fy);
+        fragment::eval_depth(plane_of(a.planes, 2), a.planes[kPlaneFloats], k.x, k.y, off, a.fused, fz);
+        for (int l = 0; l < kBlockLanes; ++l) {
+            b.frag_coord[0][l] = bits_of(fx[l]);
+            b.frag_coord[1][l] = bits_of(fy[l]);
+            b.frag_coord[2][l] = bits_of(fz[l]);
+            b.frag_coord[3][l] = bits_of(wlanes[l]);
+        }
+    }
+    if (iface.builtins_read & shader::bit(shader::BuiltIn::SampleMask))
+        for (int l = 0; l < kBlockLanes; ++l) {
+            uint32_t m = 0;
+            for (int s = 0; s < k.samples; ++s) m |= ((k.cover[s] >> l) & 1u) << s;
+            b.sample_mask_in[l] = m;
+        }
+    if (plan.perspective) fragment::reciprocal_fast(wlanes, oow);
+    const float* attribs = a.planes + kPrimHeaderFloats;
+    for (const InputPlan& in : plan.inputs) {
+        const float* p = attribs + in.plane;
+        if (in.interp == geometry::Interp::kFlat) {
+            uint32_t* dst = input_lanes(b, in);
+            for (int l = 0; l < kBlockLanes; ++l) dst[l] = bits_of(p[in.comp]);
+            continue;
+        }
+        fragment::interpolate_input(plane_of(p, int(in.comp)), k.centre, a.fused,
+                                    in.interp == geometry::Interp::kPerspective ? oow : nullptr, input_lanes(b, in));
+    }
+    uint16_t live = lanes;
+    if (plan.copy_location >= 0) {
+        std::memcpy(b.outputs[0], b.inputs[plan.copy_location], sizeof b.outputs[0]);  // what the run would do
+    } else {
+        fs->run_fragment(a.draw->bindings, b, w.scratch);
+        live = static_cast<uint16_t>(b.live_mask & lanes);
+    }
+    if (iface.writes_frag_depth && a.draw->depth_mode != 0)
+        for (int s = 0; s < k.samples; ++s)
+            for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&k.z[s][l], &b.frag_depth[l], 4);
+    return live;
+}
+
+// The late test (lanes that failed the early test re-run it so their stencil fail ops apply).
+void late_depth(const BlockArgs& a, Block& k) {
+    const DrawRecord& draw = *a.draw;
+    const DepthStencilTarget& dst = a.fb->depth_stencil;
+    const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
+    if (early && (draw.depth_mode & fragment::kEarlyDepthWrite)) return;
+    for (int s = 0; s < k.samples; ++s) {
+        const uint16_t test_lanes =
+            early ? static_cast<uint16_t>((k.cover[s] & ~k.pass[s]) | k.final_mask[s]) : k.final_mask[s];
+        if (!test_lanes) continue;
+        if (a.plan->depth_fast) {
+            k.final_mask[s] &= fragment::depth_block_fast(a.plan->depth, k.z[s], test_lanes, depth_origin(a, k, s),
+                                                          dst.depth_row_pitch, true, k.inside);
+            continue;
+        }
+        const uint16_t late_pass = fragment::depth_stencil_test(draw.depth_stencil, dst.format, a.front_facing, k.z[s],
+                                                                test_lanes, k.zs[s], true);
+        store_depth_stencil(dst, s, k.x, k.y, test_lanes, k.zs[s]);
+        k.final_mask[s] &= late_pass;
+    }
+}
+
+void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
+    const Framebuffer& fb = *a.fb;
+    const DrawPlan& plan = *a.plan;
+    const PipelineState& pipe = *a.draw->pipe;
+    fragment::BlendOptions opt;
+    opt.fused = a.fused;
+    alignas(32) float src[4][kBlockLanes];
+    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
+        const ColorTarget& t = fb.color[c];
+        if (!t.data || plan.color[c] == ColorPath::kNone) continue;
+        std::memcpy(src, w.block.outputs[c], sizeof src);
+        if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
+        const size_t bytes = plan.color_bytes[c];
+        for (int s = 0; s < k.samples; ++s) {
+            if (!k.final_mask[s]) continue;
+            uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(k.y) * t.row_pitch + size_t(k.x) * bytes;
+            if (plan.color[c] == ColorPath::kRgba8 && k.inside &&
+                fragment::blend_rgba8_block(plan.rgba8[c], src, k.final_mask[s], origin, t.row_pitch))
+                continue;
+            if (plan.color[c] == ColorPath::kGeneric || plan.color[c] == ColorPath::kRgba8)
+                fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, k.final_mask[s], origin,
+                                      t.row_pitch, opt);
+            else
+                fragment::store_rgba8_fast(plan.color[c] == ColorPath::kOpaqueBgra8, src, k.final_mask[s], origin,
+                                           t.row_pitch, opt.unorm_path, k.inside);
+        }
+    }
+}
+
+}  // namespace
+
+void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    Block k;
+    k.x = x;
+    k.y = y;
+    k.samples = a.fb->samples;
+    if (!coverage(a, raster_masks, k)) return;
+    const bool depth_active = a.draw->depth_mode != 0;
+    if (depth_active) depth_values(a, k);
+    const uint16_t shade_lanes =
+        depth_active ? early_depth(a, k) : static_cast<uint16_t>(k.cover[0] | k.cover[1] | k.cover[2] | k.cover[3]);
+    if (!depth_active)
+        for (int s = 0; s < 4; ++s) k.pass[s] = k.cover[s];
+    if (!shade_lanes) return;
+
+    const shader::Program* fs = a.draw->pipe->fragment;
+    const uint64_t shade_start = w.shade_sample_start();
+    uint16_t live = shade_lanes;
+    if (fs && a.plan->uniform_shader)
+        run_uniform(w, a);
+    else if (fs)
+        live = run_shader(w, a, k, shade_lanes);
+    w.shade_sample_end(shade_start);
+
+    for (int s = 0; s < k.samples; ++s) k.final_mask[s] = k.pass[s] & live;
+    shader_coverage(fs, a.draw->pipe->alpha_to_coverage, w.block, k.samples, k.final_mask);
+    if (depth_active) late_depth(a, k);
+    if (a.draw->samples_passed) count_passed(w, a.prim->draw, k.final_mask, k.samples);  // only inside a query
+    if (fs) write_colors(w, a, k);
+}
+
+}  // namespace tilevk::rast::render::TILEVK_ISA

@@ -1,0 +1,94 @@
+// The fragment stage's helpers shared by the reference pipeline and every block function, built once (portable
+// code: no instruction-set variant calls anything else through them).
+#include <cstring>
+
+#include "rast/core/cpu.h"
+#include "rast/fragment/block.h"
+#include "rast/fragment/msaa.h"
+#include "rast/render/fragment_plan.h"
+
+namespace tilevk::rast::render {
+namespace {
+
+using fragment::kBlockLanes;
+
+// Depth texels are 2 or 4 bytes: constant-size copies (inlined) instead of a memcpy call per lane.
+uint32_t load_depth_texel(const uint8_t* src, size_t bytes) {
+    if (bytes == 2) {
+        uint16_t v;
+        std::memcpy(&v, src, 2);
+        return v;
+    }
+    uint32_t v = 0;
+    if (bytes == 4) std::memcpy(&v, src, 4);
+    return v;
+}
+
+void store_depth_texel(uint8_t* dst, size_t bytes, uint32_t v) {
+    if (bytes == 2) {
+        const uint16_t h = uint16_t(v);
+        std::memcpy(dst, &h, 2);
+    } else if (bytes == 4) {
+        std::memcpy(dst, &v, 4);
+    }
+}
+
+}  // namespace
+
+BlockFn fast_block_function() {
+#if TILEVK_AVX2_VARIANT
+    if (kernel_isa() == Isa::kAvx2) return isa_avx2::shade_block_fast;
+#endif
+    return isa_base::shade_block_fast;
+}
+
+void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                        fragment::DepthStencilBlock& zs) {
+    const size_t bytes = depth_bytes(t.format);
+    for (int l = 0; l < kBlockLanes; ++l) {
+        zs.depth[l] = 0;
+        zs.stencil[l] = 0;
+        if (!(lanes & (1u << l))) continue;
+        const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
+        if (t.depth)
+            zs.depth[l] = load_depth_texel(
+                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes,
+                bytes);
+        if (t.stencil)
+            zs.stencil[l] = t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px];
+    }
+}
+
+void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                         const fragment::DepthStencilBlock& zs) {
+    const size_t bytes = depth_bytes(t.format);
+    for (int l = 0; l < kBlockLanes; ++l) {
+        if (!(lanes & (1u << l))) continue;
+        const int32_t px = x + fragment::lane_x(l), py = y + fragment::lane_y(l);
+        if (t.depth)
+            store_depth_texel(
+                t.depth + size_t(sample) * t.depth_sample_stride + size_t(py) * t.depth_row_pitch + size_t(px) * bytes,
+                bytes, zs.depth[l]);
+        if (t.stencil)
+            t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px] = zs.stencil[l];
+    }
+}
+
+void shader_coverage(const shader::Program* fs, bool alpha_to_coverage, const shader::FragmentBlock& b, int samples,
+                     uint16_t final_mask[4]) {
+    if (!fs) return;
+    if (alpha_to_coverage) {
+        float alpha[kBlockLanes];
+        for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&alpha[l], &b.outputs[0][3][l], 4);
+        if (samples > 1)
+            fragment::alpha_to_coverage_4x(alpha, final_mask);
+        else
+            final_mask[0] = fragment::alpha_to_coverage_1x(alpha, final_mask[0]);
+    }
+    if (fs->interface().builtins_written & shader::bit(shader::BuiltIn::SampleMask))
+        for (int s = 0; s < samples; ++s)
+            for (int l = 0; l < kBlockLanes; ++l)
+                if (!((b.sample_mask[l] >> s) & 1u)) final_mask[s] &= uint16_t(~(1u << l));
+}
+
+}  // namespace tilevk::rast::render

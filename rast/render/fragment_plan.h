@@ -1,0 +1,139 @@
+// The fragment stage's per-draw plan, its per-worker state, and the block-function interface.
+//
+// FragmentStage (fragment_stage.cpp) turns each covered 4x4 block into pixels with a *block function*:
+//
+//     void block(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+//
+// It gets the block's origin and its per-sample raster-order coverage, and everything else through BlockArgs (the
+// framebuffer's targets, the draw record with its pipeline state and bindings, the draw's plan, the primitive's
+// planes in the scene_records.h layout); it interpolates, runs the fragment shader, tests depth/stencil, applies
+// alpha to coverage and the sample mask, blends and stores, and counts occlusion samples into w.samples_passed —
+// all with lavapipe's arithmetic (the per-step rules of fragment_block.cpp and rast/fragment). It is
+// fragment_block.cpp's fast pipeline, built once per instruction set (fast_block_function() picks the one the
+// CPU runs, rast/core/cpu.h). Whichever build runs, the bytes must be those of the reference pipeline
+// (FragmentStage::shade_block): tests/rast/fragment/stage_test.cpp compares them, on both builds.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+#include "rast/fragment/blend.h"
+#include "rast/fragment/block_kernels.h"
+#include "rast/fragment/depth_stencil.h"
+#include "rast/fragment/interp.h"
+#include "rast/render/scene_records.h"
+#include "rast/render/stage_timer.h"
+#include "rast/render/targets.h"
+#include "shader/program.h"
+
+namespace tilevk::rast::render {
+
+// One shader input component the fast path interpolates; loc kPointCoordLoc is gl_PointCoord (block.point_coord).
+inline constexpr uint32_t kPointCoordLoc = ~0u;
+struct InputPlan {
+    uint32_t loc = 0, comp = 0;
+    uint32_t plane = 0;  // float offset of its plane from the primitive's first attribute plane
+    geometry::Interp interp = geometry::Interp::kPerspective;
+};
+inline uint32_t* input_lanes(shader::FragmentBlock& b, const InputPlan& in) {
+    return in.loc == kPointCoordLoc ? b.point_coord[in.comp] : b.inputs[in.loc][in.comp];
+}
+
+enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8, kRgba8 };
+
+// What the fast path derived from one draw's state, once per scene (fragment_stage.cpp make_plan).
+struct DrawPlan {
+    bool fast = false;              // false: the reference path (unsupported states)
+    std::vector<InputPlan> inputs;  // the declared components only: the shader cannot read the others
+    bool perspective = false;       // some input divides by w
+    bool uniform_shader = false;    // the shader's outputs are the same for every fragment of a primitive
+    int copy_location = -1;         // >= 0: the shader only copies this vec4 input to colour output 0
+    bool depth_fast = false;        // depth_block_fast handles the depth test
+    fragment::DepthFast depth;
+    ColorPath color[kMaxColorTargets] = {};
+    fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
+    uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
+};
+
+// One worker's fragment-stage state (shader scratch and block, per-draw counters, stage timing).
+struct FragmentWorker {
+    shader::Scratch scratch;
+    shader::FragmentBlock block;
+    // The primitive whose uniform shader result block.outputs holds (DrawPlan::uniform_shader), or null.
+    const PrimRecord* uniform_prim = nullptr;
+    bool uniform_front = false;
+    std::vector<uint64_t> samples_passed;  // per draw record of the current scene
+    // Stage timing (stage_timer.h), when on: the current tile's start (CPU time), and its fragment-stage and shading
+    // ticks.
+    uint64_t tile_cpu_start = 0, tile_consumer = 0, tile_shade = 0;
+    // Shading is timed on one block in kShadeSampling (a time-stamp read costs ~25 ns on a VM, a block ~100 ns);
+    // the sampled ticks count kShadeSampling times.
+    uint32_t blocks_seen = 0;
+    static constexpr uint32_t kShadeSampling = 16;
+    uint64_t shade_sample_start() {
+        return stage_timers_on() && (++blocks_seen % kShadeSampling) == 0 ? stage_ticks() : 0;
+    }
+    void shade_sample_end(uint64_t start) {
+        if (start) tile_shade += (stage_ticks() - start) * kShadeSampling;
+    }
+    uint64_t hits_seen = 0;       // scratch.loop_limit_hits() after the last primitive
+    unsigned saved_fp_state = 0;  // the thread's MXCSR outside its current tile
+};
+
+struct BlockArgs;
+using BlockFn = void (*)(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+
+// The arguments of a block function (see the top of this file).
+struct BlockArgs {
+    const Framebuffer* fb = nullptr;
+    const DrawRecord* draw = nullptr;
+    const DrawPlan* plan = nullptr;
+    const PrimRecord* prim = nullptr;
+    const float* planes = nullptr;  // the primitive's planes
+    bool front_facing = true;
+    bool fused = true;  // lavapipe's fmuladds are fused (host FMA)
+};
+
+// The fast pipeline for the instruction set this process runs (rast/core/cpu.h kernel_isa()).
+BlockFn fast_block_function();
+
+// The fast pipeline of one instruction-set build (fragment_block.cpp).
+namespace isa_base {
+void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+}
+namespace isa_avx2 {
+void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+}
+
+// ---- shared by every block function and the reference pipeline (fragment_common.cpp) ----
+
+inline fragment::Plane plane_of(const float* p, int c) {
+    // AttribPlane layout: a0[4], dadx[4], dady[4]
+    return {p[4 + c], p[8 + c], p[c]};
+}
+inline uint32_t bits_of(float f) {
+    return std::bit_cast<uint32_t>(f);
+}
+
+// Depth and stencil of the given lanes of a block (others read 0), and back.
+void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                        fragment::DepthStencilBlock& zs);
+void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
+                         const fragment::DepthStencilBlock& zs);
+
+// What the shader's outputs do to the per-sample survivors: alpha to coverage (raw float alpha of output 0), then
+// the shader-written sample mask (lavapipe's order, lp_state_fs.c).
+void shader_coverage(const shader::Program* fs, bool alpha_to_coverage, const shader::FragmentBlock& b, int samples,
+                     uint16_t final_mask[4]);
+
+// Occlusion counting: lavapipe adds popcount of the post-depth/stencil mask per sample (lp_state_fs.c,
+// lp_build_occlusion_count inside the sample loop under MSAA), i.e. after discard, alpha to coverage, the shader's
+// sample mask and the late test. The final masks here are exactly those.
+inline void count_passed(FragmentWorker& w, uint32_t draw, const uint16_t final_mask[4], int samples) {
+    uint64_t n = 0;
+    for (int s = 0; s < samples; ++s) n += uint64_t(std::popcount(final_mask[s]));
+    w.samples_passed[draw] += n;
+}
+
+}  // namespace tilevk::rast::render

@@ -1,0 +1,387 @@
+// Op table (name, how it is compiled), register footprints, segments and segment-local registers.
+#include "shader/jit/analysis.h"
+
+#include <algorithm>
+#include <array>
+
+namespace tilevk::shader::jit {
+
+namespace {
+
+constexpr Lowering N = Lowering::Native, H = Lowering::Helper;
+
+struct OpEntry {
+    Op op;
+    const char* name;
+    Lowering lowering;
+};
+
+// Every op of ir.h this tier knows, in enum order. Ops appended to ir.h later are not listed: op_info reports them
+// as Unknown and the program stays in the interpreter until someone decides how to compile them.
+constexpr OpEntry kOps[] = {
+    {Op::Mov, "Mov", N},
+    {Op::Select, "Select", N},
+    {Op::MaskedMov, "MaskedMov", N},
+    {Op::FAdd, "FAdd", N},
+    {Op::FSub, "FSub", N},
+    {Op::FMul, "FMul", N},
+    {Op::FDiv, "FDiv", N},
+    {Op::FNeg, "FNeg", N},
+    {Op::FAbs, "FAbs", N},
+    {Op::FMin, "FMin", N},
+    {Op::FMax, "FMax", N},
+    {Op::FMod, "FMod", N},
+    {Op::FRem, "FRem", H},
+    {Op::Fma, "Fma", N},
+    {Op::FOrdEq, "FOrdEq", N},
+    {Op::FOrdNe, "FOrdNe", N},
+    {Op::FOrdLt, "FOrdLt", N},
+    {Op::FOrdLe, "FOrdLe", N},
+    {Op::FOrdGt, "FOrdGt", N},
+    {Op::FOrdGe, "FOrdGe", N},
+    {Op::FUnordEq, "FUnordEq", N},
+    {Op::FUnordNe, "FUnordNe", N},
+    {Op::FUnordLt, "FUnordLt", N},
+    {Op::FUnordLe, "FUnordLe", N},
+    {Op::FUnordGt, "FUnordGt", N},
+    {Op::FUnordGe, "FUnordGe", N},
+    {Op::IsNan, "IsNan", N},
+    {Op::IsInf, "IsInf", N},
+    {Op::IAdd, "IAdd", N},
+    {Op::ISub, "ISub", N},
+    {Op::IMul, "IMul", N},
+    {Op::SDiv, "SDiv", H},
+    {Op::UDiv, "UDiv", H},
+    {Op::SRem, "SRem", H},
+    {Op::SMod, "SMod", H},
+    {Op::UMod, "UMod", H},
+    {Op::INeg, "INeg", N},
+    {Op::And, "And", N},
+    {Op::Or, "Or", N},
+    {Op::Xor, "Xor", N},
+    {Op::Not, "Not", N},
+    {Op::Shl, "Shl", N},
+    {Op::ShrL, "ShrL", N},
+    {Op::ShrA, "ShrA", N},
+    {Op::IEq, "IEq", N},
+    {Op::INe, "INe", N},
+    {Op::SLt, "SLt", N},
+    {Op::SLe, "SLe", N},
+    {Op::SGt, "SGt", N},
+    {Op::SGe, "SGe", N},
+    {Op::ULt, "ULt", N},
+    {Op::ULe, "ULe", N},
+    {Op::UGt, "UGt", N},
+    {Op::UGe, "UGe", N},
+    {Op::SMin, "SMin", N},
+    {Op::SMax, "SMax", N},
+    {Op::UMin, "UMin", N},
+    {Op::UMax, "UMax", N},
+    {Op::SAbs, "SAbs", N},
+    {Op::SSign, "SSign", H},
+    {Op::BitCount, "BitCount", H},
+    {Op::BitReverse, "BitReverse", H},
+    {Op::FindLsb, "FindLsb", H},
+    {Op::FindSMsb, "FindSMsb", H},
+    {Op::FindUMsb, "FindUMsb", H},
+    {Op::BfeS, "BfeS", H},
+    {Op::BfeU, "BfeU", H},
+    {Op::Bfi, "Bfi", H},
+    {Op::F2S, "F2S", N},
+    {Op::F2U, "F2U", N},
+    {Op::S2F, "S2F", N},
+    {Op::U2F, "U2F", N},
+    {Op::Floor, "Floor", N},
+    {Op::Ceil, "Ceil", N},
+    {Op::Trunc, "Trunc", N},
+    {Op::Round, "Round", N},
+    {Op::RoundEven, "RoundEven", N},
+    {Op::Fract, "Fract", N},
+    {Op::FSign, "FSign", N},
+    {Op::Sqrt, "Sqrt", N},
+    {Op::InvSqrt, "InvSqrt", N},
+    {Op::Exp, "Exp", H},
+    {Op::Exp2, "Exp2", H},
+    {Op::Log, "Log", H},
+    {Op::Log2, "Log2", H},
+    {Op::Pow, "Pow", H},
+    {Op::Sin, "Sin", H},
+    {Op::Cos, "Cos", H},
+    {Op::Tan, "Tan", H},
+    {Op::Asin, "Asin", H},
+    {Op::Acos, "Acos", H},
+    {Op::Atan, "Atan", H},
+    {Op::Atan2, "Atan2", H},
+    {Op::Sinh, "Sinh", H},
+    {Op::Cosh, "Cosh", H},
+    {Op::Tanh, "Tanh", H},
+    {Op::Asinh, "Asinh", H},
+    {Op::Acosh, "Acosh", H},
+    {Op::Atanh, "Atanh", H},
+    {Op::FClamp, "FClamp", N},
+    {Op::Step, "Step", N},
+    {Op::SmoothStep, "SmoothStep", N},
+    {Op::Ldexp, "Ldexp", H},
+    {Op::FrexpSig, "FrexpSig", H},
+    {Op::FrexpExp, "FrexpExp", H},
+    {Op::MulHiU, "MulHiU", H},
+    {Op::MulHiS, "MulHiS", H},
+    {Op::PackHalf2x16, "PackHalf2x16", H},
+    {Op::UnpackHalf2x16Lo, "UnpackHalf2x16Lo", H},
+    {Op::UnpackHalf2x16Hi, "UnpackHalf2x16Hi", H},
+    {Op::PackUnorm4x8, "PackUnorm4x8", H},
+    {Op::UnpackUnorm4x8, "UnpackUnorm4x8", H},
+    {Op::PackSnorm4x8, "PackSnorm4x8", H},
+    {Op::UnpackSnorm4x8, "UnpackSnorm4x8", H},
+    {Op::PackUnorm2x16, "PackUnorm2x16", H},
+    {Op::UnpackUnorm2x16, "UnpackUnorm2x16", H},
+    {Op::PackSnorm2x16, "PackSnorm2x16", H},
+    {Op::UnpackSnorm2x16, "UnpackSnorm2x16", H},
+    {Op::DdxFine, "DdxFine", N},
+    {Op::DdyFine, "DdyFine", N},
+    {Op::DdxCoarse, "DdxCoarse", N},
+    {Op::DdyCoarse, "DdyCoarse", N},
+    {Op::LoadLocal, "LoadLocal", N},
+    {Op::StoreLocal, "StoreLocal", H},
+    {Op::LoadLocalFixed, "LoadLocalFixed", N},
+    {Op::StoreLocalFixed, "StoreLocalFixed", N},
+    {Op::LoadBuf, "LoadBuf", H},
+    {Op::LoadBufUniform, "LoadBufUniform", N},
+    {Op::StoreBuf, "StoreBuf", H},
+    {Op::BufArrayLength, "BufArrayLength", H},
+    {Op::Sample, "Sample", H},
+    {Op::Fetch, "Fetch", H},
+    {Op::QuerySize, "QuerySize", H},
+    {Op::QueryLevels, "QueryLevels", H},
+    {Op::Jump, "Jump", N},
+    {Op::JumpIfNone, "JumpIfNone", N},
+    {Op::JumpIfAny, "JumpIfAny", N},
+    {Op::Kill, "Kill", N},
+    {Op::Halt, "Halt", N},
+};
+
+constexpr bool table_in_enum_order() {
+    for (size_t i = 0; i < std::size(kOps); ++i)
+        if (size_t(kOps[i].op) != i) return false;
+    return true;
+}
+static_assert(table_in_enum_order(), "kOps must list ir.h's ops in enum order");
+
+bool is_image(Op op) {
+    return op == Op::Sample || op == Op::Fetch || op == Op::QuerySize || op == Op::QueryLevels;
+}
+
+// When both operands of an x86 addition or multiplication are NaN, the result is the first source operand's NaN
+// (quieted). For the commutative FAdd and FMul, which operand comes first in the interpreter is the C++
+// compiler's choice, and it may choose differently for the two 8-lane halves of a register, so it is measured once
+// per half: the interpreter adds and multiplies two different NaNs.
+NanOrder measure_nan_order(Op op, int half) {
+    Scratch::Impl s;
+    s.regs.assign(3 * kLanes, 0);
+    s.local.assign(kLanes, 0);
+    for (int l = 0; l < kLanes; ++l) {
+        s.regs[l] = 0x7fa00000u | uint32_t(l);                // a: signalling NaNs with per-lane payloads
+        s.regs[kLanes + l] = 0xffc00000u | uint32_t(l << 8);  // b: quiet NaNs, other payloads
+    }
+    const Inst code[2] = {Inst{op, 0, 2, 0, 1}, Inst{Op::Halt}};
+    execute_code(code, s);
+    int a_first = 0, b_first = 0;
+    for (int l = 8 * half; l < 8 * half + 8; ++l) {
+        a_first += s.regs[2 * kLanes + l] == (s.regs[l] | 0x00400000u);
+        b_first += s.regs[2 * kLanes + l] == s.regs[kLanes + l];
+    }
+    return a_first == 8 ? NanOrder::AFirst : b_first == 8 ? NanOrder::BFirst : NanOrder::Unknown;
+}
+
+}  // namespace
+
+NanOrder nan_order(Op op, int half) {
+    static const NanOrder order[2][2] = {{measure_nan_order(Op::FAdd, 0), measure_nan_order(Op::FAdd, 1)},
+                                         {measure_nan_order(Op::FMul, 0), measure_nan_order(Op::FMul, 1)}};
+    return order[op == Op::FMul][half];
+}
+
+Lowering lowering(const Inst& in) {
+    if ((in.op == Op::FAdd || in.op == Op::FMul) &&
+        (nan_order(in.op, 0) == NanOrder::Unknown || nan_order(in.op, 1) == NanOrder::Unknown))
+        return Lowering::Helper;
+#if !TILEVK_SIMD_AVX2
+    // The portable build's interpreter has no SSE4.1 / FMA instructions: floorf, ceilf, truncf, nearbyintf and
+    // fmaf are libm calls there, whose NaN results (and, on CPUs without SSE4.1, implementation) are libm's. The
+    // generated code hands these ops to the interpreter, so both tiers run the same libm code.
+    switch (in.op) {
+        case Op::Floor:
+        case Op::Ceil:
+        case Op::Trunc:
+        case Op::Round:
+        case Op::RoundEven:
+        case Op::Fract:
+        case Op::FMod:
+        case Op::Fma:
+            return Lowering::Helper;
+        default:
+            break;
+    }
+#endif
+    return op_info(in.op).lowering;
+}
+
+bool is_sync(const Inst& in) {
+    switch (in.op) {
+        case Op::Jump:
+        case Op::JumpIfNone:
+        case Op::JumpIfAny:
+        case Op::Halt:
+            return true;
+        default:
+            return lowering(in) != Lowering::Native;
+    }
+}
+
+OpInfo op_info(Op op) {
+    size_t i = size_t(op);
+    if (i >= std::size(kOps)) return {nullptr, Lowering::Unknown};
+    return {kOps[i].name, kOps[i].lowering};
+}
+
+Footprint footprint(const Inst& in) {
+    Footprint f;
+    switch (in.op) {
+        case Op::Jump:
+        case Op::Halt:
+            break;
+        case Op::JumpIfNone:
+        case Op::JumpIfAny:
+            f.read(in.a);
+            break;
+        case Op::MaskedMov:
+            f.read(in.a), f.read(in.c), f.read(in.d), f.write(in.d);
+            f.reads_dest = true;
+            break;
+        case Op::Kill:
+            f.read(in.a), f.read(in.d), f.write(in.d);
+            f.reads_dest = true;
+            break;
+        case Op::LoadLocalFixed:
+        case Op::LoadBufUniform:
+            f.write(in.d);
+            break;
+        case Op::StoreLocalFixed:
+            f.read(in.b), f.read(in.c);
+            break;
+        case Op::StoreLocal:
+            f.read(in.a), f.read(in.b), f.read(in.c);
+            break;
+        case Op::StoreBuf:
+            f.read(in.d), f.read(in.a), f.read(in.b), f.read(in.c);  // d is the store mask
+            break;
+        case Op::Bfi:
+            f.read(in.a), f.read(in.b), f.read(in.c), f.read(in.imm), f.write(in.d);
+            break;
+        case Op::PackUnorm4x8:
+        case Op::PackSnorm4x8:
+            for (uint32_t i = 0; i < 4 && in.a != kNoReg; ++i) f.read(in.a + i);
+            f.write(in.d);
+            break;
+        case Op::PackUnorm2x16:
+        case Op::PackSnorm2x16:
+            for (uint32_t i = 0; i < 2 && in.a != kNoReg; ++i) f.read(in.a + i);
+            f.write(in.d);
+            break;
+        default:
+            if (is_image(in.op)) {
+                // handle, lod/bias, the coordinate run (at least x, y, layer), the gradients; four results
+                f.read(in.a), f.read(in.c);
+                if (in.b != kNoReg)
+                    for (uint32_t i = 0; i < std::max<uint32_t>(in.extra, 3) && f.complete(); ++i) f.read(in.b + i);
+                if (in.op == Op::Sample && (in.imm & kSampleGrad))
+                    for (uint32_t i = 0; i < 4; ++i) f.read(in.n + i);
+                for (uint32_t i = 0; i < 4 && in.d != kNoReg; ++i) f.write(in.d + i);
+                break;
+            }
+            // plain ops: up to three sources, one result
+            f.read(in.a), f.read(in.b), f.read(in.c), f.write(in.d);
+            break;
+    }
+    return f;
+}
+
+Analysis analyze(const ProgramImpl& p) {
+    Analysis an;
+    const size_t n = p.code.size();
+    const uint32_t regs = p.num_regs;
+    an.label.assign(n + 1, 0);
+    an.label[0] = 1;
+    for (size_t i = 0; i < n; ++i) {
+        const Inst& in = p.code[i];
+        if (op_info(in.op).lowering == Lowering::Unknown) {
+            if (an.unknown_at < 0) an.unknown_at = int64_t(i);
+            continue;
+        }
+        if (in.op == Op::Jump || in.op == Op::JumpIfNone || in.op == Op::JumpIfAny) {
+            if (in.imm > n) {
+                if (an.unknown_at < 0) an.unknown_at = int64_t(i);
+                continue;
+            }
+            an.label[in.imm] = 1;
+        }
+    }
+
+    an.is_const.assign(regs, 0);
+    an.const_value.assign(regs, 0);
+    for (size_t i = 0; i + 1 < p.const_regs.size(); i += 2) {
+        if (p.const_regs[i] >= regs) continue;
+        an.is_const[p.const_regs[i]] = 1;
+        an.const_value[p.const_regs[i]] = p.const_regs[i + 1];
+    }
+
+    // Segments: a new one at every label and around every sync instruction.
+    an.segment.assign(n, 0);
+    uint32_t segment = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const bool sync = is_sync(p.code[i]);
+        if (i > 0 && (an.label[i] || sync || is_sync(p.code[i - 1]))) ++segment;
+        an.segment[i] = segment;
+    }
+
+    // Per register: segment of its first access (-1: none yet), whether that access wrote it, whether it is
+    // accessed from a second segment or by a sync instruction.
+    std::vector<int64_t> first_segment(regs, -1);
+    std::vector<uint8_t> first_write(regs, 0), shared(regs, 0);
+    for (size_t i = 0; i < n; ++i) {
+        const Inst& in = p.code[i];
+        if (lowering(in) == Lowering::Unknown) continue;
+        const bool sync = is_sync(in);
+        const Footprint f = footprint(in);
+        auto touch = [&](uint32_t r, bool write) {
+            if (r >= regs) return false;
+            if (first_segment[r] < 0) {
+                first_segment[r] = an.segment[i];
+                first_write[r] = write;
+            } else if (first_segment[r] != int64_t(an.segment[i])) {
+                shared[r] = 1;
+            }
+            if (sync) shared[r] = 1;
+            return true;
+        };
+        bool ok = f.complete();
+        for (int k = 0; ok && k < f.num_reads; ++k) ok = touch(f.reads[k], false);
+        for (int k = 0; ok && k < f.num_writes; ++k) ok = touch(f.writes[k], true);
+        if (!ok && an.unknown_at < 0) an.unknown_at = int64_t(i);  // a register past the file: do not compile
+    }
+    an.local.assign(regs, 0);
+    for (uint32_t r = 0; r < regs; ++r)
+        an.local[r] = first_segment[r] >= 0 && first_write[r] && !shared[r] && !an.is_const[r] &&
+                      r != p.reg_entry_mask && r != p.reg_live;
+    // A constant some instruction writes is an ordinary register.
+    for (size_t i = 0; i < n; ++i) {
+        const Inst& in = p.code[i];
+        if (op_info(in.op).lowering == Lowering::Unknown) continue;
+        const Footprint f = footprint(in);
+        for (int k = 0; k < f.num_writes && k < Footprint::kMax; ++k)
+            if (f.writes[k] < regs) an.is_const[f.writes[k]] = 0;
+    }
+    return an;
+}
+
+}  // namespace tilevk::shader::jit

@@ -1,0 +1,19 @@
+// C++ functions the generated code calls. Each starts with vzeroupper: the code that called it leaves the upper
+// halves of the YMM registers dirty, and libm's SSE code would pay for that on every instruction.
+#pragma once
+
+#include "shader/ir.h"
+
+namespace tilevk::shader::jit {
+
+// Runs `code` (one instruction followed by Halt) with the interpreter: libm maths, images, buffer access and
+// the rarer integer ops are the interpreter's own code, so both tiers compute them identically.
+void run_one_instruction(Scratch::Impl* s, const Inst* code);
+
+// A Sample instruction (code[0], followed by Halt): sample_rgba8 when it covers the case, else the interpreter.
+void run_sample(Scratch::Impl* s, const Inst* code);
+
+// The loop watchdog stopped a run (exec.cpp's rule: more than kMaxLoopBackEdges back edges).
+void count_loop_limit_hit(Scratch::Impl* s);
+
+}  // namespace tilevk::shader::jit

@@ -1,0 +1,277 @@
+// The compiled tier's Sample for the most common texture: a 2D RGBA8/BGRA8 UNORM image, bilinear min and mag
+// filters, REPEAT (power-of-two sizes) or CLAMP_TO_EDGE, implicit, biased or explicit LOD. That is lavapipe's 8-bit
+// fixed-point ("AoS") filter, texture.cpp's sample_level_fixed8 and exec_image's LOD selection, computed for 8
+// lanes at a time with the same operations in the same order (texture_fixed8.h). Every other case, and any quad
+// whose LOD computation meets a NaN (its payload would depend on the C++ compiler's operand order), runs the
+// interpreter's exec_image unchanged.
+#include "shader/jit/sample_rgba8.h"
+
+#include <immintrin.h>
+
+#include <cstring>
+
+#include "format/format.h"
+#include "format/texel_codec.h"
+
+namespace tilevk::shader::jit {
+
+namespace {
+
+#define TVK_AVX2 __attribute__((target("avx2,fma")))
+
+// Per level: size and addressing, looked up per lane by level (16 entries: two 8-entry vectors).
+struct Levels {
+    __m256i w[2], h[2], offset[2], pitch[2];
+};
+
+// Whether the kernel covers this image and sampler, and if so their level table and channel order. One pass over
+// the view's levels checks the 32-bit addressing and fills the table (levels past the view's last repeat it).
+TVK_AVX2 bool fits(const ImageView* img, const SamplerState* smp, Levels& levels, bool& bgra) {
+    if (!img || !smp || !img->base || !img->width || !img->height || !img->levels || img->levels > kMaxMipLevels ||
+        !img->layers)
+        return false;
+    const format::FormatInfo& fi = format::format_info(img->format);
+    if (fi.kind != format::ChannelKind::Unorm8 || fi.channels != 4 || fi.bytes != 4) return false;
+    uint32_t swizzle;
+    std::memcpy(&swizzle, img->swizzle.data(), 4);
+    if (swizzle != 0x03020100u) return false;  // identity: channel c reads source c
+    if (smp->unnormalized || smp->mag_filter != Filter::Linear || smp->min_filter != Filter::Linear) return false;
+    auto ok_wrap = [](AddressMode m, uint32_t n) {
+        return m == AddressMode::ClampToEdge || (m == AddressMode::Repeat && (n & (n - 1)) == 0);
+    };
+    if (!ok_wrap(smp->address_u, img->width) || !ok_wrap(smp->address_v, img->height)) return false;
+    // Entries past the view's last level are never looked up (half() keeps every level index in
+    // [0, levels - 1]); offsets and pitches stay 0 there.
+    alignas(32) int32_t offset[kMaxMipLevels], pitch[kMaxMipLevels];
+    for (int i = 0; i < kMaxMipLevels; i += 8) {  // four vector stores (an `= {}` compiles to a slower loop)
+        _mm256_store_si256(reinterpret_cast<__m256i*>(offset + i), _mm256_setzero_si256());
+        _mm256_store_si256(reinterpret_cast<__m256i*>(pitch + i), _mm256_setzero_si256());
+    }
+    for (uint32_t l = 0; l < img->levels; ++l) {
+        // texel offsets relative to base must fit the gathers' signed 32-bit indices
+        const ImageLevel& lv = img->level[l];
+        const uint64_t hl = std::max(1u, img->height >> l);
+        if (lv.row_pitch > 0x7fffffffu || lv.offset + lv.row_pitch * hl > 0x7fffffffu) return false;
+        offset[l] = int32_t(lv.offset);
+        pitch[l] = int32_t(lv.row_pitch);
+    }
+    static_assert(kMaxMipLevels == 16, "the level table is two 8-entry vectors");
+    const __m256i one = _mm256_set1_epi32(1), width = _mm256_set1_epi32(int(img->width)),
+                  height = _mm256_set1_epi32(int(img->height));
+    for (int i = 0; i < 2; ++i) {
+        const __m256i l = _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(8 * i));
+        levels.w[i] = _mm256_max_epu32(_mm256_srlv_epi32(width, l), one);  // max(1, size >> l)
+        levels.h[i] = _mm256_max_epu32(_mm256_srlv_epi32(height, l), one);
+        levels.offset[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(offset + 8 * i));
+        levels.pitch[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(pitch + 8 * i));
+    }
+    bgra = fi.bgra;
+    return true;
+}
+
+TVK_AVX2 __m256i lookup(const __m256i table[2], __m256i lv) {
+    const __m256i lo = _mm256_permutevar8x32_epi32(table[0], lv), hi = _mm256_permutevar8x32_epi32(table[1], lv);
+    return _mm256_blendv_epi8(lo, hi, _mm256_cmpgt_epi32(lv, _mm256_set1_epi32(7)));
+}
+
+struct Axis {
+    __m256i i0, i1, w;
+};
+
+// axis_fixed8 with no offset: c = iround(s * float(n * 256)) - 128; CLAMP: both indices clamped, REPEAT pot:
+// masked, the second wrapping to 0.
+TVK_AVX2 Axis axis(__m256 s, __m256i n, bool clamp) {
+    const __m256 n256 = _mm256_cvtepi32_ps(_mm256_slli_epi32(n, 8));
+    const __m256i c = _mm256_sub_epi32(_mm256_cvtps_epi32(_mm256_mul_ps(s, n256)), _mm256_set1_epi32(128));
+    const __m256i i = _mm256_srai_epi32(c, 8), one = _mm256_set1_epi32(1);
+    const __m256i last = _mm256_sub_epi32(n, one);
+    Axis a;
+    a.w = _mm256_and_si256(c, _mm256_set1_epi32(255));
+    if (clamp) {
+        a.i0 = _mm256_min_epi32(_mm256_max_epi32(i, _mm256_setzero_si256()), last);
+        // i >= 0 && i < n - 1 ? i0 + 1 : i0
+        const __m256i inside =
+            _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), i), _mm256_cmpgt_epi32(last, i));
+        a.i1 = _mm256_sub_epi32(a.i0, inside);  // inside is -1 where true
+    } else {
+        a.i0 = _mm256_and_si256(i, last);
+        const __m256i at_end = _mm256_cmpeq_epi32(a.i0, last);
+        a.i1 = _mm256_andnot_si256(at_end, _mm256_add_epi32(a.i0, one));
+    }
+    return a;
+}
+
+// Eight texels' channels as 16-bit values: lo = texels 0, 1 | 4, 5 and hi = texels 2, 3 | 6, 7, four channels each
+// (unpacking works within 128-bit lanes).
+struct Wide {
+    __m256i lo, hi;
+};
+TVK_AVX2 Wide widen(__m256i texels) {
+    const __m256i z = _mm256_setzero_si256();
+    return {_mm256_unpacklo_epi8(texels, z), _mm256_unpackhi_epi8(texels, z)};
+}
+
+// A per-lane 8-bit weight repeated over the lane's four 16-bit channels, in widen()'s layout.
+TVK_AVX2 Wide spread(__m256i w) {
+    const __m256i lo = _mm256_setr_epi8(0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4, 5, 4, 5, 4, 5, 0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4,
+                                        5, 4, 5, 4, 5);
+    const __m256i hi = _mm256_setr_epi8(8, 9, 8, 9, 8, 9, 8, 9, 12, 13, 12, 13, 12, 13, 12, 13, 8, 9, 8, 9, 8, 9, 8, 9,
+                                        12, 13, 12, 13, 12, 13, 12, 13);
+    return {_mm256_shuffle_epi8(w, lo), _mm256_shuffle_epi8(w, hi)};
+}
+
+// fixed8::lerp on 16-bit channels: a + ((w * (b - a) + 128) >> 8) = a + pmulhrsw(w, (b - a) << 7), exactly (the
+// product and its rounding constant are 128 times the formula's, pmulhrsw shifts by 15)
+TVK_AVX2 __m256i lerp16(__m256i w, __m256i a, __m256i b) {
+    return _mm256_add_epi16(a, _mm256_mulhrs_epi16(w, _mm256_slli_epi16(_mm256_sub_epi16(b, a), 7)));
+}
+TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
+    return {lerp16(w.lo, a.lo, b.lo), lerp16(w.hi, a.hi, b.hi)};
+}
+
+// sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp.
+TVK_AVX2 Wide level_bilinear(const ImageView& img, const Levels& levels, __m256i lv, __m256 s, __m256 t, bool clamp_u,
+                             bool clamp_v) {
+    const __m256i off = lookup(levels.offset, lv), pitch = lookup(levels.pitch, lv);
+    const Axis x = axis(s, lookup(levels.w, lv), clamp_u), y = axis(t, lookup(levels.h, lv), clamp_v);
+    const __m256i row0 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i0, pitch));
+    const __m256i row1 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i1, pitch));
+    const __m256i x0 = _mm256_slli_epi32(x.i0, 2), x1 = _mm256_slli_epi32(x.i1, 2);
+    const int* base = reinterpret_cast<const int*>(img.base);
+    const Wide t00 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x0), 1));
+    const Wide t10 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x1), 1));
+    const Wide t01 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1));
+    const Wide t11 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1));
+    const Wide wx = spread(x.w), wy = spread(y.w);
+    return lerp(wy, lerp(wx, t00, t10), lerp(wx, t01, t11));
+}
+
+// std::max / std::min / std::clamp as written: (a < b) ? b : a, (b < a) ? b : a
+TVK_AVX2 __m256 max_std(__m256 a, __m256 b) {
+    return _mm256_blendv_ps(a, b, _mm256_cmp_ps(a, b, _CMP_LT_OQ));
+}
+TVK_AVX2 __m256 min_std(__m256 a, __m256 b) {
+    return _mm256_blendv_ps(a, b, _mm256_cmp_ps(b, a, _CMP_LT_OQ));
+}
+
+// fixed8::fast_log2: float(exponent - 128) + mantissa in [1, 2)
+TVK_AVX2 __m256 fast_log2(__m256 x) {
+    const __m256i b = _mm256_castps_si256(x);
+    const __m256i e =
+        _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(b, 23), _mm256_set1_epi32(0xff)), _mm256_set1_epi32(128));
+    const __m256 m = _mm256_castsi256_ps(
+        _mm256_or_si256(_mm256_and_si256(b, _mm256_set1_epi32(0x7fffff)), _mm256_set1_epi32(0x3f800000)));
+    return _mm256_add_ps(_mm256_cvtepi32_ps(e), m);
+}
+
+// Register r's eight lanes of half h (a function, not a lambda: lambdas do not inherit the target attribute).
+TVK_AVX2 __m256 load_half(const uint32_t* R, uint32_t r, int h) {
+    return _mm256_loadu_ps(reinterpret_cast<const float*>(R + size_t(r) * kLanes + 8 * h));
+}
+
+// Eight lanes (half h) of the instruction. False: a NaN reached the LOD (the caller runs exec_image instead).
+TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, const SamplerState& smp,
+                   const Levels& levels, bool bgra, int h, __m256 out[4]) {
+    const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
+    __m256 lambda;
+    if (in.imm & kSampleExplicitLod) {
+        lambda = load_half(R, in.c, h);
+    } else {
+        // implicit: one LOD per 2x2 quad from its top-left pixel (the quad is one 128-bit half of the vector)
+        const __m256 w0 = _mm256_set1_ps(float(img.width)), h0 = _mm256_set1_ps(float(img.height));
+        const __m256 s0 = _mm256_shuffle_ps(s, s, 0x00), t0 = _mm256_shuffle_ps(t, t, 0x00);
+        const __m256 dsdx = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(s, s, 0x55), s0), w0);
+        const __m256 dtdx = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(t, t, 0x55), t0), h0);
+        const __m256 dsdy = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(s, s, 0xAA), s0), w0);
+        const __m256 dtdy = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(t, t, 0xAA), t0), h0);
+        const __m256 rx = _mm256_add_ps(_mm256_mul_ps(dsdx, dsdx), _mm256_mul_ps(dtdx, dtdx));
+        const __m256 ry = _mm256_add_ps(_mm256_mul_ps(dsdy, dsdy), _mm256_mul_ps(dtdy, dtdy));
+        const __m256 rho2 = max_std(rx, ry);
+        if (_mm256_movemask_ps(_mm256_cmp_ps(rho2, rho2, _CMP_UNORD_Q))) return false;
+        lambda = _mm256_mul_ps(fast_log2(rho2), _mm256_set1_ps(0.5f));
+        if (in.imm & kSampleBias) lambda = _mm256_add_ps(lambda, load_half(R, in.c, h));
+    }
+    lambda = _mm256_add_ps(lambda, _mm256_set1_ps(smp.mip_lod_bias));
+    lambda = _mm256_and_ps(lambda, _mm256_cmp_ps(lambda, lambda, _CMP_ORD_Q));  // NaN -> 0
+    lambda = min_std(max_std(lambda, _mm256_set1_ps(smp.min_lod)), _mm256_set1_ps(smp.max_lod));
+    const __m256 mag = _mm256_cmp_ps(lambda, _mm256_setzero_ps(), _CMP_LE_OQ);
+    const int32_t max_level = int32_t(img.levels - 1);
+    const __m256 max_level_f = _mm256_set1_ps(float(max_level));
+    __m256i lv, hi, mw;
+    if (smp.mipmap_mode == MipmapMode::Nearest) {
+        // ceil(lambda + 0.5) - 1, clamped to the view's levels
+        const __m256 dl =
+            _mm256_sub_ps(_mm256_ceil_ps(_mm256_add_ps(lambda, _mm256_set1_ps(0.5f))), _mm256_set1_ps(1.0f));
+        const __m256 c = _mm256_blendv_ps(min_std(dl, max_level_f), _mm256_setzero_ps(),
+                                          _mm256_cmp_ps(dl, _mm256_setzero_ps(), _CMP_LT_OQ));
+        lv = _mm256_cvttps_epi32(c);
+        hi = lv;
+        mw = _mm256_setzero_si256();
+    } else {
+        const __m256 fl0 = _mm256_floor_ps(lambda);
+        const __m256 top = _mm256_cmp_ps(fl0, max_level_f, _CMP_GE_OQ);
+        const __m256 inside = _mm256_andnot_ps(top, _mm256_cmp_ps(fl0, _mm256_setzero_ps(), _CMP_GE_OQ));
+        const __m256i lo = _mm256_cvttps_epi32(_mm256_and_ps(fl0, inside));
+        lv = _mm256_blendv_epi8(lo, _mm256_set1_epi32(max_level), _mm256_castps_si256(top));
+        hi = _mm256_blendv_epi8(lv, _mm256_add_epi32(lo, _mm256_set1_epi32(1)), _mm256_castps_si256(inside));
+        // mip_weight(lambda - fl0): w = frac * 256; !(w > 0) -> 0; w >= 256 -> 255; else trunc(w)
+        const __m256 wf = _mm256_mul_ps(_mm256_sub_ps(lambda, fl0), _mm256_set1_ps(256.0f));
+        __m256i wi = _mm256_cvttps_epi32(_mm256_and_ps(wf, _mm256_cmp_ps(wf, _mm256_setzero_ps(), _CMP_GT_OQ)));
+        wi = _mm256_blendv_epi8(wi, _mm256_set1_epi32(255),
+                                _mm256_castps_si256(_mm256_cmp_ps(wf, _mm256_set1_ps(256.0f), _CMP_GE_OQ)));
+        mw = _mm256_and_si256(wi, _mm256_castps_si256(inside));
+    }
+    // magnified lanes read level 0 only
+    lv = _mm256_andnot_si256(_mm256_castps_si256(mag), lv);
+    hi = _mm256_andnot_si256(_mm256_castps_si256(mag), hi);
+    mw = _mm256_andnot_si256(_mm256_castps_si256(mag), mw);
+    const bool clamp_u = smp.address_u == AddressMode::ClampToEdge, clamp_v = smp.address_v == AddressMode::ClampToEdge;
+    Wide a = level_bilinear(img, levels, lv, s, t, clamp_u, clamp_v);
+    if (!_mm256_testz_si256(mw, mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
+        a = lerp(spread(mw), a, level_bilinear(img, levels, hi, s, t, clamp_u, clamp_v));
+    // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
+    const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
+    const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
+    for (int c = 0; c < 4; ++c) {
+        const int src = (bgra && c < 3) ? 2 - c : c;
+        const __m256i ch = _mm256_and_si256(_mm256_srli_epi32(words, 8 * src), _mm256_set1_epi32(255));
+        out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
+    }
+    return true;
+}
+
+}  // namespace
+
+TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
+    constexpr uint32_t kAllowed = kSampleImplicitLod | kSampleBias | kSampleExplicitLod;
+    if (in.op != Op::Sample || (in.imm & ~kAllowed) || in.b == kNoReg) return false;
+    if ((in.imm & (kSampleBias | kSampleExplicitLod)) && in.c == kNoReg) return false;
+    // one handle for all 16 lanes
+    const uint32_t* handle = R + size_t(in.a) * kLanes;
+    const __m256i h0 = _mm256_set1_epi32(int(handle[0]));
+    const __m256i same =
+        _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle)), h0),
+                         _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle + 8)), h0));
+    if (_mm256_movemask_epi8(same) != -1) return false;
+    const uint32_t si = handle[0] & 0xFFFF, ss = handle[0] >> 16;
+    if (si >= num_slots || ss >= num_slots || !slots[si] || !slots[ss]) return false;
+    const ImageView* img = slots[si]->image;
+    const SamplerState* smp = slots[ss]->sampler;
+    if (smp && smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
+    Levels levels;
+    bool bgra = false;
+    if (!fits(img, smp, levels, bgra)) return false;
+    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
+    // see the registers unchanged (the destination may be a source)
+    __m256 out[2][4];
+    for (int h = 0; h < 2; ++h)
+        if (!half(in, R, *img, *smp, levels, bgra, h, out[h])) return false;
+    for (int c = 0; c < 4; ++c) {
+        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
+        _mm256_storeu_ps(d, out[0][c]);
+        _mm256_storeu_ps(d + 8, out[1][c]);
+    }
+    return true;
+}
+
+}  // namespace tilevk::shader::jit

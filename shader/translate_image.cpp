@@ -1,0 +1,158 @@
+// Images: sampling (implicit/explicit LOD, bias, gradients, projection, depth comparison, constant offsets),
+// texel fetches (also of uniform texel buffers), input attachments, size and level queries.
+#include "shader/translator.h"
+
+namespace tilevk::shader {
+
+using SOp = tilevk::shader::Op;
+
+// Sampling and texel fetches: the image operands (bias, LOD, gradients, constant offset) into one Sample/Fetch.
+bool Translator::image_sample(const Instr& in) {
+    const Type& it =
+        type(type(val(in[3]).type).kind == Type::SampledImage ? type(val(in[3]).type).elem : val(in[3]).type);
+    // Integer sampled types read the texels' integers (the format decides: texture.cpp); no depth comparison.
+    const bool integer = type(it.elem).kind != Type::Float;
+    uint32_t flags = 0;
+    if (it.arrayed) flags |= kSampleArray;
+    if (spv::Dim(it.dim) == spv::Dim::Dim1D) flags |= kSample1D;
+    const spv::Op o = in.op;
+    if (spv::Dim(it.dim) == spv::Dim::Buffer) {
+        if (o != spv::Op::OpImageFetch) fail("texel buffers are read with texelFetch only");
+        flags |= kSample1D;  // one row of `range / texel size` texels, level 0
+    }
+    bool dref = o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleDrefExplicitLod ||
+                o == spv::Op::OpImageSampleProjDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefExplicitLod;
+    bool proj = o == spv::Op::OpImageSampleProjImplicitLod || o == spv::Op::OpImageSampleProjExplicitLod ||
+                o == spv::Op::OpImageSampleProjDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefExplicitLod;
+    bool implicit = o == spv::Op::OpImageSampleImplicitLod || o == spv::Op::OpImageSampleProjImplicitLod ||
+                    o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefImplicitLod;
+    if (integer && dref) fail("depth comparison on an integer image");
+    if (proj) flags |= kSampleProj;
+    uint32_t lod = kNoReg, grad = 0;
+    size_t first_op = dref ? 6 : 5;  // the Dref variants carry the reference before the image operands
+    uint32_t operands = in.n > first_op ? in[first_op] : 0;
+    size_t at = first_op + 1;
+    if (operands & uint32_t(spv::ImageOperandsMask::Bias)) {
+        flags |= kSampleBias;
+        lod = reg(in[at++]);
+    }
+    if (operands & uint32_t(spv::ImageOperandsMask::Lod)) {
+        flags |= kSampleExplicitLod;
+        lod = reg(in[at++]);
+    }
+    if (operands & uint32_t(spv::ImageOperandsMask::Grad)) {
+        flags |= kSampleGrad;
+        uint32_t gx = reg(in[at++]), gy = reg(in[at++]);
+        uint32_t nc = (flags & kSample1D) ? 1 : 2;
+        grad = alloc(4);
+        for (uint32_t i = 0; i < 2; ++i) {
+            emit(SOp::Mov, grad + i, i < nc ? gx + i : zero_);
+            emit(SOp::Mov, grad + 2 + i, i < nc ? gy + i : zero_);
+        }
+    }
+    if (operands & uint32_t(spv::ImageOperandsMask::ConstOffset)) {
+        const Value& ov = val(in[at++]);
+        uint32_t nc = std::max(1u, type(ov.type).flat);
+        int32_t off[2] = {0, 0};
+        for (uint32_t i = 0; i < nc && i < 2; ++i) {
+            auto found = reg_value_.find(ov.reg + i);
+            if (found == reg_value_.end()) fail("texel offset is not a constant");
+            off[i] = int32_t(found->second);
+            if (off[i] < -128 || off[i] > 127) fail("texel offset out of range");
+        }
+        flags |= kSampleOffset | (uint32_t(uint8_t(int8_t(off[0]))) << 16) | (uint32_t(uint8_t(int8_t(off[1]))) << 24);
+    }
+    uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
+                                          spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset);
+    if (other) fail("unsupported image operands (dynamic offsets, min lod, sample) in " + opname(o));
+    if (implicit) {
+        if (stage_ != Stage::Fragment) fail("implicit-LOD sampling outside a fragment shader");
+        flags |= kSampleImplicitLod;
+        iface_.uses_derivatives = true;
+    }
+    uint32_t ncoord = flat_of(in[4]);
+    uint32_t coords = reg(in[4]);
+    uint32_t d;
+    if (dref) {
+        // coordinates followed by the reference in one register run; the result is a scalar
+        flags |= kSampleDref;
+        coords = alloc(ncoord + 1);
+        for (uint32_t i = 0; i < ncoord; ++i) emit(SOp::Mov, coords + i, reg(in[4]) + i);
+        emit(SOp::Mov, coords + ncoord, reg(in[5]));
+        ++ncoord;
+        d = alloc(4);
+        vals_[in[2]] = Value{d, in[1]};
+    } else {
+        if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+        d = def(in, 4);
+    }
+    auto sample = [&](uint32_t t) {
+        emit(o == spv::Op::OpImageFetch ? SOp::Fetch : SOp::Sample, t, reg(in[3]), coords, lod == kNoReg ? zero_ : lod,
+             flags, ncoord)
+            .n = grad;
+    };
+    if (implicit)  // the LOD comes from neighbour lanes' coordinates
+        keep_active(d, 4, sample);
+    else
+        sample(d);
+    return true;
+}
+
+// Sampled images, texel fetches, input attachments, size queries.
+bool Translator::op_image(const Instr& in) {
+    switch (in.op) {
+        // images
+        case spv::Op::OpSampledImage:
+            emit(SOp::Or, def(in), reg(in[3]), reg(in[4]));
+            return true;
+        case spv::Op::OpImage:
+            emit(SOp::And, def(in), reg(in[3]), konst(0xFFFF));
+            return true;
+        case spv::Op::OpImageSampleImplicitLod:
+        case spv::Op::OpImageSampleExplicitLod:
+        case spv::Op::OpImageSampleProjImplicitLod:
+        case spv::Op::OpImageSampleProjExplicitLod:
+        case spv::Op::OpImageFetch:
+        case spv::Op::OpImageSampleDrefImplicitLod:
+        case spv::Op::OpImageSampleDrefExplicitLod:
+        case spv::Op::OpImageSampleProjDrefImplicitLod:
+        case spv::Op::OpImageSampleProjDrefExplicitLod:
+            return image_sample(in);
+        case spv::Op::OpImageRead: {
+            // subpassLoad(input, offset): texelFetch(input, ivec2(gl_FragCoord.xy) + offset, 0) on the bound
+            // view (lavapipe lowers it the same way, nir_lower_input_attachments with frag coords).
+            const Type& it = type(val(in[3]).type);
+            if (it.kind != Type::Image || spv::Dim(it.dim) != spv::Dim::SubpassData)
+                fail("unsupported storage image read (imageLoad)");
+            if (in.n > 5 && in[5] != 0) fail("unsupported image operands on subpassLoad");
+            if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+            if (subpass_coord_word_ == kNoReg) fail("input attachment without its pixel coordinate");
+            uint32_t coords = alloc(2);
+            for (uint32_t i = 0; i < 2; ++i) {
+                uint32_t xy = alloc(1);
+                emit(SOp::LoadLocalFixed, xy, kNoReg, kNoReg, kNoReg, subpass_coord_word_ + i);
+                emit(SOp::IAdd, coords + i, emit1(SOp::F2S, xy), reg(in[4]) + i);
+            }
+            emit(SOp::Fetch, def(in, 4), reg(in[3]), coords, zero_, 0u, 2u);
+            return true;
+        }
+        case spv::Op::OpImageQuerySizeLod:
+        case spv::Op::OpImageQuerySize: {
+            const Type& it = type(val(in[3]).type);
+            uint32_t flags =
+                (it.arrayed ? uint32_t(kSampleArray) : 0u) |
+                (spv::Dim(it.dim) == spv::Dim::Dim1D || spv::Dim(it.dim) == spv::Dim::Buffer ? uint32_t(kSample1D)
+                                                                                             : 0u);
+            uint32_t lod = in.op == spv::Op::OpImageQuerySizeLod ? reg(in[4]) : zero_;
+            emit(SOp::QuerySize, def(in), reg(in[3]), lod, kNoReg, flags, std::max(1u, type(in[1]).flat));
+            return true;
+        }
+        case spv::Op::OpImageQueryLevels:
+            emit(SOp::QueryLevels, def(in), reg(in[3]));
+            return true;
+        default:
+            return false;
+    }
+}
+
+}  // namespace tilevk::shader

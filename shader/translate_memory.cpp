@@ -1,0 +1,329 @@
+// Memory: access chains into local memory and buffer layouts (std140/std430/scalar as decorated), loads and
+// stores, and the memory instructions.
+#include <algorithm>
+
+#include "shader/translator.h"
+
+namespace tilevk::shader {
+
+using SOp = tilevk::shader::Op;
+
+Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_t n) {
+    Pointer p = base;
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t id = idx[i];
+        uint32_t cv = 0;
+        bool is_const = const_of(id, cv);
+        if (!is_const && val(id).reg == kNoReg) fail("invalid access chain index");
+        if (p.in_array) {  // descriptor array element
+            if (is_const)
+                p.elem_const = cv;
+            else
+                p.elem = reg(id);
+            p.in_array = false;
+            p.type = type(p.type).elem;
+            continue;
+        }
+        const Type& t = type(p.type);
+        auto add_dyn = [&](uint32_t stride) {
+            uint32_t scaled = stride == 1 ? reg(id) : emit1(SOp::IMul, reg(id), konst(stride));
+            p.dyn = p.dyn == kNoReg ? scaled : emit1(SOp::IAdd, p.dyn, scaled);
+        };
+        if (p.space == Space::Local) {
+            if (t.kind == Type::Struct) {
+                if (!is_const || cv >= t.members.size()) fail("invalid struct index");
+                for (uint32_t m = 0; m < cv; ++m) p.offset += type(t.members[m]).flat;
+                p.type = t.members[cv];
+            } else if (t.kind == Type::Array || t.kind == Type::Vector || t.kind == Type::Matrix) {
+                uint32_t stride = type(t.elem).flat;
+                if (is_const)
+                    p.offset += std::min(cv, t.count - 1) * stride;
+                else
+                    add_dyn(stride);
+                p.type = t.elem;
+            } else {
+                fail("access chain into a non-composite");
+            }
+            continue;
+        }
+        // Buffer layout (std140/std430 as decorated).
+        if (t.kind == Type::Struct) {
+            if (!is_const || cv >= t.members.size()) fail("invalid struct index");
+            auto it = member_deco_.find({p.type, cv});
+            if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+            p.offset += uint32_t(it->second.offset);
+            p.matrix_stride = uint32_t(it->second.matrix_stride);
+            p.row_major = it->second.row_major;
+            p.vec_stride = 4;
+            p.type = t.members[cv];
+        } else if (t.kind == Type::Array || t.kind == Type::RuntimeArray) {
+            uint32_t stride = uint32_t(deco_[p.type].array_stride);
+            if (stride == 0) fail("buffer array without ArrayStride");
+            // a huge constant index stays in bounds of uint32 arithmetic; the executor rejects it
+            if (is_const)
+                p.offset = uint32_t(std::min<uint64_t>(p.offset + uint64_t(cv) * stride, 0x7fffffffu));
+            else
+                add_dyn(stride);
+            p.type = t.elem;
+        } else if (t.kind == Type::Matrix) {
+            uint32_t col_stride = p.row_major ? 4 : p.matrix_stride;
+            if (is_const)
+                p.offset += std::min(cv, t.count) * col_stride;
+            else
+                add_dyn(col_stride);
+            p.vec_stride = p.row_major ? p.matrix_stride : 4;
+            p.type = t.elem;
+        } else if (t.kind == Type::Vector) {
+            if (is_const)
+                p.offset += std::min(cv, t.count) * p.vec_stride;
+            else
+                add_dyn(p.vec_stride);
+            p.type = t.elem;
+        } else {
+            fail("access chain into a non-composite");
+        }
+    }
+    return p;
+}
+
+void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
+    const Type& t = type(ty);
+    uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Local) {
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::LoadLocalFixed, dst + i, kNoReg, kNoReg, kNoReg, w);
+            else
+                emit(SOp::LoadLocal, dst + i, dyn, kNoReg, kNoReg, w).n = p.limit;
+        }
+        return;
+    }
+    if (p.space == Space::Handle) {
+        if (p.in_array) fail("load of a whole descriptor array");
+        uint32_t shift = t.kind == Type::Sampler ? 16 : 0;
+        bool both = t.kind == Type::SampledImage;
+        if (p.elem == kNoReg) {
+            uint32_t s = std::min(p.base + p.elem_const, p.base + p.limit - 1);
+            emit(SOp::Mov, dst, konst(both ? (s | s << 16) : s << shift));
+        } else {
+            // clamp the element to the array (robust indexing)
+            uint32_t e = emit1(SOp::UMin, p.elem, konst(p.limit - 1));
+            uint32_t s = emit1(SOp::IAdd, e, konst(p.base));
+            if (both)
+                emit(SOp::Or, dst, s, emit1(SOp::Shl, s, konst(16)));
+            else if (shift)
+                emit(SOp::Shl, dst, s, konst(16));
+            else
+                emit(SOp::Mov, dst, s);
+        }
+        return;
+    }
+    uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+    auto scalar = [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
+        if (p.dyn == kNoReg && p.elem == kNoReg) {
+            if (p.elem_const < p.limit)
+                emit(SOp::LoadBufUniform, d, kNoReg, kNoReg, kNoReg, p.base + p.elem_const, p.offset + byte_off);
+            else
+                emit(SOp::Mov, d, zero_);
+        } else {
+            emit(SOp::LoadBuf, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+        }
+        if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
+    };
+    switch (t.kind) {
+        case Type::Bool:
+        case Type::Int:
+        case Type::Float:
+            scalar(dst, off, ty);
+            break;
+        case Type::Vector:
+            for (uint32_t i = 0; i < t.count; ++i) scalar(dst + i, off + i * p.vec_stride, t.elem);
+            break;
+        case Type::Matrix: {
+            const Type& col = type(t.elem);
+            for (uint32_t c = 0; c < t.count; ++c)
+                for (uint32_t r = 0; r < col.count; ++r) {
+                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
+                    scalar(dst + c * col.count + r, off + o, col.elem);
+                }
+            break;
+        }
+        case Type::Array: {
+            uint32_t stride = uint32_t(deco_[ty].array_stride);
+            if (!stride) fail("buffer array without ArrayStride");
+            Pointer q = p;
+            q.vec_stride = 4;
+            for (uint32_t i = 0; i < t.count; ++i) load(q, t.elem, dst + i * type(t.elem).flat, off + i * stride);
+            break;
+        }
+        case Type::Struct: {
+            uint32_t at = 0;
+            for (uint32_t m = 0; m < t.members.size(); ++m) {
+                auto it = member_deco_.find({ty, m});
+                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+                Pointer q = p;
+                q.matrix_stride = uint32_t(it->second.matrix_stride);
+                q.row_major = it->second.row_major;
+                q.vec_stride = 4;
+                load(q, t.members[m], dst + at, off + uint32_t(it->second.offset));
+                at += type(t.members[m]).flat;
+            }
+            break;
+        }
+        default:
+            fail("unsupported load type");
+    }
+}
+
+void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off) {
+    const Type& t = type(ty);
+    uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Local) {
+        for (uint32_t i = 0; i < t.flat; ++i) {
+            uint32_t w = p.base + p.offset + off + i;
+            if (p.dyn == kNoReg && w < p.limit)
+                emit(SOp::StoreLocalFixed, kNoReg, kNoReg, src + i, cur_mask_, w);
+            else
+                emit(SOp::StoreLocal, kNoReg, dyn, src + i, cur_mask_, w).n = p.limit;
+        }
+        return;
+    }
+    if (p.space == Space::Handle) fail("store to an image or sampler variable");
+    if (!p.writable) fail("store to a read-only buffer");
+    buffer_written_ = true;
+    if (store_mask_ == kNoReg) {
+        store_mask_ = stage_ == Stage::Fragment ? emit1(SOp::And, cur_mask_, p_.reg_live) : cur_mask_;
+    }
+    uint32_t mask = store_mask_;
+    uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+    auto scalar = [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
+        uint32_t v = s;
+        if (type(sty).kind == Type::Bool) v = emit1(SOp::And, s, konst(1));
+        emit(SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
+    };
+    switch (t.kind) {
+        case Type::Bool:
+        case Type::Int:
+        case Type::Float:
+            scalar(src, off, ty);
+            break;
+        case Type::Vector:
+            for (uint32_t i = 0; i < t.count; ++i) scalar(src + i, off + i * p.vec_stride, t.elem);
+            break;
+        case Type::Matrix: {
+            const Type& col = type(t.elem);
+            for (uint32_t c = 0; c < t.count; ++c)
+                for (uint32_t r = 0; r < col.count; ++r) {
+                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
+                    scalar(src + c * col.count + r, off + o, col.elem);
+                }
+            break;
+        }
+        case Type::Array: {
+            uint32_t stride = uint32_t(deco_[ty].array_stride);
+            if (!stride) fail("buffer array without ArrayStride");
+            Pointer q = p;
+            q.vec_stride = 4;
+            for (uint32_t i = 0; i < t.count; ++i) store(q, t.elem, src + i * type(t.elem).flat, off + i * stride);
+            break;
+        }
+        case Type::Struct: {
+            uint32_t at = 0;
+            for (uint32_t m = 0; m < t.members.size(); ++m) {
+                auto it = member_deco_.find({ty, m});
+                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+                Pointer q = p;
+                q.matrix_stride = uint32_t(it->second.matrix_stride);
+                q.row_major = it->second.row_major;
+                q.vec_stride = 4;
+                store(q, t.members[m], src + at, off + uint32_t(it->second.offset));
+                at += type(t.members[m]).flat;
+            }
+            break;
+        }
+        default:
+            fail("unsupported store type");
+    }
+}
+
+// Variables, access chains, loads, stores, array lengths, copies.
+bool Translator::op_memory(const Instr& in) {
+    switch (in.op) {
+        // memory
+        case spv::Op::OpUndef: {  // undefined value: zeros (deterministic)
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < std::max(1u, type(in[1]).flat); ++i) emit(SOp::Mov, d + i, zero_);
+            return true;
+        }
+        case spv::Op::OpVariable: {  // function variable (memory assigned in translate.cpp); initializer
+            const Value& v = val(in[2]);
+            if (in.n > 4) store(pointers_[size_t(v.ptr)], pointers_[size_t(v.ptr)].type, reg(in[4]), 0);
+            return true;
+        }
+        case spv::Op::OpAccessChain:
+        case spv::Op::OpInBoundsAccessChain: {
+            const Value& b = val(in[3]);
+            if (b.ptr < 0) fail("access chain base is not a pointer");
+            Pointer p = access_chain(pointers_[size_t(b.ptr)], in.w + 4, in.n - 4);
+            pointers_.push_back(p);
+            vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
+            return true;
+        }
+        case spv::Op::OpLoad: {
+            const Value& pv = val(in[3]);
+            if (pv.ptr < 0) fail("load from a non-pointer");
+            Pointer p = pointers_[size_t(pv.ptr)];
+            if (p.space == Space::Buffer && p.base == 0) {
+                iface_.push_constant_size = std::max(iface_.push_constant_size, p.offset + 4 * type(in[1]).flat);
+            }
+            uint32_t d = def(in);
+            if (p.space == Space::Buffer)  // shared memory: other lanes may change it while this one waits
+                keep_active(d, std::max(1u, type(in[1]).flat), [&](uint32_t t) { load(p, in[1], t, 0); });
+            else
+                load(p, in[1], d, 0);
+            return true;
+        }
+        case spv::Op::OpStore: {
+            const Value& pv = val(in[1]);
+            if (pv.ptr < 0) fail("store to a non-pointer");
+            Pointer p = pointers_[size_t(pv.ptr)];
+            store(p, p.type, reg(in[2]), 0);
+            return true;
+        }
+        case spv::Op::OpArrayLength: {
+            // length of the runtime array that ends a storage buffer block: (size - member offset) / stride
+            const Value& sv = val(in[3]);
+            if (sv.ptr < 0) fail("OpArrayLength of a non-pointer");
+            const Pointer& p = pointers_[size_t(sv.ptr)];
+            const Type& st = type(p.type);
+            uint32_t m = in[4];
+            if (p.space != Space::Buffer || p.in_array || st.kind != Type::Struct || m >= st.members.size() ||
+                type(st.members[m]).kind != Type::RuntimeArray)
+                fail("OpArrayLength needs a buffer block ending in a runtime array");
+            auto it = member_deco_.find({p.type, m});
+            uint32_t stride = uint32_t(deco_[st.members[m]].array_stride);
+            if (it == member_deco_.end() || it->second.offset < 0 || stride == 0)
+                fail("runtime array without Offset/ArrayStride");
+            uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+            emit(SOp::BufArrayLength, def(in), elem, konst(stride), kNoReg, p.base,
+                 p.offset + uint32_t(it->second.offset))
+                .n = p.limit;
+            return true;
+        }
+        case spv::Op::OpCopyMemory: {
+            const Value& dv = val(in[1]);
+            const Value& sv = val(in[2]);
+            if (dv.ptr < 0 || sv.ptr < 0) fail("OpCopyMemory on non-pointers");
+            Pointer dp = pointers_[size_t(dv.ptr)], sp = pointers_[size_t(sv.ptr)];
+            uint32_t tmp = alloc(std::max(1u, type(sp.type).flat));
+            load(sp, sp.type, tmp, 0);
+            store(dp, dp.type, tmp, 0);
+            return true;
+        }
+        default:
+            return false;
+    }
+}
+
+}  // namespace tilevk::shader

@@ -1,0 +1,360 @@
+// Module-level declarations: capabilities, extensions, execution modes, decorations, types and constants
+// (variables are declared in translate_interface.cpp).
+#include <cstring>
+
+#include "shader/spirv_names.h"
+#include "shader/translator.h"
+
+namespace tilevk::shader {
+
+std::string literal_string(const Instr& in, size_t at) {
+    if (at >= in.n) return {};
+    return std::string(reinterpret_cast<const char*>(in.w + at),
+                       strnlen(reinterpret_cast<const char*>(in.w + at), (in.n - at) * 4));
+}
+
+namespace {
+
+bool capability_supported(spv::Capability c) {
+    switch (c) {
+        case spv::Capability::Shader:
+        case spv::Capability::Matrix:
+        case spv::Capability::ClipDistance:
+        case spv::Capability::CullDistance:
+        case spv::Capability::DerivativeControl:
+        case spv::Capability::DrawParameters:
+        case spv::Capability::ImageQuery:
+        case spv::Capability::SampleRateShading:
+        case spv::Capability::DemoteToHelperInvocation:
+        case spv::Capability::Sampled1D:
+        case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
+        case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
+        case spv::Capability::StorageImageExtendedFormats:
+        case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
+        case spv::Capability::ShaderNonUniform:
+        case spv::Capability::SampledImageArrayDynamicIndexing:
+        case spv::Capability::UniformBufferArrayDynamicIndexing:
+        case spv::Capability::StorageBufferArrayDynamicIndexing:
+            return true;
+        default:
+            return false;
+    }
+}
+
+bool extension_supported(const std::string& e) {
+    return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_EXT_demote_to_helper_invocation" ||
+           e == "SPV_KHR_storage_buffer_storage_class" || e == "SPV_EXT_descriptor_indexing" ||
+           e == "SPV_KHR_non_semantic_info";
+}
+
+}  // namespace
+
+void Translator::declare(const Instr& in) {
+    switch (in.op) {
+        case spv::Op::OpCapability:
+            if (!capability_supported(spv::Capability(in[1])))
+                fail(std::string("unsupported capability ") + names::capability(in[1]));
+            return;
+        case spv::Op::OpExtension:
+            if (!extension_supported(literal_string(in, 1))) fail("unsupported extension " + literal_string(in, 1));
+            return;
+        case spv::Op::OpExtInstImport:
+            if (literal_string(in, 2) == "GLSL.std.450")
+                glsl_ext_ = in[1];
+            else if (literal_string(in, 2).rfind("NonSemantic.", 0) != 0)
+                fail("unsupported extended instruction set " + literal_string(in, 2));
+            return;
+        case spv::Op::OpMemoryModel:
+            if (spv::AddressingModel(in[1]) != spv::AddressingModel::Logical)
+                fail("unsupported addressing model (only Logical)");
+            return;
+        case spv::Op::OpExecutionMode:
+        case spv::Op::OpExecutionModeId:
+            if (in[1] == entry_fn_) declare_execution_mode(in);
+            return;
+        case spv::Op::OpDecorate:
+        case spv::Op::OpMemberDecorate:
+            return decorate(in);
+        case spv::Op::OpConstant:
+        case spv::Op::OpConstantTrue:
+        case spv::Op::OpConstantFalse:
+        case spv::Op::OpConstantNull:
+        case spv::Op::OpUndef:
+        case spv::Op::OpConstantComposite:
+            return declare_constant(in);
+        case spv::Op::OpSpecConstant:
+        case spv::Op::OpSpecConstantTrue:
+        case spv::Op::OpSpecConstantFalse:
+        case spv::Op::OpSpecConstantComposite:
+        case spv::Op::OpSpecConstantOp:
+            fail("specialization constant left unresolved (" + std::string(names::opcode(uint32_t(in.op))) + ")");
+        case spv::Op::OpVariable:
+            return declare_variable(in);
+        default:
+            if (in.op >= spv::Op::OpTypeVoid && in.op <= spv::Op::OpTypeForwardPointer) return declare_type(in);
+            return;
+    }
+}
+
+void Translator::declare_execution_mode(const Instr& in) {
+    switch (spv::ExecutionMode(in[2])) {
+        case spv::ExecutionMode::OriginUpperLeft:
+            iface_.origin_upper_left = true;
+            return;
+        case spv::ExecutionMode::EarlyFragmentTests:
+            iface_.early_fragment_tests = true;
+            return;
+        case spv::ExecutionMode::DepthReplacing:
+            iface_.depth_replacing = true;
+            return;
+        case spv::ExecutionMode::DepthGreater:
+        case spv::ExecutionMode::DepthLess:
+        case spv::ExecutionMode::DepthUnchanged:
+        case spv::ExecutionMode::LocalSizeHint:
+            return;
+        case spv::ExecutionMode::LocalSize:
+            if (in.n < 6) fail("invalid SPIR-V: LocalSize needs three sizes");
+            if (!workgroup_size_builtin_) iface_.local_size = {in[3], in[4], in[5]};
+            return;
+        case spv::ExecutionMode::LocalSizeId:
+            if (in.n < 6) fail("invalid SPIR-V: LocalSizeId needs three ids");
+            for (int i = 0; i < 3; ++i) local_size_ids_[i] = in[3 + i];
+            return;
+        default:
+            fail(std::string("unsupported execution mode ") + names::execution_mode(in[2]));
+    }
+}
+
+void Translator::decorate(const Instr& in) {
+    bool member = in.op == spv::Op::OpMemberDecorate;
+    if (in[1] >= bound_) fail("invalid SPIR-V: decoration target out of range");
+    Decorations& d = member ? member_deco_[{in[1], in[2]}] : deco_[in[1]];
+    size_t a = member ? 3 : 2;
+    uint32_t arg = in.n > a + 1 ? in[a + 1] : 0;
+    switch (spv::Decoration(in[a])) {
+        case spv::Decoration::Location:
+            d.location = int(arg);
+            return;
+        case spv::Decoration::Component:
+            d.component = int(arg);
+            return;
+        case spv::Decoration::BuiltIn:
+            d.builtin = int(arg);
+            return;
+        case spv::Decoration::Flat:
+            d.flat = true;
+            return;
+        case spv::Decoration::NoPerspective:
+            d.noperspective = true;
+            return;
+        case spv::Decoration::Centroid:
+            d.centroid = true;
+            return;
+        case spv::Decoration::Sample:
+            d.sample = true;
+            return;
+        case spv::Decoration::DescriptorSet:
+            d.set = int(arg);
+            return;
+        case spv::Decoration::Binding:
+            d.binding = int(arg);
+            return;
+        case spv::Decoration::Offset:
+            d.offset = int(arg);
+            return;
+        case spv::Decoration::ArrayStride:
+            d.array_stride = int(arg);
+            return;
+        case spv::Decoration::MatrixStride:
+            d.matrix_stride = int(arg);
+            return;
+        case spv::Decoration::RowMajor:
+            d.row_major = true;
+            return;
+        case spv::Decoration::Block:
+            d.block = true;
+            return;
+        case spv::Decoration::BufferBlock:
+            d.buffer_block = true;
+            return;
+        case spv::Decoration::NonWritable:
+            d.non_writable = true;
+            return;
+        case spv::Decoration::Index:
+            if (arg != 0) fail("unsupported decoration Index (dual-source blending)");
+            return;
+        case spv::Decoration::PerPrimitiveNV:
+        case spv::Decoration::PerVertexKHR:
+            fail(std::string("unsupported decoration ") + names::decoration(in[a]));
+        default:
+            return;  // RelaxedPrecision, NoContraction, Invariant, ... do not change results here
+    }
+}
+
+void Translator::declare_type(const Instr& in) {
+    Type& t = types_[in[1]];
+    switch (in.op) {
+        case spv::Op::OpTypeVoid:
+            t.kind = Type::Void;
+            break;
+        case spv::Op::OpTypeBool:
+            t = Type{}, t.kind = Type::Bool;
+            t.flat = 1;
+            break;
+        case spv::Op::OpTypeInt:
+        case spv::Op::OpTypeFloat:
+            if (in[2] != 32)
+                fail(std::string(in.op == spv::Op::OpTypeInt ? "int" : "float") + std::to_string(in[2]) +
+                     " types are not supported (32-bit only)");
+            t.kind = in.op == spv::Op::OpTypeInt ? Type::Int : Type::Float;
+            t.is_signed = in.op == spv::Op::OpTypeInt && in[3];
+            t.flat = 1;
+            break;
+        case spv::Op::OpTypeVector:
+        case spv::Op::OpTypeMatrix:
+        case spv::Op::OpTypeArray:
+        case spv::Op::OpTypeRuntimeArray:
+            declare_composite_type(in, t);
+            break;
+        case spv::Op::OpTypeStruct: {
+            t.kind = Type::Struct;
+            uint64_t flat = 0;
+            for (size_t m = 2; m < in.n; ++m) {
+                t.members.push_back(in[m]);
+                flat += type(in[m]).flat;
+            }
+            if (flat > (1u << 20)) fail("struct type too large");
+            t.flat = uint32_t(flat);
+            break;
+        }
+        case spv::Op::OpTypePointer:
+            t = Type{}, t.kind = Type::Pointer;
+            t.storage = spv::StorageClass(in[2]);
+            t.elem = in[3];
+            break;
+        case spv::Op::OpTypeFunction:
+            t.kind = Type::Function;
+            break;
+        case spv::Op::OpTypeImage:
+            declare_image_type(in, t);
+            break;
+        case spv::Op::OpTypeSampler:
+            t = Type{}, t.kind = Type::Sampler;
+            t.flat = 1;
+            break;
+        case spv::Op::OpTypeSampledImage:
+            t = Type{}, t.kind = Type::SampledImage;
+            t.elem = in[2];
+            t.flat = 1;
+            break;
+        default:
+            return;  // OpenCL-only types: a module using them does not validate for Vulkan
+    }
+    is_type_[in[1]] = 1;
+}
+
+void Translator::declare_composite_type(const Instr& in, Type& t) {
+    t.kind = in.op == spv::Op::OpTypeVector   ? Type::Vector
+             : in.op == spv::Op::OpTypeMatrix ? Type::Matrix
+             : in.op == spv::Op::OpTypeArray  ? Type::Array
+                                              : Type::RuntimeArray;
+    t.elem = in[2];
+    if (in.op == spv::Op::OpTypeArray) {
+        uint32_t v = 0;
+        if (!const_of(in[3], v)) fail("array length is not a constant");
+        if (v == 0 || v > (1u << 20)) fail("unsupported array length " + std::to_string(v));
+        t.count = v;
+    } else if (in.op != spv::Op::OpTypeRuntimeArray) {
+        t.count = in[3];
+    }
+    uint64_t flat = uint64_t(type(t.elem).flat) * t.count;
+    if (flat > (1u << 20)) fail("composite type too large");
+    t.flat = uint32_t(flat);
+}
+
+void Translator::declare_image_type(const Instr& in, Type& t) {
+    t.kind = Type::Image;
+    t.elem = in[2];
+    t.dim = in[3];
+    t.arrayed = in[5];
+    t.ms = in[6];
+    t.sampled = in[7];
+    t.flat = 1;
+    if (t.ms) fail("unsupported multisampled image type");
+    if (spv::Dim(t.dim) == spv::Dim::SubpassData) {
+        // Input attachment (read by OpImageRead only): needs the fragment's pixel, copied in from gl_FragCoord
+        // into two hidden local words.
+        if (stage_ != Stage::Fragment) fail("input attachment outside a fragment shader");
+        if (subpass_coord_word_ == kNoReg) {
+            subpass_coord_word_ = local_words_;
+            local_words_ += 2;
+            p_.io_in.push_back(IoCopy{IoSlot::FragCoord, 0, subpass_coord_word_});
+            p_.io_in.push_back(IoCopy{IoSlot::FragCoord, 1, subpass_coord_word_ + 1});
+            iface_.builtins_read |= bit(BuiltIn::FragCoord);
+        }
+        return;
+    }
+    if (spv::Dim(t.dim) == spv::Dim::Buffer) {
+        // Uniform texel buffer: fetched like a 1D image of one level (the icd binds the buffer view as one);
+        // storage texel buffers (imageLoad/imageStore) are not implemented.
+        if (t.sampled == 2) fail("unsupported storage texel buffer (imageBuffer)");
+        if (t.arrayed) fail("invalid arrayed texel buffer");
+        return;
+    }
+    if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D)
+        fail("unsupported image dimension (only 1D and 2D, arrays included)");
+    if (t.sampled == 2) fail("unsupported storage image (imageLoad/imageStore)");
+}
+
+void Translator::declare_constant(const Instr& in) {
+    switch (in.op) {
+        case spv::Op::OpConstant: {
+            const Type& t = type(in[1]);
+            if (t.kind != Type::Int && t.kind != Type::Float) fail("unsupported constant type");
+            vals_[in[2]] = Value{konst(in[3]), in[1]};
+            return;
+        }
+        case spv::Op::OpConstantTrue:
+        case spv::Op::OpConstantFalse:
+            vals_[in[2]] = Value{konst(in.op == spv::Op::OpConstantTrue ? ~0u : 0u), in[1]};
+            return;
+        default:
+            break;
+    }
+    // OpConstantNull, OpUndef, OpConstantComposite: a run of constant registers.
+    const Type& t = type(in[1]);
+    uint32_t base = alloc(std::max(1u, t.flat));
+    if (in.op == spv::Op::OpConstantComposite) {
+        uint32_t at = 0;
+        for (size_t m = 3; m < in.n; ++m) {
+            const Value& c = val(in[m]);
+            uint32_t f = type(c.type).flat;
+            for (uint32_t j = 0; j < f; ++j) {
+                // constant registers are initialized once; copy their values
+                auto it = reg_value_.find(c.reg + j);
+                set_const(base + at + j, it != reg_value_.end() ? it->second : 0);
+            }
+            at += f;
+        }
+    } else {
+        for (uint32_t j = 0; j < t.flat; ++j) set_const(base + j, 0);
+    }
+    vals_[in[2]] = Value{base, in[1]};
+    // The WorkgroupSize built-in (a constant, specialized by now) overrides LocalSize and LocalSizeId.
+    if (deco_[in[2]].builtin == int(spv::BuiltIn::WorkgroupSize)) {
+        if (t.kind != Type::Vector || t.count != 3 || t.flat != 3) fail("WorkgroupSize is not a 3-component vector");
+        for (uint32_t j = 0; j < 3; ++j) iface_.local_size[j] = reg_value_[base + j];
+        workgroup_size_builtin_ = true;
+    }
+}
+
+void Translator::resolve_local_size() {
+    if (workgroup_size_builtin_ || local_size_ids_[0] == 0) return;
+    for (int i = 0; i < 3; ++i) {
+        uint32_t v = 0;
+        if (!const_of(local_size_ids_[i], v)) fail("LocalSizeId operand is not a constant");
+        iface_.local_size[i] = v;
+    }
+}
+
+}  // namespace tilevk::shader

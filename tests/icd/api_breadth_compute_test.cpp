@@ -1,0 +1,393 @@
+// Compute through the API (suite ApiCompute): compute pipelines with specialization, push constants and descriptor
+// sets at the compute bind point, vkCmdDispatch / vkCmdDispatchIndirect, every compute built-in, transfer and
+// graphics work ordered around dispatches by pipeline barriers — on tilevk and lavapipe with the validation layer,
+// bytes compared, plus the answers computed here (SAXPY, the built-ins). Then tilevk alone: the same bytes for one
+// worker thread and four, and bad input (limits, a missing entry point, what is not implemented yet) refused with a
+// message naming it.
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include "api_breadth.h"
+
+namespace tilevk::test::breadth {
+namespace {
+
+#include "cp_atomic_comp.h"
+#include "cp_barrier_comp.h"
+#include "cp_binds_comp.h"
+#include "cp_ids_comp.h"
+#include "cp_saxpy_comp.h"
+#include "cp_shared_comp.h"
+#include "cp_vertices_comp.h"
+
+class ApiCompute : public ApiBreadth {};
+
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
+// A compute pipeline of `code` (entry `entry`, specialization `spec`) with `layout`; the result in *result when
+// given, else expected to be VK_SUCCESS.
+VkPipeline compute_pipeline(Kit& k, Spv code, VkPipelineLayout layout, const VkSpecializationInfo* spec = nullptr,
+                            VkResult* result = nullptr, const char* entry = "main") {
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = k.shader(code);
+    ci.stage.pName = entry;
+    ci.stage.pSpecializationInfo = spec;
+    ci.layout = layout;
+    VkPipeline p = VK_NULL_HANDLE;
+    const VkResult r = vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &ci, nullptr, &p);
+    if (result != nullptr)
+        *result = r;
+    else
+        EXPECT_EQ(r, VK_SUCCESS);
+    if (p != VK_NULL_HANDLE) k.undo(VK_OBJECT_TYPE_PIPELINE, p, [&k, p] { vkDestroyPipeline(k.d, p, nullptr); });
+    return p;
+}
+
+VkDescriptorBufferInfo whole(const Device::Buffer& b) {
+    return {b.buffer, 0, VK_WHOLE_SIZE};
+}
+
+// Storage buffers at bindings 0.. of one set (compute stage), its layout and a pipeline layout with `push` bytes of
+// compute push constants.
+struct StorageSet {
+    VkDescriptorSetLayout dsl;
+    VkPipelineLayout layout;
+    VkDescriptorSet set;
+};
+StorageSet storage_set(Kit& k, const std::vector<const Device::Buffer*>& buffers, uint32_t push = 0) {
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (uint32_t i = 0; i < buffers.size(); ++i)
+        bindings.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT});
+    StorageSet s{};
+    s.dsl = k.set_layout(bindings);
+    std::vector<VkPushConstantRange> ranges;
+    if (push != 0) ranges.push_back({VK_SHADER_STAGE_COMPUTE_BIT, 0, push});
+    s.layout = k.pipeline_layout({s.dsl}, ranges);
+    s.set = k.descriptor_set(s.dsl);
+    for (uint32_t i = 0; i < buffers.size(); ++i) {
+        const VkDescriptorBufferInfo bi = whole(*buffers[i]);
+        k.write(s.set, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi, nullptr);
+    }
+    return s;
+}
+
+// Makes the writes of `src` stages visible to `dst` stages (the buffer barriers Vulkan asks for; tilevk runs
+// commands in order, lavapipe needs them).
+void barrier(VkCommandBuffer c, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
+             VkAccessFlags dst_access) {
+    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = src_access;
+    mb.dstAccessMask = dst_access;
+    vkCmdPipelineBarrier(c, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+
+std::vector<float> random_floats(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> dist(-100.0f, 100.0f);
+    std::vector<float> v(n);
+    for (float& f : v) f = dist(rng);
+    return v;
+}
+
+// SAXPY over n elements: y filled by vkCmdFillBuffer's pattern and then updated, the dispatch, its result copied to
+// another buffer (transfer -> compute -> transfer). Returns the copy.
+Bytes saxpy(Kit& k, uint32_t n, float a) {
+    const std::vector<float> x = random_floats(n, 7);
+    Device::Buffer xb = k.buffer_of(x, kStorage);
+    Device::Buffer yb = k.buffer(VkDeviceSize(n) * 4, kStorage);
+    Device::Buffer out = k.buffer(VkDeviceSize(n) * 4);
+    StorageSet s = storage_set(k, {&xb, &yb}, 8);
+    VkPipeline p = compute_pipeline(k, SPV(cp_saxpy_comp), s.layout);
+    struct {
+        float a;
+        uint32_t n;
+    } push{a, n};
+    const uint32_t two = 0x40000000u;  // 2.0f
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdFillBuffer(c, yb.buffer, 0, VK_WHOLE_SIZE, two);
+        vkCmdUpdateBuffer(c, yb.buffer, 0, 4, &two);
+        barrier(c, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdPushConstants(c, s.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        vkCmdDispatch(c, (n + 63) / 64, 1, 1);
+        barrier(c, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy r{0, 0, VkDeviceSize(n) * 4};
+        vkCmdCopyBuffer(c, yb.buffer, out.buffer, 1, &r);
+    }),
+              VK_SUCCESS);
+    const auto* y = static_cast<const float*>(out.map);
+    size_t wrong = 0;
+    for (uint32_t i = 0; i < n; ++i) wrong += y[i] != a * x[i] + 2.0f;  // mul, then add (no fused multiply-add)
+    EXPECT_EQ(wrong, 0u) << "of " << n;
+    return Kit::bytes(out);
+}
+
+// cp_ids.comp at workgroup size (sx, sy, 2) (no specialization: (1, 1, 2)) over `groups` workgroups, directly or
+// through vkCmdDispatchIndirect (its counts written by vkCmdUpdateBuffer in the same command buffer). Checks every
+// record against the built-ins' definitions and returns the buffer.
+Bytes ids(Kit& k, const uint32_t groups[3], int sx, int sy, bool indirect) {
+    const uint32_t size[3] = {sx > 0 ? uint32_t(sx) : 1, sy > 0 ? uint32_t(sy) : 1, 2};
+    const uint32_t total[3] = {groups[0] * size[0], groups[1] * size[1], groups[2] * size[2]};
+    const uint32_t n = total[0] * total[1] * total[2];
+    Device::Buffer out = k.buffer(VkDeviceSize(n) * 64, kStorage);
+    Device::Buffer args = k.buffer(16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    StorageSet s = storage_set(k, {&out});
+    const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
+    const uint32_t values[2] = {size[0], size[1]};
+    VkSpecializationInfo spec{2, entries, sizeof values, values};
+    VkPipeline p = compute_pipeline(k, SPV(cp_ids_comp), s.layout, sx > 0 ? &spec : nullptr);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        if (indirect) {
+            const uint32_t cmd[4] = {groups[0], groups[1], groups[2], 0};
+            vkCmdUpdateBuffer(c, args.buffer, 0, sizeof cmd, cmd);
+            barrier(c, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+            vkCmdDispatchIndirect(c, args.buffer, 0);
+        } else {
+            vkCmdDispatch(c, groups[0], groups[1], groups[2]);
+        }
+    }),
+              VK_SUCCESS);
+    const auto* rec = static_cast<const uint32_t*>(out.map);
+    size_t wrong = 0;
+    for (uint32_t z = 0; z < total[2]; ++z)
+        for (uint32_t y = 0; y < total[1]; ++y)
+            for (uint32_t x = 0; x < total[0]; ++x) {
+                const uint32_t* r = rec + 16 * (x + total[0] * (y + total[1] * z));
+                const uint32_t g[3] = {x, y, z};
+                const uint32_t l[3] = {x % size[0], y % size[1], z % size[2]};
+                // clang-format off: one record per line
+                const uint32_t want[16] = {l[0],
+                                           l[1],
+                                           l[2],
+                                           l[0] + size[0] * (l[1] + size[1] * l[2]),
+                                           x,
+                                           y,
+                                           z,
+                                           0xC0FFEEu,
+                                           g[0] / size[0],
+                                           g[1] / size[1],
+                                           g[2] / size[2],
+                                           7u,
+                                           groups[0],
+                                           groups[1],
+                                           groups[2],
+                                           size[0] * 10000 + size[1] * 100 + size[2]};
+                // clang-format on
+                wrong += std::memcmp(r, want, sizeof want) != 0;
+            }
+    EXPECT_EQ(wrong, 0u) << "invocations of " << n;
+    return Kit::bytes(out);
+}
+
+TEST_F(ApiCompute, SaxpyBetweenTransfers) {
+    both([](Kit& k) { return saxpy(k, 100003, 1.7f); });
+}
+
+TEST_F(ApiCompute, BuiltInsWithSpecializedLocalSize) {
+    const uint32_t groups[3] = {3, 2, 2};
+    both([&](Kit& k) { return ids(k, groups, 5, 3, false); });  // 30 invocations: two batches, one of 14
+}
+
+TEST_F(ApiCompute, BuiltInsWithTheDefaultLocalSize) {
+    const uint32_t groups[3] = {7, 3, 2};
+    both([&](Kit& k) { return ids(k, groups, 0, 0, false); });  // (1, 1, 2): the shader's defaults
+}
+
+TEST_F(ApiCompute, DispatchIndirectReadsCountsWrittenEarlierInTheSubmission) {
+    const uint32_t groups[3] = {4, 3, 1};
+    both([&](Kit& k) { return ids(k, groups, 16, 2, true); });
+}
+
+// Uniform buffer, dynamic storage buffer and push constants at the compute bind point, while other sets and a
+// graphics pipeline are bound at the graphics bind point (which a dispatch must not use).
+TEST_F(ApiCompute, DescriptorSetsAndPushConstantsOfTheComputeBindPoint) {
+    both([](Kit& k) {
+        struct {
+            float scale[4];
+            uint32_t rounds, pad[3];
+        } u{{0.5f, -1.25f, 3.0f, 0.125f}, 5, {}};
+        Device::Buffer ub = k.buffer(sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        std::memcpy(ub.map, &u, sizeof u);
+        Device::Buffer ob = k.buffer(8192, kStorage);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_COMPUTE_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl}, {{VK_SHADER_STAGE_COMPUTE_BIT, 0, 16}});
+        VkDescriptorSet set = k.descriptor_set(dsl), other = k.descriptor_set(dsl);
+        const VkDescriptorBufferInfo ui = whole(ub), oi{ob.buffer, 0, 256 * 16};
+        for (VkDescriptorSet s : {set, other}) {
+            k.write(s, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &ui, nullptr);
+            k.write(s, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, &oi, nullptr);
+        }
+        VkPipeline p = compute_pipeline(k, SPV(cp_binds_comp), layout);
+        Target t = target(k);
+        Pipe gp;
+        gp.rp = t.rp;
+        VkPipeline graphics = k.pipeline(gp);
+        const float bias[4] = {10.0f, -20.0f, 0.5f, 1e-3f};
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            const uint32_t offset = 4096;
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 1, &offset);
+            const uint32_t wrong_offset = 0;  // the graphics bind point's set: must not be used
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &other, 1, &wrong_offset);
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, graphics);
+            vkCmdPushConstants(c, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof bias, bias);
+            vkCmdDispatch(c, 8, 1, 1);
+        }),
+                  VK_SUCCESS);
+        const Bytes b = Kit::bytes(ob);
+        const auto* f = reinterpret_cast<const float*>(b.data());
+        EXPECT_EQ(f[0], 0.0f);      // the graphics set's offset: untouched
+        EXPECT_EQ(f[1024], 10.0f);  // invocation 0 at the compute set's offset: scale * 0 + bias (no rounds, even)
+        return b;
+    });
+}
+
+// A dispatch writes the vertices a draw pulls from a storage buffer (compute -> vertex shader), and the draw's
+// image is copied after it.
+TEST_F(ApiCompute, DispatchWritesWhatADrawReads) {
+    both([](Kit& k) {
+        Device::Buffer verts = k.buffer(8 * 32, kStorage);
+        VkDescriptorSetLayout dsl = k.set_layout(
+            {{1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        const VkDescriptorBufferInfo vi = whole(verts);
+        k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &vi, nullptr);
+        VkPipeline cp = compute_pipeline(k, SPV(cp_vertices_comp), layout);
+        Target t = target(k);
+        Pipe gp;
+        gp.vs = SPV(ab_pull_vert);
+        gp.bindings = {};
+        gp.attrs = {};
+        gp.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        gp.rp = t.rp;
+        gp.layout = layout;
+        VkPipeline draw = k.pipeline(gp);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, cp);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDispatch(c, 2, 1, 1);
+            barrier(c, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, draw);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDraw(c, 8, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        const Bytes image = k.read(t.image.image, 32, 32, 4);
+        EXPECT_NE(px(image, 16, 16)[0] + px(image, 16, 16)[1], 0);  // the strip covers the centre
+        return concat({image, Kit::bytes(verts)});
+    });
+}
+
+// ---- tilevk alone ---------------------------------------------------------------------------------------------
+
+// What tilevk writes to stderr while `fn` runs.
+std::string stderr_of(const std::function<void()>& fn) {
+    std::fflush(stderr);
+    FILE* tmp = std::tmpfile();
+    const int saved = dup(STDERR_FILENO);
+    dup2(fileno(tmp), STDERR_FILENO);
+    fn();
+    std::fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+    std::string text;
+    std::rewind(tmp);
+    for (int ch = std::fgetc(tmp); ch != EOF; ch = std::fgetc(tmp)) text += char(ch);
+    std::fclose(tmp);
+    return text;
+}
+
+// The same bytes for one worker thread and four (TILEVK_THREADS is read at a queue's first submission).
+TEST_F(ApiCompute, SameBytesForEveryThreadCount) {
+    std::vector<Bytes> results;
+    for (const char* threads : {"1", "4"}) {
+        setenv("TILEVK_THREADS", threads, 1);
+        Device dev(harness_->find_device("tilevk"));
+        ASSERT_TRUE(dev.ok());
+        Kit k(dev);
+        const uint32_t groups[3] = {9, 5, 3};
+        results.push_back(concat({saxpy(k, 250000, -0.3f), ids(k, groups, 7, 5, false)}));
+    }
+    unsetenv("TILEVK_THREADS");
+    expect_same(results[0], results[1], "TILEVK_THREADS=1 vs 4");
+}
+
+// Invalid or unsupported compute input on tilevk without the validation layer: pipelines are refused with an
+// error, a null handle and a message naming the limit or the SPIR-V it lacks; dispatches past the limits do
+// nothing; the device keeps dispatching.
+TEST_F(ApiCompute, BadInputIsRefusedByName) {
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    Device dev(plain.find_device("tilevk"));
+    ASSERT_TRUE(dev.ok());
+    Kit k(dev);
+    Device::Buffer buf = k.buffer(4096, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    StorageSet s = storage_set(k, {&buf});
+    const auto refused = [&](Spv code, const VkSpecializationInfo* spec, const char* entry, const char* named) {
+        VkResult r = VK_SUCCESS;
+        VkPipeline p = VK_NULL_HANDLE;
+        const std::string err = stderr_of([&] { p = compute_pipeline(k, code, s.layout, spec, &r, entry); });
+        EXPECT_EQ(r, VK_ERROR_INITIALIZATION_FAILED) << named;
+        EXPECT_EQ(p, VK_NULL_HANDLE) << named;
+        EXPECT_NE(err.find(named), std::string::npos) << "message: " << err;
+    };
+    const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
+    const uint32_t too_wide[2] = {2000, 1}, too_many[2] = {512, 2};
+    VkSpecializationInfo wide{2, entries, 8, too_wide}, many{2, entries, 8, too_many};
+    refused(SPV(cp_ids_comp), &wide, "main", "maxComputeWorkGroupSize[0] = 1024");
+    refused(SPV(cp_ids_comp), &many, "main", "maxComputeWorkGroupInvocations = 1024");
+    refused(SPV(cp_ids_comp), nullptr, "nope", "no compute entry point named 'nope'");
+    refused(SPV(cp_barrier_comp), nullptr, "main", "OpControlBarrier");
+    refused(SPV(cp_shared_comp), nullptr, "main", "Workgroup");
+    refused(SPV(cp_atomic_comp), nullptr, "main", "OpAtomicIAdd");
+
+    VkPipeline p = compute_pipeline(k, SPV(cp_ids_comp), s.layout);  // (1, 1, 2)
+    const std::string err = stderr_of([&] {
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdDispatch(c, 1, 1, 1);  // nothing bound
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+            vkCmdDispatch(c, 70000, 1, 1);
+            vkCmdDispatchIndirect(c, buf.buffer, 4090);  // past the end
+            const uint32_t huge[3] = {1, 1, 65536};
+            vkCmdUpdateBuffer(c, buf.buffer, 0, sizeof huge, huge);
+            vkCmdDispatchIndirect(c, buf.buffer, 0);
+        }),
+                  VK_SUCCESS);
+    });
+    EXPECT_NE(err.find("no compute pipeline is bound"), std::string::npos) << err;
+    EXPECT_NE(err.find("groupCountX = 70000"), std::string::npos) << err;
+    EXPECT_NE(err.find("groupCountZ = 65536"), std::string::npos) << err;
+    EXPECT_NE(err.find("outside the buffer"), std::string::npos) << err;
+    const auto* words = static_cast<const uint32_t*>(buf.map);
+    EXPECT_EQ(words[7], 0u);  // no dispatch wrote the first record's marker
+    // The device still dispatches: one workgroup of (1, 1, 2) writes two records.
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdDispatch(c, 1, 1, 1);
+    }),
+              VK_SUCCESS);
+    EXPECT_EQ(words[16 + 2], 1u);  // the second invocation's LocalInvocationId.z
+    EXPECT_EQ(words[16 + 3], 1u);  // and LocalInvocationIndex
+    EXPECT_EQ(words[7], 0xC0FFEEu);
+}
+
+}  // namespace
+}  // namespace tilevk::test::breadth
