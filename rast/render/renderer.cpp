@@ -260,10 +260,30 @@ void Renderer::record_draw(DrawRecord& rec, const PipelineState& pipe, const Dra
     }
 }
 
-// One draw through lavapipe's draw module and llvmpipe's setup (over 150 lines): the per-batch decisions (draw's
-// pipeline or the direct path, the parallel triangle path, clipping, vbuf vertex ids, the unfilled stages) read the
-// dozen per-draw configurations set up at its top; its self-contained jobs are record_draw, emit_direct_pairs and
-// nine_vertex_batch_end (renderer_emit.cpp).
+// The per-draw configuration that Renderer::draw's batch loop reads, set up once by plan_draw. vcfg.input points at
+// input, so a plan is neither copied nor moved.
+struct Renderer::DrawPlan {
+    const PipelineState* pipe = nullptr;
+    bool indexed = false;
+    uint32_t num_prims = 0;
+    uint32_t verts_per_prim = 0;
+    VertexInputState input;
+    VertexStageConfig vcfg;
+    geometry::ClipConfig ccfg;
+    geometry::FloatCull fcull;
+    geometry::UnfilledConfig ucfg;
+    bool any_cull = false;
+    bool unfilled = false;  // polygonMode LINE/POINT on triangles: draw's unfilled stage
+    bool discard = false;   // rasterizer discard: the vertex shader runs for its memory writes only
+    bool nine_vertex_candidate = false;
+    bool reads_front_facing = false;
+    bool pair_candidates = false;  // triangle pairs may reach llvmpipe's rectangle test
+    bool parallel_triangles = false;
+    uint64_t vertex_serial = 0;  // distinguishes vertex headers of different batches and clip calls (vbuf ids)
+};
+
+// One draw through lavapipe's draw module and llvmpipe's setup: primitive assembly once for all instances, then
+// per instance the vertex stage and draw's batches (emit_batch, or add_triangles_parallel for large triangle draws).
 std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings) {
     // lavapipe runs all of draw (fetch, vertex shader, clip masks, clipper, viewport) and llvmpipe's setup and
     // binning with denormals flushed (draw_pt.c draw_vbo: util_fpstate_set_denorms_to_zero).
@@ -282,7 +302,6 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     DrawRecord& rec = draws_.emplace_back();
     record_draw(rec, pipe, call, bindings);
 
-    // Primitive assembly once for all instances.
     geometry::IndexSource src;
     if (call.indexed) {
         src.indices = call.index_data;
@@ -293,20 +312,62 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     }
     src.first = call.first;
     src.count = call.count;
-    assembled_.resize(geometry::assembled_index_capacity(pipe.topology, call.count));
-    const uint32_t num_prims =
-        geometry::assemble_primitives(src, pipe.topology, true, assembled_.data(), assembled_.size());
-    const uint32_t verts_per_prim = geometry::vertices_per_primitive(pipe.topology);
-    // The vertices to shade (each used index once, ascending), and assembled_ rewritten from indices to their slots
-    // in that list: the primitive loop below reads shaded records by slot.
-    unique_vertices(size_t(num_prims) * verts_per_prim);
+    DrawPlan plan;
+    if (!plan_draw(plan, pipe, call, rec, src)) return {};
 
-    VertexInputState input;
-    input.attribs = pipe.attribs;
-    input.locations = pipe.attrib_locations;
-    input.buffers.resize(pipe.bindings.size());
+    for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
+        if (inst > 0 && prims_.size() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
+        plan.vcfg.instance = inst;
+        uint64_t hits_before = 0;
+        for (const auto& w : vertex_workers_) hits_before += w->scratch.loop_limit_hits();
+        {
+            const uint64_t t0 = stage_timers_on() ? thread_cpu_ns() : 0;
+            shade_vertices(plan.vcfg, unique_, pool_, vertex_workers_, &shaded_);
+            if (stage_timers_on()) timer.vertex += thread_cpu_ns() - t0;
+        }
+        if (stopped()) {
+            uint64_t hits_after = 0;
+            for (const auto& w : vertex_workers_) hits_after += w->scratch.loop_limit_hits();
+            interruption_.note(hits_after != hits_before, call.id);
+            break;
+        }
+        if (plan.discard) continue;
+        const bool any_clipped =
+            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
+        if (plan.parallel_triangles) {
+            draw_triangles_parallel(plan, draw_index, rec, any_clipped);
+            continue;
+        }
+        uint32_t first_prim = 0;
+        for (const uint32_t batch_prims : batches_) {
+            if (stopped()) break;  // the instance loop notes it
+            const uint32_t end_prim = std::min(plan.num_prims, first_prim + batch_prims);
+            emit_batch(plan, draw_index, rec, first_prim, end_prim, any_clipped);
+            first_prim = end_prim;
+        }
+    }
+    if (rect_pairs_) vbuf_flush(draw_index, rec);  // llvmpipe_draw_vbo ends with draw_flush
+    return {};
+}
+
+// Assembles the draw's primitives (assembled_, unique_, batches_) and sets up every per-draw configuration; false
+// when the draw has nothing to do (rasterizer discard with a vertex shader that writes no memory).
+bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCall& call, DrawRecord& rec,
+                         const geometry::IndexSource& src) {
+    plan.pipe = &pipe;
+    plan.indexed = call.indexed;
+    assembled_.resize(geometry::assembled_index_capacity(pipe.topology, call.count));
+    plan.num_prims = geometry::assemble_primitives(src, pipe.topology, true, assembled_.data(), assembled_.size());
+    plan.verts_per_prim = geometry::vertices_per_primitive(pipe.topology);
+    // The vertices to shade (each used index once, ascending), and assembled_ rewritten from indices to their slots
+    // in that list: the primitive loop reads shaded records by slot.
+    unique_vertices(size_t(plan.num_prims) * plan.verts_per_prim);
+
+    plan.input.attribs = pipe.attribs;
+    plan.input.locations = pipe.attrib_locations;
+    plan.input.buffers.resize(pipe.bindings.size());
     for (size_t b = 0; b < pipe.bindings.size(); ++b) {
-        geometry::VertexBufferView& vb = input.buffers[b];
+        geometry::VertexBufferView& vb = plan.input.buffers[b];
         vb.stride = pipe.bindings[b].stride;
         vb.rate = pipe.bindings[b].rate;
         if (b < call.vertex_buffers.size()) {
@@ -315,10 +376,10 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         }
     }
 
-    VertexStageConfig vcfg;
+    VertexStageConfig& vcfg = plan.vcfg;
     vcfg.program = pipe.vertex;
     vcfg.bindings = &rec.bindings;
-    vcfg.input = &input;
+    vcfg.input = &plan.input;
     vcfg.varyings = &rec.varyings;
     const ViewportRect& v = pipe.viewport;
     vcfg.viewport.vp = geometry::make_viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth, pipe.clip_halfz);
@@ -331,41 +392,35 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     vcfg.stop = stop_;
 
     const geometry::VertexLayout layout = rec.varyings.layout();
-    geometry::ClipConfig ccfg;
-    ccfg.layout = layout;
-    ccfg.vp = vcfg.viewport.vp;
-    ccfg.clip_halfz = pipe.clip_halfz;
-    ccfg.guard_band_xy = fb_.linear_mode;
+    plan.ccfg.layout = layout;
+    plan.ccfg.vp = vcfg.viewport.vp;
+    plan.ccfg.clip_halfz = pipe.clip_halfz;
+    plan.ccfg.guard_band_xy = fb_.linear_mode;
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
-    ccfg.precise_fallback =
-        pipe.polygon_mode == PolygonMode::kFill || geometry::vertices_per_primitive(pipe.topology) != 3;
+    plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
     clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
     attrib_planes_.resize(layout.num_attribs);
-    geometry::FloatCull fcull;
-    fcull.cull_front = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kFront);
-    fcull.cull_back = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kBack);
-    fcull.front_ccw = pipe.front_ccw;
-    const bool any_cull = pipe.cull != CullMode::kNone;
-    const bool unfilled = pipe.polygon_mode != PolygonMode::kFill && verts_per_prim == 3;
+    plan.fcull.cull_front = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kFront);
+    plan.fcull.cull_back = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kBack);
+    plan.fcull.front_ccw = pipe.front_ccw;
+    plan.any_cull = pipe.cull != CullMode::kNone;
+    plan.unfilled = pipe.polygon_mode != PolygonMode::kFill && plan.verts_per_prim == 3;
     // lp_state_derived.c: a sample mask of 0 (all 32 bits, at any sample count) sets rasterizer_discard, so setup
     // drops every primitive; the vertex shader still runs in draw (its memory writes stay visible).
-    const bool discard = pipe.sample_mask == 0;
-    if (discard && !vertex_writes_memory(pipe.vertex)) return {};
+    plan.discard = pipe.sample_mask == 0;
+    if (plan.discard && !vertex_writes_memory(pipe.vertex)) return false;
 
-    geometry::UnfilledConfig ucfg;
-    ucfg.layout = layout;
-    ucfg.bias_enable = pipe.depth_bias_enable;
-    ucfg.bias = depth_bias_for_target(pipe);
+    plan.ucfg.layout = layout;
+    plan.ucfg.bias_enable = pipe.depth_bias_enable;
+    plan.ucfg.bias = depth_bias_for_target(pipe);
     unfilled_scratch_.resize(size_t(3) * geometry::vertex_floats(layout));
 
     // llvmpipe's triangle-list analysis (lp_setup_analysis.c) runs on a non-indexed list batch handed to
     // draw_arrays, i.e. one that skipped draw's pipeline, when the fragment shader has no flat input.
     bool has_flat_input = false;
     for (geometry::Interp i : rec.varyings.slot_interp) has_flat_input |= i == geometry::Interp::kFlat;
-    const bool nine_vertex_candidate =
-        !call.indexed && pipe.topology == geometry::Topology::kTriangleList && !has_flat_input;
-
-    const bool reads_front_facing =
+    plan.nine_vertex_candidate = !call.indexed && pipe.topology == geometry::Topology::kTriangleList && !has_flat_input;
+    plan.reads_front_facing =
         pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::FrontFacing));
     // draw's batches: per instance, per restart run, per vsplit segment (draw_batches.h).
     geometry::draw_batches(src, pipe.topology, &batches_);
@@ -374,17 +429,16 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     // and, except for the 4-vertex fan's triangle order, only in linear mode; unfilled polygons reach setup as
     // lines or points.
     rect_cfg_.layout = layout;
-    rect_cfg_.cull_front = fcull.cull_front;
-    rect_cfg_.cull_back = fcull.cull_back;
+    rect_cfg_.cull_front = plan.fcull.cull_front;
+    rect_cfg_.cull_back = plan.fcull.cull_back;
     rect_cfg_.front_ccw = pipe.front_ccw;
-    const bool pair_candidates = !has_flat_input && !unfilled && verts_per_prim == 3;
-    rect_pairs_ = fb_.linear_mode && pair_candidates;
+    plan.pair_candidates = !has_flat_input && !plan.unfilled && plan.verts_per_prim == 3;
+    rect_pairs_ = fb_.linear_mode && plan.pair_candidates;
     if (rect_pairs_) {
         // vbuf vertex size: position + one vec4 per fragment input (+ face, + point size), 16 bytes each
         // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size.
         uint32_t slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
-        if (pipe.fragment && (pipe.fragment->interface().builtins_read & shader::bit(shader::BuiltIn::FrontFacing)))
-            ++slots;
+        if (plan.reads_front_facing) ++slots;
         if (pipe.vertex->interface().builtins_written & shader::bit(shader::BuiltIn::PointSize)) ++slots;
         vbuf_.stride = geometry::vertex_floats(layout);
         vbuf_.max_vertices = 4096 / (16 * slots);
@@ -392,160 +446,140 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         vbuf_.vertices = 0;
         vbuf_.emitted_id.clear();
     }
-    uint64_t vertex_serial = 0;  // distinguishes vertex headers of different batches and clip calls (vbuf ids)
 
-    // Large triangle draws where the loop below would call add_triangle for each triangle of a direct batch and
+    // Large triangle draws where the batch loop would call add_triangle for each triangle of a direct batch and
     // for each clipped, float-culled piece of a pipeline batch, in order: no unfilled polygons, no linear mode
     // (rectangle pairs, vbuf), no batch that a lavapipe quirk reads (the 9-vertex list batch, the 4-vertex fan).
     // Those run on the workers (add_triangles_parallel).
-    bool parallel_triangles = verts_per_prim == 3 && !unfilled && !fb_.linear_mode && !discard &&
-                              num_prims >= kParallelTriangles && pool_.num_workers() > 1;
+    plan.parallel_triangles = plan.verts_per_prim == 3 && !plan.unfilled && !fb_.linear_mode && !plan.discard &&
+                              plan.num_prims >= kParallelTriangles && pool_.num_workers() > 1;
     for (const uint32_t batch_prims : batches_) {
-        if (!parallel_triangles) break;
-        const bool nine = nine_vertex_candidate && size_t(batch_prims) * 3 == 9;
-        const bool fan4 =
-            pair_candidates && !call.indexed && pipe.topology == geometry::Topology::kTriangleFan && batch_prims == 2;
-        parallel_triangles = !nine && !fan4;
+        if (!plan.parallel_triangles) break;
+        const bool nine = plan.nine_vertex_candidate && size_t(batch_prims) * 3 == 9;
+        const bool fan4 = plan.pair_candidates && !call.indexed && pipe.topology == geometry::Topology::kTriangleFan &&
+                          batch_prims == 2;
+        plan.parallel_triangles = !nine && !fan4;
     }
+    return true;
+}
 
-    for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
-        if (inst > 0 && prims_.size() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
-        vcfg.instance = inst;
-        uint64_t hits_before = 0;
-        for (const auto& w : vertex_workers_) hits_before += w->scratch.loop_limit_hits();
-        {
-            const uint64_t t0 = stage_timers_on() ? thread_cpu_ns() : 0;
-            shade_vertices(vcfg, unique_, pool_, vertex_workers_, &shaded_);
-            if (stage_timers_on()) timer.vertex += thread_cpu_ns() - t0;
-        }
-        if (stopped()) {
-            uint64_t hits_after = 0;
-            for (const auto& w : vertex_workers_) hits_after += w->scratch.loop_limit_hits();
-            interruption_.note(hits_after != hits_before, call.id);
-            break;
-        }
-        if (discard) continue;
-        const bool any_clipped =
-            std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
-        if (parallel_triangles) {
-            // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through
-            // draw's pipeline (clipper, float cull), as in the loop below.
-            tri_pipeline_.assign(num_prims, 0);
-            uint32_t first = 0;
-            for (const uint32_t batch_prims : batches_) {
-                const uint32_t end = std::min(num_prims, first + batch_prims);
-                bool pipeline_path = false;
-                for (size_t k = size_t(first) * 3; k < size_t(end) * 3 && any_clipped && !pipeline_path; ++k)
-                    pipeline_path = shaded_.clipmask[assembled_[k]] != 0;
-                if (pipeline_path) std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + end, uint8_t(1));
-                first = end;
-            }
-            add_triangles_parallel(draw_index, rec, assembled_.data(), num_prims,
-                                   {tri_pipeline_.data(), &ccfg, &fcull, any_cull});
-            continue;
-        }
-        uint32_t first_prim = 0;
-        for (const uint32_t batch_prims : batches_) {
-            if (stopped()) break;  // the instance loop notes it
-            const uint32_t end_prim = std::min(num_prims, first_prim + batch_prims);
-            const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * verts_per_prim;
-            const size_t batch_verts = size_t(end_prim - first_prim) * verts_per_prim;
-            // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through
-            // draw's pipeline (clipper, float cull). Unfilled polygons always take it (their stage lives there).
-            bool pipeline_path = unfilled;
-            for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
-                pipeline_path = shaded_.clipmask[batch_ids[k]] != 0;
-            const uint64_t batch_serial = ++vertex_serial;
-            // A batch emitted straight to setup flushes draw's pipeline first (draw_pt_emit.c draw_do_flush).
-            if (rect_pairs_ && !pipeline_path) vbuf_flush(draw_index, rec);
-            if (!pipeline_path && pair_candidates &&
-                emit_direct_pairs(draw_index, rec, pipe.topology, call.indexed, first_prim, end_prim, batch_verts)) {
-                first_prim = end_prim;
+// One instance of a parallel triangle draw: which batches go through draw's pipeline, then the workers.
+void Renderer::draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
+                                       bool any_clipped) {
+    // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through draw's
+    // pipeline (clipper, float cull), as in emit_batch.
+    tri_pipeline_.assign(plan.num_prims, 0);
+    uint32_t first = 0;
+    for (const uint32_t batch_prims : batches_) {
+        const uint32_t end = std::min(plan.num_prims, first + batch_prims);
+        bool pipeline_path = false;
+        for (size_t k = size_t(first) * 3; k < size_t(end) * 3 && any_clipped && !pipeline_path; ++k)
+            pipeline_path = shaded_.clipmask[assembled_[k]] != 0;
+        if (pipeline_path) std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + end, uint8_t(1));
+        first = end;
+    }
+    add_triangles_parallel(draw_index, rec, assembled_.data(), plan.num_prims,
+                           {tri_pipeline_.data(), &plan.ccfg, &plan.fcull, plan.any_cull});
+}
+
+// One of draw's batches, primitives [first_prim, end_prim): straight to setup, or through draw's pipeline.
+void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim,
+                          uint32_t end_prim, bool any_clipped) {
+    const uint32_t vpp = plan.verts_per_prim;
+    const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * vpp;
+    const size_t batch_verts = size_t(end_prim - first_prim) * vpp;
+    // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through draw's
+    // pipeline (clipper, float cull). Unfilled polygons always take it (their stage lives there).
+    bool pipeline_path = plan.unfilled;
+    for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
+        pipeline_path = shaded_.clipmask[batch_ids[k]] != 0;
+    const uint64_t batch_serial = ++plan.vertex_serial;
+    // A batch emitted straight to setup flushes draw's pipeline first (draw_pt_emit.c draw_do_flush).
+    if (rect_pairs_ && !pipeline_path) vbuf_flush(draw_index, rec);
+    if (!pipeline_path && plan.pair_candidates &&
+        emit_direct_pairs(draw_index, rec, plan.pipe->topology, plan.indexed, first_prim, end_prim, batch_verts))
+        return;
+    const uint32_t batch_end = plan.nine_vertex_candidate && !pipeline_path && batch_verts == 9
+                                   ? nine_vertex_batch_end(draw_index, rec, first_prim, end_prim, batch_ids)
+                                   : end_prim;
+    for (uint32_t p = first_prim; p < batch_end; ++p) {
+        const uint32_t* ids = assembled_.data() + size_t(p) * vpp;
+        if (vpp == 1) {
+            const float* v0 = shaded_.record(ids[0]);
+            if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[ids[0]])) continue;
+            add_point(draw_index, rec, v0, shaded_.point_size[ids[0]]);
+        } else if (vpp == 2) {
+            const float *v0 = shaded_.record(ids[0]), *v1 = shaded_.record(ids[1]);
+            if (pipeline_path && !geometry::clip_line(plan.ccfg, v0, v1, shaded_.clipmask[ids[0]],
+                                                      shaded_.clipmask[ids[1]], clip_scratch_.data(), &v0, &v1))
                 continue;
-            }
-            const uint32_t batch_end = nine_vertex_candidate && !pipeline_path && batch_verts == 9
-                                           ? nine_vertex_batch_end(draw_index, rec, first_prim, end_prim, batch_ids)
-                                           : end_prim;
-            for (uint32_t p = first_prim; p < batch_end; ++p) {
-                const uint32_t* ids = assembled_.data() + size_t(p) * verts_per_prim;
-                if (verts_per_prim == 1) {
-                    const uint32_t s0 = ids[0];
-                    const float* v0 = shaded_.record(s0);
-                    if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[s0])) continue;
-                    add_point(draw_index, rec, v0, shaded_.point_size[s0]);
-                    continue;
-                }
-                if (verts_per_prim == 2) {
-                    const uint32_t s0 = ids[0], s1 = ids[1];
-                    const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1);
-                    if (pipeline_path && !geometry::clip_line(ccfg, v0, v1, shaded_.clipmask[s0], shaded_.clipmask[s1],
-                                                              clip_scratch_.data(), &v0, &v1))
-                        continue;
-                    add_line(draw_index, rec, v0, v1);
-                    continue;
-                }
-                const uint32_t s0 = ids[0], s1 = ids[1], s2 = ids[2];
-                const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
-                const uint32_t m0 = shaded_.clipmask[s0], m1 = shaded_.clipmask[s1], m2 = shaded_.clipmask[s2];
-                if (!pipeline_path) {
-                    add_triangle(draw_index, rec, v0, v1, v2);
-                    continue;
-                }
-                geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
-                const uint32_t n = geometry::clip_triangle(ccfg, v0, v1, v2, m0, m1, m2, clip_scratch_.data(), out);
-                const uint64_t clip_serial = ++vertex_serial;
-                for (uint32_t t = 0; t < n; ++t) {
-                    const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
-                    if (any_cull && !geometry::float_cull_keep(fcull, geometry::win_pos(a), geometry::win_pos(b),
-                                                               geometry::win_pos(c)))
-                        continue;
-                    if (rect_pairs_) {
-                        // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch,
-                        // a clipper-made one is a fresh header per clip call
-                        uint64_t ids[3];
-                        for (int k = 0; k < 3; ++k) {
-                            const float* r = out[t].v[k];
-                            if (r == v0 || r == v1 || r == v2)
-                                ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
-                            else
-                                ids[k] = clip_serial << 32 | (1u << 31) |
-                                         static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
-                        }
-                        const float* vv[3] = {a, b, c};
-                        vbuf_triangle(draw_index, rec, vv, ids);
-                        continue;
-                    }
-                    if (!unfilled) {
-                        add_triangle(draw_index, rec, a, b, c);
-                        continue;
-                    }
-                    // draw's offset, flatshade and unfilled stages (unfilled.h): edges / corners by edge flag.
-                    const float* u[3];
-                    geometry::prepare_unfilled_triangle(ucfg, out[t].v, unfilled_scratch_.data(), u);
-                    // llvmpipe's line/point setup takes the facing from the face slot draw's unfilled stage injects,
-                    // which exists only when the fragment shader reads gl_FrontFacing (lp_state_derived.c
-                    // face_slot); otherwise every edge/corner is front facing, for the two-sided stencil test too.
-                    const bool front = !reads_front_facing ||
-                                       geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(a),
-                                                                       geometry::win_pos(b), geometry::win_pos(c));
-                    if (pipe.polygon_mode == PolygonMode::kLine) {
-                        uint8_t lines[3][2];
-                        const uint32_t nl = geometry::unfilled_lines(out[t].edges, lines);
-                        for (uint32_t l = 0; l < nl; ++l)
-                            add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]], front);
-                    } else {
-                        for (int k = 0; k < 3; ++k)
-                            if (out[t].corners & (1u << k))
-                                add_point(draw_index, rec, u[k],
-                                          geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
-                    }
-                }
-            }
-            first_prim = end_prim;
+            add_line(draw_index, rec, v0, v1);
+        } else if (!pipeline_path) {
+            add_triangle(draw_index, rec, shaded_.record(ids[0]), shaded_.record(ids[1]), shaded_.record(ids[2]));
+        } else {
+            emit_clipped_triangle(plan, draw_index, rec, ids, batch_serial);
         }
     }
-    if (rect_pairs_) vbuf_flush(draw_index, rec);  // llvmpipe_draw_vbo ends with draw_flush
-    return {};
+}
+
+// A triangle of a pipeline batch (shaded slots ids[0..2]): draw's clipper and float cull, then vbuf (linear mode),
+// setup, or the unfilled stage.
+void Renderer::emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
+                                     uint64_t batch_serial) {
+    const uint32_t s0 = ids[0], s1 = ids[1], s2 = ids[2];
+    const float *v0 = shaded_.record(s0), *v1 = shaded_.record(s1), *v2 = shaded_.record(s2);
+    geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
+    const uint32_t n = geometry::clip_triangle(plan.ccfg, v0, v1, v2, shaded_.clipmask[s0], shaded_.clipmask[s1],
+                                               shaded_.clipmask[s2], clip_scratch_.data(), out);
+    const uint64_t clip_serial = ++plan.vertex_serial;
+    for (uint32_t t = 0; t < n; ++t) {
+        const float *a = out[t].v[0], *b = out[t].v[1], *c = out[t].v[2];
+        if (plan.any_cull &&
+            !geometry::float_cull_keep(plan.fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
+            continue;
+        if (rect_pairs_) {
+            // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch, a clipper-made
+            // one is a fresh header per clip call
+            uint64_t vbuf_ids[3];
+            for (int k = 0; k < 3; ++k) {
+                const float* r = out[t].v[k];
+                if (r == v0 || r == v1 || r == v2)
+                    vbuf_ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
+                else
+                    vbuf_ids[k] = clip_serial << 32 | (1u << 31) |
+                                  static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
+            }
+            const float* vv[3] = {a, b, c};
+            vbuf_triangle(draw_index, rec, vv, vbuf_ids);
+        } else if (!plan.unfilled) {
+            add_triangle(draw_index, rec, a, b, c);
+        } else {
+            emit_unfilled(plan, draw_index, rec, out[t]);
+        }
+    }
+}
+
+// draw's offset, flatshade and unfilled stages (unfilled.h) on one clipped triangle: edges / corners by edge flag.
+void Renderer::emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
+                             const geometry::ClippedTriangle& tri) {
+    const PipelineState& pipe = *plan.pipe;
+    const float* u[3];
+    geometry::prepare_unfilled_triangle(plan.ucfg, tri.v, unfilled_scratch_.data(), u);
+    // llvmpipe's line/point setup takes the facing from the face slot draw's unfilled stage injects, which exists
+    // only when the fragment shader reads gl_FrontFacing (lp_state_derived.c face_slot); otherwise every
+    // edge/corner is front facing, for the two-sided stencil test too.
+    const bool front = !plan.reads_front_facing ||
+                       geometry::unfilled_front_facing(pipe.front_ccw, geometry::win_pos(tri.v[0]),
+                                                       geometry::win_pos(tri.v[1]), geometry::win_pos(tri.v[2]));
+    if (pipe.polygon_mode == PolygonMode::kLine) {
+        uint8_t lines[3][2];
+        const uint32_t nl = geometry::unfilled_lines(tri.edges, lines);
+        for (uint32_t l = 0; l < nl; ++l) add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]], front);
+    } else {
+        for (int k = 0; k < 3; ++k)
+            if (tri.corners & (1u << k))
+                add_point(draw_index, rec, u[k], geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
+    }
 }
 
 // unique_ = the distinct indices of assembled_[0, n) in ascending order; assembled_[i] becomes the position of

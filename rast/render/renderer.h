@@ -69,6 +69,16 @@ class Renderer {
     void reset_linear_tiles();
     void unique_vertices(size_t n);
     // Renderer::draw's jobs (renderer.cpp).
+    struct DrawPlan;
+    bool plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCall& call, DrawRecord& rec,
+                   const geometry::IndexSource& src);
+    void draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, bool any_clipped);
+    void emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim,
+                    bool any_clipped);
+    void emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
+                               uint64_t batch_serial);
+    void emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
+                       const geometry::ClippedTriangle& tri);
     void record_draw(DrawRecord& rec, const PipelineState& pipe, const DrawCall& call,
                      const shader::Bindings& bindings);
     void triangle_records(uint32_t p, const float* v[3]) const;
