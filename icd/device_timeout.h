@@ -14,7 +14,14 @@ namespace tilevk::icd {
 
 // TILEVK_DEVICE_TIMEOUT_MS (a positive number of milliseconds), else the default; a bad value is reported once.
 std::chrono::milliseconds device_timeout_from_env();
-inline constexpr std::chrono::milliseconds kDefaultDeviceTimeout{3000};
+// 10 s, as amdgpu's default lockup timeout: the limit is wall time, and a loaded host (a CI box running several
+// builds) can stretch a submission of ordinary size several times. Sanitizer builds run 3-20x slower again, so
+// their default is ten times longer.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr std::chrono::milliseconds kDefaultDeviceTimeout{100000};
+#else
+inline constexpr std::chrono::milliseconds kDefaultDeviceTimeout{10000};
+#endif
 
 class SubmitTimeout {
   public:

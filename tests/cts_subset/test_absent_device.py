@@ -12,7 +12,7 @@ import sys
 def main() -> int:
     cts = sys.argv[1]
     r = subprocess.run([cts, '--device', 'no-such-device', '--ref', 'llvmpipe', '--filter', 'api.smoke.*'],
-                       capture_output=True, text=True, timeout=120)
+                       capture_output=True, text=True, timeout=600)
     out = r.stdout + r.stderr
     problems = []
     if r.returncode != 1:
