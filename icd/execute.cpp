@@ -121,9 +121,17 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
         }
         const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
         const uint32_t layers = std::min(src.range.layerCount, st.framebuffer->layers);
+        // Bands of rows on the workers: each pixel's resolve reads only its own samples.
+        constexpr uint32_t kBandRows = 32;
+        const size_t bands = (rect.extent.height + kBandRows - 1) / kBandRows;
         for (uint32_t l = 0; l < layers; ++l) {
-            resolve_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, rect.offset, *dst.image,
-                         dst.range.baseMipLevel, dst.range.baseArrayLayer + l, rect.offset, rect.extent);
+            run_on_workers(st, bands, [&](size_t band) {
+                const uint32_t y0 = uint32_t(band) * kBandRows;
+                const VkOffset2D offset{rect.offset.x, rect.offset.y + int32_t(y0)};
+                const VkExtent2D extent{rect.extent.width, std::min(kBandRows, rect.extent.height - y0)};
+                resolve_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, offset, *dst.image,
+                             dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent);
+            });
         }
     }
 }

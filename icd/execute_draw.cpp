@@ -3,6 +3,7 @@
 // per pixel and keep D32_SFLOAT_S8_UINT's stencil in the texel (icd/image.h): such attachments are copied into
 // planar staging memory when a subpass's rendering starts and copied back when it ends. 1x single-aspect
 // attachments are rendered in place.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -88,19 +89,60 @@ std::optional<DrawOrigin> interrupted_draw(const DrawContext& ctx) {
 
 namespace {
 
-void copy_planes(Staged& s, bool to_staging) {
-    const rast::render::StageScope timed(rast::render::Stage::kAttach);
+// One row of one sample: w elements between the image (img, img_step bytes apart) and the plane (pl, elem bytes
+// apart). N is the element's copied bytes when the compiler may inline the copy, 0 for any other count n.
+template <size_t N>
+void copy_row(uint8_t* img, size_t img_step, uint8_t* pl, size_t elem, uint32_t w, size_t n, bool to_staging) {
+    const size_t bytes = N ? N : n;
+    if (to_staging) {
+        for (uint32_t x = 0; x < w; ++x) std::memcpy(pl + x * elem, img + x * img_step, bytes);
+    } else {
+        for (uint32_t x = 0; x < w; ++x) std::memcpy(img + x * img_step, pl + x * elem, bytes);
+    }
+}
+
+// Copies rows [y0, y1) of every sample between the image and its staging planes.
+void copy_plane_rows(Staged& s, bool to_staging, uint32_t y0, uint32_t y1) {
     const size_t plane_size = size_t(s.w) * s.h * s.elem;
+    const size_t img_step = size_t(s.samples) * s.texel_bytes;
+    auto row_copier = [&s]() {
+        switch (s.copy_bytes) {
+            case 1:
+                return &copy_row<1>;
+            case 2:
+                return &copy_row<2>;
+            case 4:
+                return &copy_row<4>;
+            case 8:
+                return &copy_row<8>;
+            case 16:
+                return &copy_row<16>;
+            default:
+                return &copy_row<0>;
+        }
+    };
+    const auto copy = row_copier();
     for (uint32_t sm = 0; sm < s.samples; ++sm)
-        for (uint32_t y = 0; y < s.h; ++y)
-            for (uint32_t x = 0; x < s.w; ++x) {
-                uint8_t* img = s.image + y * s.row_pitch + (size_t(x) * s.samples + sm) * s.texel_bytes + s.byte_offset;
-                uint8_t* pl = s.plane.data() + sm * plane_size + (size_t(y) * s.w + x) * s.elem;
-                if (to_staging)
-                    std::memcpy(pl, img, s.copy_bytes);
-                else
-                    std::memcpy(img, pl, s.copy_bytes);
-            }
+        for (uint32_t y = y0; y < y1; ++y) {
+            uint8_t* img = s.image + y * s.row_pitch + size_t(sm) * s.texel_bytes + s.byte_offset;
+            uint8_t* pl = s.plane.data() + sm * plane_size + size_t(y) * s.w * s.elem;
+            copy(img, img_step, pl, s.elem, s.w, s.copy_bytes, to_staging);
+        }
+}
+
+// Bands of rows on the pool's workers: each band is its own rows of image and planes.
+void copy_planes(rast::ThreadPool& pool, Staged& s, bool to_staging) {
+    const rast::render::StageScope timed(rast::render::Stage::kAttach);
+    constexpr uint32_t kBandRows = 32;
+    const size_t bands = (s.h + kBandRows - 1) / kBandRows;
+    if (bands <= 1 || pool.num_workers() == 1) {
+        copy_plane_rows(s, to_staging, 0, s.h);
+        return;
+    }
+    pool.run(bands, [&](unsigned, size_t band) {
+        const uint32_t y0 = uint32_t(band) * kBandRows;
+        copy_plane_rows(s, to_staging, y0, std::min(s.h, y0 + kBandRows));
+    });
 }
 
 // Points the renderer at one aspect of a view: in place when the image layout already is a sample plane,
@@ -130,7 +172,7 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t 
     s.plane.resize(size_t(w) * h * elem * s.samples);
     // The bytes of an element past copy_bytes (X8D24: the top byte) must read 0; a reused plane holds old ones.
     if (copy_bytes < elem) std::memset(s.plane.data(), 0, s.plane.size());
-    copy_planes(s, true);
+    copy_planes(ctx.pool, s, true);
     return {s.plane.data(), size_t(w) * elem, size_t(w) * h * elem};
 }
 
@@ -374,7 +416,7 @@ void finish_rendering(ExecState& st) {
     DrawContext& ctx = *st.draw;
     if (ctx.active) {
         ctx.renderer.end();
-        for (size_t i = 0; i < ctx.staged.size(); ++i) copy_planes(ctx.staged[i], false);
+        for (size_t i = 0; i < ctx.staged.size(); ++i) copy_planes(ctx.pool, ctx.staged[i], false);
         ctx.staged.clear();
         ctx.states.clear();
         ctx.current_state = nullptr;

@@ -67,10 +67,40 @@ bool resolve_pixel(ColorFormat f, const uint8_t* const samples[kMaxSamples], uin
     return true;
 }
 
+namespace {
+
+// Formats whose every byte is one UNORM8 channel (R8 ... R8G8B8A8, B8G8R8A8, A8B8G8R8_UNORM_PACK32): resolve_pixel
+// then does the same to each byte, which resolve_unorm8_row does without decoding texels one at a time.
+bool bytewise_unorm8(const FormatInfo& fi) {
+    return fi.kind == format::ChannelKind::Unorm8 && fi.channels == fi.bytes;
+}
+
+// resolve_pixel on the `bytes`-byte texels of one row, w pixels: per byte the same float operations (decode
+// fl(u * fl(1/255)), a sum in sample order from 0, * 0.25, float_to_unorm8 as encode_color's default path).
+void resolve_unorm8_row(const uint8_t* src, size_t sample_stride, size_t src_step, uint8_t* dst, size_t bytes, int w) {
+    for (int x = 0; x < w; ++x) {
+        const uint8_t* p = src + size_t(x) * src_step;
+        for (size_t c = 0; c < bytes; ++c) {
+            float sum = 0.0f;
+            for (int s = 0; s < kMaxSamples; ++s) sum = sum + format::unorm8_to_float(p[s * sample_stride + c]);
+            dst[size_t(x) * bytes + c] = format::float_to_unorm8(sum * 0.25f);
+        }
+    }
+}
+
+}  // namespace
+
 void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_t src_pitch, uint8_t* dst,
                   size_t dst_pitch, int w, int h, bool fused, size_t pixel_stride) {
-    const size_t bpp = format_info(f).bytes;
+    const FormatInfo& fi = format_info(f);
+    const size_t bpp = fi.bytes;
     const size_t src_step = pixel_stride ? pixel_stride : bpp;
+    if (bytewise_unorm8(fi)) {
+        for (int y = 0; y < h; ++y)
+            resolve_unorm8_row(src + size_t(y) * src_pitch, sample_stride, src_step, dst + size_t(y) * dst_pitch, bpp,
+                               w);
+        return;
+    }
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const uint8_t* base = src + size_t(y) * src_pitch + size_t(x) * src_step;

@@ -84,6 +84,39 @@ TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
     }
 }
 
+// resolve_rect's row path for formats made of UNORM8 bytes is a twin of resolve_pixel: equal on every pixel, in
+// the icd/ layout (a pixel's samples adjacent) and in sample planes, with padding between rows.
+TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
+    std::mt19937 rng(7);
+    const ColorFormat formats[] = {ColorFormat::R8G8B8A8_UNORM, ColorFormat::B8G8R8A8_UNORM,
+                                   ColorFormat::R8_UNORM,       ColorFormat::R8G8_UNORM,
+                                   ColorFormat::R8G8B8A8_SRGB,  ColorFormat::R16G16B16A16_SFLOAT};
+    const int w = 37, h = 5;
+    for (ColorFormat f : formats) {
+        const size_t bpp = format_info(f).bytes;
+        for (bool adjacent : {true, false}) {
+            const size_t sample_stride = adjacent ? bpp : size_t(h) * (w * bpp + 3);
+            const size_t pitch = adjacent ? w * 4 * bpp + 5 : w * bpp + 3;
+            const size_t pixel_stride = adjacent ? 4 * bpp : 0;
+            std::vector<uint8_t> src(4 * size_t(h) * (w * 4 * bpp + 5));
+            for (uint8_t& b : src) b = uint8_t(rng() % 4 == 0 ? 255 * (rng() & 1) : rng());
+            if (f == ColorFormat::R16G16B16A16_SFLOAT)  // finite halves only: keep NaN payloads out of the compare
+                for (size_t i = 1; i < src.size(); i += 2) src[i] &= 0x7b;
+            const size_t dst_pitch = w * bpp + 7;
+            std::vector<uint8_t> got(size_t(h) * dst_pitch, 0xcd), want(got);
+            resolve_rect(f, src.data(), sample_stride, pitch, got.data(), dst_pitch, w, h, true, pixel_stride);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const uint8_t* base = src.data() + y * pitch + x * (adjacent ? pixel_stride : bpp);
+                    const uint8_t* p[4] = {base, base + sample_stride, base + 2 * sample_stride,
+                                           base + 3 * sample_stride};
+                    resolve_pixel(f, p, want.data() + y * dst_pitch + x * bpp, true);
+                }
+            EXPECT_EQ(got, want) << "format " << int(f) << (adjacent ? " adjacent samples" : " sample planes");
+        }
+    }
+}
+
 TEST(FragmentMsaa, ResolveFloatFormats) {
     const float s[4] = {1.0f, 2.0f, 1e-8f, 3.0f};
     const uint8_t* p[4];
