@@ -89,22 +89,27 @@ std::optional<DrawOrigin> interrupted_draw(const DrawContext& ctx) {
 
 namespace {
 
-// One row of one sample: w elements between the image (img, img_step bytes apart) and the plane (pl, elem bytes
-// apart). N is the element's copied bytes when the compiler may inline the copy, 0 for any other count n.
+// One row of every sample: w pixels between the image (a pixel's samples adjacent, img_step bytes per pixel) and
+// the planes (plane_size bytes apart, elements elem bytes apart), one pass over the image row. N is the element's
+// copied bytes when the compiler may inline the copy, 0 for any other count.
 template <size_t N>
-void copy_row(uint8_t* img, size_t img_step, uint8_t* pl, size_t elem, uint32_t w, size_t n, bool to_staging) {
-    const size_t bytes = N ? N : n;
-    if (to_staging) {
-        for (uint32_t x = 0; x < w; ++x) std::memcpy(pl + x * elem, img + x * img_step, bytes);
-    } else {
-        for (uint32_t x = 0; x < w; ++x) std::memcpy(img + x * img_step, pl + x * elem, bytes);
-    }
+void copy_row(const Staged& s, uint8_t* img, uint8_t* pl, size_t plane_size, bool to_staging) {
+    const size_t bytes = N ? N : s.copy_bytes;
+    const size_t img_step = size_t(s.samples) * s.texel_bytes;
+    for (uint32_t x = 0; x < s.w; ++x)
+        for (uint32_t sm = 0; sm < s.samples; ++sm) {
+            uint8_t* i = img + x * img_step + sm * s.texel_bytes;
+            uint8_t* p = pl + sm * plane_size + x * s.elem;
+            if (to_staging)
+                std::memcpy(p, i, bytes);
+            else
+                std::memcpy(i, p, bytes);
+        }
 }
 
 // Copies rows [y0, y1) of every sample between the image and its staging planes.
 void copy_plane_rows(Staged& s, bool to_staging, uint32_t y0, uint32_t y1) {
     const size_t plane_size = size_t(s.w) * s.h * s.elem;
-    const size_t img_step = size_t(s.samples) * s.texel_bytes;
     auto row_copier = [&s]() {
         switch (s.copy_bytes) {
             case 1:
@@ -122,12 +127,9 @@ void copy_plane_rows(Staged& s, bool to_staging, uint32_t y0, uint32_t y1) {
         }
     };
     const auto copy = row_copier();
-    for (uint32_t sm = 0; sm < s.samples; ++sm)
-        for (uint32_t y = y0; y < y1; ++y) {
-            uint8_t* img = s.image + y * s.row_pitch + size_t(sm) * s.texel_bytes + s.byte_offset;
-            uint8_t* pl = s.plane.data() + sm * plane_size + size_t(y) * s.w * s.elem;
-            copy(img, img_step, pl, s.elem, s.w, s.copy_bytes, to_staging);
-        }
+    for (uint32_t y = y0; y < y1; ++y)
+        copy(s, s.image + y * s.row_pitch + s.byte_offset, s.plane.data() + size_t(y) * s.w * s.elem, plane_size,
+             to_staging);
 }
 
 // Bands of rows on the pool's workers: each band is its own rows of image and planes.

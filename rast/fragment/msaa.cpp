@@ -3,6 +3,10 @@
 #include <cmath>
 #include <cstring>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <emmintrin.h>
+#endif
+
 namespace tilevk::rast::fragment {
 
 namespace {
@@ -75,18 +79,45 @@ bool bytewise_unorm8(const FormatInfo& fi) {
     return fi.kind == format::ChannelKind::Unorm8 && fi.channels == fi.bytes;
 }
 
-// resolve_pixel on the `bytes`-byte texels of one row, w pixels: per byte the same float operations (decode
-// fl(u * fl(1/255)), a sum in sample order from 0, * 0.25, float_to_unorm8 as encode_color's default path).
-void resolve_unorm8_row(const uint8_t* src, size_t sample_stride, size_t src_step, uint8_t* dst, size_t bytes, int w) {
+// resolve_pixel on the BYTES-byte texels of one row, w pixels: per byte the same float operations (decode
+// fl(u * fl(1/255)), a sum in sample order from 0, * 0.25, float_to_unorm8 as encode_color's default path). BYTES
+// is a constant so that the compiler can do a texel's bytes side by side.
+template <size_t BYTES>
+void resolve_unorm8_row(const uint8_t* src, size_t sample_stride, size_t src_step, uint8_t* dst, int w) {
     for (int x = 0; x < w; ++x) {
         const uint8_t* p = src + size_t(x) * src_step;
-        for (size_t c = 0; c < bytes; ++c) {
-            float sum = 0.0f;
-            for (int s = 0; s < kMaxSamples; ++s) sum = sum + format::unorm8_to_float(p[s * sample_stride + c]);
-            dst[size_t(x) * bytes + c] = format::float_to_unorm8(sum * 0.25f);
-        }
+        float sum[BYTES] = {};
+        for (int s = 0; s < kMaxSamples; ++s)
+            for (size_t c = 0; c < BYTES; ++c) sum[c] = sum[c] + format::unorm8_to_float(p[s * sample_stride + c]);
+        for (size_t c = 0; c < BYTES; ++c) dst[size_t(x) * BYTES + c] = format::float_to_unorm8(sum[c] * 0.25f);
     }
 }
+
+#if defined(__x86_64__) || defined(__i386__)
+// resolve_unorm8_row<4> with a texel's four bytes in SSE2 lanes, each lane doing what the scalar row does:
+// cvtdq2ps (exact on bytes) * fl(1/255), addps in sample order from 0, * 0.25, min.ps(1.0, x), * 255, cvtps2dq,
+// then packssdw + packuswb = pack_sat_u8.
+template <>
+void resolve_unorm8_row<4>(const uint8_t* src, size_t sample_stride, size_t src_step, uint8_t* dst, int w) {
+    const __m128 k = _mm_set1_ps(float(1.0 / 255.0)), quarter = _mm_set1_ps(0.25f), one = _mm_set1_ps(1.0f),
+                 scale = _mm_set1_ps(255.0f);
+    const __m128i zero = _mm_setzero_si128();
+    for (int x = 0; x < w; ++x) {
+        const uint8_t* p = src + size_t(x) * src_step;
+        __m128 sum = _mm_setzero_ps();
+        for (int s = 0; s < kMaxSamples; ++s) {
+            int32_t word;
+            std::memcpy(&word, p + s * sample_stride, 4);
+            const __m128i bytes = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(word), zero), zero);
+            sum = _mm_add_ps(sum, _mm_mul_ps(_mm_cvtepi32_ps(bytes), k));
+        }
+        const __m128 a = _mm_min_ps(one, _mm_mul_ps(sum, quarter));  // minps(1, x): 1 < x ? 1 : x
+        const __m128i q = _mm_cvtps_epi32(_mm_mul_ps(a, scale));
+        const int32_t out = _mm_cvtsi128_si32(_mm_packus_epi16(_mm_packs_epi32(q, q), zero));
+        std::memcpy(dst + size_t(x) * 4, &out, 4);
+    }
+}
+#endif
 
 }  // namespace
 
@@ -96,9 +127,12 @@ void resolve_rect(ColorFormat f, const uint8_t* src, size_t sample_stride, size_
     const size_t bpp = fi.bytes;
     const size_t src_step = pixel_stride ? pixel_stride : bpp;
     if (bytewise_unorm8(fi)) {
+        auto row = bpp == 4   ? &resolve_unorm8_row<4>
+                   : bpp == 3 ? &resolve_unorm8_row<3>
+                   : bpp == 2 ? &resolve_unorm8_row<2>
+                              : &resolve_unorm8_row<1>;
         for (int y = 0; y < h; ++y)
-            resolve_unorm8_row(src + size_t(y) * src_pitch, sample_stride, src_step, dst + size_t(y) * dst_pitch, bpp,
-                               w);
+            row(src + size_t(y) * src_pitch, sample_stride, src_step, dst + size_t(y) * dst_pitch, w);
         return;
     }
     for (int y = 0; y < h; ++y) {

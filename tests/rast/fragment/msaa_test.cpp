@@ -88,9 +88,10 @@ TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
 // the icd/ layout (a pixel's samples adjacent) and in sample planes, with padding between rows.
 TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
     std::mt19937 rng(7);
-    const ColorFormat formats[] = {ColorFormat::R8G8B8A8_UNORM, ColorFormat::B8G8R8A8_UNORM,
-                                   ColorFormat::R8_UNORM,       ColorFormat::R8G8_UNORM,
-                                   ColorFormat::R8G8B8A8_SRGB,  ColorFormat::R16G16B16A16_SFLOAT};
+    const ColorFormat formats[] = {ColorFormat::R8G8B8A8_UNORM,     ColorFormat::B8G8R8A8_UNORM,
+                                   ColorFormat::R8_UNORM,           ColorFormat::R8G8_UNORM,
+                                   ColorFormat::R8G8B8_UNORM,       ColorFormat::R8G8B8A8_SRGB,
+                                   ColorFormat::R16G16B16A16_SFLOAT};
     const int w = 37, h = 5;
     for (ColorFormat f : formats) {
         const size_t bpp = format_info(f).bytes;
