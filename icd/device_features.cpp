@@ -67,6 +67,8 @@ Features make_supported() {
     f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
+    f.core.v11.shaderDrawParameters = VK_TRUE;
     f.core.v12.drawIndirectCount = VK_TRUE;  // vkCmdDraw[Indexed]IndirectCount: the count read at execution
     f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker

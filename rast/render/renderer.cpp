@@ -328,6 +328,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     vcfg.clip.clip_halfz = pipe.clip_halfz;
     vcfg.first_instance = call.first_instance;
     vcfg.base_vertex = call.indexed ? static_cast<uint32_t>(call.vertex_offset) : call.first;
+    vcfg.draw_index = call.draw_index;
     vcfg.stop = stop_;
 
     const geometry::VertexLayout layout = rec.varyings.layout();

@@ -3,6 +3,7 @@
 // values computed here.
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
+#include "ab_draw_params_vert.h"
 #include "ab_ubo_std430_frag.h"
 
 namespace tilevk::test::breadth {
@@ -171,6 +172,57 @@ TEST_F(ApiSmallExtensions, UniformBufferStandardLayout) {
         EXPECT_EQ(px[2], 12.0f) << x;
         EXPECT_EQ(px[3], 14.0f) << x;
     }
+}
+
+// VK_KHR_shader_draw_parameters: ab_draw_params.vert places each draw's instances in cells chosen by DrawIndex and
+// colours them by DrawIndex, BaseVertex and BaseInstance; a direct draw (DrawIndex 0), three records of
+// vkCmdDrawIndirect (DrawIndex 0, 1, 2, with their own firstVertex and firstInstance) and two of
+// vkCmdDrawIndexedIndirect (vertexOffset as BaseVertex), each into its own target.
+TEST_F(ApiSmallExtensions, ShaderDrawParameters) {
+    // The extension alone enables the built-ins for a Vulkan 1.0 device (its feature struct is Vulkan 1.1's).
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.features.multiDrawIndirect = VK_TRUE;
+    f2.features.drawIndirectFirstInstance = VK_TRUE;
+    auto dev = devices({VK_KHR_SHADER_DRAW_PARAMETERS_EXTENSION_NAME}, &f2);
+    ASSERT_TRUE(dev->ok());
+    const Bytes b = both_on(dev->tilevk, dev->lavapipe, [](Kit& k) {
+        Bytes out;
+        for (int kind = 0; kind < 3; ++kind) {
+            Target t = target(k);
+            Pipe p = fullscreen_pipe(SPV(color_frag), t, VK_NULL_HANDLE);
+            p.vs = SPV(ab_draw_params_vert);
+            p.layout = k.pipeline_layout({});
+            VkPipeline pipe = k.pipeline(p);
+            const VkDrawIndirectCommand draws[3] = {{3, 2, 0, 0}, {3, 3, 5, 7}, {3, 1, 12, 20}};
+            const VkDrawIndexedIndirectCommand indexed[2] = {{3, 2, 0, 4, 1}, {3, 4, 0, 30, 11}};
+            Device::Buffer ind = k.buffer(sizeof draws + sizeof indexed, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+            std::memcpy(ind.map, draws, sizeof draws);
+            std::memcpy(static_cast<uint8_t*>(ind.map) + sizeof draws, indexed, sizeof indexed);
+            Device::Buffer ib = k.buffer_of(std::vector<uint32_t>{0, 1, 2}, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                if (kind == 0) vkCmdDraw(c, 3, 2, 9, 6);
+                if (kind == 1) vkCmdDrawIndirect(c, ind.buffer, 0, 3, sizeof(VkDrawIndirectCommand));
+                if (kind == 2) {
+                    vkCmdBindIndexBuffer(c, ib.buffer, 0, VK_INDEX_TYPE_UINT32);
+                    vkCmdDrawIndexedIndirect(c, ind.buffer, sizeof draws, 2, sizeof(VkDrawIndexedIndirectCommand));
+                }
+                vkCmdEndRenderPass(c);
+            }),
+                      VK_SUCCESS);
+            const Bytes img = k.read(t.image.image, 32, 32, 4);
+            out.insert(out.end(), img.begin(), img.end());
+        }
+        return out;
+    });
+    ASSERT_EQ(b.size(), 3u * 32 * 32 * 4);
+    // Cell (column c, row r) is 8x8 pixels; a pixel inside the triangle of cell (1, 1) of the indirect target is
+    // draw 1's second instance: DrawIndex 1 (red 32), BaseVertex 5 (green 20), BaseInstance 7 (blue 28).
+    const uint8_t* p = px(b, 1 * 8 + 1, 1 * 8 + 1) + 32 * 32 * 4;
+    EXPECT_EQ(p[0], 32);
+    EXPECT_EQ(p[1], 20);
+    EXPECT_EQ(p[2], 28);
 }
 
 }  // namespace
