@@ -39,6 +39,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice,
     dev->queue->device = dev;
     try {
         dev->queue->timeout = std::make_unique<SubmitTimeout>(device_timeout_from_env());
+        dev->queue->scheduler = std::make_unique<QueueScheduler>(*dev->queue);
     } catch (const std::bad_alloc&) {
         destroy_object(dev->queue);
         destroy_object(dev);
@@ -51,7 +52,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice,
 VKAPI_ATTR void VKAPI_CALL tvk_DestroyDevice(VkDevice device, const VkAllocationCallbacks*) {
     Device* dev = from_handle<Device>(device);
     if (dev == nullptr) return;
-    if (dev->queue) destroy_draw_context(dev->queue->draw);
+    if (dev->queue) {
+        dev->queue->scheduler.reset();  // stops the worker before the renderer it uses goes
+        destroy_draw_context(dev->queue->draw);
+    }
     destroy_object(dev->queue);
     destroy_object(dev);
 }
@@ -61,10 +65,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceQueue(VkDevice device, uint32_t, uint32_
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_DeviceWaitIdle(VkDevice device) {
-    // Submissions execute synchronously inside vkQueueSubmit; taking the queue lock waits for one in flight.
-    Device* dev = from_handle<Device>(device);
-    std::lock_guard<std::mutex> lock(dev->queue->submit_mutex);
-    return dev->lost ? VK_ERROR_DEVICE_LOST : VK_SUCCESS;
+    // The device's one queue: its worker's batches, then a submission in flight on another thread.
+    return tvk_QueueWaitIdle(to_handle(from_handle<Device>(device)->queue));
 }
 
 }  // namespace tilevk::icd

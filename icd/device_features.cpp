@@ -67,8 +67,13 @@ Features make_supported() {
     f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
-    f.core.v12.drawIndirectCount = VK_TRUE;             // vkCmdDraw[Indexed]IndirectCount: the count read at execution
-    f.core.v12.hostQueryReset = VK_TRUE;                // vkResetQueryPool: the reset vkCmdResetQueryPool does
+    // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
+    f.core.v11.shaderDrawParameters = VK_TRUE;
+    f.core.v12.drawIndirectCount = VK_TRUE;  // vkCmdDraw[Indexed]IndirectCount: the count read at execution
+    f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
+    f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
+    // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).
+    f.core.v12.uniformBufferStandardLayout = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN

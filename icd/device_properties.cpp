@@ -50,7 +50,8 @@ void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
     p.supportedStencilResolveModes = 0;
     p.filterMinmaxSingleComponentFormats = VK_FALSE;
     p.filterMinmaxImageComponentMapping = VK_FALSE;
-    p.maxTimelineSemaphoreValueDifference = 0;  // no timeline semaphores
+    // Counters are compared as 64-bit values, never as differences: any distance works (lavapipe: UINT64_MAX).
+    p.maxTimelineSemaphoreValueDifference = UINT64_MAX;
     p.framebufferIntegerColorSampleCounts = VK_SAMPLE_COUNT_1_BIT;
 }
 

@@ -636,6 +636,7 @@ void draw_indirect(ExecState& st, const Buffer* buffer, VkDeviceSize offset, uin
         call.indexed = kIndexed;
         call.instance_count = d.instanceCount;
         call.first_instance = d.firstInstance;
+        call.draw_index = i;
         if constexpr (kIndexed) {
             call.count = d.indexCount;
             call.first = d.firstIndex;

@@ -40,9 +40,15 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     // past its maxExtent/maxMipLevels/maxArrayLayers/sampleCounts (maxImageDimension2D included), is refused here
     // with the query's own code, VK_ERROR_FORMAT_NOT_SUPPORTED (vkCreateImage has no code of its own for invalid
     // parameters; this beats a half-working image).
+    // VK_EXT_separate_stencil_usage: the stencil aspect's usage must be supported too (tilevk's format support is
+    // per format, so the image must allow the union of both usages, as vkGetPhysicalDeviceImageFormatProperties2
+    // checks it).
+    const auto* stencil =
+        find_in_chain<VkImageStencilUsageCreateInfo>(ci->pNext, VK_STRUCTURE_TYPE_IMAGE_STENCIL_USAGE_CREATE_INFO);
+    const VkImageUsageFlags usage = ci->usage | (stencil != nullptr ? stencil->stencilUsage : 0);
     VkImageFormatProperties props{};
     const VkResult supported = tvk_GetPhysicalDeviceImageFormatProperties(
-        to_handle(dev->physical_device), ci->format, ci->imageType, ci->tiling, ci->usage, ci->flags, &props);
+        to_handle(dev->physical_device), ci->format, ci->imageType, ci->tiling, usage, ci->flags, &props);
     if (supported != VK_SUCCESS || ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.depth != 1 ||
         ci->extent.width > props.maxExtent.width || ci->extent.height > props.maxExtent.height || ci->mipLevels == 0 ||
         ci->mipLevels > props.maxMipLevels || ci->arrayLayers == 0 || ci->arrayLayers > props.maxArrayLayers ||
@@ -52,7 +58,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
                     "%u layers, %s: not supported (vkGetPhysicalDeviceImageFormatProperties: %s; maxExtent "
                     "%ux%u, %u levels, %u layers, sample counts %s)",
                     vk_enum_name(ci->imageType), vk_enum_name(ci->format), vk_enum_name(ci->tiling),
-                    vk_flags_name<VkImageUsageFlagBits>(ci->usage).c_str(),
+                    vk_flags_name<VkImageUsageFlagBits>(usage).c_str(),
                     vk_flags_name<VkImageCreateFlagBits>(ci->flags).c_str(), ci->extent.width, ci->extent.height,
                     ci->extent.depth, ci->mipLevels, ci->arrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(ci->samples).c_str(),

@@ -33,6 +33,14 @@ struct NonDispatchableObject {
     explicit NonDispatchableObject(VkObjectType t) : object_type(t) {}
 };
 
+// The struct of type `t` in a const pNext chain, or nullptr.
+template <class T>
+const T* find_in_chain(const void* chain, VkStructureType t) {
+    for (auto* s = static_cast<const VkBaseInStructure*>(chain); s != nullptr; s = s->pNext)
+        if (s->sType == t) return reinterpret_cast<const T*>(s);
+    return nullptr;
+}
+
 // ---- host allocation ------------------------------------------------------------------------------------------
 const VkAllocationCallbacks& default_allocator();
 // The callbacks to use: the application's if given, else the parent's, else the defaults.

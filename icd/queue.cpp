@@ -1,13 +1,12 @@
-// vkQueueSubmit / vkQueueWaitIdle: command buffers run synchronously, in order, on the submitting thread.
-#include "command_buffer.h"
-
+// vkQueueSubmit / vkQueueWaitIdle: a batch runs on the submitting thread when nothing is queued ahead of it and
+// its timeline waits are reached; otherwise it and the batches after it wait for the queue's worker
+// (queue_scheduler.h), which runs them in order.
 #include <cstdint>
-#include <optional>
-#include <vector>
+#include <new>
 
 #include "device.h"
 #include "entrypoints.h"
-#include "execute.h"
+#include "queue_scheduler.h"
 #include "rast/render/stage_timer.h"
 #include "sync.h"
 
@@ -15,21 +14,75 @@ namespace tilevk::icd {
 
 namespace {
 
-// The one stderr line of a device loss: the limit, and what the renderer was working on when it passed.
-void report_timeout(const Queue& q, uint32_t submit, uint32_t command_buffer) {
-    const long long ms = static_cast<long long>(q.timeout->limit().count());
-    if (const std::optional<DrawOrigin> d = interrupted_draw(*q.draw)) {
-        log_error(
-            "vkQueueSubmit: the submission ran longer than the device timeout (%lld ms, TILEVK_DEVICE_TIMEOUT_MS), "
-            "interrupted in draw %u of pSubmits[%u].pCommandBuffers[%u] (VkPipeline 0x%llx); the device is lost",
-            ms, d->draw, d->submit, d->command_buffer,
-            static_cast<unsigned long long>(reinterpret_cast<uintptr_t>(d->pipeline)));
-    } else {
-        log_error(
-            "vkQueueSubmit: the submission ran longer than the device timeout (%lld ms, TILEVK_DEVICE_TIMEOUT_MS), "
-            "interrupted in pSubmits[%u].pCommandBuffers[%u]; the device is lost",
-            ms, submit, command_buffer);
+const VkTimelineSemaphoreSubmitInfo* timeline_values(const VkSubmitInfo& s) {
+    return find_in_chain<VkTimelineSemaphoreSubmitInfo>(s.pNext, VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO);
+}
+
+uint64_t value_at(const uint64_t* values, uint32_t count, uint32_t j) {
+    return j < count ? values[j] : 0;
+}
+
+// The submission's semaphores as the scheduler's (wait, signal) lists; values of binary semaphores are ignored.
+void copy_semaphores(const VkSubmitInfo& s, Batch* b) {
+    const VkTimelineSemaphoreSubmitInfo* t = timeline_values(s);
+    for (uint32_t j = 0; j < s.waitSemaphoreCount; ++j) {
+        b->waits.push_back({from_handle<Semaphore>(s.pWaitSemaphores[j]),
+                            t ? value_at(t->pWaitSemaphoreValues, t->waitSemaphoreValueCount, j) : 0});
     }
+    for (uint32_t j = 0; j < s.signalSemaphoreCount; ++j) {
+        b->signals.push_back({from_handle<Semaphore>(s.pSignalSemaphores[j]),
+                              t ? value_at(t->pSignalSemaphoreValues, t->signalSemaphoreValueCount, j) : 0});
+    }
+}
+
+// A batch that runs now: its binary waits are consumed (their signals were submitted earlier, so they have run).
+void consume_binary_waits(const VkSubmitInfo& s) {
+    for (uint32_t j = 0; j < s.waitSemaphoreCount; ++j) {
+        Semaphore* sem = from_handle<Semaphore>(s.pWaitSemaphores[j]);
+        if (sem->type == VK_SEMAPHORE_TYPE_BINARY) sem->signaled = false;
+    }
+}
+
+void signal_submit(const VkSubmitInfo& s) {
+    const VkTimelineSemaphoreSubmitInfo* t = timeline_values(s);
+    for (uint32_t j = 0; j < s.signalSemaphoreCount; ++j) {
+        Semaphore* sem = from_handle<Semaphore>(s.pSignalSemaphores[j]);
+        if (sem->type == VK_SEMAPHORE_TYPE_TIMELINE) {
+            signal_timeline(sem, t ? value_at(t->pSignalSemaphoreValues, t->signalSemaphoreValueCount, j) : 0);
+        } else {
+            sem->signaled = true;
+        }
+    }
+}
+
+// Queues pSubmits[first, count) for the worker; the fence goes with the last one (or with an empty batch when
+// every submission ran but earlier batches are still queued).
+VkResult defer(QueueScheduler& sched, uint32_t first, uint32_t count, const VkSubmitInfo* pSubmits, Fence* fence) {
+    std::lock_guard<std::mutex> lock(sched.mutex);
+    if (first == count && sched.idle()) {
+        if (fence != nullptr) fence->signal();
+        return VK_SUCCESS;
+    }
+    try {
+        if (first == count) {
+            std::unique_ptr<Batch> b = sched.take_spare();
+            b->fence = fence;
+            sched.enqueue(std::move(b));
+        }
+        for (uint32_t i = first; i < count; ++i) {
+            std::unique_ptr<Batch> b = sched.take_spare();
+            const VkSubmitInfo& s = pSubmits[i];
+            copy_semaphores(s, b.get());
+            b->command_buffers.assign(s.pCommandBuffers, s.pCommandBuffers + s.commandBufferCount);
+            b->submit_index = i;
+            if (i + 1 == count) b->fence = fence;
+            sched.enqueue(std::move(b));
+        }
+    } catch (const std::bad_alloc&) {
+        return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkQueueSubmit: out of host memory queueing pSubmits[%u..%u)", first,
+                    count);
+    }
+    return VK_SUCCESS;
 }
 
 }  // namespace
@@ -38,52 +91,35 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit(VkQueue queue, uint32_t submitCou
                                                VkFence fence) {
     Queue* q = from_handle<Queue>(queue);
     std::lock_guard<std::mutex> lock(q->submit_mutex);
-    Device* dev = q->device;
-    if (dev->lost) {
+    Fence* f = fence != VK_NULL_HANDLE ? from_handle<Fence>(fence) : nullptr;
+    if (q->device->lost) {
         // Nothing runs on a lost device; the fence is signalled so that no waiter hangs.
-        if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
+        if (f != nullptr) f->signal();
         return VK_ERROR_DEVICE_LOST;
     }
-    if (q->draw == nullptr) q->draw = create_draw_context(q->timeout->flag());
-    begin_submission(*q->draw);
-    // The time limit covers the whole call: a GPU would reset after this long without the work finishing.
-    q->timeout->arm();
-    for (uint32_t i = 0; i < submitCount; ++i) {
+    QueueScheduler& sched = *q->scheduler;
+    uint32_t i = 0;
+    for (; i < submitCount; ++i) {
         const VkSubmitInfo& s = pSubmits[i];
-        // Waits on semaphores are satisfied: everything submitted earlier has already finished.
-        for (uint32_t j = 0; j < s.waitSemaphoreCount; ++j)
-            from_handle<Semaphore>(s.pWaitSemaphores[j])->signaled = false;
-        for (uint32_t j = 0; j < s.commandBufferCount; ++j) {
-            ExecState st;
-            st.draw = q->draw;
-            st.stop = q->timeout->flag();
-            st.submit_index = i;
-            st.command_buffer_index = j;
-            execute_command_buffer(from_handle<CommandBuffer>(s.pCommandBuffers[j]), st);
-            finish_queries(st);
-            if (q->timeout->expired()) {
-                // The work was cut short (shader runs ended at a loop back edge, tiles and draws skipped): its
-                // results are incomplete. A GPU would hang and reset; tilevk reports the device lost.
-                q->timeout->disarm();
-                report_timeout(*q, i, j);
-                dev->lost = true;
-                if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
-                return VK_ERROR_DEVICE_LOST;
-            }
+        {
+            std::lock_guard<std::mutex> state(sched.mutex);
+            if (!sched.idle() || !waits_reached(s)) break;  // wait-before-signal: the worker runs it later
         }
-        for (uint32_t j = 0; j < s.signalSemaphoreCount; ++j) {
-            from_handle<Semaphore>(s.pSignalSemaphores[j])->signaled = true;
+        consume_binary_waits(s);
+        if (!execute_batch(*q, i, s.commandBufferCount, s.pCommandBuffers)) {
+            if (f != nullptr) f->signal();
+            return VK_ERROR_DEVICE_LOST;
         }
+        signal_submit(s);
     }
-    q->timeout->disarm();
-    rast::render::report_stage_times();  // TILEVK_STAGE_TIMES (the frame benchmark); nothing when off
-    if (fence != VK_NULL_HANDLE) from_handle<Fence>(fence)->signal();
-    return VK_SUCCESS;
+    if (i > 0) rast::render::report_stage_times();  // TILEVK_STAGE_TIMES (the frame benchmark); nothing when off
+    return defer(sched, i, submitCount, pSubmits, f);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueWaitIdle(VkQueue queue) {
     Queue* q = from_handle<Queue>(queue);
-    std::lock_guard<std::mutex> lock(q->submit_mutex);
+    q->scheduler->wait_idle();                          // the worker's batches (dropped once the device is lost)
+    std::lock_guard<std::mutex> lock(q->submit_mutex);  // a submission running on another thread
     return q->device->lost ? VK_ERROR_DEVICE_LOST : VK_SUCCESS;
 }
 
@@ -95,33 +131,56 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueBindSparse(VkQueue, uint32_t bindInfoCou
                 bindInfoCount);
 }
 
-// synchronization2: each VkSubmitInfo2 is the VkSubmitInfo of the same semaphores and command buffers (binary
-// semaphores; their stage masks order nothing in a queue that runs submissions in order).
+// synchronization2: each VkSubmitInfo2 is the VkSubmitInfo of the same semaphores (with their timeline values)
+// and command buffers; stage masks order nothing in a queue that runs its batches in order. The translation lives
+// in the queue's scratch (the queue is externally synchronized), so a steady frame allocates nothing here.
 VKAPI_ATTR VkResult VKAPI_CALL tvk_QueueSubmit2(VkQueue queue, uint32_t submitCount, const VkSubmitInfo2* pSubmits,
                                                 VkFence fence) {
-    std::vector<VkSubmitInfo> infos(submitCount, {VK_STRUCTURE_TYPE_SUBMIT_INFO});
-    std::vector<std::vector<VkSemaphore>> waits(submitCount), signals(submitCount);
-    std::vector<std::vector<VkPipelineStageFlags>> stages(submitCount);
-    std::vector<std::vector<VkCommandBuffer>> buffers(submitCount);
+    Submit2Scratch& x = from_handle<Queue>(queue)->submit2;
+    VkSubmitInfo info0{};
+    info0.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    VkTimelineSemaphoreSubmitInfo timeline0{};
+    timeline0.sType = VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO;
+    x.infos.assign(submitCount, info0);
+    x.timelines.assign(submitCount, timeline0);
+    size_t waits = 0, signals = 0, buffers = 0;
+    for (uint32_t i = 0; i < submitCount; ++i) {
+        waits += pSubmits[i].waitSemaphoreInfoCount;
+        signals += pSubmits[i].signalSemaphoreInfoCount;
+        buffers += pSubmits[i].commandBufferInfoCount;
+    }
+    // Sized first: the VkSubmitInfos point into these arrays.
+    x.semaphores.resize(waits + signals);
+    x.values.resize(waits + signals);
+    x.stages.assign(waits, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+    x.buffers.resize(buffers);
+    size_t sem = 0, buf = 0;
     for (uint32_t i = 0; i < submitCount; ++i) {
         const VkSubmitInfo2& s = pSubmits[i];
-        for (uint32_t j = 0; j < s.waitSemaphoreInfoCount; ++j) {
-            waits[i].push_back(s.pWaitSemaphoreInfos[j].semaphore);
-            stages[i].push_back(VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+        VkSubmitInfo& info = x.infos[i];
+        VkTimelineSemaphoreSubmitInfo& t = x.timelines[i];
+        info.pNext = &t;
+        info.waitSemaphoreCount = t.waitSemaphoreValueCount = s.waitSemaphoreInfoCount;
+        info.pWaitSemaphores = x.semaphores.data() + sem;
+        info.pWaitDstStageMask = x.stages.data();  // every entry is ALL_COMMANDS, as many as all the waits
+        t.pWaitSemaphoreValues = x.values.data() + sem;
+        for (uint32_t j = 0; j < s.waitSemaphoreInfoCount; ++j, ++sem) {
+            x.semaphores[sem] = s.pWaitSemaphoreInfos[j].semaphore;
+            x.values[sem] = s.pWaitSemaphoreInfos[j].value;
         }
-        for (uint32_t j = 0; j < s.commandBufferInfoCount; ++j)
-            buffers[i].push_back(s.pCommandBufferInfos[j].commandBuffer);
-        for (uint32_t j = 0; j < s.signalSemaphoreInfoCount; ++j)
-            signals[i].push_back(s.pSignalSemaphoreInfos[j].semaphore);
-        infos[i].waitSemaphoreCount = uint32_t(waits[i].size());
-        infos[i].pWaitSemaphores = waits[i].data();
-        infos[i].pWaitDstStageMask = stages[i].data();
-        infos[i].commandBufferCount = uint32_t(buffers[i].size());
-        infos[i].pCommandBuffers = buffers[i].data();
-        infos[i].signalSemaphoreCount = uint32_t(signals[i].size());
-        infos[i].pSignalSemaphores = signals[i].data();
+        info.signalSemaphoreCount = t.signalSemaphoreValueCount = s.signalSemaphoreInfoCount;
+        info.pSignalSemaphores = x.semaphores.data() + sem;
+        t.pSignalSemaphoreValues = x.values.data() + sem;
+        for (uint32_t j = 0; j < s.signalSemaphoreInfoCount; ++j, ++sem) {
+            x.semaphores[sem] = s.pSignalSemaphoreInfos[j].semaphore;
+            x.values[sem] = s.pSignalSemaphoreInfos[j].value;
+        }
+        info.commandBufferCount = s.commandBufferInfoCount;
+        info.pCommandBuffers = x.buffers.data() + buf;
+        for (uint32_t j = 0; j < s.commandBufferInfoCount; ++j, ++buf)
+            x.buffers[buf] = s.pCommandBufferInfos[j].commandBuffer;
     }
-    return tvk_QueueSubmit(queue, submitCount, infos.data(), fence);
+    return tvk_QueueSubmit(queue, submitCount, x.infos.data(), fence);
 }
 
 }  // namespace tilevk::icd

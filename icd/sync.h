@@ -1,5 +1,6 @@
-// VkFence, VkSemaphore, VkEvent. Submissions run synchronously inside vkQueueSubmit, so a fence is signalled
-// before vkQueueSubmit returns; the condition variable serves submissions made from other threads.
+// VkFence, VkSemaphore (binary and timeline), VkEvent. A submission whose waits are satisfied runs inside
+// vkQueueSubmit; one that waits for a timeline value not yet reached runs later on the queue's worker
+// (queue_scheduler.h), which signals its semaphores and fence: the condition variables serve those waits.
 #pragma once
 #include <atomic>
 #include <condition_variable>
@@ -20,11 +21,20 @@ struct Fence : NonDispatchableObject {
     void signal();
 };
 
+struct Device;
+
 struct Semaphore : NonDispatchableObject {
     using Handle = VkSemaphore;
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_SEMAPHORE;
     Semaphore() : NonDispatchableObject(kType) {}
-    bool signaled = false;  // informational: waits are satisfied by in-order execution on the one queue
+    Device* device = nullptr;
+    VkSemaphoreType type = VK_SEMAPHORE_TYPE_BINARY;
+    // Binary: informational (a binary wait is satisfied by in-order execution on the one queue: its signal was
+    // submitted earlier, VUID-vkQueueSubmit-pWaitSemaphores-03238).
+    bool signaled = false;
+    // Timeline: the counter. Written only under the queue scheduler's mutex (which wakes the waiters), read
+    // anywhere.
+    std::atomic<uint64_t> value{0};
 };
 
 struct Event : NonDispatchableObject {

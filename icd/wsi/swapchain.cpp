@@ -294,10 +294,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AcquireNextImageKHR(VkDevice device, VkSwapch
                                                       from_handle<Fence>(fence), pImageIndex);
 }
 
-// Every submission made earlier on this queue has finished (vkQueueSubmit is synchronous), so the wait semaphores
-// are satisfied and the images are final; the queue lock orders this call after one in flight (vkQueueWaitIdle).
+// Presents once every submission made earlier on this queue has finished (batches the worker holds for a timeline
+// value included: queue_scheduler.h), so the wait semaphores are satisfied and the images are final; the queue lock
+// orders this call after one in flight.
 VKAPI_ATTR VkResult VKAPI_CALL tvk_QueuePresentKHR(VkQueue queue, const VkPresentInfoKHR* pPresentInfo) {
     Queue* q = from_handle<Queue>(queue);
+    q->scheduler->wait_idle();
     std::lock_guard<std::mutex> lock(q->submit_mutex);
     for (uint32_t i = 0; i < pPresentInfo->waitSemaphoreCount; ++i) {
         from_handle<Semaphore>(pPresentInfo->pWaitSemaphores[i])->signaled = false;

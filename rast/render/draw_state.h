@@ -86,6 +86,9 @@ struct DrawCall {
     uint32_t first = 0;  // firstVertex / firstIndex
     int32_t vertex_offset = 0;
     uint32_t first_instance = 0;
+    // DrawIndex (SPIR-V): the draw's position within its vkCmdDraw*Indirect* call, 0 for direct draws; lavapipe
+    // runs an indirect call as one draw per record with that number (drawid).
+    uint32_t draw_index = 0;
     const uint8_t* index_data = nullptr;                                 // from the bind offset
     uint32_t index_bytes = 0;                                            // bytes available from index_data
     uint32_t index_size = 4;                                             // 1, 2 or 4

@@ -88,6 +88,7 @@ void shade_range(const VertexStageConfig& cfg, const Fetches& fetches, std::span
     shader::VertexBatch& batch = worker.batch;
     batch.base_vertex = cfg.base_vertex;
     batch.base_instance = cfg.first_instance;
+    batch.draw_index = cfg.draw_index;
     for (uint32_t first = first_vertex; first < end; first += shader::kLanes) {
         if (cfg.stop != nullptr && cfg.stop->load(std::memory_order_relaxed)) return;
         const uint32_t count = std::min<uint32_t>(shader::kLanes, end - first);

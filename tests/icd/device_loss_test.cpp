@@ -137,6 +137,81 @@ void endless_vertex_shader(Device& dev, uint32_t w, uint32_t h, uint32_t vertice
                         }));
 }
 
+// Timeline semaphores (queue_scheduler.h): a wait-before-signal batch that the host releases runs on the queue's
+// worker and loses the device there; nothing hangs: a host waiting for its signal gets VK_ERROR_DEVICE_LOST in
+// time, the batch queued behind it is dropped with its fence signalled, vkQueueWaitIdle answers VK_ERROR_DEVICE_LOST.
+TEST_F(DeviceLoss, QueuedTimelineBatchLosesTheDeviceWithoutHangingItsWaiters) {
+    VkPhysicalDeviceTimelineSemaphoreFeatures tf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES};
+    tf.timelineSemaphore = VK_TRUE;
+    Device dev(pd_, nullptr, {VK_KHR_TIMELINE_SEMAPHORE_EXTENSION_NAME}, &tf);
+    ASSERT_TRUE(dev.ok());
+    Kit k(dev);
+    auto signal = reinterpret_cast<PFN_vkSignalSemaphoreKHR>(vkGetDeviceProcAddr(k.d, "vkSignalSemaphoreKHR"));
+    auto wait = reinterpret_cast<PFN_vkWaitSemaphoresKHR>(vkGetDeviceProcAddr(k.d, "vkWaitSemaphoresKHR"));
+    ASSERT_NE(signal, nullptr);
+    ASSERT_NE(wait, nullptr);
+    VkSemaphoreTypeCreateInfo ti{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+    ti.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    sci.pNext = &ti;
+    VkSemaphore gate = VK_NULL_HANDLE, done = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSemaphore(k.d, &sci, nullptr, &gate), VK_SUCCESS);
+    ASSERT_EQ(vkCreateSemaphore(k.d, &sci, nullptr, &done), VK_SUCCESS);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateFence(k.d, &fci, nullptr, &fence), VK_SUCCESS);
+
+    Target t = target(k, VK_FORMAT_R8G8B8A8_UNORM, 64, 64);
+    VkPipeline pipe = k.pipeline(fullscreen(SPV(endless_frag), t));
+    VkCommandBuffer endless = record(k, [&](VkCommandBuffer c) { fullscreen_pass(c, t, pipe); });
+    const uint64_t one = 1, two = 2;
+    VkTimelineSemaphoreSubmitInfo tv{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    tv.waitSemaphoreValueCount = 1;
+    tv.pWaitSemaphoreValues = &one;
+    tv.signalSemaphoreValueCount = 1;
+    tv.pSignalSemaphoreValues = &one;
+    const VkPipelineStageFlags stage = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+    VkSubmitInfo first{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    first.pNext = &tv;
+    first.waitSemaphoreCount = 1;
+    first.pWaitSemaphores = &gate;
+    first.pWaitDstStageMask = &stage;
+    first.commandBufferCount = 1;
+    first.pCommandBuffers = &endless;
+    first.signalSemaphoreCount = 1;
+    first.pSignalSemaphores = &done;
+    VkTimelineSemaphoreSubmitInfo tv2{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    tv2.signalSemaphoreValueCount = 1;
+    tv2.pSignalSemaphoreValues = &two;
+    VkSubmitInfo second{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    second.pNext = &tv2;
+    second.signalSemaphoreCount = 1;
+    second.pSignalSemaphores = &done;
+    EXPECT_EQ(vkQueueSubmit(k.queue, 1, &first, VK_NULL_HANDLE), VK_SUCCESS);  // queued: the gate is at 0
+    EXPECT_EQ(vkQueueSubmit(k.queue, 1, &second, fence), VK_SUCCESS);
+    VkSemaphoreSignalInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_SIGNAL_INFO};
+    si.semaphore = gate;
+    si.value = 1;
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(signal(k.d, &si), VK_SUCCESS);
+    VkSemaphoreWaitInfo wi{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
+    wi.semaphoreCount = 1;
+    wi.pSemaphores = &done;
+    wi.pValues = &two;
+    EXPECT_EQ(wait(k.d, &wi, UINT64_MAX), VK_ERROR_DEVICE_LOST);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_GE(ms, kLimitMs);
+    EXPECT_LE(ms, kLimitMs + 1000) << "the waiter was released " << ms << " ms after the signal";
+    const VkResult fr = vkWaitForFences(k.d, 1, &fence, VK_TRUE, UINT64_MAX);
+    EXPECT_TRUE(fr == VK_SUCCESS || fr == VK_ERROR_DEVICE_LOST) << fr;
+    EXPECT_EQ(vkQueueWaitIdle(k.queue), VK_ERROR_DEVICE_LOST);
+    EXPECT_EQ(vkDeviceWaitIdle(k.d), VK_ERROR_DEVICE_LOST);
+    EXPECT_EQ(timed_submit(k, endless).first, VK_ERROR_DEVICE_LOST);
+    vkDestroyFence(k.d, fence, nullptr);
+    vkDestroySemaphore(k.d, gate, nullptr);
+    vkDestroySemaphore(k.d, done, nullptr);
+}
+
 TEST_F(DeviceLoss, EndlessVertexShaderSmallDraw) {
     endless_vertex_shader(*dev_, 16, 16, 3);
 }
