@@ -143,7 +143,7 @@ class Translator {
     bool op_fragment(const Instr& in);
     bool op_memory(const Instr& in);  // translate_memory.cpp
     bool op_image(const Instr& in);   // translate_image.cpp
-    bool op_atomic(const Instr& in);  // translate_memory.cpp: OpAtomic*, OpControlBarrier
+    bool op_atomic(const Instr& in);  // translate_atomic.cpp: OpAtomic*, OpControlBarrier
     uint32_t side_effect_mask();      // lanes whose buffer writes take effect (fragment: live ones only)
     bool image_sample(const Instr& in);
     void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450

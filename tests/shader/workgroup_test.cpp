@@ -4,6 +4,8 @@
 // writes see zeros) or if atomics lost updates.
 #include <gtest/gtest.h>
 
+#include <spirv-tools/libspirv.hpp>
+
 #include <algorithm>
 #include <numeric>
 #include <random>
@@ -323,4 +325,106 @@ TEST(ShaderWorkgroup, SharedMemoryIsPerWorkgroup) {
     Scratch s;
     dispatch(*p, b, 0, 3, 3, s);
     for (uint32_t i = 0; i < 12; ++i) EXPECT_EQ(y[i], 4 * (i / 4 + 1)) << i;
+}
+
+// The atomics GLSL does not emit (OpAtomicIIncrement, IDecrement, ISub, Load, Store), on a storage buffer and on
+// Workgroup memory, assembled by hand.
+TEST(ShaderWorkgroup, AtomicsGlslDoesNotEmit) {
+    const char* const text = R"(
+               OpCapability Shader
+               OpMemoryModel Logical GLSL450
+               OpEntryPoint GLCompute %main "main" %lid
+               OpExecutionMode %main LocalSize 20 1 1
+               OpDecorate %lid BuiltIn LocalInvocationIndex
+               OpDecorate %rt ArrayStride 4
+               OpMemberDecorate %blk 0 Offset 0
+               OpDecorate %blk BufferBlock
+               OpDecorate %buf DescriptorSet 0
+               OpDecorate %buf Binding 0
+       %void = OpTypeVoid
+         %fn = OpTypeFunction %void
+       %uint = OpTypeInt 32 0
+         %rt = OpTypeRuntimeArray %uint
+        %blk = OpTypeStruct %rt
+       %pblk = OpTypePointer Uniform %blk
+      %puint = OpTypePointer Uniform %uint
+        %pin = OpTypePointer Input %uint
+         %c0 = OpConstant %uint 0
+         %c1 = OpConstant %uint 1
+         %c2 = OpConstant %uint 2
+         %c3 = OpConstant %uint 3
+         %c4 = OpConstant %uint 4
+         %c5 = OpConstant %uint 5
+        %c10 = OpConstant %uint 10
+         %c8 = OpConstant %uint 8
+        %c32 = OpConstant %uint 32
+        %c56 = OpConstant %uint 56
+        %c80 = OpConstant %uint 80
+        %sem = OpConstant %uint 264
+        %arr = OpTypeArray %uint %c2
+       %psha = OpTypePointer Workgroup %arr
+        %psh = OpTypePointer Workgroup %uint
+        %buf = OpVariable %pblk Uniform
+        %lid = OpVariable %pin Input
+         %sh = OpVariable %psha Workgroup
+       %main = OpFunction %void None %fn
+      %entry = OpLabel
+          %i = OpLoad %uint %lid
+         %p0 = OpAccessChain %puint %buf %c0 %c0
+         %p1 = OpAccessChain %puint %buf %c0 %c1
+         %p2 = OpAccessChain %puint %buf %c0 %c2
+         %p3 = OpAccessChain %puint %buf %c0 %c3
+         %p4 = OpAccessChain %puint %buf %c0 %c4
+         %s1 = OpAccessChain %psh %sh %c1
+          %a = OpAtomicIIncrement %uint %p0 %c1 %c0
+          %b = OpAtomicIDecrement %uint %p1 %c1 %c0
+          %c = OpAtomicISub %uint %p2 %c1 %c0 %i
+               OpAtomicStore %p3 %c1 %c0 %c5
+          %d = OpAtomicLoad %uint %p4 %c1 %c0
+               OpAtomicStore %s1 %c2 %c0 %c10
+               OpControlBarrier %c2 %c2 %sem
+          %e = OpAtomicIIncrement %uint %s1 %c2 %c0
+          %f = OpAtomicISub %uint %s1 %c2 %c0 %i
+          %g = OpAtomicIDecrement %uint %s1 %c2 %c0
+               OpControlBarrier %c2 %c2 %sem
+          %h = OpAtomicLoad %uint %s1 %c2 %c0
+         %i8 = OpIAdd %uint %i %c8
+        %i32 = OpIAdd %uint %i %c32
+        %i56 = OpIAdd %uint %i %c56
+        %i80 = OpIAdd %uint %i %c80
+         %o8 = OpAccessChain %puint %buf %c0 %i8
+        %o32 = OpAccessChain %puint %buf %c0 %i32
+        %o56 = OpAccessChain %puint %buf %c0 %i56
+        %o80 = OpAccessChain %puint %buf %c0 %i80
+               OpStore %o8 %a
+               OpStore %o32 %d
+               OpStore %o56 %h
+               OpStore %o80 %e
+               OpReturn
+               OpFunctionEnd
+)";
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    std::string msg;
+    tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t&, const char* m) { msg += m; });
+    std::vector<uint32_t> words;
+    ASSERT_TRUE(tools.Assemble(text, &words)) << msg;
+    Result r = Program::create(words, Stage::Compute);
+    ASSERT_TRUE(r) << r.error;
+    std::vector<uint32_t> y(100, 0);
+    y[1] = 100, y[2] = 1000, y[4] = 77;
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*r.program, b, 0, 1, 1, s);
+    EXPECT_EQ(y[0], 20u);
+    EXPECT_EQ(y[1], 80u);
+    EXPECT_EQ(y[2], 1000u - 190u);  // minus 0 + 1 + ... + 19
+    EXPECT_EQ(y[3], 5u);
+    for (uint32_t i = 0; i < 20; ++i) {
+        EXPECT_EQ(y[8 + i], i);  // increments in lane order, batch 0 first
+        EXPECT_EQ(y[32 + i], 77u);
+        EXPECT_EQ(y[56 + i], 10u + 20u - 190u - 20u);
+        // no barrier between the three shared atomics: batch 0 (lanes 0-15) does all three before batch 1 starts
+        EXPECT_EQ(y[80 + i], i < 16 ? 10u + i : 10u + 16u - 120u - 16u + (i - 16u)) << i;
+    }
 }
