@@ -1,9 +1,10 @@
 // Dispatches at vkQueueSubmit: the bound compute pipeline's workgroups on the queue's worker threads (the
 // renderer's pool, idle outside render passes). A workgroup runs wholly on one worker, its invocations 16 lanes at a
-// time through the same shader engine as graphics (shader::Program::run_compute), batch after batch in
-// LocalInvocationIndex order. Workgroups are independent (no shared memory or barriers are accepted at pipeline
-// creation yet), so which worker runs which does not change any result: the bytes are the same for every thread
-// count.
+// time through the same shader engine as graphics (shader::Program::run_workgroup: its batches in
+// LocalInvocationIndex order, sharing one block of Workgroup memory, in lock-step between barriers). Workgroups see
+// each other only through storage-buffer atomics (real atomics), so which worker runs which changes nothing a
+// shader may rely on: results whose order the shader does not fix (sums, minima, ...) are the same for every
+// thread count.
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -79,22 +80,21 @@ void run_dispatch(ExecState& st, const uint32_t base[3], const uint32_t count[3]
     const std::atomic<bool>* stop = st.stop;
     const auto run_task = [&](unsigned, size_t task) {
         static thread_local shader::Scratch scratch;
+        static thread_local std::vector<shader::ComputeBatch> group;  // this workgroup's batches
         scratch.set_stop_flag(stop);
         program.reserve(scratch);
-        shader::ComputeBatch cb;
+        group = batches;
         const uint64_t first = groups * task / tasks, end = groups * (task + 1) / tasks;
         for (uint64_t g = first; g < end; ++g) {
             if (stop != nullptr && stop->load(std::memory_order_relaxed)) return;  // past the time limit
             const uint32_t id[3] = {uint32_t(g % count[0]), uint32_t(g / count[0] % count[1]),
                                     uint32_t(g / (uint64_t(count[0]) * count[1]))};
-            for (const shader::ComputeBatch& layout : batches) {
-                std::memcpy(&cb, &layout, sizeof cb);
+            for (shader::ComputeBatch& cb : group)
                 for (int i = 0; i < 3; ++i) {
                     cb.workgroup_id[i] = base[i] + id[i];
                     cb.num_workgroups[i] = count[i];
                 }
-                program.run_compute(bindings, cb, scratch);
-            }
+            program.run_workgroup(bindings, group, scratch);
         }
     };
     if (tasks == 1)

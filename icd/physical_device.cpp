@@ -58,7 +58,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxFragmentOutputAttachments = kMaxColorAttachments;
     l.maxFragmentDualSrcAttachments = 0;  // dualSrcBlend is off
     l.maxFragmentCombinedOutputResources = kMaxColorAttachments;
-    l.maxComputeSharedMemorySize = 16384;  // the minimum; Workgroup storage is refused at pipeline creation
+    l.maxComputeSharedMemorySize = kMaxComputeSharedMemorySize;  // checked at vkCreateComputePipelines
     for (int i = 0; i < 3; ++i) {
         l.maxComputeWorkGroupCount[i] = kMaxComputeWorkGroupCount;
         l.maxComputeWorkGroupSize[i] = kMaxComputeWorkGroupSize;

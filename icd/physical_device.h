@@ -21,6 +21,9 @@ constexpr uint32_t kMaxColorAttachments = 8;     // rast/render kMaxColorTargets
 constexpr uint32_t kMaxComputeWorkGroupInvocations = 1024;
 constexpr uint32_t kMaxComputeWorkGroupSize = 1024;  // each of x, y, z
 constexpr uint32_t kMaxComputeWorkGroupCount = 65535;
+// Workgroup variables of a compute pipeline, in bytes (shader/ packs them tightly, 4 bytes per 32-bit scalar, so a
+// shader within the limit under Vulkan's layout rules is within it here too); lavapipe's value.
+constexpr uint32_t kMaxComputeSharedMemorySize = 32768;
 
 struct PhysicalDevice : DispatchableObject {
     using Handle = VkPhysicalDevice;

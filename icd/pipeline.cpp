@@ -134,7 +134,9 @@ std::string translate_stages(Device& dev, const VkGraphicsPipelineCreateInfo& ci
     return {};
 }
 
-bool is_dynamic(const Pipeline& p, DynamicState d) { return (p.dynamic & dynamic_bit(d)) != 0; }
+bool is_dynamic(const Pipeline& p, DynamicState d) {
+    return (p.dynamic & dynamic_bit(d)) != 0;
+}
 
 // Vertex bindings and attributes (formats with VERTEX_BUFFER support only), topology and restart.
 std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
@@ -352,8 +354,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
 
 namespace {
 
-// The compute stage's program, checked against the limits tilevk reports (physical_device.h): a local size past
-// them is refused here, naming the limit, rather than run.
+// The compute stage's program, checked against the limits tilevk reports (physical_device.h): a local size or
+// Workgroup memory past them is refused here, naming the limit, rather than run.
 std::string build_compute_pipeline(Device& dev, const VkComputePipelineCreateInfo& ci, Pipeline& p) {
     if (ci.stage.stage != VK_SHADER_STAGE_COMPUTE_BIT)
         return std::string("the stage of a compute pipeline must be VK_SHADER_STAGE_COMPUTE_BIT, not ") +
@@ -375,6 +377,11 @@ std::string build_compute_pipeline(Device& dev, const VkComputePipelineCreateInf
                std::to_string(size[2]) + " = " + std::to_string(invocations) +
                " invocations is more than VkPhysicalDeviceLimits::maxComputeWorkGroupInvocations = " +
                std::to_string(kMaxComputeWorkGroupInvocations);
+    const uint32_t shared = p.compute->interface().shared_memory_bytes;
+    if (shared > kMaxComputeSharedMemorySize)
+        return "compute shader: its Workgroup variables need " + std::to_string(shared) +
+               " bytes, more than VkPhysicalDeviceLimits::maxComputeSharedMemorySize = " +
+               std::to_string(kMaxComputeSharedMemorySize);
     return {};
 }
 

@@ -6,6 +6,7 @@
 #include <xmmintrin.h>
 
 #include "shader/exec_arith.h"
+#include "shader/exec_atomic.h"
 #include "shader/exec_math.h"
 #include "shader/exec_memory.h"
 #include "shader/jit/jit.h"
@@ -18,10 +19,10 @@ void execute(const ProgramImpl& p, Scratch::Impl& s) {
     execute_code(p.code.data(), s);
 }
 
-void execute_code(const Inst* code, Scratch::Impl& s) {
-    Machine mc{s.regs.data(), s.local.data(), s.slots.data(), uint32_t(s.slots.size())};
-    size_t pc = 0;
-    uint64_t back_edges = 0;  // loop watchdog: a valid shader may loop forever; never hang the caller
+size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
+    Machine mc{s.regs.data(), s.local.data(), s.slots.data(), uint32_t(s.slots.size()), s.shared};
+    // s.back_edges: the loop watchdog (a valid shader may loop forever; never hang the caller), over all the
+    // phases of a run that stops at barriers.
     for (;;) {
         const Inst& in = code[pc++];
         switch (in.op) {
@@ -38,6 +39,7 @@ void execute_code(const Inst* code, Scratch::Impl& s) {
             TILEVK_EXEC_MATH_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_PACK_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_MEMORY_OPS(TILEVK_EXEC_CALL)
+            TILEVK_EXEC_SHARED_OPS(TILEVK_EXEC_CALL)
 #undef TILEVK_EXEC_EXPR
 #undef TILEVK_EXEC_CALL
             case Op::Select: {
@@ -81,9 +83,9 @@ void execute_code(const Inst* code, Scratch::Impl& s) {
                 LANES any |= a[l];
                 if (any) {
                     if (s.stop != nullptr ? s.stop->load(std::memory_order_relaxed)
-                                          : ++back_edges > kMaxLoopBackEdges) {
+                                          : ++s.back_edges > kMaxLoopBackEdges) {
                         ++s.loop_limit_hits;
-                        return;
+                        return kRunDone;
                     }
                     pc = in.imm;
                 }
@@ -96,7 +98,9 @@ void execute_code(const Inst* code, Scratch::Impl& s) {
                 break;
             }
             case Op::Halt:
-                return;
+                return kRunDone;
+            case Op::Barrier:
+                return pc;
         }
     }
 }
@@ -111,6 +115,7 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
             for (int l = 0; l < kLanes; ++l) s.regs[size_t(p.const_regs[i]) * kLanes + l] = p.const_regs[i + 1];
         s.last = p.serial;
     }
+    s.back_edges = 0;
     size_t words = size_t(std::max(1u, p.local_words)) * kLanes;
     if (s.local.size() < words) s.local.resize(words);
     std::memset(s.local.data(), 0, words * 4);  // variables start at zero, so results never depend on history
@@ -144,6 +149,15 @@ inline void run_program(const ProgramImpl& p, Scratch::Impl& s) {
         execute(p, s);
 }
 
+// Batch b's working memory in a lock-step run: the scratch itself for batch 0, its frames for the others.
+Scratch::Impl& frame_of(Scratch::Impl& s, size_t b) {
+    return b == 0 ? s : *s.frames[b - 1];
+}
+
+void ensure_frames(Scratch::Impl& s, size_t batches) {
+    while (s.frames.size() + 1 < batches) s.frames.push_back(std::make_unique<Scratch::Impl>());
+}
+
 inline void copy_lanes(uint32_t* dst, const uint32_t* src) {
     std::memcpy(dst, src, kLanes * 4);
 }
@@ -156,6 +170,17 @@ void Program::reserve(Scratch& scratch) const {
     s.regs.reserve(size_t(p.num_regs) * kLanes);
     s.local.reserve(size_t(std::max(1u, p.local_words)) * kLanes);
     s.slots.reserve(p.num_slots);
+    if (p.stage != Stage::Compute) return;
+    s.shared_storage.reserve(p.shared_words);
+    if (!p.has_barrier) return;
+    const std::array<uint32_t, 3>& size = interface_.local_size;
+    const size_t batches = (size_t(size[0]) * size[1] * size[2] + kLanes - 1) / kLanes;
+    ensure_frames(s, batches);
+    for (const auto& f : s.frames) {
+        f->regs.reserve(size_t(p.num_regs) * kLanes);
+        f->local.reserve(size_t(std::max(1u, p.local_words)) * kLanes);
+        f->slots.reserve(p.num_slots);
+    }
 }
 
 void Program::run_vertex(const Bindings& bindings, VertexBatch& vb, Scratch& scratch) const {
@@ -284,13 +309,13 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
     }
 }
 
-void Program::run_compute(const Bindings& bindings, const ComputeBatch& cb, Scratch& scratch) const {
-    const ProgramImpl& p = *impl_;
-    Scratch::Impl& s = *scratch.impl();
-    Descriptor push;
+namespace {
+
+// A compute batch's start: the scratch prepared, the built-ins copied into local memory, the entry mask.
+void start_compute(const ProgramImpl& p, const std::array<uint32_t, 3>& size, const Bindings& bindings,
+                   const ComputeBatch& cb, Scratch::Impl& s, Descriptor& push) {
     prepare(p, bindings, s, push);
     uint32_t* M = s.local.data();
-    const std::array<uint32_t, 3>& size = interface_.local_size;
     for (const IoCopy& c : p.io_in) {
         uint32_t* w = M + size_t(c.word) * kLanes;
         const uint32_t i = c.index < 3 ? c.index : 0;
@@ -316,8 +341,59 @@ void Program::run_compute(const Bindings& bindings, const ComputeBatch& cb, Scra
     }
     uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
     LANES entry[l] = uint32_t(l) < cb.count ? ~0u : 0u;
+}
+
+}  // namespace
+
+// A workgroup: shared memory zeroed (lavapipe leaves it undefined; zero keeps every run deterministic), then its
+// batches. Without barriers they run one after the other, each to the end. With barriers they run in lock-step
+// phases: batch 0 up to its next Barrier (or the end), then batch 1 up to its next one, ..., then the next phase
+// resumes each where it stopped, until every batch has ended. SPIR-V requires a workgroup's invocations to reach
+// each OpControlBarrier together (uniform control flow); if they do not, a batch's barrier still only ends its
+// phase, so a wrong shader gets some deterministic result and never hangs (the watchdog bounds its loops).
+void Program::run_workgroup(const Bindings& bindings, std::span<const ComputeBatch> batches, Scratch& scratch) const {
+    const ProgramImpl& p = *impl_;
+    Scratch::Impl& s = *scratch.impl();
+    uint32_t* shared = nullptr;
+    if (p.shared_words != 0) {
+        if (s.shared_storage.size() < p.shared_words) s.shared_storage.resize(p.shared_words);
+        shared = s.shared_storage.data();
+        std::memset(shared, 0, size_t(p.shared_words) * 4);
+    }
+    Descriptor push;
     FloatEnv env;
-    run_program(p, s);
+    if (!p.has_barrier) {
+        for (const ComputeBatch& cb : batches) {
+            start_compute(p, interface_.local_size, bindings, cb, s, push);
+            s.shared = shared;
+            run_program(p, s);
+        }
+        return;
+    }
+    ensure_frames(s, batches.size());
+    for (size_t b = 0; b < batches.size(); ++b) {
+        Scratch::Impl& f = frame_of(s, b);
+        f.stop = s.stop;
+        start_compute(p, interface_.local_size, bindings, batches[b], f, push);
+        f.shared = shared;
+        f.resume_pc = 0;
+        f.done = false;
+    }
+    for (bool running = true; running;) {
+        running = false;
+        for (size_t b = 0; b < batches.size(); ++b) {
+            Scratch::Impl& f = frame_of(s, b);
+            if (f.done) continue;
+            const size_t pc = execute_code(p.code.data(), f, f.resume_pc);
+            f.done = pc == kRunDone;
+            f.resume_pc = pc;
+            running |= !f.done;
+        }
+    }
+    for (size_t b = 1; b < batches.size(); ++b) {
+        s.loop_limit_hits += frame_of(s, b).loop_limit_hits;
+        frame_of(s, b).loop_limit_hits = 0;
+    }
 }
 
 }  // namespace tilevk::shader

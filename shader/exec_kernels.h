@@ -112,6 +112,7 @@ struct Machine {
     uint32_t* M;  // local word w = M + w * kLanes
     const Descriptor* const* slots;
     uint32_t num_slots;
+    uint32_t* S = nullptr;  // compute: the workgroup's shared memory, word w = S[w] (one word for every lane)
 };
 }  // namespace tilevk::shader::exec
 

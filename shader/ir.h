@@ -164,7 +164,19 @@ enum class Op : uint16_t {
     JumpIfAny,   // if any lane of a is set: pc = imm
     Kill,        // live &= ~a (OpKill / demote); the kill register is d
     Halt,
+    // Compute only, appended after Halt on purpose: the compiled tier's op table (jit/analysis.cpp) ends at Halt,
+    // and jit::compile refuses programs with workgroup memory, barriers or atomics by name (they stay interpreted).
+    LoadShared,    // d = shared[min(imm + a, n - 1)] (one word of the workgroup's memory, same for every lane)
+    StoreShared,   // shared[min(imm + a, n - 1)] = b under mask c, lanes in order (the last lane wins)
+    AtomicBuf,     // d = atomic pad:AtomicOp on buffer(slot imm + elem a)[byte b + extra], value c, comparator d;
+                   // n: array size; lanes in order; a lane whose elem is >= n (inactive: kNoReg) does nothing
+    AtomicShared,  // d = atomic pad:AtomicOp on shared[min(imm + a, n - 1)], value c, comparator d; a = kNoReg
+                   // in a lane: inactive, nothing done, d = 0
+    Barrier,       // OpControlBarrier: the run stops here; the workgroup's other batches run up to it, then all resume
 };
+
+// Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
+enum class AtomicOp : uint16_t { Load, Store, Exchange, CompareExchange, IAdd, SMin, SMax, UMin, UMax, And, Or, Xor };
 
 enum SampleFlags : uint32_t {
     kSampleImplicitLod = 1,  // derivative-based LOD (fragment only)
@@ -237,6 +249,8 @@ struct ProgramImpl {
     std::vector<IoCopy> io_in, io_out;
     std::vector<SlotBinding> slots;  // slot 0 is the push-constant block
     uint32_t num_slots = 1;          // total resolved descriptors
+    uint32_t shared_words = 0;       // compute: 32-bit words of Workgroup storage (one block per workgroup)
+    bool has_barrier = false;        // compute: contains Barrier (a workgroup's batches run in lock-step)
     // registers with fixed meaning
     uint32_t reg_entry_mask = 0;  // lanes that run (vertex: lanes < count; fragment: all 16)
     uint32_t reg_live = 0;        // lanes not killed (fragment: covered and not discarded)
@@ -252,12 +266,23 @@ struct Scratch::Impl {
     uint64_t last = 0;  // serial of the program the registers were prepared for
     uint64_t loop_limit_hits = 0;
     const std::atomic<bool>* stop = nullptr;  // Scratch::set_stop_flag
+    uint64_t back_edges = 0;                  // loop watchdog: back edges taken in this run (all its phases)
+    // Compute: the workgroup's shared memory (Program::run_workgroup) and, for programs with barriers, one frame
+    // (registers, local memory, where it stopped) per batch of the workgroup beyond this one.
+    uint32_t* shared = nullptr;
+    uint32_t shared_words = 0;
+    std::vector<uint32_t> shared_storage;
+    size_t resume_pc = 0;  // where this frame's run continues after a barrier
+    bool done = false;     // this frame's run reached Halt (or the watchdog)
+    std::vector<std::unique_ptr<Impl>> frames;
 };
 
 // Interpret the program (exec.cpp).
 void execute(const ProgramImpl& p, Scratch::Impl& s);
-// Interpret from code[0] until Halt (the compiled tier runs single instructions this way).
-void execute_code(const Inst* code, Scratch::Impl& s);
+// Interpret from code[pc] until Halt (the compiled tier runs single instructions this way) or a Barrier. Returns
+// kRunDone after Halt or the watchdog, else the pc after the Barrier.
+constexpr size_t kRunDone = ~size_t(0);
+size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc = 0);
 
 // Translate optimized, valid SPIR-V into `out`. Returns an empty string or an error message.
 std::string translate(const std::vector<uint32_t>& spirv, Stage stage, std::string_view entry, ProgramImpl& out,

@@ -152,6 +152,9 @@ struct ProgramInterface {
     // Compute: the workgroup size, from LocalSize / LocalSizeId or the WorkgroupSize built-in constant (which wins),
     // specialization constants applied.
     std::array<uint32_t, 3> local_size{1, 1, 1};
+    uint32_t shared_memory_bytes = 0;  // compute: Workgroup variables, 4 bytes per 32-bit scalar, tightly packed
+    bool uses_barriers = false;        // compute: OpControlBarrier (the workgroup's batches run in lock-step)
+    bool uses_atomics = false;         // OpAtomic* on storage buffers or Workgroup memory
 };
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -278,7 +281,8 @@ struct alignas(64) FragmentBlock {
 };
 
 // Up to 16 invocations of one compute workgroup (lanes >= count do not run: their stores are dropped). The
-// program computes GlobalInvocationId = workgroup_id * local_size + local_id itself.
+// program computes GlobalInvocationId = workgroup_id * local_size + local_id itself. Program::run_workgroup takes
+// all of a workgroup's batches at once.
 struct alignas(64) ComputeBatch {
     uint32_t count = kLanes;
     uint32_t workgroup_id[3] = {0, 0, 0};
@@ -328,7 +332,11 @@ class Program {
     // Runs one batch. Thread-safe (the Program is immutable); each thread needs its own Scratch.
     void run_vertex(const Bindings& bindings, VertexBatch& batch, Scratch& scratch) const;
     void run_fragment(const Bindings& bindings, FragmentBlock& block, Scratch& scratch) const;
-    void run_compute(const Bindings& bindings, const ComputeBatch& batch, Scratch& scratch) const;
+    // Runs one whole compute workgroup: its batches (in LocalInvocationIndex order, all with the same workgroup
+    // id) share one block of Workgroup memory, zeroed first, and run in lock-step phases between OpControlBarriers
+    // (shader/README.md, "Compute"). A workgroup runs on one thread; storage-buffer atomics are real atomics, so
+    // workgroups may run on several threads at once.
+    void run_workgroup(const Bindings& bindings, std::span<const ComputeBatch> batches, Scratch& scratch) const;
     // Grows `scratch` to what a run of this program needs, so the runs themselves allocate nothing (the renderer
     // calls it for every worker before a scene, since which worker runs which program depends on timing).
     void reserve(Scratch& scratch) const;

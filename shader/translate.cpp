@@ -143,6 +143,8 @@ void Translator::finish_interface() {
     });
     for (auto& d : iface_.descriptors)
         if (d.kind == DescriptorKind::StorageBuffer) d.written = buffer_written_;
+    p_.shared_words = shared_words_;
+    iface_.shared_memory_bytes = shared_words_ * 4;
     std::sort(iface_.descriptors.begin(), iface_.descriptors.end(), [](const DescriptorUse& a, const DescriptorUse& b) {
         return a.set != b.set ? a.set < b.set : a.binding < b.binding;
     });

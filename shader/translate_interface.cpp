@@ -134,6 +134,16 @@ void Translator::declare_variable(const Instr& in) {
         case spv::StorageClass::UniformConstant:
             declare_resource(sc, deco_[id], p);
             break;
+        case spv::StorageClass::Workgroup:
+            if (stage_ != Stage::Compute) fail("Workgroup storage outside a compute shader");
+            if (in.n > 4) fail("unsupported Workgroup variable initializer (shaderZeroInitializeWorkgroupMemory)");
+            p.space = Space::Shared;
+            p.base = shared_words_;
+            p.limit = shared_words_ + t.flat;
+            shared_words_ += t.flat;
+            // far past any device's maxComputeSharedMemorySize; keeps the byte count in 32 bits
+            if (shared_words_ > (1u << 24)) fail("Workgroup variables of more than 64 MiB");
+            break;
         case spv::StorageClass::Function:
             fail("function variable at module scope");
         default:

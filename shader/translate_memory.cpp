@@ -29,7 +29,7 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
             uint32_t scaled = stride == 1 ? reg(id) : emit1(SOp::IMul, reg(id), konst(stride));
             p.dyn = p.dyn == kNoReg ? scaled : emit1(SOp::IAdd, p.dyn, scaled);
         };
-        if (p.space == Space::Local) {
+        if (p.space == Space::Local || p.space == Space::Shared) {
             if (t.kind == Type::Struct) {
                 if (!is_const || cv >= t.members.size()) fail("invalid struct index");
                 for (uint32_t m = 0; m < cv; ++m) p.offset += type(t.members[m]).flat;
@@ -89,6 +89,11 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
 void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Shared) {
+        for (uint32_t i = 0; i < t.flat; ++i)
+            emit(SOp::LoadShared, dst + i, dyn, kNoReg, kNoReg, p.base + p.offset + off + i).n = p.limit;
+        return;
+    }
     if (p.space == Space::Local) {
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
@@ -179,6 +184,11 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
 void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off) {
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    if (p.space == Space::Shared) {
+        for (uint32_t i = 0; i < t.flat; ++i)
+            emit(SOp::StoreShared, kNoReg, dyn, src + i, cur_mask_, p.base + p.offset + off + i).n = p.limit;
+        return;
+    }
     if (p.space == Space::Local) {
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
@@ -192,10 +202,7 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
     if (p.space == Space::Handle) fail("store to an image or sampler variable");
     if (!p.writable) fail("store to a read-only buffer");
     buffer_written_ = true;
-    if (store_mask_ == kNoReg) {
-        store_mask_ = stage_ == Stage::Fragment ? emit1(SOp::And, cur_mask_, p_.reg_live) : cur_mask_;
-    }
-    uint32_t mask = store_mask_;
+    uint32_t mask = side_effect_mask();
     uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
     auto scalar = [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
         uint32_t v = s;
@@ -247,6 +254,12 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
     }
 }
 
+uint32_t Translator::side_effect_mask() {
+    if (store_mask_ == kNoReg)
+        store_mask_ = stage_ == Stage::Fragment ? emit1(SOp::And, cur_mask_, p_.reg_live) : cur_mask_;
+    return store_mask_;
+}
+
 // Variables, access chains, loads, stores, array lengths, copies.
 bool Translator::op_memory(const Instr& in) {
     switch (in.op) {
@@ -278,7 +291,8 @@ bool Translator::op_memory(const Instr& in) {
                 iface_.push_constant_size = std::max(iface_.push_constant_size, p.offset + 4 * type(in[1]).flat);
             }
             uint32_t d = def(in);
-            if (p.space == Space::Buffer)  // shared memory: other lanes may change it while this one waits
+            // memory other lanes may change while this one waits (in a loop it has left)
+            if (p.space == Space::Buffer || p.space == Space::Shared)
                 keep_active(d, std::max(1u, type(in[1]).flat), [&](uint32_t t) { load(p, in[1], t, 0); });
             else
                 load(p, in[1], d, 0);

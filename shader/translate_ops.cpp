@@ -58,6 +58,8 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpName:
         case spv::Op::OpSelectionMerge:
         case spv::Op::OpLoopMerge:
+        // A workgroup runs on one thread, its memory coherent; buffer atomics are sequentially consistent: a memory
+        // barrier has nothing left to order.
         case spv::Op::OpMemoryBarrier:
             return;
         case spv::Op::OpExtInst:
@@ -67,7 +69,9 @@ void Translator::op(const Instr& in) {
         default:
             break;
     }
-    if (op_arith(in) || op_logic(in) || op_composite(in) || op_fragment(in) || op_memory(in) || op_image(in)) return;
+    if (op_arith(in) || op_logic(in) || op_composite(in) || op_fragment(in) || op_memory(in) || op_image(in) ||
+        op_atomic(in))
+        return;
     fail("unsupported opcode " + opname(in.op));
 }
 

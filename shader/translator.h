@@ -54,7 +54,9 @@ struct Decorations {
     bool row_major = false, block = false, buffer_block = false, non_writable = false;
 };
 
-enum class Space : uint8_t { Local, Buffer, Handle };
+// Local: SoA words, one per lane; Shared: compute's Workgroup memory, flat words every lane sees (both addressed
+// by word, with the same flat layout); Buffer: bytes through a descriptor; Handle: image/sampler descriptors.
+enum class Space : uint8_t { Local, Shared, Buffer, Handle };
 
 struct Pointer {
     Space space = Space::Local;
@@ -141,6 +143,8 @@ class Translator {
     bool op_fragment(const Instr& in);
     bool op_memory(const Instr& in);  // translate_memory.cpp
     bool op_image(const Instr& in);   // translate_image.cpp
+    bool op_atomic(const Instr& in);  // translate_atomic.cpp: OpAtomic*, OpControlBarrier
+    uint32_t side_effect_mask();      // lanes whose buffer writes take effect (fragment: live ones only)
     bool image_sample(const Instr& in);
     void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450
     // helpers for instructions with a result (type in[1], id in[2])
@@ -193,6 +197,7 @@ class Translator {
     uint32_t entry_fn_ = 0;
     std::vector<uint32_t> entry_iface_;  // the entry point's interface variables
     uint32_t local_words_ = 0;           // SoA local memory words allocated so far
+    uint32_t shared_words_ = 0;          // Workgroup memory words allocated so far
     uint32_t next_slot_ = 1;             // next descriptor slot (slot 0: push constants)
     std::vector<Block> blocks_;
     std::unordered_map<uint32_t, uint32_t> block_of_;  // label -> index into blocks_
@@ -221,7 +226,7 @@ class Translator {
     uint32_t glsl_ext_ = 0;
     uint32_t local_size_ids_[3] = {0, 0, 0};  // ExecutionModeId LocalSizeId operands (0: none)
     bool workgroup_size_builtin_ = false;     // a constant decorated BuiltIn WorkgroupSize set the local size
-    uint32_t cur_mask_ = kNoReg;  // mask register of the block being translated
+    uint32_t cur_mask_ = kNoReg;              // mask register of the block being translated
     uint32_t zero_ = kNoReg;
     // Local word of a hidden copy of gl_FragCoord.xy, made when the module declares a SubpassData image:
     // subpassLoad reads the input attachment at the fragment's own pixel (kNoReg: none).

@@ -216,6 +216,14 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
         *why_not = "the CPU lacks AVX2 or FMA";
         return nullptr;
     }
+    // A run of the compiled code cannot stop at a barrier and resume (Program::run_workgroup's lock-step phases),
+    // and this tier has no shared-memory or atomic ops: such compute programs stay in the interpreter, by name.
+    for (const Inst& in : p.code)
+        if (in.op > Op::Halt) {
+            *why_not = "IR op " + op_name(in.op) +
+                       ": Workgroup memory, OpControlBarrier and OpAtomic* run in the interpreter only";
+            return nullptr;
+        }
     const Analysis an = analyze(p);
     if (an.unknown_at >= 0) {
         const Inst& in = p.code[size_t(an.unknown_at)];
@@ -251,7 +259,7 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
 std::shared_ptr<const Code> compile(const ProgramImpl& p, std::string* why_not) {
     std::shared_ptr<const Code> code = generate_code(p, why_not);
     if (log_enabled()) {
-        const char* stage = p.stage == Stage::Vertex ? "vertex" : "fragment";
+        const char* stage = p.stage == Stage::Vertex ? "vertex" : p.stage == Stage::Fragment ? "fragment" : "compute";
         if (code)
             std::fprintf(stderr,
                          "tilevk: %s program compiled: %zu IR ops (%u native, %u through the interpreter), %zu bytes "
@@ -271,6 +279,20 @@ void run(const Code& code, Scratch::Impl& s) {
 }
 
 std::string op_name(Op op) {
+    switch (op) {  // the compute ops after Halt, which this tier does not compile (generate_code)
+        case Op::LoadShared:
+            return "LoadShared";
+        case Op::StoreShared:
+            return "StoreShared";
+        case Op::AtomicBuf:
+            return "AtomicBuf";
+        case Op::AtomicShared:
+            return "AtomicShared";
+        case Op::Barrier:
+            return "Barrier";
+        default:
+            break;
+    }
     const OpInfo info = op_info(op);
     return info.name ? info.name : "op #" + std::to_string(unsigned(op));
 }

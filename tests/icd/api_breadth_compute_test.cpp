@@ -3,10 +3,13 @@
 // graphics work ordered around dispatches by pipeline barriers — on tilevk and lavapipe with the validation layer,
 // bytes compared, plus the answers computed here (SAXPY, the built-ins). Then tilevk alone: the same bytes for one
 // worker thread and four, and bad input (limits, a missing entry point, what is not implemented yet) refused with a
-// message naming it.
+// message naming it. Shared memory, barriers and atomics: results whose order the shader leaves open are checked
+// order-free (sums, minima, sorted counters) and compared byte for byte.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <numeric>
 #include <string>
 
 #include "api_breadth.h"
@@ -17,9 +20,13 @@ namespace {
 #include "cp_atomic_comp.h"
 #include "cp_barrier_comp.h"
 #include "cp_binds_comp.h"
+#include "cp_counters_comp.h"
 #include "cp_ids_comp.h"
+#include "cp_image_atomic_comp.h"
+#include "cp_reduce_comp.h"
 #include "cp_saxpy_comp.h"
 #include "cp_shared_comp.h"
+#include "cp_shared_size_comp.h"
 #include "cp_vertices_comp.h"
 
 class ApiCompute : public ApiBreadth {};
@@ -313,6 +320,121 @@ std::string stderr_of(const std::function<void()>& fn) {
     return text;
 }
 
+// cp_reduce.comp at workgroup size n over `groups` (<= 64) workgroups: the sums checked against the input here.
+Bytes reduce(Kit& k, uint32_t n, uint32_t groups) {
+    std::mt19937 rng(n);
+    std::vector<uint32_t> x(size_t(n) * groups);
+    for (uint32_t& w : x) w = rng() % 100000;
+    Device::Buffer xb = k.buffer_of(x, kStorage);
+    Device::Buffer yb = k.buffer(VkDeviceSize(64 + x.size()) * 4, kStorage);
+    StorageSet s = storage_set(k, {&xb, &yb});
+    const VkSpecializationMapEntry entry{0, 0, 4};
+    VkSpecializationInfo spec{1, &entry, 4, &n};
+    VkPipeline p = compute_pipeline(k, SPV(cp_reduce_comp), s.layout, &spec);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdDispatch(c, groups, 1, 1);
+    }),
+              VK_SUCCESS);
+    const auto* y = static_cast<const uint32_t*>(yb.map);
+    size_t wrong = 0;
+    for (uint32_t g = 0; g < groups; ++g)
+        wrong += y[g] != std::accumulate(x.begin() + g * n, x.begin() + (g + 1) * n, 0u);
+    EXPECT_EQ(wrong, 0u) << "workgroups of " << groups << " at size " << n;
+    return Kit::bytes(yb);
+}
+
+// cp_counters.comp over `groups` workgroups of 48: every counter checked against the input here.
+Bytes counters(Kit& k, uint32_t groups) {
+    const uint32_t n = groups * 48;
+    std::mt19937 rng(groups);
+    std::vector<uint32_t> x(n);
+    for (uint32_t& w : x) w = rng() % 100000;
+    Device::Buffer xb = k.buffer_of(x, kStorage);
+    std::vector<uint32_t> init(16 + 4 * size_t(groups), 0);
+    init[1] = 0x7FFFFFFF, init[2] = 0x80000000u, init[3] = ~0u, init[5] = ~0u;
+    Device::Buffer cb = k.buffer_of(init, kStorage);
+    StorageSet s = storage_set(k, {&xb, &cb});
+    VkPipeline p = compute_pipeline(k, SPV(cp_counters_comp), s.layout);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdDispatch(c, groups, 1, 1);
+    }),
+              VK_SUCCESS);
+    uint32_t sum = 0, andv = ~0u, orv = 0, xorv = 0;
+    for (uint32_t v : x) sum += v, andv &= ~(1u << (v % 32)), orv |= 1u << (v % 31), xorv ^= v;
+    const uint32_t lo = *std::min_element(x.begin(), x.end()), hi = *std::max_element(x.begin(), x.end());
+    const uint32_t want[13] = {sum, lo - 50000, hi - 50000, lo, hi, andv, orv, xorv, n, 7, 1, 1, hi};
+    const auto* c = static_cast<const uint32_t*>(cb.map);
+    for (int i = 0; i < 13; ++i) EXPECT_EQ(c[i], want[i]) << "counter " << i;
+    size_t wrong = 0;
+    for (uint32_t g = 0; g < groups; ++g) {
+        const auto first = x.begin() + g * 48, last = first + 48;
+        uint32_t cas = 0;
+        for (auto it = first; it != last; ++it) cas = std::max(cas, *it ^ 0x5555u);
+        const uint32_t* r = c + 16 + 4 * g;
+        wrong += r[0] != std::accumulate(first, last, 0u) || r[1] != *std::max_element(first, last) || r[2] != cas ||
+                 r[3] != *std::min_element(first, last);
+    }
+    EXPECT_EQ(wrong, 0u) << "workgroups of " << groups;
+    return Kit::bytes(cb);
+}
+
+// Shared-memory reductions between barriers at workgroup sizes 64, 256 and 24 (two batches, the second of 8
+// invocations), 37 workgroups each: the sums, and the partial sums left in shared memory, byte for byte.
+TEST_F(ApiCompute, SharedMemoryReductionWithBarriers) {
+    for (uint32_t n : {64u, 256u, 24u}) {
+        SCOPED_TRACE(n);
+        both([&](Kit& k) { return reduce(k, n, 37); });
+    }
+}
+
+// Storage-buffer atomics of every kind from 300 workgroups (spread over the worker threads), compare-exchange
+// loops on a buffer and on shared memory, shared-memory atomics between barriers: results the order of the
+// invocations does not change, byte for byte.
+TEST_F(ApiCompute, AtomicCountersAndCompareExchange) {
+    both([](Kit& k) { return counters(k, 300); });
+}
+
+// The shaders that were refused before compute step 2 (cp_shared.comp: a reversal through shared memory;
+// cp_barrier.comp: a neighbour's storage-buffer write read after a barrier), and cp_atomic.comp's counter, whose
+// returned values are a permutation of 0..n-1 in an order lavapipe and tilevk need not share: compared sorted.
+TEST_F(ApiCompute, SharedMemoryBarriersAndAtomicCounter) {
+    both([](Kit& k) {
+        std::vector<uint32_t> x(128);
+        for (uint32_t i = 0; i < 128; ++i) x[i] = i * 2654435761u;
+        Device::Buffer sb = k.buffer_of(x, kStorage), bb = k.buffer(128 * 4, kStorage);
+        Device::Buffer ab = k.buffer(4 + 96 * 4, kStorage);
+        StorageSet ss = storage_set(k, {&sb}), sbar = storage_set(k, {&bb}), sat = storage_set(k, {&ab});
+        VkPipeline shared = compute_pipeline(k, SPV(cp_shared_comp), ss.layout);
+        VkPipeline bar = compute_pipeline(k, SPV(cp_barrier_comp), sbar.layout);
+        VkPipeline atomic = compute_pipeline(k, SPV(cp_atomic_comp), sat.layout);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            const std::pair<VkPipeline, const StorageSet*> runs[3] = {{shared, &ss}, {bar, &sbar}, {atomic, &sat}};
+            const uint32_t groups[3] = {4, 2, 6};
+            for (int i = 0; i < 3; ++i) {
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, runs[i].first);
+                vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, runs[i].second->layout, 0, 1,
+                                        &runs[i].second->set, 0, nullptr);
+                vkCmdDispatch(c, groups[i], 1, 1);
+            }
+        }),
+                  VK_SUCCESS);
+        const auto* r = static_cast<const uint32_t*>(sb.map);
+        for (uint32_t i = 0; i < 128; ++i) EXPECT_EQ(r[i], x[(i & ~31u) + 31 - i % 32]) << i;
+        const auto* b = static_cast<const uint32_t*>(bb.map);
+        for (uint32_t i = 0; i < 64; ++i) EXPECT_EQ(b[64 + i], (i ^ 17u) * 3 + 1) << i;
+        Bytes counter = Kit::bytes(ab);
+        auto* words = reinterpret_cast<uint32_t*>(counter.data());
+        EXPECT_EQ(words[0], 96u);
+        std::sort(words + 1, words + 97);
+        for (uint32_t i = 0; i < 96; ++i) EXPECT_EQ(words[1 + i], i);
+        return concat({Kit::bytes(sb), Kit::bytes(bb), counter});
+    });
+}
+
 // The same bytes for one worker thread and four (TILEVK_THREADS is read at a queue's first submission).
 TEST_F(ApiCompute, SameBytesForEveryThreadCount) {
     std::vector<Bytes> results;
@@ -322,7 +444,8 @@ TEST_F(ApiCompute, SameBytesForEveryThreadCount) {
         ASSERT_TRUE(dev.ok());
         Kit k(dev);
         const uint32_t groups[3] = {9, 5, 3};
-        results.push_back(concat({saxpy(k, 250000, -0.3f), ids(k, groups, 7, 5, false)}));
+        results.push_back(concat({saxpy(k, 250000, -0.3f), ids(k, groups, 7, 5, false), reduce(k, 24, 64),
+                                  reduce(k, 256, 40), counters(k, 500)}));
     }
     unsetenv("TILEVK_THREADS");
     expect_same(results[0], results[1], "TILEVK_THREADS=1 vs 4");
@@ -353,9 +476,13 @@ TEST_F(ApiCompute, BadInputIsRefusedByName) {
     refused(SPV(cp_ids_comp), &wide, "main", "maxComputeWorkGroupSize[0] = 1024");
     refused(SPV(cp_ids_comp), &many, "main", "maxComputeWorkGroupInvocations = 1024");
     refused(SPV(cp_ids_comp), nullptr, "nope", "no compute entry point named 'nope'");
-    refused(SPV(cp_barrier_comp), nullptr, "main", "OpControlBarrier");
-    refused(SPV(cp_shared_comp), nullptr, "main", "Workgroup");
-    refused(SPV(cp_atomic_comp), nullptr, "main", "OpAtomicIAdd");
+    const uint32_t shared_words = 8193;  // 32772 bytes of Workgroup memory
+    VkSpecializationInfo big{1, entries, 4, &shared_words};
+    refused(
+        SPV(cp_shared_size_comp), &big, "main",
+        "Workgroup variables need 32772 bytes, more than VkPhysicalDeviceLimits::maxComputeSharedMemorySize = 32768");
+    refused(SPV(cp_image_atomic_comp), nullptr, "main", "unsupported storage image");  // image atomics: not yet
+    compute_pipeline(k, SPV(cp_shared_size_comp), s.layout);                           // 8192 words: exactly the limit
 
     VkPipeline p = compute_pipeline(k, SPV(cp_ids_comp), s.layout);  // (1, 1, 2)
     const std::string err = stderr_of([&] {

@@ -17,7 +17,9 @@ struct GlslangInit {
 
 std::vector<uint32_t> compile_glsl(Stage stage, const std::string& source, bool spirv_1_3) {
     static GlslangInit init;
-    EShLanguage lang = stage == Stage::Vertex ? EShLangVertex : EShLangFragment;
+    EShLanguage lang = stage == Stage::Vertex     ? EShLangVertex
+                       : stage == Stage::Fragment ? EShLangFragment
+                                                  : EShLangCompute;
     glslang::TShader shader(lang);
     const char* src = source.c_str();
     shader.setStrings(&src, 1);

@@ -1,0 +1,133 @@
+// Interpreter kernels: compute's Workgroup (shared) memory and the 32-bit OpAtomic* family.
+//
+// Shared memory is one flat block per workgroup (not SoA: every lane of every batch sees the same word). A workgroup
+// runs wholly on one thread, so its shared words need no atomic instructions; storage buffers are shared by all the
+// workgroups of a dispatch, which run on several threads, so buffer atomics are std::atomic_ref operations. Within
+// a batch the lanes apply their operations in lane order, so a batch's results are deterministic.
+#pragma once
+
+#include <atomic>
+
+#include "shader/exec_kernels.h"
+
+// Internal linkage: one translation unit (exec.cpp) uses these.
+namespace tilevk::shader::exec {
+namespace {
+
+// The value an atomic leaves in memory, given the old one, the operand v and the comparator.
+inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cmp) {
+    switch (op) {
+        case AtomicOp::Load:
+            return old;
+        case AtomicOp::Store:
+        case AtomicOp::Exchange:
+            return v;
+        case AtomicOp::CompareExchange:
+            return old == cmp ? v : old;
+        case AtomicOp::IAdd:
+            return old + v;
+        case AtomicOp::SMin:
+            return int32_t(v) < int32_t(old) ? v : old;
+        case AtomicOp::SMax:
+            return int32_t(v) > int32_t(old) ? v : old;
+        case AtomicOp::UMin:
+            return std::min(old, v);
+        case AtomicOp::UMax:
+            return std::max(old, v);
+        case AtomicOp::And:
+            return old & v;
+        case AtomicOp::Or:
+            return old | v;
+        case AtomicOp::Xor:
+            return old ^ v;
+    }
+    return old;
+}
+
+// One atomic on a buffer word other threads may be changing: returns the value before the operation.
+inline uint32_t atomic_on_word(AtomicOp op, uint32_t* word, uint32_t v, uint32_t cmp) {
+    std::atomic_ref<uint32_t> ref(*word);
+    switch (op) {
+        case AtomicOp::Load:
+            return ref.load();
+        case AtomicOp::Store:
+            ref.store(v);
+            return 0;
+        case AtomicOp::Exchange:
+            return ref.exchange(v);
+        case AtomicOp::CompareExchange: {
+            uint32_t expected = cmp;
+            ref.compare_exchange_strong(expected, v);
+            return expected;  // the old value, whether it was replaced or not
+        }
+        case AtomicOp::IAdd:
+            return ref.fetch_add(v);
+        case AtomicOp::And:
+            return ref.fetch_and(v);
+        case AtomicOp::Or:
+            return ref.fetch_or(v);
+        case AtomicOp::Xor:
+            return ref.fetch_xor(v);
+        default: {  // min / max: no fetch_min in C++20
+            uint32_t old = ref.load();
+            while (!ref.compare_exchange_weak(old, atomic_result(op, old, v, cmp))) {
+            }
+            return old;
+        }
+    }
+}
+
+[[gnu::always_inline]] inline void op_load_shared(const Inst& in, Machine& mc) {
+    uint32_t* __restrict d = D;
+    const uint32_t* __restrict a = A;
+    LANES d[l] = mc.S[std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1)];  // clamped to the variable
+}
+
+[[gnu::always_inline]] inline void op_store_shared(const Inst& in, Machine& mc) {
+    const uint32_t *a = A, *b = B, *c = C;
+    for (int l = 0; l < kLanes; ++l)  // in lane order: when lanes write one word, the last one wins
+        if (c[l]) mc.S[std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1)] = b[l];
+}
+
+[[gnu::always_inline]] inline void op_atomic_shared(const Inst& in, Machine& mc) {
+    uint32_t* d = D;
+    const uint32_t *a = A, *c = C;
+    const auto op = AtomicOp(in.pad);
+    for (int l = 0; l < kLanes; ++l) {
+        if (a[l] == kNoReg) {  // inactive lane
+            d[l] = 0;
+            continue;
+        }
+        uint32_t& w = mc.S[std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1)];
+        const uint32_t old = w;
+        w = atomic_result(op, old, c[l], d[l]);
+        d[l] = old;
+    }
+}
+
+[[gnu::always_inline]] inline void op_atomic_buf(const Inst& in, Machine& mc) {
+    uint32_t* d = D;
+    const uint32_t *a = A, *b = B, *c = C;
+    const auto op = AtomicOp(in.pad);
+    for (int l = 0; l < kLanes; ++l) {
+        const uint32_t cmp = d[l];
+        d[l] = 0;
+        if (a[l] >= in.n || in.imm + a[l] >= mc.num_slots) continue;  // inactive lane or outside the array
+        const Descriptor* desc = mc.slots[in.imm + a[l]];
+        const uint64_t off = uint64_t(b[l]) + in.extra;
+        // out of bounds, read-only or misaligned (invalid usage): nothing is done, the result is 0
+        if (desc == nullptr || desc->buffer.writable == nullptr || off + 4 > desc->buffer.size) continue;
+        auto* word = static_cast<uint8_t*>(desc->buffer.writable) + off;
+        if (reinterpret_cast<uintptr_t>(word) % std::atomic_ref<uint32_t>::required_alignment != 0) continue;
+        d[l] = atomic_on_word(op, reinterpret_cast<uint32_t*>(word), c[l], cmp);
+    }
+}
+
+#define TILEVK_EXEC_SHARED_OPS(X)     \
+    X(LoadShared, op_load_shared)     \
+    X(StoreShared, op_store_shared)   \
+    X(AtomicShared, op_atomic_shared) \
+    X(AtomicBuf, op_atomic_buf)
+
+}  // namespace
+}  // namespace tilevk::shader::exec

@@ -1,0 +1,141 @@
+// Compute's synchronisation and atomics: OpControlBarrier and the 32-bit OpAtomic* family on storage buffers and
+// Workgroup memory (the kernels: exec_atomic.h).
+#include "shader/translator.h"
+
+namespace tilevk::shader {
+
+using SOp = tilevk::shader::Op;
+
+namespace {
+
+// The IR atomic of an OpAtomic* (IIncrement / IDecrement / ISub are additions of 1, -1, -value).
+bool atomic_kind(spv::Op op, AtomicOp& out) {
+    switch (op) {
+        case spv::Op::OpAtomicLoad:
+            out = AtomicOp::Load;
+            return true;
+        case spv::Op::OpAtomicStore:
+            out = AtomicOp::Store;
+            return true;
+        case spv::Op::OpAtomicExchange:
+            out = AtomicOp::Exchange;
+            return true;
+        case spv::Op::OpAtomicCompareExchange:
+            out = AtomicOp::CompareExchange;
+            return true;
+        case spv::Op::OpAtomicIIncrement:
+        case spv::Op::OpAtomicIDecrement:
+        case spv::Op::OpAtomicIAdd:
+        case spv::Op::OpAtomicISub:
+            out = AtomicOp::IAdd;
+            return true;
+        case spv::Op::OpAtomicSMin:
+            out = AtomicOp::SMin;
+            return true;
+        case spv::Op::OpAtomicSMax:
+            out = AtomicOp::SMax;
+            return true;
+        case spv::Op::OpAtomicUMin:
+            out = AtomicOp::UMin;
+            return true;
+        case spv::Op::OpAtomicUMax:
+            out = AtomicOp::UMax;
+            return true;
+        case spv::Op::OpAtomicAnd:
+            out = AtomicOp::And;
+            return true;
+        case spv::Op::OpAtomicOr:
+            out = AtomicOp::Or;
+            return true;
+        case spv::Op::OpAtomicXor:
+            out = AtomicOp::Xor;
+            return true;
+        default:
+            return false;  // OpAtomicFlag*, OpAtomicCompareExchangeWeak (Kernel), float atomics: refused by name
+    }
+}
+
+}  // namespace
+
+bool Translator::op_atomic(const Instr& in) {
+    if (in.op == spv::Op::OpControlBarrier) {
+        uint32_t scope = 0;
+        if (!const_of(in[1], scope)) fail("OpControlBarrier with a non-constant execution scope");
+        if (scope == uint32_t(spv::Scope::Subgroup) || scope == uint32_t(spv::Scope::Invocation))
+            return true;  // subgroups are one invocation (subgroupSize 1): nothing to wait for
+        if (stage_ != Stage::Compute || scope != uint32_t(spv::Scope::Workgroup))
+            fail(std::string("unsupported OpControlBarrier with execution scope ") + std::to_string(scope) + " in a " +
+                 stage_name(stage_) + " shader");
+        emit(SOp::Barrier, kNoReg);
+        p_.has_barrier = true;
+        iface_.uses_barriers = true;
+        return true;
+    }
+    AtomicOp kind{};
+    if (!atomic_kind(in.op, kind)) return false;
+    // Vertex and fragment atomics (vertexPipelineStoresAndAtomics, fragmentStoresAndAtomics) are not reported:
+    // their helper-lane and coverage rules are not tested yet.
+    if (stage_ != Stage::Compute)
+        fail("unsupported " + opname(in.op) + " in a " + stage_name(stage_) + " shader (atomics: compute only)");
+    const bool store = in.op == spv::Op::OpAtomicStore;
+    const uint32_t ptr_id = store ? in[1] : in[3];
+    const Value& pv = val(ptr_id);
+    if (pv.ptr < 0) fail(opname(in.op) + " on a non-pointer");
+    const Pointer p = pointers_[size_t(pv.ptr)];
+    const Type& t = type(p.type);
+    if (t.kind != Type::Int) fail("unsupported " + opname(in.op) + " on a non-integer (only 32-bit integer atomics)");
+    uint32_t value = zero_;
+    switch (in.op) {
+        case spv::Op::OpAtomicStore:
+            value = reg(in[4]);
+            break;
+        case spv::Op::OpAtomicIIncrement:
+            value = konst(1);
+            break;
+        case spv::Op::OpAtomicIDecrement:
+            value = konst(~0u);
+            break;
+        case spv::Op::OpAtomicISub:
+            value = emit1(SOp::INeg, reg(in[6]));
+            break;
+        case spv::Op::OpAtomicLoad:
+            break;
+        case spv::Op::OpAtomicCompareExchange:
+            value = reg(in[7]);
+            break;
+        default:
+            value = reg(in[6]);
+            break;
+    }
+    const uint32_t comparator = in.op == spv::Op::OpAtomicCompareExchange ? reg(in[8]) : kNoReg;
+    const uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
+    iface_.uses_atomics = true;
+    // Inactive lanes get an element / word index of kNoReg: the kernel skips them (their result is 0).
+    auto gen = [&](uint32_t d) {
+        if (comparator != kNoReg) emit(SOp::Mov, d, comparator);
+        if (p.space == Space::Shared) {
+            const uint32_t idx = emit1(SOp::Select, dyn, konst(kNoReg), cur_mask_);
+            Inst& a = emit(SOp::AtomicShared, d, idx, kNoReg, value, p.base + p.offset);
+            a.n = p.limit;
+            a.pad = uint16_t(kind);
+            return;
+        }
+        if (p.space != Space::Buffer || p.base == 0 || !p.writable)
+            fail("unsupported " + opname(in.op) + " outside a storage buffer or Workgroup memory");
+        buffer_written_ = true;
+        const uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
+        const uint32_t e = emit1(SOp::Select, elem, konst(kNoReg), side_effect_mask());
+        Inst& a = emit(SOp::AtomicBuf, d, e, dyn, value, p.base, p.offset);
+        a.n = p.limit;
+        a.pad = uint16_t(kind);
+    };
+    if (store) {
+        gen(alloc());
+        return true;
+    }
+    // the result depends on other lanes' atomics: in a loop, lanes that left it keep what they got
+    keep_active(def(in), 1, gen);
+    return true;
+}
+
+}  // namespace tilevk::shader

@@ -1,0 +1,430 @@
+// Compute workgroups in the interpreter: Workgroup (shared) memory, OpControlBarrier run as lock-step phases of a
+// workgroup's 16-lane batches, and the 32-bit atomics on storage buffers and shared memory. The answers are
+// computed here; every case would fail if batches ran to the end one after the other (reads of a later batch's
+// writes see zeros) or if atomics lost updates.
+#include <gtest/gtest.h>
+
+#include <spirv-tools/libspirv.hpp>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "glsl.h"
+
+using namespace tilevk::shader;
+using tilevk::shader::test::compile_glsl;
+
+namespace {
+
+std::shared_ptr<const Program> compute(const std::string& src, uint32_t local_x = 0) {
+    std::vector<uint32_t> spv = compile_glsl(Stage::Compute, src);
+    SpecConstants spec;
+    if (local_x != 0) spec.push_back({0, {local_x}});
+    Result r = Program::create(spv, Stage::Compute, "main", spec);
+    EXPECT_TRUE(r) << r.error;
+    return r.program;
+}
+
+// The batches of one workgroup as icd/execute_compute.cpp lays them out (LocalInvocationIndex order).
+std::vector<ComputeBatch> layout(const std::array<uint32_t, 3>& size) {
+    const uint32_t n = size[0] * size[1] * size[2];
+    std::vector<ComputeBatch> out((n + kLanes - 1) / kLanes);
+    for (uint32_t b = 0; b < out.size(); ++b) {
+        out[b].count = std::min<uint32_t>(kLanes, n - b * kLanes);
+        for (uint32_t l = 0; l < uint32_t(kLanes); ++l) {
+            const uint32_t i = b * kLanes + std::min(l, out[b].count - 1);
+            out[b].local_index[l] = i;
+            out[b].local_id[0][l] = i % size[0];
+            out[b].local_id[1][l] = i / size[0] % size[1];
+            out[b].local_id[2][l] = i / (size[0] * size[1]);
+        }
+    }
+    return out;
+}
+
+// Workgroups first .. first + count - 1 of a dispatch of `total` workgroups along x.
+void dispatch(const Program& p, const Bindings& b, uint32_t first, uint32_t count, uint32_t total, Scratch& s) {
+    std::vector<ComputeBatch> batches = layout(p.interface().local_size);
+    for (uint32_t g = first; g < first + count; ++g) {
+        for (ComputeBatch& cb : batches) {
+            cb.workgroup_id[0] = g;
+            cb.num_workgroups[0] = total;
+        }
+        p.run_workgroup(b, batches, s);
+    }
+}
+
+Descriptor storage(std::vector<uint32_t>& words) {
+    return Descriptor{BufferView{words.data(), words.data(), words.size() * 4}};
+}
+
+std::vector<uint32_t> random_words(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::vector<uint32_t> v(n);
+    for (uint32_t& w : v) w = rng() % 100000;
+    return v;
+}
+
+// A tree reduction in shared memory: each level reads what other batches wrote before the barrier.
+const char* const kReduce = R"(#version 450
+layout(local_size_x_id = 0) in;
+layout(std430, set = 0, binding = 0) readonly buffer X { uint x[]; };
+layout(std430, set = 0, binding = 1) buffer Y { uint y[]; };
+shared uint s[1024];
+void main() {
+    uint i = gl_LocalInvocationIndex;
+    s[i] = x[gl_GlobalInvocationID.x];
+    memoryBarrierShared();
+    barrier();
+    for (uint width = gl_WorkGroupSize.x; width > 1u;) {
+        uint half_ = (width + 1u) / 2u;
+        if (i < width - half_) s[i] += s[i + half_];
+        memoryBarrierShared();
+        barrier();
+        width = half_;
+    }
+    if (i == 0u) y[gl_WorkGroupID.x] = s[0];
+    // a value written by another batch of the workgroup, read after the last barrier
+    y[64u + gl_GlobalInvocationID.x] = s[(i * 7u + 5u) % gl_WorkGroupSize.x];
+})";
+
+}  // namespace
+
+TEST(ShaderWorkgroup, SharedReductionWithBarriers) {
+    for (uint32_t n : {64u, 256u, 24u, 16u, 1u}) {
+        SCOPED_TRACE(n);
+        auto p = compute(kReduce, n);
+        ASSERT_TRUE(p);
+        EXPECT_TRUE(p->interface().uses_barriers);
+        EXPECT_EQ(p->interface().shared_memory_bytes, 4096u);
+        EXPECT_FALSE(p->compiled());  // barriers: the interpreter only (jit::compile says why)
+        const uint32_t groups = 5;
+        std::vector<uint32_t> x = random_words(size_t(n) * groups, n), y(64 + x.size(), 0xDEADu);
+        Bindings b;
+        b.set(0, 0, 0, storage(x));
+        b.set(0, 1, 0, storage(y));
+        Scratch s;
+        dispatch(*p, b, 0, groups, groups, s);
+        for (uint32_t g = 0; g < groups; ++g) {
+            const uint32_t* in = x.data() + size_t(g) * n;
+            EXPECT_EQ(y[g], std::accumulate(in, in + n, 0u)) << "workgroup " << g;
+            // after the loop s[0] holds the sum and s[j] (j > 0) a partial sum: only check what is defined
+            // without knowing the tree: every lane read the same s as lane 0 of the check below
+            for (uint32_t i = 0; i < n; ++i) {
+                const uint32_t j = (i * 7 + 5) % n;
+                if (j == 0) EXPECT_EQ(y[64 + g * n + i], y[g]) << "invocation " << i;
+            }
+        }
+        EXPECT_EQ(s.loop_limit_hits(), 0u);
+    }
+}
+
+// Values written before a barrier by every batch, read across batches after it (a reversal).
+TEST(ShaderWorkgroup, BarrierOrdersSharedWritesAcrossBatches) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 8, local_size_y = 5) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint y[]; };
+        shared uint s[40];
+        shared uint t[40];
+        void main() {
+            uint i = gl_LocalInvocationIndex;
+            s[i] = i * 1000u + gl_WorkGroupID.x;
+            barrier();
+            t[39u - i] = s[i] + 1u;
+            barrier();
+            y[gl_WorkGroupID.x * 40u + i] = t[i] + s[39u - i];
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint32_t> y(3 * 40, 0);
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 3, 3, s);
+    for (uint32_t g = 0; g < 3; ++g)
+        for (uint32_t i = 0; i < 40; ++i) {
+            const uint32_t v = (39 - i) * 1000 + g;
+            EXPECT_EQ(y[g * 40 + i], 2 * v + 1) << g << " " << i;
+        }
+}
+
+// Buffer atomics of every kind, from many workgroups on four threads: the order-independent results.
+TEST(ShaderWorkgroup, BufferAtomicsFromFourThreads) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 24) in;
+        layout(std430, set = 0, binding = 0) readonly buffer X { uint x[]; };
+        layout(std430, set = 0, binding = 1) buffer C {
+            uint sum; int smin; int smax; uint umin; uint umax; uint andv; uint orv; uint xorv; uint count;
+            uint dec; uint sub; uint exch; uint first; uint winners;
+        } c;
+        void main() {
+            uint v = x[gl_GlobalInvocationID.x];
+            atomicAdd(c.sum, v);
+            atomicMin(c.smin, int(v) - 50000);
+            atomicMax(c.smax, int(v) - 50000);
+            atomicMin(c.umin, v);
+            atomicMax(c.umax, v);
+            atomicAnd(c.andv, ~(1u << (v % 32u)));
+            atomicOr(c.orv, 1u << (v % 31u));
+            atomicXor(c.xorv, v);
+            atomicAdd(c.count, 1u);
+            atomicAdd(c.dec, 0xFFFFFFFFu);
+            atomicExchange(c.exch, 7u);
+            if (atomicCompSwap(c.first, 0u, gl_GlobalInvocationID.x + 1u) == 0u) atomicAdd(c.winners, 1u);
+        })");
+    ASSERT_TRUE(p);
+    EXPECT_TRUE(p->interface().uses_atomics);
+    EXPECT_FALSE(p->compiled());
+    const uint32_t groups = 400, n = groups * 24;
+    std::vector<uint32_t> x = random_words(n, 99);
+    std::vector<uint32_t> c(14, 0);
+    c[1] = 0x7FFFFFFF, c[2] = 0x80000000u, c[3] = ~0u, c[5] = ~0u, c[9] = n;
+    Bindings b;
+    b.set(0, 0, 0, storage(x));
+    b.set(0, 1, 0, storage(c));
+    std::vector<std::thread> threads;
+    for (uint32_t t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            Scratch s;
+            dispatch(*p, b, t * groups / 4, groups / 4, groups, s);
+        });
+    for (std::thread& t : threads) t.join();
+    uint32_t sum = 0, andv = ~0u, orv = 0, xorv = 0;
+    for (uint32_t v : x) sum += v, andv &= ~(1u << (v % 32)), orv |= 1u << (v % 31), xorv ^= v;
+    EXPECT_EQ(c[0], sum);
+    EXPECT_EQ(int32_t(c[1]), int32_t(*std::min_element(x.begin(), x.end())) - 50000);
+    EXPECT_EQ(int32_t(c[2]), int32_t(*std::max_element(x.begin(), x.end())) - 50000);
+    EXPECT_EQ(c[3], *std::min_element(x.begin(), x.end()));
+    EXPECT_EQ(c[4], *std::max_element(x.begin(), x.end()));
+    EXPECT_EQ(c[5], andv);
+    EXPECT_EQ(c[6], orv);
+    EXPECT_EQ(c[7], xorv);
+    EXPECT_EQ(c[8], n);
+    EXPECT_EQ(c[9], 0u);
+    EXPECT_EQ(c[11], 7u);
+    EXPECT_GE(c[12], 1u);
+    EXPECT_LE(c[12], n);
+    EXPECT_EQ(c[13], 1u);  // exactly one compare-exchange found the 0
+}
+
+// Atomics on shared memory and the values they return: lanes apply in lane order, batches in order, so a counter
+// hands out 0, 1, 2, ... in LocalInvocationIndex order (deterministic; Vulkan allows any order).
+TEST(ShaderWorkgroup, SharedAtomicsReturnValuesInLaneOrder) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 40) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint y[]; };
+        shared uint counter;
+        shared uint mx;
+        shared uint slot;
+        void main() {
+            if (gl_LocalInvocationIndex == 0u) { counter = 0u; mx = 0u; slot = 0u; }
+            barrier();
+            uint mine = atomicAdd(counter, 1u);
+            atomicMax(mx, gl_LocalInvocationIndex * 3u);
+            uint old = atomicCompSwap(slot, 0u, gl_LocalInvocationIndex + 100u);
+            barrier();
+            y[gl_LocalInvocationIndex * 4u] = mine;
+            y[gl_LocalInvocationIndex * 4u + 1u] = counter;
+            y[gl_LocalInvocationIndex * 4u + 2u] = mx;
+            y[gl_LocalInvocationIndex * 4u + 3u] = old;
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint32_t> y(160, 0xDEAD);
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 1, 1, s);
+    for (uint32_t i = 0; i < 40; ++i) {
+        EXPECT_EQ(y[i * 4], i);
+        EXPECT_EQ(y[i * 4 + 1], 40u);
+        EXPECT_EQ(y[i * 4 + 2], 39u * 3);
+        EXPECT_EQ(y[i * 4 + 3], i == 0 ? 0u : 100u) << i;  // lane 0 of batch 0 swapped first
+    }
+}
+
+// Atomics in a loop with a lane-dependent trip count: every lane keeps the value it got while it was active.
+TEST(ShaderWorkgroup, AtomicsInDivergentLoops) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 16) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint total; uint y[]; };
+        void main() {
+            uint last = 0u;
+            for (uint k = 0u; k <= gl_LocalInvocationIndex; ++k) last = atomicAdd(total, 1u);
+            y[gl_LocalInvocationIndex] = last;
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint32_t> y(17, 0);
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 1, 1, s);
+    EXPECT_EQ(y[0], 136u);  // 1 + 2 + ... + 16
+    // iteration k runs lanes k..15 in lane order: lane l's last add (k = l) returned sum_{j<l}(16-j) + 0
+    for (uint32_t l = 0; l < 16; ++l) {
+        uint32_t before = 0;
+        for (uint32_t j = 0; j < l; ++j) before += 16 - j;
+        EXPECT_EQ(y[1 + l], before) << l;
+    }
+}
+
+// A barrier only some batches reach (non-uniform control flow, undefined in SPIR-V) and a loop around a barrier
+// that never ends: both end (the latter at the watchdog), never hang.
+TEST(ShaderWorkgroup, BarriersInNonUniformFlowAndEndlessLoopsEnd) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 32) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint y[]; };
+        shared uint s[32];
+        void main() {
+            s[gl_LocalInvocationIndex] = gl_LocalInvocationIndex;
+            if (gl_LocalInvocationIndex < 16u) barrier();
+            y[gl_LocalInvocationIndex] = s[gl_LocalInvocationIndex] + 1u;
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint32_t> y(32, 0);
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 1, 1, s);
+    for (uint32_t i = 0; i < 32; ++i) EXPECT_EQ(y[i], i + 1);
+
+    auto endless = compute(R"(#version 450
+        layout(local_size_x = 20) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint y[]; };
+        void main() {
+            while (y[0] == 0u) barrier();
+            y[1] = 5u;
+        })");
+    ASSERT_TRUE(endless);
+    std::vector<uint32_t> z(2, 0);
+    Bindings bz;
+    bz.set(0, 0, 0, storage(z));
+    Scratch s2;
+    dispatch(*endless, bz, 0, 1, 1, s2);
+    EXPECT_EQ(s2.loop_limit_hits(), 2u);  // both batches cut by the watchdog
+    EXPECT_EQ(z[1], 0u);
+}
+
+// Shared memory starts at zero in every workgroup (lavapipe leaves it undefined; tilevk keeps runs deterministic)
+// and is not shared between workgroups.
+TEST(ShaderWorkgroup, SharedMemoryIsPerWorkgroup) {
+    auto p = compute(R"(#version 450
+        layout(local_size_x = 4) in;
+        layout(std430, set = 0, binding = 0) buffer Y { uint y[]; };
+        shared uint acc;
+        void main() {
+            atomicAdd(acc, gl_WorkGroupID.x + 1u);
+            barrier();
+            y[gl_GlobalInvocationID.x] = acc;
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint32_t> y(12, 0);
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 3, 3, s);
+    for (uint32_t i = 0; i < 12; ++i) EXPECT_EQ(y[i], 4 * (i / 4 + 1)) << i;
+}
+
+// The atomics GLSL does not emit (OpAtomicIIncrement, IDecrement, ISub, Load, Store), on a storage buffer and on
+// Workgroup memory, assembled by hand.
+TEST(ShaderWorkgroup, AtomicsGlslDoesNotEmit) {
+    const char* const text = R"(
+               OpCapability Shader
+               OpMemoryModel Logical GLSL450
+               OpEntryPoint GLCompute %main "main" %lid
+               OpExecutionMode %main LocalSize 20 1 1
+               OpDecorate %lid BuiltIn LocalInvocationIndex
+               OpDecorate %rt ArrayStride 4
+               OpMemberDecorate %blk 0 Offset 0
+               OpDecorate %blk BufferBlock
+               OpDecorate %buf DescriptorSet 0
+               OpDecorate %buf Binding 0
+       %void = OpTypeVoid
+         %fn = OpTypeFunction %void
+       %uint = OpTypeInt 32 0
+         %rt = OpTypeRuntimeArray %uint
+        %blk = OpTypeStruct %rt
+       %pblk = OpTypePointer Uniform %blk
+      %puint = OpTypePointer Uniform %uint
+        %pin = OpTypePointer Input %uint
+         %c0 = OpConstant %uint 0
+         %c1 = OpConstant %uint 1
+         %c2 = OpConstant %uint 2
+         %c3 = OpConstant %uint 3
+         %c4 = OpConstant %uint 4
+         %c5 = OpConstant %uint 5
+        %c10 = OpConstant %uint 10
+         %c8 = OpConstant %uint 8
+        %c32 = OpConstant %uint 32
+        %c56 = OpConstant %uint 56
+        %c80 = OpConstant %uint 80
+        %sem = OpConstant %uint 264
+        %arr = OpTypeArray %uint %c2
+       %psha = OpTypePointer Workgroup %arr
+        %psh = OpTypePointer Workgroup %uint
+        %buf = OpVariable %pblk Uniform
+        %lid = OpVariable %pin Input
+         %sh = OpVariable %psha Workgroup
+       %main = OpFunction %void None %fn
+      %entry = OpLabel
+          %i = OpLoad %uint %lid
+         %p0 = OpAccessChain %puint %buf %c0 %c0
+         %p1 = OpAccessChain %puint %buf %c0 %c1
+         %p2 = OpAccessChain %puint %buf %c0 %c2
+         %p3 = OpAccessChain %puint %buf %c0 %c3
+         %p4 = OpAccessChain %puint %buf %c0 %c4
+         %s1 = OpAccessChain %psh %sh %c1
+          %a = OpAtomicIIncrement %uint %p0 %c1 %c0
+          %b = OpAtomicIDecrement %uint %p1 %c1 %c0
+          %c = OpAtomicISub %uint %p2 %c1 %c0 %i
+               OpAtomicStore %p3 %c1 %c0 %c5
+          %d = OpAtomicLoad %uint %p4 %c1 %c0
+               OpAtomicStore %s1 %c2 %c0 %c10
+               OpControlBarrier %c2 %c2 %sem
+          %e = OpAtomicIIncrement %uint %s1 %c2 %c0
+          %f = OpAtomicISub %uint %s1 %c2 %c0 %i
+          %g = OpAtomicIDecrement %uint %s1 %c2 %c0
+               OpControlBarrier %c2 %c2 %sem
+          %h = OpAtomicLoad %uint %s1 %c2 %c0
+         %i8 = OpIAdd %uint %i %c8
+        %i32 = OpIAdd %uint %i %c32
+        %i56 = OpIAdd %uint %i %c56
+        %i80 = OpIAdd %uint %i %c80
+         %o8 = OpAccessChain %puint %buf %c0 %i8
+        %o32 = OpAccessChain %puint %buf %c0 %i32
+        %o56 = OpAccessChain %puint %buf %c0 %i56
+        %o80 = OpAccessChain %puint %buf %c0 %i80
+               OpStore %o8 %a
+               OpStore %o32 %d
+               OpStore %o56 %h
+               OpStore %o80 %e
+               OpReturn
+               OpFunctionEnd
+)";
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    std::string msg;
+    tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t&, const char* m) { msg += m; });
+    std::vector<uint32_t> words;
+    ASSERT_TRUE(tools.Assemble(text, &words)) << msg;
+    Result r = Program::create(words, Stage::Compute);
+    ASSERT_TRUE(r) << r.error;
+    std::vector<uint32_t> y(100, 0);
+    y[1] = 100, y[2] = 1000, y[4] = 77;
+    Bindings b;
+    b.set(0, 0, 0, storage(y));
+    Scratch s;
+    dispatch(*r.program, b, 0, 1, 1, s);
+    EXPECT_EQ(y[0], 20u);
+    EXPECT_EQ(y[1], 80u);
+    EXPECT_EQ(y[2], 1000u - 190u);  // minus 0 + 1 + ... + 19
+    EXPECT_EQ(y[3], 5u);
+    for (uint32_t i = 0; i < 20; ++i) {
+        EXPECT_EQ(y[8 + i], i);  // increments in lane order, batch 0 first
+        EXPECT_EQ(y[32 + i], 77u);
+        EXPECT_EQ(y[56 + i], 10u + 20u - 190u - 20u);
+        // no barrier between the three shared atomics: batch 0 (lanes 0-15) does all three before batch 1 starts
+        EXPECT_EQ(y[80 + i], i < 16 ? 10u + i : 10u + 16u - 120u - 16u + (i - 16u)) << i;
+    }
+}
