@@ -27,7 +27,7 @@ constexpr uint32_t kNever = UINT32_MAX;
 // 32-byte constants after the code, addressed RIP-relative.
 class ConstantPool {
   public:
-    explicit ConstantPool(asmjit::Label label) : label_(label) {}
+    explicit ConstantPool(const asmjit::Label& label) : label_(label) {}
     asmjit::x86::Mem splat(uint32_t bits);         // eight copies of bits
     asmjit::x86::Mem vector(const uint32_t v[8]);  // eight words
     void emit(asmjit::x86::Assembler& a) const;    // at the end of the function
@@ -83,7 +83,7 @@ class LaneEmitter {
     Ymm take(uint64_t key);  // use() that may hand over the register (last read) for the result
     Ymm temp();
     void def(uint64_t key, Ymm y);
-    void def(uint32_t r, Ymm y) { def(reg_key(r), y); }
+    void def(uint32_t r, const Ymm& y) { def(reg_key(r), y); }
     void end_instruction();
     bool op(const Inst& in);
 
