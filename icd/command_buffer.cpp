@@ -5,6 +5,7 @@
 
 #include "buffer.h"
 #include "descriptor_pool.h"
+#include "device_group.h"
 #include "entrypoints.h"
 #include "framebuffer.h"
 #include "image.h"
@@ -179,7 +180,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginRenderPass(VkCommandBuffer commandBuffer,
     if (auto* c = cb->append<CmdBeginRenderPass>()) {
         c->render_pass = from_handle<RenderPass>(pRenderPassBegin->renderPass);
         c->framebuffer = from_handle<Framebuffer>(pRenderPassBegin->framebuffer);
-        c->area = pRenderPassBegin->renderArea;
+        c->area = render_area_of(*pRenderPassBegin);
         c->clear_count = pRenderPassBegin->clearValueCount;
         c->clears = cb->copy(pRenderPassBegin->pClearValues, pRenderPassBegin->clearValueCount);
     }

@@ -4,6 +4,7 @@
 #include "entrypoints.h"
 #include "physical_device.h"
 #include "vk_names.h"
+#include "wsi/swapchain.h"
 
 namespace tilevk::icd {
 
@@ -65,6 +66,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
                     supported == VK_SUCCESS ? "supported" : "VK_ERROR_FORMAT_NOT_SUPPORTED", props.maxExtent.width,
                     props.maxExtent.height, props.maxMipLevels, props.maxArrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(props.sampleCounts).c_str());
+    }
+    if (const auto* swapchain =
+            find_in_chain<VkImageSwapchainCreateInfoKHR>(ci->pNext, VK_STRUCTURE_TYPE_IMAGE_SWAPCHAIN_CREATE_INFO_KHR);
+        swapchain != nullptr && swapchain->swapchain != VK_NULL_HANDLE) {
+        if (VkResult r = check_swapchain_image(*ci, *swapchain); r != VK_SUCCESS) return r;
     }
     Image* img = create_object<Image>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (img == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateImage: out of host memory");

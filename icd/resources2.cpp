@@ -1,10 +1,12 @@
 // The extensible forms of the buffer and image memory commands: vkBind{Buffer,Image}Memory2 (VK_KHR_bind_memory2),
 // vkGet{Buffer,Image,ImageSparse}MemoryRequirements2 (VK_KHR_get_memory_requirements2) with
-// VkMemoryDedicatedRequirements (VK_KHR_dedicated_allocation). Each is the Vulkan 1.0 command it extends.
+// VkMemoryDedicatedRequirements (VK_KHR_dedicated_allocation). Each is the Vulkan 1.0 command it extends (images bound
+// to swapchain memory aside).
 #include "buffer.h"
 #include "device.h"
 #include "entrypoints.h"
 #include "image.h"
+#include "wsi/swapchain.h"
 
 namespace tilevk::icd {
 namespace {
@@ -34,10 +36,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory2(VkDevice device, uint32_t c
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_BindImageMemory2(VkDevice device, uint32_t count,
                                                     const VkBindImageMemoryInfo* pInfos) {
-    for (uint32_t i = 0; i < count; ++i)
-        if (VkResult r = tvk_BindImageMemory(device, pInfos[i].image, pInfos[i].memory, pInfos[i].memoryOffset);
-            r != VK_SUCCESS)
-            return r;
+    // VkBindImageMemoryDeviceGroupInfo may only name device 0 and no split-instance regions (images with
+    // VK_IMAGE_CREATE_SPLIT_INSTANCE_BIND_REGIONS_BIT are refused): nothing to do. VkBindImageMemorySwapchainInfoKHR
+    // binds the image to a swapchain image's memory instead of pInfos[i].memory (VK_NULL_HANDLE then).
+    for (uint32_t i = 0; i < count; ++i) {
+        const auto* swapchain = find_in_chain<VkBindImageMemorySwapchainInfoKHR>(
+            pInfos[i].pNext, VK_STRUCTURE_TYPE_BIND_IMAGE_MEMORY_SWAPCHAIN_INFO_KHR);
+        const VkResult r = swapchain != nullptr && swapchain->swapchain != VK_NULL_HANDLE
+                               ? bind_swapchain_memory(from_handle<Image>(pInfos[i].image), *swapchain)
+                               : tvk_BindImageMemory(device, pInfos[i].image, pInfos[i].memory, pInfos[i].memoryOffset);
+        if (r != VK_SUCCESS) return r;
+    }
     return VK_SUCCESS;
 }
 

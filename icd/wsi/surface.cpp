@@ -241,4 +241,27 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceSurfacePresentModesKHR(VkPhy
                        pCount, pModes);
 }
 
+// ---- VK_KHR_device_group with VK_KHR_surface: a one-device group presents locally --------------------------------
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetDeviceGroupSurfacePresentModesKHR(VkDevice, VkSurfaceKHR surface,
+                                                                        VkDeviceGroupPresentModeFlagsKHR* pModes) {
+    *pModes = 0;
+    wsi::SurfaceInfo info;
+    if (VkResult r = wsi::query_surface(surface, &info); r != VK_SUCCESS) return r;
+    *pModes = VK_DEVICE_GROUP_PRESENT_MODE_LOCAL_BIT_KHR;
+    return VK_SUCCESS;
+}
+
+// The whole surface: an X window's geometry, or (a surface whose size the swapchain sets: Wayland, headless) the
+// "size unknown" rectangle of UINT32_MAX x UINT32_MAX that Mesa's window systems report too.
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDevicePresentRectanglesKHR(VkPhysicalDevice, VkSurfaceKHR surface,
+                                                                         uint32_t* pRectCount, VkRect2D* pRects) {
+    wsi::SurfaceInfo info;
+    if (VkResult r = wsi::query_surface(surface, &info); r != VK_SUCCESS) return r;
+    const VkRect2D whole = info.current_extent.width == wsi::kExtentFromSwapchain
+                               ? VkRect2D{{0, 0}, {UINT32_MAX, UINT32_MAX}}
+                               : VkRect2D{{0, 0}, info.current_extent};
+    return write_array(std::vector<VkRect2D>{whole}, pRectCount, pRects);
+}
+
 }  // namespace tilevk::icd

@@ -318,4 +318,63 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_QueuePresentKHR(VkQueue queue, const VkPresen
     return overall;
 }
 
+// ---- VK_KHR_device_group with VK_KHR_swapchain ------------------------------------------------------------------
+
+VkResult check_swapchain_image(const VkImageCreateInfo& ci, const VkImageSwapchainCreateInfoKHR& link) {
+    const Swapchain* sc = from_handle<Swapchain>(link.swapchain);
+    const Image& image = *sc->images[0];
+    if (ci.format == vk_format(*image.format) && ci.imageType == VK_IMAGE_TYPE_2D &&
+        ci.extent.width == image.extent.width && ci.extent.height == image.extent.height && ci.extent.depth == 1 &&
+        ci.mipLevels == 1 && ci.arrayLayers == 1 && ci.samples == VK_SAMPLE_COUNT_1_BIT &&
+        ci.tiling == VK_IMAGE_TILING_OPTIMAL && ci.usage == image.usage && ci.flags == 0)
+        return VK_SUCCESS;
+    return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                "vkCreateImage: VkImageSwapchainCreateInfoKHR names a swapchain of %ux%u %s images with usage %s, "
+                "but the image is %ux%ux%u %s, %u levels, %u layers, %s, %s, usage %s, flags %s "
+                "(VUID-VkImageSwapchainCreateInfoKHR-swapchain-00995)",
+                image.extent.width, image.extent.height, vk_enum_name(vk_format(*image.format)),
+                vk_flags_name<VkImageUsageFlagBits>(image.usage).c_str(), ci.extent.width, ci.extent.height,
+                ci.extent.depth, vk_enum_name(ci.format), ci.mipLevels, ci.arrayLayers,
+                vk_flags_name<VkSampleCountFlagBits>(ci.samples).c_str(), vk_enum_name(ci.tiling),
+                vk_flags_name<VkImageUsageFlagBits>(ci.usage).c_str(),
+                vk_flags_name<VkImageCreateFlagBits>(ci.flags).c_str());
+}
+
+VkResult bind_swapchain_memory(Image* image, const VkBindImageMemorySwapchainInfoKHR& link) {
+    const Swapchain* sc = from_handle<Swapchain>(link.swapchain);
+    if (link.imageIndex >= sc->image_count) {
+        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY,
+                    "vkBindImageMemory2: VkBindImageMemorySwapchainInfoKHR::imageIndex %u, but the swapchain has %u "
+                    "images",
+                    link.imageIndex, sc->image_count);
+    }
+    const Image& target = *sc->images[link.imageIndex];
+    if (image->format != target.format || image->layout.size != target.layout.size ||
+        image->extent.width != target.extent.width || image->extent.height != target.extent.height) {
+        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY,
+                    "vkBindImageMemory2: a %ux%u %s image cannot use the memory of swapchain image %u (%ux%u %s); "
+                    "create it with VkImageSwapchainCreateInfoKHR",
+                    image->extent.width, image->extent.height, vk_enum_name(vk_format(*image->format)), link.imageIndex,
+                    target.extent.width, target.extent.height, vk_enum_name(vk_format(*target.format)));
+    }
+    image->memory = target.memory;
+    image->memory_offset = target.memory_offset;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetDeviceGroupPresentCapabilitiesKHR(VkDevice,
+                                                                        VkDeviceGroupPresentCapabilitiesKHR* pCaps) {
+    std::fill(std::begin(pCaps->presentMask), std::end(pCaps->presentMask), 0u);
+    pCaps->presentMask[0] = 1;  // device 0 presents its own images
+    pCaps->modes = VK_DEVICE_GROUP_PRESENT_MODE_LOCAL_BIT_KHR;
+    return VK_SUCCESS;
+}
+
+// deviceMask can only be 1 (VUID-VkAcquireNextImageInfoKHR-deviceMask-01290): device 0 acquires.
+VKAPI_ATTR VkResult VKAPI_CALL tvk_AcquireNextImage2KHR(VkDevice device, const VkAcquireNextImageInfoKHR* pInfo,
+                                                        uint32_t* pImageIndex) {
+    return tvk_AcquireNextImageKHR(device, pInfo->swapchain, pInfo->timeout, pInfo->semaphore, pInfo->fence,
+                                   pImageIndex);
+}
+
 }  // namespace tilevk::icd

@@ -49,6 +49,12 @@ std::chrono::nanoseconds refresh_interval();
 
 }  // namespace wsi
 
+// VK_KHR_device_group with VK_KHR_swapchain: an image made with VkImageSwapchainCreateInfoKHR must have the
+// swapchain's image parameters (checked at vkCreateImage), and VkBindImageMemorySwapchainInfoKHR binds it to the
+// memory of one swapchain image, so both handles name the same texels.
+VkResult check_swapchain_image(const VkImageCreateInfo& ci, const VkImageSwapchainCreateInfoKHR& link);
+VkResult bind_swapchain_memory(Image* image, const VkBindImageMemorySwapchainInfoKHR& link);
+
 struct Swapchain : NonDispatchableObject {
     using Handle = VkSwapchainKHR;
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_SWAPCHAIN_KHR;

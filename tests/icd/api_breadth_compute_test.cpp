@@ -5,10 +5,12 @@
 // worker thread and four, and bad input (limits, a missing entry point, what is not implemented yet) refused with a
 // message naming it. Shared memory, barriers and atomics: results whose order the shader leaves open are checked
 // order-free (sums, minima, sorted counters) and compared byte for byte.
+// Then suite ApiDeviceGroup (VK_KHR_device_group): vkCmdDispatchBase, device render areas, peer memory.
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 #include <string>
 
@@ -21,6 +23,7 @@ namespace {
 #include "cp_barrier_comp.h"
 #include "cp_binds_comp.h"
 #include "cp_counters_comp.h"
+#include "cp_dispatch_base_comp.h"
 #include "cp_ids_comp.h"
 #include "cp_image_atomic_comp.h"
 #include "cp_reduce_comp.h"
@@ -514,6 +517,160 @@ TEST_F(ApiCompute, BadInputIsRefusedByName) {
     EXPECT_EQ(words[16 + 2], 1u);  // the second invocation's LocalInvocationId.z
     EXPECT_EQ(words[16 + 3], 1u);  // and LocalInvocationIndex
     EXPECT_EQ(words[7], 0xC0FFEEu);
+}
+
+// VK_KHR_device_group on both drivers' one-device groups: vkCmdDispatchBase (workgroup IDs from the base, checked
+// against their definitions here), a render area given per device by VkDeviceGroupRenderPassBeginInfo (it
+// overrides renderArea; lavapipe 22.3 ignores it, a named difference) and vkCmdSetDeviceMask(1).
+class ApiDeviceGroup : public ApiCompute {
+  protected:
+    void SetUp() override {
+        const std::vector<const char*> ext = {VK_KHR_DEVICE_GROUP_EXTENSION_NAME};
+        tilevk_group_ = std::make_unique<Device>(tilevk_->physical(), nullptr, ext);
+        lavapipe_group_ = std::make_unique<Device>(lavapipe_->physical(), nullptr, ext);
+        ASSERT_TRUE(tilevk_group_->ok() && lavapipe_group_->ok());
+    }
+    Bytes both(const std::function<Bytes(Kit&)>& scene) { return both_on(*tilevk_group_, *lavapipe_group_, scene); }
+    std::unique_ptr<Device> tilevk_group_, lavapipe_group_;
+};
+
+// cp_dispatch_base.comp (workgroups of 4x2x1) from workgroup `base`, `groups` of them, in a pipeline made with
+// VK_PIPELINE_CREATE_DISPATCH_BASE_BIT. Every invocation of the grid up to base + groups is checked: those of the
+// dispatch against the built-ins' definitions, the others untouched.
+Bytes dispatch_base(Kit& k, const uint32_t base[3], const uint32_t groups[3]) {
+    const uint32_t size[3] = {4, 2, 1};
+    uint32_t extent[3];
+    for (int i = 0; i < 3; ++i) extent[i] = (base[i] + groups[i]) * size[i];
+    const uint32_t n = extent[0] * extent[1] * extent[2];
+    Device::Buffer out = k.buffer(VkDeviceSize(n) * 64, kStorage);
+    StorageSet s = storage_set(k, {&out}, 8);
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = k.shader(SPV(cp_dispatch_base_comp));
+    ci.stage.pName = "main";
+    ci.layout = s.layout;
+    VkPipeline p = VK_NULL_HANDLE;
+    EXPECT_EQ(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &ci, nullptr, &p), VK_SUCCESS);
+    k.undo(VK_OBJECT_TYPE_PIPELINE, p, [&k, p] { vkDestroyPipeline(k.d, p, nullptr); });
+    auto dispatch_base_fn =
+        reinterpret_cast<PFN_vkCmdDispatchBaseKHR>(vkGetDeviceProcAddr(k.d, "vkCmdDispatchBaseKHR"));
+    auto set_mask = reinterpret_cast<PFN_vkCmdSetDeviceMaskKHR>(vkGetDeviceProcAddr(k.d, "vkCmdSetDeviceMaskKHR"));
+    EXPECT_NE(dispatch_base_fn, nullptr);
+    EXPECT_NE(set_mask, nullptr);
+    if (dispatch_base_fn == nullptr || set_mask == nullptr) return {};
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdFillBuffer(c, out.buffer, 0, VK_WHOLE_SIZE, 0xDEADBEEFu);
+        barrier(c, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_WRITE_BIT);
+        set_mask(c, 1);
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdPushConstants(c, s.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 8, extent);
+        dispatch_base_fn(c, base[0], base[1], base[2], groups[0], groups[1], groups[2]);
+    }),
+              VK_SUCCESS);
+    const auto* rec = static_cast<const uint32_t*>(out.map);
+    size_t wrong = 0, dispatched = 0;
+    for (uint32_t z = 0; z < extent[2]; ++z)
+        for (uint32_t y = 0; y < extent[1]; ++y)
+            for (uint32_t x = 0; x < extent[0]; ++x) {
+                const uint32_t* r = rec + 16 * (x + extent[0] * (y + extent[1] * z));
+                const uint32_t g[3] = {x, y, z}, wg[3] = {x / size[0], y / size[1], z / size[2]};
+                const bool inside = wg[0] >= base[0] && wg[1] >= base[1] && wg[2] >= base[2];
+                dispatched += inside;
+                uint32_t want[16];
+                if (inside) {
+                    const uint32_t l[3] = {x % size[0], y % size[1], z % size[2]};
+                    const uint32_t record[16] = {l[0],      l[1],      l[2],      l[0] + size[0] * l[1],
+                                                 g[0],      g[1],      g[2],      0xC0FFEEu,
+                                                 wg[0],     wg[1],     wg[2],     7u,
+                                                 groups[0], groups[1], groups[2], 0xBA5Eu};
+                    std::memcpy(want, record, sizeof want);
+                } else {
+                    std::fill(std::begin(want), std::end(want), 0xDEADBEEFu);
+                }
+                wrong += std::memcmp(r, want, sizeof want) != 0;
+            }
+    EXPECT_EQ(wrong, 0u) << "records of " << n;
+    EXPECT_EQ(dispatched, size_t(groups[0] * groups[1] * groups[2]) * 8);
+    return Kit::bytes(out);
+}
+
+TEST_F(ApiDeviceGroup, DispatchBaseOffsetsTheWorkgroupIds) {
+    const uint32_t base[3] = {3, 1, 2}, groups[3] = {5, 3, 2};
+    both([&](Kit& k) { return dispatch_base(k, base, groups); });
+    const uint32_t zero[3] = {0, 0, 0}, one[3] = {1, 1, 1};
+    both([&](Kit& k) { return dispatch_base(k, zero, one); });
+}
+
+// An image filled with one colour, then a render pass that clears it to another inside the device render area
+// (VkDeviceGroupRenderPassBeginInfo; renderArea says the whole image and must be overridden, as the spec says).
+// Named difference: lavapipe 22.3 ignores the device render area and clears all of renderArea; both are pinned.
+Bytes clear_in_device_render_area(Kit& k, const VkRect2D& area) {
+    const VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;
+    Device::Image img = k.image(
+        f, 32, 32,
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    VkAttachmentDescription a = attachment(f, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE);
+    a.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;  // what lies outside the area is kept
+    VkRenderPass rp = k.render_pass({a}, {subpass(&kColour0)});
+    VkFramebuffer fb = k.framebuffer(rp, {k.view(img.image, f, VK_IMAGE_ASPECT_COLOR_BIT)}, 32, 32);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        transition(c, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        const VkClearColorValue before = {{0.0f, 0.0f, 1.0f, 1.0f}};
+        const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(c, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &before, 1, &all);
+        barrier(c, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+        VkDeviceGroupRenderPassBeginInfo group{VK_STRUCTURE_TYPE_DEVICE_GROUP_RENDER_PASS_BEGIN_INFO};
+        group.deviceMask = 1;
+        group.deviceRenderAreaCount = 1;
+        group.pDeviceRenderAreas = &area;
+        const VkClearValue inside = clear_color(1.0f, 0.0f, 0.0f, 1.0f);
+        VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        bi.pNext = &group;
+        bi.renderPass = rp;
+        bi.framebuffer = fb;
+        bi.renderArea = {{0, 0}, {32, 32}};
+        bi.clearValueCount = 1;
+        bi.pClearValues = &inside;
+        vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdEndRenderPass(c);
+    }),
+              VK_SUCCESS);
+    return k.read(img.image, 32, 32, 4);
+}
+
+// How many texels of a 32x32 RGBA8 image are not red inside `area` and blue outside it.
+size_t wrong_texels(const Bytes& got, const VkRect2D& area) {
+    if (got.size() != 32 * 32 * 4) return 32 * 32;
+    size_t wrong = 0;
+    for (uint32_t y = 0; y < 32; ++y)
+        for (uint32_t x = 0; x < 32; ++x) {
+            const bool in = x >= uint32_t(area.offset.x) && x < area.offset.x + area.extent.width &&
+                            y >= uint32_t(area.offset.y) && y < area.offset.y + area.extent.height;
+            const uint8_t want[4] = {uint8_t(in ? 255 : 0), 0, uint8_t(in ? 0 : 255), 255};
+            wrong += std::memcmp(&got[(y * 32 + x) * 4], want, 4) != 0;
+        }
+    return wrong;
+}
+
+TEST_F(ApiDeviceGroup, DeviceRenderAreaOverridesTheRenderArea) {
+    const VkRect2D area = {{8, 4}, {17, 13}}, whole = {{0, 0}, {32, 32}};
+    Bytes tilevk, lavapipe;
+    {
+        Kit k(*tilevk_group_);
+        tilevk = clear_in_device_render_area(k, area);
+    }
+    {
+        Kit k(*lavapipe_group_);
+        lavapipe = clear_in_device_render_area(k, area);
+    }
+    EXPECT_EQ(wrong_texels(tilevk, area), 0u) << "tilevk";
+    EXPECT_EQ(wrong_texels(lavapipe, whole), 0u) << "lavapipe (known to clear all of renderArea)";
 }
 
 }  // namespace

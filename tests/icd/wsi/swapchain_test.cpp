@@ -2,8 +2,9 @@
 // (zero messages) except where invalid usage is the point: what the surface reports, acquire/present order for FIFO,
 // MAILBOX and IMMEDIATE, pacing (FIFO and MAILBOX: one image per refresh, without spinning), timeouts 0 / finite /
 // UINT64_MAX, fences and semaphores, retired (out-of-date) swapchains, destruction with images queued or acquired,
-// and presenting from another thread. The refresh rate is TILEVK_PRESENT_HZ=5 (meson.build): 200 ms per refresh, so
-// that the sequences below fit inside one refresh even on a loaded machine.
+// presenting from another thread, and VK_KHR_device_group's swapchain commands and images bound to swapchain memory.
+// The refresh rate is TILEVK_PRESENT_HZ=5 (meson.build): 200 ms per refresh, so that the sequences below fit inside one
+// refresh even on a loaded machine.
 #include <gtest/gtest.h>
 #include <time.h>
 
@@ -39,13 +40,14 @@ double cpu_seconds() {
 // helper that clears an acquired image and hands it to vkQueuePresentKHR the way an application does.
 class Headless {
   public:
-    explicit Headless(bool validation = true)
+    explicit Headless(bool validation = true,
+                      const std::vector<const char*>& device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME})
         : harness_(validation, {VK_KHR_SURFACE_EXTENSION_NAME, VK_EXT_HEADLESS_SURFACE_EXTENSION_NAME,
                                 VK_KHR_GET_SURFACE_CAPABILITIES_2_EXTENSION_NAME}) {
         if (!harness_.ok()) return;
         pd_ = harness_.find_device("tilevk");
         if (pd_ == VK_NULL_HANDLE) return;
-        dev_ = std::make_unique<Device>(pd_, nullptr, std::vector<const char*>{VK_KHR_SWAPCHAIN_EXTENSION_NAME});
+        dev_ = std::make_unique<Device>(pd_, nullptr, device_extensions);
         auto create = reinterpret_cast<PFN_vkCreateHeadlessSurfaceEXT>(
             vkGetInstanceProcAddr(harness_.instance(), "vkCreateHeadlessSurfaceEXT"));
         VkHeadlessSurfaceCreateInfoEXT ci{VK_STRUCTURE_TYPE_HEADLESS_SURFACE_CREATE_INFO_EXT};
@@ -72,6 +74,8 @@ class Headless {
     VkDevice device() const { return dev_->device(); }
     VkPhysicalDevice physical() const { return pd_; }
     VkSurfaceKHR surface() const { return surface_; }
+    Device& device_object() const { return *dev_; }
+    VkFence fence() const { return fence_; }
     VkQueue queue() const { return dev_->queue(); }
     const Harness& harness() const { return harness_; }
 
@@ -521,4 +525,140 @@ TEST(Swapchain, InvalidUsageIsRefusedWithoutHanging) {
     ASSERT_NE(newer, VK_NULL_HANDLE);
     EXPECT_EQ(h.acquire(sc, 0, &c), VK_ERROR_OUT_OF_DATE_KHR);
     EXPECT_EQ(h.acquire(sc, UINT64_MAX, &c), VK_ERROR_OUT_OF_DATE_KHR);
+}
+
+// VK_KHR_device_group with a swapchain on tilevk's one-device group: device 0 presents locally, the present rectangle
+// is the whole surface ("size unknown" on a headless surface), vkAcquireNextImage2KHR acquires, and an image made
+// with VkImageSwapchainCreateInfoKHR and bound with VkBindImageMemorySwapchainInfoKHR shares the texels of that
+// swapchain image. An image whose parameters differ from the swapchain's is refused by name.
+TEST(Swapchain, DeviceGroupImagesBoundToSwapchainMemory) {
+    Headless h(true, {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_KHR_DEVICE_GROUP_EXTENSION_NAME,
+                      VK_KHR_BIND_MEMORY_2_EXTENSION_NAME});
+    REQUIRE_OK(h);
+    const VkDevice d = h.device();
+    auto caps_fn = reinterpret_cast<PFN_vkGetDeviceGroupPresentCapabilitiesKHR>(
+        vkGetDeviceProcAddr(d, "vkGetDeviceGroupPresentCapabilitiesKHR"));
+    auto modes_fn = reinterpret_cast<PFN_vkGetDeviceGroupSurfacePresentModesKHR>(
+        vkGetDeviceProcAddr(d, "vkGetDeviceGroupSurfacePresentModesKHR"));
+    auto rects_fn = reinterpret_cast<PFN_vkGetPhysicalDevicePresentRectanglesKHR>(
+        vkGetInstanceProcAddr(h.harness().instance(), "vkGetPhysicalDevicePresentRectanglesKHR"));
+    auto acquire2 = reinterpret_cast<PFN_vkAcquireNextImage2KHR>(vkGetDeviceProcAddr(d, "vkAcquireNextImage2KHR"));
+    auto bind2 = reinterpret_cast<PFN_vkBindImageMemory2KHR>(vkGetDeviceProcAddr(d, "vkBindImageMemory2KHR"));
+    ASSERT_TRUE(caps_fn && modes_fn && rects_fn && acquire2 && bind2);
+    VkDeviceGroupPresentCapabilitiesKHR caps{VK_STRUCTURE_TYPE_DEVICE_GROUP_PRESENT_CAPABILITIES_KHR};
+    ASSERT_EQ(caps_fn(d, &caps), VK_SUCCESS);
+    EXPECT_EQ(caps.presentMask[0], 1u);
+    EXPECT_EQ(caps.presentMask[1], 0u);
+    EXPECT_EQ(caps.modes, VkDeviceGroupPresentModeFlagsKHR(VK_DEVICE_GROUP_PRESENT_MODE_LOCAL_BIT_KHR));
+    VkDeviceGroupPresentModeFlagsKHR modes = 0;
+    ASSERT_EQ(modes_fn(d, h.surface(), &modes), VK_SUCCESS);
+    EXPECT_EQ(modes, VkDeviceGroupPresentModeFlagsKHR(VK_DEVICE_GROUP_PRESENT_MODE_LOCAL_BIT_KHR));
+    uint32_t n = 0;
+    ASSERT_EQ(rects_fn(h.physical(), h.surface(), &n, nullptr), VK_SUCCESS);
+    ASSERT_EQ(n, 1u);
+    VkRect2D rect{};
+    ASSERT_EQ(rects_fn(h.physical(), h.surface(), &n, &rect), VK_SUCCESS);
+    EXPECT_EQ(rect.offset.x, 0);
+    EXPECT_EQ(rect.extent.width, UINT32_MAX);
+    EXPECT_EQ(rect.extent.height, UINT32_MAX);
+
+    VkSwapchainCreateInfoKHR sci = h.create_info(VK_PRESENT_MODE_FIFO_KHR, 3);
+    sci.imageUsage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // read back below
+    VkSwapchainKHR sc = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSwapchainKHR(d, &sci, nullptr, &sc), VK_SUCCESS);
+    const std::vector<VkImage> images = h.images(sc);
+    VkImageSwapchainCreateInfoKHR link{VK_STRUCTURE_TYPE_IMAGE_SWAPCHAIN_CREATE_INFO_KHR};
+    link.swapchain = sc;
+    VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ici.pNext = &link;
+    ici.imageType = VK_IMAGE_TYPE_2D;
+    ici.format = kFormat;
+    ici.extent = {kExtent.width, kExtent.height, 1};
+    ici.mipLevels = ici.arrayLayers = 1;
+    ici.samples = VK_SAMPLE_COUNT_1_BIT;
+    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.usage = sci.imageUsage;
+    VkImage alias = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateImage(d, &ici, nullptr, &alias), VK_SUCCESS);
+    VkBindImageMemorySwapchainInfoKHR bind_sc{VK_STRUCTURE_TYPE_BIND_IMAGE_MEMORY_SWAPCHAIN_INFO_KHR};
+    bind_sc.swapchain = sc;
+    bind_sc.imageIndex = 1;
+    VkBindImageMemoryInfo bind{VK_STRUCTURE_TYPE_BIND_IMAGE_MEMORY_INFO};
+    bind.pNext = &bind_sc;
+    bind.image = alias;
+    ASSERT_EQ(bind2(d, 1, &bind), VK_SUCCESS);
+
+    // Clear the alias, read swapchain image 1 (their shared texels) into a host-visible buffer.
+    Device::Buffer out = h.device_object().make_buffer(VkDeviceSize(kExtent.width) * kExtent.height * 4,
+                                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = h.device_object().pool();
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb = VK_NULL_HANDLE;
+    ASSERT_EQ(vkAllocateCommandBuffers(d, &ai, &cb), VK_SUCCESS);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    vkBeginCommandBuffer(cb, &bi);
+    transition(cb, alias, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue colour = {{1.0f, 0.0f, 51.0f / 255.0f, 1.0f}};
+    const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cb, alias, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &all);
+    transition(cb, images[1], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {kExtent.width, kExtent.height, 1};
+    vkCmdCopyImageToBuffer(cb, images[1], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.buffer, 1, &region);
+    vkEndCommandBuffer(cb);
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cb;
+    ASSERT_EQ(vkQueueSubmit(h.queue(), 1, &si, VK_NULL_HANDLE), VK_SUCCESS);
+    ASSERT_EQ(vkQueueWaitIdle(h.queue()), VK_SUCCESS);
+    const auto* texels = static_cast<const uint8_t*>(out.map);
+    size_t wrong = 0;
+    for (uint32_t i = 0; i < kExtent.width * kExtent.height; ++i) {
+        const uint8_t want[4] = {51, 0, 255, 255};  // B, G, R, A
+        wrong += memcmp(texels + 4 * i, want, 4) != 0;
+    }
+    EXPECT_EQ(wrong, 0u) << "texels of swapchain image 1 that are not the colour its alias was cleared to";
+    vkFreeCommandBuffers(d, h.device_object().pool(), 1, &cb);
+    h.device_object().destroy(out);
+
+    VkAcquireNextImageInfoKHR acquire{VK_STRUCTURE_TYPE_ACQUIRE_NEXT_IMAGE_INFO_KHR};
+    acquire.swapchain = sc;
+    acquire.timeout = UINT64_MAX;
+    acquire.fence = h.fence();
+    acquire.deviceMask = 1;
+    vkResetFences(d, 1, &acquire.fence);
+    uint32_t index = UINT32_MAX;
+    EXPECT_EQ(acquire2(d, &acquire, &index), VK_SUCCESS);
+    EXPECT_LT(index, uint32_t(images.size()));
+    EXPECT_EQ(vkWaitForFences(d, 1, &acquire.fence, VK_TRUE, UINT64_MAX), VK_SUCCESS);
+    vkDestroyImage(d, alias, nullptr);
+    vkDestroySwapchainKHR(d, sc, nullptr);
+}
+
+TEST(Swapchain, DeviceGroupImageOfOtherParametersIsRefused) {
+    Headless h(false, {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_KHR_DEVICE_GROUP_EXTENSION_NAME});
+    ASSERT_TRUE(h.ok());
+    VkSwapchainKHR sc = h.make(VK_PRESENT_MODE_FIFO_KHR, 2);
+    ASSERT_NE(sc, VK_NULL_HANDLE);
+    VkImageSwapchainCreateInfoKHR link{VK_STRUCTURE_TYPE_IMAGE_SWAPCHAIN_CREATE_INFO_KHR};
+    link.swapchain = sc;
+    VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ici.pNext = &link;
+    ici.imageType = VK_IMAGE_TYPE_2D;
+    ici.format = kFormat;
+    ici.extent = {kExtent.width + 1, kExtent.height, 1};  // not the swapchain's extent
+    ici.mipLevels = ici.arrayLayers = 1;
+    ici.samples = VK_SAMPLE_COUNT_1_BIT;
+    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.usage = h.create_info(VK_PRESENT_MODE_FIFO_KHR, 2).imageUsage;
+    VkImage alias = VK_NULL_HANDLE;
+    testing::internal::CaptureStderr();
+    EXPECT_NE(vkCreateImage(h.device(), &ici, nullptr, &alias), VK_SUCCESS);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(alias, VK_NULL_HANDLE);
+    EXPECT_NE(err.find("VkImageSwapchainCreateInfoKHR"), std::string::npos) << err;
 }
