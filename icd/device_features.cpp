@@ -74,6 +74,7 @@ Features make_supported() {
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).
     f.core.v12.uniformBufferStandardLayout = VK_TRUE;
+    f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
     f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN

@@ -119,11 +119,14 @@ Result Program::create(std::span<const uint32_t> spirv, Stage stage, std::string
     {
         spvtools::SpirvTools tools(env);
         tools.SetMessageConsumer(consumer);
-        // Uniform blocks may follow std430 rules: icd/ reports uniformBufferStandardLayout (Vulkan 1.2,
-        // VK_KHR_uniform_buffer_standard_layout) and the translator takes every offset and stride from the module's
-        // decorations, so nothing depends on std140 (lavapipe does not check block layouts at all).
+        // Blocks may follow std430 rules in uniform buffers (uniformBufferStandardLayout, Vulkan 1.2,
+        // VK_KHR_uniform_buffer_standard_layout) and scalar rules in uniform, storage and push-constant blocks
+        // (scalarBlockLayout, VK_EXT_scalar_block_layout): icd/ reports both, and the translator takes every offset
+        // and stride from the module's decorations and loads and stores component by component, so nothing depends
+        // on std140 alignment (lavapipe does not check block layouts at all).
         spvtools::ValidatorOptions vopt;
         vopt.SetUniformBufferStandardLayout(true);
+        vopt.SetScalarBlockLayout(true);
         if (!tools.Validate(words.data(), words.size(), vopt)) return finish("invalid SPIR-V: " + messages);
     }
     std::vector<uint32_t> optimized;

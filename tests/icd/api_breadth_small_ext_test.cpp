@@ -1,10 +1,12 @@
-// Small device extensions of Vulkan 1.2 (suite ApiSmallExtensions), each on tilevk and lavapipe with the extension
-// (and its feature) enabled and the validation layer on; results compared byte for byte and checked against
-// values computed here.
+// Small device extensions of Vulkan 1.2 (suites ApiSmallExtensions, ScalarBlockLayout), each on tilevk and lavapipe
+// with the extension (and its feature) enabled and the validation layer on; results compared byte for byte and checked
+// against values computed here.
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
 #include "ab_draw_params_vert.h"
+#include "ab_ubo_scalar_frag.h"
 #include "ab_ubo_std430_frag.h"
+#include "cp_scalar_comp.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -172,6 +174,102 @@ TEST_F(ApiSmallExtensions, UniformBufferStandardLayout) {
         EXPECT_EQ(px[2], 12.0f) << x;
         EXPECT_EQ(px[3], 14.0f) << x;
     }
+}
+
+// VK_EXT_scalar_block_layout, devices with the extension and scalarBlockLayout enabled.
+class ScalarBlockLayout : public ApiSmallExtensions {
+  protected:
+    void SetUp() override {
+        features_.scalarBlockLayout = VK_TRUE;
+        dev_ = devices({VK_EXT_SCALAR_BLOCK_LAYOUT_EXTENSION_NAME}, &features_);
+        ASSERT_TRUE(dev_->ok());
+    }
+    Bytes both(const std::function<Bytes(Kit&)>& scene) { return both_on(dev_->tilevk, dev_->lavapipe, scene); }
+    VkPhysicalDeviceScalarBlockLayoutFeatures features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES};
+    std::unique_ptr<SmallExtDevices> dev_;
+};
+
+// ab_ubo_scalar.frag reads a scalar uniform block into an RGBA32F target: pixel x shows a + b.y, c[x % 3].z,
+// m[x % 3].y and d.y, which are words 0 + 2, 6 + 3i, 14 + 3i and 23 of the buffer (word k holds k + 1).
+TEST_F(ScalarBlockLayout, UniformBlock) {
+    const Bytes b = both([](Kit& k) {
+        const VkFormat F = VK_FORMAT_R32G32B32A32_SFLOAT;
+        Target t = target(k, F, 12, 2);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        Device::Buffer ubo = k.buffer(256, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        auto* w = static_cast<float*>(ubo.map);
+        for (int i = 0; i < 64; ++i) w[i] = float(i + 1);
+        VkDescriptorBufferInfo bi{ubo.buffer, 0, 256};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &bi, nullptr);
+        VkPipeline pipe = k.pipeline(fullscreen_pipe(SPV(ab_ubo_scalar_frag), t, layout));
+        if (pipe == VK_NULL_HANDLE) return Bytes{};
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, t, pipe, layout, set); }), VK_SUCCESS);
+        return k.read(t.image.image, 12, 2, 16);
+    });
+    ASSERT_EQ(b.size(), 12u * 2 * 16);
+    for (uint32_t x = 0; x < 12; ++x) {
+        float px[4];
+        std::memcpy(px, &b[x * 16], sizeof px);
+        const float i = float(x % 3);
+        EXPECT_EQ(px[0], 4.0f) << x;
+        EXPECT_EQ(px[1], 7.0f + 3.0f * i) << x;
+        EXPECT_EQ(px[2], 15.0f + 3.0f * i) << x;
+        EXPECT_EQ(px[3], 24.0f) << x;
+    }
+}
+
+// cp_scalar.comp reads scalar-aligned vec3s and a mat2x3 from one storage buffer (word k holds k + 1) and writes
+// vec3 and float arrays at scalar offsets into another, first filled with a marker (its last word stays so).
+TEST_F(ScalarBlockLayout, StorageBlocks) {
+    const Bytes b = both([](Kit& k) {
+        const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        std::vector<float> in(32);
+        for (size_t i = 0; i < in.size(); ++i) in[i] = float(i + 1);
+        Device::Buffer src = k.buffer_of(in, storage);
+        Device::Buffer dst = k.buffer(80, storage);
+        std::memset(dst.map, 0xAB, 80);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        const VkDescriptorBufferInfo bs{src.buffer, 0, VK_WHOLE_SIZE}, bd{dst.buffer, 0, VK_WHOLE_SIZE};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bs, nullptr);
+        k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bd, nullptr);
+        VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        ci.stage.module = k.shader(SPV(cp_scalar_comp));
+        ci.stage.pName = "main";
+        ci.layout = layout;
+        VkPipeline p = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &ci, nullptr, &p), VK_SUCCESS);
+        if (p == VK_NULL_HANDLE) return Bytes{};
+        k.undo(VK_OBJECT_TYPE_PIPELINE, p, [&k, p] { vkDestroyPipeline(k.d, p, nullptr); });
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDispatch(c, 1, 1, 1);
+        }),
+                  VK_SUCCESS);
+        return Kit::bytes(dst);
+    });
+    ASSERT_EQ(b.size(), 80u);
+    float got[20];
+    std::memcpy(got, b.data(), sizeof got);
+    // v[i] = (2 + 3i, 3 + 3i, 4 + 3i), m[0] = (14, 15, 16), m[1] = (17, 18, 19), a = 1.
+    for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(got[3 * i + c], float(2 + 3 * i + c) + float(14 + 3 * (i & 1) + c));
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(got[12 + i], float(3 + 3 * i) + 19.0f);
+    EXPECT_EQ(got[16], 1.0f);
+    EXPECT_EQ(got[17], 14.0f);
+    EXPECT_EQ(got[18], 13.0f);
+    uint32_t last;
+    std::memcpy(&last, &got[19], 4);
+    EXPECT_EQ(last, 0xABABABABu);
 }
 
 // VK_KHR_shader_draw_parameters: ab_draw_params.vert places each draw's instances in cells chosen by DrawIndex and
