@@ -213,6 +213,37 @@ void late_depth(const BlockArgs& a, Block& k) {
     }
 }
 
+// The AVX2 kernels for 16 inside pixels (blend_rgba8_block, store_rgba8_avx2) read the colour only through
+// may_alias vector loads, so in the AVX2 build they take the shader's output words in place. A copy into a float
+// array first costs more than the kernel's conversion: GCC expands it as 16-byte moves, and each of the kernel's
+// 32-byte loads then spans two stores the CPU cannot forward (a stall per load, seen with perf in blend16).
+// Returns false where the reference route (copy, then any kernel) is taken.
+bool write_color_in_place(const BlockArgs& a, const Block& k, uint32_t c, const float src[4][kBlockLanes],
+                          const fragment::BlendOptions& opt) {
+#if TILEVK_SIMD_AVX2
+    const ColorTarget& t = a.fb->color[c];
+    const ColorPath path = a.plan->color[c];
+    const bool opaque = path == ColorPath::kOpaqueRgba8 || path == ColorPath::kOpaqueBgra8;
+    if (!k.inside || a.draw->pipe->alpha_to_one || (path != ColorPath::kRgba8 && !opaque) ||
+        (path == ColorPath::kRgba8 && !a.plan->rgba8[c].ok) || (opaque && opt.unorm_path != fragment::UnormPath::Avx8))
+        return false;
+    const size_t bytes = a.plan->color_bytes[c];
+    for (int s = 0; s < k.samples; ++s) {
+        if (!k.final_mask[s]) continue;
+        uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(k.y) * t.row_pitch + size_t(k.x) * bytes;
+        if (opaque)
+            fragment::store_rgba8_avx2(path == ColorPath::kOpaqueBgra8, src, k.final_mask[s], origin, t.row_pitch,
+                                       true);
+        else
+            fragment::blend_rgba8_block(a.plan->rgba8[c], src, k.final_mask[s], origin, t.row_pitch);
+    }
+    return true;
+#else
+    (void)a, (void)k, (void)c, (void)src, (void)opt;
+    return false;
+#endif
+}
+
 void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     const Framebuffer& fb = *a.fb;
     const DrawPlan& plan = *a.plan;
@@ -223,7 +254,9 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
         const ColorTarget& t = fb.color[c];
         if (!t.data || plan.color[c] == ColorPath::kNone) continue;
-        copy_lanes<sizeof src>(src, w.block.outputs[c]);
+        if (write_color_in_place(a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c]), opt))
+            continue;
+        std::memcpy(src, w.block.outputs[c], sizeof src);
         if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
         const size_t bytes = plan.color_bytes[c];
         for (int s = 0; s < k.samples; ++s) {
