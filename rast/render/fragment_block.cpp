@@ -20,7 +20,7 @@ using fragment::kBlockLanes;
 
 // memcpy for lane arrays, in 32-byte units in the AVX2 build. GCC inlines a 256-byte memcpy as 16-byte moves; the
 // AVX2 kernels then read the copy with 32-byte loads, and a load spanning two stores cannot be forwarded from the
-// store buffer: 8 stalls per block in blend16 (a fifth of the block's time, measured with perf).
+// store buffer (a stall per load; perf showed it on the first load of every blend16 block).
 template <size_t kBytes>
 void copy_lanes(void* dst, const void* src) {
     static_assert(kBytes % 32 == 0);
