@@ -608,6 +608,8 @@ Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const fl
         b.a_dst = pr.pb.a_dst;
         b.rgb_op = pr.pb.rgb_op;
         b.a_op = pr.pb.a_op;
+        b.over = b.rgb_src == kSrcAlpha && b.a_src == kSrcAlpha && b.rgb_dst == kInvSrcAlpha &&
+                 b.a_dst == kInvSrcAlpha && b.rgb_op == BlendOp::Add && b.a_op == BlendOp::Add;
     }
     for (int i = 0; i < 4; ++i) {
         const int c = mem_to_rgba(*pr.fi, i);

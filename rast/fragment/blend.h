@@ -152,6 +152,9 @@ struct Rgba8Blend {
     BlendOp rgb_op = BlendOp::Add, a_op = BlendOp::Add;
     uint8_t k[4] = {};      // UNORM8 constants in memory order
     uint8_t wmask_mem = 0;  // channel write mask in memory order
+    // Every channel SRC_ALPHA / ONE_MINUS_SRC_ALPHA / ADD after lowering (standard alpha blending): the AVX2 build
+    // takes a specialisation of its general kernel (blend_rgba8.cpp blend_over) with the same operations per byte.
+    bool over = false;
 };
 Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const float constants[4],
                                const BlendOptions& opt = {});

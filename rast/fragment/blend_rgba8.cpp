@@ -93,12 +93,77 @@ inline __m256i channel_bytes(uint8_t mem_mask) {
     return _mm256_set1_epi32(int(word));
 }
 
+// The block's source colours as two row pairs (rows 0|1, rows 2|3, one row per 128-bit half): pack_rgba8_rows'
+// conversion (float_to_unorm8, UnormPath::Avx8) written out straight, the rows placed by one qword permute.
+inline void pack_rgba8_pairs(bool bgra, const float src[4][kBlockLanes], __m256i pairs[2]) {
+    const __m256 one = _mm256_set1_ps(1.0f), k255 = _mm256_set1_ps(255.0f);
+    const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
+                                                  5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15)
+                               : _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
+                                                  5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+    auto unorm = [&](const float* x) {
+        return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(one, _mm256_loadu_ps(x)), k255));
+    };
+    for (int h = 0; h < 2; ++h) {
+        const __m256i r = unorm(src[0] + 8 * h), g = unorm(src[1] + 8 * h);
+        const __m256i bl = unorm(src[2] + 8 * h), a = unorm(src[3] + 8 * h);
+        const __m256i px =
+            _mm256_shuffle_epi8(_mm256_packus_epi16(_mm256_packs_epi32(r, g), _mm256_packs_epi32(bl, a)), order);
+        // qwords: (0,0)(1,0) | (0,1)(1,1) | (2,0)(3,0) | (2,1)(3,1) -> row 2h = q0 q2, row 2h+1 = q1 q3
+        pairs[h] = _mm256_permute4x64_epi64(px, 0xd8);
+    }
+}
+
+// The general kernel's per-pair steps for b.over, in 16-bit lanes: every byte is
+// adds(mul_norm(s, sa), mul_norm(d, 255 - sa)). The factor bytes are taken after the unpack (the same values), and
+// the saturating byte add is packus of the 16-bit sum (both terms are <= 255, so both saturate at 255 alike).
+inline __m256i over_pair(__m256i s, __m256i d) {
+    const __m256i zero = _mm256_setzero_si256(), half = _mm256_set1_epi16(0x80), inv = _mm256_set1_epi16(0xff);
+    const __m256i bcast_alpha16 = _mm256_setr_epi8(6, -1, 6, -1, 6, -1, 6, -1, 14, -1, 14, -1, 14, -1, 14, -1, 6, -1, 6,
+                                                   -1, 6, -1, 6, -1, 14, -1, 14, -1, 14, -1, 14, -1);
+    auto norm = [&](__m256i p) {  // mul_norm8 of the 16-bit product p
+        p = _mm256_add_epi16(p, _mm256_srli_epi16(p, 8));
+        return _mm256_srli_epi16(_mm256_add_epi16(p, half), 8);
+    };
+    auto part = [&](__m256i s16, __m256i d16) {
+        const __m256i sa = _mm256_shuffle_epi8(s16, bcast_alpha16);
+        return _mm256_add_epi16(norm(_mm256_mullo_epi16(s16, sa)),
+                                norm(_mm256_mullo_epi16(d16, _mm256_xor_si256(sa, inv))));
+    };
+    return _mm256_packus_epi16(part(_mm256_unpacklo_epi8(s, zero), _mm256_unpacklo_epi8(d, zero)),
+                               part(_mm256_unpackhi_epi8(s, zero), _mm256_unpackhi_epi8(d, zero)));
+}
+
+// blend_rgba8_block for b.over (standard alpha blending, the common state).
+void blend_over(const Rgba8Blend& b, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block,
+                size_t pitch) {
+    __m256i pairs[2];
+    pack_rgba8_pairs(b.bgra, src, pairs);
+    const uint32_t raster = lanes_to_raster(lane_mask);
+    const __m256i write_bytes = channel_bytes(b.wmask_mem);
+    for (int pair = 0; pair < 2; ++pair) {
+        const uint32_t pixels = (raster >> (8 * pair)) & 0xffu;  // rows 2*pair and 2*pair+1, 4 pixels each
+        if (!pixels) continue;
+        uint8_t* row0 = block + size_t(2 * pair) * pitch;
+        uint8_t* row1 = row0 + pitch;
+        const __m256i d =
+            _mm256_loadu2_m128i(reinterpret_cast<const __m128i*>(row1), reinterpret_cast<const __m128i*>(row0));
+        const __m256i keep = _mm256_and_si256(write_bytes, detail::lane_mask8(pixels));
+        const __m256i res = _mm256_blendv_epi8(d, over_pair(pairs[pair], d), keep);
+        _mm256_storeu2_m128i(reinterpret_cast<__m128i*>(row1), reinterpret_cast<__m128i*>(row0), res);
+    }
+}
+
 }  // namespace
 #endif
 
 bool blend_rgba8_block(const Rgba8Blend& b, const float src[4][kBlockLanes], uint16_t lane_mask, uint8_t* block,
                        size_t pitch) {
 #if TILEVK_SIMD_AVX2
+    if (b.over) {
+        blend_over(b, src, lane_mask, block, pitch);
+        return true;
+    }
     __m128i rows[4];
     detail::pack_rgba8_rows(b.bgra, src, rows);
     const uint32_t raster = lanes_to_raster(lane_mask);

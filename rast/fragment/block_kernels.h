@@ -387,8 +387,10 @@ TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], _
 }
 }  // namespace detail
 
-// UnormPath::Avx8 only. `inside`: all 16 pixels exist, so a partly covered row is read, merged and written back
-// whole (VPMASKMOVD stores are microcoded and slow on some CPUs); otherwise masked stores touch only `mask` pixels.
+// UnormPath::Avx8 only. `src` is read through may_alias vector loads only (pack_rgba8_rows), so it may be the
+// shader's output lane words (rast/render/fragment_block.cpp). `inside`: all 16 pixels exist, so a partly covered row
+// is read, merged and written back whole (VPMASKMOVD stores are microcoded and slow on some CPUs); otherwise masked
+// stores touch only `mask` pixels.
 TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
                                     size_t pitch, bool inside) {
     __m128i rows[4];

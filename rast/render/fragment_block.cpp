@@ -18,6 +18,23 @@ namespace {
 
 using fragment::kBlockLanes;
 
+// memcpy for lane arrays, in 32-byte units in the AVX2 build. GCC inlines a 256-byte memcpy as 16-byte moves; the
+// AVX2 kernels then read the copy with 32-byte loads, and a load spanning two stores cannot be forwarded from the
+// store buffer (a stall per load; perf showed it on the first load of every blend16 block).
+template <size_t kBytes>
+void copy_lanes(void* dst, const void* src) {
+    static_assert(kBytes % 32 == 0);
+#if TILEVK_SIMD_AVX2
+    auto* d = static_cast<uint8_t*>(dst);
+    const auto* s = static_cast<const uint8_t*>(src);
+    for (size_t i = 0; i < kBytes; i += 32)
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + i),
+                            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + i)));
+#else
+    std::memcpy(dst, src, kBytes);
+#endif
+}
+
 // What one block carries from step to step.
 struct Block {
     int32_t x = 0, y = 0;
@@ -31,13 +48,20 @@ struct Block {
     fragment::DepthStencilBlock zs[4];
 };
 
-bool coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) {
+// Returns the lanes any sample covers (0: nothing to do). pass starts as cover, sample by sample: the mask arrays
+// are written and read in 16-bit units only (a copy of all four at once becomes one 64-bit load of four fresh
+// 16-bit stores, which the CPU cannot forward: a stall on every block).
+uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) {
     uint16_t any = 0;
-    for (int s = 0; s < k.samples; ++s) any |= k.cover[s] = fragment::raster_to_lanes(raster_masks[s]);
-    if (!any) return false;
+    for (int s = 0; s < k.samples; ++s) {
+        const uint16_t lanes = fragment::raster_to_lanes(raster_masks[s]);
+        k.cover[s] = k.pass[s] = lanes;
+        any |= lanes;
+    }
+    if (!any) return 0;
     k.inside = k.x + 4 <= a.fb->width && k.y + 4 <= a.fb->height;
     fragment::make_lane_coords(k.x, k.y, fragment::plane_offset(k.samples, -1), k.centre);
-    return true;
+    return any;
 }
 
 // z per sample: 1x at the pixel centre, 4x at each sample position, plus the depth offset (eval_depth's plain add).
@@ -70,7 +94,6 @@ uint16_t early_depth(const BlockArgs& a, Block& k) {
     const DepthStencilTarget& dst = a.fb->depth_stencil;
     const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
     const bool early_write = draw.depth_mode & fragment::kEarlyDepthWrite;
-    for (int s = 0; s < 4; ++s) k.pass[s] = k.cover[s];
     if (early) {
         for (int s = 0; s < k.samples; ++s) {
             if (plan.depth_fast) {
@@ -157,7 +180,7 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     }
     uint16_t live = lanes;
     if (plan.copy_location >= 0) {
-        std::memcpy(b.outputs[0], b.inputs[plan.copy_location], sizeof b.outputs[0]);  // what the run would do
+        copy_lanes<sizeof b.outputs[0]>(b.outputs[0], b.inputs[plan.copy_location]);  // what the run would do
     } else {
         fs->run_fragment(a.draw->bindings, b, w.scratch);
         live = static_cast<uint16_t>(b.live_mask & lanes);
@@ -190,6 +213,37 @@ void late_depth(const BlockArgs& a, Block& k) {
     }
 }
 
+// The AVX2 kernels for 16 inside pixels (blend_rgba8_block, store_rgba8_avx2) read the colour only through
+// may_alias vector loads, so in the AVX2 build they take the shader's output words in place. A copy into a float
+// array first costs more than the kernel's conversion: GCC expands it as 16-byte moves, and each of the kernel's
+// 32-byte loads then spans two stores the CPU cannot forward (a stall per load, seen with perf in blend16).
+// Returns false where the reference route (copy, then any kernel) is taken.
+bool write_color_in_place(const BlockArgs& a, const Block& k, uint32_t c, const float src[4][kBlockLanes],
+                          const fragment::BlendOptions& opt) {
+#if TILEVK_SIMD_AVX2
+    const ColorTarget& t = a.fb->color[c];
+    const ColorPath path = a.plan->color[c];
+    const bool opaque = path == ColorPath::kOpaqueRgba8 || path == ColorPath::kOpaqueBgra8;
+    if (!k.inside || a.draw->pipe->alpha_to_one || (path != ColorPath::kRgba8 && !opaque) ||
+        (path == ColorPath::kRgba8 && !a.plan->rgba8[c].ok) || (opaque && opt.unorm_path != fragment::UnormPath::Avx8))
+        return false;
+    const size_t bytes = a.plan->color_bytes[c];
+    for (int s = 0; s < k.samples; ++s) {
+        if (!k.final_mask[s]) continue;
+        uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(k.y) * t.row_pitch + size_t(k.x) * bytes;
+        if (opaque)
+            fragment::store_rgba8_avx2(path == ColorPath::kOpaqueBgra8, src, k.final_mask[s], origin, t.row_pitch,
+                                       true);
+        else
+            fragment::blend_rgba8_block(a.plan->rgba8[c], src, k.final_mask[s], origin, t.row_pitch);
+    }
+    return true;
+#else
+    (void)a, (void)k, (void)c, (void)src, (void)opt;
+    return false;
+#endif
+}
+
 void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     const Framebuffer& fb = *a.fb;
     const DrawPlan& plan = *a.plan;
@@ -200,6 +254,8 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
         const ColorTarget& t = fb.color[c];
         if (!t.data || plan.color[c] == ColorPath::kNone) continue;
+        if (write_color_in_place(a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c]), opt))
+            continue;
         std::memcpy(src, w.block.outputs[c], sizeof src);
         if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
         const size_t bytes = plan.color_bytes[c];
@@ -226,13 +282,11 @@ void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t 
     k.x = x;
     k.y = y;
     k.samples = a.fb->samples;
-    if (!coverage(a, raster_masks, k)) return;
+    const uint16_t covered = coverage(a, raster_masks, k);  // pass = cover until the early test
+    if (!covered) return;
     const bool depth_active = a.draw->depth_mode != 0;
     if (depth_active) depth_values(a, k);
-    const uint16_t shade_lanes =
-        depth_active ? early_depth(a, k) : static_cast<uint16_t>(k.cover[0] | k.cover[1] | k.cover[2] | k.cover[3]);
-    if (!depth_active)
-        for (int s = 0; s < 4; ++s) k.pass[s] = k.cover[s];
+    const uint16_t shade_lanes = depth_active ? early_depth(a, k) : covered;
     if (!shade_lanes) return;
 
     const shader::Program* fs = a.draw->pipe->fragment;

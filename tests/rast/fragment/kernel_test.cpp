@@ -335,3 +335,86 @@ TEST(FragmentKernels, Rgba8BlendDeclinesWhatItDoesNotCover) {
     a.src_color = BlendFactor::Src1Color;
     EXPECT_FALSE(prepare_rgba8_blend(a, ColorFormat::R8G8B8A8_UNORM, k).ok);
 }
+
+// The standard alpha-blending state: prepare_rgba8_blend marks it `over` exactly when every lowered factor and op is
+// SRC_ALPHA / ONE_MINUS_SRC_ALPHA / ADD, whatever the write mask.
+TEST(FragmentKernels, Rgba8OverIsTheStandardStateOnly) {
+    const float k[4] = {0, 0, 0, 0};
+    BlendAttachment a;
+    a.blend_enable = true;
+    a.src_color = a.src_alpha = BlendFactor::SrcAlpha;
+    a.dst_color = a.dst_alpha = BlendFactor::OneMinusSrcAlpha;
+    a.color_op = a.alpha_op = BlendOp::Add;
+    for (ColorFormat f : {ColorFormat::R8G8B8A8_UNORM, ColorFormat::B8G8R8A8_UNORM}) {
+        a.write_mask = 0xf;
+        EXPECT_TRUE(prepare_rgba8_blend(a, f, k).over);
+        a.write_mask = 0x5;
+        EXPECT_TRUE(prepare_rgba8_blend(a, f, k).over);
+    }
+    BlendAttachment b = a;
+    b.src_alpha = BlendFactor::One;
+    EXPECT_FALSE(prepare_rgba8_blend(b, ColorFormat::R8G8B8A8_UNORM, k).over);
+    b = a;
+    b.dst_color = BlendFactor::OneMinusDstAlpha;
+    EXPECT_FALSE(prepare_rgba8_blend(b, ColorFormat::R8G8B8A8_UNORM, k).over);
+    b = a;
+    b.alpha_op = BlendOp::Subtract;
+    EXPECT_FALSE(prepare_rgba8_blend(b, ColorFormat::R8G8B8A8_UNORM, k).over);
+    b = a;
+    b.blend_enable = false;
+    EXPECT_FALSE(prepare_rgba8_blend(b, ColorFormat::R8G8B8A8_UNORM, k).over);
+}
+
+// blend_rgba8_block's `over` specialisation (blend_rgba8.cpp blend_over) against its general kernel (the same state
+// with `over` cleared) and the scalar blend_block: every (source channel, source alpha, destination) byte triple
+// exhaustively, then random float colours (NaN, Inf, out of range), coverage, write masks and both formats.
+TEST(FragmentKernels, Rgba8OverMatchesGeneralKernel) {
+    const float k[4] = {0, 0, 0, 0};
+    BlendAttachment a;
+    a.blend_enable = true;
+    a.src_color = a.src_alpha = BlendFactor::SrcAlpha;
+    a.dst_color = a.dst_alpha = BlendFactor::OneMinusSrcAlpha;
+    a.color_op = a.alpha_op = BlendOp::Add;
+    const size_t pitch = 16 + 12;
+    auto check = [&](ColorFormat f, const float src[4][kBlockLanes], uint16_t mask, const std::vector<uint8_t>& mem,
+                     const char* what, int iter) {
+        const Rgba8Blend over = prepare_rgba8_blend(a, f, k);
+        ASSERT_TRUE(over.over);
+        Rgba8Blend general = over;
+        general.over = false;
+        std::vector<uint8_t> expect = mem, got = mem, got_general = mem;
+        if (!blend_rgba8_block(over, src, mask, got.data(), pitch)) return;  // the portable build has no kernel
+        blend_block(a, f, k, src, mask, expect.data(), pitch);
+        ASSERT_TRUE(blend_rgba8_block(general, src, mask, got_general.data(), pitch));
+        ASSERT_EQ(got_general, expect) << what << " general kernel, iter " << iter;
+        ASSERT_EQ(got, expect) << what << " over kernel, iter " << iter;
+    };
+    // Exhaustive bytes: pixel p of block c16 has source code 16*c16 + p in R, G and B, source alpha sa, and every
+    // destination byte d; the source codes are exact floats code/255 (rne(code/255 * 255) = code).
+    float src[4][kBlockLanes];
+    std::vector<uint8_t> mem(pitch * 4);
+    for (int sa = 0; sa < 256; ++sa) {
+        for (int d = 0; d < 256; ++d) {
+            for (size_t i = 0; i < mem.size(); ++i) mem[i] = uint8_t(d);
+            for (int c16 = 0; c16 < 16; ++c16) {
+                for (int l = 0; l < kBlockLanes; ++l) {
+                    const float code = float(16 * c16 + lane_x(l) + 4 * lane_y(l)) / 255.0f;
+                    src[0][l] = src[1][l] = src[2][l] = code;
+                    src[3][l] = float(sa) / 255.0f;
+                }
+                check(ColorFormat::R8G8B8A8_UNORM, src, 0xffff, mem, "exhaustive", sa * 256 + d);
+            }
+        }
+    }
+    std::mt19937 rng(11);
+    for (int iter = 0; iter < 40000; ++iter) {
+        const ColorFormat f = (iter & 1) ? ColorFormat::B8G8R8A8_UNORM : ColorFormat::R8G8B8A8_UNORM;
+        a.write_mask = (iter % 3) ? 0xf : uint8_t(rng() % 16);
+        for (auto& ch : src)
+            for (float& v : ch)
+                v = (iter % 4) ? std::uniform_real_distribution<float>(0.0f, 1.0f)(rng) : nasty(rng, 0, 1);
+        for (auto& b : mem) b = uint8_t(rng());
+        const uint16_t mask = (iter % 2) ? 0xffff : uint16_t(rng());
+        check(f, src, mask, mem, "random", iter);
+    }
+}
