@@ -76,6 +76,10 @@ Features make_supported() {
     f.core.v12.uniformBufferStandardLayout = VK_TRUE;
     f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
     f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
+    // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
+    // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).
+    f.core.v13.shaderTerminateInvocation = VK_TRUE;
+    f.core.v13.shaderDemoteToHelperInvocation = VK_TRUE;
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
     return f;

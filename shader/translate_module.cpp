@@ -44,7 +44,7 @@ bool capability_supported(spv::Capability c) {
 bool extension_supported(const std::string& e) {
     return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_EXT_demote_to_helper_invocation" ||
            e == "SPV_KHR_storage_buffer_storage_class" || e == "SPV_EXT_descriptor_indexing" ||
-           e == "SPV_KHR_non_semantic_info";
+           e == "SPV_KHR_non_semantic_info" || e == "SPV_KHR_terminate_invocation";
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // against values computed here.
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
+#include "ab_demote_frag.h"
 #include "ab_draw_params_vert.h"
+#include "ab_terminate_frag.h"
 #include "ab_ubo_scalar_frag.h"
 #include "ab_ubo_std430_frag.h"
 #include "cp_scalar_comp.h"
@@ -270,6 +272,77 @@ TEST_F(ScalarBlockLayout, StorageBlocks) {
     uint32_t last;
     std::memcpy(&last, &got[19], 4);
     EXPECT_EQ(last, 0xABABABABu);
+}
+
+// A fullscreen draw of fragment shader `fs` into a 32x32 RGBA32F target cleared to -1 (so unwritten texels show).
+Bytes fullscreen_rgba32f(Kit& k, Spv fs) {
+    const VkFormat F = VK_FORMAT_R32G32B32A32_SFLOAT;
+    Target t = target(k, F, 32, 32);
+    VkPipelineLayout layout = k.pipeline_layout({});
+    VkPipeline pipe = k.pipeline(fullscreen_pipe(fs, t, layout));
+    if (pipe == VK_NULL_HANDLE) return Bytes{};
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(-1, -1, -1, -1)});
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        vkCmdDraw(c, 3, 1, 0, 0);
+        vkCmdEndRenderPass(c);
+    }),
+              VK_SUCCESS);
+    return k.read(t.image.image, 32, 32, 16);
+}
+
+float texel(const Bytes& b, uint32_t x, uint32_t y, uint32_t c) {
+    float v;
+    std::memcpy(&v, &b[((y * 32 + x) * 4 + c) * 4], 4);
+    return v;
+}
+
+// VK_KHR_shader_terminate_invocation: ab_terminate.frag ends the invocations of odd x ^ y; the others write their
+// pixel centre.
+TEST_F(ApiSmallExtensions, ShaderTerminateInvocation) {
+    VkPhysicalDeviceShaderTerminateInvocationFeatures ti{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_TERMINATE_INVOCATION_FEATURES};
+    ti.shaderTerminateInvocation = VK_TRUE;
+    auto dev = devices({VK_KHR_SHADER_TERMINATE_INVOCATION_EXTENSION_NAME}, &ti);
+    ASSERT_TRUE(dev->ok());
+    const Bytes b =
+        both_on(dev->tilevk, dev->lavapipe, [](Kit& k) { return fullscreen_rgba32f(k, SPV(ab_terminate_frag)); });
+    ASSERT_EQ(b.size(), 32u * 32 * 16);
+    size_t wrong = 0;
+    for (uint32_t y = 0; y < 32; ++y)
+        for (uint32_t x = 0; x < 32; ++x) {
+            const bool ended = ((x ^ y) & 1) != 0;
+            wrong += texel(b, x, y, 0) != (ended ? -1.0f : float(x) + 0.5f);
+            wrong += texel(b, x, y, 2) != (ended ? -1.0f : 0.25f);
+        }
+    EXPECT_EQ(wrong, 0u);
+}
+
+// VK_EXT_shader_demote_to_helper_invocation: ab_demote.frag demotes the pixels with (x + y) % 3 == 0; they are not
+// written, and the others' derivatives of q = x²/4 + y²/8 + xy still come from their quads (fine derivatives of the
+// 2x2 quad: dFdx(q) at the quad's column pair = (2x0 + 1)/4 + y, where x0 is the left column's centre; both drivers
+// alike, checked here for the x derivative of the quad's top row), and helperInvocationEXT() is false for them.
+TEST_F(ApiSmallExtensions, ShaderDemoteToHelperInvocation) {
+    VkPhysicalDeviceShaderDemoteToHelperInvocationFeatures di{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_DEMOTE_TO_HELPER_INVOCATION_FEATURES};
+    di.shaderDemoteToHelperInvocation = VK_TRUE;
+    auto dev = devices({VK_EXT_SHADER_DEMOTE_TO_HELPER_INVOCATION_EXTENSION_NAME}, &di);
+    ASSERT_TRUE(dev->ok());
+    const Bytes b =
+        both_on(dev->tilevk, dev->lavapipe, [](Kit& k) { return fullscreen_rgba32f(k, SPV(ab_demote_frag)); });
+    ASSERT_EQ(b.size(), 32u * 32 * 16);
+    size_t wrong = 0;
+    for (uint32_t y = 0; y < 32; ++y)
+        for (uint32_t x = 0; x < 32; ++x) {
+            const bool demoted = (x + y) % 3 == 0;
+            wrong += texel(b, x, y, 2) != (demoted ? -1.0f : 0.5f);
+            if (demoted || (y & 1) != 0) continue;
+            // q(x + 1) - q(x) on the quad's top row at centres cx = (x & ~1) + 0.5 and cx + 1, cy = y + 0.5.
+            const float cx = float(x & ~1u) + 0.5f, cy = float(y) + 0.5f;
+            const auto q = [](float px, float py) { return px * px * 0.25f + py * py * 0.125f + px * py; };
+            wrong += texel(b, x, y, 0) != q(cx + 1.0f, cy) - q(cx, cy);
+        }
+    EXPECT_EQ(wrong, 0u);
 }
 
 // VK_KHR_shader_draw_parameters: ab_draw_params.vert places each draw's instances in cells chosen by DrawIndex and
