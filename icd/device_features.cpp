@@ -75,6 +75,8 @@ Features make_supported() {
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).
     f.core.v12.uniformBufferStandardLayout = VK_TRUE;
     f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
+    // framebuffer.cpp, command_buffer.cpp: the views of VkRenderPassAttachmentBeginInfo replace the framebuffer's.
+    f.core.v12.imagelessFramebuffer = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
