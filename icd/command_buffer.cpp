@@ -180,6 +180,26 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginRenderPass(VkCommandBuffer commandBuffer,
     if (auto* c = cb->append<CmdBeginRenderPass>()) {
         c->render_pass = from_handle<RenderPass>(pRenderPassBegin->renderPass);
         c->framebuffer = from_handle<Framebuffer>(pRenderPassBegin->framebuffer);
+        c->view_count = uint32_t(c->framebuffer->attachments.size());
+        c->views = c->framebuffer->attachments.data();
+        if (c->framebuffer->imageless) {
+            const auto* views = find_in_chain<VkRenderPassAttachmentBeginInfo>(
+                pRenderPassBegin->pNext, VK_STRUCTURE_TYPE_RENDER_PASS_ATTACHMENT_BEGIN_INFO);
+            if (views != nullptr && views->attachmentCount == c->framebuffer->imageless_count) {
+                c->views = objects<ImageView>(cb, views->pAttachments, views->attachmentCount);
+                c->view_count = c->views != nullptr ? views->attachmentCount : 0;  // null: out of memory, recorded
+            } else {
+                // VUID-VkRenderPassBeginInfo-framebuffer-03207/03208: invalid usage. The pass runs with no views,
+                // so its load ops, draws, clears and resolves write nothing.
+                log_error(
+                    "vkCmdBeginRenderPass: the framebuffer was made with VK_FRAMEBUFFER_CREATE_IMAGELESS_BIT "
+                    "but pRenderPassBegin chains no VkRenderPassAttachmentBeginInfo with attachmentCount %u; "
+                    "the render pass instance renders into nothing",
+                    c->framebuffer->imageless_count);
+                c->view_count = 0;
+                c->views = nullptr;
+            }
+        }
         c->area = render_area_of(*pRenderPassBegin);
         c->clear_count = pRenderPassBegin->clearValueCount;
         c->clears = cb->copy(pRenderPassBegin->pClearValues, pRenderPassBegin->clearValueCount);

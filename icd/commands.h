@@ -15,6 +15,7 @@ struct Image;
 struct Event;
 struct Pipeline;
 struct DescriptorSet;
+struct ImageView;
 struct RenderPass;
 struct Framebuffer;
 struct CommandBuffer;
@@ -171,6 +172,9 @@ struct CmdWaitEvents : CmdOf<CmdType::kWaitEvents> {
 struct CmdBeginRenderPass : CmdOf<CmdType::kBeginRenderPass> {
     RenderPass* render_pass;
     Framebuffer* framebuffer;
+    // The views rendered into: the framebuffer's, or an imageless framebuffer's from VkRenderPassAttachmentBeginInfo.
+    uint32_t view_count;
+    ImageView* const* views;
     VkRect2D area;
     uint32_t clear_count;
     const VkClearValue* clears;

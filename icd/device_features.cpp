@@ -75,6 +75,8 @@ Features make_supported() {
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).
     f.core.v12.uniformBufferStandardLayout = VK_TRUE;
     f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
+    // framebuffer.cpp, command_buffer.cpp: the views of VkRenderPassAttachmentBeginInfo replace the framebuffer's.
+    f.core.v12.imagelessFramebuffer = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
     // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).

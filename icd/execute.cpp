@@ -56,9 +56,10 @@ void load_attachments(ExecState& st, uint32_t sp) {
     std::vector<size_t>& first_task = first_task_storage;
     clears.clear();
     for (uint32_t a = 0; a < rp.attachments.size(); ++a) {
-        if (rp.first_use[a] != sp || a >= st.framebuffer->attachments.size()) continue;
+        const ImageView* view = attachment_view(st, a);
+        if (rp.first_use[a] != sp || view == nullptr) continue;
         const VkAttachmentDescription& d = rp.attachments[a];
-        const ImageView& v = *st.framebuffer->attachments[a];
+        const ImageView& v = *view;
         VkImageAspectFlags aspects = 0;
         if (v.format->aspects & VK_IMAGE_ASPECT_COLOR_BIT) {
             if (d.loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR) aspects = VK_IMAGE_ASPECT_COLOR_BIT;
@@ -111,9 +112,11 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
     const Subpass& s = st.render_pass->subpasses[sp];
     for (size_t i = 0; i < s.resolves.size(); ++i) {
         uint32_t src_a = s.colors[i].attachment, dst_a = s.resolves[i].attachment;
-        if (src_a == VK_ATTACHMENT_UNUSED || dst_a == VK_ATTACHMENT_UNUSED) continue;
-        const ImageView& src = *st.framebuffer->attachments[src_a];
-        const ImageView& dst = *st.framebuffer->attachments[dst_a];
+        const ImageView* src_view = attachment_view(st, src_a);
+        const ImageView* dst_view = attachment_view(st, dst_a);
+        if (src_view == nullptr || dst_view == nullptr) continue;
+        const ImageView& src = *src_view;
+        const ImageView& dst = *dst_view;
         if (!can_resolve(*src.format)) {
             log_error("render pass resolve: resolving %s is not implemented; attachment %u not resolved",
                       vk_enum_name(vk_format(*src.format)), dst_a);
@@ -147,8 +150,9 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
         } else {
             a = s.depth_stencil.attachment;
         }
-        if (a == VK_ATTACHMENT_UNUSED) continue;
-        const ImageView& v = *st.framebuffer->attachments[a];
+        const ImageView* view = attachment_view(st, a);
+        if (view == nullptr) continue;
+        const ImageView& v = *view;
         for (uint32_t r = 0; r < c.rect_count; ++r) {
             const VkClearRect& cr = c.rects[r];
             const VkRect2D rect = clip_to_view(cr.rect, v);
@@ -187,6 +191,8 @@ struct CommandRunner {
     void operator()(const CmdBeginRenderPass& c) {
         st.render_pass = c.render_pass;
         st.framebuffer = c.framebuffer;
+        st.view_count = c.view_count;
+        st.views = c.views;
         st.area = c.area;
         st.clears = c.clears;
         st.subpass = 0;
@@ -207,6 +213,8 @@ struct CommandRunner {
         resolve_attachments(st, st.subpass);
         st.render_pass = nullptr;
         st.framebuffer = nullptr;
+        st.view_count = 0;
+        st.views = nullptr;
     }
     void operator()(const CmdClearAttachments& c) {
         // Binned draws render first, so the clear lands after them in API order.

@@ -18,6 +18,7 @@ namespace tilevk::icd {
 struct Image;
 struct RenderPass;
 struct Framebuffer;
+struct ImageView;
 struct Pipeline;
 struct DescriptorSet;
 struct Buffer;
@@ -62,6 +63,9 @@ struct ExecState {
     BoundState bound;
     RenderPass* render_pass = nullptr;
     Framebuffer* framebuffer = nullptr;
+    // The views of the render pass instance (CmdBeginRenderPass::views); attachment(a) reads them.
+    uint32_t view_count = 0;
+    ImageView* const* views = nullptr;
     uint32_t subpass = 0;
     VkRect2D area{};
     const VkClearValue* clears = nullptr;
@@ -83,6 +87,12 @@ struct ExecState {
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
+
+// The view of attachment `a` of the current render pass instance, or null (VK_ATTACHMENT_UNUSED, or past the views
+// given: invalid usage, which renders nothing into it).
+inline const ImageView* attachment_view(const ExecState& st, uint32_t a) {
+    return a < st.view_count ? st.views[a] : nullptr;
+}
 
 // A query command (begin/end occlusion, timestamp) executed inside a render pass. lavapipe bins it into every tile
 // of its current scene, which keeps that scene off its linear rasterizer; tilevk's current (or next) scene of the

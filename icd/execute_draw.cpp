@@ -183,11 +183,11 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t 
 // the mode needs exactly one cbuf, non-null, of format B8G8R8A8_UNORM (the view's format; B8G8R8X8_UNORM has no Vulkan
 // format lavapipe maps to it), single-sampled, whose resource is PIPE_TEXTURE_2D (lvp_image.c: a 2D image with one
 // array layer), no zsbuf, and no shader writing a viewport index (tilevk exposes no such output).
-bool lavapipe_linear_mode(const Subpass& sp, const Framebuffer& fbo) {
+bool lavapipe_linear_mode(const Subpass& sp, const ExecState& st) {
     if (sp.colors.size() != 1 || sp.depth_stencil.attachment != VK_ATTACHMENT_UNUSED) return false;
-    const uint32_t a = sp.colors[0].attachment;
-    if (a == VK_ATTACHMENT_UNUSED || a >= fbo.attachments.size()) return false;
-    const ImageView& v = *fbo.attachments[a];
+    const ImageView* view = attachment_view(st, sp.colors[0].attachment);
+    if (view == nullptr) return false;
+    const ImageView& v = *view;
     return v.format->id == format::Format::B8G8R8A8_UNORM && v.image->samples == 1 && v.image->array_layers == 1;
 }
 
@@ -202,9 +202,9 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
     fb.samples = pipeline_samples;
     fb.num_color = uint32_t(std::min<size_t>(sp.colors.size(), rr::kMaxColorTargets));
     for (uint32_t i = 0; i < fb.num_color; ++i) {
-        const uint32_t a = sp.colors[i].attachment;
-        if (a == VK_ATTACHMENT_UNUSED || a >= fbo.attachments.size()) continue;
-        const ImageView& v = *fbo.attachments[a];
+        const ImageView* view = attachment_view(st, sp.colors[i].attachment);
+        if (view == nullptr) continue;
+        const ImageView& v = *view;
         rr::ColorTarget& t = fb.color[i];
         if (!(image_features(*v.format) & format::kColorAttachment)) continue;
         t.format = v.format->id;
@@ -214,9 +214,8 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
         t.row_pitch = p.row_pitch;
         t.sample_stride = p.sample_stride;
     }
-    const uint32_t d = sp.depth_stencil.attachment;
-    if (d != VK_ATTACHMENT_UNUSED && d < fbo.attachments.size()) {
-        const ImageView& v = *fbo.attachments[d];
+    if (const ImageView* view = attachment_view(st, sp.depth_stencil.attachment)) {
+        const ImageView& v = *view;
         fb.samples = int(v.image->samples);
         rr::DepthStencilTarget& t = fb.depth_stencil;
         t.format = v.format->depth;
@@ -237,7 +236,7 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
             t.stencil_sample_stride = p.sample_stride;
         }
     }
-    fb.linear_mode = lavapipe_linear_mode(sp, fbo);
+    fb.linear_mode = lavapipe_linear_mode(sp, st);
     ctx.renderer.begin(fb);
     if (st.query_command_pending) {
         ctx.renderer.mark_scene_not_linear();

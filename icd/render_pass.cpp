@@ -2,6 +2,7 @@
 
 #include "device.h"
 #include "entrypoints.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 namespace {
@@ -11,12 +12,40 @@ void note_use(RenderPass* rp, uint32_t subpass, uint32_t attachment) {
     if (rp->first_use[attachment] == ~0u) rp->first_use[attachment] = subpass;
 }
 
+// What tilevk cannot render: subpass flags all belong to extensions tilevk does not offer (per-view attributes, shader
+// resolve, rasterization order access...), and multiview has no renderer. VkRenderPassMultiviewCreateInfo comes with
+// VK_KHR_multiview, which tilevk does not expose (an application chaining it is invalid); a view mask would otherwise
+// render one view silently, so it is refused by name.
+VkResult refuse_unsupported(const VkRenderPassCreateInfo& ci) {
+    for (uint32_t i = 0; i < ci.subpassCount; ++i) {
+        if (ci.pSubpasses[i].flags != 0) {
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                        "vkCreateRenderPass: pSubpasses[%u].flags = %s is not supported by tilevk", i,
+                        vk_flags_name<VkSubpassDescriptionFlagBits>(ci.pSubpasses[i].flags).c_str());
+        }
+    }
+    const auto* mv =
+        find_in_chain<VkRenderPassMultiviewCreateInfo>(ci.pNext, VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO);
+    if (mv != nullptr) {
+        for (uint32_t i = 0; i < mv->subpassCount; ++i) {
+            if (mv->pViewMasks[i] != 0) {
+                return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                            "vkCreateRenderPass: VkRenderPassMultiviewCreateInfo::pViewMasks[%u] = 0x%x: multiview is "
+                            "not supported by tilevk (VK_KHR_multiview is not exposed)",
+                            i, mv->pViewMasks[i]);
+            }
+        }
+    }
+    return VK_SUCCESS;
+}
+
 }  // namespace
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRenderPassCreateInfo* ci,
                                                     const VkAllocationCallbacks* pAllocator,
                                                     VkRenderPass* pRenderPass) {
     Device* dev = from_handle<Device>(device);
+    if (VkResult r = refuse_unsupported(*ci); r != VK_SUCCESS) return r;
     RenderPass* rp =
         create_object<RenderPass>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (rp == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateRenderPass: out of host memory");

@@ -94,6 +94,7 @@ struct Pipe {
     const void* pnext = nullptr;  // VkGraphicsPipelineCreateInfo::pNext
     VkPipelineCache cache = VK_NULL_HANDLE;
     VkPipelineCreateFlags flags = 0;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // rasterizationSamples
 };
 
 inline VkPipelineColorBlendAttachmentState opaque() {
@@ -357,7 +358,7 @@ class Kit {
         rs.lineWidth = p.line_width;
         rs.depthBiasEnable = p.depth_bias;
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        ms.rasterizationSamples = p.samples;
         std::vector<VkPipelineColorBlendAttachmentState> blend = p.blend;
         if (blend.empty()) blend.assign(p.color_count, opaque());
         VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
