@@ -11,6 +11,9 @@ namespace tilevk::test::breadth {
 namespace {
 
 const std::vector<const char*> kExtensions = {VK_KHR_MULTIVIEW_EXTENSION_NAME};
+// VK_KHR_create_renderpass2 and what vk.xml makes it require.
+const std::vector<const char*> kExtensions2 = {VK_KHR_MULTIVIEW_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME,
+                                               VK_KHR_CREATE_RENDERPASS_2_EXTENSION_NAME};
 
 // One multiview scene: a colour attachment of `layers` layers (4x and resolved into a 1x image when `msaa`), a pass
 // whose one subpass renders the views of `mask`, a draw of `instances` instances, optionally a vkCmdClearAttachments
@@ -22,7 +25,70 @@ struct Scene {
     uint32_t instances = 1;
     bool clear_attachments = false;
     bool separate_instances = false;  // one vkCmdDraw per instance (firstInstance i) instead of one instanced draw
+    // VK_KHR_create_renderpass2: the pass made with vkCreateRenderPass2KHR (viewMask in VkSubpassDescription2, aspect
+    // masks in VkAttachmentReference2) and run with vkCmdBeginRenderPass2KHR / vkCmdEndRenderPass2KHR.
+    bool rp2 = false;
 };
+
+template <class F>
+F device_proc(Kit& k, const char* name) {
+    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(k.d, name));
+    EXPECT_NE(f, nullptr) << name;
+    return f;
+}
+
+// The pass of multiview_pass in its VK_KHR_create_renderpass2 form.
+VkRenderPass multiview_pass2(Kit& k, const std::vector<VkAttachmentDescription>& atts, const VkSubpassDescription& sub,
+                             const VkSubpassDependency& dep, uint32_t mask) {
+    std::vector<VkAttachmentDescription2> atts2;
+    for (const VkAttachmentDescription& a : atts) {
+        VkAttachmentDescription2 a2{VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2};
+        a2.format = a.format;
+        a2.samples = a.samples;
+        a2.loadOp = a.loadOp;
+        a2.storeOp = a.storeOp;
+        a2.stencilLoadOp = a.stencilLoadOp;
+        a2.stencilStoreOp = a.stencilStoreOp;
+        a2.initialLayout = a.initialLayout;
+        a2.finalLayout = a.finalLayout;
+        atts2.push_back(a2);
+    }
+    const auto ref2 = [](const VkAttachmentReference& r) {
+        return VkAttachmentReference2{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, r.attachment, r.layout,
+                                      VK_IMAGE_ASPECT_COLOR_BIT};
+    };
+    const VkAttachmentReference2 col = ref2(sub.pColorAttachments[0]);
+    const VkAttachmentReference2 res = sub.pResolveAttachments != nullptr ? ref2(sub.pResolveAttachments[0]) : col;
+    VkSubpassDescription2 sub2{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_2};
+    sub2.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub2.viewMask = mask;
+    sub2.colorAttachmentCount = 1;
+    sub2.pColorAttachments = &col;
+    sub2.pResolveAttachments = sub.pResolveAttachments != nullptr ? &res : nullptr;
+    VkSubpassDependency2 dep2{VK_STRUCTURE_TYPE_SUBPASS_DEPENDENCY_2};
+    dep2.srcSubpass = dep.srcSubpass;
+    dep2.dstSubpass = dep.dstSubpass;
+    dep2.srcStageMask = dep.srcStageMask;
+    dep2.dstStageMask = dep.dstStageMask;
+    dep2.srcAccessMask = dep.srcAccessMask;
+    dep2.dstAccessMask = dep.dstAccessMask;
+    VkRenderPassCreateInfo2 ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO_2};
+    ci.attachmentCount = uint32_t(atts2.size());
+    ci.pAttachments = atts2.data();
+    ci.subpassCount = 1;
+    ci.pSubpasses = &sub2;
+    ci.dependencyCount = 1;
+    ci.pDependencies = &dep2;
+    ci.correlatedViewMaskCount = 1;  // a hint: accepted
+    ci.pCorrelatedViewMasks = &mask;
+    VkRenderPass rp = VK_NULL_HANDLE;
+    EXPECT_EQ(device_proc<PFN_vkCreateRenderPass2KHR>(k, "vkCreateRenderPass2KHR")(k.d, &ci, nullptr, &rp), VK_SUCCESS);
+    if (rp != VK_NULL_HANDLE) {
+        VkDevice d = k.d;
+        k.undo(VK_OBJECT_TYPE_RENDER_PASS, rp, [d, rp] { vkDestroyRenderPass(d, rp, nullptr); });
+    }
+    return rp;
+}
 
 constexpr VkFormat kC = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkClearColorValue kPrefill{{0.5f, 0.5f, 0.5f, 1.0f}};
@@ -51,6 +117,7 @@ VkRenderPass multiview_pass(Kit& k, const Scene& s, const uint32_t* mask, VkResu
                                   VK_ACCESS_TRANSFER_WRITE_BIT,
                                   VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT,
                                   0};
+    if (s.rp2) return multiview_pass2(k, atts, sub, dep, *mask);
     VkRenderPassMultiviewCreateInfo mv{VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO};
     mv.subpassCount = 1;
     mv.pViewMasks = mask;
@@ -104,7 +171,18 @@ Bytes multiview_scene(Kit& k, const Scene& s) {
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, s.layers};
         vkCmdClearColorImage(c, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &kPrefill, 1, &range);
         std::vector<VkClearValue> clears(views.size(), clear_color(0.1f, 0.2f, 0.3f, 1));
-        begin_pass(c, rp, fb, 32, 32, clears);
+        if (s.rp2) {
+            VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+            bi.renderPass = rp;
+            bi.framebuffer = fb;
+            bi.renderArea = {{0, 0}, {32, 32}};
+            bi.clearValueCount = uint32_t(clears.size());
+            bi.pClearValues = clears.data();
+            const VkSubpassBeginInfo sbi{VK_STRUCTURE_TYPE_SUBPASS_BEGIN_INFO, nullptr, VK_SUBPASS_CONTENTS_INLINE};
+            device_proc<PFN_vkCmdBeginRenderPass2KHR>(k, "vkCmdBeginRenderPass2KHR")(c, &bi, &sbi);
+        } else {
+            begin_pass(c, rp, fb, 32, 32, clears);
+        }
         vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
         bind_vertices(c, vb);
         if (s.separate_instances) {
@@ -118,7 +196,12 @@ Bytes multiview_scene(Kit& k, const Scene& s) {
             vkCmdClearAttachments(c, 1, &ca, 1, &rect);
             vkCmdDraw(c, 3, 1, 3, 0);
         }
-        vkCmdEndRenderPass(c);
+        if (s.rp2) {
+            const VkSubpassEndInfo sei{VK_STRUCTURE_TYPE_SUBPASS_END_INFO};
+            device_proc<PFN_vkCmdEndRenderPass2KHR>(k, "vkCmdEndRenderPass2KHR")(c, &sei);
+        } else {
+            vkCmdEndRenderPass(c);
+        }
     }),
               VK_SUCCESS);
     std::vector<Bytes> layers;
@@ -277,6 +360,92 @@ TEST_F(ApiMultiview, Refusals) {
     Kit k(with);
     const uint32_t ok = 1u << 5;
     EXPECT_NE(multiview_pass(k, s, &ok), VkRenderPass(VK_NULL_HANDLE));
+}
+
+// VK_KHR_create_renderpass2 (suite ApiRenderPass2): the multiview scenes made with vkCreateRenderPass2KHR and run with
+// vkCmdBeginRenderPass2KHR / vkCmdEndRenderPass2KHR equal the same scenes in the 1.0 form on each driver, and
+// tilevk's equal lavapipe's (validation layer on).
+class ApiRenderPass2 : public ApiBreadth {
+  protected:
+    void rp2_equals_rp1(Scene s) {
+        VkPhysicalDeviceMultiviewFeatures mv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_FEATURES};
+        mv.multiview = VK_TRUE;
+        Device tilevk(tilevk_->physical(), nullptr, kExtensions2, &mv),
+            lavapipe(lavapipe_->physical(), nullptr, kExtensions2, &mv);
+        ASSERT_TRUE(tilevk.ok() && lavapipe.ok());
+        both_on(tilevk, lavapipe, [&](Kit& k) {
+            s.rp2 = false;
+            const Bytes one = multiview_scene(k, s);
+            s.rp2 = true;
+            const Bytes two = multiview_scene(k, s);
+            expect_same(one, two, "vkCreateRenderPass vs vkCreateRenderPass2");
+            return two;
+        });
+    }
+};
+
+TEST_F(ApiRenderPass2, TwoViewsWithLoadClearAndClearAttachments) {
+    Scene s;
+    s.clear_attachments = true;
+    rp2_equals_rp1(s);
+}
+
+TEST_F(ApiRenderPass2, NonContiguousViewMask) {
+    Scene s;
+    s.mask = 0b101;
+    s.layers = 3;
+    s.clear_attachments = true;
+    rp2_equals_rp1(s);
+}
+
+TEST_F(ApiRenderPass2, MsaaViewsResolve) {
+    Scene s;
+    s.msaa = true;
+    s.clear_attachments = true;
+    rp2_equals_rp1(s);
+}
+
+// tilevk alone, without the validation layer: VkSubpassDescriptionDepthStencilResolve (VK_KHR_depth_stencil_resolve,
+// not offered) is refused by name, and a viewMask without the multiview feature enabled like the 1.0 form's.
+TEST_F(ApiRenderPass2, Refusals) {
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    Device dev(plain.find_device("tilevk"), nullptr, kExtensions2, nullptr);
+    ASSERT_TRUE(dev.ok());
+    Kit k(dev);
+    VkAttachmentDescription2 att{VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2};
+    att.format = kC;
+    att.samples = VK_SAMPLE_COUNT_1_BIT;
+    att.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    const VkAttachmentReference2 col{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 0,
+                                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_ASPECT_COLOR_BIT};
+    VkSubpassDescription2 sub{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_2};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = 1;
+    sub.pColorAttachments = &col;
+    VkRenderPassCreateInfo2 ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO_2};
+    ci.attachmentCount = 1;
+    ci.pAttachments = &att;
+    ci.subpassCount = 1;
+    ci.pSubpasses = &sub;
+    auto create = device_proc<PFN_vkCreateRenderPass2KHR>(k, "vkCreateRenderPass2KHR");
+    const auto refused = [&](const char* name) {
+        VkRenderPass r = VK_NULL_HANDLE;
+        testing::internal::CaptureStderr();
+        EXPECT_EQ(create(k.d, &ci, nullptr, &r), VK_ERROR_FEATURE_NOT_PRESENT) << name;
+        EXPECT_NE(testing::internal::GetCapturedStderr().find(name), std::string::npos) << name;
+        EXPECT_EQ(r, VkRenderPass(VK_NULL_HANDLE)) << name;
+    };
+    VkSubpassDescriptionDepthStencilResolve dsr{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE};
+    sub.pNext = &dsr;
+    refused("VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE");
+    sub.pNext = nullptr;
+    sub.viewMask = 0b11;
+    refused("multiview feature");
+    sub.viewMask = 0;
+    VkRenderPass rp = VK_NULL_HANDLE;
+    EXPECT_EQ(create(k.d, &ci, nullptr, &rp), VK_SUCCESS);
+    vkDestroyRenderPass(k.d, rp, nullptr);
 }
 
 }  // namespace
