@@ -53,6 +53,13 @@ VkResult check_view_masks(const Device& dev, const VkRenderPassCreateInfo& ci, s
                         "past maxMultiviewViewCount (%u)",
                         i, m, kMaxMultiviewViews);
         }
+        // Input attachments of a multiview subpass read layer ViewIndex of their view; the fetch reads layer 0.
+        if (m != 0 && i < ci.subpassCount && ci.pSubpasses[i].inputAttachmentCount != 0) {
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                        "vkCreateRenderPass: pSubpasses[%u] has input attachments and view mask 0x%x: input "
+                        "attachments in a multiview subpass are not supported by tilevk",
+                        i, m);
+        }
         masks[i] = m;
     }
     if (nonzero == 0) return VK_SUCCESS;

@@ -360,6 +360,29 @@ TEST_F(ApiMultiview, Refusals) {
     Kit k(with);
     const uint32_t ok = 1u << 5;
     EXPECT_NE(multiview_pass(k, s, &ok), VkRenderPass(VK_NULL_HANDLE));
+    {  // an input attachment in a multiview subpass (it would read layer ViewIndex)
+        VkAttachmentDescription a{};
+        a.format = VK_FORMAT_R8G8B8A8_UNORM, a.samples = VK_SAMPLE_COUNT_1_BIT;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD, a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE, a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        a.initialLayout = a.finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+        const VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_GENERAL};
+        VkSubpassDescription sub{};
+        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        sub.inputAttachmentCount = 1, sub.pInputAttachments = &ref;
+        sub.colorAttachmentCount = 1, sub.pColorAttachments = &ref;
+        const uint32_t mask = 0b11;
+        VkRenderPassMultiviewCreateInfo mv{VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO};
+        mv.subpassCount = 1, mv.pViewMasks = &mask;
+        VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO, &mv};
+        ci.attachmentCount = 1, ci.pAttachments = &a, ci.subpassCount = 1, ci.pSubpasses = &sub;
+        VkRenderPass rp = VK_NULL_HANDLE;
+        testing::internal::CaptureStderr();
+        EXPECT_EQ(vkCreateRenderPass(with.device(), &ci, nullptr, &rp), VK_ERROR_FEATURE_NOT_PRESENT);
+        EXPECT_NE(testing::internal::GetCapturedStderr().find("input attachments in a multiview subpass"),
+                  std::string::npos);
+        EXPECT_EQ(rp, VkRenderPass(VK_NULL_HANDLE));
+    }
 }
 
 // VK_KHR_create_renderpass2 (suite ApiRenderPass2): the multiview scenes made with vkCreateRenderPass2KHR and run with
