@@ -128,3 +128,26 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdWriteTimestamp2(VkCommandBuffer commandBuffer,
 }
 
 }  // namespace tilevk::icd
+
+// ---- create_renderpass2 -------------------------------------------------------------------------------------
+// VkSubpassBeginInfo / VkSubpassEndInfo carry the contents and nothing tilevk offers in their chains (fragment
+// density map offsets are a QCOM extension); VkRenderPassAttachmentBeginInfo rides on the VkRenderPassBeginInfo,
+// which the 1.0 command reads.
+namespace tilevk::icd {
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginRenderPass2(VkCommandBuffer commandBuffer,
+                                                   const VkRenderPassBeginInfo* pRenderPassBegin,
+                                                   const VkSubpassBeginInfo* pSubpassBeginInfo) {
+    tvk_CmdBeginRenderPass(commandBuffer, pRenderPassBegin, pSubpassBeginInfo->contents);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdNextSubpass2(VkCommandBuffer commandBuffer,
+                                               const VkSubpassBeginInfo* pSubpassBeginInfo, const VkSubpassEndInfo*) {
+    tvk_CmdNextSubpass(commandBuffer, pSubpassBeginInfo->contents);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdEndRenderPass2(VkCommandBuffer commandBuffer, const VkSubpassEndInfo*) {
+    tvk_CmdEndRenderPass(commandBuffer);
+}
+
+}  // namespace tilevk::icd

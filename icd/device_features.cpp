@@ -69,6 +69,9 @@ Features make_supported() {
     f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
     // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
     f.core.v11.shaderDrawParameters = VK_TRUE;
+    // execute.cpp runs a multiview subpass once per view into its layers, ViewIndex given to the shaders; there is
+    // no geometry or tessellation stage, so multiviewGeometryShader / multiviewTessellationShader stay VK_FALSE.
+    f.core.v11.multiview = VK_TRUE;
     f.core.v12.drawIndirectCount = VK_TRUE;  // vkCmdDraw[Indexed]IndirectCount: the count read at execution
     f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
@@ -77,7 +80,7 @@ Features make_supported() {
     f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
     // framebuffer.cpp, command_buffer.cpp: the views of VkRenderPassAttachmentBeginInfo replace the framebuffer's.
     f.core.v12.imagelessFramebuffer = VK_TRUE;
-    f.core.v13.privateData = VK_TRUE;                   // private_data.cpp
+    f.core.v13.privateData = VK_TRUE;  // private_data.cpp
     // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).
     f.core.v13.shaderTerminateInvocation = VK_TRUE;

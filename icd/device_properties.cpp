@@ -26,8 +26,9 @@ void fill_v11(const PhysicalDevice& pd, VkPhysicalDeviceVulkan11Properties& p) {
     // rast/geometry clips points as draw does (clip_point_keep: dropped by the z planes, x/y by the guard band), which
     // is what lavapipe reports as ALL_CLIP_PLANES.
     p.pointClippingBehavior = VK_POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES;
-    p.maxMultiviewViewCount = 0;  // multiview is not implemented
-    p.maxMultiviewInstanceIndex = 0;
+    // Multiview (execute.cpp: each view of a subpass is its own pass over its layers): lavapipe 22.3's values.
+    p.maxMultiviewViewCount = kMaxMultiviewViews;
+    p.maxMultiviewInstanceIndex = 0x7fffffff;
     p.protectedNoFault = VK_FALSE;
     // Descriptor sets are plain arrays sized by their layout: 1024 (the Vulkan minimum) is always satisfiable.
     p.maxPerSetDescriptors = 1024;

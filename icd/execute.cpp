@@ -13,6 +13,8 @@
 #include "workers.h"
 
 #include <algorithm>
+#include <bit>
+#include <utility>
 #include <vector>
 
 namespace tilevk::icd {
@@ -57,7 +59,9 @@ void load_attachments(ExecState& st, uint32_t sp) {
     clears.clear();
     for (uint32_t a = 0; a < rp.attachments.size(); ++a) {
         const ImageView* view = attachment_view(st, a);
-        if (rp.first_use[a] != sp || view == nullptr) continue;
+        // Multiview: the views first rendered here (render_pass.cpp plan_view_loads), one layer each.
+        const uint32_t views = rp.multiview ? rp.subpasses[sp].load_views[a] : 0;
+        if (view == nullptr || (rp.multiview ? views == 0 : rp.first_use[a] != sp)) continue;
         const VkAttachmentDescription& d = rp.attachments[a];
         const ImageView& v = *view;
         VkImageAspectFlags aspects = 0;
@@ -69,6 +73,12 @@ void load_attachments(ExecState& st, uint32_t sp) {
         }
         if (aspects == 0) continue;
         const VkRect2D rect = clip_to_view(st.area, v);
+        if (rp.multiview) {
+            for (uint32_t m = views; m != 0; m &= m - 1)
+                clears.push_back(
+                    {&v, v.range.baseArrayLayer + uint32_t(std::countr_zero(m)), rect, aspects, st.clears[a]});
+            continue;
+        }
         const uint32_t layers = std::min(v.range.layerCount, st.framebuffer->layers);
         for (uint32_t l = 0; l < layers; ++l)
             clears.push_back({&v, v.range.baseArrayLayer + l, rect, aspects, st.clears[a]});
@@ -123,11 +133,14 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
             continue;
         }
         const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
+        // The layers resolved: the framebuffer's, or in a multiview subpass the views of its mask.
         const uint32_t layers = std::min(src.range.layerCount, st.framebuffer->layers);
+        const uint32_t layer_mask = s.view_mask != 0 ? s.view_mask : (layers >= 32 ? ~0u : (1u << layers) - 1);
         // Bands of rows on the workers: each pixel's resolve reads only its own samples.
         constexpr uint32_t kBandRows = 32;
         const size_t bands = (rect.extent.height + kBandRows - 1) / kBandRows;
-        for (uint32_t l = 0; l < layers; ++l) {
+        for (uint32_t m = layer_mask; m != 0; m &= m - 1) {
+            const uint32_t l = uint32_t(std::countr_zero(m));
             run_on_workers(st, bands, [&](size_t band) {
                 const uint32_t y0 = uint32_t(band) * kBandRows;
                 const VkOffset2D offset{rect.offset.x, rect.offset.y + int32_t(y0)};
@@ -156,15 +169,44 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
         for (uint32_t r = 0; r < c.rect_count; ++r) {
             const VkClearRect& cr = c.rects[r];
             const VkRect2D rect = clip_to_view(cr.rect, v);
-            const uint32_t base = v.range.baseArrayLayer + cr.baseArrayLayer;
+            // In a multiview subpass the rect names layer 0 of one layer (VUID-vkCmdClearAttachments-baseArrayLayer-
+            // 00018) and the clear applies to the view being rendered (each view runs the command on its own).
+            uint32_t base = v.range.baseArrayLayer + cr.baseArrayLayer, count = cr.layerCount;
+            if (st.view_mask != 0) {
+                base = v.range.baseArrayLayer + st.view;
+                count = 1;
+            }
             if (ca.aspectMask & VK_IMAGE_ASPECT_COLOR_BIT) {
-                clear_color_rect(*v.image, v.range.baseMipLevel, base, cr.layerCount, rect, ca.clearValue.color);
+                clear_color_rect(*v.image, v.range.baseMipLevel, base, count, rect, ca.clearValue.color);
             } else {
-                clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, base, cr.layerCount, rect, ca.aspectMask,
+                clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, base, count, rect, ca.aspectMask,
                                          ca.clearValue.depthStencil);
             }
         }
     }
+}
+
+// A subpass begins (after its load ops): a multiview subpass starts with its lowest view and remembers where it began.
+void begin_subpass_views(ExecState& st) {
+    st.view_mask = st.render_pass->subpasses[st.subpass].view_mask;
+    st.view = st.view_mask != 0 ? uint32_t(std::countr_zero(st.view_mask)) : 0;
+    st.view_ordinal = 0;
+    if (st.view_mask == 0) return;
+    st.subpass_command = st.current_command;
+    st.subpass_bound = st.bound;
+}
+
+// A subpass ends (at vkCmdNextSubpass / vkCmdEndRenderPass): in a multiview subpass with views left, the next view
+// runs the subpass's commands again from its beginning, with the state bound then. Returns true if it does.
+bool next_view(ExecState& st) {
+    const uint32_t rest = st.view_mask & ~((2u << st.view) - 1);
+    if (rest == 0 || st.subpass_command == nullptr) return false;
+    st.view = uint32_t(std::countr_zero(rest));
+    ++st.view_ordinal;
+    st.bound = st.subpass_bound;
+    st.bound.dirty = ~0u;  // the renderer's translated states ended with its pass
+    st.jump_after = st.subpass_command;
+    return true;
 }
 
 // Runs each command as its own type (commands.h visit_command).
@@ -197,20 +239,26 @@ struct CommandRunner {
         st.clears = c.clears;
         st.subpass = 0;
         load_attachments(st, 0);
+        begin_subpass_views(st);
     }
     void operator()(const CmdNextSubpass&) {
         if (st.render_pass == nullptr) return;
         finish_rendering(st);
         st.query_command_pending = false;  // it belonged to the subpass that ended
+        if (next_view(st)) return;
         resolve_attachments(st, st.subpass);
         ++st.subpass;
         load_attachments(st, st.subpass);
+        begin_subpass_views(st);
     }
     void operator()(const CmdEndRenderPass&) {
         if (st.render_pass == nullptr) return;
         finish_rendering(st);
         st.query_command_pending = false;
+        if (next_view(st)) return;
         resolve_attachments(st, st.subpass);
+        st.view_mask = 0;
+        st.subpass_command = nullptr;
         st.render_pass = nullptr;
         st.framebuffer = nullptr;
         st.view_count = 0;
@@ -262,7 +310,10 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st) {
     CommandRunner run{st};
     for (const Cmd* cmd = cb->first; cmd != nullptr; cmd = cmd->next) {
         if (st.stop != nullptr && st.stop->load(std::memory_order_relaxed)) return;  // past the time limit
+        st.current_command = cmd;
         visit_command(*cmd, run);
+        // A multiview subpass's next view: back to its Begin/Next command (in this, the primary, command buffer).
+        if (st.jump_after != nullptr) cmd = std::exchange(st.jump_after, nullptr);
     }
 }
 

@@ -69,6 +69,15 @@ struct ExecState {
     uint32_t subpass = 0;
     VkRect2D area{};
     const VkClearValue* clears = nullptr;
+    // Multiview: the current subpass's view mask (0: not multiview), the view being rendered (ViewIndex, and the
+    // layer of every attachment view it renders into: baseArrayLayer + view) and how many views of the mask came
+    // before it (its query offset). Each view runs the subpass's commands on its own: the subpass's Begin/Next
+    // command (`subpass_command`) is where the next view starts again, with the bound state the subpass began with.
+    uint32_t view_mask = 0, view = 0, view_ordinal = 0;
+    const Cmd* current_command = nullptr;  // the command being run (execute_command_buffer)
+    const Cmd* subpass_command = nullptr;
+    const Cmd* jump_after = nullptr;  // set: execution continues after this command instead of the current one
+    BoundState subpass_bound;
     // The active occlusion query (at most one per command buffer): draws add their passing samples to it.
     QueryPool* occlusion_pool = nullptr;
     uint32_t occlusion_query = 0;
@@ -92,6 +101,11 @@ void execute_command_buffer(CommandBuffer* cb, ExecState& st);
 // given: invalid usage, which renders nothing into it).
 inline const ImageView* attachment_view(const ExecState& st, uint32_t a) {
     return a < st.view_count ? st.views[a] : nullptr;
+}
+
+// The layer offset the renderer writes into each attachment view: the current view in a multiview subpass, else 0.
+inline uint32_t view_layer_offset(const ExecState& st) {
+    return st.view_mask != 0 ? st.view : 0;
 }
 
 // A query command (begin/end occlusion, timestamp) executed inside a render pass. lavapipe bins it into every tile

@@ -153,11 +153,11 @@ struct PlaneRef {
     uint8_t* data;
     size_t row_pitch, sample_stride;
 };
-PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t elem, uint32_t byte_offset, uint32_t w, uint32_t h,
-                  uint32_t copy_bytes = 0) {
+PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t layer_offset, uint32_t elem, uint32_t byte_offset,
+                  uint32_t w, uint32_t h, uint32_t copy_bytes = 0) {
     const Image& img = *v.image;
     const uint32_t level = v.range.baseMipLevel;
-    uint8_t* base = img.texel(level, v.range.baseArrayLayer, 0, 0);
+    uint8_t* base = img.texel(level, v.range.baseArrayLayer + layer_offset, 0, 0);
     const size_t pitch = img.layout.row_pitch[level];
     if (copy_bytes == 0) copy_bytes = elem;
     if (img.samples == 1 && img.format->bytes == elem && copy_bytes == elem) return {base + byte_offset, pitch, 0};
@@ -196,7 +196,9 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
     DrawContext& ctx = *st.draw;
     const Framebuffer& fbo = *st.framebuffer;
     const Subpass& sp = st.render_pass->subpasses[st.subpass];
+    const uint32_t layer = view_layer_offset(st);  // multiview: the layer of the view being rendered
     rr::Framebuffer fb;
+    fb.view_index = st.view_mask != 0 ? st.view : 0;
     fb.width = int32_t(fbo.width);
     fb.height = int32_t(fbo.height);
     fb.samples = pipeline_samples;
@@ -209,7 +211,7 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
         if (!(image_features(*v.format) & format::kColorAttachment)) continue;
         t.format = v.format->id;
         fb.samples = int(v.image->samples);
-        const PlaneRef p = plane_of(ctx, v, v.format->bytes, 0, fbo.width, fbo.height);
+        const PlaneRef p = plane_of(ctx, v, layer, v.format->bytes, 0, fbo.width, fbo.height);
         t.data = p.data;
         t.row_pitch = p.row_pitch;
         t.sample_stride = p.sample_stride;
@@ -223,14 +225,15 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
             // X8D24 (D24_UNORM_S8_UINT): the renderer's 32-bit depth words get the 24 depth bits, the top byte
             // (the image's stencil) stays 0 in staging and is never written back.
             const uint32_t copy = t.format == rast::fragment::DepthFormat::X8D24 ? 3 : 0;
-            const PlaneRef p = plane_of(ctx, v, uint32_t(rr::depth_bytes(t.format)), 0, fbo.width, fbo.height, copy);
+            const PlaneRef p =
+                plane_of(ctx, v, layer, uint32_t(rr::depth_bytes(t.format)), 0, fbo.width, fbo.height, copy);
             t.depth = p.data;
             t.depth_row_pitch = p.row_pitch;
             t.depth_sample_stride = p.sample_stride;
         }
         if (v.format->aspects & VK_IMAGE_ASPECT_STENCIL_BIT) {
-            const PlaneRef p =
-                plane_of(ctx, v, 1, aspect_offset(*v.format, VK_IMAGE_ASPECT_STENCIL_BIT), fbo.width, fbo.height);
+            const PlaneRef p = plane_of(ctx, v, layer, 1, aspect_offset(*v.format, VK_IMAGE_ASPECT_STENCIL_BIT),
+                                        fbo.width, fbo.height);
             t.stencil = p.data;
             t.stencil_row_pitch = p.row_pitch;
             t.stencil_sample_stride = p.sample_stride;

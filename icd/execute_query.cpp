@@ -31,45 +31,57 @@ void finish_queries(ExecState& st) {
     finish_rendering(st);  // renders anything left binned (invalid usage: a render pass left open) and publishes
 }
 
+namespace {
+// In a multiview subpass a query uses as many consecutive queries as the subpass has views (vkCmdBeginQuery,
+// "multiview"); each view runs the subpass's commands on its own (execute.cpp), so view k's results go to query + k,
+// one of the distributions the spec allows.
+uint32_t view_query(const ExecState& st, uint32_t query) {
+    return st.render_pass != nullptr && st.view_mask != 0 ? query + st.view_ordinal : query;
+}
+}  // namespace
+
 void exec_query(ExecState& st, const CmdBeginQuery& c) {
+    const uint32_t query = view_query(st, c.query);
     if (c.pool->type != VK_QUERY_TYPE_OCCLUSION) {
         log_error("vkCmdBeginQuery: a %s pool cannot be begun; ignored", vk_enum_name(c.pool->type));
         return;
     }
-    if (c.query >= c.pool->count) {
-        log_error("vkCmdBeginQuery: query %u is outside the pool of %u; ignored", c.query, c.pool->count);
+    if (query >= c.pool->count) {
+        log_error("vkCmdBeginQuery: query %u is outside the pool of %u; ignored", query, c.pool->count);
         return;
     }
-    c.pool->begin(c.query);
+    c.pool->begin(query);
     note_query_command_in_pass(st);
     st.occlusion_pool = c.pool;
-    st.occlusion_query = c.query;
+    st.occlusion_query = query;
 }
 
 void exec_query(ExecState& st, const CmdEndQuery& c) {
-    if (c.pool != st.occlusion_pool || c.query != st.occlusion_query) {
-        log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", c.query);
+    const uint32_t query = view_query(st, c.query);
+    if (c.pool != st.occlusion_pool || query != st.occlusion_query) {
+        log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", query);
         return;
     }
     st.occlusion_pool = nullptr;
     note_query_command_in_pass(st);
     if (st.render_pass != nullptr)
-        st.ended_in_pass.emplace_back(c.pool, c.query);  // its draws may still be binned
+        st.ended_in_pass.emplace_back(c.pool, query);  // its draws may still be binned
     else
-        c.pool->make_available(c.query);
+        c.pool->make_available(query);
 }
 
 void exec_query(ExecState& st, const CmdWriteTimestamp& c) {
     // Draws are binned until the renderer's pass ends; a timestamp after any stage but the top of the pipe must
     // follow their rendering, so it renders them first (lavapipe flushes its context the same way).
     if (c.stage != VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT) finish_rendering(st);
-    if (c.pool->type != VK_QUERY_TYPE_TIMESTAMP || c.query >= c.pool->count) {
-        log_error("vkCmdWriteTimestamp: query %u of a %s pool of %u queries cannot take a timestamp; ignored", c.query,
+    const uint32_t query = view_query(st, c.query);
+    if (c.pool->type != VK_QUERY_TYPE_TIMESTAMP || query >= c.pool->count) {
+        log_error("vkCmdWriteTimestamp: query %u of a %s pool of %u queries cannot take a timestamp; ignored", query,
                   vk_enum_name(c.pool->type), c.pool->count);
         return;
     }
     note_query_command_in_pass(st);
-    c.pool->write_timestamp(c.query, timestamp_now_ns());
+    c.pool->write_timestamp(query, timestamp_now_ns());
 }
 
 void exec_query(ExecState&, const CmdCopyQueryPoolResults& c) {

@@ -12,6 +12,12 @@ struct Subpass {
     std::vector<VkAttachmentReference> resolves;  // empty or one per colour attachment
     VkAttachmentReference depth_stencil{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
     std::vector<uint32_t> preserves;
+    // Multiview (VkRenderPassMultiviewCreateInfo::pViewMasks, VkSubpassDescription2::viewMask): the views this
+    // subpass renders, each into layer baseArrayLayer + view of every attachment; 0 when the pass is not multiview.
+    uint32_t view_mask = 0;
+    // Multiview: per attachment, the views whose load op applies at this subpass (the first subpass that uses the
+    // attachment with that view); empty when the pass is not multiview (first_use decides then).
+    std::vector<uint32_t> load_views;
 };
 
 struct RenderPass : NonDispatchableObject {
@@ -23,6 +29,7 @@ struct RenderPass : NonDispatchableObject {
     std::vector<VkSubpassDependency> dependencies;
     // For each attachment, the first subpass that uses it (its load op applies there), or ~0u if unused.
     std::vector<uint32_t> first_use;
+    bool multiview = false;  // the subpasses have view masks (all non-zero)
 };
 
 }  // namespace tilevk::icd

@@ -210,6 +210,9 @@ void Program::run_vertex(const Bindings& bindings, VertexBatch& vb, Scratch& scr
             case IoSlot::DrawIndex:
                 LANES w[l] = vb.draw_index;
                 break;
+            case IoSlot::ViewIndex:
+                LANES w[l] = vb.view_index;
+                break;
             default:
                 break;
         }
@@ -270,6 +273,9 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
                 break;
             case IoSlot::SampleId:
                 LANES w[l] = fb.sample_id;
+                break;
+            case IoSlot::ViewIndex:
+                LANES w[l] = fb.view_index;
                 break;
             case IoSlot::HelperInvocation:
                 LANES w[l] = (fb.cover_mask >> l) & 1 ? 0u : ~0u;

@@ -227,6 +227,7 @@ enum class IoSlot : uint8_t {
     GlobalInvocationId,
     WorkgroupId,
     NumWorkgroups,
+    ViewIndex,
 };
 struct IoCopy {
     IoSlot slot;

@@ -110,6 +110,7 @@ enum class BuiltIn : uint32_t {
     GlobalInvocationId = 1u << 19,
     WorkgroupId = 1u << 20,
     NumWorkgroups = 1u << 21,
+    ViewIndex = 1u << 22,  // multiview: the view being rendered (vertex and fragment inputs)
 };
 constexpr uint32_t bit(BuiltIn b) {
     return static_cast<uint32_t>(b);
@@ -255,8 +256,9 @@ using Lanes = uint32_t[kLanes];
 struct alignas(64) VertexBatch {
     uint32_t count = kLanes;
     uint32_t base_vertex = 0, base_instance = 0, draw_index = 0;
-    alignas(64) Lanes vertex_index{};               // VertexIndex (already includes the vertex offset / base vertex)
-    alignas(64) Lanes instance_index{};             // InstanceIndex (includes firstInstance)
+    uint32_t view_index = 0;             // ViewIndex: the multiview view this batch renders (0 outside multiview)
+    alignas(64) Lanes vertex_index{};    // VertexIndex (already includes the vertex offset / base vertex)
+    alignas(64) Lanes instance_index{};  // InstanceIndex (includes firstInstance)
     alignas(64) Lanes inputs[kMaxLocations][4]{};   // vertex attributes, [location][component][lane]
     alignas(64) Lanes outputs[kMaxLocations][4]{};  // varyings, [location][component][lane]
     alignas(64) Lanes position[4]{};                // gl_Position x, y, z, w (float bits)
@@ -271,6 +273,7 @@ struct alignas(64) FragmentBlock {
     uint32_t live_mask = 0;                        // out: cover_mask minus lanes that were discarded (demoted)
     uint32_t front_facing = 1;                     // in: 1 for a front-facing primitive (same for the whole block)
     uint32_t sample_id = 0;                        // in: for sample shading
+    uint32_t view_index = 0;                       // in: ViewIndex, the multiview view (same for the whole block)
     alignas(64) Lanes frag_coord[4]{};             // in: x, y (pixel centre, e.g. 10.5), z, 1/w (float bits)
     alignas(64) Lanes sample_mask_in{};            // in: gl_SampleMaskIn[0]
     alignas(64) Lanes point_coord[2]{};            // in: gl_PointCoord

@@ -29,6 +29,8 @@ uint32_t builtin_bit(spv::BuiltIn b) {
             return bit(BuiltIn::BaseInstance);
         case spv::BuiltIn::DrawIndex:
             return bit(BuiltIn::DrawIndex);
+        case spv::BuiltIn::ViewIndex:
+            return bit(BuiltIn::ViewIndex);
         case spv::BuiltIn::FragCoord:
             return bit(BuiltIn::FragCoord);
         case spv::BuiltIn::FrontFacing:
@@ -73,6 +75,7 @@ IoSlot builtin_slot(spv::BuiltIn b, Stage stage, bool output) {
         if (b == spv::BuiltIn::BaseVertex) return IoSlot::BaseVertex;
         if (b == spv::BuiltIn::BaseInstance) return IoSlot::BaseInstance;
         if (b == spv::BuiltIn::DrawIndex) return IoSlot::DrawIndex;
+        if (b == spv::BuiltIn::ViewIndex) return IoSlot::ViewIndex;
     } else if (stage == Stage::Vertex && output) {
         if (b == spv::BuiltIn::Position) return IoSlot::Position;
         if (b == spv::BuiltIn::PointSize) return IoSlot::PointSize;
@@ -85,6 +88,7 @@ IoSlot builtin_slot(spv::BuiltIn b, Stage stage, bool output) {
         if (b == spv::BuiltIn::SampleMask) return IoSlot::SampleMaskIn;
         if (b == spv::BuiltIn::SampleId) return IoSlot::SampleId;
         if (b == spv::BuiltIn::HelperInvocation) return IoSlot::HelperInvocation;
+        if (b == spv::BuiltIn::ViewIndex) return IoSlot::ViewIndex;
     } else {
         if (b == spv::BuiltIn::FragDepth) return IoSlot::FragDepth;
         if (b == spv::BuiltIn::SampleMask) return IoSlot::SampleMask;

@@ -23,6 +23,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::CullDistance:
         case spv::Capability::DerivativeControl:
         case spv::Capability::DrawParameters:
+        case spv::Capability::MultiView:  // ViewIndex: the view the renderer runs (icd/execute.cpp)
         case spv::Capability::ImageQuery:
         case spv::Capability::SampleRateShading:
         case spv::Capability::DemoteToHelperInvocation:
@@ -42,9 +43,10 @@ bool capability_supported(spv::Capability c) {
 }
 
 bool extension_supported(const std::string& e) {
-    return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_EXT_demote_to_helper_invocation" ||
-           e == "SPV_KHR_storage_buffer_storage_class" || e == "SPV_EXT_descriptor_indexing" ||
-           e == "SPV_KHR_non_semantic_info" || e == "SPV_KHR_terminate_invocation";
+    return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_KHR_multiview" ||
+           e == "SPV_EXT_demote_to_helper_invocation" || e == "SPV_KHR_storage_buffer_storage_class" ||
+           e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
+           e == "SPV_KHR_terminate_invocation";
 }
 
 }  // namespace

@@ -123,6 +123,7 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
     b.cover_mask = shader::kAllLanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
+    b.view_index = a.fb->view_index;
     const float* attribs = a.planes + kPrimHeaderFloats;
     for (const InputPlan& in : a.plan->inputs) {
         uint32_t* lanes = input_lanes(b, in);
@@ -144,6 +145,7 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     b.cover_mask = lanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
+    b.view_index = a.fb->view_index;
     const shader::ProgramInterface& iface = fs->interface();
     const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);
     alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};

@@ -357,6 +357,7 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
         b.cover_mask = shade_lanes;
         b.front_facing = front_facing ? 1u : 0u;
         b.sample_id = 0;
+        b.view_index = fb_.view_index;
         const fragment::EvalOffset centre = fragment::plane_offset(samples, -1);
         float wlanes[kBlockLanes], tmp[kBlockLanes], out[kBlockLanes];
         fragment::eval_plane(plane_of(planes, 3), x, y, centre, fused_, wlanes);

@@ -390,6 +390,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     vcfg.first_instance = call.first_instance;
     vcfg.base_vertex = call.indexed ? static_cast<uint32_t>(call.vertex_offset) : call.first;
     vcfg.draw_index = call.draw_index;
+    vcfg.view_index = fb_.view_index;
     vcfg.stop = stop_;
 
     const geometry::VertexLayout layout = rec.varyings.layout();

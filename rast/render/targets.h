@@ -40,6 +40,9 @@ struct Framebuffer {
     // colour buffer, no depth/stencil buffer, one viewport). The driver decides; the renderer then clips x/y
     // against draw's 2x guard band instead of the viewport (rast/geometry/README.md, "Linear mode").
     bool linear_mode = false;
+    // Multiview: the view these targets are (ViewIndex of every draw rendered into them); 0 otherwise. The driver
+    // renders each view of a multiview subpass as its own pass over that view's layers.
+    uint32_t view_index = 0;
 };
 
 inline size_t depth_bytes(fragment::DepthFormat f) {

@@ -89,6 +89,7 @@ void shade_range(const VertexStageConfig& cfg, const Fetches& fetches, std::span
     batch.base_vertex = cfg.base_vertex;
     batch.base_instance = cfg.first_instance;
     batch.draw_index = cfg.draw_index;
+    batch.view_index = cfg.view_index;
     for (uint32_t first = first_vertex; first < end; first += shader::kLanes) {
         if (cfg.stop != nullptr && cfg.stop->load(std::memory_order_relaxed)) return;
         const uint32_t count = std::min<uint32_t>(shader::kLanes, end - first);

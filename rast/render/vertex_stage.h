@@ -65,6 +65,7 @@ struct VertexStageConfig {
     uint32_t instance = 0;  // instance id within the draw (InstanceIndex = first_instance + instance)
     uint32_t base_vertex = 0;
     uint32_t draw_index = 0;                  // DrawCall::draw_index
+    uint32_t view_index = 0;                  // Framebuffer::view_index
     const std::atomic<bool>* stop = nullptr;  // Renderer::set_stop_flag: once true, the remaining batches are skipped
 };
 

@@ -279,7 +279,7 @@ TEST_F(ApiImagelessFramebuffer, DepthAndInputAttachmentsAcrossSubpassesEqualTheF
 // tilevk alone, without the validation layer (these are errors it would report): an imageless framebuffer begun
 // without its views (no VkRenderPassAttachmentBeginInfo, or one of the wrong count) renders nothing, and the same
 // framebuffer with its view renders after; the flag without the feature, a view mask of VkRenderPassMultiviewCreateInfo
-// (VK_KHR_multiview is not exposed) and subpass flags are refused by name.
+// (the multiview feature is not enabled on this device) and subpass flags are refused by name.
 TEST_F(ApiImagelessFramebuffer, RefusalsAndInvalidUsage) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
