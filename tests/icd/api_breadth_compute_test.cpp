@@ -15,6 +15,7 @@
 #include <string>
 
 #include "api_breadth.h"
+#include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -305,23 +306,6 @@ TEST_F(ApiCompute, DispatchWritesWhatADrawReads) {
 }
 
 // ---- tilevk alone ---------------------------------------------------------------------------------------------
-
-// What tilevk writes to stderr while `fn` runs.
-std::string stderr_of(const std::function<void()>& fn) {
-    std::fflush(stderr);
-    FILE* tmp = std::tmpfile();
-    const int saved = dup(STDERR_FILENO);
-    dup2(fileno(tmp), STDERR_FILENO);
-    fn();
-    std::fflush(stderr);
-    dup2(saved, STDERR_FILENO);
-    close(saved);
-    std::string text;
-    std::rewind(tmp);
-    for (int ch = std::fgetc(tmp); ch != EOF; ch = std::fgetc(tmp)) text += char(ch);
-    std::fclose(tmp);
-    return text;
-}
 
 // cp_reduce.comp at workgroup size n over `groups` (<= 64) workgroups: the sums checked against the input here.
 Bytes reduce(Kit& k, uint32_t n, uint32_t groups) {

@@ -10,13 +10,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include "api_breadth.h"
 #include "endless_frag.h"
 #include "endless_vert.h"
+#include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -254,25 +254,6 @@ TEST_F(DeviceLoss, BillionInstanceDraw) {
     EXPECT_LT(growth, kSceneGrowthBoundMb) << "the draw's scene grew the resident set by " << growth << " MB";
 }
 
-// Captures what the process writes to stderr while `fn` runs.
-std::string capture_stderr(const std::function<void()>& fn) {
-    fflush(stderr);
-    char path[] = "/tmp/tilevk-device-loss-XXXXXX";
-    const int fd = mkstemp(path);
-    const int saved = dup(2);
-    dup2(fd, 2);
-    fn();
-    fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
-    close(fd);
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    unlink(path);
-    return text.str();
-}
-
 size_t count_of(const std::string& text, const std::string& what) {
     size_t n = 0;
     for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
@@ -296,7 +277,7 @@ TEST_F(DeviceLoss, ReportedOnceWithTheDrawAndItsPipeline) {
         vkCmdEndRenderPass(c);
     });
     VkResult first = VK_SUCCESS;
-    const std::string log = capture_stderr([&] { first = timed_submit(k, cb).first; });
+    const std::string log = stderr_of([&] { first = timed_submit(k, cb).first; });
     EXPECT_EQ(first, VK_ERROR_DEVICE_LOST);
     char pipeline[64];
     snprintf(pipeline, sizeof pipeline, "(VkPipeline 0x%llx)", static_cast<unsigned long long>(uint64_t(endless)));
@@ -309,7 +290,7 @@ TEST_F(DeviceLoss, ReportedOnceWithTheDrawAndItsPipeline) {
     ASSERT_EQ(vkCreateFence(k.d, &fci, nullptr, &fence), VK_SUCCESS);
     double ms = 0;
     VkResult again = VK_SUCCESS;
-    const std::string later = capture_stderr([&] { std::tie(again, ms) = timed_submit(k, cb, fence); });
+    const std::string later = stderr_of([&] { std::tie(again, ms) = timed_submit(k, cb, fence); });
     EXPECT_EQ(again, VK_ERROR_DEVICE_LOST);
     EXPECT_LT(ms, 100.0);
     EXPECT_EQ(later, "");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "stderr_capture.h"
 #include "vk_names.h"
 
 namespace {
@@ -20,36 +21,7 @@ using tilevk::icd::feature_structs;
 using tilevk::icd::features10;
 using tilevk::icd::FeatureStruct;
 
-// Collects what is written to stderr (fd 2) while it lives.
-class StderrCapture {
-  public:
-    StderrCapture() {
-        std::fflush(stderr);
-        file_ = std::tmpfile();
-        saved_ = dup(2);
-        dup2(fileno(file_), 2);
-    }
-    ~StderrCapture() { restore(); }
-    std::string text() {
-        restore();
-        std::string out;
-        std::rewind(file_);
-        char buf[4096];
-        for (size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;) out.append(buf, n);
-        return out;
-    }
-
-  private:
-    void restore() {
-        if (saved_ < 0) return;
-        std::fflush(stderr);
-        dup2(saved_, 2);
-        close(saved_);
-        saved_ = -1;
-    }
-    std::FILE* file_ = nullptr;
-    int saved_ = -1;
-};
+using tilevk::test::StderrCapture;
 
 class HonestReports : public ::testing::Test {
   protected:
