@@ -3,6 +3,7 @@
 // a framebuffer made with those views, on each driver, and tilevk's equal lavapipe's (validation layer on); what
 // tilevk refuses fails by name, and an imageless pass begun without its views renders nothing without crashing.
 #include "api_breadth.h"
+#include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -318,7 +319,7 @@ TEST_F(ApiImagelessFramebuffer, RefusalsAndInvalidUsage) {
     for (const bool chained : {false, true}) {
         fb.imageless = chained;
         fb.views.clear();
-        testing::internal::CaptureStderr();
+        StderrCapture capture;
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             transition(c, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
@@ -330,8 +331,7 @@ TEST_F(ApiImagelessFramebuffer, RefusalsAndInvalidUsage) {
                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         }),
                   VK_SUCCESS);
-        EXPECT_NE(testing::internal::GetCapturedStderr().find("VkRenderPassAttachmentBeginInfo"), std::string::npos)
-            << "chained " << chained;
+        EXPECT_NE(capture.text().find("VkRenderPassAttachmentBeginInfo"), std::string::npos) << "chained " << chained;
         const Bytes untouched = k.read(img.image, 32, 32, 4);
         for (size_t i = 0; i < untouched.size(); ++i) ASSERT_EQ(untouched[i], 128) << "byte " << i << " " << chained;
     }
@@ -349,9 +349,9 @@ TEST_F(ApiImagelessFramebuffer, RefusalsAndInvalidUsage) {
     rci.pSubpasses = subs.data();
     const auto refused = [&](const char* name) {
         VkRenderPass r = VK_NULL_HANDLE;
-        testing::internal::CaptureStderr();
+        StderrCapture capture;
         EXPECT_EQ(vkCreateRenderPass(k.d, &rci, nullptr, &r), VK_ERROR_FEATURE_NOT_PRESENT) << name;
-        EXPECT_NE(testing::internal::GetCapturedStderr().find(name), std::string::npos) << name;
+        EXPECT_NE(capture.text().find(name), std::string::npos) << name;
         EXPECT_EQ(r, VkRenderPass(VK_NULL_HANDLE)) << name;
     };
     {
@@ -377,9 +377,9 @@ TEST_F(ApiImagelessFramebuffer, RefusalsAndInvalidUsage) {
     fci.width = fci.height = 32;
     fci.layers = 1;
     VkFramebuffer refused_fb = VK_NULL_HANDLE;
-    testing::internal::CaptureStderr();
+    StderrCapture capture;
     EXPECT_EQ(vkCreateFramebuffer(k2.d, &fci, nullptr, &refused_fb), VK_ERROR_FEATURE_NOT_PRESENT);
-    EXPECT_NE(testing::internal::GetCapturedStderr().find("imagelessFramebuffer"), std::string::npos);
+    EXPECT_NE(capture.text().find("imagelessFramebuffer"), std::string::npos);
     EXPECT_EQ(refused_fb, VkFramebuffer(VK_NULL_HANDLE));
 }
 

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <thread>
 
+#include "../stderr_capture.h"
 #include "../vk_harness.h"
 
 using namespace tilevk::test;
@@ -656,9 +657,9 @@ TEST(Swapchain, DeviceGroupImageOfOtherParametersIsRefused) {
     ici.tiling = VK_IMAGE_TILING_OPTIMAL;
     ici.usage = h.create_info(VK_PRESENT_MODE_FIFO_KHR, 2).imageUsage;
     VkImage alias = VK_NULL_HANDLE;
-    testing::internal::CaptureStderr();
+    StderrCapture capture;
     EXPECT_NE(vkCreateImage(h.device(), &ici, nullptr, &alias), VK_SUCCESS);
-    const std::string err = testing::internal::GetCapturedStderr();
+    const std::string err = capture.text();
     EXPECT_EQ(alias, VK_NULL_HANDLE);
     EXPECT_NE(err.find("VkImageSwapchainCreateInfoKHR"), std::string::npos) << err;
 }
