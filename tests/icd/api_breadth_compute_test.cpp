@@ -37,27 +37,6 @@ class ApiCompute : public ApiBreadth {};
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
-// A compute pipeline of `code` (entry `entry`, specialization `spec`) with `layout`; the result in *result when
-// given, else expected to be VK_SUCCESS.
-VkPipeline compute_pipeline(Kit& k, Spv code, VkPipelineLayout layout, const VkSpecializationInfo* spec = nullptr,
-                            VkResult* result = nullptr, const char* entry = "main") {
-    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = k.shader(code);
-    ci.stage.pName = entry;
-    ci.stage.pSpecializationInfo = spec;
-    ci.layout = layout;
-    VkPipeline p = VK_NULL_HANDLE;
-    const VkResult r = vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &ci, nullptr, &p);
-    if (result != nullptr)
-        *result = r;
-    else
-        EXPECT_EQ(r, VK_SUCCESS);
-    if (p != VK_NULL_HANDLE) k.undo(VK_OBJECT_TYPE_PIPELINE, p, [&k, p] { vkDestroyPipeline(k.d, p, nullptr); });
-    return p;
-}
-
 VkDescriptorBufferInfo whole(const Device::Buffer& b) {
     return {b.buffer, 0, VK_WHOLE_SIZE};
 }

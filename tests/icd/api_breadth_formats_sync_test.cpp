@@ -404,14 +404,9 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         EXPECT_NE(r, VK_SUCCESS);
         EXPECT_EQ(pipe, VK_NULL_HANDLE);
         // Compute pipeline past the workgroup limits: refused.
-        VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-        cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        cci.stage.module = k.shader(SPV(ab_compute_comp));
-        cci.stage.pName = "main";
-        cci.layout = k.empty_layout();
-        VkPipeline cp = VK_NULL_HANDLE;
-        EXPECT_NE(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &cci, nullptr, &cp), VK_SUCCESS);
+        VkResult cr = VK_SUCCESS;
+        VkPipeline cp = compute_pipeline(k, SPV(ab_compute_comp), k.empty_layout(), nullptr, &cr);
+        EXPECT_NE(cr, VK_SUCCESS);
         EXPECT_EQ(cp, VK_NULL_HANDLE);
         // A geometry stage (the feature is not reported; without the layer nothing stops the call): refused.
         {

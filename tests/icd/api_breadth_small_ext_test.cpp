@@ -1,6 +1,8 @@
 // Small device extensions of Vulkan 1.2 (suites ApiSmallExtensions, ScalarBlockLayout), each on tilevk and lavapipe
 // with the extension (and its feature) enabled and the validation layer on; results compared byte for byte and checked
 // against values computed here.
+#include <spirv-tools/libspirv.hpp>
+
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
 #include "ab_demote_frag.h"
@@ -241,16 +243,8 @@ TEST_F(ScalarBlockLayout, StorageBlocks) {
         const VkDescriptorBufferInfo bs{src.buffer, 0, VK_WHOLE_SIZE}, bd{dst.buffer, 0, VK_WHOLE_SIZE};
         k.write(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bs, nullptr);
         k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bd, nullptr);
-        VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-        ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        ci.stage.module = k.shader(SPV(cp_scalar_comp));
-        ci.stage.pName = "main";
-        ci.layout = layout;
-        VkPipeline p = VK_NULL_HANDLE;
-        EXPECT_EQ(vkCreateComputePipelines(k.d, VK_NULL_HANDLE, 1, &ci, nullptr, &p), VK_SUCCESS);
+        VkPipeline p = compute_pipeline(k, SPV(cp_scalar_comp), layout);
         if (p == VK_NULL_HANDLE) return Bytes{};
-        k.undo(VK_OBJECT_TYPE_PIPELINE, p, [&k, p] { vkDestroyPipeline(k.d, p, nullptr); });
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
             vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
@@ -394,6 +388,111 @@ TEST_F(ApiSmallExtensions, ShaderDrawParameters) {
     EXPECT_EQ(p[0], 32);
     EXPECT_EQ(p[1], 20);
     EXPECT_EQ(p[2], 28);
+}
+
+}  // namespace
+}  // namespace tilevk::test::breadth
+
+namespace tilevk::test::breadth {
+namespace {
+
+// A SPIR-V 1.0 compute module that needs both extensions: its blocks are in the StorageBuffer storage class
+// (SPV_KHR_storage_buffer_storage_class; glslang only emits that class for SPIR-V 1.3) and the input block has a vec3
+// at offset 4, which only VK_KHR_relaxed_block_layout allows (std430 aligns a vec3 to 16). out.r = (b * a, a).
+constexpr const char* kRelaxedStorageBufferComp = R"(
+OpCapability Shader
+OpExtension "SPV_KHR_storage_buffer_storage_class"
+OpMemoryModel Logical GLSL450
+OpEntryPoint GLCompute %main "main"
+OpExecutionMode %main LocalSize 1 1 1
+OpDecorate %In Block
+OpMemberDecorate %In 0 Offset 0
+OpMemberDecorate %In 1 Offset 4
+OpDecorate %Out Block
+OpMemberDecorate %Out 0 Offset 0
+OpDecorate %in DescriptorSet 0
+OpDecorate %in Binding 0
+OpDecorate %out DescriptorSet 0
+OpDecorate %out Binding 1
+%void = OpTypeVoid
+%fn = OpTypeFunction %void
+%float = OpTypeFloat 32
+%v3 = OpTypeVector %float 3
+%v4 = OpTypeVector %float 4
+%In = OpTypeStruct %float %v3
+%Out = OpTypeStruct %v4
+%p_in = OpTypePointer StorageBuffer %In
+%p_out = OpTypePointer StorageBuffer %Out
+%p_float = OpTypePointer StorageBuffer %float
+%p_v3 = OpTypePointer StorageBuffer %v3
+%p_v4 = OpTypePointer StorageBuffer %v4
+%int = OpTypeInt 32 1
+%c0 = OpConstant %int 0
+%c1 = OpConstant %int 1
+%in = OpVariable %p_in StorageBuffer
+%out = OpVariable %p_out StorageBuffer
+%main = OpFunction %void None %fn
+%entry = OpLabel
+%pa = OpAccessChain %p_float %in %c0
+%a = OpLoad %float %pa
+%pb = OpAccessChain %p_v3 %in %c1
+%b = OpLoad %v3 %pb
+%scaled = OpVectorTimesScalar %v3 %b %a
+%r = OpCompositeConstruct %v4 %scaled %a
+%pr = OpAccessChain %p_v4 %out %c0
+OpStore %pr %r
+OpReturn
+OpFunctionEnd
+)";
+
+std::vector<uint32_t> assemble(const char* text) {
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    std::vector<uint32_t> words;
+    EXPECT_TRUE(tools.Assemble(text, &words));
+    return words;
+}
+
+// VK_KHR_storage_buffer_storage_class and VK_KHR_relaxed_block_layout (Vulkan 1.1 core): the module above on both
+// drivers with both extensions enabled; the output equals lavapipe's and (6, 8, 10, 2) for a = 2, b = (3, 4, 5).
+// (The validation layer does not check the block layout against the enabled extensions; spirv-val does, and
+// tilevk's shader/ validates with rules that accept relaxed and scalar layouts.)
+TEST_F(ApiSmallExtensions, StorageBufferClassWithRelaxedBlockLayout) {
+    auto dev =
+        devices({VK_KHR_STORAGE_BUFFER_STORAGE_CLASS_EXTENSION_NAME, VK_KHR_RELAXED_BLOCK_LAYOUT_EXTENSION_NAME});
+    ASSERT_TRUE(dev->ok());
+    const std::vector<uint32_t> code = assemble(kRelaxedStorageBufferComp);
+    ASSERT_FALSE(code.empty());
+    const Bytes b = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+        const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        const std::vector<float> in = {2, 3, 4, 5};
+        Device::Buffer src = k.buffer_of(in, storage);
+        Device::Buffer dst = k.buffer(16, storage);
+        std::memset(dst.map, 0xAB, 16);
+        VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT}});
+        VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet set = k.descriptor_set(dsl);
+        const VkDescriptorBufferInfo bs{src.buffer, 0, VK_WHOLE_SIZE}, bd{dst.buffer, 0, VK_WHOLE_SIZE};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bs, nullptr);
+        k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bd, nullptr);
+        VkPipeline p = compute_pipeline(k, Spv{code.data(), code.size() * 4}, layout);
+        if (p == VK_NULL_HANDLE) return Bytes{};
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDispatch(c, 1, 1, 1);
+        }),
+                  VK_SUCCESS);
+        return Kit::bytes(dst);
+    });
+    ASSERT_EQ(b.size(), 16u);
+    float got[4];
+    std::memcpy(got, b.data(), sizeof got);
+    EXPECT_EQ(got[0], 6.0f);
+    EXPECT_EQ(got[1], 8.0f);
+    EXPECT_EQ(got[2], 10.0f);
+    EXPECT_EQ(got[3], 2.0f);
 }
 
 }  // namespace
