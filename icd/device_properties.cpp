@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "physical_device.h"
+#include "shader/program.h"
 
 namespace tilevk::icd {
 namespace {
@@ -17,11 +18,13 @@ void fill_v11(const PhysicalDevice& pd, VkPhysicalDeviceVulkan11Properties& p) {
     std::memcpy(p.driverUUID, kDriver, VK_UUID_SIZE);
     p.deviceLUIDValid = VK_FALSE;  // LUIDs identify Windows adapters
     p.deviceNodeMask = 0;
-    // No subgroup operation is implemented in any stage. (Vulkan 1.1 would want BASIC in the compute stage of a
-    // compute queue; tilevk reports Vulkan 1.0, where the struct is informative.)
-    p.subgroupSize = 1;
-    p.subgroupSupportedStages = 0;
-    p.subgroupSupportedOperations = 0;
+    // Subgroups of shader/'s kSubgroupSize (8, lavapipe's on AVX2) in compute shaders only: basic, vote and ballot
+    // operations (shader/translate_subgroup.cpp); other stages refuse them by name. (SPIR-V 1.3, where they live,
+    // needs the Vulkan 1.1 that tilevk does not report yet: the struct is informative until then.)
+    p.subgroupSize = shader::kSubgroupSize;
+    p.subgroupSupportedStages = VK_SHADER_STAGE_COMPUTE_BIT;
+    p.subgroupSupportedOperations =
+        VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
     p.subgroupQuadOperationsInAllStages = VK_FALSE;
     // rast/geometry clips points as draw does (clip_point_keep: dropped by the z planes, x/y by the guard band), which
     // is what lavapipe reports as ALL_CLIP_PLANES.
@@ -59,9 +62,10 @@ void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
 // Vulkan 1.3: subgroup size control, inline uniform blocks, dot products, texel-buffer alignment, buffer size.
 void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
     const VkPhysicalDeviceLimits& limits = pd.properties.limits;
-    p.minSubgroupSize = 1;
-    p.maxSubgroupSize = 1;
-    p.maxComputeWorkgroupSubgroups = 0;
+    // One subgroup size and no control over it (VK_EXT_subgroup_size_control is not offered).
+    p.minSubgroupSize = shader::kSubgroupSize;
+    p.maxSubgroupSize = shader::kSubgroupSize;
+    p.maxComputeWorkgroupSubgroups = limits.maxComputeWorkGroupInvocations / shader::kSubgroupSize;
     p.requiredSubgroupSizeStages = 0;
     // Inline uniform blocks: not implemented (limits 0). Integer dot products: none accelerated (all VK_FALSE).
     p.storageTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;

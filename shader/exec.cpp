@@ -9,6 +9,7 @@
 #include "shader/exec_atomic.h"
 #include "shader/exec_math.h"
 #include "shader/exec_memory.h"
+#include "shader/exec_subgroup.h"
 #include "shader/jit/jit.h"
 
 namespace tilevk::shader {
@@ -40,6 +41,7 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             TILEVK_EXEC_PACK_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_MEMORY_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SHARED_OPS(TILEVK_EXEC_CALL)
+            TILEVK_EXEC_SUBGROUP_OPS(TILEVK_EXEC_CALL)
 #undef TILEVK_EXEC_EXPR
 #undef TILEVK_EXEC_CALL
             case Op::Select: {
@@ -317,6 +319,45 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
 
 namespace {
 
+// The subgroup built-ins of a compute batch (program.h kSubgroupSize: batches start at multiples of kLanes in
+// LocalInvocationIndex order, so subgroup k holds invocations k * kSubgroupSize ...). The Eq..Lt masks are uvec4s
+// whose components past the first are 0 (a subgroup has fewer than 32 lanes).
+void write_subgroup_builtin(const IoCopy& c, const std::array<uint32_t, 3>& size, const ComputeBatch& cb, uint32_t* w) {
+    const uint32_t all = (1u << kSubgroupSize) - 1;
+    const auto mask = [&](auto bits_of_id) { LANES w[l] = c.index == 0 ? bits_of_id(uint32_t(l) % kSubgroupSize) : 0; };
+    switch (c.slot) {
+        case IoSlot::SubgroupSize:
+            LANES w[l] = kSubgroupSize;
+            break;
+        case IoSlot::SubgroupLocalInvocationId:
+            LANES w[l] = uint32_t(l) % kSubgroupSize;
+            break;
+        case IoSlot::SubgroupId:
+            LANES w[l] = cb.local_index[l] / kSubgroupSize;
+            break;
+        case IoSlot::NumSubgroups:
+            LANES w[l] = (size[0] * size[1] * size[2] + kSubgroupSize - 1) / kSubgroupSize;
+            break;
+        case IoSlot::SubgroupEqMask:
+            mask([](uint32_t id) { return 1u << id; });
+            break;
+        case IoSlot::SubgroupGeMask:
+            mask([all](uint32_t id) { return all & ~((1u << id) - 1); });
+            break;
+        case IoSlot::SubgroupGtMask:
+            mask([all](uint32_t id) { return all & ~((2u << id) - 1); });
+            break;
+        case IoSlot::SubgroupLeMask:
+            mask([](uint32_t id) { return (2u << id) - 1; });
+            break;
+        case IoSlot::SubgroupLtMask:
+            mask([](uint32_t id) { return (1u << id) - 1; });
+            break;
+        default:
+            break;
+    }
+}
+
 // A compute batch's start: the scratch prepared, the built-ins copied into local memory, the entry mask.
 void start_compute(const ProgramImpl& p, const std::array<uint32_t, 3>& size, const Bindings& bindings,
                    const ComputeBatch& cb, Scratch::Impl& s, Descriptor& push) {
@@ -342,6 +383,7 @@ void start_compute(const ProgramImpl& p, const std::array<uint32_t, 3>& size, co
                 LANES w[l] = cb.num_workgroups[i];
                 break;
             default:
+                write_subgroup_builtin(c, size, cb, w);
                 break;
         }
     }

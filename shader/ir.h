@@ -173,6 +173,16 @@ enum class Op : uint16_t {
     AtomicShared,  // d = atomic pad:AtomicOp on shared[min(imm + a, n - 1)], value c, comparator d; a = kNoReg
                    // in a lane: inactive, nothing done, d = 0
     Barrier,       // OpControlBarrier: the run stops here; the workgroup's other batches run up to it, then all resume
+    // Subgroup operations (compute only): a subgroup is kSubgroupSize consecutive lanes of a batch; c is the mask of
+    // the lanes taking part (the block's), and every result is the same for all lanes of a subgroup unless said.
+    SgLaneId,          // d = lane % kSubgroupSize (SubgroupLocalInvocationId, per lane)
+    SgElect,           // d = lane is the lowest active one of its subgroup
+    SgAll,             // d = every active lane's a is true
+    SgAny,             // d = some active lane's a is true
+    SgAllEqual,        // d = every active lane's a equals the others' (imm 1: as floats, ordered ==)
+    SgBroadcast,       // d = a of lane b (b read from the lowest active lane; taken modulo kSubgroupSize)
+    SgBroadcastFirst,  // d = a of the lowest active lane
+    SgBallot,          // d = the bits (1 << lane id) of the active lanes whose a is true
 };
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
@@ -228,6 +238,16 @@ enum class IoSlot : uint8_t {
     WorkgroupId,
     NumWorkgroups,
     ViewIndex,
+    // compute: the subgroup built-ins (program.h kSubgroupSize; the Eq..Lt masks are uvec4s, index = component)
+    SubgroupSize,
+    SubgroupLocalInvocationId,
+    SubgroupId,
+    NumSubgroups,
+    SubgroupEqMask,
+    SubgroupGeMask,
+    SubgroupGtMask,
+    SubgroupLeMask,
+    SubgroupLtMask,
 };
 struct IoCopy {
     IoSlot slot;

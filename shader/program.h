@@ -27,6 +27,12 @@ namespace tilevk::shader {
 
 constexpr int kLanes = 16;
 constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
+// Compute subgroups (SPIR-V GroupNonUniform*): kSubgroupSize consecutive lanes of a batch, so subgroup k of a
+// workgroup is its invocations 8k .. 8k + 7 in LocalInvocationIndex order (batches start at multiples of kLanes).
+// 8 is lavapipe's size on AVX2 hosts, where its subgroups are the same invocations whenever the workgroup's x size
+// is a multiple of 8.
+constexpr uint32_t kSubgroupSize = 8;
+static_assert(kLanes % kSubgroupSize == 0, "a batch holds whole subgroups");
 constexpr int kMaxLocations = 32;    // stage input/output locations (vec4 slots)
 constexpr int kMaxColorOutputs = 8;  // fragment output locations
 constexpr int kMaxClipDistances = 8;

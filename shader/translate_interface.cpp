@@ -69,6 +69,30 @@ IoSlot builtin_slot(spv::BuiltIn b, Stage stage, bool output) {
         if (!output && b == spv::BuiltIn::GlobalInvocationId) return IoSlot::GlobalInvocationId;
         if (!output && b == spv::BuiltIn::WorkgroupId) return IoSlot::WorkgroupId;
         if (!output && b == spv::BuiltIn::NumWorkgroups) return IoSlot::NumWorkgroups;
+        if (!output) {
+            switch (b) {
+                case spv::BuiltIn::SubgroupSize:
+                    return IoSlot::SubgroupSize;
+                case spv::BuiltIn::SubgroupLocalInvocationId:
+                    return IoSlot::SubgroupLocalInvocationId;
+                case spv::BuiltIn::SubgroupId:
+                    return IoSlot::SubgroupId;
+                case spv::BuiltIn::NumSubgroups:
+                    return IoSlot::NumSubgroups;
+                case spv::BuiltIn::SubgroupEqMask:
+                    return IoSlot::SubgroupEqMask;
+                case spv::BuiltIn::SubgroupGeMask:
+                    return IoSlot::SubgroupGeMask;
+                case spv::BuiltIn::SubgroupGtMask:
+                    return IoSlot::SubgroupGtMask;
+                case spv::BuiltIn::SubgroupLeMask:
+                    return IoSlot::SubgroupLeMask;
+                case spv::BuiltIn::SubgroupLtMask:
+                    return IoSlot::SubgroupLtMask;
+                default:
+                    break;
+            }
+        }
     } else if (stage == Stage::Vertex && !output) {
         if (b == spv::BuiltIn::VertexIndex) return IoSlot::VertexIndex;
         if (b == spv::BuiltIn::InstanceIndex) return IoSlot::InstanceIndex;

@@ -23,6 +23,9 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::CullDistance:
         case spv::Capability::DerivativeControl:
         case spv::Capability::DrawParameters:
+        case spv::Capability::GroupNonUniform:  // compute only (translate_subgroup.cpp): other stages fail by op
+        case spv::Capability::GroupNonUniformVote:
+        case spv::Capability::GroupNonUniformBallot:
         case spv::Capability::MultiView:  // ViewIndex: the view the renderer runs (icd/execute.cpp)
         case spv::Capability::ImageQuery:
         case spv::Capability::SampleRateShading:

@@ -141,10 +141,13 @@ class Translator {
     bool op_logic(const Instr& in);
     bool op_composite(const Instr& in);
     bool op_fragment(const Instr& in);
-    bool op_memory(const Instr& in);  // translate_memory.cpp
-    bool op_image(const Instr& in);   // translate_image.cpp
-    bool op_atomic(const Instr& in);  // translate_atomic.cpp: OpAtomic*, OpControlBarrier
-    uint32_t side_effect_mask();      // lanes whose buffer writes take effect (fragment: live ones only)
+    bool op_memory(const Instr& in);    // translate_memory.cpp
+    bool op_image(const Instr& in);     // translate_image.cpp
+    bool op_atomic(const Instr& in);    // translate_atomic.cpp: OpAtomic*, OpControlBarrier
+    bool op_subgroup(const Instr& in);  // translate_subgroup.cpp: OpGroupNonUniform* (compute)
+    bool subgroup_collective(const Instr& in);
+    void subgroup_ballot_helper(const Instr& in);
+    uint32_t side_effect_mask();  // lanes whose buffer writes take effect (fragment: live ones only)
     bool image_sample(const Instr& in);
     void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450
     // helpers for instructions with a result (type in[1], id in[2])

@@ -217,11 +217,13 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
         return nullptr;
     }
     // A run of the compiled code cannot stop at a barrier and resume (Program::run_workgroup's lock-step phases),
-    // and this tier has no shared-memory or atomic ops: such compute programs stay in the interpreter, by name.
+    // and this tier has no shared-memory, atomic or subgroup ops: such compute programs stay in the interpreter, by
+    // name.
     for (const Inst& in : p.code)
         if (in.op > Op::Halt) {
-            *why_not = "IR op " + op_name(in.op) +
-                       ": Workgroup memory, OpControlBarrier and OpAtomic* run in the interpreter only";
+            *why_not =
+                "IR op " + op_name(in.op) +
+                ": Workgroup memory, OpControlBarrier, OpAtomic* and OpGroupNonUniform* run in the interpreter only";
             return nullptr;
         }
     const Analysis an = analyze(p);
@@ -290,6 +292,22 @@ std::string op_name(Op op) {
             return "AtomicShared";
         case Op::Barrier:
             return "Barrier";
+        case Op::SgLaneId:
+            return "SgLaneId";
+        case Op::SgElect:
+            return "SgElect";
+        case Op::SgAll:
+            return "SgAll";
+        case Op::SgAny:
+            return "SgAny";
+        case Op::SgAllEqual:
+            return "SgAllEqual";
+        case Op::SgBroadcast:
+            return "SgBroadcast";
+        case Op::SgBroadcastFirst:
+            return "SgBroadcastFirst";
+        case Op::SgBallot:
+            return "SgBallot";
         default:
             break;
     }
