@@ -22,6 +22,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDevice(VkPhysicalDevice physicalDevice,
         if (q.queueFamilyIndex != 0 || q.queueCount != 1) {
             return fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateDevice: only queue family 0 with one queue exists");
         }
+        if (q.flags != 0) {  // VK_DEVICE_QUEUE_CREATE_PROTECTED_BIT: protectedMemory is not supported
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                        "vkCreateDevice: VkDeviceQueueCreateInfo::flags 0x%x (protected queues need the "
+                        "protectedMemory feature, which tilevk does not support)",
+                        q.flags);
+        }
     }
     Features features_enabled;
     if (VkResult r = enable_features(*pCreateInfo, &features_enabled); r != VK_SUCCESS) return r;
@@ -62,6 +68,12 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyDevice(VkDevice device, const VkAllocation
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceQueue(VkDevice device, uint32_t, uint32_t, VkQueue* pQueue) {
     *pQueue = to_handle(from_handle<Device>(device)->queue);
+}
+
+// The one queue was created with flags 0: a VkDeviceQueueInfo2 asking for other flags matches no queue.
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceQueue2(VkDevice device, const VkDeviceQueueInfo2* pQueueInfo, VkQueue* pQueue) {
+    const bool match = pQueueInfo->flags == 0 && pQueueInfo->queueFamilyIndex == 0 && pQueueInfo->queueIndex == 0;
+    *pQueue = match ? to_handle(from_handle<Device>(device)->queue) : VK_NULL_HANDLE;
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_DeviceWaitIdle(VkDevice device) {

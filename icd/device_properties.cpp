@@ -19,8 +19,8 @@ void fill_v11(const PhysicalDevice& pd, VkPhysicalDeviceVulkan11Properties& p) {
     p.deviceLUIDValid = VK_FALSE;  // LUIDs identify Windows adapters
     p.deviceNodeMask = 0;
     // Subgroups of shader/'s kSubgroupSize (8, lavapipe's on AVX2) in compute shaders only: basic, vote and ballot
-    // operations (shader/translate_subgroup.cpp); other stages refuse them by name. (SPIR-V 1.3, where they live,
-    // needs the Vulkan 1.1 that tilevk does not report yet: the struct is informative until then.)
+    // operations (shader/translate_subgroup.cpp), the BASIC-in-compute that Vulkan 1.1 requires; other stages refuse
+    // them by name.
     p.subgroupSize = shader::kSubgroupSize;
     p.subgroupSupportedStages = VK_SHADER_STAGE_COMPUTE_BIT;
     p.subgroupSupportedOperations =

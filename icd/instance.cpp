@@ -19,6 +19,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceLayerProperties(uint32_t* pP
     return VK_SUCCESS;
 }
 
+// The loader asks the driver (vk_icdGetInstanceProcAddr(NULL, ...)) which instance-level version it supports.
+VKAPI_ATTR VkResult VKAPI_CALL tvk_EnumerateInstanceVersion(uint32_t* pApiVersion) {
+    *pApiVersion = kApiVersion;
+    return VK_SUCCESS;
+}
+
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pCreateInfo,
                                                   const VkAllocationCallbacks* pAllocator, VkInstance* pInstance) {
     for (uint32_t i = 0; i < pCreateInfo->enabledLayerCount; ++i) {
@@ -36,7 +42,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateInstance(const VkInstanceCreateInfo* pC
         app_version = pCreateInfo->pApplicationInfo->apiVersion;
     }
     // No apiVersion check here: from loader interface 5 on (the least tilevk negotiates) the loader validates the
-    // application's apiVersion, and a 1.0 driver must accept any version it passes (LoaderDriverInterface.md, v5).
+    // application's apiVersion, and a driver must accept any version it passes (LoaderDriverInterface.md, v5).
     const VkAllocationCallbacks& a = pick_allocator(pAllocator, nullptr);
     Instance* inst = create_object<Instance>(a, VK_SYSTEM_ALLOCATION_SCOPE_INSTANCE);
     if (inst == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateInstance: out of host memory");

@@ -25,4 +25,17 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroySampler(VkDevice, VkSampler sampler, const
     destroy_object(from_handle<Sampler>(sampler));
 }
 
+// Vulkan 1.1 core commands of the optional samplerYcbcrConversion feature, which tilevk does not support: valid
+// usage never calls them; a call is refused by name and no object exists to destroy.
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSamplerYcbcrConversion(VkDevice, const VkSamplerYcbcrConversionCreateInfo*,
+                                                                const VkAllocationCallbacks*,
+                                                                VkSamplerYcbcrConversion* pYcbcrConversion) {
+    *pYcbcrConversion = VK_NULL_HANDLE;
+    return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                "vkCreateSamplerYcbcrConversion: the samplerYcbcrConversion feature is not supported by tilevk");
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_DestroySamplerYcbcrConversion(VkDevice, VkSamplerYcbcrConversion,
+                                                             const VkAllocationCallbacks*) {}
+
 }  // namespace tilevk::icd

@@ -2,6 +2,7 @@
 // on tilevk and on lavapipe with the extension enabled, the validation layer on (zero messages) and the results
 // compared byte for byte; the new commands are also compared with the Vulkan 1.0 commands they extend.
 #include "api_breadth.h"
+#include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -575,6 +576,55 @@ TEST_F(ApiExtensions, ExternalCapabilitiesAndTools) {
     EXPECT_EQ(tools(tilevk_->physical(), &nt, nullptr), VK_SUCCESS);
     EXPECT_EQ(tools(lavapipe_->physical(), &nl, nullptr), VK_SUCCESS);
     EXPECT_EQ(nt, nl);
+}
+
+// Vulkan 1.1's own commands: vkGetDeviceQueue2 gives the queue vkGetDeviceQueue gives (both drivers, validation
+// layer on); on tilevk alone (no layer: these are invalid usage for a driver without protected memory or Y'CbCr
+// conversion) a protected VkDeviceQueueInfo2 finds no queue, a protected queue is refused at vkCreateDevice and
+// vkCreateSamplerYcbcrConversion is refused by name.
+TEST_F(ApiExtensions, Vulkan11DeviceQueue2ProtectedQueuesAndYcbcr) {
+    for (Device* d : {tilevk_.get(), lavapipe_.get()}) {
+        auto get_queue2 =
+            reinterpret_cast<PFN_vkGetDeviceQueue2>(vkGetDeviceProcAddr(d->device(), "vkGetDeviceQueue2"));
+        ASSERT_NE(get_queue2, nullptr);
+        const VkDeviceQueueInfo2 qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_INFO_2, nullptr, 0, 0, 0};
+        VkQueue q = VK_NULL_HANDLE;
+        get_queue2(d->device(), &qi, &q);
+        EXPECT_EQ(q, d->queue());
+    }
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    const VkPhysicalDevice pd = plain.find_device("tilevk");
+    Device dev(pd, nullptr, {}, nullptr);
+    ASSERT_TRUE(dev.ok());
+    auto get_queue2 = reinterpret_cast<PFN_vkGetDeviceQueue2>(vkGetDeviceProcAddr(dev.device(), "vkGetDeviceQueue2"));
+    const VkDeviceQueueInfo2 protected_qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_INFO_2, nullptr,
+                                          VK_DEVICE_QUEUE_CREATE_PROTECTED_BIT, 0, 0};
+    VkQueue q = dev.queue();
+    get_queue2(dev.device(), &protected_qi, &q);
+    EXPECT_EQ(q, VkQueue(VK_NULL_HANDLE));
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.flags = VK_DEVICE_QUEUE_CREATE_PROTECTED_BIT;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    VkDevice refused = VK_NULL_HANDLE;
+    std::string err =
+        stderr_of([&] { EXPECT_EQ(vkCreateDevice(pd, &dci, nullptr, &refused), VK_ERROR_FEATURE_NOT_PRESENT); });
+    EXPECT_NE(err.find("protectedMemory"), std::string::npos) << err;
+    EXPECT_EQ(refused, VkDevice(VK_NULL_HANDLE));
+    auto create_ycbcr = reinterpret_cast<PFN_vkCreateSamplerYcbcrConversion>(
+        vkGetDeviceProcAddr(dev.device(), "vkCreateSamplerYcbcrConversion"));
+    ASSERT_NE(create_ycbcr, nullptr);
+    VkSamplerYcbcrConversionCreateInfo yci{VK_STRUCTURE_TYPE_SAMPLER_YCBCR_CONVERSION_CREATE_INFO};
+    yci.format = VK_FORMAT_G8_B8R8_2PLANE_420_UNORM;
+    VkSamplerYcbcrConversion conv = VK_NULL_HANDLE;
+    err = stderr_of([&] { EXPECT_EQ(create_ycbcr(dev.device(), &yci, nullptr, &conv), VK_ERROR_FEATURE_NOT_PRESENT); });
+    EXPECT_NE(err.find("samplerYcbcrConversion"), std::string::npos) << err;
+    EXPECT_EQ(conv, VkSamplerYcbcrConversion(VK_NULL_HANDLE));
 }
 
 // maintenance2's structs are accepted where they go: a view whose usage is restricted (VkImageViewUsageCreateInfo)
