@@ -28,11 +28,12 @@ VkImageAspectFlags aspects_of(VkFormat f) {
     return VK_IMAGE_ASPECT_DEPTH_BIT;
 }
 
-// A render pass of one subpass: attachment 0 the 4x depth/stencil attachment (cleared to `clear`), attachment 1 its
-// 1x resolve attachment, resolved with `ds` (its pDepthStencilResolveAttachment set here).
+// A render pass of one subpass: attachment 0 the 4x depth/stencil attachment (load op CLEAR), attachment 1 its 1x
+// resolve attachment (DONT_CARE, or LOAD from DEPTH_STENCIL_ATTACHMENT_OPTIMAL with `load_resolve`), resolved with
+// `ds` (its pDepthStencilResolveAttachment set here when null).
 VkRenderPass ds_pass(Kit& k, VkFormat f, VkSubpassDescriptionDepthStencilResolve ds, VkResult* result = nullptr,
                      VkFormat resolve_format = VK_FORMAT_UNDEFINED,
-                     VkSampleCountFlagBits resolve_samples = VK_SAMPLE_COUNT_1_BIT) {
+                     VkSampleCountFlagBits resolve_samples = VK_SAMPLE_COUNT_1_BIT, bool load_resolve = false) {
     VkAttachmentDescription2 att[2] = {{VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2},
                                        {VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2}};
     att[0].format = f;
@@ -42,7 +43,8 @@ VkRenderPass ds_pass(Kit& k, VkFormat f, VkSubpassDescriptionDepthStencilResolve
     att[0].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     att[1].format = resolve_format != VK_FORMAT_UNDEFINED ? resolve_format : f;
     att[1].samples = resolve_samples;
-    att[1].loadOp = att[1].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att[1].loadOp = att[1].stencilLoadOp = load_resolve ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    if (load_resolve) att[1].initialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     att[1].storeOp = att[1].stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
     att[1].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     const VkImageAspectFlags a = aspects_of(f);
@@ -107,17 +109,21 @@ VkPipelineDepthStencilStateCreateInfo ds_state(VkCompareOp compare, uint32_t ref
 
 // The scene (see the top of the file) on format `f` with `depth_mode` / `stencil_mode`; returns the resolve
 // attachment's depth bytes then its stencil bytes (each aspect the format has), read through a buffer.
-// With `first_drawn` > 0 the samples below it keep the load-op clear (`clear_z`, stencil 0).
+// With `first_drawn` > 0 the samples below it keep the load-op clear (`clear_z`, stencil 0). With `area` the pass
+// renders (and resolves) that render area only, the resolve image cleared to depth 0.5, stencil 9 before the pass
+// and loaded.
 Bytes resolve_scene(Kit& k, VkFormat f, VkResolveModeFlagBits depth_mode, VkResolveModeFlagBits stencil_mode,
-                    float clear_z = 1.0f, uint32_t first_drawn = 0) {
+                    float clear_z = 1.0f, uint32_t first_drawn = 0, const VkRect2D* area = nullptr) {
     const VkImageAspectFlags a = aspects_of(f);
     Device::Image ms =
         k.dev().make_image(f, kSize, kSize, 1, 1, VK_SAMPLE_COUNT_4_BIT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     EXPECT_NE(ms.image, VK_NULL_HANDLE);
     k.undo(VK_OBJECT_TYPE_IMAGE, ms.image, [&k, ms]() mutable { k.dev().destroy(ms); });
-    Device::Image res =
-        k.image(f, kSize, kSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    VkRenderPass rp = ds_pass(k, f, modes(depth_mode, stencil_mode));
+    Device::Image res = k.image(f, kSize, kSize,
+                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    VkRenderPass rp =
+        ds_pass(k, f, modes(depth_mode, stencil_mode), nullptr, VK_FORMAT_UNDEFINED, VK_SAMPLE_COUNT_1_BIT, area);
     VkFramebuffer fb = k.framebuffer(rp, {k.view(ms.image, f, a), k.view(res.image, f, a)}, kSize, kSize);
     VkPipeline sample_pipes[4];
     VkPipelineDepthStencilStateCreateInfo states[4];
@@ -154,7 +160,24 @@ Bytes resolve_scene(Kit& k, VkFormat f, VkResolveModeFlagBits depth_mode, VkReso
     verts.push_back(v(-0.5f, 0.8f, 0.3f, 0, 0, 0));
     Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        begin_pass(c, rp, fb, kSize, kSize, {clear_depth(clear_z, 0), clear_depth(0, 0)});
+        const std::vector<VkClearValue> clears = {clear_depth(clear_z, 0), clear_depth(0, 0)};
+        if (area != nullptr) {
+            transition(c, res.image, a, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            const VkClearDepthStencilValue before{0.5f, 9};
+            const VkImageSubresourceRange range{a, 0, 1, 0, 1};
+            vkCmdClearDepthStencilImage(c, res.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &before, 1, &range);
+            transition(c, res.image, a, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+            VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+            bi.renderPass = rp;
+            bi.framebuffer = fb;
+            bi.renderArea = *area;
+            bi.clearValueCount = uint32_t(clears.size());
+            bi.pClearValues = clears.data();
+            vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);
+        } else {
+            begin_pass(c, rp, fb, kSize, kSize, clears);
+        }
         bind_vertices(c, vb);
         for (uint32_t s = first_drawn; s < 4; ++s) {
             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, sample_pipes[s]);
@@ -210,11 +233,12 @@ class ApiDepthStencilResolve : public ApiBreadth {
     };
     // resolve_scene on both drivers (equal bytes); tilevk's.
     Bytes scene(VkFormat f, VkResolveModeFlagBits depth_mode, VkResolveModeFlagBits stencil_mode, float clear_z = 1,
-                uint32_t first_drawn = 0) {
+                uint32_t first_drawn = 0, const VkRect2D* area = nullptr) {
         Devices d(tilevk_->physical(), lavapipe_->physical());
         EXPECT_TRUE(d.tilevk.ok() && d.lavapipe.ok());
-        return both_on(d.tilevk, d.lavapipe,
-                       [&](Kit& k) { return resolve_scene(k, f, depth_mode, stencil_mode, clear_z, first_drawn); });
+        return both_on(d.tilevk, d.lavapipe, [&](Kit& k) {
+            return resolve_scene(k, f, depth_mode, stencil_mode, clear_z, first_drawn, area);
+        });
     }
     void run(VkFormat f, VkResolveModeFlagBits depth_mode, VkResolveModeFlagBits stencil_mode) {
         const Bytes out = scene(f, depth_mode, stencil_mode);
@@ -290,6 +314,22 @@ TEST_F(ApiDepthStencilResolve, D32AverageFlushesADenormalSample) {
     std::memcpy(&bits, &denormal, 4);
     EXPECT_EQ(word_at(zero, 2, 2), bits);
     EXPECT_EQ(word_at(average, 2, 2), 0u);
+}
+// A render area of (5, 3) 20x17: only it is resolved; outside, the resolve image keeps what it was cleared to before
+// the pass (depth 0.5: D24 lrint(0.5 * (2^24-1)) = 8388608, D16 32768; stencil 9).
+TEST_F(ApiDepthStencilResolve, OnlyTheRenderAreaIsResolved) {
+    const VkRect2D area{{5, 3}, {20, 17}};
+    const Bytes ds = scene(VK_FORMAT_D24_UNORM_S8_UINT, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT,
+                           VK_RESOLVE_MODE_SAMPLE_ZERO_BIT, 1.0f, 0, &area);
+    expect_sample0(ds, VK_FORMAT_D24_UNORM_S8_UINT, 6, 4);
+    EXPECT_EQ(word_at(ds, 2, 2) & 0xffffffu, 8388608u);
+    EXPECT_EQ(word_at(ds, 6, 20) & 0xffffffu, 8388608u);  // the row below the area
+    EXPECT_EQ(ds[size_t(kSize) * kSize * 4 + 2 * kSize + 2], 9);
+    const Bytes d16 = scene(VK_FORMAT_D16_UNORM, VK_RESOLVE_MODE_AVERAGE_BIT, VK_RESOLVE_MODE_NONE, 1.0f, 0, &area);
+    expect_sample0(d16, VK_FORMAT_D16_UNORM, 6, 4);
+    uint16_t outside = 0;
+    std::memcpy(&outside, d16.data() + (2 * kSize + 25) * 2, 2);  // (25, 2): right of and above the area
+    EXPECT_EQ(outside, 32768);
 }
 TEST_F(ApiDepthStencilResolve, D24S8SampleZero) {
     run(VK_FORMAT_D24_UNORM_S8_UINT, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);
