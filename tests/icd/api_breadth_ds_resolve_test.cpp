@@ -7,9 +7,12 @@
 // so the expectation for both modes is sample 0's value, and the test checks that it is not the average.
 // The refusals (tilevk alone): invalid mode combinations and what tilevk does not resolve, by name.
 #include "api_breadth.h"
+#include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
 namespace {
+
+using tilevk::test::stderr_of;
 
 const std::vector<const char*> kExtensions = {VK_KHR_MULTIVIEW_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME,
                                               VK_KHR_CREATE_RENDERPASS_2_EXTENSION_NAME,
@@ -240,8 +243,9 @@ void expect_sample0(const Bytes& out, VkFormat f, uint32_t x, uint32_t y) {
             EXPECT_EQ(bits & 0xffffffu, 3355443u) << "D24 sample 0 (0.2 * 16777215)";
         }
     }
-    if (a & VK_IMAGE_ASPECT_STENCIL_BIT)
+    if (a & VK_IMAGE_ASPECT_STENCIL_BIT) {
         EXPECT_EQ(out[stencil_at + size_t(y) * kSize + x], kSampleStencil[0]) << "stencil sample 0";
+    }
 }
 
 class ApiDepthStencilResolve : public ApiBreadth {
@@ -409,9 +413,8 @@ TEST_F(ApiDepthStencilResolve, Refusals) {
                              VkFormat resolve_format = VK_FORMAT_UNDEFINED,
                              VkSampleCountFlagBits resolve_samples = VK_SAMPLE_COUNT_1_BIT) {
         VkResult r = VK_SUCCESS;
-        testing::internal::CaptureStderr();
-        VkRenderPass rp = ds_pass(k, f, ds, &r, resolve_format, resolve_samples);
-        const std::string err = testing::internal::GetCapturedStderr();
+        VkRenderPass rp = VK_NULL_HANDLE;
+        const std::string err = stderr_of([&] { rp = ds_pass(k, f, ds, &r, resolve_format, resolve_samples); });
         EXPECT_EQ(r, VK_ERROR_FEATURE_NOT_PRESENT) << name;
         EXPECT_NE(err.find("VkSubpassDescriptionDepthStencilResolve::"), std::string::npos) << err;
         EXPECT_NE(err.find(name), std::string::npos) << name << ": " << err;
