@@ -169,8 +169,7 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
     const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
     resolve_in_bands(st, s, src, rect, [&](uint32_t l, VkOffset2D offset, VkExtent2D extent) {
         resolve_depth_stencil_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, *dst.image,
-                                   dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent,
-                                   s.depth_resolve);
+                                   dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent);
     });
 }
 

@@ -5,9 +5,7 @@
 
 #include "buffer.h"
 #include "execute.h"
-#include "format/texel_codec.h"
 #include "image.h"
-#include "rast/fragment/depth_stencil.h"
 #include "rast/fragment/msaa.h"
 #include "rast/geometry/viewport.h"
 #include "vk_names.h"
@@ -293,39 +291,15 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
                                  rast::geometry::host_has_fma(), size_t(src.samples) * tb);
 }
 
-// lavapipe's AVERAGE depth resolve of one texel: sample 0's depth read as a float (TXF: UNORM as fl(v * fl(1/(2^n-1))))
-// and stored again as a shader-written depth, restricted to [0, 1] under DAZ (rast/fragment clamp_depth, lp_state_fs.c
-// lp_build_depth_clamp): a denormal D32F sample becomes +0 (checked against lavapipe).
-uint32_t depth_through_float(uint32_t stored, format::DepthFormat f) {
-    float z = 0.0f;
-    switch (f) {
-        case format::DepthFormat::D16:
-            z = format::unorm_to_float(stored & 0xffffu, 16);
-            break;
-        case format::DepthFormat::X8D24:
-            z = format::unorm_to_float(stored & 0xffffffu, 24);
-            break;
-        case format::DepthFormat::D32F:
-            std::memcpy(&z, &stored, 4);
-            break;
-        case format::DepthFormat::None:
-            return stored;
-    }
-    return format::depth_to_stored(rast::fragment::clamp_depth(z, rast::fragment::DepthStencilState{}, f), f);
-}
-
-// The depth/stencil resolve of a render pass (VK_KHR_depth_stencil_resolve) as lavapipe 22.3 performs it:
-// lvp_execute.c resolve_ds blits with pipe->blit (llvmpipe lp_surface.c lp_blit), one blit when both aspects have one
-// mode. Source and destination have one format and every aspect of it is resolved (render_pass.cpp check_ds_resolve).
-// - SAMPLE_ZERO: lp_blit's sample0_only path, util_resource_copy_region of the source's first sample: sample 0's
-//   texel bytes as they are, all aspects (the blit's aspect mask is not looked at there).
-// - AVERAGE (depth only; depth-only formats, as stencil cannot average): util_blitter_blit (u_blitter.c) draws with
-//   util_make_fs_blit_msaa_depth (u_simple_shaders.c), a TXF of sample index 0 (do_blits' resolve branch passes
-//   sample 0 to blitter_draw_tex), written as the fragment depth. So lavapipe's AVERAGE is sample 0 through a float:
-//   exact for D16 and D32F, D24 as rne(fl(fl(v * fl(1/(2^24-1))) * (2^24-1))). No average is taken.
+// The depth/stencil resolve of a render pass (VK_KHR_depth_stencil_resolve), SAMPLE_ZERO for every aspect as lavapipe
+// 22.3 performs it: lvp_execute.c resolve_ds -> llvmpipe lp_surface.c lp_blit's sample0_only path,
+// util_resource_copy_region of the source's first sample: sample 0's texel bytes as they are, all aspects. Source and
+// destination have one format (render_pass.cpp check_ds_resolve). Not offered: lavapipe's AVERAGE, which
+// util_blitter_blit (u_blitter.c) draws with util_make_fs_blit_msaa_depth (u_simple_shaders.c), a TXF of sample
+// index 0 written as the fragment depth: sample 0 through a float (D24 rne(fl(fl(v * fl(1/(2^24-1))) * (2^24-1))),
+// a denormal D32F +0), never an average.
 void resolve_depth_stencil_rect(const Image& src, uint32_t src_level, uint32_t src_layer, const Image& dst,
-                                uint32_t dst_level, uint32_t dst_layer, VkOffset2D offset, VkExtent2D extent,
-                                VkResolveModeFlagBits depth_mode) {
+                                uint32_t dst_level, uint32_t dst_layer, VkOffset2D offset, VkExtent2D extent) {
     if (!image_ok(&src, src_level, src_layer, 1, offset.x, offset.y, extent.width, extent.height, "resolve") ||
         !image_ok(&dst, dst_level, dst_layer, 1, offset.x, offset.y, extent.width, extent.height, "resolve")) {
         return;
@@ -335,25 +309,12 @@ void resolve_depth_stencil_rect(const Image& src, uint32_t src_level, uint32_t s
                   src.samples, vk_enum_name(vk_format(*src.format)), dst.samples, vk_enum_name(vk_format(*dst.format)));
         return;
     }
-    const FormatInfo& f = *src.format;
-    const uint32_t tb = f.bytes;
-    const bool through_float = depth_mode == VK_RESOLVE_MODE_AVERAGE_BIT && f.depth != format::DepthFormat::None;
-    const uint32_t depth_bytes = f.depth == format::DepthFormat::D16     ? 2
-                                 : f.depth == format::DepthFormat::X8D24 ? 3
-                                                                         : 4;
+    const uint32_t tb = src.format->bytes;
     for (uint32_t y = 0; y < extent.height; ++y) {
         const uint8_t* s = src.texel(src_level, src_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
         uint8_t* d = dst.texel(dst_level, dst_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
-        for (uint32_t x = 0; x < extent.width; ++x) {
-            const uint8_t* sample0 = s + size_t(x) * src.samples * tb;
-            uint8_t* out = d + size_t(x) * tb;
-            std::memcpy(out, sample0, tb);
-            if (!through_float) continue;
-            uint32_t stored = 0;
-            std::memcpy(&stored, sample0, depth_bytes);
-            stored = depth_through_float(stored, f.depth);
-            std::memcpy(out, &stored, depth_bytes);  // the depth bytes; the rest stays sample 0's
-        }
+        for (uint32_t x = 0; x < extent.width; ++x)
+            std::memcpy(d + size_t(x) * tb, s + size_t(x) * src.samples * tb, tb);
     }
 }
 
