@@ -49,9 +49,12 @@ void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
     p.denormBehaviorIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
     p.roundingModeIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
     // Descriptor indexing (update-after-bind) is not implemented: its limits are 0.
-    // Depth/stencil resolve modes: none beyond Vulkan 1.0's colour resolves.
-    p.supportedDepthResolveModes = 0;
-    p.supportedStencilResolveModes = 0;
+    // Depth/stencil resolves (VK_KHR_depth_stencil_resolve, render_pass.cpp and execute_transfer.cpp): lavapipe's
+    // modes; depth and stencil of a combined format resolve with the same mode (both independence flags false).
+    p.supportedDepthResolveModes = kDepthResolveModes;
+    p.supportedStencilResolveModes = kStencilResolveModes;
+    p.independentResolveNone = VK_FALSE;
+    p.independentResolve = VK_FALSE;
     p.filterMinmaxSingleComponentFormats = VK_FALSE;
     p.filterMinmaxImageComponentMapping = VK_FALSE;
     // Counters are compared as 64-bit values, never as differences: any distance works (lavapipe: UINT64_MAX).

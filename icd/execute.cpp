@@ -116,7 +116,29 @@ void load_attachments(ExecState& st, uint32_t sp) {
     }
 }
 
-// Resolves the subpass's colour attachments into its resolve attachments over the render area.
+// Runs `resolve(layer, offset, extent)` over `rect` of every layer the subpass resolves (the framebuffer's, or in a
+// multiview subpass the views of its mask), in bands of rows on the workers: each pixel's resolve reads only its own
+// samples, so the bands are independent.
+template <class Resolve>
+void resolve_in_bands(ExecState& st, const Subpass& s, const ImageView& src, const VkRect2D& rect, Resolve&& resolve) {
+    const uint32_t layers = std::min(src.range.layerCount, st.framebuffer->layers);
+    const uint32_t layer_mask = s.view_mask != 0 ? s.view_mask : (layers >= 32 ? ~0u : (1u << layers) - 1);
+    constexpr uint32_t kBandRows = 32;
+    const size_t bands = (rect.extent.height + kBandRows - 1) / kBandRows;
+    for (uint32_t m = layer_mask; m != 0; m &= m - 1) {
+        const uint32_t l = uint32_t(std::countr_zero(m));
+        run_on_workers(st, bands, [&](size_t band) {
+            const uint32_t y0 = uint32_t(band) * kBandRows;
+            const VkOffset2D offset{rect.offset.x, rect.offset.y + int32_t(y0)};
+            const VkExtent2D extent{rect.extent.width, std::min(kBandRows, rect.extent.height - y0)};
+            resolve(l, offset, extent);
+        });
+    }
+}
+
+// Resolves the subpass's colour attachments into its resolve attachments over the render area, then its
+// depth/stencil attachment into its depth/stencil resolve attachment (lavapipe's lvp_execute.c render_resolve runs
+// them in the other order; they write different attachments).
 void resolve_attachments(ExecState& st, uint32_t sp) {
     const rast::render::StageScope timed(rast::render::Stage::kResolve);
     const Subpass& s = st.render_pass->subpasses[sp];
@@ -133,23 +155,22 @@ void resolve_attachments(ExecState& st, uint32_t sp) {
             continue;
         }
         const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
-        // The layers resolved: the framebuffer's, or in a multiview subpass the views of its mask.
-        const uint32_t layers = std::min(src.range.layerCount, st.framebuffer->layers);
-        const uint32_t layer_mask = s.view_mask != 0 ? s.view_mask : (layers >= 32 ? ~0u : (1u << layers) - 1);
-        // Bands of rows on the workers: each pixel's resolve reads only its own samples.
-        constexpr uint32_t kBandRows = 32;
-        const size_t bands = (rect.extent.height + kBandRows - 1) / kBandRows;
-        for (uint32_t m = layer_mask; m != 0; m &= m - 1) {
-            const uint32_t l = uint32_t(std::countr_zero(m));
-            run_on_workers(st, bands, [&](size_t band) {
-                const uint32_t y0 = uint32_t(band) * kBandRows;
-                const VkOffset2D offset{rect.offset.x, rect.offset.y + int32_t(y0)};
-                const VkExtent2D extent{rect.extent.width, std::min(kBandRows, rect.extent.height - y0)};
-                resolve_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, offset, *dst.image,
-                             dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent);
-            });
-        }
+        resolve_in_bands(st, s, src, rect, [&](uint32_t l, VkOffset2D offset, VkExtent2D extent) {
+            resolve_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, offset, *dst.image,
+                         dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent);
+        });
     }
+    const ImageView* ds_src = attachment_view(st, s.depth_stencil.attachment);
+    const ImageView* ds_dst = attachment_view(st, s.ds_resolve.attachment);
+    if (ds_src == nullptr || ds_dst == nullptr) return;
+    if (s.depth_resolve == VK_RESOLVE_MODE_NONE && s.stencil_resolve == VK_RESOLVE_MODE_NONE) return;
+    const ImageView& src = *ds_src;
+    const ImageView& dst = *ds_dst;
+    const VkRect2D rect = clip_to_view(clip_to_view(st.area, src), dst);
+    resolve_in_bands(st, s, src, rect, [&](uint32_t l, VkOffset2D offset, VkExtent2D extent) {
+        resolve_depth_stencil_rect(*src.image, src.range.baseMipLevel, src.range.baseArrayLayer + l, *dst.image,
+                                   dst.range.baseMipLevel, dst.range.baseArrayLayer + l, offset, extent);
+    });
 }
 
 void clear_attachments(ExecState& st, const CmdClearAttachments& c) {

@@ -197,5 +197,9 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
                   uint32_t dst_level, uint32_t dst_layer, VkOffset2D dst_offset, VkExtent2D extent);
 // True if resolve_rect implements the format.
 bool can_resolve(const FormatInfo& f);
+// Resolves a 4x depth/stencil region into a 1x one of the same format and place: VK_KHR_depth_stencil_resolve's
+// SAMPLE_ZERO, as lavapipe does it (see execute_transfer.cpp).
+void resolve_depth_stencil_rect(const Image& src, uint32_t src_level, uint32_t src_layer, const Image& dst,
+                                uint32_t dst_level, uint32_t dst_layer, VkOffset2D offset, VkExtent2D extent);
 
 }  // namespace tilevk::icd

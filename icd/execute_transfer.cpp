@@ -291,6 +291,33 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
                                  rast::geometry::host_has_fma(), size_t(src.samples) * tb);
 }
 
+// The depth/stencil resolve of a render pass (VK_KHR_depth_stencil_resolve), SAMPLE_ZERO for every aspect as lavapipe
+// 22.3 performs it: lvp_execute.c resolve_ds -> llvmpipe lp_surface.c lp_blit's sample0_only path,
+// util_resource_copy_region of the source's first sample: sample 0's texel bytes as they are, all aspects. Source and
+// destination have one format (render_pass.cpp check_ds_resolve). Not offered: lavapipe's AVERAGE, which
+// util_blitter_blit (u_blitter.c) draws with util_make_fs_blit_msaa_depth (u_simple_shaders.c), a TXF of sample
+// index 0 written as the fragment depth: sample 0 through a float (D24 rne(fl(fl(v * fl(1/(2^24-1))) * (2^24-1))),
+// a denormal D32F +0), never an average.
+void resolve_depth_stencil_rect(const Image& src, uint32_t src_level, uint32_t src_layer, const Image& dst,
+                                uint32_t dst_level, uint32_t dst_layer, VkOffset2D offset, VkExtent2D extent) {
+    if (!image_ok(&src, src_level, src_layer, 1, offset.x, offset.y, extent.width, extent.height, "resolve") ||
+        !image_ok(&dst, dst_level, dst_layer, 1, offset.x, offset.y, extent.width, extent.height, "resolve")) {
+        return;
+    }
+    if (dst.samples != 1 || dst.format != src.format) {
+        log_error("depth/stencil resolve: %u samples of %s into %u of %s (one format into 1 sample only); skipped",
+                  src.samples, vk_enum_name(vk_format(*src.format)), dst.samples, vk_enum_name(vk_format(*dst.format)));
+        return;
+    }
+    const uint32_t tb = src.format->bytes;
+    for (uint32_t y = 0; y < extent.height; ++y) {
+        const uint8_t* s = src.texel(src_level, src_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
+        uint8_t* d = dst.texel(dst_level, dst_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
+        for (uint32_t x = 0; x < extent.width; ++x)
+            std::memcpy(d + size_t(x) * tb, s + size_t(x) * src.samples * tb, tb);
+    }
+}
+
 void exec_resolve_image(const CmdResolveImage& c) {
     if (c.src == nullptr || c.dst == nullptr) return;
     for (uint32_t i = 0; i < c.count; ++i) {

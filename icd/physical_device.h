@@ -13,7 +13,12 @@ constexpr uint32_t kMaxMipLevels = 15;  // log2(16384) + 1
 constexpr uint32_t kMaxArrayLayers = 256;
 constexpr uint32_t kMaxTexelBufferElements = 65536;  // the Vulkan 1.0 minimum; texel buffers are 1D views
 constexpr VkSampleCountFlags kSampleCounts = VK_SAMPLE_COUNT_1_BIT | VK_SAMPLE_COUNT_4_BIT;
-constexpr uint32_t kMaxMultiviewViews = 6;       // maxMultiviewViewCount (lavapipe 22.3 reports 6)
+constexpr uint32_t kMaxMultiviewViews = 6;  // maxMultiviewViewCount (lavapipe 22.3 reports 6)
+// VK_KHR_depth_stencil_resolve: SAMPLE_ZERO (the spec's one required mode) for both aspects, neither
+// independentResolve nor independentResolveNone. lavapipe 22.3 also reports depth AVERAGE, but its AVERAGE returns
+// sample 0 (execute_transfer.cpp resolve_depth_stencil_rect gives the Mesa paths): not a mode to copy.
+constexpr VkResolveModeFlags kDepthResolveModes = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+constexpr VkResolveModeFlags kStencilResolveModes = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
 constexpr uint32_t kMaxViewports = 16;           // multiViewport: all accepted, viewport 0 used (pipeline.cpp)
 constexpr uint32_t kMaxBoundDescriptorSets = 8;  // BoundState::kMaxSets (execute.h)
 constexpr uint32_t kMaxColorAttachments = 8;     // rast/render kMaxColorTargets, shader/ kMaxColorOutputs

@@ -1,9 +1,11 @@
 #include "render_pass.h"
 
+#include <cstdio>
 #include <vector>
 
 #include "device.h"
 #include "entrypoints.h"
+#include "formats.h"
 #include "physical_device.h"
 #include "vk_names.h"
 
@@ -94,16 +96,20 @@ void plan_view_loads(RenderPass* rp) {
         for (auto& r : s.colors) use(r.attachment);
         for (auto& r : s.resolves) use(r.attachment);
         use(s.depth_stencil.attachment);
+        use(s.ds_resolve.attachment);
         for (size_t a = 0; a < n; ++a) seen[a] |= s.load_views[a];
     }
 }
 
-}  // namespace
+// One subpass's depth/stencil resolve (VkSubpassDescriptionDepthStencilResolve, render-pass-2 only), checked.
+struct DsResolve {
+    VkAttachmentReference ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
+    VkResolveModeFlagBits depth = VK_RESOLVE_MODE_NONE, stencil = VK_RESOLVE_MODE_NONE;
+};
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRenderPassCreateInfo* ci,
-                                                    const VkAllocationCallbacks* pAllocator,
-                                                    VkRenderPass* pRenderPass) {
-    Device* dev = from_handle<Device>(device);
+// vkCreateRenderPass, and vkCreateRenderPass2 through it: `ds` is null or holds one depth/stencil resolve per subpass.
+VkResult create_render_pass(Device* dev, const VkRenderPassCreateInfo* ci, const std::vector<DsResolve>* ds,
+                            const VkAllocationCallbacks* pAllocator, VkRenderPass* pRenderPass) {
     if (VkResult r = refuse_unsupported(*ci); r != VK_SUCCESS) return r;
     std::vector<uint32_t> view_masks;
     if (VkResult r = check_view_masks(*dev, *ci, view_masks); r != VK_SUCCESS) return r;
@@ -126,10 +132,16 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRen
             if (d.pDepthStencilAttachment != nullptr) s.depth_stencil = *d.pDepthStencilAttachment;
             s.preserves.assign(d.pPreserveAttachments, d.pPreserveAttachments + d.preserveAttachmentCount);
             s.view_mask = view_masks[i];
+            if (ds != nullptr) {
+                s.ds_resolve = (*ds)[i].ref;
+                s.depth_resolve = (*ds)[i].depth;
+                s.stencil_resolve = (*ds)[i].stencil;
+            }
             for (auto& r : s.inputs) note_use(rp, i, r.attachment);
             for (auto& r : s.colors) note_use(rp, i, r.attachment);
             for (auto& r : s.resolves) note_use(rp, i, r.attachment);
             note_use(rp, i, s.depth_stencil.attachment);
+            note_use(rp, i, s.ds_resolve.attachment);
         }
         rp->multiview = ci->subpassCount > 0 && view_masks[0] != 0;
         if (rp->multiview) plan_view_loads(rp);
@@ -139,6 +151,14 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRen
     }
     *pRenderPass = to_handle(rp);
     return VK_SUCCESS;
+}
+
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRenderPassCreateInfo* ci,
+                                                    const VkAllocationCallbacks* pAllocator,
+                                                    VkRenderPass* pRenderPass) {
+    return create_render_pass(from_handle<Device>(device), ci, nullptr, pAllocator, pRenderPass);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_DestroyRenderPass(VkDevice, VkRenderPass renderPass, const VkAllocationCallbacks*) {
@@ -163,7 +183,6 @@ namespace {
 VkResult refuse_chain(const char* where, uint32_t index, const void* chain) {
     for (auto* s = static_cast<const VkBaseInStructure*>(chain); s != nullptr; s = s->pNext) {
         switch (s->sType) {
-            case VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE:
             case VK_STRUCTURE_TYPE_FRAGMENT_SHADING_RATE_ATTACHMENT_INFO_KHR:
             case VK_STRUCTURE_TYPE_MULTISAMPLED_RENDER_TO_SINGLE_SAMPLED_INFO_EXT:
             case VK_STRUCTURE_TYPE_RENDER_PASS_FRAGMENT_DENSITY_MAP_CREATE_INFO_EXT:
@@ -171,7 +190,8 @@ VkResult refuse_chain(const char* where, uint32_t index, const void* chain) {
                             "vkCreateRenderPass2: %s[%u] chains %s, which tilevk does not implement", where, index,
                             vk_enum_name(s->sType));
             default:
-                break;  // other structs (stencil layouts, creation feedback) change nothing tilevk renders
+                break;  // depth/stencil resolves are read by check_ds_resolve; the other structs (stencil layouts,
+                        // creation feedback) change nothing tilevk renders
         }
     }
     return VK_SUCCESS;
@@ -226,6 +246,96 @@ VkResult refuse_2(const VkRenderPassCreateInfo2& ci) {
     return VK_SUCCESS;
 }
 
+// A refusal of subpass `subpass`'s VkSubpassDescriptionDepthStencilResolve, `what` naming the member.
+VkResult refuse_ds_resolve(uint32_t subpass, const char* what) {
+    return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                "vkCreateRenderPass2: pSubpasses[%u] VkSubpassDescriptionDepthStencilResolve::%s", subpass, what);
+}
+
+bool one_mode_of(VkResolveModeFlagBits mode, VkResolveModeFlags supported) {
+    return (mode & (mode - 1)) == 0 && (mode & supported) == mode;
+}
+
+// Subpass `i`'s VkSubpassDescriptionDepthStencilResolve, checked into `out` (no struct, no attachment: no resolve).
+// Refused by name: the spec's invalid usage (VUID-VkSubpassDescriptionDepthStencilResolve-*), modes outside
+// kDepthResolveModes / kStencilResolveModes, different modes for the two aspects of a combined format (neither
+// independentResolve nor independentResolveNone), and a resolve attachment of another format than the depth/stencil
+// attachment's (valid when the aspects match, e.g. D24_UNORM_S8_UINT into X8_D24_UNORM_PACK32; lavapipe converts
+// through float there, which tilevk does not model). A mode is ignored for an aspect the resolve format lacks.
+VkResult check_ds_resolve(const VkRenderPassCreateInfo2& ci, uint32_t i, DsResolve& out) {
+    const VkSubpassDescription2& sub = ci.pSubpasses[i];
+    const auto* r = find_in_chain<VkSubpassDescriptionDepthStencilResolve>(
+        sub.pNext, VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE);
+    out = {};
+    if (r == nullptr || r->pDepthStencilResolveAttachment == nullptr ||
+        r->pDepthStencilResolveAttachment->attachment == VK_ATTACHMENT_UNUSED) {
+        return VK_SUCCESS;
+    }
+    char what[320];
+    const uint32_t dst = r->pDepthStencilResolveAttachment->attachment;
+    const uint32_t src =
+        sub.pDepthStencilAttachment != nullptr ? sub.pDepthStencilAttachment->attachment : VK_ATTACHMENT_UNUSED;
+    if (dst >= ci.attachmentCount) {
+        std::snprintf(what, sizeof what, "pDepthStencilResolveAttachment->attachment = %u is past attachmentCount (%u)",
+                      dst, ci.attachmentCount);
+        return refuse_ds_resolve(i, what);
+    }
+    if (src >= ci.attachmentCount)
+        return refuse_ds_resolve(i,
+                                 "pDepthStencilResolveAttachment is set but the subpass has no depth/stencil "
+                                 "attachment (VUID-VkSubpassDescriptionDepthStencilResolve-"
+                                 "pDepthStencilResolveAttachment-03177)");
+    const VkAttachmentDescription2& sa = ci.pAttachments[src];
+    const VkAttachmentDescription2& da = ci.pAttachments[dst];
+    if (sa.samples == VK_SAMPLE_COUNT_1_BIT || da.samples != VK_SAMPLE_COUNT_1_BIT)
+        return refuse_ds_resolve(i,
+                                 "pDepthStencilResolveAttachment: the depth/stencil attachment must have more "
+                                 "than one sample and the resolve attachment one (VUID-03179, VUID-03180)");
+    const FormatInfo* f = find_format(da.format);
+    if (f == nullptr || (f->aspects & (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)) == 0) {
+        std::snprintf(what, sizeof what, "pDepthStencilResolveAttachment: format %s is not a depth/stencil format",
+                      vk_enum_name(da.format));
+        return refuse_ds_resolve(i, what);
+    }
+    if (da.format != sa.format) {
+        std::snprintf(what, sizeof what,
+                      "pDepthStencilResolveAttachment: format %s differs from the depth/stencil attachment's %s; "
+                      "tilevk resolves depth/stencil only between attachments of one format",
+                      vk_enum_name(da.format), vk_enum_name(sa.format));
+        return refuse_ds_resolve(i, what);
+    }
+    if (r->depthResolveMode == VK_RESOLVE_MODE_NONE && r->stencilResolveMode == VK_RESOLVE_MODE_NONE)
+        return refuse_ds_resolve(i,
+                                 "depthResolveMode and stencilResolveMode are both VK_RESOLVE_MODE_NONE "
+                                 "(VUID-VkSubpassDescriptionDepthStencilResolve-pDepthStencilResolveAttachment-03178)");
+    const bool depth = (f->aspects & VK_IMAGE_ASPECT_DEPTH_BIT) != 0;
+    const bool stencil = (f->aspects & VK_IMAGE_ASPECT_STENCIL_BIT) != 0;
+    if (depth && !one_mode_of(r->depthResolveMode, kDepthResolveModes | VK_RESOLVE_MODE_NONE)) {
+        std::snprintf(what, sizeof what, "depthResolveMode = %s is not one of supportedDepthResolveModes (%s)",
+                      vk_flags_name<VkResolveModeFlagBits>(r->depthResolveMode).c_str(),
+                      vk_flags_name<VkResolveModeFlagBits>(kDepthResolveModes).c_str());
+        return refuse_ds_resolve(i, what);
+    }
+    if (stencil && !one_mode_of(r->stencilResolveMode, kStencilResolveModes | VK_RESOLVE_MODE_NONE)) {
+        std::snprintf(what, sizeof what, "stencilResolveMode = %s is not one of supportedStencilResolveModes (%s)",
+                      vk_flags_name<VkResolveModeFlagBits>(r->stencilResolveMode).c_str(),
+                      vk_flags_name<VkResolveModeFlagBits>(kStencilResolveModes).c_str());
+        return refuse_ds_resolve(i, what);
+    }
+    if (depth && stencil && r->depthResolveMode != r->stencilResolveMode) {
+        std::snprintf(what, sizeof what,
+                      "depthResolveMode = %s and stencilResolveMode = %s differ for %s, which has depth and stencil: "
+                      "independentResolve and independentResolveNone are VK_FALSE (VUID-03185)",
+                      vk_flags_name<VkResolveModeFlagBits>(r->depthResolveMode).c_str(),
+                      vk_flags_name<VkResolveModeFlagBits>(r->stencilResolveMode).c_str(), vk_enum_name(da.format));
+        return refuse_ds_resolve(i, what);
+    }
+    out.ref = {dst, r->pDepthStencilResolveAttachment->layout};
+    out.depth = depth ? r->depthResolveMode : VK_RESOLVE_MODE_NONE;
+    out.stencil = stencil ? r->stencilResolveMode : VK_RESOLVE_MODE_NONE;
+    return VK_SUCCESS;
+}
+
 }  // namespace
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass2(VkDevice device, const VkRenderPassCreateInfo2* ci,
@@ -233,6 +343,9 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass2(VkDevice device, const VkRe
                                                      VkRenderPass* pRenderPass) {
     if (VkResult r = refuse_2(*ci); r != VK_SUCCESS) return r;
     try {
+        std::vector<DsResolve> ds(ci->subpassCount);
+        for (uint32_t i = 0; i < ci->subpassCount; ++i)
+            if (VkResult r = check_ds_resolve(*ci, i, ds[i]); r != VK_SUCCESS) return r;
         std::vector<VkAttachmentDescription> atts;
         atts.reserve(ci->attachmentCount);
         for (uint32_t i = 0; i < ci->attachmentCount; ++i) {
@@ -278,7 +391,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass2(VkDevice device, const VkRe
         ci1.pSubpasses = subs.data();
         ci1.dependencyCount = uint32_t(deps.size());
         ci1.pDependencies = deps.data();
-        return tvk_CreateRenderPass(device, &ci1, pAllocator, pRenderPass);
+        return create_render_pass(from_handle<Device>(device), &ci1, &ds, pAllocator, pRenderPass);
     } catch (const std::bad_alloc&) {
         return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateRenderPass2: out of host memory");
     }

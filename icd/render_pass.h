@@ -12,6 +12,12 @@ struct Subpass {
     std::vector<VkAttachmentReference> resolves;  // empty or one per colour attachment
     VkAttachmentReference depth_stencil{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
     std::vector<uint32_t> preserves;
+    // VK_KHR_depth_stencil_resolve (VkSubpassDescriptionDepthStencilResolve): the attachment the depth/stencil
+    // attachment resolves into at the end of the subpass (UNUSED: none), and the mode of each aspect, NONE for an
+    // aspect the resolve attachment's format lacks (the spec ignores the mode then).
+    VkAttachmentReference ds_resolve{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
+    VkResolveModeFlagBits depth_resolve = VK_RESOLVE_MODE_NONE;
+    VkResolveModeFlagBits stencil_resolve = VK_RESOLVE_MODE_NONE;
     // Multiview (VkRenderPassMultiviewCreateInfo::pViewMasks, VkSubpassDescription2::viewMask): the views this
     // subpass renders, each into layer baseArrayLayer + view of every attachment; 0 when the pass is not multiview.
     uint32_t view_mask = 0;

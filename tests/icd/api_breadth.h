@@ -95,6 +95,7 @@ struct Pipe {
     VkPipelineCache cache = VK_NULL_HANDLE;
     VkPipelineCreateFlags flags = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // rasterizationSamples
+    const VkSampleMask* sample_mask = nullptr;              // pSampleMask (null: all samples)
 };
 
 inline VkPipelineColorBlendAttachmentState opaque() {
@@ -359,6 +360,7 @@ class Kit {
         rs.depthBiasEnable = p.depth_bias;
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         ms.rasterizationSamples = p.samples;
+        ms.pSampleMask = p.sample_mask;
         std::vector<VkPipelineColorBlendAttachmentState> blend = p.blend;
         if (blend.empty()) blend.assign(p.color_count, opaque());
         VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

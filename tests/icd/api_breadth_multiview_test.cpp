@@ -452,8 +452,9 @@ TEST_F(ApiRenderPass2, MsaaViewsResolve) {
     rp2_equals_rp1(s);
 }
 
-// tilevk alone, without the validation layer: VkSubpassDescriptionDepthStencilResolve (VK_KHR_depth_stencil_resolve,
-// not offered) is refused by name, and a viewMask without the multiview feature enabled like the 1.0 form's.
+// tilevk alone, without the validation layer: VkFragmentShadingRateAttachmentInfoKHR (VK_KHR_fragment_shading_rate,
+// not offered) is refused by name, and a viewMask without the multiview feature enabled like the 1.0 form's (the
+// depth/stencil resolve refusals are in api_breadth_ds_resolve_test.cpp).
 TEST_F(ApiRenderPass2, Refusals) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
@@ -483,9 +484,9 @@ TEST_F(ApiRenderPass2, Refusals) {
         EXPECT_NE(testing::internal::GetCapturedStderr().find(name), std::string::npos) << name;
         EXPECT_EQ(r, VkRenderPass(VK_NULL_HANDLE)) << name;
     };
-    VkSubpassDescriptionDepthStencilResolve dsr{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE};
-    sub.pNext = &dsr;
-    refused("VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_DEPTH_STENCIL_RESOLVE");
+    VkFragmentShadingRateAttachmentInfoKHR fsr{VK_STRUCTURE_TYPE_FRAGMENT_SHADING_RATE_ATTACHMENT_INFO_KHR};
+    sub.pNext = &fsr;
+    refused("VK_STRUCTURE_TYPE_FRAGMENT_SHADING_RATE_ATTACHMENT_INFO_KHR");
     sub.pNext = nullptr;
     sub.viewMask = 0b11;
     refused("multiview feature");
