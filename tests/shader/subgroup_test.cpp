@@ -66,7 +66,7 @@ std::vector<uint32_t> model(const uint32_t* x, uint32_t n) {
         }
         const uint32_t lowest = first + uint32_t(std::countr_zero(active));
         r[6] = (lowest == i ? 1u : 0u) | (all10 ? 2u : 0u) | (any90 ? 4u : 0u) | (equal ? 8u : 0u) | (equal ? 16u : 0u);
-        r[7] = x[first + 5];
+        r[7] = first + 5 < n ? x[first + 5] : 0xDEADu;  // no lane 5 in a partial subgroup: undefined, not compared
         r[8] = x[lowest];
         r[9] = ballot;
         r[10] = 0;
