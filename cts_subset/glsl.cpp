@@ -10,6 +10,18 @@
 
 namespace tilevk::cts {
 
+namespace {
+SpirvTarget g_target = SpirvTarget::kSpirv10;
+}  // namespace
+
+void set_spirv_target(SpirvTarget target) {
+    g_target = target;
+}
+
+uint32_t spirv_target_vulkan_minor() {
+    return g_target == SpirvTarget::kSpirv10 ? 0 : g_target == SpirvTarget::kSpirv13 ? 1 : 2;
+}
+
 const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source) {
     static std::mutex mutex;
     static std::map<std::pair<int, std::string>, std::vector<uint32_t>> cache;
@@ -23,9 +35,14 @@ const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source
     glslang::TShader shader(lang);
     const char* text = source.c_str();
     shader.setStrings(&text, 1);
+    const uint32_t minor = spirv_target_vulkan_minor();
     shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    shader.setEnvClient(glslang::EShClientVulkan, minor == 0   ? glslang::EShTargetVulkan_1_0
+                                                  : minor == 1 ? glslang::EShTargetVulkan_1_1
+                                                               : glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, minor == 0   ? glslang::EShTargetSpv_1_0
+                                               : minor == 1 ? glslang::EShTargetSpv_1_3
+                                                            : glslang::EShTargetSpv_1_5);
     auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
     if (!shader.parse(GetDefaultResources(), 450, false, messages))
         throw std::runtime_error(std::string("glslang: ") + shader.getInfoLog() + "\n" + source);

@@ -45,7 +45,7 @@ void usage() {
     std::puts(
         "usage: tilevk-cts [--list] [--filter GLOB] [--device NAME] [--ref NAME] [--log FILE] [--junit FILE]\n"
         "                  [--json FILE] [--png-dir DIR] [--timing N] [--start-after CASE] [--png-all]\n"
-        "                  [--case-timeout SECONDS (default 300)]\n"
+        "                  [--case-timeout SECONDS (default 300)] [--spirv 1.0|1.3|1.5]\n"
         "                  [--selftest-perturb] [--validation] [--strict] [--expectations FILE]\n"
         "                  [--fuzz MINUTES [--fuzz-seed FIRST] [--fuzz-seeds COUNT] [--fuzz-log FILE]]\n"
         "  --device/--ref pick devices by name substring (default: the device whose name starts with 'tilevk',\n"
@@ -55,6 +55,7 @@ void usage() {
         "  --strict fails a case that is NotSupported on the device under test but not on the reference, or\n"
         "  whose test data is missing (nothing is skipped silently; CI runs the subset this way).\n"
         "  --png-dir writes ours/ref/diff PNGs of failing cases (of every case with --png-all).\n"
+        "  --spirv compiles every shader to that SPIR-V version (default 1.0) and asks for Vulkan 1.0, 1.1 or 1.2.\n"
         "  --expectations FILE: the known differences (default: the source tree's cts_subset/expectations.txt).\n"
         "  --fuzz runs random, extreme-vertex and SPIR-V-mutation seeds from FIRST (default: today's, printed)\n"
         "  for MINUTES or COUNT seeds; failures are minimised and printed with their reproduction (fuzz.hpp).\n"
@@ -99,6 +100,16 @@ bool parse(int argc, char** argv, Options& o) {
             o.selftest_validation = true;
         else if (a == "--expectations") {
             if (!value(o.expectations)) return false;
+        } else if (a == "--spirv") {
+            if (!value(n)) return false;
+            if (n == "1.0")
+                set_spirv_target(SpirvTarget::kSpirv10);
+            else if (n == "1.3")
+                set_spirv_target(SpirvTarget::kSpirv13);
+            else if (n == "1.5")
+                set_spirv_target(SpirvTarget::kSpirv15);
+            else
+                return false;
         } else if (a == "--start-after") {
             if (!value(o.start_after)) return false;
         } else if (a == "--case-timeout") {

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "glsl.hpp"
 #include "validation.hpp"
 #include "vk_names.hpp"
 
@@ -68,7 +69,7 @@ uint32_t DeviceContext::memory_type(uint32_t bits, VkMemoryPropertyFlags flags) 
 Instance::Instance(ValidationLog* validation) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "tilevk-cts";
-    app.apiVersion = VK_API_VERSION_1_0;
+    app.apiVersion = VK_MAKE_API_VERSION(0, 1, spirv_target_vulkan_minor(), 0);  // the SPIR-V's environment
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
     const char* layer = "VK_LAYER_KHRONOS_validation";

@@ -80,6 +80,15 @@ Features make_supported() {
     f.core.v12.scalarBlockLayout = VK_TRUE;  // the same, with scalar alignment (ApiSmallExtensions.ScalarBlockLayout*)
     // framebuffer.cpp, command_buffer.cpp: the views of VkRenderPassAttachmentBeginInfo replace the framebuffer's.
     f.core.v12.imagelessFramebuffer = VK_TRUE;
+    // Image layouts are not modelled (one layout for all; barriers move no bytes), so depth-only and stencil-only
+    // layouts and the separate stencil layouts of render pass 2 are as good as any (ApiVulkan12).
+    f.core.v12.separateDepthStencilLayouts = VK_TRUE;
+    // OpGroupNonUniformBroadcast reads its id from a register per subgroup (exec_subgroup.h op_sg_broadcast), so a
+    // dynamically uniform id (SPIR-V 1.5) works as a constant one does.
+    f.core.v12.subgroupBroadcastDynamicId = VK_TRUE;
+    // Subgroup operations take every type the device supports; there is no 8-, 16- or 64-bit type (shaderInt8,
+    // shaderInt16, shaderInt64, shaderFloat16 and shaderFloat64 are VK_FALSE), so no type is left out.
+    f.core.v12.shaderSubgroupExtendedTypes = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;  // private_data.cpp
     // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).

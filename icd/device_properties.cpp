@@ -39,7 +39,8 @@ void fill_v11(const PhysicalDevice& pd, VkPhysicalDeviceVulkan11Properties& p) {
 }
 
 // Vulkan 1.2: driver identity, float controls, descriptor indexing, resolves, timeline semaphores.
-void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
+void fill_v12(const PhysicalDevice& pd, VkPhysicalDeviceVulkan12Properties& p) {
+    const VkPhysicalDeviceLimits& limits = pd.properties.limits;
     // tilevk has no Khronos-registered VkDriverId; 0 (no VkDriverId value) rather than another driver's id.
     p.driverID = VkDriverId(0);
     std::snprintf(p.driverName, sizeof p.driverName, "tilevk");
@@ -48,7 +49,25 @@ void fill_v12(VkPhysicalDeviceVulkan12Properties& p) {
     // Shader float controls: no execution mode is offered (shader/ always flushes denormals, rounds to nearest).
     p.denormBehaviorIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
     p.roundingModeIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
-    // Descriptor indexing (update-after-bind) is not implemented: its limits are 0.
+    // Descriptor indexing (update-after-bind, non-uniform indexing) is not implemented, but the spec bounds every
+    // pipeline layout by the update-after-bind limits too (VUID-VkPipelineLayoutCreateInfo-descriptorType-03022 and
+    // the rest): they are the 1.0 limits, which is what any set tilevk creates can hold. No pool holds
+    // update-after-bind descriptors (maxUpdateAfterBindDescriptorsInAllPools 0).
+    p.maxPerStageDescriptorUpdateAfterBindSamplers = limits.maxPerStageDescriptorSamplers;
+    p.maxPerStageDescriptorUpdateAfterBindUniformBuffers = limits.maxPerStageDescriptorUniformBuffers;
+    p.maxPerStageDescriptorUpdateAfterBindStorageBuffers = limits.maxPerStageDescriptorStorageBuffers;
+    p.maxPerStageDescriptorUpdateAfterBindSampledImages = limits.maxPerStageDescriptorSampledImages;
+    p.maxPerStageDescriptorUpdateAfterBindStorageImages = limits.maxPerStageDescriptorStorageImages;
+    p.maxPerStageDescriptorUpdateAfterBindInputAttachments = limits.maxPerStageDescriptorInputAttachments;
+    p.maxPerStageUpdateAfterBindResources = limits.maxPerStageResources;
+    p.maxDescriptorSetUpdateAfterBindSamplers = limits.maxDescriptorSetSamplers;
+    p.maxDescriptorSetUpdateAfterBindUniformBuffers = limits.maxDescriptorSetUniformBuffers;
+    p.maxDescriptorSetUpdateAfterBindUniformBuffersDynamic = limits.maxDescriptorSetUniformBuffersDynamic;
+    p.maxDescriptorSetUpdateAfterBindStorageBuffers = limits.maxDescriptorSetStorageBuffers;
+    p.maxDescriptorSetUpdateAfterBindStorageBuffersDynamic = limits.maxDescriptorSetStorageBuffersDynamic;
+    p.maxDescriptorSetUpdateAfterBindSampledImages = limits.maxDescriptorSetSampledImages;
+    p.maxDescriptorSetUpdateAfterBindStorageImages = limits.maxDescriptorSetStorageImages;
+    p.maxDescriptorSetUpdateAfterBindInputAttachments = limits.maxDescriptorSetInputAttachments;
     // Depth/stencil resolves (VK_KHR_depth_stencil_resolve, render_pass.cpp and execute_transfer.cpp): lavapipe's
     // modes; depth and stencil of a combined format resolve with the same mode (both independence flags false).
     p.supportedDepthResolveModes = kDepthResolveModes;
@@ -83,7 +102,7 @@ void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
 CoreProperties make_core_properties(const PhysicalDevice& pd) {
     CoreProperties c;
     fill_v11(pd, c.v11);
-    fill_v12(c.v12);
+    fill_v12(pd, c.v12);
     fill_v13(pd, c.v13);
     return c;
 }

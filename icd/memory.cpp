@@ -5,6 +5,7 @@
 #include "device.h"
 #include "entrypoints.h"
 #include "physical_device.h"
+#include "vk_names.h"
 
 namespace tilevk::icd {
 
@@ -14,6 +15,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
     if (pAllocateInfo->memoryTypeIndex != 0) {
         return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: memory type %u does not exist",
                     pAllocateInfo->memoryTypeIndex);
+    }
+    if (const auto* flags = find_in_chain<VkMemoryAllocateFlagsInfo>(pAllocateInfo->pNext,
+                                                                     VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO)) {
+        constexpr VkMemoryAllocateFlags kAddress =
+            VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT | VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_REPLAY_BIT;
+        if ((flags->flags & kAddress) != 0) {
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                        "vkAllocateMemory: VkMemoryAllocateFlagsInfo::flags %s need the bufferDeviceAddress feature, "
+                        "which tilevk does not support",
+                        vk_flags_name<VkMemoryAllocateFlagBits>(flags->flags & kAddress).c_str());
+        }
     }
     VkDeviceSize size = pAllocateInfo->allocationSize;
     if (size > dev->physical_device->memory.memoryHeaps[0].size) {

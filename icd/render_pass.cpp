@@ -375,14 +375,16 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass2(VkDevice device, const VkRe
         }
         std::vector<int32_t> offsets(ci->dependencyCount);
         for (uint32_t i = 0; i < ci->dependencyCount; ++i) offsets[i] = ci->pDependencies[i].viewOffset;
-        VkRenderPassMultiviewCreateInfo mv{VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO};
+        VkRenderPassMultiviewCreateInfo mv{};
+        mv.sType = VK_STRUCTURE_TYPE_RENDER_PASS_MULTIVIEW_CREATE_INFO;
         mv.subpassCount = ci->subpassCount;
         mv.pViewMasks = masks.data();
         mv.dependencyCount = ci->dependencyCount;
         mv.pViewOffsets = offsets.data();
         mv.correlationMaskCount = ci->correlatedViewMaskCount;
         mv.pCorrelationMasks = ci->pCorrelatedViewMasks;
-        VkRenderPassCreateInfo ci1{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+        VkRenderPassCreateInfo ci1{};
+        ci1.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
         ci1.pNext = any_mask ? &mv : nullptr;
         ci1.flags = ci->flags;
         ci1.attachmentCount = uint32_t(atts.size());

@@ -23,6 +23,7 @@ namespace {
 #include "cp_atomic_comp.h"
 #include "cp_barrier_comp.h"
 #include "cp_binds_comp.h"
+#include "cp_broadcast_dynamic_comp.h"
 #include "cp_counters_comp.h"
 #include "cp_dispatch_base_comp.h"
 #include "cp_ids_comp.h"
@@ -692,6 +693,37 @@ TEST_F(ApiCompute, Subgroups) {
         } else {
             EXPECT_EQ(tw, lw) << "word " << w;
         }
+    }
+}
+
+// Vulkan 1.2 subgroupBroadcastDynamicId: a SPIR-V 1.5 module broadcasts from a lane chosen at run time (the same
+// within a subgroup, different between subgroups and workgroups); every word equals lavapipe's, and the test's own
+// model (the value of the subgroup's lane `id`) holds on tilevk.
+TEST_F(ApiCompute, SubgroupBroadcastDynamicId) {
+    const Bytes out = both([](Kit& k) {
+        std::vector<uint32_t> x(256);
+        for (size_t i = 0; i < x.size(); ++i) x[i] = uint32_t(i * 2654435761u >> 7);
+        Device::Buffer in = k.buffer_of(x, kStorage);
+        Device::Buffer res = k.buffer(VkDeviceSize(x.size()) * 8, kStorage);
+        std::memset(res.map, 0xAD, x.size() * 8);
+        StorageSet s = storage_set(k, {&in, &res});
+        VkPipeline p = compute_pipeline(k, SPV(cp_broadcast_dynamic_comp), s.layout);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+            vkCmdDispatch(c, 4, 1, 1);
+        }),
+                  VK_SUCCESS);
+        return Kit::bytes(res);
+    });
+    ASSERT_EQ(out.size(), 256u * 8);
+    std::vector<uint32_t> x(256), y(512);
+    for (size_t i = 0; i < x.size(); ++i) x[i] = uint32_t(i * 2654435761u >> 7);
+    std::memcpy(y.data(), out.data(), out.size());
+    for (uint32_t g = 0; g < 256; ++g) {
+        const uint32_t id = (x[g / 64] + (g % 64) / 8 * 3) % 8;
+        ASSERT_EQ(y[2 * g + 1], id) << g;
+        EXPECT_EQ(y[2 * g], x[g / 8 * 8 + id]) << g;
     }
 }
 

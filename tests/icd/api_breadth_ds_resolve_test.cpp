@@ -13,9 +13,9 @@ namespace {
 
 using tilevk::test::stderr_of;
 
-const std::vector<const char*> kExtensions = {VK_KHR_MULTIVIEW_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME,
-                                              VK_KHR_CREATE_RENDERPASS_2_EXTENSION_NAME,
-                                              VK_KHR_DEPTH_STENCIL_RESOLVE_EXTENSION_NAME};
+const std::vector<const char*> kExtensions = {
+    VK_KHR_MULTIVIEW_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME, VK_KHR_CREATE_RENDERPASS_2_EXTENSION_NAME,
+    VK_KHR_DEPTH_STENCIL_RESOLVE_EXTENSION_NAME, VK_KHR_SEPARATE_DEPTH_STENCIL_LAYOUTS_EXTENSION_NAME};
 
 // The four samples' depths (each times 2^16-1 and 2^24-1 an integer, so D16 and D24 store them without rounding
 // questions) and stencil references. Their average, 0.5, is no sample's.
@@ -32,11 +32,13 @@ VkImageAspectFlags aspects_of(VkFormat f) {
 
 // A render pass of one subpass: attachment 0 the 4x depth/stencil attachment (load op CLEAR), attachment 1 its 1x
 // resolve attachment (DONT_CARE, or LOAD from DEPTH_STENCIL_ATTACHMENT_OPTIMAL with `load_resolve`), resolved with
-// `ds` (its pDepthStencilResolveAttachment set here when null).
+// `ds` (its pDepthStencilResolveAttachment set here when null). With `separate_layouts` (Vulkan 1.2
+// separateDepthStencilLayouts) the attachments and references use DEPTH_ATTACHMENT_OPTIMAL and, through
+// VkAttachmentDescriptionStencilLayout / VkAttachmentReferenceStencilLayout, STENCIL_ATTACHMENT_OPTIMAL.
 VkRenderPass ds_pass(Kit& k, VkFormat f, VkSubpassDescriptionDepthStencilResolve ds, VkResult* result = nullptr,
                      VkFormat resolve_format = VK_FORMAT_UNDEFINED,
                      VkSampleCountFlagBits resolve_samples = VK_SAMPLE_COUNT_1_BIT, bool load_resolve = false,
-                     uint32_t view_mask = 0) {
+                     uint32_t view_mask = 0, bool separate_layouts = false) {
     VkAttachmentDescription2 att[2] = {{VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2},
                                        {VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_2}};
     att[0].format = f;
@@ -51,10 +53,32 @@ VkRenderPass ds_pass(Kit& k, VkFormat f, VkSubpassDescriptionDepthStencilResolve
     att[1].storeOp = att[1].stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
     att[1].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     const VkImageAspectFlags a = aspects_of(f);
-    const VkAttachmentReference2 depth{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 0,
-                                       VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, a};
-    const VkAttachmentReference2 resolve{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, nullptr, 1,
-                                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, a};
+    VkImageLayout ref_layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    const VkAttachmentReferenceStencilLayout stencil_ref{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_STENCIL_LAYOUT, nullptr,
+                                                         VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL};
+    VkAttachmentDescriptionStencilLayout stencil_att[2] = {
+        {VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_STENCIL_LAYOUT, nullptr, VK_IMAGE_LAYOUT_UNDEFINED,
+         VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL},
+        {VK_STRUCTURE_TYPE_ATTACHMENT_DESCRIPTION_STENCIL_LAYOUT, nullptr, VK_IMAGE_LAYOUT_UNDEFINED,
+         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}};
+    const void* ref_chain = nullptr;
+    if (separate_layouts) {
+        const bool both = a == (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
+        ref_layout = a == VK_IMAGE_ASPECT_STENCIL_BIT ? VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL
+                                                      : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        att[0].finalLayout = ref_layout;
+        if (load_resolve) {
+            att[1].initialLayout = ref_layout;
+            stencil_att[1].stencilInitialLayout = VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL;
+        }
+        if (both) {  // the stencil aspect's own layouts (VUID-VkAttachmentReference2-attachment-04755)
+            ref_chain = &stencil_ref;
+            att[0].pNext = &stencil_att[0];
+            att[1].pNext = &stencil_att[1];
+        }
+    }
+    const VkAttachmentReference2 depth{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, ref_chain, 0, ref_layout, a};
+    const VkAttachmentReference2 resolve{VK_STRUCTURE_TYPE_ATTACHMENT_REFERENCE_2, ref_chain, 1, ref_layout, a};
     if (ds.pDepthStencilResolveAttachment == nullptr) ds.pDepthStencilResolveAttachment = &resolve;
     VkSubpassDescription2 sub{VK_STRUCTURE_TYPE_SUBPASS_DESCRIPTION_2};
     sub.pNext = &ds;
@@ -119,6 +143,7 @@ struct Scene {
                                      // stencil 9 before the pass and loaded
     uint32_t view_mask = 0;          // multiview: the subpass's views, one layer each of two-layer images; no
                                      // triangle then (icd/README.md: multiview draws differ at triangle edges)
+    bool separate_layouts = false;   // ds_pass's separate depth and stencil layouts
 };
 
 // The scene (see the top of the file) on format `f` with `depth_mode` / `stencil_mode`; returns the resolve
@@ -138,7 +163,7 @@ Bytes resolve_scene(Kit& k, VkFormat f, VkResolveModeFlagBits depth_mode, VkReso
         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
         1, layers);
     VkRenderPass rp = ds_pass(k, f, modes(depth_mode, stencil_mode), nullptr, VK_FORMAT_UNDEFINED,
-                              VK_SAMPLE_COUNT_1_BIT, sc.area != nullptr, sc.view_mask);
+                              VK_SAMPLE_COUNT_1_BIT, sc.area != nullptr, sc.view_mask, sc.separate_layouts);
     VkFramebuffer fb = k.framebuffer(
         rp, {k.view(ms.image, f, a, type, 0, 1, 0, layers), k.view(res.image, f, a, type, 0, 1, 0, layers)}, kSize,
         kSize);
@@ -258,7 +283,10 @@ class ApiDepthStencilResolve : public ApiBreadth {
     // resolve_scene on both drivers (equal bytes); tilevk's.
     Bytes scene(VkFormat f, VkResolveModeFlagBits depth_mode, VkResolveModeFlagBits stencil_mode,
                 const Scene& sc = {}) {
-        VkPhysicalDeviceMultiviewFeatures mv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_FEATURES};
+        VkPhysicalDeviceSeparateDepthStencilLayoutsFeatures layouts{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SEPARATE_DEPTH_STENCIL_LAYOUTS_FEATURES};
+        layouts.separateDepthStencilLayouts = VK_TRUE;
+        VkPhysicalDeviceMultiviewFeatures mv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_FEATURES, &layouts};
         mv.multiview = VK_TRUE;
         Devices d(tilevk_->physical(), lavapipe_->physical(), &mv);
         EXPECT_TRUE(d.tilevk.ok() && d.lavapipe.ok());
@@ -363,6 +391,25 @@ TEST_F(ApiDepthStencilResolve, D32S8SampleZero) {
 }
 TEST_F(ApiDepthStencilResolve, S8SampleZero) {
     run(VK_FORMAT_S8_UINT, VK_RESOLVE_MODE_NONE, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT);
+}
+
+// Vulkan 1.2 separateDepthStencilLayouts (VK_KHR_separate_depth_stencil_layouts): the same scenes with depth-only and
+// stencil-only layouts (and the stencil aspect's own through the 1.2 structs) give the bytes of the combined layout,
+// on tilevk as on lavapipe (validation layer on: the layer checks the layouts are used as the spec says).
+TEST_F(ApiDepthStencilResolve, SeparateDepthStencilLayoutsChangeNothing) {
+    Scene separate;
+    separate.separate_layouts = true;
+    for (const VkFormat f :
+         {VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D16_UNORM, VK_FORMAT_S8_UINT}) {
+        const bool has_depth = (aspects_of(f) & VK_IMAGE_ASPECT_DEPTH_BIT) != 0;
+        const VkResolveModeFlagBits depth_mode = has_depth ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
+        const VkResolveModeFlagBits stencil_mode =
+            has_stencil(f) ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
+        const Bytes combined = scene(f, depth_mode, stencil_mode);
+        const Bytes split = scene(f, depth_mode, stencil_mode, separate);
+        EXPECT_EQ(split, combined) << "VkFormat " << int(f);
+        expect_sample0(split, f, 2, 2);
+    }
 }
 
 // tilevk alone, without the validation layer (each is invalid usage or what tilevk does not resolve): refused with

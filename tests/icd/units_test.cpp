@@ -90,7 +90,10 @@ TEST(EntryPoints, TableIsSortedAndLevelsFollowTheFirstParameter) {
     }
     EXPECT_NE(find_entry_point("vkCmdBlitImage"), nullptr);
     EXPECT_NE(find_entry_point("vkCmdDispatch"), nullptr);
-    EXPECT_EQ(find_entry_point("vkCmdDrawIndirectCount"), nullptr);  // Vulkan 1.2: not in the table
+    const EntryPoint* count = find_entry_point("vkCmdDrawIndirectCount");  // Vulkan 1.2 core (and its KHR alias)
+    ASSERT_NE(count, nullptr);
+    EXPECT_EQ(count->core_version, VK_MAKE_API_VERSION(0, 1, 2, 0));
+    EXPECT_EQ(find_entry_point("vkCmdBeginRendering"), nullptr);  // Vulkan 1.3: not in the table
     EXPECT_EQ(find_entry_point(nullptr), nullptr);
 }
 

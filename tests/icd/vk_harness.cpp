@@ -45,8 +45,8 @@ Harness::Harness(bool validation, const std::vector<const char*>& extensions) {
     mci.pUserData = &messages_;
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "tilevk-icd-test";
-    // Vulkan 1.1, what tilevk reports: the validation layer holds both drivers to its rules (SPIR-V up to 1.3).
-    app.apiVersion = VK_API_VERSION_1_1;
+    // Vulkan 1.2, what tilevk reports: the validation layer holds both drivers to its rules (SPIR-V up to 1.5).
+    app.apiVersion = VK_API_VERSION_1_2;
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pNext = &mci;  // also catches messages from vkCreateInstance/vkDestroyInstance
     ci.pApplicationInfo = &app;

@@ -19,7 +19,7 @@ struct Messages {
 
 class Harness {
   public:
-    // Creates the instance (Vulkan 1.0, validation + debug utils). ok() tells whether it worked, including the
+    // Creates the instance (Vulkan 1.2, validation + debug utils). ok() tells whether it worked, including the
     // messenger: without it the layer would print to stdout and message_count() would stay 0.
     // `extensions`: instance extensions to enable besides VK_EXT_debug_utils.
     explicit Harness(bool validation = true, const std::vector<const char*>& extensions = {});

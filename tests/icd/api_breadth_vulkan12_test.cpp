@@ -1,0 +1,170 @@
+// Vulkan 1.2 as a whole (suite ApiVulkan12): the version reported, the features Vulkan 1.2 requires (the spec's
+// "Feature Requirements"), every 1.2 command reachable, and buffer device addresses refused by name (the feature is
+// not reported). The 1.2 pieces themselves are tested where they are: timeline semaphores
+// (api_breadth_timeline_test.cpp), imageless framebuffers, render pass 2, depth/stencil resolves and separate
+// depth/stencil layouts (api_breadth_ds_resolve_test.cpp), a dynamic broadcast id (ApiCompute), SPIR-V 1.5 modules
+// (the conformance subset with --spirv 1.5).
+#include "api_breadth.h"
+#include "stderr_capture.h"
+
+namespace tilevk::test::breadth {
+namespace {
+
+using tilevk::test::stderr_of;
+
+class ApiVulkan12 : public ApiBreadth {};
+
+// What VkPhysicalDeviceVulkan12Features says on `pd`, with the promoted structs that carry the same members read in
+// the same call (they must agree with it).
+struct Features12 {
+    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceSeparateDepthStencilLayoutsFeatures layouts{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SEPARATE_DEPTH_STENCIL_LAYOUTS_FEATURES};
+    VkPhysicalDeviceShaderSubgroupExtendedTypesFeatures extended{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SUBGROUP_EXTENDED_TYPES_FEATURES};
+    VkPhysicalDeviceBufferDeviceAddressFeatures address{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES};
+    explicit Features12(VkPhysicalDevice pd) {
+        v12.pNext = &layouts;
+        layouts.pNext = &extended;
+        extended.pNext = &address;
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &v12};
+        vkGetPhysicalDeviceFeatures2(pd, &f2);
+    }
+};
+
+// The Vulkan 1.2 members every 1.2 device must support (Vulkan spec, "Feature Requirements"; descriptor indexing,
+// buffer device address and the memory model only with their extensions, which tilevk does not offer).
+void expect_required_12(const VkPhysicalDeviceVulkan12Features& f, const char* who) {
+    EXPECT_TRUE(f.uniformBufferStandardLayout) << who;
+    EXPECT_TRUE(f.subgroupBroadcastDynamicId) << who;
+    EXPECT_TRUE(f.imagelessFramebuffer) << who;
+    EXPECT_TRUE(f.separateDepthStencilLayouts) << who;
+    EXPECT_TRUE(f.hostQueryReset) << who;
+    EXPECT_TRUE(f.timelineSemaphore) << who;
+    EXPECT_TRUE(f.shaderSubgroupExtendedTypes) << who;
+}
+
+TEST_F(ApiVulkan12, ReportsVulkan12AndTheFeaturesItRequires) {
+    VkPhysicalDeviceProperties p{};
+    vkGetPhysicalDeviceProperties(tilevk_->physical(), &p);
+    EXPECT_EQ(VK_API_VERSION_MAJOR(p.apiVersion), 1u);
+    EXPECT_EQ(VK_API_VERSION_MINOR(p.apiVersion), 2u);  // icd/meson.build icd_api_minor
+    const Features12 t(tilevk_->physical()), l(lavapipe_->physical());
+    expect_required_12(t.v12, "tilevk");
+    expect_required_12(l.v12, "lavapipe (proves the list holds for a 1.3 driver)");
+    EXPECT_EQ(t.layouts.separateDepthStencilLayouts, t.v12.separateDepthStencilLayouts);
+    EXPECT_EQ(t.extended.shaderSubgroupExtendedTypes, t.v12.shaderSubgroupExtendedTypes);
+    // Not reported: shader/ has no PhysicalStorageBuffer pointers (vkCreateBuffer refuses the usage, below).
+    EXPECT_FALSE(t.v12.bufferDeviceAddress);
+    EXPECT_FALSE(t.address.bufferDeviceAddress);
+    EXPECT_EQ(t.v12.descriptorIndexing, VK_FALSE);
+    // No 8-, 16- or 64-bit shader types, so "subgroup operations on every supported type" is all types there are.
+    VkPhysicalDeviceFeatures core{};
+    vkGetPhysicalDeviceFeatures(tilevk_->physical(), &core);
+    EXPECT_FALSE(core.shaderInt16 || core.shaderInt64 || core.shaderFloat64 || t.v12.shaderInt8 || t.v12.shaderFloat16);
+}
+
+// The update-after-bind limits bound every pipeline layout (VUID-VkPipelineLayoutCreateInfo-descriptorType-03022 and
+// the rest), with or without descriptor indexing: they must hold what the 1.0 limits allow (0 made the validation
+// layer reject every layout with a descriptor).
+TEST_F(ApiVulkan12, UpdateAfterBindLimitsHoldTheVulkan10Limits) {
+    VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p12};
+    vkGetPhysicalDeviceProperties2(tilevk_->physical(), &p2);
+    const VkPhysicalDeviceLimits& l = p2.properties.limits;
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindSamplers, l.maxPerStageDescriptorSamplers);
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindUniformBuffers, l.maxPerStageDescriptorUniformBuffers);
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindStorageBuffers, l.maxPerStageDescriptorStorageBuffers);
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindSampledImages, l.maxPerStageDescriptorSampledImages);
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindStorageImages, l.maxPerStageDescriptorStorageImages);
+    EXPECT_GE(p12.maxPerStageDescriptorUpdateAfterBindInputAttachments, l.maxPerStageDescriptorInputAttachments);
+    EXPECT_GE(p12.maxPerStageUpdateAfterBindResources, l.maxPerStageResources);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindSamplers, l.maxDescriptorSetSamplers);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindUniformBuffers, l.maxDescriptorSetUniformBuffers);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindUniformBuffersDynamic, l.maxDescriptorSetUniformBuffersDynamic);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindStorageBuffers, l.maxDescriptorSetStorageBuffers);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindStorageBuffersDynamic, l.maxDescriptorSetStorageBuffersDynamic);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindSampledImages, l.maxDescriptorSetSampledImages);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindStorageImages, l.maxDescriptorSetStorageImages);
+    EXPECT_GE(p12.maxDescriptorSetUpdateAfterBindInputAttachments, l.maxDescriptorSetInputAttachments);
+}
+
+// Every command of Vulkan 1.2 core, through vkGetDeviceProcAddr on both drivers (icd/gen/gen_entrypoints.py fails
+// the build when one is not written; this checks the loader hands them out).
+TEST_F(ApiVulkan12, EveryVulkan12CommandIsReachable) {
+    const char* commands[] = {"vkCmdDrawIndirectCount",
+                              "vkCmdDrawIndexedIndirectCount",
+                              "vkCreateRenderPass2",
+                              "vkCmdBeginRenderPass2",
+                              "vkCmdNextSubpass2",
+                              "vkCmdEndRenderPass2",
+                              "vkResetQueryPool",
+                              "vkGetSemaphoreCounterValue",
+                              "vkWaitSemaphores",
+                              "vkSignalSemaphore",
+                              "vkGetBufferDeviceAddress",
+                              "vkGetBufferOpaqueCaptureAddress",
+                              "vkGetDeviceMemoryOpaqueCaptureAddress"};
+    for (Device* d : {tilevk_.get(), lavapipe_.get()})
+        for (const char* name : commands) EXPECT_NE(vkGetDeviceProcAddr(d->device(), name), nullptr) << name;
+}
+
+// Without bufferDeviceAddress an address usage or allocation flag is invalid usage; tilevk (alone, no layer) refuses
+// both by name rather than hand out addresses no shader can use. vkGetBufferDeviceAddress itself answers where the
+// bytes are (two buffers bound 256 bytes apart in one allocation are 256 apart), and nothing has a capture address.
+TEST_F(ApiVulkan12, BufferDeviceAddressesAreRefusedByName) {
+    Harness plain(false);
+    ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
+    Device dev(plain.find_device("tilevk"), nullptr, {}, nullptr);
+    ASSERT_TRUE(dev.ok());
+    const VkDevice d = dev.device();
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = 256;
+    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    VkBuffer refused = VK_NULL_HANDLE;
+    std::string err =
+        stderr_of([&] { EXPECT_EQ(vkCreateBuffer(d, &bci, nullptr, &refused), VK_ERROR_FEATURE_NOT_PRESENT); });
+    EXPECT_NE(err.find("VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT"), std::string::npos) << err;
+    EXPECT_NE(err.find("bufferDeviceAddress"), std::string::npos) << err;
+    EXPECT_EQ(refused, VkBuffer(VK_NULL_HANDLE));
+
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flags};
+    mai.allocationSize = 512;
+    VkDeviceMemory none = VK_NULL_HANDLE;
+    err = stderr_of([&] { EXPECT_EQ(vkAllocateMemory(d, &mai, nullptr, &none), VK_ERROR_FEATURE_NOT_PRESENT); });
+    EXPECT_NE(err.find("VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT"), std::string::npos) << err;
+    EXPECT_EQ(none, VkDeviceMemory(VK_NULL_HANDLE));
+
+    mai.pNext = nullptr;
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    ASSERT_EQ(vkAllocateMemory(d, &mai, nullptr, &mem), VK_SUCCESS);
+    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VkBuffer b[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    VkDeviceAddress at[2] = {0, 0};
+    auto address = reinterpret_cast<PFN_vkGetBufferDeviceAddress>(vkGetDeviceProcAddr(d, "vkGetBufferDeviceAddress"));
+    auto capture = reinterpret_cast<PFN_vkGetBufferOpaqueCaptureAddress>(
+        vkGetDeviceProcAddr(d, "vkGetBufferOpaqueCaptureAddress"));
+    auto memory_capture = reinterpret_cast<PFN_vkGetDeviceMemoryOpaqueCaptureAddress>(
+        vkGetDeviceProcAddr(d, "vkGetDeviceMemoryOpaqueCaptureAddress"));
+    ASSERT_TRUE(address && capture && memory_capture);
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_EQ(vkCreateBuffer(d, &bci, nullptr, &b[i]), VK_SUCCESS);
+        ASSERT_EQ(vkBindBufferMemory(d, b[i], mem, VkDeviceSize(i) * 256), VK_SUCCESS);
+        const VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, nullptr, b[i]};
+        at[i] = address(d, &info);
+        EXPECT_EQ(capture(d, &info), 0u);
+    }
+    EXPECT_NE(at[0], 0u);
+    EXPECT_EQ(at[1] - at[0], 256u);
+    const VkDeviceMemoryOpaqueCaptureAddressInfo mem_info{VK_STRUCTURE_TYPE_DEVICE_MEMORY_OPAQUE_CAPTURE_ADDRESS_INFO,
+                                                          nullptr, mem};
+    EXPECT_EQ(memory_capture(d, &mem_info), 0u);
+    for (VkBuffer x : b) vkDestroyBuffer(d, x, nullptr);
+    vkFreeMemory(d, mem, nullptr);
+}
+
+}  // namespace
+}  // namespace tilevk::test::breadth
