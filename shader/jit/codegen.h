@@ -97,6 +97,7 @@ class LaneEmitter {
     Ymm fmin(Ymm a, Ymm b);
     Ymm fmax(Ymm a, Ymm b);
     Ymm round(Ymm a, uint32_t mode);
+    void add_mul(const Inst& in);
     void int_compare(const Inst& in);
     void f2u(const Inst& in);
     void u2f(const Inst& in);

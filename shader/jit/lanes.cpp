@@ -3,6 +3,7 @@
 // reassociation), the same NaN operand order, the same bitwise selects, under the same MXCSR (FTZ + DAZ).
 #include <bit>
 #include <cstddef>
+#include <utility>
 
 #include "shader/jit/codegen.h"
 
@@ -271,6 +272,29 @@ x86::Ymm LaneEmitter::round(Ymm a, uint32_t mode) {
     return d;
 }
 
+// FAdd / FMul with the interpreter's operand order, for the NaN it returns when both are NaN (analysis.h
+// nan_order). The order may differ between the two quarters of this half: then vblendps swaps the operands in the
+// quarters where b comes first (the same IEEE operation lane for lane, a + b and b + a differ only in that NaN).
+void LaneEmitter::add_mul(const Inst& in) {
+    const NanOrder lo = nan_order(in.op, 2 * half_), hi = nan_order(in.op, 2 * half_ + 1);
+    const bool add = in.op == Op::FAdd;
+    binary(in, [&](Ymm d, Ymm a, Ymm b) {
+        Ymm x = a, y = b;
+        if (lo != hi) {
+            const uint32_t b_first = lo == NanOrder::BFirst ? 0x0Fu : 0xF0u;  // the lanes of the b-first quarter
+            x = temp(), y = temp();
+            a_.vblendps(x, a, b, b_first);
+            a_.vblendps(y, b, a, b_first);
+        } else if (lo == NanOrder::BFirst) {
+            std::swap(x, y);
+        }
+        if (add)
+            a_.vaddps(d, x, y);
+        else
+            a_.vmulps(d, x, y);
+    });
+}
+
 // x > y signed (unsigned: both biased by 2^31); Lt swaps the operands; Le / Ge negate Gt / Lt
 void LaneEmitter::int_compare(const Inst& in) {
     const Op op = in.op;
@@ -420,16 +444,9 @@ bool LaneEmitter::op(const Inst& in) {
             def(in.d, select(use(in.c), use(in.a), use(in.d)));
             return true;
         case Op::FAdd:
-        case Op::FMul: {  // the interpreter's operand order, for the NaN it returns (analysis.h nan_order)
-            const bool add = in.op == Op::FAdd, swap = nan_order(in.op, half_) == NanOrder::BFirst;
-            binary(in, [&](Ymm d, Ymm a, Ymm b) {
-                if (add)
-                    a_.vaddps(d, swap ? b : a, swap ? a : b);
-                else
-                    a_.vmulps(d, swap ? b : a, swap ? a : b);
-            });
+        case Op::FMul:
+            add_mul(in);
             return true;
-        }
         case Op::FSub:
             binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vsubps(d, a, b); });
             return true;
