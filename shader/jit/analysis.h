@@ -12,8 +12,8 @@ namespace tilevk::shader::jit {
 
 enum class Lowering : uint8_t {
     Unknown,  // an op this tier does not know (e.g. added to ir.h later): the whole program stays interpreted
-    Native,   // emitted as AVX2/FMA instructions
-    Helper,   // the interpreter's own code runs this one instruction (libm, images, buffers, rare integer ops)
+    Native,   // emitted as AVX2/FMA instructions; libm ops as a call per 8-lane half inside the segment
+    Helper,   // the interpreter's own code runs this one instruction (images, buffers, rare integer ops)
 };
 
 struct OpInfo {

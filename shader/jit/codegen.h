@@ -105,6 +105,7 @@ class LaneEmitter {
     void smooth_step(const Inst& in);
     void derivative(const Inst& in, uint32_t right, uint32_t left);
     bool load_local(const Inst& in);
+    void lane_call(const Inst& in, const void* fn);
     void load_buf_uniform(const Inst& in);
 
     const ProgramImpl& p_;

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "shader/jit/codegen.h"
+#include "shader/jit/helpers.h"
 
 namespace tilevk::shader::jit {
 
@@ -430,6 +431,32 @@ void LaneEmitter::load_buf_uniform(const Inst& in) {
     def(in.d, d);
 }
 
+// d = fn(a, b) for this half's eight lanes, in their homes (helpers.h LaneFn): a libm op without leaving the
+// segment. The call clobbers every YMM register, so first the values this segment still reads go to their homes
+// (only segment-local registers can be missing there: everything else is written through) and the machine
+// registers are emptied; the result is left in d's home, where the next read finds it.
+void LaneEmitter::lane_call(const Inst& in, const void* fn) {
+    for (int i = 0; i < 16; ++i) {
+        Phys& ph = phys_[i];
+        if (ph.key == 0) continue;
+        const bool is_reg = (ph.key >> 32) == 1;
+        const uint32_t r = uint32_t(ph.key);
+        const bool operand = is_reg && (r == in.a || r == in.b);
+        const uint32_t next = operand ? next_use(ph.key, false) : ph.next;
+        if (is_reg && an_.local[r] && (operand || (next != kNever && r != in.d))) a_.vmovups(home(ph.key), x86::ymm(i));
+        where(ph.key) = -1;
+        ph = Phys{};
+    }
+    using namespace x86;
+    auto address = [&](uint32_t r) { return ptr(kRegsBase, int32_t(size_t(r) * kLanes * 4 + size_t(half_) * 32)); };
+    a_.lea(rdi, address(in.d));
+    a_.lea(rsi, address(in.a));
+    a_.lea(rdx, address(in.b == kNoReg ? in.a : in.b));
+    a_.mov(rax, reinterpret_cast<uint64_t>(fn));
+    a_.vzeroupper();
+    a_.call(rax);
+}
+
 // One switch over the interpreter's ops (over 150 lines): a case per op with its few x86 instructions, next to the
 // register helpers above; the case list mirrors shader/exec_kernels.h op for op, which a split would hide.
 bool LaneEmitter::op(const Inst& in) {
@@ -686,6 +713,28 @@ bool LaneEmitter::op(const Inst& in) {
             return true;
         case Op::LoadBufUniform:
             load_buf_uniform(in);
+            return true;
+        case Op::FRem:
+        case Op::Exp:
+        case Op::Exp2:
+        case Op::Log:
+        case Op::Log2:
+        case Op::Pow:
+        case Op::Sin:
+        case Op::Cos:
+        case Op::Tan:
+        case Op::Asin:
+        case Op::Acos:
+        case Op::Atan:
+        case Op::Atan2:
+        case Op::Sinh:
+        case Op::Cosh:
+        case Op::Tanh:
+        case Op::Asinh:
+        case Op::Acosh:
+        case Op::Atanh:
+            if (!lane_function(in.op)) return false;
+            lane_call(in, reinterpret_cast<const void*>(lane_function(in.op)));
             return true;
         case Op::Kill: {  // live &= ~a
             Ymm a = use(in.a), live = use(in.d), d = temp();
