@@ -217,22 +217,10 @@ Lowering lowering(const Inst& in) {
         for (int q = 0; q < 4; ++q)
             if (nan_order(in.op, q) == NanOrder::Unknown) return Lowering::Helper;
 #if !TILEVK_SIMD_AVX2
-    // The portable build's interpreter has no SSE4.1 / FMA instructions: floorf, ceilf, truncf, nearbyintf and
-    // fmaf are libm calls there, whose NaN results (and, on CPUs without SSE4.1, implementation) are libm's. The
-    // generated code hands these ops to the interpreter, so both tiers run the same libm code.
-    switch (in.op) {
-        case Op::Floor:
-        case Op::Ceil:
-        case Op::Trunc:
-        case Op::Round:
-        case Op::RoundEven:
-        case Op::Fract:
-        case Op::FMod:
-        case Op::Fma:
-            return Lowering::Helper;
-        default:
-            break;
-    }
+    // shader/ is built for baseline x86-64 (no SSE4.1 / FMA): fmaf is a libm call in the interpreter, whose NaN
+    // results are libm's (another payload than vfmadd's), and only the translator's never-emitted Fma uses it. The
+    // generated code hands it to the interpreter. (Floor ... FMod, libm calls too, run as lane calls: lanes.cpp.)
+    if (in.op == Op::Fma) return Lowering::Helper;
 #endif
     return op_info(in.op).lowering;
 }

@@ -460,6 +460,10 @@ void LaneEmitter::lane_call(const Inst& in, const void* fn) {
 // One switch over the interpreter's ops (over 150 lines): a case per op with its few x86 instructions, next to the
 // register helpers above; the case list mirrors shader/exec_kernels.h op for op, which a split would hide.
 bool LaneEmitter::op(const Inst& in) {
+    if (const LaneFn f = lane_function(in.op)) {  // libm, as the interpreter calls it
+        lane_call(in, reinterpret_cast<const void*>(f));
+        return true;
+    }
     switch (in.op) {
         case Op::Mov:
             def(in.d, take(reg_key(in.a)));
@@ -713,28 +717,6 @@ bool LaneEmitter::op(const Inst& in) {
             return true;
         case Op::LoadBufUniform:
             load_buf_uniform(in);
-            return true;
-        case Op::FRem:
-        case Op::Exp:
-        case Op::Exp2:
-        case Op::Log:
-        case Op::Log2:
-        case Op::Pow:
-        case Op::Sin:
-        case Op::Cos:
-        case Op::Tan:
-        case Op::Asin:
-        case Op::Acos:
-        case Op::Atan:
-        case Op::Atan2:
-        case Op::Sinh:
-        case Op::Cosh:
-        case Op::Tanh:
-        case Op::Asinh:
-        case Op::Acosh:
-        case Op::Atanh:
-            if (!lane_function(in.op)) return false;
-            lane_call(in, reinterpret_cast<const void*>(lane_function(in.op)));
             return true;
         case Op::Kill: {  // live &= ~a
             Ymm a = use(in.a), live = use(in.d), d = temp();

@@ -118,6 +118,23 @@ LaneFn lane_function(Op op) {
             return TILEVK_LANES1(std::acosh(a[l]));
         case Op::Atanh:
             return TILEVK_LANES1(std::atanh(a[l]));
+#if !TILEVK_SIMD_AVX2
+        // Without SSE4.1 the interpreter's rounding is libm's too (floorf, ceilf, truncf, nearbyintf), whose NaN
+        // results are not vroundps's (a signalling NaN comes back unquieted from ceilf): the same calls here.
+        case Op::Floor:
+            return TILEVK_LANES1(std::floor(a[l]));
+        case Op::Ceil:
+            return TILEVK_LANES1(std::ceil(a[l]));
+        case Op::Trunc:
+            return TILEVK_LANES1(std::trunc(a[l]));
+        case Op::Round:
+        case Op::RoundEven:
+            return TILEVK_LANES1(std::nearbyint(a[l]));  // exec_kernels.h round_even
+        case Op::Fract:
+            return TILEVK_LANES1(a[l] - std::floor(a[l]));
+        case Op::FMod:
+            return TILEVK_LANES2(a[l] - b[l] * std::floor(a[l] / b[l]));
+#endif
         default:
             return nullptr;
     }

@@ -497,12 +497,12 @@ const uint32_t kEdgeValues[] = {0u,
                                 fb(1e-5f)};
 
 // The ops lowered into segments whose bits need more than one instruction to match the interpreter's: FAdd and FMul
-// (the NaN operand order of each quarter, analysis.h nan_order) and the libm ops (FRem, Exp ... Atanh: a call per
-// half inside the segment, lanes.cpp lane_call, which must keep the values still to be read). `op` runs three
-// times between native ops: on segment-local values that live only in YMM registers (one read for the last time,
-// one read again later), on the inputs while a local value waits in a YMM register, and in place (d == a); four
-// sync instructions (JumpIfNone) make the results visible in the register file. Every pair of edge values meets in
-// every lane, under lavapipe's FTZ/DAZ and under the default MXCSR.
+// (the NaN operand order of each quarter, analysis.h nan_order) and the libm ops (FRem, Exp ... Atanh, and the rounding
+// ops where the interpreter's are libm's: a call per half inside the segment, lanes.cpp lane_call, which must keep the
+// values still to be read). `op` runs three times between native ops: on segment-local values that live only in YMM
+// registers (one read for the last time, one read again later), on the inputs while a local value waits in a YMM
+// register, and in place (d == a); four sync instructions (JumpIfNone) make the results visible in the register file.
+// Every pair of edge values meets in every lane, under lavapipe's FTZ/DAZ and under the default MXCSR.
 std::string compare_in_segment(Op op) {
     ProgramImpl p;
     p.num_regs = 12;
@@ -560,9 +560,10 @@ std::string compare_in_segment(Op op) {
 }  // namespace
 
 TEST_F(JitDiff, EdgeValuesMatchInterpreterInSegments) {
-    for (Op op : {Op::FAdd,  Op::FMul, Op::FRem, Op::Exp,  Op::Exp2,  Op::Log,   Op::Log2,
-                  Op::Pow,   Op::Sin,  Op::Cos,  Op::Tan,  Op::Asin,  Op::Acos,  Op::Atan,
-                  Op::Atan2, Op::Sinh, Op::Cosh, Op::Tanh, Op::Asinh, Op::Acosh, Op::Atanh})
+    for (Op op : {Op::FAdd,  Op::FMul, Op::FRem,  Op::Exp,   Op::Exp2,      Op::Log,   Op::Log2,
+                  Op::Pow,   Op::Sin,  Op::Cos,   Op::Tan,   Op::Asin,      Op::Acos,  Op::Atan,
+                  Op::Atan2, Op::Sinh, Op::Cosh,  Op::Tanh,  Op::Asinh,     Op::Acosh, Op::Atanh,
+                  Op::Floor, Op::Ceil, Op::Trunc, Op::Round, Op::RoundEven, Op::Fract, Op::FMod})
         EXPECT_EQ(compare_in_segment(op), "") << jit::op_name(op);
 }
 
