@@ -441,9 +441,10 @@ void LaneEmitter::lane_call(const Inst& in, const void* fn) {
         if (ph.key == 0) continue;
         const bool is_reg = (ph.key >> 32) == 1;
         const uint32_t r = uint32_t(ph.key);
+        // a local operand (the callee reads it from its home), or a local value read later that the call keeps
         const bool operand = is_reg && (r == in.a || r == in.b);
-        const uint32_t next = operand ? next_use(ph.key, false) : ph.next;
-        if (is_reg && an_.local[r] && (operand || (next != kNever && r != in.d))) a_.vmovups(home(ph.key), x86::ymm(i));
+        if (is_reg && an_.local[r] && (operand || (ph.next != kNever && r != in.d)))
+            a_.vmovups(home(ph.key), x86::ymm(i));
         where(ph.key) = -1;
         ph = Phys{};
     }

@@ -63,8 +63,6 @@ __attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* cod
     if (!sample_rgba8(code[0], s->regs.data(), s->slots.data(), uint32_t(s->slots.size()))) execute_code(code, *s);
 }
 
-namespace {
-
 // exec_math.h's F1 / F2 lane expressions, for the eight lanes of one half. One lane at a time, each result stored
 // before the next lane is read: d may alias a or b lane for lane.
 #define TILEVK_LANES1(expr)                        \
@@ -75,8 +73,6 @@ namespace {
     [](float* d, const float* a, const float* b) { \
         for (int l = 0; l < 8; ++l) d[l] = (expr); \
     }
-
-}  // namespace
 
 LaneFn lane_function(Op op) {
     switch (op) {
