@@ -31,7 +31,7 @@ constexpr OpEntry kOps[] = {
     {Op::FMin, "FMin", N},
     {Op::FMax, "FMax", N},
     {Op::FMod, "FMod", N},
-    {Op::FRem, "FRem", H},
+    {Op::FRem, "FRem", N},
     {Op::Fma, "Fma", N},
     {Op::FOrdEq, "FOrdEq", N},
     {Op::FOrdNe, "FOrdNe", N},
@@ -100,24 +100,24 @@ constexpr OpEntry kOps[] = {
     {Op::FSign, "FSign", N},
     {Op::Sqrt, "Sqrt", N},
     {Op::InvSqrt, "InvSqrt", N},
-    {Op::Exp, "Exp", H},
-    {Op::Exp2, "Exp2", H},
-    {Op::Log, "Log", H},
-    {Op::Log2, "Log2", H},
-    {Op::Pow, "Pow", H},
-    {Op::Sin, "Sin", H},
-    {Op::Cos, "Cos", H},
-    {Op::Tan, "Tan", H},
-    {Op::Asin, "Asin", H},
-    {Op::Acos, "Acos", H},
-    {Op::Atan, "Atan", H},
-    {Op::Atan2, "Atan2", H},
-    {Op::Sinh, "Sinh", H},
-    {Op::Cosh, "Cosh", H},
-    {Op::Tanh, "Tanh", H},
-    {Op::Asinh, "Asinh", H},
-    {Op::Acosh, "Acosh", H},
-    {Op::Atanh, "Atanh", H},
+    {Op::Exp, "Exp", N},
+    {Op::Exp2, "Exp2", N},
+    {Op::Log, "Log", N},
+    {Op::Log2, "Log2", N},
+    {Op::Pow, "Pow", N},
+    {Op::Sin, "Sin", N},
+    {Op::Cos, "Cos", N},
+    {Op::Tan, "Tan", N},
+    {Op::Asin, "Asin", N},
+    {Op::Acos, "Acos", N},
+    {Op::Atan, "Atan", N},
+    {Op::Atan2, "Atan2", N},
+    {Op::Sinh, "Sinh", N},
+    {Op::Cosh, "Cosh", N},
+    {Op::Tanh, "Tanh", N},
+    {Op::Asinh, "Asinh", N},
+    {Op::Acosh, "Acosh", N},
+    {Op::Atanh, "Atanh", N},
     {Op::FClamp, "FClamp", N},
     {Op::Step, "Step", N},
     {Op::SmoothStep, "SmoothStep", N},
@@ -173,9 +173,11 @@ bool is_image(Op op) {
 
 // When both operands of an x86 addition or multiplication are NaN, the result is the first source operand's NaN
 // (quieted). For the commutative FAdd and FMul, which operand comes first in the interpreter is the C++
-// compiler's choice, and it may choose differently for the two 8-lane halves of a register, so it is measured once
-// per half: the interpreter adds and multiplies two different NaNs.
-NanOrder measure_nan_order(Op op, int half) {
+// compiler's choice, made per machine instruction: the baseline x86-64 build computes the 16 lanes as four SSE
+// operations of four lanes, and GCC orders each one as its register allocation likes (this build's FAdd has a first
+// in lanes 0-3 and b first in lanes 4-15). So the order is measured once per process and four-lane quarter: the
+// interpreter adds and multiplies two different NaNs.
+NanOrder measure_nan_order(Op op, int quarter) {
     Scratch::Impl s;
     s.regs.assign(3 * kLanes, 0);
     s.local.assign(kLanes, 0);
@@ -186,42 +188,39 @@ NanOrder measure_nan_order(Op op, int half) {
     const Inst code[2] = {Inst{op, 0, 2, 0, 1}, Inst{Op::Halt}};
     execute_code(code, s);
     int a_first = 0, b_first = 0;
-    for (int l = 8 * half; l < 8 * half + 8; ++l) {
+    for (int l = 4 * quarter; l < 4 * quarter + 4; ++l) {
         a_first += s.regs[2 * kLanes + l] == (s.regs[l] | 0x00400000u);
         b_first += s.regs[2 * kLanes + l] == s.regs[kLanes + l];
     }
-    return a_first == 8 ? NanOrder::AFirst : b_first == 8 ? NanOrder::BFirst : NanOrder::Unknown;
+    return a_first == 4 ? NanOrder::AFirst : b_first == 4 ? NanOrder::BFirst : NanOrder::Unknown;
 }
+
+struct NanOrders {
+    NanOrder order[2][4];  // [FAdd, FMul][quarter]
+    NanOrders() {
+        for (int q = 0; q < 4; ++q) {
+            order[0][q] = measure_nan_order(Op::FAdd, q);
+            order[1][q] = measure_nan_order(Op::FMul, q);
+        }
+    }
+};
 
 }  // namespace
 
-NanOrder nan_order(Op op, int half) {
-    static const NanOrder order[2][2] = {{measure_nan_order(Op::FAdd, 0), measure_nan_order(Op::FAdd, 1)},
-                                         {measure_nan_order(Op::FMul, 0), measure_nan_order(Op::FMul, 1)}};
-    return order[op == Op::FMul][half];
+NanOrder nan_order(Op op, int quarter) {
+    static const NanOrders orders;
+    return orders.order[op == Op::FMul][quarter];
 }
 
 Lowering lowering(const Inst& in) {
-    if ((in.op == Op::FAdd || in.op == Op::FMul) &&
-        (nan_order(in.op, 0) == NanOrder::Unknown || nan_order(in.op, 1) == NanOrder::Unknown))
-        return Lowering::Helper;
+    if (in.op == Op::FAdd || in.op == Op::FMul)
+        for (int q = 0; q < 4; ++q)
+            if (nan_order(in.op, q) == NanOrder::Unknown) return Lowering::Helper;
 #if !TILEVK_SIMD_AVX2
-    // The portable build's interpreter has no SSE4.1 / FMA instructions: floorf, ceilf, truncf, nearbyintf and
-    // fmaf are libm calls there, whose NaN results (and, on CPUs without SSE4.1, implementation) are libm's. The
-    // generated code hands these ops to the interpreter, so both tiers run the same libm code.
-    switch (in.op) {
-        case Op::Floor:
-        case Op::Ceil:
-        case Op::Trunc:
-        case Op::Round:
-        case Op::RoundEven:
-        case Op::Fract:
-        case Op::FMod:
-        case Op::Fma:
-            return Lowering::Helper;
-        default:
-            break;
-    }
+    // shader/ is built for baseline x86-64 (no SSE4.1 / FMA): fmaf is a libm call in the interpreter, whose NaN
+    // results are libm's (another payload than vfmadd's), and only the translator's never-emitted Fma uses it. The
+    // generated code hands it to the interpreter. (Floor ... FMod, libm calls too, run as lane calls: lanes.cpp.)
+    if (in.op == Op::Fma) return Lowering::Helper;
 #endif
     return op_info(in.op).lowering;
 }

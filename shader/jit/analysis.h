@@ -12,8 +12,8 @@ namespace tilevk::shader::jit {
 
 enum class Lowering : uint8_t {
     Unknown,  // an op this tier does not know (e.g. added to ir.h later): the whole program stays interpreted
-    Native,   // emitted as AVX2/FMA instructions
-    Helper,   // the interpreter's own code runs this one instruction (libm, images, buffers, rare integer ops)
+    Native,   // emitted as AVX2/FMA instructions; libm ops as a call per 8-lane half inside the segment
+    Helper,   // the interpreter's own code runs this one instruction (images, buffers, rare integer ops)
 };
 
 struct OpInfo {
@@ -23,13 +23,13 @@ struct OpInfo {
 // Name and lowering of an op; {nullptr, Unknown} for an op this tier does not know.
 OpInfo op_info(Op op);
 
-// Which operand's NaN the interpreter's FAdd / FMul returns in lanes 0-7 (half 0) or 8-15 (half 1) when both are
-// NaN (measured on the interpreter).
+// Which operand's NaN the interpreter's FAdd / FMul returns in lanes 4q to 4q + 3 (quarter q, 0-3) when both are
+// NaN (measured on the interpreter, whose compiler picks the order per 4-lane SSE instruction).
 enum class NanOrder : uint8_t { AFirst, BFirst, Unknown };
-NanOrder nan_order(Op op, int half);
+NanOrder nan_order(Op op, int quarter);
 
 // How this instruction is compiled: op_info's lowering, except that FAdd / FMul run through the interpreter when
-// nan_order cannot say.
+// nan_order cannot say for some quarter.
 Lowering lowering(const Inst& in);
 
 // Registers an instruction reads and writes. For helper ops this is a superset of what the interpreter touches

@@ -97,6 +97,7 @@ class LaneEmitter {
     Ymm fmin(Ymm a, Ymm b);
     Ymm fmax(Ymm a, Ymm b);
     Ymm round(Ymm a, uint32_t mode);
+    void add_mul(const Inst& in);
     void int_compare(const Inst& in);
     void f2u(const Inst& in);
     void u2f(const Inst& in);
@@ -104,6 +105,7 @@ class LaneEmitter {
     void smooth_step(const Inst& in);
     void derivative(const Inst& in, uint32_t right, uint32_t left);
     bool load_local(const Inst& in);
+    void lane_call(const Inst& in, const void* fn);
     void load_buf_uniform(const Inst& in);
 
     const ProgramImpl& p_;

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <string>
 
 #include "shader/jit/analysis.h"
 #include "shader/jit/codegen.h"
@@ -258,15 +260,30 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
 
 }  // namespace
 
+namespace {
+
+// ": 2 Sample, 1 LoadBuf" for the log line: which ops still leave the compiled code, the next ones to lower.
+std::string helper_summary(const ProgramImpl& p) {
+    std::map<std::string, int> count;
+    for (const Inst& in : p.code)
+        if (lowering(in) == Lowering::Helper) ++count[op_name(in.op)];
+    std::string s;
+    for (const auto& [name, n] : count) s += (s.empty() ? ": " : ", ") + std::to_string(n) + " " + name;
+    return s;
+}
+
+}  // namespace
+
 std::shared_ptr<const Code> compile(const ProgramImpl& p, std::string* why_not) {
     std::shared_ptr<const Code> code = generate_code(p, why_not);
     if (log_enabled()) {
         const char* stage = p.stage == Stage::Vertex ? "vertex" : p.stage == Stage::Fragment ? "fragment" : "compute";
         if (code)
             std::fprintf(stderr,
-                         "tilevk: %s program compiled: %zu IR ops (%u native, %u through the interpreter), %zu bytes "
-                         "of code in %.3f ms\n",
-                         stage, p.code.size(), code->native_ops, code->helper_ops, code->code_bytes, code->compile_ms);
+                         "tilevk: %s program compiled: %zu IR ops (%u native, %u through the interpreter%s), %zu "
+                         "bytes of code in %.3f ms\n",
+                         stage, p.code.size(), code->native_ops, code->helper_ops, helper_summary(p).c_str(),
+                         code->code_bytes, code->compile_ms);
         else
             std::fprintf(stderr, "tilevk: %s program stays in the interpreter: %s\n", stage, why_not->c_str());
     }

@@ -13,6 +13,14 @@ void run_one_instruction(Scratch::Impl* s, const Inst* code);
 // A Sample instruction (code[0], followed by Halt): sample_rgba8 when it covers the case, else the interpreter.
 void run_sample(Scratch::Impl* s, const Inst* code);
 
+// One 8-lane half of a libm op inside a segment (lanes.cpp lane_call): d[l] = f(a[l]) or f(a[l], b[l]) with the
+// interpreter's own lane expression (exec_math.h, exec_arith.h), so both tiers call the same libm function on the
+// same bits under the same MXCSR. d may be a or b. No vzeroupper here: the generated code runs it before the call.
+using LaneFn = void (*)(float* d, const float* a, const float* b);
+// The lane function of op (Exp ... Atanh, Pow, Atan2, FRem; without TILEVK_SIMD_AVX2, whose interpreter rounds
+// with libm, also Floor, Ceil, Trunc, Round, RoundEven, Fract, FMod), or null.
+LaneFn lane_function(Op op);
+
 // The loop watchdog stopped a run (exec.cpp's rule: more than kMaxLoopBackEdges back edges).
 void count_loop_limit_hit(Scratch::Impl* s);
 

@@ -3,8 +3,10 @@
 // reassociation), the same NaN operand order, the same bitwise selects, under the same MXCSR (FTZ + DAZ).
 #include <bit>
 #include <cstddef>
+#include <utility>
 
 #include "shader/jit/codegen.h"
+#include "shader/jit/helpers.h"
 
 namespace tilevk::shader::jit {
 
@@ -271,6 +273,29 @@ x86::Ymm LaneEmitter::round(Ymm a, uint32_t mode) {
     return d;
 }
 
+// FAdd / FMul with the interpreter's operand order, for the NaN it returns when both are NaN (analysis.h
+// nan_order). The order may differ between the two quarters of this half: then vblendps swaps the operands in the
+// quarters where b comes first (the same IEEE operation lane for lane, a + b and b + a differ only in that NaN).
+void LaneEmitter::add_mul(const Inst& in) {
+    const NanOrder lo = nan_order(in.op, 2 * half_), hi = nan_order(in.op, 2 * half_ + 1);
+    const bool add = in.op == Op::FAdd;
+    binary(in, [&](Ymm d, Ymm a, Ymm b) {
+        Ymm x = a, y = b;
+        if (lo != hi) {
+            const uint32_t b_first = lo == NanOrder::BFirst ? 0x0Fu : 0xF0u;  // the lanes of the b-first quarter
+            x = temp(), y = temp();
+            a_.vblendps(x, a, b, b_first);
+            a_.vblendps(y, b, a, b_first);
+        } else if (lo == NanOrder::BFirst) {
+            std::swap(x, y);
+        }
+        if (add)
+            a_.vaddps(d, x, y);
+        else
+            a_.vmulps(d, x, y);
+    });
+}
+
 // x > y signed (unsigned: both biased by 2^31); Lt swaps the operands; Le / Ge negate Gt / Lt
 void LaneEmitter::int_compare(const Inst& in) {
     const Op op = in.op;
@@ -406,9 +431,40 @@ void LaneEmitter::load_buf_uniform(const Inst& in) {
     def(in.d, d);
 }
 
+// d = fn(a, b) for this half's eight lanes, in their homes (helpers.h LaneFn): a libm op without leaving the
+// segment. The call clobbers every YMM register, so first the values this segment still reads go to their homes
+// (only segment-local registers can be missing there: everything else is written through) and the machine
+// registers are emptied; the result is left in d's home, where the next read finds it.
+void LaneEmitter::lane_call(const Inst& in, const void* fn) {
+    for (int i = 0; i < 16; ++i) {
+        Phys& ph = phys_[i];
+        if (ph.key == 0) continue;
+        const bool is_reg = (ph.key >> 32) == 1;
+        const uint32_t r = uint32_t(ph.key);
+        // a local operand (the callee reads it from its home), or a local value read later that the call keeps
+        const bool operand = is_reg && (r == in.a || r == in.b);
+        if (is_reg && an_.local[r] && (operand || (ph.next != kNever && r != in.d)))
+            a_.vmovups(home(ph.key), x86::ymm(i));
+        where(ph.key) = -1;
+        ph = Phys{};
+    }
+    using namespace x86;
+    auto address = [&](uint32_t r) { return ptr(kRegsBase, int32_t(size_t(r) * kLanes * 4 + size_t(half_) * 32)); };
+    a_.lea(rdi, address(in.d));
+    a_.lea(rsi, address(in.a));
+    a_.lea(rdx, address(in.b == kNoReg ? in.a : in.b));
+    a_.mov(rax, reinterpret_cast<uint64_t>(fn));
+    a_.vzeroupper();
+    a_.call(rax);
+}
+
 // One switch over the interpreter's ops (over 150 lines): a case per op with its few x86 instructions, next to the
 // register helpers above; the case list mirrors shader/exec_kernels.h op for op, which a split would hide.
 bool LaneEmitter::op(const Inst& in) {
+    if (const LaneFn f = lane_function(in.op)) {  // libm, as the interpreter calls it
+        lane_call(in, reinterpret_cast<const void*>(f));
+        return true;
+    }
     switch (in.op) {
         case Op::Mov:
             def(in.d, take(reg_key(in.a)));
@@ -420,16 +476,9 @@ bool LaneEmitter::op(const Inst& in) {
             def(in.d, select(use(in.c), use(in.a), use(in.d)));
             return true;
         case Op::FAdd:
-        case Op::FMul: {  // the interpreter's operand order, for the NaN it returns (analysis.h nan_order)
-            const bool add = in.op == Op::FAdd, swap = nan_order(in.op, half_) == NanOrder::BFirst;
-            binary(in, [&](Ymm d, Ymm a, Ymm b) {
-                if (add)
-                    a_.vaddps(d, swap ? b : a, swap ? a : b);
-                else
-                    a_.vmulps(d, swap ? b : a, swap ? a : b);
-            });
+        case Op::FMul:
+            add_mul(in);
             return true;
-        }
         case Op::FSub:
             binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vsubps(d, a, b); });
             return true;

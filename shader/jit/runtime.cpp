@@ -2,6 +2,7 @@
 #include <immintrin.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
@@ -61,6 +62,82 @@ __attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* cod
     _mm256_zeroupper();
     if (!sample_rgba8(code[0], s->regs.data(), s->slots.data(), uint32_t(s->slots.size()))) execute_code(code, *s);
 }
+
+// exec_math.h's F1 / F2 lane expressions, for the eight lanes of one half. One lane at a time, each result stored
+// before the next lane is read: d may alias a or b lane for lane.
+#define TILEVK_LANES1(expr)                        \
+    [](float* d, const float* a, const float*) {   \
+        for (int l = 0; l < 8; ++l) d[l] = (expr); \
+    }
+#define TILEVK_LANES2(expr)                        \
+    [](float* d, const float* a, const float* b) { \
+        for (int l = 0; l < 8; ++l) d[l] = (expr); \
+    }
+
+LaneFn lane_function(Op op) {
+    switch (op) {
+        case Op::FRem:
+            return TILEVK_LANES2(std::fmod(a[l], b[l]));
+        case Op::Exp:
+            return TILEVK_LANES1(std::exp(a[l]));
+        case Op::Exp2:
+            return TILEVK_LANES1(std::exp2(a[l]));
+        case Op::Log:
+            return TILEVK_LANES1(std::log(a[l]));
+        case Op::Log2:
+            return TILEVK_LANES1(std::log2(a[l]));
+        case Op::Pow:
+            return TILEVK_LANES2(std::pow(a[l], b[l]));
+        case Op::Sin:
+            return TILEVK_LANES1(std::sin(a[l]));
+        case Op::Cos:
+            return TILEVK_LANES1(std::cos(a[l]));
+        case Op::Tan:
+            return TILEVK_LANES1(std::tan(a[l]));
+        case Op::Asin:
+            return TILEVK_LANES1(std::asin(a[l]));
+        case Op::Acos:
+            return TILEVK_LANES1(std::acos(a[l]));
+        case Op::Atan:
+            return TILEVK_LANES1(std::atan(a[l]));
+        case Op::Atan2:
+            return TILEVK_LANES2(std::atan2(a[l], b[l]));
+        case Op::Sinh:
+            return TILEVK_LANES1(std::sinh(a[l]));
+        case Op::Cosh:
+            return TILEVK_LANES1(std::cosh(a[l]));
+        case Op::Tanh:
+            return TILEVK_LANES1(std::tanh(a[l]));
+        case Op::Asinh:
+            return TILEVK_LANES1(std::asinh(a[l]));
+        case Op::Acosh:
+            return TILEVK_LANES1(std::acosh(a[l]));
+        case Op::Atanh:
+            return TILEVK_LANES1(std::atanh(a[l]));
+#if !TILEVK_SIMD_AVX2
+        // Without SSE4.1 the interpreter's rounding is libm's too (floorf, ceilf, truncf, nearbyintf), whose NaN
+        // results are not vroundps's (a signalling NaN comes back unquieted from ceilf): the same calls here.
+        case Op::Floor:
+            return TILEVK_LANES1(std::floor(a[l]));
+        case Op::Ceil:
+            return TILEVK_LANES1(std::ceil(a[l]));
+        case Op::Trunc:
+            return TILEVK_LANES1(std::trunc(a[l]));
+        case Op::Round:
+        case Op::RoundEven:
+            return TILEVK_LANES1(std::nearbyint(a[l]));  // exec_kernels.h round_even
+        case Op::Fract:
+            return TILEVK_LANES1(a[l] - std::floor(a[l]));
+        case Op::FMod:
+            return TILEVK_LANES2(a[l] - b[l] * std::floor(a[l] / b[l]));
+#endif
+        default:
+            return nullptr;
+    }
+}
+
+#undef TILEVK_LANES1
+#undef TILEVK_LANES2
 
 void count_loop_limit_hit(Scratch::Impl* s) {
     ++s->loop_limit_hits;

@@ -49,6 +49,33 @@ void main() {
     float whole; float fr = modf(b.x, whole);
     o5 = vec4(m, float(e), fr + whole, ldexp(c.y, i.x));
 })"},
+    // libm calls inside segments (lanes.cpp lane_call) with many values live across them, chained
+    {"libm_in_segments", false, TVK_FS_HEAD R"(
+layout(location=0) out vec4 o0; layout(location=1) out vec4 o1;
+void main() {
+    vec4 s = a * b + c, t = a - c, v = b * c;
+    float p = pow(abs(s.x), t.y) + exp(v.z) * s.y;
+    float q = sin(t.x + p) * cos(v.w) + log2(abs(s.z) + p);
+    float r = atan(p, q) - tan(t.z) + s.w * v.x + pow(t.w, 3.0) + pow(-2.0, v.y);
+    o0 = vec4(p, q, r, t.w + v.y);
+    o1 = s * p + t * q + v * r;
+})"},
+    // the frame benchmark's meshes_lit fragment shader (bench/frame/frame_scenes.cpp): normalize, pow, texture
+    {"meshes_lit_fs", false, R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2D u_tex;
+layout(push_constant) uniform Push { vec4 offset; vec4 tint; } pc;
+layout(location = 0) in vec3 v_normal;
+layout(location = 1) in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+void main() {
+    vec3 n = normalize(v_normal);
+    vec3 l = normalize(vec3(0.4, -0.6, -0.7));
+    float diffuse = max(dot(n, -l), 0.0);
+    vec3 h = normalize(-l + vec3(0.0, 0.0, -1.0));
+    float spec = pow(max(dot(n, h), 0.0), 16.0);
+    vec4 t = texture(u_tex, v_uv);
+    o_color = vec4(t.rgb * (0.2 + 0.8 * diffuse) * pc.tint.rgb + vec3(0.3 * spec), 1.0);
+})"},
     {"float_compare", false, TVK_FS_HEAD R"(
 layout(location=0) out vec4 o0; layout(location=1) out vec4 o1; layout(location=2) out uvec4 o2;
 void main() {
