@@ -2,6 +2,7 @@
 
   test_validation.py RUNNER full      every case, tilevk vs lavapipe, with --validation: no case may carry a
                                       message, none may arrive outside a case, every case must have run.
+  test_validation.py RUNNER full-spirv15  the same with every shader compiled to SPIR-V 1.5 (Vulkan 1.2).
                                       Image differences are not judged here (the cts_tilevk_vs_lavapipe_* slices
                                       do that), so a case failing on pixels alone does not fail this test.
   test_validation.py RUNNER selftest  proves the check can fail: --selftest-validation records one invalid
@@ -32,10 +33,10 @@ def devices_of(messages):
     return {m[1:m.index("]")] for m in messages if m.startswith("[")}
 
 
-def full(runner, tmp):
+def full(runner, tmp, extra=()):
     listed = [l.split()[0] for l in subprocess.run([runner, "--list"], capture_output=True, text=True,
                                                      check=True).stdout.splitlines() if l.strip()]
-    rc, d = run(runner, ["--validation"], tmp, "full")
+    rc, d = run(runner, ["--validation"] + list(extra), tmp, "full")
     if d is None:
         return [f"runner exit status {rc} (crash or setup error)"]
     problems = []
@@ -97,6 +98,11 @@ def selftest(runner, tmp):
 
 runner, mode = sys.argv[1], sys.argv[2]
 with tempfile.TemporaryDirectory() as tmp:
-    problems = full(runner, tmp) if mode == "full" else selftest(runner, tmp)
+    if mode == "full":
+        problems = full(runner, tmp)
+    elif mode == "full-spirv15":  # the same with SPIR-V 1.5 modules on a Vulkan 1.2 instance (tilevk-cts --spirv)
+        problems = full(runner, tmp, ["--spirv", "1.5"])
+    else:
+        problems = selftest(runner, tmp)
 print("\n".join(problems) or f"{mode}: ok")
 sys.exit(1 if problems else 0)
