@@ -16,13 +16,6 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateBuffer(VkDevice device, const VkBufferC
         return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateBuffer: buffer create flags %s are not supported",
                     vk_flags_name<VkBufferCreateFlagBits>(pCreateInfo->flags).c_str());
     }
-    // bufferDeviceAddress is not reported (shader/ has no PhysicalStorageBuffer pointers), so a buffer whose address
-    // shaders would use is refused rather than created for an address nothing can dereference.
-    if ((pCreateInfo->usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                    "vkCreateBuffer: VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT needs the bufferDeviceAddress feature, "
-                    "which tilevk does not support");
-    }
     Buffer* buf = create_object<Buffer>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (buf == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateBuffer: out of host memory");
     buf->size = pCreateInfo->size;
@@ -51,7 +44,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory(VkDevice, VkBuffer buffer, V
 }
 
 // Vulkan 1.2 core commands. Their valid use needs bufferDeviceAddress (and the capture-replay features), which
-// tilevk does not report and vkCreateBuffer / vkAllocateMemory refuse; they still answer what is true: a buffer's
+// tilevk does not report (vkAllocateMemory refuses the address flags; VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT is
+// valid without the feature and accepted, as no VUID ties the two); they still answer what is true: a buffer's
 // address is where its bytes are, and nothing has an opaque capture address.
 VKAPI_ATTR VkDeviceAddress VKAPI_CALL tvk_GetBufferDeviceAddress(VkDevice, const VkBufferDeviceAddressInfo* pInfo) {
     const Buffer* buf = from_handle<Buffer>(pInfo->buffer);

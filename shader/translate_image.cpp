@@ -62,8 +62,11 @@ bool Translator::image_sample(const Instr& in) {
         }
         flags |= kSampleOffset | (uint32_t(uint8_t(int8_t(off[0]))) << 16) | (uint32_t(uint8_t(int8_t(off[1]))) << 24);
     }
+    // SignExtend / ZeroExtend (SPIR-V 1.4; glslang marks every integer sample and fetch with them) take no operand
+    // words and change nothing here: texels are widened to 32 bits by their format's own signedness.
     uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
-                                          spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset);
+                                          spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset |
+                                          spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
     if (other) fail("unsupported image operands (dynamic offsets, min lod, sample) in " + opname(o));
     if (implicit) {
         if (stage_ != Stage::Fragment) fail("implicit-LOD sampling outside a fragment shader");
@@ -124,7 +127,9 @@ bool Translator::op_image(const Instr& in) {
             const Type& it = type(val(in[3]).type);
             if (it.kind != Type::Image || spv::Dim(it.dim) != spv::Dim::SubpassData)
                 fail("unsupported storage image read (imageLoad)");
-            if (in.n > 5 && in[5] != 0) fail("unsupported image operands on subpassLoad");
+            const uint32_t extend =
+                uint32_t(spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);  // as for samples
+            if (in.n > 5 && (in[5] & ~extend) != 0) fail("unsupported image operands on subpassLoad");
             if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
             if (subpass_coord_word_ == kNoReg) fail("input attachment without its pixel coordinate");
             uint32_t coords = alloc(2);

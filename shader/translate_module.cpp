@@ -116,6 +116,7 @@ void Translator::declare_execution_mode(const Instr& in) {
         case spv::ExecutionMode::DepthLess:
         case spv::ExecutionMode::DepthUnchanged:
         case spv::ExecutionMode::LocalSizeHint:
+        case spv::ExecutionMode::LocalSizeHintId:  // SPIR-V 1.2+: the hint with ids, a hint all the same
             return;
         case spv::ExecutionMode::LocalSize:
             if (in.n < 6) fail("invalid SPIR-V: LocalSize needs three sizes");

@@ -264,6 +264,7 @@ bool Translator::op_logic(const Instr& in) {
             return unary(in, SOp::U2F);
         case spv::Op::OpBitcast:
         case spv::Op::OpCopyObject:
+        case spv::Op::OpCopyLogical:  // SPIR-V 1.4: a copy between types of another layout; registers have none
         case spv::Op::OpUConvert:
         case spv::Op::OpSConvert:
         case spv::Op::OpFConvert: {
