@@ -762,4 +762,22 @@ inline void upload_rgba8(Kit& k, VkImage img, uint32_t w, uint32_t h, uint32_t s
     upload(k, src, img, VK_IMAGE_ASPECT_COLOR_BIT, w, h, layers);
 }
 
+// A 4x4 texture of `f` (texel_data seeded by the format; depth formats through their depth aspect) sampled by `fs`
+// at the pixel centres of a 4x4 target: R32G32B32A32_UINT for integer formats (their bits, NaN patterns untouched),
+// else R32G32B32A32_SFLOAT. Returns the target's bytes.
+inline Bytes sample_4x4(Kit& k, VkFormat f, Spv fs) {
+    const VkImageAspectFlags aspect = is_depth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    const bool integer = is_uint_format(f) || is_sint_format(f);
+    Target tg = target(k, integer ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+    Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
+    upload(k, src, tex.image, aspect, 4, 4);
+    const auto [dsl, layout, set] = sampler_set(k);
+    VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+    VkPipeline pipe = k.pipeline(fullscreen_pipe(fs, tg, layout));
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+    return k.read(tg.image.image, 4, 4, 16);
+}
+
 }  // namespace tilevk::test::breadth

@@ -90,24 +90,10 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
             ++sampled;
             SCOPED_TRACE("sampled image");
             both([&](Kit& k) {
-                const VkImageAspectFlags aspect = is_depth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-                // integer texels are read as integers into an integer target (their bits, NaN patterns untouched)
-                const bool integer = is_uint_format(f) || is_sint_format(f);
-                Target tg = target(k, integer ? VK_FORMAT_R32G32B32A32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
-                Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-                Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
-                upload(k, src, tex.image, aspect, 4, 4);
-                const auto [dsl, layout, set] = sampler_set(k);
-                VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, aspect),
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-                k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                const Pipe p = fullscreen_pipe(is_uint_format(f)   ? SPV(ab_sample_uint_frag)
-                                               : is_sint_format(f) ? SPV(ab_sample_sint_frag)
-                                                                   : SPV(ab_sample_frag),
-                                               tg, layout);
-                VkPipeline pipe = k.pipeline(p);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
-                return k.read(tg.image.image, 4, 4, 16);
+                return sample_4x4(k, f,
+                                  is_uint_format(f)   ? SPV(ab_sample_uint_frag)
+                                  : is_sint_format(f) ? SPV(ab_sample_sint_frag)
+                                                      : SPV(ab_sample_frag));
             });
         }
         if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) {

@@ -145,24 +145,11 @@ TEST_F(ApiVulkan12, Spirv15CopyLogicalAndIntegerTextures) {
     for (const VkFormat f : {VK_FORMAT_R8G8B8A8_UINT, VK_FORMAT_R8G8B8A8_SINT, VK_FORMAT_R16G16B16A16_SINT}) {
         SCOPED_TRACE(int(f));
         const bool sint = is_sint_format(f);
-        const auto draw = [&](Kit& k, Spv fs) {
-            Target tg = target(k, VK_FORMAT_R32G32B32A32_UINT, 4, 4);
-            Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-            Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f)), 0);
-            upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
-            const auto [dsl, layout, set] = sampler_set(k);
-            VkDescriptorImageInfo ii{k.sampler(), k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
-                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-            k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-            VkPipeline pipe = k.pipeline(fullscreen_pipe(fs, tg, layout));
-            EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
-            return k.read(tg.image.image, 4, 4, 16);
-        };
         const Bytes v15 = both([&](Kit& k) {
-            return draw(k, sint ? SPV(ab_sample_sint_frag_spv15) : SPV(ab_sample_uint_frag_spv15));
+            return sample_4x4(k, f, sint ? SPV(ab_sample_sint_frag_spv15) : SPV(ab_sample_uint_frag_spv15));
         });
         Kit k(*tilevk_);
-        EXPECT_EQ(v15, draw(k, sint ? SPV(ab_sample_sint_frag) : SPV(ab_sample_uint_frag)));
+        EXPECT_EQ(v15, sample_4x4(k, f, sint ? SPV(ab_sample_sint_frag) : SPV(ab_sample_uint_frag)));
     }
 }
 
@@ -188,7 +175,8 @@ TEST_F(ApiVulkan12, BufferDeviceAddressAllocationsAreRefusedByName) {
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flags};
     mai.allocationSize = 512;
     VkDeviceMemory none = VK_NULL_HANDLE;
-    const std::string err = stderr_of([&] { EXPECT_EQ(vkAllocateMemory(d, &mai, nullptr, &none), VK_ERROR_FEATURE_NOT_PRESENT); });
+    const std::string err =
+        stderr_of([&] { EXPECT_EQ(vkAllocateMemory(d, &mai, nullptr, &none), VK_ERROR_FEATURE_NOT_PRESENT); });
     EXPECT_NE(err.find("VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT"), std::string::npos) << err;
     EXPECT_EQ(none, VkDeviceMemory(VK_NULL_HANDLE));
 
