@@ -351,7 +351,8 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     rs.depthBiasClamp = d.bias_clamp;
     rs.lineWidth = d.line_width;
     if (d.dynamic) {
-        rs.cullMode = d.cull == VK_CULL_MODE_NONE ? VK_CULL_MODE_FRONT_AND_BACK : (~d.cull & 3);
+        rs.cullMode =
+            d.cull == VK_CULL_MODE_NONE ? VkCullModeFlags{VK_CULL_MODE_FRONT_AND_BACK} : VkCullModeFlags(~d.cull & 3);
         rs.frontFace =
             d.front_face == VK_FRONT_FACE_CLOCKWISE ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
         rs.depthBiasEnable = !d.depth_bias;

@@ -61,7 +61,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSetWithTemplate(VkDevice device, 
     std::vector<VkBufferView> views;
     for (const VkDescriptorUpdateTemplateEntry& e : t->entries) {
         if (e.descriptorCount == 0) continue;
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        VkWriteDescriptorSet w{};
+        w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         w.dstSet = descriptorSet;
         w.dstBinding = e.dstBinding;
         w.dstArrayElement = e.dstArrayElement;

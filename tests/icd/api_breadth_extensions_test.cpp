@@ -383,8 +383,9 @@ TEST_F(ApiExtensions, HostQueryReset) {
         uint64_t value = 7;
         EXPECT_EQ(vkGetQueryPoolResults(k.d, pool, 1, 1, 8, &value, 8, VK_QUERY_RESULT_64_BIT), VK_NOT_READY);
         vkDestroyQueryPool(k.d, pool, nullptr);
-        Bytes b(reinterpret_cast<uint8_t*>(all), reinterpret_cast<uint8_t*>(all) + sizeof all);
-        b.insert(b.end(), reinterpret_cast<uint8_t*>(&again[1]), reinterpret_cast<uint8_t*>(&again[1]) + 8);
+        Bytes b(sizeof all + sizeof again[1]);
+        std::memcpy(b.data(), all, sizeof all);
+        std::memcpy(b.data() + sizeof all, &again[1], sizeof again[1]);
         return b;
     });
 }
@@ -496,14 +497,16 @@ TEST_F(ApiExtensions, FormatFeatureFlags2) {
             EXPECT_EQ(uint32_t(p3.linearTilingFeatures), p.linearTilingFeatures) << f;
             EXPECT_EQ(uint32_t(p3.bufferFeatures), p.bufferFeatures) << f;
             const bool depth = f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D32_SFLOAT;
-            if (depth && (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
+            if (depth && (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) {
                 EXPECT_TRUE(p3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT) << f;
-            if (pd == tilevk_->physical())
+            }
+            if (pd == tilevk_->physical()) {
                 EXPECT_EQ(p3.optimalTilingFeatures >> 32,
                           depth && (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
                               ? (VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT >> 32)
                               : 0u)
                     << f;
+            }
         }
     }
 }

@@ -226,7 +226,9 @@ Bytes multiview_scene(Kit& k, const Scene& s) {
             EXPECT_EQ(px(layers[l], 5, 21)[1], 128) << "layer " << l;
         }
         for (uint32_t o = 0; o < l; ++o)
-            if (s.mask >> o & 1) EXPECT_NE(layers[l], layers[o]) << "views " << o << " and " << l;
+            if (s.mask >> o & 1) {
+                EXPECT_NE(layers[l], layers[o]) << "views " << o << " and " << l;
+            }
     }
     Bytes all;
     for (const Bytes& b : layers) all.insert(all.end(), b.begin(), b.end());

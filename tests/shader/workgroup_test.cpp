@@ -74,7 +74,9 @@ TEST(ShaderWorkgroup, SharedReductionWithBarriers) {
             // without knowing the tree: every lane read the same s as lane 0 of the check below
             for (uint32_t i = 0; i < n; ++i) {
                 const uint32_t j = (i * 7 + 5) % n;
-                if (j == 0) EXPECT_EQ(y[64 + g * n + i], y[g]) << "invocation " << i;
+                if (j == 0) {
+                    EXPECT_EQ(y[64 + g * n + i], y[g]) << "invocation " << i;
+                }
             }
         }
         EXPECT_EQ(s.loop_limit_hits(), 0u);
