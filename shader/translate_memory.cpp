@@ -86,6 +86,55 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
     return p;
 }
 
+template <typename Scalar>
+void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg, uint32_t off, const Scalar& scalar) {
+    const Type& t = type(ty);
+    switch (t.kind) {
+        case Type::Bool:
+        case Type::Int:
+        case Type::Float:
+            scalar(reg, off, ty);
+            break;
+        case Type::Vector:
+            for (uint32_t i = 0; i < t.count; ++i) scalar(reg + i, off + i * p.vec_stride, t.elem);
+            break;
+        case Type::Matrix: {
+            const Type& col = type(t.elem);
+            for (uint32_t c = 0; c < t.count; ++c)
+                for (uint32_t r = 0; r < col.count; ++r) {
+                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
+                    scalar(reg + c * col.count + r, off + o, col.elem);
+                }
+            break;
+        }
+        case Type::Array: {
+            uint32_t stride = uint32_t(deco_[ty].array_stride);
+            if (!stride) fail("buffer array without ArrayStride");
+            Pointer q = p;
+            q.vec_stride = 4;
+            for (uint32_t i = 0; i < t.count; ++i)
+                walk_buffer_layout(q, t.elem, reg + i * type(t.elem).flat, off + i * stride, scalar);
+            break;
+        }
+        case Type::Struct: {
+            uint32_t at = 0;
+            for (uint32_t m = 0; m < t.members.size(); ++m) {
+                auto it = member_deco_.find({ty, m});
+                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+                Pointer q = p;
+                q.matrix_stride = uint32_t(it->second.matrix_stride);
+                q.row_major = it->second.row_major;
+                q.vec_stride = 4;
+                walk_buffer_layout(q, t.members[m], reg + at, off + uint32_t(it->second.offset), scalar);
+                at += type(t.members[m]).flat;
+            }
+            break;
+        }
+        default:
+            fail("unsupported buffer load or store type");
+    }
+}
+
 void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
@@ -136,49 +185,7 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
         }
         if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
     };
-    switch (t.kind) {
-        case Type::Bool:
-        case Type::Int:
-        case Type::Float:
-            scalar(dst, off, ty);
-            break;
-        case Type::Vector:
-            for (uint32_t i = 0; i < t.count; ++i) scalar(dst + i, off + i * p.vec_stride, t.elem);
-            break;
-        case Type::Matrix: {
-            const Type& col = type(t.elem);
-            for (uint32_t c = 0; c < t.count; ++c)
-                for (uint32_t r = 0; r < col.count; ++r) {
-                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
-                    scalar(dst + c * col.count + r, off + o, col.elem);
-                }
-            break;
-        }
-        case Type::Array: {
-            uint32_t stride = uint32_t(deco_[ty].array_stride);
-            if (!stride) fail("buffer array without ArrayStride");
-            Pointer q = p;
-            q.vec_stride = 4;
-            for (uint32_t i = 0; i < t.count; ++i) load(q, t.elem, dst + i * type(t.elem).flat, off + i * stride);
-            break;
-        }
-        case Type::Struct: {
-            uint32_t at = 0;
-            for (uint32_t m = 0; m < t.members.size(); ++m) {
-                auto it = member_deco_.find({ty, m});
-                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
-                Pointer q = p;
-                q.matrix_stride = uint32_t(it->second.matrix_stride);
-                q.row_major = it->second.row_major;
-                q.vec_stride = 4;
-                load(q, t.members[m], dst + at, off + uint32_t(it->second.offset));
-                at += type(t.members[m]).flat;
-            }
-            break;
-        }
-        default:
-            fail("unsupported load type");
-    }
+    walk_buffer_layout(p, ty, dst, off, scalar);
 }
 
 void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off) {
@@ -209,49 +216,7 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
         if (type(sty).kind == Type::Bool) v = emit1(SOp::And, s, konst(1));
         emit(SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
     };
-    switch (t.kind) {
-        case Type::Bool:
-        case Type::Int:
-        case Type::Float:
-            scalar(src, off, ty);
-            break;
-        case Type::Vector:
-            for (uint32_t i = 0; i < t.count; ++i) scalar(src + i, off + i * p.vec_stride, t.elem);
-            break;
-        case Type::Matrix: {
-            const Type& col = type(t.elem);
-            for (uint32_t c = 0; c < t.count; ++c)
-                for (uint32_t r = 0; r < col.count; ++r) {
-                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
-                    scalar(src + c * col.count + r, off + o, col.elem);
-                }
-            break;
-        }
-        case Type::Array: {
-            uint32_t stride = uint32_t(deco_[ty].array_stride);
-            if (!stride) fail("buffer array without ArrayStride");
-            Pointer q = p;
-            q.vec_stride = 4;
-            for (uint32_t i = 0; i < t.count; ++i) store(q, t.elem, src + i * type(t.elem).flat, off + i * stride);
-            break;
-        }
-        case Type::Struct: {
-            uint32_t at = 0;
-            for (uint32_t m = 0; m < t.members.size(); ++m) {
-                auto it = member_deco_.find({ty, m});
-                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
-                Pointer q = p;
-                q.matrix_stride = uint32_t(it->second.matrix_stride);
-                q.row_major = it->second.row_major;
-                q.vec_stride = 4;
-                store(q, t.members[m], src + at, off + uint32_t(it->second.offset));
-                at += type(t.members[m]).flat;
-            }
-            break;
-        }
-        default:
-            fail("unsupported store type");
-    }
+    walk_buffer_layout(p, ty, src, off, scalar);
 }
 
 uint32_t Translator::side_effect_mask() {

@@ -190,6 +190,10 @@ class Translator {
     // memory
     void load(const Pointer& p, uint32_t type, uint32_t dst, uint32_t const_extra);
     void store(const Pointer& p, uint32_t type, uint32_t src, uint32_t const_extra);
+    // The one walk of a buffer value's layout (Offset, ArrayStride, MatrixStride, RowMajor decorations) for load and
+    // store: scalar(register, byte offset, scalar type) for every scalar of `type`, in flat register order.
+    template <typename Scalar>
+    void walk_buffer_layout(const Pointer& p, uint32_t type, uint32_t reg, uint32_t off, const Scalar& scalar);
     Pointer access_chain(const Pointer& base, const uint32_t* idx, size_t n);
 
     Stage stage_;
