@@ -201,8 +201,34 @@ enum class Filter : uint8_t { Nearest, Linear };
 enum class MipmapMode : uint8_t { Nearest, Linear };
 enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder, MirrorClampToEdge };
 enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
-// Same order as VkCompareOp.
+// Same order as VkCompareOp. The one compare-op enum: depth/stencil tests (rast/fragment) and depth-compare
+// sampling both use it.
 enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
+
+// a OP b as Vulkan defines the compare ops. NotEqual is !(a == b): with a NaN operand every op but Never,
+// NotEqual and Always is false (IEEE ordered compares); callers with other NaN or denormal rules apply them first.
+template <typename T>
+constexpr bool compare_values(CompareOp op, T a, T b) {
+    switch (op) {
+        case CompareOp::Never:
+            return false;
+        case CompareOp::Less:
+            return a < b;
+        case CompareOp::Equal:
+            return a == b;
+        case CompareOp::LessOrEqual:
+            return a <= b;
+        case CompareOp::Greater:
+            return a > b;
+        case CompareOp::NotEqual:
+            return !(a == b);
+        case CompareOp::GreaterOrEqual:
+            return a >= b;
+        case CompareOp::Always:
+            return true;
+    }
+    return false;
+}
 
 struct SamplerState {
     Filter mag_filter = Filter::Nearest;

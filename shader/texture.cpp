@@ -96,28 +96,6 @@ Vec4 texel(const Level& lv, int32_t x, int32_t y) {
     return decode(*lv.fi, lv.base + off);
 }
 
-bool compare(CompareOp op, float ref, float d) {
-    switch (op) {
-        case CompareOp::Never:
-            return false;
-        case CompareOp::Less:
-            return ref < d;
-        case CompareOp::Equal:
-            return ref == d;
-        case CompareOp::LessOrEqual:
-            return ref <= d;
-        case CompareOp::Greater:
-            return ref > d;
-        case CompareOp::NotEqual:
-            return ref != d;
-        case CompareOp::GreaterOrEqual:
-            return ref >= d;
-        case CompareOp::Always:
-            return true;
-    }
-    return false;
-}
-
 struct SampleArgs {
     int32_t off_x = 0, off_y = 0;  // constant texel offsets
     bool dref = false;             // depth compare against `ref`: each texel becomes 0 or 1 before filtering
@@ -176,7 +154,7 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         int32_t wx = wrap(x + args.off_x, lv.w, smp.address_u);
         int32_t wy = one_d ? 0 : wrap(y + args.off_y, lv.h, smp.address_v);
         Vec4 c = (wx < 0 || wy < 0) ? border : texel(lv, wx, wy);
-        if (args.dref) return {compare(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
+        if (args.dref) return {compare_values(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
     if (!linear) return fetch(floor_index(u, smp.address_u), one_d ? 0 : floor_index(v, smp.address_v));

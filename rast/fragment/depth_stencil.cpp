@@ -33,25 +33,7 @@ float clamp_depth(float z, const DepthStencilState& s, DepthFormat f) {
 }
 
 bool compare(CompareOp op, uint32_t a, uint32_t b) {
-    switch (op) {
-        case CompareOp::Never:
-            return false;
-        case CompareOp::Less:
-            return a < b;
-        case CompareOp::Equal:
-            return a == b;
-        case CompareOp::LessOrEqual:
-            return a <= b;
-        case CompareOp::Greater:
-            return a > b;
-        case CompareOp::NotEqual:
-            return a != b;
-        case CompareOp::GreaterOrEqual:
-            return a >= b;
-        case CompareOp::Always:
-            return true;
-    }
-    return false;
+    return shader::compare_values(op, a, b);
 }
 
 bool compare_float(CompareOp op, float a, float b) {
@@ -61,25 +43,7 @@ bool compare_float(CompareOp op, float a, float b) {
     if (a != 0.0f && std::fabs(a) < 0x1p-126f) a = 0.0f;
     if (b != 0.0f && std::fabs(b) < 0x1p-126f) b = 0.0f;
     if (std::isnan(a) || std::isnan(b)) return op != CompareOp::Never;
-    switch (op) {
-        case CompareOp::Never:
-            return false;
-        case CompareOp::Less:
-            return a < b;
-        case CompareOp::Equal:
-            return a == b;
-        case CompareOp::LessOrEqual:
-            return a <= b;
-        case CompareOp::Greater:
-            return a > b;
-        case CompareOp::NotEqual:
-            return !(a == b);
-        case CompareOp::GreaterOrEqual:
-            return a >= b;
-        case CompareOp::Always:
-            return true;
-    }
-    return false;
+    return shader::compare_values(op, a, b);
 }
 
 uint8_t apply_stencil_op(StencilOp op, uint8_t v, uint8_t ref) {

@@ -13,11 +13,11 @@
 
 #include "format/texel_codec.h"
 #include "rast/fragment/block.h"
+#include "shader/program.h"
 
 namespace tilevk::rast::fragment {
 
-// Numbering mirrors VkCompareOp.
-enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
+using CompareOp = shader::CompareOp;  // numbering mirrors VkCompareOp
 // Numbering mirrors VkStencilOp.
 enum class StencilOp : uint8_t {
     Keep,
