@@ -43,34 +43,10 @@
 #include <string>
 
 #include "case.hpp"
+#include "rng.hpp"
 
 namespace tilevk::cts {
 namespace {
-
-// xorshift32 seeded through one splitmix step: identical sequences on every platform and compiler.
-struct Rng {
-    uint32_t s;
-    explicit Rng(uint32_t seed) {
-        uint64_t z = seed + 0x9E3779B97F4A7C15ull;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        s = uint32_t(z ^ (z >> 31)) | 1u;
-    }
-    uint32_t next() {
-        s ^= s << 13;
-        s ^= s >> 17;
-        s ^= s << 5;
-        return s;
-    }
-    uint32_t below(uint32_t n) { return next() % n; }
-    bool chance(float p) { return unit() < p; }
-    float unit() { return float(next() >> 8) * (1.0f / 16777216.0f); }
-    float range(float a, float b) { return a + (b - a) * unit(); }
-    template <typename T, size_t N>
-    T pick(const T (&a)[N]) {
-        return a[below(N)];
-    }
-};
 
 bool is_triangles(VkPrimitiveTopology t) {
     return t == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST || t == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP ||
