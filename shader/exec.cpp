@@ -42,6 +42,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             TILEVK_EXEC_MEMORY_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SHARED_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SUBGROUP_OPS(TILEVK_EXEC_CALL)
+#define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
+            TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)
+#undef TILEVK_EXEC_LIBM
 #undef TILEVK_EXEC_EXPR
 #undef TILEVK_EXEC_CALL
             case Op::Select: {

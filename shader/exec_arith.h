@@ -60,10 +60,6 @@ namespace {
     F2(a[l] - b[l] * std::floor(a[l] / b[l]))
 }
 
-[[gnu::always_inline]] inline void op_f_rem(const Inst& in, Machine& mc) {
-    F2(std::fmod(a[l], b[l]))
-}
-
 [[gnu::always_inline]] inline void op_fma(const Inst& in, Machine& mc) {
     f32a* __restrict d = FD;
     const f32a* __restrict a = FA, * __restrict b = FB, * __restrict c = FC;
@@ -80,7 +76,6 @@ namespace {
 
 #define TILEVK_EXEC_FLOAT_OPS(X) \
     X(FMod, op_f_mod)            \
-    X(FRem, op_f_rem)            \
     X(Fma, op_fma)               \
     X(IsNan, op_is_nan)          \
     X(IsInf, op_is_inf)

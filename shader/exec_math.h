@@ -2,6 +2,7 @@
 #pragma once
 
 #include "shader/exec_kernels.h"
+#include "shader/exec_libm.h"
 
 // Internal linkage: one translation unit (exec.cpp) uses these.
 namespace tilevk::shader::exec {
@@ -68,78 +69,6 @@ namespace {
     F1(1.0f / std::sqrt(a[l]))
 }
 
-[[gnu::always_inline]] inline void op_exp(const Inst& in, Machine& mc) {
-    F1(std::exp(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_exp2(const Inst& in, Machine& mc) {
-    F1(std::exp2(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_log(const Inst& in, Machine& mc) {
-    F1(std::log(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_log2(const Inst& in, Machine& mc) {
-    F1(std::log2(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_pow(const Inst& in, Machine& mc) {
-    F2(std::pow(a[l], b[l]))
-}
-
-[[gnu::always_inline]] inline void op_sin(const Inst& in, Machine& mc) {
-    F1(std::sin(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_cos(const Inst& in, Machine& mc) {
-    F1(std::cos(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_tan(const Inst& in, Machine& mc) {
-    F1(std::tan(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_asin(const Inst& in, Machine& mc) {
-    F1(std::asin(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_acos(const Inst& in, Machine& mc) {
-    F1(std::acos(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_atan(const Inst& in, Machine& mc) {
-    F1(std::atan(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_atan2(const Inst& in, Machine& mc) {
-    F2(std::atan2(a[l], b[l]))
-}
-
-[[gnu::always_inline]] inline void op_sinh(const Inst& in, Machine& mc) {
-    F1(std::sinh(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_cosh(const Inst& in, Machine& mc) {
-    F1(std::cosh(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_tanh(const Inst& in, Machine& mc) {
-    F1(std::tanh(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_asinh(const Inst& in, Machine& mc) {
-    F1(std::asinh(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_acosh(const Inst& in, Machine& mc) {
-    F1(std::acosh(a[l]))
-}
-
-[[gnu::always_inline]] inline void op_atanh(const Inst& in, Machine& mc) {
-    F1(std::atanh(a[l]))
-}
-
 [[gnu::always_inline]] inline void op_f_clamp(const Inst& in, Machine& mc) {
     // clamp(x, lo, hi) = min(max(x, lo), hi)
     f32a* __restrict d = FD;
@@ -188,6 +117,21 @@ namespace {
     }
 }
 
+// clang-format off (a list expansion without a semicolon)
+// op_libm_<Op>: one kernel per op of exec_libm.h's list, dispatched by execute() from the same list.
+#define TILEVK_EXEC_LIBM1(op, expr)                                                \
+    [[gnu::always_inline]] inline void op_libm_##op(const Inst& in, Machine& mc) { \
+        F1(expr)                                                                   \
+    }
+#define TILEVK_EXEC_LIBM2(op, expr)                                                \
+    [[gnu::always_inline]] inline void op_libm_##op(const Inst& in, Machine& mc) { \
+        F2(expr)                                                                   \
+    }
+TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM1, TILEVK_EXEC_LIBM2)
+#undef TILEVK_EXEC_LIBM1
+#undef TILEVK_EXEC_LIBM2
+// clang-format on
+
 #define TILEVK_EXEC_MATH_OPS(X)   \
     X(F2S, op_f2_s)               \
     X(F2U, op_f2_u)               \
@@ -202,24 +146,6 @@ namespace {
     X(FSign, op_f_sign)           \
     X(Sqrt, op_sqrt)              \
     X(InvSqrt, op_inv_sqrt)       \
-    X(Exp, op_exp)                \
-    X(Exp2, op_exp2)              \
-    X(Log, op_log)                \
-    X(Log2, op_log2)              \
-    X(Pow, op_pow)                \
-    X(Sin, op_sin)                \
-    X(Cos, op_cos)                \
-    X(Tan, op_tan)                \
-    X(Asin, op_asin)              \
-    X(Acos, op_acos)              \
-    X(Atan, op_atan)              \
-    X(Atan2, op_atan2)            \
-    X(Sinh, op_sinh)              \
-    X(Cosh, op_cosh)              \
-    X(Tanh, op_tanh)              \
-    X(Asinh, op_asinh)            \
-    X(Acosh, op_acosh)            \
-    X(Atanh, op_atanh)            \
     X(FClamp, op_f_clamp)         \
     X(Step, op_step)              \
     X(SmoothStep, op_smooth_step) \

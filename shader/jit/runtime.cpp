@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "shader/exec_libm.h"
 #include "shader/jit/helpers.h"
 #include "shader/jit/jit.h"
 #include "shader/jit/sample_rgba8.h"
@@ -63,8 +64,8 @@ __attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* cod
     if (!sample_rgba8(code[0], s->regs.data(), s->slots.data(), uint32_t(s->slots.size()))) execute_code(code, *s);
 }
 
-// exec_math.h's F1 / F2 lane expressions, for the eight lanes of one half. One lane at a time, each result stored
-// before the next lane is read: d may alias a or b lane for lane.
+// exec_libm.h's lane expressions (the interpreter's kernels of the same list), for the eight lanes of one half. One
+// lane at a time, each result stored before the next lane is read: d may alias a or b lane for lane.
 #define TILEVK_LANES1(expr)                        \
     [](float* d, const float* a, const float*) {   \
         for (int l = 0; l < 8; ++l) d[l] = (expr); \
@@ -76,44 +77,15 @@ __attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* cod
 
 LaneFn lane_function(Op op) {
     switch (op) {
-        case Op::FRem:
-            return TILEVK_LANES2(std::fmod(a[l], b[l]));
-        case Op::Exp:
-            return TILEVK_LANES1(std::exp(a[l]));
-        case Op::Exp2:
-            return TILEVK_LANES1(std::exp2(a[l]));
-        case Op::Log:
-            return TILEVK_LANES1(std::log(a[l]));
-        case Op::Log2:
-            return TILEVK_LANES1(std::log2(a[l]));
-        case Op::Pow:
-            return TILEVK_LANES2(std::pow(a[l], b[l]));
-        case Op::Sin:
-            return TILEVK_LANES1(std::sin(a[l]));
-        case Op::Cos:
-            return TILEVK_LANES1(std::cos(a[l]));
-        case Op::Tan:
-            return TILEVK_LANES1(std::tan(a[l]));
-        case Op::Asin:
-            return TILEVK_LANES1(std::asin(a[l]));
-        case Op::Acos:
-            return TILEVK_LANES1(std::acos(a[l]));
-        case Op::Atan:
-            return TILEVK_LANES1(std::atan(a[l]));
-        case Op::Atan2:
-            return TILEVK_LANES2(std::atan2(a[l], b[l]));
-        case Op::Sinh:
-            return TILEVK_LANES1(std::sinh(a[l]));
-        case Op::Cosh:
-            return TILEVK_LANES1(std::cosh(a[l]));
-        case Op::Tanh:
-            return TILEVK_LANES1(std::tanh(a[l]));
-        case Op::Asinh:
-            return TILEVK_LANES1(std::asinh(a[l]));
-        case Op::Acosh:
-            return TILEVK_LANES1(std::acosh(a[l]));
-        case Op::Atanh:
-            return TILEVK_LANES1(std::atanh(a[l]));
+#define TILEVK_JIT_LIBM1(op, expr) \
+    case Op::op:                   \
+        return TILEVK_LANES1(expr);
+#define TILEVK_JIT_LIBM2(op, expr) \
+    case Op::op:                   \
+        return TILEVK_LANES2(expr);
+        TILEVK_LIBM_OPS(TILEVK_JIT_LIBM1, TILEVK_JIT_LIBM2)
+#undef TILEVK_JIT_LIBM1
+#undef TILEVK_JIT_LIBM2
 #if !TILEVK_SIMD_AVX2
         // Without SSE4.1 the interpreter's rounding is libm's too (floorf, ceilf, truncf, nearbyintf), whose NaN
         // results are not vroundps's (a signalling NaN comes back unquieted from ceilf): the same calls here.
