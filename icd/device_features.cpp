@@ -96,6 +96,8 @@ Features make_supported() {
     f.core.v13.shaderDemoteToHelperInvocation = VK_TRUE;
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
+    // dynamic_rendering.cpp: each vkCmdBeginRendering becomes a one-subpass render pass run as vkCmdBeginRenderPass.
+    f.core.v13.dynamicRendering = VK_TRUE;
     return f;
 }
 
