@@ -152,10 +152,14 @@ bool add_depth_stencil(const VkRenderingInfo& ri, Translation& t, Subpass& sub) 
 }
 
 // The framebuffer of the instance: lavapipe's (lvp_execute.c handle_begin_rendering: renderArea.offset + extent wide
-// and high, layerCount layers), within every attachment view so that no bad render area reaches past an image.
+// and high, layerCount layers), within every attachment view and the framebuffer limits so that no bad render area
+// reaches past an image.
 void size_framebuffer(const VkRect2D& area, uint32_t layers, const std::vector<ImageView*>& views, Framebuffer& fb) {
-    fb.width = uint32_t(std::max(area.offset.x, 0)) + area.extent.width;
-    fb.height = uint32_t(std::max(area.offset.y, 0)) + area.extent.height;
+    // At most maxFramebufferWidth/Height (= kMaxImageDimension), also for an instance without attachments.
+    fb.width =
+        uint32_t(std::min<uint64_t>(uint64_t(std::max(area.offset.x, 0)) + area.extent.width, kMaxImageDimension));
+    fb.height =
+        uint32_t(std::min<uint64_t>(uint64_t(std::max(area.offset.y, 0)) + area.extent.height, kMaxImageDimension));
     fb.layers = std::max(layers, 1u);
     for (const ImageView* v : views) {
         fb.width = std::min(fb.width, v->image->level_width(v->range.baseMipLevel));

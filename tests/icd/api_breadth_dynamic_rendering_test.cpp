@@ -350,17 +350,23 @@ Bytes depth_scene(Kit& k, bool dynamic, VkFormat f) {
     return out;
 }
 
-// 4x colour and D32 depth, resolved at the end of the instance (colour AVERAGE, depth SAMPLE_ZERO).
-Bytes msaa_scene(Kit& k, bool dynamic) {
-    const VkFormat D = VK_FORMAT_D32_SFLOAT;
+// 4x colour and depth/stencil of format D, resolved at the end of the instance (colour AVERAGE, depth and stencil
+// SAMPLE_ZERO); the stencil, when D has it, replaced with 0x33 where a triangle passes.
+Bytes msaa_scene(Kit& k, bool dynamic, VkFormat D) {
     Img c = attachment_image(k, kC, VK_SAMPLE_COUNT_4_BIT), r = attachment_image(k, kC);
     Img d = attachment_image(k, D, VK_SAMPLE_COUNT_4_BIT), dr = attachment_image(k, D);
     PassDesc p;
     p.colours = {
         {c.view, kC, VK_SAMPLE_COUNT_4_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, clear_color(0.1f, 0.2f, 0.3f, 1), r.view}};
-    p.ds = {d.view, D, VK_SAMPLE_COUNT_4_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, clear_depth(0.75f), dr.view};
+    p.ds = {d.view, D, VK_SAMPLE_COUNT_4_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, clear_depth(0.75f, 0x5a), dr.view};
     Instance in(k, p, dynamic);
     VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
+    if (stencil_of(D)) {
+        ds.stencilTestEnable = VK_TRUE;
+        ds.front = {
+            VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_ALWAYS, 0xff, 0xff, 0x33};
+        ds.back = ds.front;
+    }
     VkPipeline pipe = blended(in, &ds);
     Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     EXPECT_EQ(k.run([&](VkCommandBuffer cb) {
@@ -375,8 +381,14 @@ Bytes msaa_scene(Kit& k, bool dynamic) {
               VK_SUCCESS);
     Bytes out = k.read(r.image, 32, 32, 4);
     EXPECT_NEAR(px(out, 0, 31)[0], 25.5, 1.0);  // resolved clear
-    const Bytes depth = k.read(dr.image, 32, 32, 4, VK_IMAGE_ASPECT_DEPTH_BIT);
+    const Bytes depth = k.read(dr.image, 32, 32, texel_bytes(D, VK_IMAGE_ASPECT_DEPTH_BIT), VK_IMAGE_ASPECT_DEPTH_BIT);
     out.insert(out.end(), depth.begin(), depth.end());
+    if (stencil_of(D)) {
+        const Bytes st = k.read(dr.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT);
+        EXPECT_EQ(st[31 * 32], 0x5a);       // resolved clear
+        EXPECT_EQ(st[16 * 32 + 16], 0x33);  // a triangle's sample 0
+        out.insert(out.end(), st.begin(), st.end());
+    }
     return out;
 }
 
@@ -575,7 +587,12 @@ TEST_F(ApiDynamicRendering, DepthStencilTestD24S8) {
 }
 
 TEST_F(ApiDynamicRendering, Msaa4xColourAndDepthResolve) {
-    check(msaa_scene);
+    check([](Kit& k, bool dynamic) { return msaa_scene(k, dynamic, VK_FORMAT_D32_SFLOAT); });
+}
+
+// Both VkRenderingAttachmentInfo structs resolve the one D24S8 view (SAMPLE_ZERO each).
+TEST_F(ApiDynamicRendering, Msaa4xColourAndDepthStencilResolveD24S8) {
+    check([](Kit& k, bool dynamic) { return msaa_scene(k, dynamic, VK_FORMAT_D24_UNORM_S8_UINT); });
 }
 
 TEST_F(ApiDynamicRendering, MultiviewViewMaskWithClearAttachments) {
