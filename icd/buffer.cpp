@@ -28,11 +28,13 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyBuffer(VkDevice, VkBuffer buffer, const Vk
     destroy_object(from_handle<Buffer>(buffer));
 }
 
+// The size is the create size aligned to the alignment (never more: a guarantee of VK_KHR_maintenance4).
+VkMemoryRequirements buffer_requirements(VkDeviceSize size) {
+    return {(size + kBufferAlignment - 1) & ~(kBufferAlignment - 1), kBufferAlignment, 1};
+}
+
 VKAPI_ATTR void VKAPI_CALL tvk_GetBufferMemoryRequirements(VkDevice, VkBuffer buffer, VkMemoryRequirements* pReqs) {
-    Buffer* buf = from_handle<Buffer>(buffer);
-    pReqs->size = (buf->size + kBufferAlignment - 1) & ~(kBufferAlignment - 1);
-    pReqs->alignment = kBufferAlignment;
-    pReqs->memoryTypeBits = 1;
+    *pReqs = buffer_requirements(from_handle<Buffer>(buffer)->size);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory(VkDevice, VkBuffer buffer, VkDeviceMemory memory,

@@ -16,4 +16,8 @@ struct Buffer : NonDispatchableObject {
     uint8_t* data() const { return memory->data + memory_offset; }
 };
 
+// The memory requirements of a buffer of `size` bytes (vkGetBufferMemoryRequirements, and without a buffer
+// vkGetDeviceBufferMemoryRequirements: one home for both).
+VkMemoryRequirements buffer_requirements(VkDeviceSize size);
+
 }  // namespace tilevk::icd

@@ -1,11 +1,14 @@
 // VkCommandPool and VkCommandBuffer: recording into an arena of plain command structs (commands.h).
 #pragma once
+#include <memory>
 #include <new>
 #include <vector>
 
 #include "arena.h"
 #include "commands.h"
+#include "framebuffer.h"
 #include "object.h"
+#include "render_pass.h"
 
 namespace tilevk::icd {
 
@@ -19,6 +22,13 @@ struct CommandPool : NonDispatchableObject {
     Device* device = nullptr;
     VkCommandPoolCreateFlags flags = 0;
     std::vector<CommandBuffer*> buffers;
+};
+
+// vkCmdBeginRendering: the one-subpass render pass and the framebuffer a VkRenderingInfo is translated into
+// (dynamic_rendering.cpp), so that it runs as a vkCmdBeginRenderPass does.
+struct RenderingInstance {
+    RenderPass pass;
+    Framebuffer framebuffer;
 };
 
 struct CommandBuffer : DispatchableObject {
@@ -35,6 +45,8 @@ struct CommandBuffer : DispatchableObject {
     Arena arena;
     Cmd* first = nullptr;
     Cmd* last = nullptr;
+    // The render passes of its vkCmdBeginRendering commands, kept until the next reset.
+    std::vector<std::unique_ptr<RenderingInstance>> rendering;
 
     // Appends a zeroed command of type T, or returns nullptr (and remembers the failure) when out of memory.
     template <class T>

@@ -19,6 +19,7 @@ void CommandBuffer::reset(bool release_memory) {
     else
         arena.rewind();
     first = last = nullptr;
+    rendering.clear();
     record_result = VK_SUCCESS;
     state = State::kInitial;
 }

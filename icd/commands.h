@@ -178,6 +178,11 @@ struct CmdBeginRenderPass : CmdOf<CmdType::kBeginRenderPass> {
     VkRect2D area;
     uint32_t clear_count;
     const VkClearValue* clears;
+    // vkCmdBeginRendering (dynamic_rendering.cpp records it as this command, render_pass and framebuffer owned by the
+    // command buffer): VK_RENDERING_RESUMING_BIT skips the load ops (a suspended instance goes on), and
+    // VK_RENDERING_SUSPENDING_BIT makes its vkCmdEndRendering skip the resolves (the instance goes on later).
+    bool resuming = false;
+    bool suspending = false;
 };
 struct CmdNextSubpass : CmdOf<CmdType::kNextSubpass> {};
 struct CmdEndRenderPass : CmdOf<CmdType::kEndRenderPass> {};

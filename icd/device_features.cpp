@@ -96,6 +96,11 @@ Features make_supported() {
     f.core.v13.shaderDemoteToHelperInvocation = VK_TRUE;
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
+    // dynamic_rendering.cpp: each vkCmdBeginRendering becomes a one-subpass render pass run as vkCmdBeginRenderPass.
+    f.core.v13.dynamicRendering = VK_TRUE;
+    // VK_KHR_maintenance4 (resources2.cpp, README "Extensions"): requirements of objects not yet made from the code
+    // that answers for made ones; no pipeline layout is kept after use; LocalSizeId; wider vertex outputs.
+    f.core.v13.maintenance4 = VK_TRUE;
     return f;
 }
 

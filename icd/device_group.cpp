@@ -45,16 +45,18 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatchBase(VkCommandBuffer commandBuffer, ui
     }
 }
 
-VkRect2D render_area_of(const VkRenderPassBeginInfo& begin) {
-    const auto* group = find_in_chain<VkDeviceGroupRenderPassBeginInfo>(
-        begin.pNext, VK_STRUCTURE_TYPE_DEVICE_GROUP_RENDER_PASS_BEGIN_INFO);
-    if (group == nullptr || group->deviceRenderAreaCount == 0) return begin.renderArea;
+VkRect2D render_area_of(const VkRect2D& area, const void* chain, const char* command) {
+    const auto* group =
+        find_in_chain<VkDeviceGroupRenderPassBeginInfo>(chain, VK_STRUCTURE_TYPE_DEVICE_GROUP_RENDER_PASS_BEGIN_INFO);
+    if (group == nullptr || group->deviceRenderAreaCount == 0) return area;
     if (group->deviceRenderAreaCount != 1)
-        log_error(
-            "vkCmdBeginRenderPass: VkDeviceGroupRenderPassBeginInfo has %u render areas for a one-device group; "
-            "the first is used",
-            group->deviceRenderAreaCount);
+        log_error("%s: VkDeviceGroupRenderPassBeginInfo has %u render areas for a one-device group; the first is used",
+                  command, group->deviceRenderAreaCount);
     return group->pDeviceRenderAreas[0];
+}
+
+VkRect2D render_area_of(const VkRenderPassBeginInfo& begin) {
+    return render_area_of(begin.renderArea, begin.pNext, "vkCmdBeginRenderPass");
 }
 
 }  // namespace tilevk::icd

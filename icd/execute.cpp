@@ -259,7 +259,8 @@ struct CommandRunner {
         st.area = c.area;
         st.clears = c.clears;
         st.subpass = 0;
-        load_attachments(st, 0);
+        st.suspending = c.suspending;
+        if (!c.resuming) load_attachments(st, 0);
         begin_subpass_views(st);
     }
     void operator()(const CmdNextSubpass&) {
@@ -277,7 +278,7 @@ struct CommandRunner {
         finish_rendering(st);
         st.query_command_pending = false;
         if (next_view(st)) return;
-        resolve_attachments(st, st.subpass);
+        if (!st.suspending) resolve_attachments(st, st.subpass);
         st.view_mask = 0;
         st.subpass_command = nullptr;
         st.render_pass = nullptr;

@@ -69,6 +69,7 @@ struct ExecState {
     uint32_t subpass = 0;
     VkRect2D area{};
     const VkClearValue* clears = nullptr;
+    bool suspending = false;  // CmdBeginRenderPass::suspending of the current render pass instance
     // Multiview: the current subpass's view mask (0: not multiview), the view being rendered (ViewIndex, and the
     // layer of every attachment view it renders into: baseArrayLayer + view) and how many views of the mask came
     // before it (its query offset). Each view runs the subpass's commands on its own: the subpass's Begin/Next

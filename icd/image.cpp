@@ -27,12 +27,11 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
     return l;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCreateInfo* ci,
-                                               const VkAllocationCallbacks* pAllocator, VkImage* pImage) {
-    Device* dev = from_handle<Device>(device);
+VkResult check_image_create_info(const Device& dev, const VkImageCreateInfo* ci, const char* command,
+                                 const FormatInfo** format) {
     const FormatInfo* f = find_format(ci->format);
     if (f == nullptr || !has_image_support(*f)) {
-        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImage: %s is not supported for images",
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "%s: %s is not supported for images", command,
                     vk_enum_name(ci->format));
     }
     // The spec bounds an image's parameters by what vkGetPhysicalDeviceImageFormatProperties reports for them
@@ -49,16 +48,16 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     const VkImageUsageFlags usage = ci->usage | (stencil != nullptr ? stencil->stencilUsage : 0);
     VkImageFormatProperties props{};
     const VkResult supported = tvk_GetPhysicalDeviceImageFormatProperties(
-        to_handle(dev->physical_device), ci->format, ci->imageType, ci->tiling, usage, ci->flags, &props);
+        to_handle(dev.physical_device), ci->format, ci->imageType, ci->tiling, usage, ci->flags, &props);
     if (supported != VK_SUCCESS || ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.depth != 1 ||
         ci->extent.width > props.maxExtent.width || ci->extent.height > props.maxExtent.height || ci->mipLevels == 0 ||
         ci->mipLevels > props.maxMipLevels || ci->arrayLayers == 0 || ci->arrayLayers > props.maxArrayLayers ||
         (ci->samples & props.sampleCounts) == 0) {
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
-                    "vkCreateImage: %s, %s, %s, usage %s, flags %s, extent %ux%ux%u, %u levels, "
+                    "%s: %s, %s, %s, usage %s, flags %s, extent %ux%ux%u, %u levels, "
                     "%u layers, %s: not supported (vkGetPhysicalDeviceImageFormatProperties: %s; maxExtent "
                     "%ux%u, %u levels, %u layers, sample counts %s)",
-                    vk_enum_name(ci->imageType), vk_enum_name(ci->format), vk_enum_name(ci->tiling),
+                    command, vk_enum_name(ci->imageType), vk_enum_name(ci->format), vk_enum_name(ci->tiling),
                     vk_flags_name<VkImageUsageFlagBits>(usage).c_str(),
                     vk_flags_name<VkImageCreateFlagBits>(ci->flags).c_str(), ci->extent.width, ci->extent.height,
                     ci->extent.depth, ci->mipLevels, ci->arrayLayers,
@@ -67,6 +66,19 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
                     props.maxExtent.height, props.maxMipLevels, props.maxArrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(props.sampleCounts).c_str());
     }
+    *format = f;
+    return VK_SUCCESS;
+}
+
+VkMemoryRequirements image_requirements(const ImageLayout& layout) {
+    return {layout.size, kLevelAlignment, 1};
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCreateInfo* ci,
+                                               const VkAllocationCallbacks* pAllocator, VkImage* pImage) {
+    Device* dev = from_handle<Device>(device);
+    const FormatInfo* f = nullptr;
+    if (VkResult r = check_image_create_info(*dev, ci, "vkCreateImage", &f); r != VK_SUCCESS) return r;
     if (const auto* swapchain =
             find_in_chain<VkImageSwapchainCreateInfoKHR>(ci->pNext, VK_STRUCTURE_TYPE_IMAGE_SWAPCHAIN_CREATE_INFO_KHR);
         swapchain != nullptr && swapchain->swapchain != VK_NULL_HANDLE) {
@@ -91,10 +103,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyImage(VkDevice, VkImage image, const VkAll
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetImageMemoryRequirements(VkDevice, VkImage image, VkMemoryRequirements* pReqs) {
-    Image* img = from_handle<Image>(image);
-    pReqs->size = img->layout.size;
-    pReqs->alignment = kLevelAlignment;
-    pReqs->memoryTypeBits = 1;
+    *pReqs = image_requirements(from_handle<Image>(image)->layout);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetImageSparseMemoryRequirements(VkDevice, VkImage, uint32_t* pCount,

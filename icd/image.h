@@ -46,5 +46,15 @@ struct Image : NonDispatchableObject {
 // Computes the layout described above.
 ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_t levels, uint32_t layers,
                                  uint32_t samples);
+// The memory requirements of an image of this layout (vkGetImageMemoryRequirements and, without an image,
+// vkGetDeviceImageMemoryRequirements: the one home of both answers).
+VkMemoryRequirements image_requirements(const ImageLayout& layout);
+
+struct Device;
+// What vkCreateImage checks before it makes an image (and vkGetDeviceImageMemoryRequirements before it answers): the
+// format's image support and every parameter against vkGetPhysicalDeviceImageFormatProperties. On success *format is
+// the format's row; otherwise VK_ERROR_FORMAT_NOT_SUPPORTED and a stderr line starting with `command`.
+VkResult check_image_create_info(const Device& dev, const VkImageCreateInfo* ci, const char* command,
+                                 const FormatInfo** format);
 
 }  // namespace tilevk::icd

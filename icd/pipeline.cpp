@@ -276,9 +276,11 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, PipelineStat
 
 // Translates one create info; returns an empty string or the reason it is unsupported.
 std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
-    // Without a render pass the attachments would come from VkPipelineRenderingCreateInfo (dynamic rendering).
-    if (ci.renderPass == VK_NULL_HANDLE)
-        return "no render pass: dynamic rendering (VkPipelineRenderingCreateInfo) is not supported";
+    // Without a render pass the pipeline is for dynamic rendering (VkPipelineRenderingCreateInfo, or none: no
+    // attachments). Nothing of the pass is kept either way: draws take the attachments of the instance they run in.
+    if (ci.renderPass == VK_NULL_HANDLE && !dev.enabled_features.core.v13.dynamicRendering)
+        return "renderPass is VK_NULL_HANDLE, which needs the dynamicRendering feature "
+               "(VkPhysicalDeviceDynamicRenderingFeatures::dynamicRendering), not enabled";
     if (std::string why = translate_stages(dev, ci, p); !why.empty()) return why;
     if (std::string why = dynamic_mask_of(ci.pDynamicState, &p.dynamic); !why.empty()) return why;
     if (std::string why = translate_vertex_input(ci, p.state); !why.empty()) return why;

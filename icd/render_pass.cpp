@@ -12,11 +12,6 @@
 namespace tilevk::icd {
 namespace {
 
-void note_use(RenderPass* rp, uint32_t subpass, uint32_t attachment) {
-    if (attachment == VK_ATTACHMENT_UNUSED) return;
-    if (rp->first_use[attachment] == ~0u) rp->first_use[attachment] = subpass;
-}
-
 // What tilevk cannot render: subpass flags all belong to extensions tilevk does not offer (per-view attributes, shader
 // resolve, rasterization order access...).
 VkResult refuse_unsupported(const VkRenderPassCreateInfo& ci) {
@@ -81,26 +76,6 @@ VkResult check_view_masks(const Device& dev, const VkRenderPassCreateInfo& ci, s
     return VK_SUCCESS;
 }
 
-// Multiview load ops: an attachment's load op applies, per view, in the first subpass that uses the attachment and
-// renders that view (the spec's "Load operations": in a multiview render pass the first use is per view).
-void plan_view_loads(RenderPass* rp) {
-    const size_t n = rp->attachments.size();
-    std::vector<uint32_t> seen(n, 0);
-    for (Subpass& s : rp->subpasses) {
-        s.load_views.assign(n, 0);
-        const auto use = [&](uint32_t a) {
-            if (a == VK_ATTACHMENT_UNUSED || a >= n) return;
-            s.load_views[a] |= s.view_mask & ~seen[a];
-        };
-        for (auto& r : s.inputs) use(r.attachment);
-        for (auto& r : s.colors) use(r.attachment);
-        for (auto& r : s.resolves) use(r.attachment);
-        use(s.depth_stencil.attachment);
-        use(s.ds_resolve.attachment);
-        for (size_t a = 0; a < n; ++a) seen[a] |= s.load_views[a];
-    }
-}
-
 // One subpass's depth/stencil resolve (VkSubpassDescriptionDepthStencilResolve, render-pass-2 only), checked.
 struct DsResolve {
     VkAttachmentReference ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_UNDEFINED};
@@ -119,7 +94,6 @@ VkResult create_render_pass(Device* dev, const VkRenderPassCreateInfo* ci, const
     try {
         rp->attachments.assign(ci->pAttachments, ci->pAttachments + ci->attachmentCount);
         rp->dependencies.assign(ci->pDependencies, ci->pDependencies + ci->dependencyCount);
-        rp->first_use.assign(ci->attachmentCount, ~0u);
         rp->subpasses.resize(ci->subpassCount);
         for (uint32_t i = 0; i < ci->subpassCount; ++i) {
             const VkSubpassDescription& d = ci->pSubpasses[i];
@@ -137,14 +111,8 @@ VkResult create_render_pass(Device* dev, const VkRenderPassCreateInfo* ci, const
                 s.depth_resolve = (*ds)[i].depth;
                 s.stencil_resolve = (*ds)[i].stencil;
             }
-            for (auto& r : s.inputs) note_use(rp, i, r.attachment);
-            for (auto& r : s.colors) note_use(rp, i, r.attachment);
-            for (auto& r : s.resolves) note_use(rp, i, r.attachment);
-            note_use(rp, i, s.depth_stencil.attachment);
-            note_use(rp, i, s.ds_resolve.attachment);
         }
-        rp->multiview = ci->subpassCount > 0 && view_masks[0] != 0;
-        if (rp->multiview) plan_view_loads(rp);
+        plan_attachment_loads(*rp);
     } catch (const std::bad_alloc&) {
         destroy_object(rp);
         return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateRenderPass: out of host memory");
@@ -154,6 +122,31 @@ VkResult create_render_pass(Device* dev, const VkRenderPassCreateInfo* ci, const
 }
 
 }  // namespace
+
+// Where each attachment's load op applies: its first use (the spec's "Load operations"); in a multiview render pass
+// per view, in the first subpass that uses the attachment and renders that view.
+void plan_attachment_loads(RenderPass& rp) {
+    const size_t n = rp.attachments.size();
+    rp.first_use.assign(n, ~0u);
+    rp.multiview = !rp.subpasses.empty() && rp.subpasses[0].view_mask != 0;
+    std::vector<uint32_t> seen(n, 0);
+    for (uint32_t i = 0; i < rp.subpasses.size(); ++i) {
+        Subpass& s = rp.subpasses[i];
+        if (rp.multiview) s.load_views.assign(n, 0);
+        const auto use = [&](uint32_t a) {
+            if (a == VK_ATTACHMENT_UNUSED || a >= n) return;
+            if (rp.first_use[a] == ~0u) rp.first_use[a] = i;
+            if (rp.multiview) s.load_views[a] |= s.view_mask & ~seen[a];
+        };
+        for (auto& r : s.inputs) use(r.attachment);
+        for (auto& r : s.colors) use(r.attachment);
+        for (auto& r : s.resolves) use(r.attachment);
+        use(s.depth_stencil.attachment);
+        use(s.ds_resolve.attachment);
+        if (rp.multiview)
+            for (size_t a = 0; a < n; ++a) seen[a] |= s.load_views[a];
+    }
+}
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateRenderPass(VkDevice device, const VkRenderPassCreateInfo* ci,
                                                     const VkAllocationCallbacks* pAllocator,

@@ -38,4 +38,8 @@ struct RenderPass : NonDispatchableObject {
     bool multiview = false;  // the subpasses have view masks (all non-zero)
 };
 
+// Fills first_use, multiview and each subpass's load_views from the subpasses (vkCreateRenderPass, and the one-subpass
+// pass a vkCmdBeginRendering is translated into: dynamic_rendering.cpp).
+void plan_attachment_loads(RenderPass& rp);
+
 }  // namespace tilevk::icd

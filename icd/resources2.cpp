@@ -68,4 +68,35 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetImageSparseMemoryRequirements2(VkDevice, const
     *pCount = 0;  // no sparse images
 }
 
+// ---- VK_KHR_maintenance4: the requirements of a buffer or image not made yet -------------------------------
+// The same functions answer as for a made object (buffer_requirements, check_image_create_info +
+// compute_image_layout + image_requirements), so the two answers cannot differ. An image create info vkCreateImage
+// would refuse is invalid usage here (VUID-VkDeviceImageMemoryRequirements-pCreateInfo-parameter): logged, all zero.
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceBufferMemoryRequirements(VkDevice,
+                                                                 const VkDeviceBufferMemoryRequirements* pInfo,
+                                                                 VkMemoryRequirements2* pReqs) {
+    pReqs->memoryRequirements = buffer_requirements(pInfo->pCreateInfo->size);
+    write_requirements_chain(pReqs->pNext);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceImageMemoryRequirements(VkDevice device,
+                                                                const VkDeviceImageMemoryRequirements* pInfo,
+                                                                VkMemoryRequirements2* pReqs) {
+    const VkImageCreateInfo* ci = pInfo->pCreateInfo;
+    const FormatInfo* f = nullptr;
+    pReqs->memoryRequirements = {};
+    if (check_image_create_info(*from_handle<Device>(device), ci, "vkGetDeviceImageMemoryRequirements", &f) ==
+        VK_SUCCESS)
+        pReqs->memoryRequirements =
+            image_requirements(compute_image_layout(*f, ci->extent, ci->mipLevels, ci->arrayLayers, ci->samples));
+    write_requirements_chain(pReqs->pNext);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_GetDeviceImageSparseMemoryRequirements(VkDevice, const VkDeviceImageMemoryRequirements*,
+                                                                      uint32_t* pCount,
+                                                                      VkSparseImageMemoryRequirements2*) {
+    *pCount = 0;  // no sparse images
+}
+
 }  // namespace tilevk::icd

@@ -127,6 +127,10 @@ Result Program::create(std::span<const uint32_t> spirv, Stage stage, std::string
         spvtools::ValidatorOptions vopt;
         vopt.SetUniformBufferStandardLayout(true);
         vopt.SetScalarBlockLayout(true);
+        // LocalSizeId (SPIR-V 1.2+) is valid Vulkan with maintenance4 (VK_KHR_maintenance4, which icd/ reports); the
+        // translator reads its ids after specialization (translate_module.cpp). Accepted without the feature too:
+        // shader/ does not know what a device enabled, and a module using it then is invalid usage anyway.
+        vopt.SetAllowLocalSizeId(true);
         if (!tools.Validate(words.data(), words.size(), vopt)) return finish("invalid SPIR-V: " + messages);
     }
     std::vector<uint32_t> optimized;

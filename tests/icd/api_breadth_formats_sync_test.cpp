@@ -466,7 +466,8 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
 }
 
 // What the issue found accepted silently, refused now (no validation layer: invalid usage on purpose): a pipeline
-// for dynamic rendering (no render pass, VkPipelineRenderingCreateInfo) while tilevk has no dynamic rendering, and a
+// for dynamic rendering (no render pass, VkPipelineRenderingCreateInfo) on a device without the dynamicRendering
+// feature enabled (ApiDynamicRendering.RefusalsWithoutTheFeatures checks its message), and a
 // buffer view on a STORAGE_TEXEL_BUFFER buffer (no format has the feature). The same requests with a render pass /
 // a UNIFORM_TEXEL_BUFFER buffer succeed.
 TEST_F(ApiBreadth, DynamicRenderingPipelinesAndStorageTexelViewsAreRefused) {
