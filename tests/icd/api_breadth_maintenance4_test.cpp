@@ -79,8 +79,6 @@ void buffer_walk(Device& dev) {
 int image_walk(Device& dev) {
     const VkDevice d = dev.device();
     auto query = device_proc<PFN_vkGetDeviceImageMemoryRequirementsKHR>(d, "vkGetDeviceImageMemoryRequirementsKHR");
-    auto sparse =
-        device_proc<PFN_vkGetDeviceImageSparseMemoryRequirementsKHR>(d, "vkGetDeviceImageSparseMemoryRequirementsKHR");
     const VkFormat formats[] = {VK_FORMAT_R8G8B8A8_UNORM,
                                 VK_FORMAT_R8_UNORM,
                                 VK_FORMAT_B8G8R8A8_SRGB,
