@@ -8,7 +8,7 @@
 
 #include <immintrin.h>
 
-#include <cstring>
+#include <optional>
 
 #include "format/format.h"
 #include "format/texel_codec.h"
@@ -19,58 +19,26 @@ namespace {
 
 #define TVK_AVX2 __attribute__((target("avx2,fma")))
 
-// Per level: size and addressing, looked up per lane by level (16 entries: two 8-entry vectors).
-struct Levels {
-    __m256i w[2], h[2], offset[2], pitch[2];
-};
-
-// Whether the kernel covers this image and sampler, and if so their level table and channel order. One pass over
-// the view's levels checks the 32-bit addressing and fills the table (levels past the view's last repeat it).
-TVK_AVX2 bool fits(const ImageView* img, const SamplerState* smp, Levels& levels, bool& bgra) {
-    if (!img || !smp || !img->base || !img->width || !img->height || !img->levels || img->levels > kMaxMipLevels ||
-        !img->layers)
-        return false;
-    const format::FormatInfo& fi = format::format_info(img->format);
-    if (fi.kind != format::ChannelKind::Unorm8 || fi.channels != 4 || fi.bytes != 4) return false;
-    uint32_t swizzle;
-    std::memcpy(&swizzle, img->swizzle.data(), 4);
-    if (swizzle != 0x03020100u) return false;  // identity: channel c reads source c
-    if (smp->unnormalized || smp->mag_filter != Filter::Linear || smp->min_filter != Filter::Linear) return false;
+// Whether the kernel covers this sampler on a view whose level table `t` covers, wraps checked per axis.
+bool sampler_fits(const SamplerState& smp, const ViewLevelTable& t) {
+    if (smp.unnormalized || smp.mag_filter != Filter::Linear || smp.min_filter != Filter::Linear) return false;
     auto ok_wrap = [](AddressMode m, uint32_t n) {
         return m == AddressMode::ClampToEdge || (m == AddressMode::Repeat && (n & (n - 1)) == 0);
     };
-    if (!ok_wrap(smp->address_u, img->width) || !ok_wrap(smp->address_v, img->height)) return false;
-    // Entries past the view's last level are never looked up (half() keeps every level index in
-    // [0, levels - 1]); offsets and pitches stay 0 there.
-    alignas(32) int32_t offset[kMaxMipLevels], pitch[kMaxMipLevels];
-    for (int i = 0; i < kMaxMipLevels; i += 8) {  // four vector stores (an `= {}` compiles to a slower loop)
-        _mm256_store_si256(reinterpret_cast<__m256i*>(offset + i), _mm256_setzero_si256());
-        _mm256_store_si256(reinterpret_cast<__m256i*>(pitch + i), _mm256_setzero_si256());
-    }
-    for (uint32_t l = 0; l < img->levels; ++l) {
-        // texel offsets relative to base must fit the gathers' signed 32-bit indices
-        const ImageLevel& lv = img->level[l];
-        const uint64_t hl = std::max(1u, img->height >> l);
-        if (lv.row_pitch > 0x7fffffffu || lv.offset + lv.row_pitch * hl > 0x7fffffffu) return false;
-        offset[l] = int32_t(lv.offset);
-        pitch[l] = int32_t(lv.row_pitch);
-    }
-    static_assert(kMaxMipLevels == 16, "the level table is two 8-entry vectors");
-    const __m256i one = _mm256_set1_epi32(1), width = _mm256_set1_epi32(int(img->width)),
-                  height = _mm256_set1_epi32(int(img->height));
-    for (int i = 0; i < 2; ++i) {
-        const __m256i l = _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(8 * i));
-        levels.w[i] = _mm256_max_epu32(_mm256_srlv_epi32(width, l), one);  // max(1, size >> l)
-        levels.h[i] = _mm256_max_epu32(_mm256_srlv_epi32(height, l), one);
-        levels.offset[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(offset + 8 * i));
-        levels.pitch[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(pitch + 8 * i));
-    }
-    bgra = fi.bgra;
-    return true;
+    return ok_wrap(smp.address_u, t.width) && ok_wrap(smp.address_v, t.height);
 }
 
-TVK_AVX2 __m256i lookup(const __m256i table[2], __m256i lv) {
-    const __m256i lo = _mm256_permutevar8x32_epi32(table[0], lv), hi = _mm256_permutevar8x32_epi32(table[1], lv);
+// Whether the view's table was prepared (prepare_view) from the view as it is now.
+bool table_current(const ImageView& img) {
+    const ViewLevelTable& t = img.table;
+    return t.format == img.format && t.width == img.width && t.height == img.height && t.levels == img.levels &&
+           t.swizzle == img.swizzle;
+}
+
+// table[lv] per lane, lv in [0, 15]
+TVK_AVX2 __m256i lookup(const int32_t* table, __m256i lv) {
+    const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
+    const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
     return _mm256_blendv_epi8(lo, hi, _mm256_cmpgt_epi32(lv, _mm256_set1_epi32(7)));
 }
 
@@ -130,8 +98,8 @@ TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
 }
 
 // sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp.
-TVK_AVX2 Wide level_bilinear(const ImageView& img, const Levels& levels, __m256i lv, __m256 s, __m256 t, bool clamp_u,
-                             bool clamp_v) {
+TVK_AVX2 Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels, __m256i lv, __m256 s, __m256 t,
+                             bool clamp_u, bool clamp_v) {
     const __m256i off = lookup(levels.offset, lv), pitch = lookup(levels.pitch, lv);
     const Axis x = axis(s, lookup(levels.w, lv), clamp_u), y = axis(t, lookup(levels.h, lv), clamp_v);
     const __m256i row0 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i0, pitch));
@@ -171,7 +139,7 @@ TVK_AVX2 __m256 load_half(const uint32_t* R, uint32_t r, int h) {
 
 // Eight lanes (half h) of the instruction. False: a NaN reached the LOD (the caller runs exec_image instead).
 TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, const SamplerState& smp,
-                   const Levels& levels, bool bgra, int h, __m256 out[4]) {
+                   const ViewLevelTable& levels, int h, __m256 out[4]) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     __m256 lambda;
     if (in.imm & kSampleExplicitLod) {
@@ -233,7 +201,7 @@ TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, cons
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
     for (int c = 0; c < 4; ++c) {
-        const int src = (bgra && c < 3) ? 2 - c : c;
+        const int src = (levels.bgra && c < 3) ? 2 - c : c;
         const __m256i ch = _mm256_and_si256(_mm256_srli_epi32(words, 8 * src), _mm256_set1_epi32(255));
         out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
     }
@@ -258,14 +226,15 @@ TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const*
     const ImageView* img = slots[si]->image;
     const SamplerState* smp = slots[ss]->sampler;
     if (smp && smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
-    Levels levels;
-    bool bgra = false;
-    if (!fits(img, smp, levels, bgra)) return false;
+    if (!img || !smp || !img->base) return false;
+    std::optional<ViewLevelTable> local;  // only built for a view without a current table
+    const ViewLevelTable& levels = table_current(*img) ? img->table : local.emplace(level_table(*img));
+    if (!levels.rgba8 || !sampler_fits(*smp, levels)) return false;
     // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
     // see the registers unchanged (the destination may be a source)
     __m256 out[2][4];
     for (int h = 0; h < 2; ++h)
-        if (!half(in, R, *img, *smp, levels, bgra, h, out[h])) return false;
+        if (!half(in, R, *img, *smp, levels, h, out[h])) return false;
     for (int c = 0; c < 4; ++c) {
         float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
         _mm256_storeu_ps(d, out[0][c]);
