@@ -10,9 +10,6 @@
 
 #include <optional>
 
-#include "format/format.h"
-#include "format/texel_codec.h"
-
 namespace tilevk::shader::jit {
 
 namespace {
@@ -35,9 +32,10 @@ bool table_current(const ImageView& img) {
            t.swizzle == img.swizzle;
 }
 
-// table[lv] per lane, lv in [0, 15]
-TVK_AVX2 __m256i lookup(const int32_t* table, __m256i lv) {
+// table[lv] per lane, lv in [0, levels - 1]: one permute for views of at most 8 levels (lv < 8), two beyond
+TVK_AVX2 __m256i lookup(const int32_t* table, uint32_t levels, __m256i lv) {
     const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
+    if (levels <= 8) return lo;
     const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
     return _mm256_blendv_epi8(lo, hi, _mm256_cmpgt_epi32(lv, _mm256_set1_epi32(7)));
 }
@@ -97,21 +95,52 @@ TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
     return {lerp16(w.lo, a.lo, b.lo), lerp16(w.hi, a.hi, b.hi)};
 }
 
-// sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp.
-TVK_AVX2 Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels, __m256i lv, __m256 s, __m256 t,
-                             bool clamp_u, bool clamp_v) {
-    const __m256i off = lookup(levels.offset, lv), pitch = lookup(levels.pitch, lv);
-    const Axis x = axis(s, lookup(levels.w, lv), clamp_u), y = axis(t, lookup(levels.h, lv), clamp_v);
+// The texels at byte offsets `off` and `off + 4` from base for eight lanes, as two vectors in lane order: eight
+// 64-bit loads instead of two 8-lane gathers, which take 2-3 times longer on the hosts measured (shader/jit/README.md,
+// "The RGBA8 sampler's loads"). llvmpipe fetches its texels with scalar loads too (lp_bld_gather.c).
+TVK_AVX2 void load_pairs(const uint8_t* base, __m256i off, __m256i& left, __m256i& right) {
+    alignas(32) int32_t o[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o), off);
+    auto pair = [base, &o](int l0, int l1) {
+        const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + o[l0]));
+        return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(lo), reinterpret_cast<const double*>(base + o[l1])));
+    };
+    // a: lanes 0, 1 | 4, 5 and b: lanes 2, 3 | 6, 7, each lane's two texels side by side, so that taking the even
+    // (odd) words of a and b per 128-bit half gives the left (right) texels of lanes 0-3 | 4-7
+    const __m256 a = _mm256_castsi256_ps(_mm256_set_m128i(pair(4, 5), pair(0, 1)));
+    const __m256 b = _mm256_castsi256_ps(_mm256_set_m128i(pair(6, 7), pair(2, 3)));
+    left = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)));
+    right = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)));
+}
+
+// sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp. The footprint's
+// texels are the same whichever way they are loaded: side by side (x1 = x0 + 1 in every lane: all but the lanes
+// where REPEAT wraps or CLAMP_TO_EDGE holds at the last texel) as pairs, else by gathers.
+// Inlined into half(): both levels then share the constants and keep their results in registers.
+TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels,
+                                                                   __m256i lv, __m256 s, __m256 t, bool clamp_u,
+                                                                   bool clamp_v) {
+    const uint32_t n = levels.levels;
+    const __m256i off = lookup(levels.offset, n, lv), pitch = lookup(levels.pitch, n, lv);
+    const Axis x = axis(s, lookup(levels.w, n, lv), clamp_u), y = axis(t, lookup(levels.h, n, lv), clamp_v);
     const __m256i row0 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i0, pitch));
     const __m256i row1 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i1, pitch));
-    const __m256i x0 = _mm256_slli_epi32(x.i0, 2), x1 = _mm256_slli_epi32(x.i1, 2);
-    const int* base = reinterpret_cast<const int*>(img.base);
-    const Wide t00 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x0), 1));
-    const Wide t10 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x1), 1));
-    const Wide t01 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1));
-    const Wide t11 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1));
+    const __m256i x0 = _mm256_slli_epi32(x.i0, 2);
+    const __m256i side_by_side = _mm256_cmpeq_epi32(x.i1, _mm256_add_epi32(x.i0, _mm256_set1_epi32(1)));
+    __m256i p00, p10, p01, p11;
+    if (_mm256_movemask_epi8(side_by_side) == -1) {
+        load_pairs(img.base, _mm256_add_epi32(row0, x0), p00, p10);
+        load_pairs(img.base, _mm256_add_epi32(row1, x0), p01, p11);
+    } else {
+        const __m256i x1 = _mm256_slli_epi32(x.i1, 2);
+        const int* base = reinterpret_cast<const int*>(img.base);
+        p00 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x0), 1);
+        p10 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x1), 1);
+        p01 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1);
+        p11 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1);
+    }
     const Wide wx = spread(x.w), wy = spread(y.w);
-    return lerp(wy, lerp(wx, t00, t10), lerp(wx, t01, t11));
+    return lerp(wy, lerp(wx, widen(p00), widen(p10)), lerp(wx, widen(p01), widen(p11)));
 }
 
 // std::max / std::min / std::clamp as written: (a < b) ? b : a, (b < a) ? b : a
