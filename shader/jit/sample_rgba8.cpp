@@ -8,8 +8,6 @@
 
 #include <immintrin.h>
 
-#include <optional>
-
 namespace tilevk::shader::jit {
 
 namespace {
@@ -167,8 +165,10 @@ TVK_AVX2 __m256 load_half(const uint32_t* R, uint32_t r, int h) {
 }
 
 // Eight lanes (half h) of the instruction. False: a NaN reached the LOD (the caller runs exec_image instead).
-TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, const SamplerState& smp,
-                   const ViewLevelTable& levels, int h, __m256 out[4]) {
+// Inlined: a call per half would pass its results through memory.
+TVK_AVX2 __attribute__((always_inline)) inline bool half(const Inst& in, const uint32_t* R, const ImageView& img,
+                                                         const SamplerState& smp, const ViewLevelTable& levels, int h,
+                                                         __m256 out[4]) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     __m256 lambda;
     if (in.imm & kSampleExplicitLod) {
@@ -239,6 +239,36 @@ TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, cons
 
 }  // namespace
 
+namespace {
+
+// The instruction on a view whose level table is `levels`.
+TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, const SamplerState& smp,
+                          const ViewLevelTable& levels) {
+    if (!levels.rgba8 || !sampler_fits(smp, levels)) return false;
+    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
+    // see the registers unchanged (the destination may be a source)
+    __m256 out[2][4];
+    for (int h = 0; h < 2; ++h)
+        if (!half(in, R, img, smp, levels, h, out[h])) return false;
+    for (int c = 0; c < 4; ++c) {
+        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
+        _mm256_storeu_ps(d, out[0][c]);
+        _mm256_storeu_ps(d + 8, out[1][c]);
+    }
+    return true;
+}
+
+// A view without a current table (filled by hand, or changed after prepare_view): the table built on the stack, in
+// a function of its own so that the usual call does not set up room for one (a std::optional there cost ~18
+// instructions per call).
+TVK_AVX2 __attribute__((noinline)) bool sample_rebuilt(const Inst& in, uint32_t* R, const ImageView& img,
+                                                       const SamplerState& smp) {
+    const ViewLevelTable local = level_table(img);
+    return sample_with(in, R, img, smp, local);
+}
+
+}  // namespace
+
 TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
     constexpr uint32_t kAllowed = kSampleImplicitLod | kSampleBias | kSampleExplicitLod;
     if (in.op != Op::Sample || (in.imm & ~kAllowed) || in.b == kNoReg) return false;
@@ -256,20 +286,7 @@ TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const*
     const SamplerState* smp = slots[ss]->sampler;
     if (smp && smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
     if (!img || !smp || !img->base) return false;
-    std::optional<ViewLevelTable> local;  // only built for a view without a current table
-    const ViewLevelTable& levels = table_current(*img) ? img->table : local.emplace(level_table(*img));
-    if (!levels.rgba8 || !sampler_fits(*smp, levels)) return false;
-    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
-    // see the registers unchanged (the destination may be a source)
-    __m256 out[2][4];
-    for (int h = 0; h < 2; ++h)
-        if (!half(in, R, *img, *smp, levels, h, out[h])) return false;
-    for (int c = 0; c < 4; ++c) {
-        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
-        _mm256_storeu_ps(d, out[0][c]);
-        _mm256_storeu_ps(d + 8, out[1][c]);
-    }
-    return true;
+    return table_current(*img) ? sample_with(in, R, *img, *smp, img->table) : sample_rebuilt(in, R, *img, *smp);
 }
 
 }  // namespace tilevk::shader::jit
