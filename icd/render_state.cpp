@@ -81,6 +81,7 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
         out->level[i].row_pitch = img.layout.row_pitch[b + i];
         out->level[i].layer_pitch = img.layout.layer_pitch[b + i];
     }
+    shader::prepare_view(*out);
     return true;
 }
 

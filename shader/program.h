@@ -184,6 +184,22 @@ struct ImageLevel {
     uint64_t layer_pitch = 0;  // bytes between array layers (or depth slices)
 };
 
+// A view's per-level sizes and 32-bit addressing as the compiled tier's RGBA8 sampler (shader/jit/sample_rgba8.cpp)
+// looks them up per lane, with whether that sampler covers the view. Derived from the view's other fields once, by
+// prepare_view(), instead of on every 16-lane Sample.
+struct ViewLevelTable {
+    int32_t w[kMaxMipLevels]{}, h[kMaxMipLevels]{};           // max(1, size >> level)
+    int32_t offset[kMaxMipLevels]{}, pitch[kMaxMipLevels]{};  // bytes from base; 0 past the view's levels
+    // What the table was derived from: the sampler compares these with the view on every call and rebuilds the
+    // table on the stack when they differ (a view never prepared, or changed since). Level offsets and pitches are
+    // not compared: change them only before prepare_view().
+    Format format = Format::UNDEFINED;
+    uint32_t width = 0, height = 0, levels = 0;
+    std::array<uint8_t, 4> swizzle{};
+    bool rgba8 = false;  // RGBA8/BGRA8 UNORM, identity swizzle, every level addressable with 32-bit offsets
+    bool bgra = false;
+};
+
 struct ImageView {
     const uint8_t* base = nullptr;
     Format format = Format::UNDEFINED;
@@ -194,8 +210,15 @@ struct ImageView {
     // The view's component mapping, applied to every fetched/filtered result (not to depth comparisons): per
     // output channel, the source channel 0-3, or kSwizzleZero / kSwizzleOne.
     std::array<uint8_t, 4> swizzle{0, 1, 2, 3};
+    ViewLevelTable table;  // derived from the fields above by prepare_view()
 };
 inline constexpr uint8_t kSwizzleZero = 4, kSwizzleOne = 5;
+
+// Fills view.table from the view's other fields. Call it after the last change to them (icd/ does when it
+// translates a VkImageView); an unprepared view samples the same bits, only slower.
+void prepare_view(ImageView& view);
+// The table prepare_view() would store (the sampler's fallback for a view whose table does not match it).
+ViewLevelTable level_table(const ImageView& view);
 
 enum class Filter : uint8_t { Nearest, Linear };
 enum class MipmapMode : uint8_t { Nearest, Linear };

@@ -86,6 +86,7 @@ struct Fixture {
         img.format = Format::R8G8B8A8_UNORM;
         img.width = img.height = 256;
         img.levels = L + 1;
+        prepare_view(img);
         smp.mag_filter = smp.min_filter = Filter::Linear;
         smp.mipmap_mode = MipmapMode::Linear;
         b.set(0, 1, 0, Descriptor{{}, &img, &smp});

@@ -8,69 +8,33 @@
 
 #include <immintrin.h>
 
-#include <cstring>
-
-#include "format/format.h"
-#include "format/texel_codec.h"
-
 namespace tilevk::shader::jit {
 
 namespace {
 
 #define TVK_AVX2 __attribute__((target("avx2,fma")))
 
-// Per level: size and addressing, looked up per lane by level (16 entries: two 8-entry vectors).
-struct Levels {
-    __m256i w[2], h[2], offset[2], pitch[2];
-};
-
-// Whether the kernel covers this image and sampler, and if so their level table and channel order. One pass over
-// the view's levels checks the 32-bit addressing and fills the table (levels past the view's last repeat it).
-TVK_AVX2 bool fits(const ImageView* img, const SamplerState* smp, Levels& levels, bool& bgra) {
-    if (!img || !smp || !img->base || !img->width || !img->height || !img->levels || img->levels > kMaxMipLevels ||
-        !img->layers)
-        return false;
-    const format::FormatInfo& fi = format::format_info(img->format);
-    if (fi.kind != format::ChannelKind::Unorm8 || fi.channels != 4 || fi.bytes != 4) return false;
-    uint32_t swizzle;
-    std::memcpy(&swizzle, img->swizzle.data(), 4);
-    if (swizzle != 0x03020100u) return false;  // identity: channel c reads source c
-    if (smp->unnormalized || smp->mag_filter != Filter::Linear || smp->min_filter != Filter::Linear) return false;
+// Whether the kernel covers this sampler on a view whose level table `t` covers, wraps checked per axis.
+bool sampler_fits(const SamplerState& smp, const ViewLevelTable& t) {
+    if (smp.unnormalized || smp.mag_filter != Filter::Linear || smp.min_filter != Filter::Linear) return false;
     auto ok_wrap = [](AddressMode m, uint32_t n) {
         return m == AddressMode::ClampToEdge || (m == AddressMode::Repeat && (n & (n - 1)) == 0);
     };
-    if (!ok_wrap(smp->address_u, img->width) || !ok_wrap(smp->address_v, img->height)) return false;
-    // Entries past the view's last level are never looked up (half() keeps every level index in
-    // [0, levels - 1]); offsets and pitches stay 0 there.
-    alignas(32) int32_t offset[kMaxMipLevels], pitch[kMaxMipLevels];
-    for (int i = 0; i < kMaxMipLevels; i += 8) {  // four vector stores (an `= {}` compiles to a slower loop)
-        _mm256_store_si256(reinterpret_cast<__m256i*>(offset + i), _mm256_setzero_si256());
-        _mm256_store_si256(reinterpret_cast<__m256i*>(pitch + i), _mm256_setzero_si256());
-    }
-    for (uint32_t l = 0; l < img->levels; ++l) {
-        // texel offsets relative to base must fit the gathers' signed 32-bit indices
-        const ImageLevel& lv = img->level[l];
-        const uint64_t hl = std::max(1u, img->height >> l);
-        if (lv.row_pitch > 0x7fffffffu || lv.offset + lv.row_pitch * hl > 0x7fffffffu) return false;
-        offset[l] = int32_t(lv.offset);
-        pitch[l] = int32_t(lv.row_pitch);
-    }
-    static_assert(kMaxMipLevels == 16, "the level table is two 8-entry vectors");
-    const __m256i one = _mm256_set1_epi32(1), width = _mm256_set1_epi32(int(img->width)),
-                  height = _mm256_set1_epi32(int(img->height));
-    for (int i = 0; i < 2; ++i) {
-        const __m256i l = _mm256_add_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(8 * i));
-        levels.w[i] = _mm256_max_epu32(_mm256_srlv_epi32(width, l), one);  // max(1, size >> l)
-        levels.h[i] = _mm256_max_epu32(_mm256_srlv_epi32(height, l), one);
-        levels.offset[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(offset + 8 * i));
-        levels.pitch[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(pitch + 8 * i));
-    }
-    bgra = fi.bgra;
-    return true;
+    return ok_wrap(smp.address_u, t.width) && ok_wrap(smp.address_v, t.height);
 }
 
-TVK_AVX2 __m256i lookup(const __m256i table[2], __m256i lv) {
-    const __m256i lo = _mm256_permutevar8x32_epi32(table[0], lv), hi = _mm256_permutevar8x32_epi32(table[1], lv);
+// Whether the view's table was prepared (prepare_view) from the view as it is now.
+bool table_current(const ImageView& img) {
+    const ViewLevelTable& t = img.table;
+    return t.format == img.format && t.width == img.width && t.height == img.height && t.levels == img.levels &&
+           t.swizzle == img.swizzle;
+}
+
+// table[lv] per lane, lv in [0, levels - 1]: one permute for views of at most 8 levels (lv < 8), two beyond
+TVK_AVX2 __m256i lookup(const int32_t* table, uint32_t levels, __m256i lv) {
+    const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
+    if (levels <= 8) return lo;
+    const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
     return _mm256_blendv_epi8(lo, hi, _mm256_cmpgt_epi32(lv, _mm256_set1_epi32(7)));
 }
 
@@ -129,21 +93,52 @@ TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
     return {lerp16(w.lo, a.lo, b.lo), lerp16(w.hi, a.hi, b.hi)};
 }
 
-// sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp.
-TVK_AVX2 Wide level_bilinear(const ImageView& img, const Levels& levels, __m256i lv, __m256 s, __m256 t, bool clamp_u,
-                             bool clamp_v) {
-    const __m256i off = lookup(levels.offset, lv), pitch = lookup(levels.pitch, lv);
-    const Axis x = axis(s, lookup(levels.w, lv), clamp_u), y = axis(t, lookup(levels.h, lv), clamp_v);
+// The texels at byte offsets `off` and `off + 4` from base for eight lanes, as two vectors in lane order: eight
+// 64-bit loads instead of two 8-lane gathers, which take 2-3 times longer on the hosts measured (shader/jit/README.md,
+// "The RGBA8 sampler's loads"). llvmpipe fetches its texels with scalar loads too (lp_bld_gather.c).
+TVK_AVX2 void load_pairs(const uint8_t* base, __m256i off, __m256i& left, __m256i& right) {
+    alignas(32) int32_t o[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o), off);
+    auto pair = [base, &o](int l0, int l1) {
+        const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + o[l0]));
+        return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(lo), reinterpret_cast<const double*>(base + o[l1])));
+    };
+    // a: lanes 0, 1 | 4, 5 and b: lanes 2, 3 | 6, 7, each lane's two texels side by side, so that taking the even
+    // (odd) words of a and b per 128-bit half gives the left (right) texels of lanes 0-3 | 4-7
+    const __m256 a = _mm256_castsi256_ps(_mm256_set_m128i(pair(4, 5), pair(0, 1)));
+    const __m256 b = _mm256_castsi256_ps(_mm256_set_m128i(pair(6, 7), pair(2, 3)));
+    left = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)));
+    right = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)));
+}
+
+// sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp. The footprint's
+// texels are the same whichever way they are loaded: side by side (x1 = x0 + 1 in every lane: all but the lanes
+// where REPEAT wraps or CLAMP_TO_EDGE holds at the last texel) as pairs, else by gathers.
+// Inlined into half(): both levels then share the constants and keep their results in registers.
+TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels,
+                                                                   __m256i lv, __m256 s, __m256 t, bool clamp_u,
+                                                                   bool clamp_v) {
+    const uint32_t n = levels.levels;
+    const __m256i off = lookup(levels.offset, n, lv), pitch = lookup(levels.pitch, n, lv);
+    const Axis x = axis(s, lookup(levels.w, n, lv), clamp_u), y = axis(t, lookup(levels.h, n, lv), clamp_v);
     const __m256i row0 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i0, pitch));
     const __m256i row1 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i1, pitch));
-    const __m256i x0 = _mm256_slli_epi32(x.i0, 2), x1 = _mm256_slli_epi32(x.i1, 2);
-    const int* base = reinterpret_cast<const int*>(img.base);
-    const Wide t00 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x0), 1));
-    const Wide t10 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x1), 1));
-    const Wide t01 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1));
-    const Wide t11 = widen(_mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1));
+    const __m256i x0 = _mm256_slli_epi32(x.i0, 2);
+    const __m256i side_by_side = _mm256_cmpeq_epi32(x.i1, _mm256_add_epi32(x.i0, _mm256_set1_epi32(1)));
+    __m256i p00, p10, p01, p11;
+    if (_mm256_movemask_epi8(side_by_side) == -1) {
+        load_pairs(img.base, _mm256_add_epi32(row0, x0), p00, p10);
+        load_pairs(img.base, _mm256_add_epi32(row1, x0), p01, p11);
+    } else {
+        const __m256i x1 = _mm256_slli_epi32(x.i1, 2);
+        const int* base = reinterpret_cast<const int*>(img.base);
+        p00 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x0), 1);
+        p10 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row0, x1), 1);
+        p01 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1);
+        p11 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1);
+    }
     const Wide wx = spread(x.w), wy = spread(y.w);
-    return lerp(wy, lerp(wx, t00, t10), lerp(wx, t01, t11));
+    return lerp(wy, lerp(wx, widen(p00), widen(p10)), lerp(wx, widen(p01), widen(p11)));
 }
 
 // std::max / std::min / std::clamp as written: (a < b) ? b : a, (b < a) ? b : a
@@ -170,8 +165,10 @@ TVK_AVX2 __m256 load_half(const uint32_t* R, uint32_t r, int h) {
 }
 
 // Eight lanes (half h) of the instruction. False: a NaN reached the LOD (the caller runs exec_image instead).
-TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, const SamplerState& smp,
-                   const Levels& levels, bool bgra, int h, __m256 out[4]) {
+// Inlined: a call per half would pass its results through memory.
+TVK_AVX2 __attribute__((always_inline)) inline bool half(const Inst& in, const uint32_t* R, const ImageView& img,
+                                                         const SamplerState& smp, const ViewLevelTable& levels, int h,
+                                                         __m256 out[4]) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     __m256 lambda;
     if (in.imm & kSampleExplicitLod) {
@@ -233,11 +230,41 @@ TVK_AVX2 bool half(const Inst& in, const uint32_t* R, const ImageView& img, cons
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
     for (int c = 0; c < 4; ++c) {
-        const int src = (bgra && c < 3) ? 2 - c : c;
+        const int src = (levels.bgra && c < 3) ? 2 - c : c;
         const __m256i ch = _mm256_and_si256(_mm256_srli_epi32(words, 8 * src), _mm256_set1_epi32(255));
         out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
     }
     return true;
+}
+
+}  // namespace
+
+namespace {
+
+// The instruction on a view whose level table is `levels`.
+TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, const SamplerState& smp,
+                          const ViewLevelTable& levels) {
+    if (!levels.rgba8 || !sampler_fits(smp, levels)) return false;
+    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
+    // see the registers unchanged (the destination may be a source)
+    __m256 out[2][4];
+    for (int h = 0; h < 2; ++h)
+        if (!half(in, R, img, smp, levels, h, out[h])) return false;
+    for (int c = 0; c < 4; ++c) {
+        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
+        _mm256_storeu_ps(d, out[0][c]);
+        _mm256_storeu_ps(d + 8, out[1][c]);
+    }
+    return true;
+}
+
+// A view without a current table (filled by hand, or changed after prepare_view): the table built on the stack, in
+// a function of its own so that the usual call does not set up room for one (a std::optional there cost ~18
+// instructions per call).
+TVK_AVX2 __attribute__((noinline)) bool sample_rebuilt(const Inst& in, uint32_t* R, const ImageView& img,
+                                                       const SamplerState& smp) {
+    const ViewLevelTable local = level_table(img);
+    return sample_with(in, R, img, smp, local);
 }
 
 }  // namespace
@@ -258,20 +285,8 @@ TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const*
     const ImageView* img = slots[si]->image;
     const SamplerState* smp = slots[ss]->sampler;
     if (smp && smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
-    Levels levels;
-    bool bgra = false;
-    if (!fits(img, smp, levels, bgra)) return false;
-    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
-    // see the registers unchanged (the destination may be a source)
-    __m256 out[2][4];
-    for (int h = 0; h < 2; ++h)
-        if (!half(in, R, *img, *smp, levels, bgra, h, out[h])) return false;
-    for (int c = 0; c < 4; ++c) {
-        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
-        _mm256_storeu_ps(d, out[0][c]);
-        _mm256_storeu_ps(d + 8, out[1][c]);
-    }
-    return true;
+    if (!img || !smp || !img->base) return false;
+    return table_current(*img) ? sample_with(in, R, *img, *smp, img->table) : sample_rebuilt(in, R, *img, *smp);
 }
 
 }  // namespace tilevk::shader::jit

@@ -9,6 +9,9 @@
 #include "api_breadth.h"
 
 namespace tilevk::test::breadth {
+
+#include "ab_sample_mips_frag.h"  // only this file's test samples with it
+
 namespace {
 
 // ---- Format honesty --------------------------------------------------------------------------------------------
@@ -194,6 +197,97 @@ TEST_F(ApiBreadth, LinearClampToEdgeNearInfinitiesLikeLavapipe) {
         VkPipeline pipe = k.pipeline(p);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
         return k.read(tg.image.image, 8, 8, 16);
+    });
+}
+
+// A w x h image of `f` with `levels` mip levels, every level filled with distinct bytes, left SHADER_READ_ONLY.
+Device::Image mip_texture(Kit& k, VkFormat f, uint32_t w, uint32_t h, uint32_t levels, uint32_t seed) {
+    Device::Image tex = k.image(f, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, levels);
+    std::vector<VkBufferImageCopy> regions;
+    VkDeviceSize size = 0;
+    for (uint32_t l = 0; l < levels; ++l) {
+        VkBufferImageCopy r{};
+        r.bufferOffset = size;
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
+        r.imageExtent = {std::max(1u, w >> l), std::max(1u, h >> l), 1};
+        regions.push_back(r);
+        size += VkDeviceSize(r.imageExtent.width) * r.imageExtent.height * 4;
+    }
+    Device::Buffer src = k.buffer(size);
+    auto* p = static_cast<uint8_t*>(src.map);
+    for (size_t i = 0; i < size; ++i) p[i] = uint8_t((i * 29 + seed * 83 + (i >> 6) * 7) & 255);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdCopyBufferToImage(c, src.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
+                               regions.data());
+        transition(c, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }),
+              VK_SUCCESS);
+    return tex;
+}
+
+// Trilinear RGBA8/BGRA8 sampling (the compiled tier's RGBA8 sampler, whose per-level table each image view keeps)
+// with descriptor sets that alternate draw by draw in one render pass: views of other sizes, level counts and
+// formats, a view of the same image from its third level, the same sizes in another image, REPEAT and
+// CLAMP_TO_EDGE with a LOD bias; then a set rewritten to another view between two submissions. Each draw fills one
+// quadrant (dynamic scissor), the LOD varies across it (ab_sample_mips.frag). Bytes equal to lavapipe's.
+TEST_F(ApiBreadth, Rgba8ViewsAlternateBetweenDrawsLikeLavapipe) {
+    both([&](Kit& k) {
+        Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 64, 64);
+        const VkFormat rgba = VK_FORMAT_R8G8B8A8_UNORM, bgra = VK_FORMAT_B8G8R8A8_UNORM;
+        Device::Image a = mip_texture(k, rgba, 64, 64, 7, 1), b = mip_texture(k, bgra, 32, 16, 4, 2),
+                      c = mip_texture(k, rgba, 64, 64, 3, 3);
+        const VkImageAspectFlags col = VK_IMAGE_ASPECT_COLOR_BIT;
+        const VkImageView views[4] = {k.view(a.image, rgba, col, VK_IMAGE_VIEW_TYPE_2D, 0, 7),
+                                      k.view(b.image, bgra, col, VK_IMAGE_VIEW_TYPE_2D, 0, 4),
+                                      k.view(a.image, rgba, col, VK_IMAGE_VIEW_TYPE_2D, 2, 5),
+                                      k.view(c.image, rgba, col, VK_IMAGE_VIEW_TYPE_2D, 0, 3)};
+        VkSampler samplers[2];
+        for (int i = 0; i < 2; ++i) {
+            VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+            ci.magFilter = ci.minFilter = VK_FILTER_LINEAR;
+            ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+            ci.addressModeU = ci.addressModeV = ci.addressModeW =
+                i == 0 ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+            ci.mipLodBias = i == 0 ? 0.0f : 0.6f;
+            ci.maxLod = 16.0f;
+            EXPECT_EQ(vkCreateSampler(k.d, &ci, nullptr, &samplers[i]), VK_SUCCESS);
+            k.undo(VK_OBJECT_TYPE_SAMPLER, samplers[i], [&k, s = samplers[i]] { vkDestroySampler(k.d, s, nullptr); });
+        }
+        const VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+        const VkPipelineLayout layout = k.pipeline_layout({dsl});
+        VkDescriptorSet sets[4];
+        for (int i = 0; i < 4; ++i) {
+            sets[i] = k.descriptor_set(dsl);
+            VkDescriptorImageInfo ii{samplers[(i + i / 2) % 2], views[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            k.write(sets[i], 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        }
+        Pipe p = fullscreen_pipe(SPV(ab_sample_mips_frag), tg, layout);
+        p.dynamic = {VK_DYNAMIC_STATE_SCISSOR};
+        VkPipeline pipe = k.pipeline(p);
+        auto frame = [&] {
+            EXPECT_EQ(k.run([&](VkCommandBuffer cb) {
+                begin_pass(cb, tg.rp, tg.fb, tg.w, tg.h, {clear_color(-1, -1, -1, -1)});
+                vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                for (int d = 0; d < 8; ++d) {  // quadrants in two rounds, the sets in another order each round
+                    const int q = d % 4, set = d < 4 ? d : 3 - q;
+                    const VkRect2D r{{int32_t(q % 2) * 32, int32_t(q / 2) * 32 + (d < 4 ? 0 : 16)}, {32, 16}};
+                    vkCmdSetScissor(cb, 0, 1, &r);
+                    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &sets[set], 0, nullptr);
+                    vkCmdDraw(cb, 3, 1, 0, 0);
+                }
+                vkCmdEndRenderPass(cb);
+            }),
+                      VK_SUCCESS);
+            return k.read(tg.image.image, 64, 64, 16);
+        };
+        const Bytes first = frame();
+        VkDescriptorImageInfo ii{samplers[1], views[2], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        k.write(sets[0], 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+        return concat({first, frame()});
     });
 }
 

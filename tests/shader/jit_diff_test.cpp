@@ -651,6 +651,100 @@ TEST_F(JitDiff, Rgba8SamplerMatchesExecImage) {
     EXPECT_EQ(npot_repeat_taken, 0);
 }
 
+namespace {
+
+// A view of `w` x `h` RGBA8/BGRA8 texels over `levels` levels inside `mem`: rows `pad` bytes longer than the texels,
+// level 0 at byte `first`, the levels stored smallest first when `reversed` (other offsets, same sizes).
+ImageView laid_out(std::vector<uint8_t>& mem, Format f, uint32_t w, uint32_t h, uint32_t levels, uint32_t pad,
+                   uint32_t first, bool reversed, std::mt19937& rng) {
+    ImageView v;
+    v.format = f, v.width = w, v.height = h, v.levels = levels;
+    uint64_t off = first;
+    for (uint32_t k = 0; k < levels; ++k) {
+        const uint32_t l = reversed ? levels - 1 - k : k;
+        const uint32_t lw = std::max(1u, w >> l), lh = std::max(1u, h >> l);
+        v.level[l] = ImageLevel{off, uint64_t(lw) * 4 + pad, (uint64_t(lw) * 4 + pad) * lh};
+        off += (uint64_t(lw) * 4 + pad) * lh;
+    }
+    mem.resize(off);
+    for (auto& x : mem) x = uint8_t(rng());
+    v.base = mem.data();
+    return v;
+}
+
+// One Sample on random quads through both the kernel and exec_image; "" when the registers match (or the kernel
+// refused without writing), else where they differ. `taken` counts the calls the kernel took.
+std::string sample_once(const ImageView& view, const SamplerState& smp, std::mt19937& rng, int& taken) {
+    Descriptor desc{{}, &view, &smp};
+    const Descriptor* slots[2] = {&desc, &desc};
+    std::vector<uint32_t> regs(8 * kLanes);
+    for (int l = 0; l < kLanes; ++l) regs[l] = 1u | (1u << 16);
+    for (int q = 0; q < 4; ++q) {
+        const float cu = std::uniform_real_distribution<float>(-1.5f, 2.5f)(rng);
+        const float cv = std::uniform_real_distribution<float>(-1.5f, 2.5f)(rng);
+        const float d = std::ldexp(1.0f, int(rng() % 10) - 9);
+        for (int k = 0; k < 4; ++k) {
+            regs[kLanes + q * 4 + k] = fb(cu + d * float(k & 1));
+            regs[2 * kLanes + q * 4 + k] = fb(cv + d * 0.7f * float(k >> 1));
+        }
+    }
+    const Inst in{Op::Sample, 0, 4u, 0, 1, 3, kSampleImplicitLod, 2};
+    std::vector<uint32_t> a = regs, b = regs;
+    const bool fast = jit::sample_rgba8(in, a.data(), slots, 2);
+    exec_image(in, b.data(), slots, 2);
+    if (!fast) return a == regs ? "" : "a refused call wrote registers";
+    ++taken;
+    return first_difference(a.data(), b.data(), a.size() * 4);
+}
+
+}  // namespace
+
+// Views prepared once (prepare_view, as icd/ does when a VkImageView is made) and sampled in alternation, as
+// draws with different descriptor sets do: sizes, level counts, row pitches, level offsets (two views with the
+// same sizes but other offsets), RGBA/BGRA, REPEAT/CLAMP; then views whose fields change after prepare_view (the
+// table no longer matches the view: the kernel must rebuild it, or refuse a swizzle it does not cover). Every call
+// must give exec_image's bits.
+TEST_F(JitDiff, Rgba8SamplerPreparedViewsAlternate) {
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr((saved_csr & ~0x6000u) | 0x8040u);
+    std::mt19937 rng(2311);
+    std::vector<uint8_t> mem[5];
+    ImageView views[5] = {laid_out(mem[0], Format::R8G8B8A8_UNORM, 64, 32, 7, 0, 0, false, rng),
+                          laid_out(mem[1], Format::B8G8R8A8_UNORM, 16, 16, 3, 16, 52, false, rng),
+                          laid_out(mem[2], Format::R8G8B8A8_UNORM, 64, 32, 4, 0, 0, false, rng),
+                          laid_out(mem[3], Format::R8G8B8A8_UNORM, 64, 32, 7, 8, 20, true, rng),
+                          laid_out(mem[4], Format::R8G8B8A8_UNORM, 32, 16, 6, 4, 12, true, rng)};
+    for (ImageView& v : views) prepare_view(v);
+    SamplerState smp[2];
+    for (SamplerState& s : smp) s.mag_filter = s.min_filter = Filter::Linear, s.mipmap_mode = MipmapMode::Linear;
+    smp[1].address_u = smp[1].address_v = AddressMode::ClampToEdge;
+    smp[1].mip_lod_bias = 0.6f;
+    int taken[5] = {};
+    for (int call = 0; call < 1000; ++call) {
+        const int v = call % 5;
+        ASSERT_EQ(sample_once(views[v], smp[(call / 5) % 2], rng, taken[v]), "") << "view " << v << " call " << call;
+    }
+    for (int v = 0; v < 5; ++v) EXPECT_EQ(taken[v], 200) << "view " << v;
+    // view 0 becomes view 4's image (other sizes, levels and offsets) without prepare_view: its table is stale
+    ImageView changed = views[0];
+    const ViewLevelTable stale = changed.table;
+    changed.width = views[4].width, changed.height = views[4].height, changed.levels = views[4].levels;
+    changed.level = views[4].level, changed.base = views[4].base;
+    ASSERT_EQ(std::memcmp(&changed.table, &stale, sizeof stale), 0);
+    int changed_taken = 0;
+    for (int call = 0; call < 200; ++call)
+        ASSERT_EQ(sample_once(changed, smp[call % 2], rng, changed_taken), "") << "changed view, call " << call;
+    EXPECT_EQ(changed_taken, 200);
+    // a swizzle the kernel does not cover, set after prepare_view: refused, exec_image swizzles
+    changed = views[0];
+    changed.swizzle = {2, 1, 0, 3};
+    int swizzled_taken = 0;
+    for (int call = 0; call < 50; ++call)
+        ASSERT_EQ(sample_once(changed, smp[0], rng, swizzled_taken), "") << "swizzled view, call " << call;
+    EXPECT_EQ(swizzled_taken, 0);
+    _mm_setcsr(saved_csr);
+}
+
 // The driver's time limit (Scratch::set_stop_flag): with the flag set, both tiers leave an endless loop at its first
 // back edge, with the same outputs and one watchdog count each.
 TEST_F(JitDiff, StopFlagEndsLoopsAlike) {
