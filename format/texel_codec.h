@@ -197,4 +197,19 @@ void encode_channels(const FormatInfo& f, const uint32_t words[4], uint8_t* texe
 // float3_to_rgb9e5 for the small floats).
 bool pack_clear_channels(const FormatInfo& f, const uint32_t words[4], uint8_t* texel);
 
+// ---- shader image stores (imageStore) ---------------------------------------------------------------------------
+//
+// A texel written by a shader's imageStore as lavapipe writes it (lp_bld_format_soa.c lp_build_store_rgba_soa,
+// lp_build_insert_soa_chan), per channel, from the shader's words (float bits, or integers for UINT/SINT):
+//   UNORM n (n <= 16)  clamp(x, 0, 1) (NaN -> 1), then the low n bits of fl(fl(x * (2^n-1)/2^n) + 2^(23-n))
+//   SNORM n (n <= 16)  rne(fl(clamp(x, -1, 1) * (2^(n-1)-1))) (NaN -> 2^(n-1)-1), masked to n bits
+//   UINT / SINT        unsigned min with 2^n-1 / clamped to [-2^(n-1), 2^(n-1)-1]; 32-bit channels as they are
+//   SFLOAT             16-bit float_to_half_rtz (lp_build_float_to_half), 32-bit the float's bits
+// The clamps take the upper bound first (lp_build_clamp: MINPS then MAXPS), which sends NaN to the upper bound.
+// Loads (imageLoad) decode through decode_color, as texel fetches do (lp_build_fetch_rgba_soa).
+
+// True for the formats store_image_texel encodes: array or packed texels whose channels are all of the kinds above.
+bool can_store_image(const FormatInfo& f);
+void store_image_texel(const FormatInfo& f, const uint32_t words[4], uint8_t* texel);
+
 }  // namespace tilevk::format

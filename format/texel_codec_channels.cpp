@@ -169,6 +169,39 @@ uint32_t pack_clear_channel(const Channel& ch, uint32_t word) {
     }
 }
 
+// lp_bld_format_soa.c lp_build_insert_soa_chan (shader image stores): one channel of a word the shader stored.
+uint32_t image_store_channel(const Channel& ch, uint32_t word) {
+    const float x = bits::to_float(word);
+    const uint32_t mask = ch.bits >= 32 ? 0xffffffffu : (1u << ch.bits) - 1u;
+    // lp_build_clamp: min with the upper bound first, then max with the lower (MINPS/MAXPS), so NaN -> hi
+    const auto clamp = [](float v, float lo, float hi) { return bits::sse_max(bits::sse_min(v, hi), lo); };
+    switch (ch.numeric) {
+        case Numeric::kUnorm: {
+            // lp_build_clamped_float_to_unsigned_norm for n <= 23 bits: fl(fl(x * (2^n-1)/2^n) + 2^(23-n)), whose
+            // low n mantissa bits are rne(x * (2^n-1)); plain mul and add (never fused)
+            const float c = clamp(x, 0.0f, 1.0f);
+            const float scale = float(double(mask) / double(mask + 1u));
+            return bits::of(c * scale + float(1u << (23 - ch.bits))) & mask;
+        }
+        case Numeric::kSnorm: {
+            // fl(clamp(x, -1, 1) * (2^(n-1)-1)), llvm.rint (round half to even), fptosi, masked
+            const float c = clamp(x, -1.0f, 1.0f) * float(mask >> 1);
+            return uint32_t(int32_t(std::nearbyint(c))) & mask;
+        }
+        case Numeric::kUint:  // pure integers: unsigned min with the channel's maximum
+            return ch.bits >= 32 ? word : std::min(word, mask);
+        case Numeric::kSint: {  // clamped to the channel's range below 32 bits, as they are at 32
+            if (ch.bits >= 32) return word;
+            const int32_t hi = int32_t(mask >> 1), lo = -hi - 1;
+            return uint32_t(std::clamp(int32_t(word), lo, hi)) & mask;
+        }
+        case Numeric::kSfloat:  // lp_build_float_to_half (toward zero) or the float's bits
+            return ch.bits == 16 ? float_to_half_rtz(x) : word;
+        default:
+            return 0;
+    }
+}
+
 }  // namespace
 
 uint16_t float_to_unorm16(float x) {
@@ -324,6 +357,28 @@ bool pack_clear_channels(const FormatInfo& f, const uint32_t words[4], uint8_t* 
         if (c >= 0) bits::insert(texel, ch.shift, ch.bits, pack_clear_channel(ch, words[c]));
     }
     return true;
+}
+
+bool can_store_image(const FormatInfo& f) {
+    if ((f.layout != Layout::kArray && f.layout != Layout::kPacked) || f.depth != DepthFormat::None) return false;
+    if (f.kind == ChannelKind::None || f.kind == ChannelKind::Srgb8 || f.kind == ChannelKind::Ufloat11 ||
+        f.kind == ChannelKind::SharedExp)
+        return false;
+    for (int i = 0; i < f.channels; ++i) {
+        const Channel& ch = f.channel[i];
+        const bool ok = ((ch.numeric == Numeric::kUnorm || ch.numeric == Numeric::kSnorm) && ch.bits <= 16) ||
+                        ch.numeric == Numeric::kUint || ch.numeric == Numeric::kSint ||
+                        (ch.numeric == Numeric::kSfloat && (ch.bits == 16 || ch.bits == 32));
+        if (!ok || rgba_index(ch.component) < 0) return false;
+    }
+    return true;
+}
+
+void store_image_texel(const FormatInfo& f, const uint32_t words[4], uint8_t* texel) {
+    for (int i = 0; i < f.channels; ++i) {
+        const Channel& ch = f.channel[i];
+        bits::insert(texel, ch.shift, ch.bits, image_store_channel(ch, words[rgba_index(ch.component)]));
+    }
 }
 
 }  // namespace tilevk::format

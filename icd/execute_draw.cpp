@@ -310,6 +310,11 @@ shader::Descriptor descriptor_of(DrawContext& ctx, const BoundSets& bs, uint32_t
         case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
             out.image = texel_buffer_of(ctx, d.buffer_view);
             break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:  // imageLoad / imageStore / imageSize on level 0 of the view
+            out.image = image_of(ctx, d.image_view);
+            if (out.image != nullptr && (format::image_features(*d.image_view->format) & format::kStorageImage))
+                out.image_writable = d.image_view->image->memory->data + d.image_view->image->memory_offset;
+            break;
         default:  // not reported as supported: reads as zero
             break;
     }

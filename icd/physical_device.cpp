@@ -213,9 +213,9 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     if (usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) need |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (usage & VK_IMAGE_USAGE_SAMPLED_BIT) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    // Storage images are not implemented by the shader path. Input attachments are read by subpassLoad as a
-    // texel fetch (shader/translate_ops.cpp), so they need an attachment format the shader path can read.
-    if (usage & VK_IMAGE_USAGE_STORAGE_BIT) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    if (usage & VK_IMAGE_USAGE_STORAGE_BIT) need |= VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    // Input attachments are read by subpassLoad as a texel fetch (shader/translate_image.cpp), so they need an
+    // attachment format the shader path can read.
     if (usage & VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) {
         if (!(have & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
         if (!(have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)))
@@ -227,10 +227,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    // Multisampled images cannot be sampled or read as input attachments (the shader path reads one sample per
-    // texel; subpassInputMS is refused).
+    // Multisampled images cannot be sampled, read as input attachments or used as storage images (the shader path
+    // reads one sample per texel; subpassInputMS and storage images with samples are refused).
     pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment &&
-                                   !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT))
+                                   !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT |
+                                              VK_IMAGE_USAGE_STORAGE_BIT))
                                ? VkSampleCountFlags(f->sample_counts) & kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;

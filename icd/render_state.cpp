@@ -47,7 +47,8 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
 bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     if (v.image == nullptr || v.image->memory == nullptr) return false;
     const Image& img = *v.image;
-    if (!(image_features(*v.format) & format::kSampledImage) || img.samples != 1) return false;
+    if (!(image_features(*v.format) & (format::kSampledImage | format::kStorageImage)) || img.samples != 1)
+        return false;
     out->format = v.format->id;
     const uint32_t b = v.range.baseMipLevel;
     out->base = img.memory->data + img.memory_offset;

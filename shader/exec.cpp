@@ -70,6 +70,8 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             case Op::Fetch:
             case Op::QuerySize:
             case Op::QueryLevels:
+            case Op::ImageLoad:
+            case Op::ImageStore:
                 exec_image(in, mc.R, mc.slots, mc.num_slots);
                 break;
             case Op::Jump:

@@ -183,6 +183,11 @@ enum class Op : uint16_t {
     SgBroadcast,       // d = a of lane b (b read from the lowest active lane; taken modulo kSubgroupSize)
     SgBroadcastFirst,  // d = a of the lowest active lane
     SgBallot,          // d = the bits (1 << lane id) of the active lanes whose a is true
+    // Storage images (any stage; after Halt so that jit::compile leaves their programs to the interpreter, by
+    // name): a = handle, b = first integer coordinate (x, y[, layer]), imm = kSampleArray or 0. A coordinate
+    // outside the view's level 0 or layers loads (0, 0, 0, 1 if the format has no alpha) and stores nothing.
+    ImageLoad,   // d..d+3 = the texel decoded (format/texel_codec.h decode_color)
+    ImageStore,  // texel = c..c+3 encoded (store_image_texel) under mask d, lanes in order
 };
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.

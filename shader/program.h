@@ -128,7 +128,7 @@ enum class DescriptorKind : uint8_t {
     CombinedImageSampler,
     SampledImage,
     Sampler,
-    StorageImage,  // reported for completeness; image load/store is not supported yet (creation fails)
+    StorageImage,  // imageLoad / imageStore / imageSize (2D and 2D arrays)
 };
 
 struct DescriptorUse {
@@ -136,7 +136,7 @@ struct DescriptorUse {
     uint32_t binding = 0;
     DescriptorKind kind = DescriptorKind::UniformBuffer;
     uint32_t array_size = 1;  // 1 for non-arrays
-    bool written = false;     // storage buffer stored to
+    bool written = false;     // storage buffer or storage image stored to
 };
 
 struct ProgramInterface {
@@ -280,8 +280,9 @@ std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32
 // What one (set, binding, array element) holds. Unused members stay null.
 struct Descriptor {
     BufferView buffer;                      // uniform / storage buffers (offset and range already applied)
-    const ImageView* image = nullptr;       // sampled images and combined image samplers
+    const ImageView* image = nullptr;       // sampled images, combined image samplers and storage images
     const SamplerState* sampler = nullptr;  // samplers and combined image samplers
+    uint8_t* image_writable = nullptr;      // storage images: image->base, which imageStore may write (else null)
 };
 
 // The resources one draw binds. The driver fills it; the program looks descriptors up once per run.

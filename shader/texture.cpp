@@ -437,6 +437,11 @@ struct ImageOperands {
         const uint32_t s = reg(in.a)[l] & 0xFFFF;
         return s < num_slots && slots[s] && image_ok(slots[s]->image) ? slots[s]->image : nullptr;
     }
+    // storage images: the writable bytes of lane l's image (Descriptor::image_writable), or null
+    uint8_t* writable(int l) const {
+        const uint32_t s = reg(in.a)[l] & 0xFFFF;
+        return s < num_slots && slots[s] ? slots[s]->image_writable : nullptr;
+    }
     const SamplerState* sampler(int l) const {
         const uint32_t s = reg(in.a)[l] >> 16;
         return s < num_slots && slots[s] ? slots[s]->sampler : nullptr;
@@ -486,6 +491,52 @@ void exec_fetch(const ImageOperands& op) {
         const int32_t y = op.one_d() ? 0 : int32_t(op.reg(op.in.b + 1)[l]) + op.off_y();
         const int32_t layer = op.arrayed() ? int32_t(op.reg(op.in.b + op.layer_comp())[l]) : 0;
         op.write(l, img ? fetch_at(*img, x, y, layer, lod[l], op.one_d()) : Vec4{0, 0, 0, 0});
+    }
+}
+
+// A storage image texel's address, or null outside level 0 of the view or its layers: lp_build_img_op_soa compares
+// the coordinates as unsigned (negative ones are outside too) against the view's width, height and layer count.
+const uint8_t* storage_texel(const ImageOperands& op, const ImageView& img, int l) {
+    const uint32_t x = op.reg(op.in.b)[l], y = op.reg(op.in.b + 1)[l];
+    const uint32_t layer = op.arrayed() ? op.reg(op.in.b + 2)[l] : 0u;
+    if (x >= img.width || y >= img.height || layer >= img.layers) return nullptr;
+    const ImageLevel& il = img.level[0];
+    return img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
+           uint64_t(x) * format::format_info(img.format).bytes;
+}
+
+// imageLoad: the texel decoded as a texel fetch decodes it (lp_build_fetch_rgba_soa); outside the view (0, 0, 0, 0),
+// with alpha 1 (the integer 1 for integer formats) when the format has no alpha channel (lp_build_img_op_soa).
+void exec_image_load(const ImageOperands& op) {
+    for (int l = 0; l < kLanes; ++l) {
+        const ImageView* img = op.image(l);
+        Vec4 r{0, 0, 0, 0};
+        if (img != nullptr) {
+            const format::FormatInfo& fi = format::format_info(img->format);
+            if (const uint8_t* p = storage_texel(op, *img, l))
+                r = decode(fi, p);
+            else if (!fi.has_alpha)
+                r[3] = format::is_integer(fi) ? std::bit_cast<float>(1u) : 1.0f;
+        }
+        op.write(l, r);
+    }
+}
+
+// imageStore: the lanes of mask d in lane order (the last one wins, as lavapipe's per-lane store loop); nothing
+// outside the view, through a descriptor that is not a storage image, or for a format without the store codec.
+void exec_image_store(const ImageOperands& op) {
+    const uint32_t* mask = op.reg(op.in.d);
+    for (int l = 0; l < kLanes; ++l) {
+        if (!mask[l]) continue;
+        const ImageView* img = op.image(l);
+        uint8_t* const out = op.writable(l);
+        if (img == nullptr || out == nullptr) continue;
+        const format::FormatInfo& fi = format::format_info(img->format);
+        const uint8_t* p = storage_texel(op, *img, l);
+        if (p == nullptr || !format::can_store_image(fi)) continue;
+        const uint32_t words[4] = {op.reg(op.in.c)[l], op.reg(op.in.c + 1)[l], op.reg(op.in.c + 2)[l],
+                                   op.reg(op.in.c + 3)[l]};
+        format::store_image_texel(fi, words, out + (p - img->base));
     }
 }
 
@@ -552,6 +603,10 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
             return exec_query_size(op);
         case Op::Fetch:
             return exec_fetch(op);
+        case Op::ImageLoad:
+            return exec_image_load(op);
+        case Op::ImageStore:
+            return exec_image_store(op);
         default:
             return exec_sample(op);
     }

@@ -142,7 +142,10 @@ void Translator::finish_interface() {
         return a.location * 4 + a.component < b.location * 4 + b.component;
     });
     for (auto& d : iface_.descriptors)
-        if (d.kind == DescriptorKind::StorageBuffer) d.written = buffer_written_;
+        if (d.kind == DescriptorKind::StorageBuffer)
+            d.written = buffer_written_;
+        else if (d.kind == DescriptorKind::StorageImage)
+            d.written = image_written_;
     p_.shared_words = shared_words_;
     iface_.shared_memory_bytes = shared_words_ * 4;
     std::sort(iface_.descriptors.begin(), iface_.descriptors.end(), [](const DescriptorUse& a, const DescriptorUse& b) {

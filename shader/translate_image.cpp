@@ -101,6 +101,39 @@ bool Translator::image_sample(const Instr& in) {
     return true;
 }
 
+// imageLoad / imageStore on a storage image (2D or 2D array, declare_image_type): integer coordinates, the view's
+// format decides the conversion (texture.cpp), as lavapipe's lp_build_img_op_soa does with the bound view's format.
+void Translator::storage_image_access(const Instr& in) {
+    const bool write = in.op == spv::Op::OpImageWrite;
+    const uint32_t image = write ? in[1] : in[3], coord = write ? in[2] : in[4];
+    const Type& it = type(val(image).type);
+    if (it.kind != Type::Image || it.sampled != 2 || spv::Dim(it.dim) == spv::Dim::SubpassData)
+        fail(opname(in.op) + " on an image that is not a storage image");
+    const size_t operands_at = write ? 4 : 5;
+    const uint32_t extend = uint32_t(spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
+    if (in.n > operands_at && (in[operands_at] & ~extend) != 0)
+        fail("unsupported image operands (sample, lod, offsets) in " + opname(in.op));
+    const uint32_t ncoord = it.arrayed ? 3 : 2;
+    if (flat_of(coord) < ncoord) fail("storage image coordinate with too few components");
+    const uint32_t flags = it.arrayed ? uint32_t(kSampleArray) : 0u;
+    if (!write) {
+        if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
+        const uint32_t d = def(in, 4);
+        // another lane (or workgroup) may have stored to the texel: keep what each lane loaded while active
+        keep_active(d, 4, [&](uint32_t t) { emit(SOp::ImageLoad, t, reg(image), reg(coord), kNoReg, flags); });
+        return;
+    }
+    const uint32_t n = flat_of(in[3]);
+    if (n > 4) fail("storage image texel with more than 4 components");
+    uint32_t texel = reg(in[3]);
+    if (n < 4) {  // missing components are 0 (never read by the formats that lack them)
+        texel = alloc(4);
+        for (uint32_t i = 0; i < 4; ++i) emit(SOp::Mov, texel + i, i < n ? reg(in[3]) + i : zero_);
+    }
+    emit(SOp::ImageStore, side_effect_mask(), reg(image), reg(coord), texel, flags);
+    image_written_ = true;
+}
+
 // Sampled images, texel fetches, input attachments, size queries.
 bool Translator::op_image(const Instr& in) {
     switch (in.op) {
@@ -121,7 +154,15 @@ bool Translator::op_image(const Instr& in) {
         case spv::Op::OpImageSampleProjDrefImplicitLod:
         case spv::Op::OpImageSampleProjDrefExplicitLod:
             return image_sample(in);
+        case spv::Op::OpImageWrite:
+            storage_image_access(in);
+            return true;
         case spv::Op::OpImageRead: {
+            const Type& read_type = type(val(in[3]).type);
+            if (read_type.kind == Type::Image && spv::Dim(read_type.dim) != spv::Dim::SubpassData) {
+                storage_image_access(in);  // an input attachment is sampled == 2 too
+                return true;
+            }
             // subpassLoad(input, offset): texelFetch(input, ivec2(gl_FragCoord.xy) + offset, 0) on the bound
             // view (lavapipe lowers it the same way, nir_lower_input_attachments with frag coords).
             const Type& it = type(val(in[3]).type);

@@ -271,7 +271,7 @@ void Translator::declare_resource(spv::StorageClass sc, const Decorations& d, Po
         if (it.kind == Type::SampledImage)
             use.kind = DescriptorKind::CombinedImageSampler;
         else if (it.kind == Type::Image)
-            use.kind = DescriptorKind::SampledImage;
+            use.kind = it.sampled == 2 ? DescriptorKind::StorageImage : DescriptorKind::SampledImage;
         else if (it.kind == Type::Sampler)
             use.kind = DescriptorKind::Sampler;
         else

@@ -309,7 +309,9 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
     }
     if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D)
         fail("unsupported image dimension (only 1D and 2D, arrays included)");
-    if (t.sampled == 2) fail("unsupported storage image (imageLoad/imageStore)");
+    // Storage images (imageLoad / imageStore / imageSize): 2D and 2D arrays, the only image views icd/ makes.
+    if (t.sampled == 2 && spv::Dim(t.dim) != spv::Dim::Dim2D)
+        fail("unsupported storage image dimension (only 2D, arrays included)");
 }
 
 void Translator::declare_constant(const Instr& in) {

@@ -149,7 +149,8 @@ class Translator {
     void subgroup_ballot_helper(const Instr& in);
     uint32_t side_effect_mask();  // lanes whose buffer writes take effect (fragment: live ones only)
     bool image_sample(const Instr& in);
-    void glsl_op(const Instr& in);  // translate_glsl.cpp: GLSL.std.450
+    void storage_image_access(const Instr& in);  // OpImageRead / OpImageWrite on a storage image
+    void glsl_op(const Instr& in);               // translate_glsl.cpp: GLSL.std.450
     // helpers for instructions with a result (type in[1], id in[2])
     uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result
     void alias(const Instr& in, uint32_t r);        // the result is register run r
@@ -241,6 +242,7 @@ class Translator {
     std::vector<uint32_t> store_masks_;  // per block: mask for side effects
     uint32_t store_mask_ = kNoReg;
     bool buffer_written_ = false;
+    bool image_written_ = false;  // an OpImageWrite (storage images)
     // The block being translated lies inside a loop. Instructions there run for all lanes on every iteration, so
     // a lane that already left the loop has its registers recomputed. That is harmless for pure functions of its
     // own (masked) phis and memory, but not for results that depend on other lanes or shared memory: buffer loads,

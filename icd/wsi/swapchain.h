@@ -32,7 +32,8 @@ namespace wsi {
 constexpr uint32_t kMinSwapchainImages = 2;
 constexpr uint32_t kMaxSwapchainImages = 16;
 // Everything a swapchain image can be used for: tilevk's colour formats are transfer sources and destinations,
-// colour attachments, sampled images and input attachments (no storage images: shader/ has no imageStore).
+// colour attachments, sampled images and input attachments (not storage images: the swapchain's B8G8R8A8 formats
+// have no STORAGE_IMAGE feature, format/support.txt).
 constexpr VkImageUsageFlags kSwapchainImageUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                                                    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
                                                    VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;

@@ -219,13 +219,13 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
         return nullptr;
     }
     // A run of the compiled code cannot stop at a barrier and resume (Program::run_workgroup's lock-step phases),
-    // and this tier has no shared-memory, atomic or subgroup ops: such compute programs stay in the interpreter, by
-    // name.
+    // and this tier has no shared-memory, atomic, subgroup or storage-image ops: such programs stay in the
+    // interpreter, by name.
     for (const Inst& in : p.code)
         if (in.op > Op::Halt) {
-            *why_not =
-                "IR op " + op_name(in.op) +
-                ": Workgroup memory, OpControlBarrier, OpAtomic* and OpGroupNonUniform* run in the interpreter only";
+            *why_not = "IR op " + op_name(in.op) +
+                       ": Workgroup memory, OpControlBarrier, OpAtomic*, OpGroupNonUniform* and storage images "
+                       "(OpImageRead / OpImageWrite) run in the interpreter only";
             return nullptr;
         }
     const Analysis an = analyze(p);
@@ -325,6 +325,10 @@ std::string op_name(Op op) {
             return "SgBroadcastFirst";
         case Op::SgBallot:
             return "SgBallot";
+        case Op::ImageLoad:
+            return "ImageLoad";
+        case Op::ImageStore:
+            return "ImageStore";
         default:
             break;
     }

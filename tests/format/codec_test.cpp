@@ -164,6 +164,56 @@ TEST(FormatTable, ChannelPlacementFollowsTheSpec) {
 
 // Support is reported only where a codec implements it: attachments and sampling need a texel codec, vertex and
 // texel-buffer formats channels fetch_words converts, 4 samples a resolvable colour codec or depth.
+// store_image_texel (imageStore) against hand values of texel_codec.h's rules: UNORM8 rne(x * 255) with NaN at the
+// upper bound (0.5 -> 127.5 -> 128), SNORM8 rne(x * 127) (0.5 -> 63.5 -> 64, NaN -> 127, -inf -> -127), 16-bit
+// integers saturated, halves toward zero (0.1 -> 0x2e66, 70000 -> 65504 = 0x7bff), 32-bit channels as they are.
+TEST(ImageStore, ChannelsFollowTheStoreRules) {
+    const uint32_t nan = 0x7fc00000u, ninf = 0xff800000u;
+    const auto word = [](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    uint8_t t[16] = {};
+    const uint32_t unorm[4] = {word(0.5f), nan, word(-3.0f), word(1.0f / 255.0f)};
+    store_image_texel(format_info(Format::R8G8B8A8_UNORM), unorm, t);
+    EXPECT_EQ(t[0], 128);
+    EXPECT_EQ(t[1], 255);
+    EXPECT_EQ(t[2], 0);
+    EXPECT_EQ(t[3], 1);
+    const uint32_t snorm[4] = {word(0.5f), nan, ninf, word(-0.5f)};
+    store_image_texel(format_info(Format::R8G8B8A8_SNORM), snorm, t);
+    EXPECT_EQ(int8_t(t[0]), 64);
+    EXPECT_EQ(int8_t(t[1]), 127);
+    EXPECT_EQ(int8_t(t[2]), -127);
+    EXPECT_EQ(int8_t(t[3]), -64);
+    const uint32_t ints[4] = {70000u, 0xffffffffu, 5u, 65535u};
+    uint16_t h[4];
+    store_image_texel(format_info(Format::R16G16B16A16_UINT), ints, t);
+    std::memcpy(h, t, 8);
+    EXPECT_EQ(h[0], 65535);
+    EXPECT_EQ(h[1], 65535);
+    EXPECT_EQ(h[2], 5);
+    store_image_texel(format_info(Format::R16G16B16A16_SINT), ints, t);
+    std::memcpy(h, t, 8);
+    EXPECT_EQ(int16_t(h[0]), 32767);
+    EXPECT_EQ(int16_t(h[1]), -1);
+    const uint32_t halves[4] = {word(0.1f), word(70000.0f), word(-2.25f), word(0.0f)};
+    store_image_texel(format_info(Format::R16G16B16A16_SFLOAT), halves, t);
+    std::memcpy(h, t, 8);
+    EXPECT_EQ(h[0], 0x2e66);
+    EXPECT_EQ(h[1], 0x7bff);
+    EXPECT_EQ(h[2], 0xc080);
+    store_image_texel(format_info(Format::R32G32_SINT), ints, t);
+    uint32_t w[2];
+    std::memcpy(w, t, 8);
+    EXPECT_EQ(w[0], 70000u);
+    EXPECT_EQ(w[1], 0xffffffffu);
+    EXPECT_TRUE(can_store_image(format_info(Format::R32G32B32A32_SFLOAT)));
+    EXPECT_FALSE(can_store_image(format_info(Format::R8G8B8A8_SRGB)));
+    EXPECT_FALSE(can_store_image(format_info(Format::D32_SFLOAT)));
+}
+
 TEST(FormatTable, SupportNeedsTheCodec) {
     int supported = 0;
     for (size_t i = 0; i < size_t(Format::kCount); ++i) {
@@ -178,6 +228,9 @@ TEST(FormatTable, SupportNeedsTheCodec) {
         }
         if (image & (kSampledImage | kBlitSrc | kBlitDst)) {
             EXPECT_TRUE(can_decode_color(f)) << f.name;
+        }
+        if (image & kStorageImage) {
+            EXPECT_TRUE(can_store_image(f) && can_decode_color(f)) << f.name;  // imageStore / imageLoad
         }
         if (f.buffer & kUniformTexelBuffer) {
             EXPECT_NE(f.kind, ChannelKind::None) << f.name;

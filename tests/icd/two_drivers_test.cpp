@@ -157,13 +157,17 @@ TEST(TwoDrivers, TilevkProperties) {
     const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
     EXPECT_EQ(m.memoryTypes[0].propertyFlags, want);
-    // Sampled images are single-sampled only; storage images are refused honestly.
+    // Sampled and storage images are single-sampled only; storage images only in the formats with the feature.
     VkImageFormatProperties ifp;
     ASSERT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_SAMPLED_BIT, 0, &ifp),
               VK_SUCCESS);
     EXPECT_EQ(ifp.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT));
-    EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
+    ASSERT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
+                                                       VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_STORAGE_BIT, 0, &ifp),
+              VK_SUCCESS);
+    EXPECT_EQ(ifp.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT));
+    EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8_UNORM, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_STORAGE_BIT, 0, &ifp),
               VK_ERROR_FORMAT_NOT_SUPPORTED);
     EXPECT_EQ(

@@ -1,10 +1,12 @@
-// Uniform/storage buffers (std140/std430 layouts), push constants, local arrays; robust bounds checks.
+// Uniform/storage buffers (std140/std430 layouts), push constants, local arrays, storage images; robust bounds
+// checks.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cstring>
 #include <vector>
 
+#include "compute_harness.h"
 #include "glsl.h"
 
 using namespace tilevk::shader;
@@ -21,6 +23,23 @@ uint32_t u(float x) {
 template <typename T>
 void put(std::vector<uint8_t>& buf, size_t off, T v) {
     std::memcpy(buf.data() + off, &v, sizeof(T));
+}
+
+// A w x h x layers R32_UINT image over `words` (rows packed), as icd/ hands a storage image over.
+ImageView r32ui_view(std::vector<uint32_t>& words, uint32_t w, uint32_t h, uint32_t layers = 1) {
+    ImageView v;
+    v.base = reinterpret_cast<const uint8_t*>(words.data());
+    v.format = Format::R32_UINT;
+    v.width = w, v.height = h, v.layers = layers;
+    v.level[0].row_pitch = uint64_t(w) * 4;
+    v.level[0].layer_pitch = uint64_t(w) * h * 4;
+    return v;
+}
+Descriptor storage_image(const ImageView& v, std::vector<uint32_t>& words, bool writable = true) {
+    Descriptor d;
+    d.image = &v;
+    d.image_writable = writable ? reinterpret_cast<uint8_t*>(words.data()) : nullptr;
+    return d;
 }
 }  // namespace
 
@@ -210,4 +229,85 @@ TEST(ShaderMemory, LocalArrayOutOfBoundsIndexDoesNotCrash) {
     Scratch s;
     prog->run_vertex(Bindings{}, vb, s);  // must not crash; values are unspecified past the array
     SUCCEED();
+}
+
+// imageStore / imageLoad / imageSize in compute: every invocation of an 8x4 workgroup stores at its id into a 6x3
+// array layer 1 (the lanes past x = 5 or y = 2 are outside: dropped), loads the texel one to the left (outside at
+// x = 0: (0, 0, 0, 1), R32_UINT has no alpha) into a buffer; the program stays in the interpreter.
+TEST(ShaderMemory, StorageImageComputeStoresLoadsAndBounds) {
+    auto p = tilevk::shader::test::compute(R"(#version 450
+        layout(local_size_x = 8, local_size_y = 4) in;
+        layout(r32ui, set = 0, binding = 0) uniform uimage2DArray img;
+        layout(std430, set = 0, binding = 1) buffer Out { uvec4 o[32]; ivec4 size; };
+        void main() {
+            ivec2 p = ivec2(gl_LocalInvocationID.xy);
+            imageStore(img, ivec3(p, 1), uvec4(uint(p.x * 10 + p.y + 1)));
+            memoryBarrierImage();
+            barrier();
+            o[gl_LocalInvocationIndex] = imageLoad(img, ivec3(p.x - 1, p.y, 1));
+            size = ivec4(imageSize(img), 0);
+        })");
+    ASSERT_TRUE(p);
+    EXPECT_FALSE(p->compiled());  // ImageStore / ImageLoad: the interpreter only
+    ASSERT_EQ(p->interface().descriptors.size(), 2u);
+    EXPECT_EQ(p->interface().descriptors[0].kind, DescriptorKind::StorageImage);
+    EXPECT_TRUE(p->interface().descriptors[0].written);
+    std::vector<uint32_t> texels(6 * 3 * 2, 0xEEu), out(32 * 4 + 4, 0xDDu);
+    const ImageView v = r32ui_view(texels, 6, 3, 2);
+    Bindings b;
+    b.set(0, 0, 0, storage_image(v, texels));
+    b.set(0, 1, 0, tilevk::shader::test::storage(out));
+    Scratch s;
+    tilevk::shader::test::dispatch(*p, b, 0, 1, 1, s);
+    for (uint32_t y = 0; y < 3; ++y)
+        for (uint32_t x = 0; x < 6; ++x) {
+            EXPECT_EQ(texels[y * 6 + x], 0xEEu) << "layer 0 untouched";
+            EXPECT_EQ(texels[18 + y * 6 + x], x * 10 + y + 1) << x << "," << y;
+        }
+    for (uint32_t i = 0; i < 32; ++i) {
+        const uint32_t x = i % 8, y = i / 8;
+        const bool inside = x >= 1 && x - 1 < 6 && y < 3;
+        EXPECT_EQ(out[i * 4], inside ? (x - 1) * 10 + y + 1 : 0u) << i;
+        EXPECT_EQ(out[i * 4 + 1], 0u) << i;
+        EXPECT_EQ(out[i * 4 + 3], 1u) << i;  // alpha: the integer 1 inside and outside
+    }
+    EXPECT_EQ(out[128], 6u);
+    EXPECT_EQ(out[129], 3u);
+    EXPECT_EQ(out[130], 2u);
+    // Without a writable descriptor (not a storage image binding) nothing is stored.
+    std::vector<uint32_t> ro(6 * 3 * 2, 0x77u);
+    const ImageView rv = r32ui_view(ro, 6, 3, 2);
+    Bindings b2;
+    b2.set(0, 0, 0, storage_image(rv, ro, false));
+    b2.set(0, 1, 0, tilevk::shader::test::storage(out));
+    tilevk::shader::test::dispatch(*p, b2, 0, 1, 1, s);
+    for (uint32_t t : ro) EXPECT_EQ(t, 0x77u);
+}
+
+// Fragment imageStore: helper lanes (not covered) and discarded lanes write nothing; all the others store at one
+// texel in lane order, so the last such lane's value stays.
+TEST(ShaderMemory, StorageImageFragmentStoresOnlyLiveCoveredLanes) {
+    auto prog = make_program(Stage::Fragment, R"(#version 450
+        layout(r32ui, set = 0, binding = 0) uniform uimage2D img;
+        layout(location = 0) flat in int lane;
+        layout(location = 0) out vec4 color;
+        void main() {
+            if (lane == 6) discard;
+            imageStore(img, ivec2(lane, 0), uvec4(uint(lane + 100)));
+            imageStore(img, ivec2(0, 1), uvec4(uint(lane)));
+            color = vec4(1.0);
+        })");
+    ASSERT_TRUE(prog);
+    std::vector<uint32_t> texels(16 * 2, 0xEEu);
+    const ImageView v = r32ui_view(texels, 16, 2);
+    Bindings b;
+    b.set(0, 0, 0, storage_image(v, texels));
+    FragmentBlock fb;
+    fb.cover_mask = 0xFFFF & ~(1u << 3) & ~(1u << 15);  // lanes 3 and 15: helpers
+    for (int l = 0; l < kLanes; ++l) fb.inputs[0][0][l] = uint32_t(l);
+    Scratch sc;
+    prog->run_fragment(b, fb, sc);
+    for (uint32_t l = 0; l < 16; ++l)
+        EXPECT_EQ(texels[l], l == 3 || l == 6 || l == 15 ? 0xEEu : l + 100) << "lane " << l;
+    EXPECT_EQ(texels[16], 14u);  // the last live lane
 }
