@@ -610,8 +610,24 @@ inline const std::vector<Vertex> kBothTriangles = [] {
     return both;
 }();
 
+// A device on each driver with `extensions` enabled and `chain` as VkDeviceCreateInfo::pNext (the tests of
+// optional extensions and features).
+struct DevicePair {
+    DevicePair(VkPhysicalDevice t, VkPhysicalDevice l, const std::vector<const char*>& extensions,
+               const void* chain = nullptr)
+        : tilevk(t, nullptr, extensions, chain), lavapipe(l, nullptr, extensions, chain) {}
+    bool ok() const { return tilevk.ok() && lavapipe.ok(); }
+    Device tilevk, lavapipe;
+};
+
 class ApiBreadth : public TwoDriverSuite {
   protected:
+    // A DevicePair on the suite's physical devices, expected to be made on both drivers.
+    std::unique_ptr<DevicePair> device_pair(const std::vector<const char*>& extensions, const void* chain = nullptr) {
+        auto d = std::make_unique<DevicePair>(tilevk_->physical(), lavapipe_->physical(), extensions, chain);
+        EXPECT_TRUE(d->ok());
+        return d;
+    }
     // Runs `scene` on both drivers; returns tilevk's bytes after checking they equal lavapipe's.
     Bytes both(const std::function<Bytes(Kit&)>& scene) { return both_on(*tilevk_, *lavapipe_, scene); }
     // The same on devices of the caller's (e.g. made with features enabled).

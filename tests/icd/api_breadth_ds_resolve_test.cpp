@@ -274,13 +274,8 @@ void expect_sample0(const Bytes& out, VkFormat f, uint32_t x, uint32_t y) {
 
 class ApiDepthStencilResolve : public ApiBreadth {
   protected:
-    // Devices with the multiview feature enabled (for MultiviewResolvesEachView).
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l, const void* chain)
-            : tilevk(t, nullptr, kExtensions, chain), lavapipe(l, nullptr, kExtensions, chain) {}
-        Device tilevk, lavapipe;
-    };
-    // resolve_scene on both drivers (equal bytes); tilevk's.
+    // resolve_scene on both drivers (equal bytes), on devices with multiview enabled (for MultiviewResolvesEachView);
+    // tilevk's.
     Bytes scene(VkFormat f, VkResolveModeFlagBits depth_mode, VkResolveModeFlagBits stencil_mode,
                 const Scene& sc = {}) {
         VkPhysicalDeviceSeparateDepthStencilLayoutsFeatures layouts{
@@ -288,7 +283,7 @@ class ApiDepthStencilResolve : public ApiBreadth {
         layouts.separateDepthStencilLayouts = VK_TRUE;
         VkPhysicalDeviceMultiviewFeatures mv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_FEATURES, &layouts};
         mv.multiview = VK_TRUE;
-        Devices d(tilevk_->physical(), lavapipe_->physical(), &mv);
+        DevicePair d(tilevk_->physical(), lavapipe_->physical(), kExtensions, &mv);
         EXPECT_TRUE(d.tilevk.ok() && d.lavapipe.ok());
         return both_on(d.tilevk, d.lavapipe, [&](Kit& k) { return resolve_scene(k, f, depth_mode, stencil_mode, sc); });
     }

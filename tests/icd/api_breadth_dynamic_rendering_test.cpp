@@ -550,18 +550,11 @@ Bytes suspend_scene(Kit& k, bool suspend) {
 
 class ApiDynamicRendering : public ApiBreadth {
   protected:
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l, const void* chain)
-            : tilevk(t, nullptr, kExtensions, chain), lavapipe(l, nullptr, kExtensions, chain) {}
-        Device tilevk, lavapipe;
-    };
-    std::unique_ptr<Devices> devices() {
+    std::unique_ptr<DevicePair> devices() {
         dr_.dynamicRendering = VK_TRUE;
         dr_.pNext = &mv_;
         mv_.multiview = VK_TRUE;
-        auto d = std::make_unique<Devices>(tilevk_->physical(), lavapipe_->physical(), &dr_);
-        EXPECT_TRUE(d->tilevk.ok() && d->lavapipe.ok());
-        return d;
+        return device_pair(kExtensions, &dr_);
     }
     // The scene with dynamic rendering on both drivers (equal bytes), and on tilevk through a render pass (equal to
     // the dynamic one).

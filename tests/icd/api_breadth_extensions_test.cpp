@@ -7,21 +7,10 @@
 namespace tilevk::test::breadth {
 namespace {
 
-// A device on each driver with `extensions` enabled and `chain` as VkDeviceCreateInfo::pNext.
-struct ExtensionDevices {
-    ExtensionDevices(VkPhysicalDevice t, VkPhysicalDevice l, const std::vector<const char*>& extensions,
-                     const void* chain = nullptr)
-        : tilevk(t, nullptr, extensions, chain), lavapipe(l, nullptr, extensions, chain) {}
-    bool ok() const { return tilevk.ok() && lavapipe.ok(); }
-    Device tilevk, lavapipe;
-};
-
 class ApiExtensions : public ApiBreadth {
   protected:
-    std::unique_ptr<ExtensionDevices> devices(const std::vector<const char*>& extensions, const void* chain = nullptr) {
-        auto d = std::make_unique<ExtensionDevices>(tilevk_->physical(), lavapipe_->physical(), extensions, chain);
-        EXPECT_TRUE(d->ok());
-        return d;
+    std::unique_ptr<DevicePair> devices(const std::vector<const char*>& extensions, const void* chain = nullptr) {
+        return device_pair(extensions, chain);
     }
     template <class F>
     static F instance_proc(const char* name) {

@@ -74,16 +74,9 @@ void begin(VkCommandBuffer c, VkRenderPass rp, const Fb& fb, const std::vector<V
 
 class ApiImagelessFramebuffer : public ApiBreadth {
   protected:
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l, const void* chain)
-            : tilevk(t, nullptr, kExtensions, chain), lavapipe(l, nullptr, kExtensions, chain) {}
-        Device tilevk, lavapipe;
-    };
-    std::unique_ptr<Devices> devices() {
+    std::unique_ptr<DevicePair> devices() {
         imageless_.imagelessFramebuffer = VK_TRUE;
-        auto d = std::make_unique<Devices>(tilevk_->physical(), lavapipe_->physical(), &imageless_);
-        EXPECT_TRUE(d->tilevk.ok() && d->lavapipe.ok());
-        return d;
+        return device_pair(kExtensions, &imageless_);
     }
     // Runs `scene` with a framebuffer made with views and with an imageless one: equal on each driver, and
     // tilevk's equal lavapipe's.

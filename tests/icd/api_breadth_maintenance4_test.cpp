@@ -24,16 +24,9 @@ F device_proc(VkDevice d, const char* name) {
 
 class ApiMaintenance4 : public ApiBreadth {
   protected:
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l, const void* chain)
-            : tilevk(t, nullptr, kExtensions, chain), lavapipe(l, nullptr, kExtensions, chain) {}
-        Device tilevk, lavapipe;
-    };
-    std::unique_ptr<Devices> devices() {
+    std::unique_ptr<DevicePair> devices() {
         m4_.maintenance4 = VK_TRUE;
-        auto d = std::make_unique<Devices>(tilevk_->physical(), lavapipe_->physical(), &m4_);
-        EXPECT_TRUE(d->tilevk.ok() && d->lavapipe.ok());
-        return d;
+        return device_pair(kExtensions, &m4_);
     }
     VkPhysicalDeviceMaintenance4Features m4_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
 };

@@ -237,16 +237,9 @@ Bytes multiview_scene(Kit& k, const Scene& s) {
 
 class ApiMultiview : public ApiBreadth {
   protected:
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l, const void* chain)
-            : tilevk(t, nullptr, kExtensions, chain), lavapipe(l, nullptr, kExtensions, chain) {}
-        Device tilevk, lavapipe;
-    };
-    std::unique_ptr<Devices> devices() {
+    std::unique_ptr<DevicePair> devices() {
         multiview_.multiview = VK_TRUE;
-        auto d = std::make_unique<Devices>(tilevk_->physical(), lavapipe_->physical(), &multiview_);
-        EXPECT_TRUE(d->tilevk.ok() && d->lavapipe.ok());
-        return d;
+        return device_pair(kExtensions, &multiview_);
     }
     void equals_lavapipe(const Scene& s) {
         auto dev = devices();

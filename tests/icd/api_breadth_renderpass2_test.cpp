@@ -155,16 +155,7 @@ VkRenderPassBeginInfo begin_info(VkRenderPass rp, VkFramebuffer fb, const std::v
 
 class ApiRenderPass2Subpasses : public ApiBreadth {
   protected:
-    struct Devices {
-        Devices(VkPhysicalDevice t, VkPhysicalDevice l)
-            : tilevk(t, nullptr, kExtensions, nullptr), lavapipe(l, nullptr, kExtensions, nullptr) {}
-        Device tilevk, lavapipe;
-    };
-    std::unique_ptr<Devices> devices() {
-        auto d = std::make_unique<Devices>(tilevk_->physical(), lavapipe_->physical());
-        EXPECT_TRUE(d->tilevk.ok() && d->lavapipe.ok());
-        return d;
-    }
+    std::unique_ptr<DevicePair> devices() { return device_pair(kExtensions); }
 };
 
 // 4x RGBA8 cleared, drawn into, partly cleared again with vkCmdClearAttachments and drawn over, resolved into a 1x

@@ -15,20 +15,10 @@
 namespace tilevk::test::breadth {
 namespace {
 
-struct SmallExtDevices {
-    SmallExtDevices(VkPhysicalDevice t, VkPhysicalDevice l, const std::vector<const char*>& extensions,
-                    const void* chain)
-        : tilevk(t, nullptr, extensions, chain), lavapipe(l, nullptr, extensions, chain) {}
-    bool ok() const { return tilevk.ok() && lavapipe.ok(); }
-    Device tilevk, lavapipe;
-};
-
 class ApiSmallExtensions : public ApiBreadth {
   protected:
-    std::unique_ptr<SmallExtDevices> devices(const std::vector<const char*>& extensions, const void* chain = nullptr) {
-        auto d = std::make_unique<SmallExtDevices>(tilevk_->physical(), lavapipe_->physical(), extensions, chain);
-        EXPECT_TRUE(d->ok());
-        return d;
+    std::unique_ptr<DevicePair> devices(const std::vector<const char*>& extensions, const void* chain = nullptr) {
+        return device_pair(extensions, chain);
     }
     static bool advertised(VkPhysicalDevice pd, const char* name) {
         uint32_t n = 0;
@@ -190,7 +180,7 @@ class ScalarBlockLayout : public ApiSmallExtensions {
     }
     Bytes both(const std::function<Bytes(Kit&)>& scene) { return both_on(dev_->tilevk, dev_->lavapipe, scene); }
     VkPhysicalDeviceScalarBlockLayoutFeatures features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES};
-    std::unique_ptr<SmallExtDevices> dev_;
+    std::unique_ptr<DevicePair> dev_;
 };
 
 // ab_ubo_scalar.frag reads a scalar uniform block into an RGBA32F target: pixel x shows a + b.y, c[x % 3].z,

@@ -12,14 +12,6 @@
 namespace tilevk::test::breadth {
 namespace {
 
-struct TimelineDevices {
-    TimelineDevices(VkPhysicalDevice t, VkPhysicalDevice l, const std::vector<const char*>& extensions,
-                    const void* chain)
-        : tilevk(t, nullptr, extensions, chain), lavapipe(l, nullptr, extensions, chain) {}
-    bool ok() const { return tilevk.ok() && lavapipe.ok(); }
-    Device tilevk, lavapipe;
-};
-
 struct TimelineFns {
     PFN_vkGetSemaphoreCounterValueKHR value = nullptr;
     PFN_vkWaitSemaphoresKHR wait = nullptr;
@@ -160,14 +152,14 @@ class TimelineSemaphores : public ApiBreadth {
   protected:
     void SetUp() override {
         features_.timelineSemaphore = VK_TRUE;
-        dev_ = std::make_unique<TimelineDevices>(tilevk_->physical(), lavapipe_->physical(), extensions(), &features_);
+        dev_ = std::make_unique<DevicePair>(tilevk_->physical(), lavapipe_->physical(), extensions(), &features_);
         ASSERT_TRUE(dev_->ok());
     }
     virtual std::vector<const char*> extensions() const { return {VK_KHR_TIMELINE_SEMAPHORE_EXTENSION_NAME}; }
     Bytes both(const std::function<Bytes(Kit&)>& scene) { return both_on(dev_->tilevk, dev_->lavapipe, scene); }
 
     VkPhysicalDeviceTimelineSemaphoreFeatures features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES};
-    std::unique_ptr<TimelineDevices> dev_;
+    std::unique_ptr<DevicePair> dev_;
 };
 
 // The feature and the property, as vkGetPhysicalDevice*2 report them.
