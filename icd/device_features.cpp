@@ -94,6 +94,14 @@ Features make_supported() {
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).
     f.core.v13.shaderTerminateInvocation = VK_TRUE;
     f.core.v13.shaderDemoteToHelperInvocation = VK_TRUE;
+    // shader/: Workgroup memory is zeroed before every workgroup, so null initializers hold (cp_zero_init.comp).
+    f.core.v13.shaderZeroInitializeWorkgroupMemory = VK_TRUE;
+    // One subgroup size, 8: required sizes and full subgroups are checked at pipeline creation (pipeline.cpp).
+    f.core.v13.subgroupSizeControl = VK_TRUE;
+    f.core.v13.computeFullSubgroups = VK_TRUE;
+    // OpSDot/OpUDot/OpSUDot (+AccSat) on 32-bit vectors and packed 4x8-bit scalars (shader/translate_dot.cpp);
+    // none is "accelerated" (every VkPhysicalDeviceShaderIntegerDotProductProperties member VK_FALSE).
+    f.core.v13.shaderIntegerDotProduct = VK_TRUE;
     f.core.v13.synchronization2 = VK_TRUE;              // command_buffer2.cpp, vkQueueSubmit2: the 1.0 forms
     f.core.v13.pipelineCreationCacheControl = VK_TRUE;  // pipeline.cpp: FAIL_ON_PIPELINE_COMPILE_REQUIRED, EARLY_RETURN
     // dynamic_rendering.cpp: each vkCmdBeginRendering becomes a one-subpass render pass run as vkCmdBeginRenderPass.

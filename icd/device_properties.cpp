@@ -84,11 +84,12 @@ void fill_v12(const PhysicalDevice& pd, VkPhysicalDeviceVulkan12Properties& p) {
 // Vulkan 1.3: subgroup size control, inline uniform blocks, dot products, texel-buffer alignment, buffer size.
 void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
     const VkPhysicalDeviceLimits& limits = pd.properties.limits;
-    // One subgroup size and no control over it (VK_EXT_subgroup_size_control is not offered).
+    // One subgroup size (VK_EXT_subgroup_size_control: a compute stage may require it, pipeline.cpp
+    // check_subgroup_size); subgroups exist in the compute stage only (subgroupSupportedStages).
     p.minSubgroupSize = shader::kSubgroupSize;
     p.maxSubgroupSize = shader::kSubgroupSize;
     p.maxComputeWorkgroupSubgroups = limits.maxComputeWorkGroupInvocations / shader::kSubgroupSize;
-    p.requiredSubgroupSizeStages = 0;
+    p.requiredSubgroupSizeStages = VK_SHADER_STAGE_COMPUTE_BIT;
     // Inline uniform blocks: not implemented (limits 0). Integer dot products: none accelerated (all VK_FALSE).
     p.storageTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
     p.storageTexelBufferOffsetSingleTexelAlignment = VK_FALSE;

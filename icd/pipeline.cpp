@@ -356,6 +356,28 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPi
 
 namespace {
 
+// VK_EXT_subgroup_size_control: every subgroup has shader::kSubgroupSize lanes (minSubgroupSize = maxSubgroupSize),
+// so ALLOW_VARYING_SUBGROUP_SIZE changes nothing and a required size can only be that one. Subgroup k of a
+// workgroup is its invocations 8k .. 8k + 7 (shader/README.md "Subgroups"), so a local size x that is a multiple of 8
+// (what REQUIRE_FULL_SUBGROUPS asks of the application, VUID-VkPipelineShaderStageCreateInfo-flags-02758/02759)
+// makes every subgroup full. Other values are invalid usage, refused by name rather than run differently.
+std::string check_subgroup_size(const VkPipelineShaderStageCreateInfo& stage, uint32_t size_x) {
+    for (auto* s = static_cast<const VkBaseInStructure*>(stage.pNext); s != nullptr; s = s->pNext) {
+        if (s->sType != VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_REQUIRED_SUBGROUP_SIZE_CREATE_INFO) continue;
+        const uint32_t want =
+            reinterpret_cast<const VkPipelineShaderStageRequiredSubgroupSizeCreateInfo*>(s)->requiredSubgroupSize;
+        if (want != shader::kSubgroupSize)
+            return "VkPipelineShaderStageRequiredSubgroupSizeCreateInfo::requiredSubgroupSize " + std::to_string(want) +
+                   " is not tilevk's one subgroup size " + std::to_string(shader::kSubgroupSize);
+    }
+    if ((stage.flags & VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT) != 0 &&
+        size_x % shader::kSubgroupSize != 0)
+        return "VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT with local size x = " +
+               std::to_string(size_x) + ", not a multiple of the subgroup size " +
+               std::to_string(shader::kSubgroupSize);
+    return {};
+}
+
 // The compute stage's program, checked against the limits tilevk reports (physical_device.h): a local size or
 // Workgroup memory past them is refused here, naming the limit, rather than run.
 std::string build_compute_pipeline(Device& dev, const VkComputePipelineCreateInfo& ci, Pipeline& p) {
@@ -384,6 +406,7 @@ std::string build_compute_pipeline(Device& dev, const VkComputePipelineCreateInf
         return "compute shader: its Workgroup variables need " + std::to_string(shared) +
                " bytes, more than VkPhysicalDeviceLimits::maxComputeSharedMemorySize = " +
                std::to_string(kMaxComputeSharedMemorySize);
+    if (std::string bad = check_subgroup_size(ci.stage, size[0]); !bad.empty()) return "compute shader: " + bad;
     return {};
 }
 

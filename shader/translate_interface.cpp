@@ -164,7 +164,10 @@ void Translator::declare_variable(const Instr& in) {
             break;
         case spv::StorageClass::Workgroup:
             if (stage_ != Stage::Compute) fail("Workgroup storage outside a compute shader");
-            if (in.n > 4) fail("unsupported Workgroup variable initializer (shaderZeroInitializeWorkgroupMemory)");
+            // shaderZeroInitializeWorkgroupMemory: run_workgroup zeroes the block before every workgroup, so a zero
+            // initializer (OpConstantNull, the only one SPIR-V allows here) holds without running anything.
+            if (in.n > 4 && !is_zero_constant(in[4], t.flat))
+                fail("Workgroup variable initializer other than zero (shaderZeroInitializeWorkgroupMemory)");
             p.space = Space::Shared;
             p.base = shared_words_;
             p.limit = shared_words_ + t.flat;

@@ -30,6 +30,11 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::ImageQuery:
         case spv::Capability::SampleRateShading:
         case spv::Capability::DemoteToHelperInvocation:
+        // Integer dot products on 32-bit vectors and packed 4x8-bit scalars (translate_dot.cpp); not
+        // DotProductInput4x8Bit, whose 8-bit vectors need Int8.
+        case spv::Capability::DotProduct:
+        case spv::Capability::DotProductInputAll:
+        case spv::Capability::DotProductInput4x8BitPacked:
         case spv::Capability::Sampled1D:
         case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
@@ -49,7 +54,7 @@ bool extension_supported(const std::string& e) {
     return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_KHR_multiview" ||
            e == "SPV_EXT_demote_to_helper_invocation" || e == "SPV_KHR_storage_buffer_storage_class" ||
            e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
-           e == "SPV_KHR_terminate_invocation";
+           e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product";
 }
 
 }  // namespace

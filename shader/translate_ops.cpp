@@ -70,7 +70,7 @@ void Translator::op(const Instr& in) {
             break;
     }
     if (op_arith(in) || op_logic(in) || op_composite(in) || op_fragment(in) || op_memory(in) || op_image(in) ||
-        op_atomic(in) || op_subgroup(in))
+        op_atomic(in) || op_subgroup(in) || op_dot(in))
         return;
     fail("unsupported opcode " + opname(in.op));
 }

@@ -145,6 +145,8 @@ class Translator {
     bool op_image(const Instr& in);     // translate_image.cpp
     bool op_atomic(const Instr& in);    // translate_atomic.cpp: OpAtomic*, OpControlBarrier
     bool op_subgroup(const Instr& in);  // translate_subgroup.cpp: OpGroupNonUniform* (compute)
+    bool op_dot(const Instr& in);       // translate_dot.cpp: OpSDot, OpUDot, OpSUDot (+AccSat)
+    uint32_t packed_byte(uint32_t x, uint32_t k, bool is_signed);
     bool subgroup_collective(const Instr& in);
     void subgroup_ballot_helper(const Instr& in);
     uint32_t side_effect_mask();  // lanes whose buffer writes take effect (fragment: live ones only)
@@ -224,6 +226,15 @@ class Translator {
         auto it = reg_value_.find(vals_[id].reg);
         if (it == reg_value_.end()) return false;
         v = it->second;
+        return true;
+    }
+    // `id` is a constant whose `flat` registers all hold 0 (OpConstantNull, or a composite of zeros).
+    bool is_zero_constant(uint32_t id, uint32_t flat) const {
+        if (id >= bound_ || vals_[id].reg == kNoReg) return false;
+        for (uint32_t j = 0; j < flat; ++j) {
+            auto it = reg_value_.find(vals_[id].reg + j);
+            if (it == reg_value_.end() || it->second != 0) return false;
+        }
         return true;
     }
     void set_const(uint32_t reg, uint32_t v) {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "api_breadth.h"
+#include "api_breadth_compute.h"
 #include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
@@ -36,46 +37,6 @@ namespace {
 #include "cp_vertices_comp.h"
 
 class ApiCompute : public ApiBreadth {};
-
-constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-
-VkDescriptorBufferInfo whole(const Device::Buffer& b) {
-    return {b.buffer, 0, VK_WHOLE_SIZE};
-}
-
-// Storage buffers at bindings 0.. of one set (compute stage), its layout and a pipeline layout with `push` bytes of
-// compute push constants.
-struct StorageSet {
-    VkDescriptorSetLayout dsl;
-    VkPipelineLayout layout;
-    VkDescriptorSet set;
-};
-StorageSet storage_set(Kit& k, const std::vector<const Device::Buffer*>& buffers, uint32_t push = 0) {
-    std::vector<VkDescriptorSetLayoutBinding> bindings;
-    for (uint32_t i = 0; i < buffers.size(); ++i)
-        bindings.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT});
-    StorageSet s{};
-    s.dsl = k.set_layout(bindings);
-    std::vector<VkPushConstantRange> ranges;
-    if (push != 0) ranges.push_back({VK_SHADER_STAGE_COMPUTE_BIT, 0, push});
-    s.layout = k.pipeline_layout({s.dsl}, ranges);
-    s.set = k.descriptor_set(s.dsl);
-    for (uint32_t i = 0; i < buffers.size(); ++i) {
-        const VkDescriptorBufferInfo bi = whole(*buffers[i]);
-        k.write(s.set, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi, nullptr);
-    }
-    return s;
-}
-
-// Makes the writes of `src` stages visible to `dst` stages (the buffer barriers Vulkan asks for; tilevk runs
-// commands in order, lavapipe needs them).
-void barrier(VkCommandBuffer c, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
-             VkAccessFlags dst_access) {
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = src_access;
-    mb.dstAccessMask = dst_access;
-    vkCmdPipelineBarrier(c, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
-}
 
 std::vector<float> random_floats(size_t n, uint32_t seed) {
     std::mt19937 rng(seed);
@@ -178,32 +139,6 @@ Bytes ids(Kit& k, const uint32_t groups[3], int sx, int sy, bool indirect) {
                 wrong += std::memcmp(r, want, sizeof want) != 0;
             }
     EXPECT_EQ(wrong, 0u) << "invocations of " << n;
-    return Kit::bytes(out);
-}
-
-// cp_subgroup.comp (subgroup basic, vote and ballot operations; 16 words per invocation, every one modelled in
-// tests/shader/subgroup_test.cpp) at workgroup size n over three workgroups; inputs 0..199 with lane 5 of every
-// subgroup taking part in the divergent branch. Returns the records, untouched words (0xAD) included.
-Bytes subgroups(Kit& k, uint32_t n) {
-    std::mt19937 rng(n);
-    std::vector<uint32_t> x(size_t(n) * 3);
-    for (size_t i = 0; i < x.size(); ++i) {
-        x[i] = rng() % 200;
-        if (i % 8 == 5 && x[i] % 3 == 0) ++x[i];
-    }
-    Device::Buffer in = k.buffer_of(x, kStorage);
-    Device::Buffer out = k.buffer(VkDeviceSize(x.size()) * 64, kStorage);
-    std::memset(out.map, 0xAD, x.size() * 64);
-    StorageSet s = storage_set(k, {&in, &out});
-    const VkSpecializationMapEntry entry{0, 0, 4};
-    const VkSpecializationInfo spec{1, &entry, 4, &n};
-    VkPipeline p = compute_pipeline(k, SPV(cp_subgroup_comp), s.layout, &spec);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
-        vkCmdDispatch(c, 3, 1, 1);
-    }),
-              VK_SUCCESS);
     return Kit::bytes(out);
 }
 
@@ -670,16 +605,16 @@ TEST_F(ApiDeviceGroup, DeviceRenderAreaOverridesTheRenderArea) {
 TEST_F(ApiCompute, Subgroups) {
     for (uint32_t n : {64u, 24u, 16u, 8u}) {
         SCOPED_TRACE(n);
-        both([n](Kit& k) { return subgroups(k, n); });
+        both([n](Kit& k) { return subgroup_records(k, SPV(cp_subgroup_comp), n); });
     }
     Bytes t, l;
     {
         Kit k(*tilevk_);
-        t = subgroups(k, 13);
+        t = subgroup_records(k, SPV(cp_subgroup_comp), 13);
     }
     {
         Kit k(*lavapipe_);
-        l = subgroups(k, 13);
+        l = subgroup_records(k, SPV(cp_subgroup_comp), 13);
     }
     ASSERT_EQ(t.size(), l.size());
     for (size_t w = 0; w < t.size() / 4; ++w) {
