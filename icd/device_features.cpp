@@ -89,6 +89,11 @@ Features make_supported() {
     // Subgroup operations take every type the device supports; there is no 8-, 16- or 64-bit type (shaderInt8,
     // shaderInt16, shaderInt64, shaderFloat16 and shaderFloat64 are VK_FALSE), so no type is left out.
     f.core.v12.shaderSubgroupExtendedTypes = VK_TRUE;
+    // The Vulkan memory model's operands, scopes and semantics order nothing more than tilevk already does: a
+    // workgroup runs on one thread, buffer atomics are sequentially consistent (shader/README.md "Compute").
+    // Availability/visibility chains (optional) are not reported: no test tells them apart.
+    f.core.v12.vulkanMemoryModel = VK_TRUE;
+    f.core.v12.vulkanMemoryModelDeviceScope = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;  // private_data.cpp
     // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).

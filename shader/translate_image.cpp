@@ -110,8 +110,13 @@ void Translator::storage_image_access(const Instr& in) {
     if (it.kind != Type::Image || it.sampled != 2 || spv::Dim(it.dim) == spv::Dim::SubpassData)
         fail(opname(in.op) + " on an image that is not a storage image");
     const size_t operands_at = write ? 4 : 5;
-    const uint32_t extend = uint32_t(spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
-    if (in.n > operands_at && (in[operands_at] & ~extend) != 0)
+    // The Vulkan memory model's texel operands (and their scope ids, which follow) change nothing here: a
+    // workgroup runs on one thread and every access goes straight to the image's memory.
+    const uint32_t allowed =
+        uint32_t(spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend |
+                 spv::ImageOperandsMask::MakeTexelAvailable | spv::ImageOperandsMask::MakeTexelVisible |
+                 spv::ImageOperandsMask::NonPrivateTexel | spv::ImageOperandsMask::VolatileTexel);
+    if (in.n > operands_at && (in[operands_at] & ~allowed) != 0)
         fail("unsupported image operands (sample, lod, offsets) in " + opname(in.op));
     const uint32_t ncoord = it.arrayed ? 3 : 2;
     if (flat_of(coord) < ncoord) fail("storage image coordinate with too few components");

@@ -32,6 +32,10 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DemoteToHelperInvocation:
         // Integer dot products on 32-bit vectors and packed 4x8-bit scalars (translate_dot.cpp); not
         // DotProductInput4x8Bit, whose 8-bit vectors need Int8.
+        // The Vulkan memory model (translate_memory.cpp, translate_atomic.cpp): its operands order nothing more
+        // than tilevk already does (README "Compute").
+        case spv::Capability::VulkanMemoryModel:
+        case spv::Capability::VulkanMemoryModelDeviceScope:
         case spv::Capability::DotProduct:
         case spv::Capability::DotProductInputAll:
         case spv::Capability::DotProductInput4x8BitPacked:
@@ -54,7 +58,8 @@ bool extension_supported(const std::string& e) {
     return e == "SPV_KHR_shader_draw_parameters" || e == "SPV_KHR_multiview" ||
            e == "SPV_EXT_demote_to_helper_invocation" || e == "SPV_KHR_storage_buffer_storage_class" ||
            e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
-           e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product";
+           e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product" ||
+           e == "SPV_KHR_vulkan_memory_model";
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // Vulkan 1.3's required features as they land (suite ApiVulkan13), each through its extension on tilevk and lavapipe
 // with the validation layer on, bytes compared, plus the answers computed here: zero-initialized workgroup memory
 // (VK_KHR_zero_initialize_workgroup_memory), subgroup size control with full subgroups
-// (VK_EXT_subgroup_size_control) and integer dot products (VK_KHR_shader_integer_dot_product). Vulkan 1.3 itself is not
-// reported until all of them work (icd/README.md).
+// (VK_EXT_subgroup_size_control), integer dot products (VK_KHR_shader_integer_dot_product) and the Vulkan memory model
+// (VK_KHR_vulkan_memory_model). Vulkan 1.3 itself is not reported until all of them work (icd/README.md).
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -19,6 +19,7 @@
 namespace tilevk::test::breadth {
 namespace {
 
+#include "cp_memory_model_comp.h"
 #include "cp_subgroup_comp.h"
 #include "cp_zero_init_comp.h"
 
@@ -314,6 +315,62 @@ TEST_F(ApiVulkan13, IntegerDotProducts) {
             std::memcpy(&got, &out[(12 * i + w) * 4], 4);
             EXPECT_EQ(got, want[w]) << "invocation " << i << " word " << w;
         }
+    }
+}
+
+// VK_KHR_vulkan_memory_model (vulkanMemoryModel, vulkanMemoryModelDeviceScope): cp_memory_model.comp over four
+// workgroups of 64, its coherent buffer and r32ui storage image accesses with availability / visibility operands, its
+// atomics and barriers at Workgroup, Device and QueueFamily scope. The buffer and the image equal lavapipe's and
+// what the shader computes: v = x[mirror] + x[g], r = (v, 3v + 1, 4v), texel g = v.
+TEST_F(ApiVulkan13, VulkanMemoryModel) {
+    VkPhysicalDeviceVulkanMemoryModelFeatures mf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_MEMORY_MODEL_FEATURES};
+    mf.vulkanMemoryModel = VK_TRUE;
+    mf.vulkanMemoryModelDeviceScope = VK_TRUE;
+    auto dev = device_pair({VK_KHR_VULKAN_MEMORY_MODEL_EXTENSION_NAME}, &mf);
+    ASSERT_TRUE(dev->ok());
+    std::mt19937 rng(1305);
+    std::vector<uint32_t> x(256);
+    for (uint32_t& v : x) v = rng();
+    const Bytes out = both_on(dev->tilevk, dev->lavapipe, [&x](Kit& k) {
+        Device::Buffer in = k.buffer_of(x, kStorage);
+        Device::Buffer res = k.buffer(768 * 4, kStorage);
+        std::memset(res.map, 0xAD, 768 * 4);
+        Device::Image img =
+            k.image(VK_FORMAT_R32_UINT, 16, 16, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        const VkImageView view = k.view(img.image, VK_FORMAT_R32_UINT, VK_IMAGE_ASPECT_COLOR_BIT);
+        const VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT}});
+        const VkPipelineLayout layout = k.pipeline_layout({dsl});
+        const VkDescriptorSet set = k.descriptor_set(dsl);
+        const VkDescriptorBufferInfo bi = whole(in), br = whole(res);
+        const VkDescriptorImageInfo ii{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
+        k.write(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi, nullptr);
+        k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &br, nullptr);
+        k.write(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &ii);
+        VkPipeline p = compute_pipeline(k, SPV(cp_memory_model_comp), layout);
+        if (p == VK_NULL_HANDLE) return Bytes{};
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            transition(c, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdDispatch(c, 4, 1, 1);
+            transition(c, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        }),
+                  VK_SUCCESS);
+        return concat({Kit::bytes(res), k.read(img.image, 16, 16, 4)});
+    });
+    ASSERT_EQ(out.size(), 1024u * 4);
+    std::vector<uint32_t> y(1024);
+    std::memcpy(y.data(), out.data(), out.size());
+    for (uint32_t g = 0; g < 256; ++g) {
+        const uint32_t v = x[g / 64 * 64 + 63 - g % 64] + x[g];
+        EXPECT_EQ(y[g], v) << g;
+        EXPECT_EQ(y[256 + g], 3 * v + 1) << g;
+        EXPECT_EQ(y[512 + g], 4 * v) << g;
+        EXPECT_EQ(y[768 + g], v) << g;
     }
 }
 
