@@ -1,6 +1,7 @@
 #include "descriptor_pool.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "buffer.h"
 #include "device.h"
@@ -22,6 +23,47 @@ Descriptor* slot_of(DescriptorSet* set, uint32_t binding, uint32_t element) {
     if (b == nullptr) return nullptr;
     uint32_t slot = b->first_slot + element;
     return slot < set->slots.size() ? &set->slots[slot] : nullptr;
+}
+
+// Bytes [offset, offset + size) of inline uniform block `binding` of `set` (VK_EXT_inline_uniform_block: the array
+// element and count of a write or copy are byte offset and size), or null when the binding is not an inline block
+// or the range leaves it.
+uint8_t* inline_bytes(DescriptorSet* set, uint32_t binding, uint32_t offset, uint32_t size) {
+    const LayoutBinding* b = set != nullptr ? set->layout->find(binding) : nullptr;
+    if (b == nullptr || !b->inline_block() || offset > b->count || size > b->count - offset) return nullptr;
+    return set->inline_data.data() + b->inline_offset + offset;
+}
+
+void write_inline(DescriptorSet* set, const VkWriteDescriptorSet& w) {
+    const VkWriteDescriptorSetInlineUniformBlock* data = nullptr;
+    for (auto* s = static_cast<const VkBaseInStructure*>(w.pNext); s != nullptr; s = s->pNext)
+        if (s->sType == VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_INLINE_UNIFORM_BLOCK)
+            data = reinterpret_cast<const VkWriteDescriptorSetInlineUniformBlock*>(s);
+    uint8_t* to = inline_bytes(set, w.dstBinding, w.dstArrayElement, w.descriptorCount);
+    if (data == nullptr || data->dataSize != w.descriptorCount || to == nullptr) {
+        log_error(
+            "vkUpdateDescriptorSets: inline uniform block write of %u bytes at %u into binding %u without a "
+            "VkWriteDescriptorSetInlineUniformBlock of that size, or outside the block",
+            w.descriptorCount, w.dstArrayElement, w.dstBinding);
+        return;
+    }
+    std::memcpy(to, data->pData, w.descriptorCount);
+}
+
+// A copy between inline uniform blocks copies bytes; false when the source is not one.
+bool copy_inline(const VkCopyDescriptorSet& c) {
+    DescriptorSet* src = from_handle<DescriptorSet>(c.srcSet);
+    const LayoutBinding* b = src != nullptr ? src->layout->find(c.srcBinding) : nullptr;
+    if (b == nullptr || !b->inline_block()) return false;
+    const uint8_t* from = inline_bytes(src, c.srcBinding, c.srcArrayElement, c.descriptorCount);
+    uint8_t* to =
+        inline_bytes(from_handle<DescriptorSet>(c.dstSet), c.dstBinding, c.dstArrayElement, c.descriptorCount);
+    if (from == nullptr || to == nullptr)
+        log_error("vkUpdateDescriptorSets: inline uniform block copy of %u bytes runs outside a block",
+                  c.descriptorCount);
+    else
+        std::memmove(to, from, c.descriptorCount);
+    return true;
 }
 
 }  // namespace
@@ -68,6 +110,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
             set->layout = layout;
             try {
                 set->slots.resize(layout->slot_count);
+                set->inline_data.assign(layout->inline_bytes, 0);
                 pool->sets.push_back(set);
             } catch (const std::bad_alloc&) {
                 destroy_object(set);
@@ -87,7 +130,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
             return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateDescriptorSets: out of host memory");
         }
         for (const LayoutBinding& b : layout->bindings) {
-            for (uint32_t j = 0; j < b.count; ++j) set->slots[b.first_slot + j].type = b.type;
+            for (uint32_t j = 0; j < b.slots(); ++j) set->slots[b.first_slot + j].type = b.type;
         }
         pDescriptorSets[i] = to_handle(set);
     }
@@ -113,6 +156,10 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCoun
     for (uint32_t i = 0; i < writeCount; ++i) {
         const VkWriteDescriptorSet& w = writes[i];
         DescriptorSet* set = from_handle<DescriptorSet>(w.dstSet);
+        if (w.descriptorType == VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK) {
+            write_inline(set, w);
+            continue;
+        }
         for (uint32_t j = 0; j < w.descriptorCount; ++j) {
             Descriptor* d = slot_of(set, w.dstBinding, w.dstArrayElement + j);
             if (d == nullptr) {
@@ -159,6 +206,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCoun
     }
     for (uint32_t i = 0; i < copyCount; ++i) {
         const VkCopyDescriptorSet& c = copies[i];
+        if (copy_inline(c)) continue;
         DescriptorSet* src = from_handle<DescriptorSet>(c.srcSet);
         DescriptorSet* dst = from_handle<DescriptorSet>(c.dstSet);
         for (uint32_t j = 0; j < c.descriptorCount; ++j) {

@@ -30,6 +30,7 @@ struct DescriptorSet : NonDispatchableObject {
     DescriptorPool* pool = nullptr;
     std::shared_ptr<const SetLayout> layout;  // shared with its layout object, which may be destroyed first
     std::vector<Descriptor> slots;            // layout->slot_count entries
+    std::vector<uint8_t> inline_data;         // layout->inline_bytes: the contents of its inline uniform blocks
 };
 
 struct DescriptorPool : NonDispatchableObject {

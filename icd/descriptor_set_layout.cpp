@@ -29,7 +29,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorSetLayout(VkDevice device, co
         auto shared = std::make_shared<SetLayout>();
         for (uint32_t i = 0; i < ci->bindingCount; ++i) {
             const VkDescriptorSetLayoutBinding& b = ci->pBindings[i];
-            LayoutBinding lb{b.binding, b.descriptorType, b.descriptorCount, b.stageFlags, 0, 0, {}, {}};
+            LayoutBinding lb{b.binding, b.descriptorType, b.descriptorCount, b.stageFlags, 0, 0, 0, {}, {}};
             const bool sampler_type = b.descriptorType == VK_DESCRIPTOR_TYPE_SAMPLER ||
                                       b.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             if (sampler_type && b.pImmutableSamplers != nullptr) {
@@ -45,7 +45,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorSetLayout(VkDevice device, co
                   [](const LayoutBinding& a, const LayoutBinding& b) { return a.binding < b.binding; });
         for (LayoutBinding& b : shared->bindings) {
             b.first_slot = shared->slot_count;
-            shared->slot_count += b.count;
+            shared->slot_count += b.slots();
+            if (b.inline_block()) {
+                b.inline_offset = shared->inline_bytes;
+                shared->inline_bytes += b.count;
+            }
             if (b.dynamic()) {
                 b.first_dynamic = shared->dynamic_count;
                 shared->dynamic_count += b.count;
@@ -91,12 +95,15 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyPipelineLayout(VkDevice, VkPipelineLayout 
 }
 
 // maintenance3: whether vkCreateDescriptorSetLayout would make this layout. Sets are arrays sized by their layout,
-// so any count works; the descriptor types tilevk has no descriptor storage for are not supported.
+// so any count works (and any inline uniform block size); the descriptor types tilevk has no descriptor storage for
+// are not supported.
 VKAPI_ATTR void VKAPI_CALL tvk_GetDescriptorSetLayoutSupport(VkDevice, const VkDescriptorSetLayoutCreateInfo* ci,
                                                              VkDescriptorSetLayoutSupport* pSupport) {
     pSupport->supported = VK_TRUE;
     for (uint32_t i = 0; i < ci->bindingCount; ++i)
-        if (ci->pBindings[i].descriptorType > VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT) pSupport->supported = VK_FALSE;
+        if (ci->pBindings[i].descriptorType > VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT &&
+            ci->pBindings[i].descriptorType != VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK)
+            pSupport->supported = VK_FALSE;
     for (auto* s = static_cast<VkBaseOutStructure*>(pSupport->pNext); s != nullptr; s = s->pNext) {
         if (s->sType == VK_STRUCTURE_TYPE_DESCRIPTOR_SET_VARIABLE_DESCRIPTOR_COUNT_LAYOUT_SUPPORT)
             reinterpret_cast<VkDescriptorSetVariableDescriptorCountLayoutSupport*>(s)->maxVariableDescriptorCount = 0;

@@ -20,9 +20,13 @@ struct LayoutBinding {
     VkShaderStageFlags stages;
     uint32_t first_slot;     // index of this binding's first descriptor in a set
     uint32_t first_dynamic;  // dynamic bindings: index of its first dynamic offset within the set (binding order)
+    uint32_t inline_offset = 0;  // inline uniform blocks: where its `count` bytes start in the set's inline bytes
     std::vector<VkSamplerCreateInfo> immutable_samplers;  // empty or `count` copies (pNext cleared)
     std::vector<shader::SamplerState> immutable_states;   // the same, translated for shader/ once
 
+    // An inline uniform block (VK_EXT_inline_uniform_block) is one descriptor whose `count` is its size in bytes.
+    bool inline_block() const { return type == VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK; }
+    uint32_t slots() const { return inline_block() ? 1 : count; }
     bool dynamic() const {
         return type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC || type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC;
     }
@@ -32,6 +36,7 @@ struct SetLayout {
     std::vector<LayoutBinding> bindings;  // sorted by binding number
     uint32_t slot_count = 0;
     uint32_t dynamic_count = 0;  // dynamic buffer descriptors in the set
+    uint32_t inline_bytes = 0;   // the bytes of all its inline uniform blocks
 
     const LayoutBinding* find(uint32_t binding) const;
 };

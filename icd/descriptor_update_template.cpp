@@ -71,6 +71,15 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSetWithTemplate(VkDevice device, 
         images.clear();
         buffers.clear();
         views.clear();
+        // An inline uniform block entry: descriptorCount bytes at pData + offset (the stride is ignored).
+        VkWriteDescriptorSetInlineUniformBlock block{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_INLINE_UNIFORM_BLOCK};
+        if (e.descriptorType == VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK) {
+            block.dataSize = e.descriptorCount;
+            block.pData = base + e.offset;
+            w.pNext = &block;
+            tvk_UpdateDescriptorSets(device, 1, &w, 0, nullptr);
+            continue;
+        }
         for (uint32_t i = 0; i < e.descriptorCount; ++i) {
             const uint8_t* p = base + e.offset + size_t(i) * e.stride;
             switch (e.descriptorType) {

@@ -95,6 +95,9 @@ Features make_supported() {
     f.core.v12.vulkanMemoryModel = VK_TRUE;
     f.core.v12.vulkanMemoryModelDeviceScope = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;  // private_data.cpp
+    // Inline uniform blocks: bytes inside the descriptor set, read as a uniform buffer (descriptor_pool.cpp,
+    // execute_draw.cpp). Not after bind: descriptor indexing (which that needs) is not reported.
+    f.core.v13.inlineUniformBlock = VK_TRUE;
     // OpTerminateInvocation ends the invocation as OpKill does; OpDemoteToHelperInvocation drops the pixel's writes
     // and keeps it running as a helper for its quad's derivatives (shader/translate_control.cpp, translate_ops.cpp).
     f.core.v13.shaderTerminateInvocation = VK_TRUE;

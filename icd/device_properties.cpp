@@ -90,7 +90,16 @@ void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
     p.maxSubgroupSize = shader::kSubgroupSize;
     p.maxComputeWorkgroupSubgroups = limits.maxComputeWorkGroupInvocations / shader::kSubgroupSize;
     p.requiredSubgroupSizeStages = VK_SHADER_STAGE_COMPUTE_BIT;
-    // Inline uniform blocks: not implemented (limits 0). Integer dot products: none accelerated (all VK_FALSE).
+    // Inline uniform blocks live in their set's own bytes (descriptor_pool.cpp), so nothing bounds them but memory:
+    // lavapipe's limits. The update-after-bind ones bound every pipeline layout whether or not the feature is
+    // enabled (as the Vulkan 1.2 ones do), so they equal the others. Integer dot products: none accelerated.
+    p.maxInlineUniformBlockSize = 4096;
+    p.maxPerStageDescriptorInlineUniformBlocks = 8;
+    p.maxPerStageDescriptorUpdateAfterBindInlineUniformBlocks = p.maxPerStageDescriptorInlineUniformBlocks;
+    p.maxDescriptorSetInlineUniformBlocks = 8;
+    p.maxDescriptorSetUpdateAfterBindInlineUniformBlocks = p.maxDescriptorSetInlineUniformBlocks;
+    p.maxInlineUniformTotalSize =
+        p.maxInlineUniformBlockSize * p.maxDescriptorSetInlineUniformBlocks * limits.maxBoundDescriptorSets;
     p.storageTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
     p.storageTexelBufferOffsetSingleTexelAlignment = VK_FALSE;
     p.uniformTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;

@@ -310,6 +310,10 @@ shader::Descriptor descriptor_of(DrawContext& ctx, const BoundSets& bs, uint32_t
         case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
             out.image = texel_buffer_of(ctx, d.buffer_view);
             break;
+        case VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK:  // the set's own bytes, read as a uniform buffer
+            out.buffer.data = set.inline_data.data() + lb.inline_offset;
+            out.buffer.size = lb.count;
+            break;
         case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:  // imageLoad / imageStore / imageSize on level 0 of the view
             out.image = image_of(ctx, d.image_view);
             if (out.image != nullptr && (format::image_features(*d.image_view->format) & format::kStorageImage))
@@ -333,7 +337,7 @@ void collect_bindings(DrawContext& ctx, const BoundSets& bound, std::initializer
             const DescriptorSet* set = bound.sets[use.set];
             const LayoutBinding* lb = set != nullptr && set->layout ? set->layout->find(use.binding) : nullptr;
             if (lb == nullptr) continue;
-            for (uint32_t e = 0; e < lb->count; ++e)
+            for (uint32_t e = 0; e < lb->slots(); ++e)
                 b.set(use.set, lb->binding, e, descriptor_of(ctx, bound, use.set, *set, *lb, e));
         }
     }

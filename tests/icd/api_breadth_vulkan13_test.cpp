@@ -1,8 +1,9 @@
 // Vulkan 1.3's required features as they land (suite ApiVulkan13), each through its extension on tilevk and lavapipe
 // with the validation layer on, bytes compared, plus the answers computed here: zero-initialized workgroup memory
 // (VK_KHR_zero_initialize_workgroup_memory), subgroup size control with full subgroups
-// (VK_EXT_subgroup_size_control), integer dot products (VK_KHR_shader_integer_dot_product) and the Vulkan memory model
-// (VK_KHR_vulkan_memory_model). Vulkan 1.3 itself is not reported until all of them work (icd/README.md).
+// (VK_EXT_subgroup_size_control), integer dot products (VK_KHR_shader_integer_dot_product), the Vulkan memory model
+// (VK_KHR_vulkan_memory_model) and inline uniform blocks (VK_EXT_inline_uniform_block). Vulkan 1.3 itself is not
+// reported until all of them work (icd/README.md).
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -19,6 +20,7 @@
 namespace tilevk::test::breadth {
 namespace {
 
+#include "cp_inline_block_comp.h"
 #include "cp_memory_model_comp.h"
 #include "cp_subgroup_comp.h"
 #include "cp_zero_init_comp.h"
@@ -372,6 +374,102 @@ TEST_F(ApiVulkan13, VulkanMemoryModel) {
         EXPECT_EQ(y[512 + g], 4 * v) << g;
         EXPECT_EQ(y[768 + g], v) << g;
     }
+}
+
+// An inline uniform block binding's bytes, written at `offset` (the array element of the write).
+void write_inline(Kit& k, VkDescriptorSet set, uint32_t binding, uint32_t offset, const std::vector<uint32_t>& words) {
+    VkWriteDescriptorSetInlineUniformBlock data{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_INLINE_UNIFORM_BLOCK};
+    data.dataSize = uint32_t(words.size() * 4);
+    data.pData = words.data();
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, &data};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.dstArrayElement = offset;
+    w.descriptorCount = data.dataSize;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK;
+    vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+}
+
+// cp_inline_block.comp reading two inline uniform blocks of one set (48 and 32 bytes) filled by every way there is:
+// block a by two writes (bytes 0-15 and 16-47), block b by a descriptor update template (its 32 bytes from 8 bytes
+// into the template's data) and then its bytes 16-31 by a copy from bytes 0-15 of another set's block. The words
+// equal lavapipe's and what was written.
+TEST_F(ApiVulkan13, InlineUniformBlocks) {
+    VkPhysicalDeviceInlineUniformBlockFeatures bf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_INLINE_UNIFORM_BLOCK_FEATURES};
+    bf.inlineUniformBlock = VK_TRUE;
+    auto dev = device_pair({VK_EXT_INLINE_UNIFORM_BLOCK_EXTENSION_NAME}, &bf);
+    ASSERT_TRUE(dev->ok());
+    std::vector<uint32_t> a(12), tpl(10), other(8);
+    for (uint32_t i = 0; i < 12; ++i) a[i] = 0x1000u + i * 7u;
+    for (uint32_t i = 0; i < 10; ++i) tpl[i] = 0x2000u + i * 5u;
+    for (uint32_t i = 0; i < 8; ++i) other[i] = 0x3000u + i * 3u;
+    const Bytes out = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+        Device::Buffer res = k.buffer(20 * 4, kStorage);
+        std::memset(res.map, 0xAD, 20 * 4);
+        const VkDescriptorSetLayout dsl =
+            k.set_layout({{0, VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK, 48, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {1, VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK, 32, VK_SHADER_STAGE_COMPUTE_BIT},
+                          {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT}});
+        const VkPipelineLayout layout = k.pipeline_layout({dsl});
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK, 160},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+        VkDescriptorPoolInlineUniformBlockCreateInfo blocks{
+            VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_INLINE_UNIFORM_BLOCK_CREATE_INFO};
+        blocks.maxInlineUniformBlockBindings = 4;
+        VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, &blocks};
+        pci.maxSets = 2;
+        pci.poolSizeCount = 2;
+        pci.pPoolSizes = sizes;
+        VkDescriptorPool pool = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateDescriptorPool(k.d, &pci, nullptr, &pool), VK_SUCCESS);
+        k.undo(VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, [&k, pool] { vkDestroyDescriptorPool(k.d, pool, nullptr); });
+        const VkDescriptorSetLayout layouts[2] = {dsl, dsl};
+        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        ai.descriptorPool = pool;
+        ai.descriptorSetCount = 2;
+        ai.pSetLayouts = layouts;
+        VkDescriptorSet sets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+        EXPECT_EQ(vkAllocateDescriptorSets(k.d, &ai, sets), VK_SUCCESS);
+        write_inline(k, sets[0], 0, 0, {a.begin(), a.begin() + 4});
+        write_inline(k, sets[0], 0, 16, {a.begin() + 4, a.end()});
+        const VkDescriptorUpdateTemplateEntry entry{1, 0, 32, VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK, 8, 0};
+        VkDescriptorUpdateTemplateCreateInfo tci{VK_STRUCTURE_TYPE_DESCRIPTOR_UPDATE_TEMPLATE_CREATE_INFO};
+        tci.descriptorUpdateEntryCount = 1;
+        tci.pDescriptorUpdateEntries = &entry;
+        tci.templateType = VK_DESCRIPTOR_UPDATE_TEMPLATE_TYPE_DESCRIPTOR_SET;
+        tci.descriptorSetLayout = dsl;
+        VkDescriptorUpdateTemplate t = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateDescriptorUpdateTemplate(k.d, &tci, nullptr, &t), VK_SUCCESS);
+        vkUpdateDescriptorSetWithTemplate(k.d, sets[0], t, tpl.data());
+        vkDestroyDescriptorUpdateTemplate(k.d, t, nullptr);
+        write_inline(k, sets[1], 1, 0, other);
+        VkCopyDescriptorSet copy{VK_STRUCTURE_TYPE_COPY_DESCRIPTOR_SET};
+        copy.srcSet = sets[1];
+        copy.srcBinding = 1;
+        copy.dstSet = sets[0];
+        copy.dstBinding = 1;
+        copy.dstArrayElement = 16;
+        copy.descriptorCount = 16;
+        vkUpdateDescriptorSets(k.d, 0, nullptr, 1, &copy);
+        const VkDescriptorBufferInfo br = whole(res);
+        k.write(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &br, nullptr);
+        VkPipeline p = compute_pipeline(k, SPV(cp_inline_block_comp), layout);
+        if (p == VK_NULL_HANDLE) return Bytes{};
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &sets[0], 0, nullptr);
+            vkCmdDispatch(c, 1, 1, 1);
+        }),
+                  VK_SUCCESS);
+        return Kit::bytes(res);
+    });
+    ASSERT_EQ(out.size(), 20u * 4);
+    std::vector<uint32_t> want(a);
+    want.insert(want.end(), tpl.begin() + 2, tpl.begin() + 6);  // template bytes 8-23 -> b bytes 0-15
+    want.insert(want.end(), other.begin(), other.begin() + 4);  // the copy -> b bytes 16-31
+    std::vector<uint32_t> got(20);
+    std::memcpy(got.data(), out.data(), out.size());
+    EXPECT_EQ(got, want);
 }
 
 }  // namespace
