@@ -37,8 +37,9 @@ struct Features12 {
     }
 };
 
-// The Vulkan 1.2 members every 1.2 device must support (Vulkan spec, "Feature Requirements"; descriptor indexing,
-// buffer device address and the memory model only with their extensions, which tilevk does not offer).
+// The Vulkan 1.2 members every 1.2 device must support (Vulkan spec, "Feature Requirements"; descriptor indexing and
+// buffer device address only with their extensions, which tilevk does not offer; the memory model with
+// VK_KHR_vulkan_memory_model, which both drivers offer).
 void expect_required_12(const VkPhysicalDeviceVulkan12Features& f, const char* who) {
     EXPECT_TRUE(f.uniformBufferStandardLayout) << who;
     EXPECT_TRUE(f.subgroupBroadcastDynamicId) << who;
@@ -47,6 +48,7 @@ void expect_required_12(const VkPhysicalDeviceVulkan12Features& f, const char* w
     EXPECT_TRUE(f.hostQueryReset) << who;
     EXPECT_TRUE(f.timelineSemaphore) << who;
     EXPECT_TRUE(f.shaderSubgroupExtendedTypes) << who;
+    EXPECT_TRUE(f.vulkanMemoryModel) << who;
 }
 
 TEST_F(ApiVulkan12, ReportsVulkan12AndTheFeaturesItRequires) {
