@@ -182,10 +182,11 @@ PointSide point_side(const std::array<double, 2>& q, const std::vector<std::arra
     return in ? PointSide::kInside : PointSide::kOutside;
 }
 
-// Whether two clip results cover the same sample points of the viewport: every pixel centre (1x) or standard 4x
-// sample position (both sets at another count) lies inside both or outside both, none within 1/256 px of either
-// boundary (one fixed-point step: the snap may move an edge by half of it). Then draw's float result
-// rasterizes the exact coverage although its polygon differs from the precise one by more than
+// Whether draw's clip result `a` covers the sample points of the viewport that the precise result `b` decides: at
+// every pixel centre (1x) or standard 4x sample position (both sets at another count) at least 1/128 px from b's
+// boundary (nearer, the exact check does not judge either: cts_subset exact_coverage), a lies on b's side and at
+// least 1/256 px from its own boundary (one fixed-point step: the snap may move an edge by half of it). Then draw's
+// float result rasterizes the exact coverage although its polygon differs from the precise one by more than
 // same_visible_region allows (cancellation moves a vertex far outside the viewport along an edge), and only its
 // depth and attribute roundings differ: lavapipe's are kept. Bounded work: false for regions over 2^18 pixels.
 bool same_sample_coverage(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
@@ -200,13 +201,13 @@ bool same_sample_coverage(const ClipConfig& cfg, const ClippedTriangle* a, uint3
     if ((x1 - x0) * (y1 - y0) > double(1 << 18)) return false;
     constexpr double kOffsets[5][2] = {{0.5, 0.5}, {0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
     const size_t first = cfg.samples == 4 ? 1 : 0, end = cfg.samples == 1 ? 1 : 5;
-    constexpr double kTol = 1.0 / 256;
+    constexpr double kJudged = 1.0 / 128, kSnap = 1.0 / 256;
     for (double y = y0; y < y1; ++y)
         for (double x = x0; x < x1; ++x)
             for (size_t k = first; k < end; ++k) {
                 const std::array<double, 2> q = {x + kOffsets[k][0], y + kOffsets[k][1]};
-                const PointSide sa = point_side(q, pa, kTol), sb = point_side(q, pb, kTol);
-                if (sa == PointSide::kNear || sb == PointSide::kNear || sa != sb) return false;
+                const PointSide sb = point_side(q, pb, kJudged);
+                if (sb != PointSide::kNear && point_side(q, pa, kSnap) != sb) return false;
             }
     return true;
 }
