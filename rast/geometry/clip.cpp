@@ -165,6 +165,53 @@ bool same_visible_region(const ClipConfig& cfg, const ClippedTriangle* a, uint32
     return true;
 }
 
+// Where a sample point lies against a convex polygon: inside, outside, or within `tol` of its boundary (then the
+// fixed-point snap of either result may decide it either way).
+enum class PointSide { kInside, kOutside, kNear };
+
+PointSide point_side(const std::array<double, 2>& q, const std::vector<std::array<double, 2>>& p, double tol) {
+    bool in = false;
+    for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+        const std::array<double, 2>&a = p[i], &b = p[j];
+        const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+        const double t = len2 > 0 ? std::clamp(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
+        const double ex = a[0] + t * dx - q[0], ey = a[1] + t * dy - q[1];
+        if (ex * ex + ey * ey <= tol * tol) return PointSide::kNear;
+        if ((a[1] > q[1]) != (b[1] > q[1]) && q[0] < dx * (q[1] - a[1]) / dy + a[0]) in = !in;
+    }
+    return in ? PointSide::kInside : PointSide::kOutside;
+}
+
+// Whether draw's clip result `a` covers the sample points of the viewport that the precise result `b` decides: at
+// every pixel centre (1x) or standard 4x sample position (both sets at another count) at least 1/128 px from b's
+// boundary (nearer, the exact check does not judge either: cts_subset exact_coverage), a lies on b's side and at
+// least 1/256 px from its own boundary (one fixed-point step: the snap may move an edge by half of it). Then draw's
+// float result rasterizes the exact coverage although its polygon differs from the precise one by more than
+// same_visible_region allows (cancellation moves a vertex far outside the viewport along an edge), and only its
+// depth and attribute roundings differ: lavapipe's are kept. Bounded work: false for regions over 2^18 pixels.
+bool same_sample_coverage(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
+                          uint32_t nb) {
+    const auto pa = inside_viewport(cfg, fan_polygon(cfg, a, na)), pb = inside_viewport(cfg, fan_polygon(cfg, b, nb));
+    if (pa.size() < 3 || pb.size() < 3) return false;
+    double lo[2] = {pa[0][0], pa[0][1]}, hi[2] = {pa[0][0], pa[0][1]};
+    for (const auto* poly : {&pa, &pb})
+        for (const auto& q : *poly)
+            for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+    const double x0 = std::floor(lo[0]), y0 = std::floor(lo[1]), x1 = std::ceil(hi[0]), y1 = std::ceil(hi[1]);
+    if ((x1 - x0) * (y1 - y0) > double(1 << 18)) return false;
+    constexpr double kOffsets[5][2] = {{0.5, 0.5}, {0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
+    const size_t first = cfg.samples == 4 ? 1 : 0, end = cfg.samples == 1 ? 1 : 5;
+    constexpr double kJudged = 1.0 / 128, kSnap = 1.0 / 256;
+    for (double y = y0; y < y1; ++y)
+        for (double x = x0; x < x1; ++x)
+            for (size_t k = first; k < end; ++k) {
+                const std::array<double, 2> q = {x + kOffsets[k][0], y + kOffsets[k][1]};
+                const PointSide sb = point_side(q, pb, kJudged);
+                if (sb != PointSide::kNear && point_side(q, pa, kSnap) != sb) return false;
+            }
+    return true;
+}
+
 }  // namespace
 
 float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz, bool guard_band_xy) {
@@ -342,7 +389,9 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
     precise_scratch.resize(size_t(kClipScratchVertices) * stride);
     ClippedTriangle precise[kMaxClippedTriangles];
     const uint32_t pn = clip_triangle_precise(cfg, v0, v1, v2, clipmask, precise_scratch.data(), precise);
-    if (!unrepresentable && (pn == 0 || (n != 0 && same_visible_region(cfg, out, n, precise, pn)))) return n;
+    if (!unrepresentable && (pn == 0 || (n != 0 && (same_visible_region(cfg, out, n, precise, pn) ||
+                                                    same_sample_coverage(cfg, out, n, precise, pn)))))
+        return n;
     std::memcpy(scratch, precise_scratch.data(), sizeof(float) * precise_scratch.size());
     const float* base = precise_scratch.data();
     for (uint32_t t = 0; t < pn; ++t) {

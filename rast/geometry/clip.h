@@ -28,6 +28,8 @@ struct ClipConfig {
     // Re-clip in extended precision the triangles lavapipe's float clipper provably gets wrong (filled polygons;
     // clip_triangle_precise). Off: draw's result always, e.g. for polygonMode LINE/POINT (edge flags).
     bool precise_fallback = false;
+    // The framebuffer's sample count: where draw's result and the precise one must agree for draw's to be kept.
+    uint32_t samples = 1;
 };
 
 // Edge bit k: the edge from v[k] to v[(k+1)%3] (k = 0, 1, 2) is drawn by polygonMode LINE, and v[k] is drawn by

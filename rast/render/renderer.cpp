@@ -400,6 +400,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.ccfg.guard_band_xy = fb_.linear_mode;
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
+    plan.ccfg.samples = fb_.samples;
     clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
     attrib_planes_.resize(layout.num_attribs);
     plan.fcull.cull_front = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kFront);

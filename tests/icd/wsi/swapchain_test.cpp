@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "../stderr_capture.h"
-#include "../vk_harness.h"
+#include "vk_harness.h"
 
 using namespace tilevk::test;
 using Clock = std::chrono::steady_clock;

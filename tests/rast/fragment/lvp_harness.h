@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,7 @@
 #include "rast/fragment/interp.h"
 #include "rast/fragment/msaa.h"
 #include "sample_color_frag.h"
+#include "vk_harness.h"
 
 using namespace tilevk::rast::fragment;
 
@@ -62,62 +65,34 @@ VkFormat to_vk(ColorFormat f) {
     return VK_FORMAT_UNDEFINED;
 }
 
+// lavapipe through the shared test harness (tests/harness/vk_harness.h): no validation layer (these tests judge
+// lavapipe's bytes, not the API usage), depthClamp and sampleRateShading enabled.
 struct Lvp {
-    VkInstance inst = VK_NULL_HANDLE;
-    VkPhysicalDevice phys = VK_NULL_HANDLE;
+    std::unique_ptr<tilevk::test::Harness> harness;
+    std::unique_ptr<tilevk::test::Device> device;
     VkDevice dev = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
-    uint32_t qfam = 0;
-    VkPhysicalDeviceMemoryProperties mem{};
     VkCommandPool pool = VK_NULL_HANDLE;
 
     bool init() {
-        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-        app.apiVersion = VK_API_VERSION_1_0;
-        VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-        ici.pApplicationInfo = &app;
-        if (vkCreateInstance(&ici, nullptr, &inst) != VK_SUCCESS) return false;
-        uint32_t n = 0;
-        vkEnumeratePhysicalDevices(inst, &n, nullptr);
-        std::vector<VkPhysicalDevice> devs(n);
-        vkEnumeratePhysicalDevices(inst, &n, devs.data());
-        for (VkPhysicalDevice d : devs) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(d, &p);
-            if (std::string(p.deviceName).find("llvmpipe") != std::string::npos) phys = d;
-        }
+        harness = std::make_unique<tilevk::test::Harness>(/*validation=*/false);
+        if (harness->instance() == VK_NULL_HANDLE) return false;
+        const VkPhysicalDevice phys = harness->find_device("llvmpipe");
         if (!phys) return false;
-        vkGetPhysicalDeviceMemoryProperties(phys, &mem);
-        float prio = 1.0f;
-        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-        qci.queueFamilyIndex = 0;
-        qci.queueCount = 1;
-        qci.pQueuePriorities = &prio;
-        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-        dci.queueCreateInfoCount = 1;
-        dci.pQueueCreateInfos = &qci;
         VkPhysicalDeviceFeatures feats{};
         feats.depthClamp = VK_TRUE;
         feats.sampleRateShading = VK_TRUE;
-        dci.pEnabledFeatures = &feats;
-        if (vkCreateDevice(phys, &dci, nullptr, &dev) != VK_SUCCESS) return false;
-        vkGetDeviceQueue(dev, 0, 0, &queue);
-        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        VKC(vkCreateCommandPool(dev, &pci, nullptr, &pool));
+        device = std::make_unique<tilevk::test::Device>(phys, &feats);
+        if (!device->ok() || device->pool() == VK_NULL_HANDLE) return false;
+        dev = device->device();
+        queue = device->queue();
+        pool = device->pool();
         return true;
     }
-    ~Lvp() {
-        if (dev) {
-            vkDestroyCommandPool(dev, pool, nullptr);
-            vkDestroyDevice(dev, nullptr);
-        }
-        if (inst) vkDestroyInstance(inst, nullptr);
-    }
     uint32_t mem_type(uint32_t bits, VkMemoryPropertyFlags want) const {
-        for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
-            if ((bits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return i;
-        throw std::runtime_error("no memory type");
+        const uint32_t t = device->memory_type(bits, want);
+        if (t == ~0u) throw std::runtime_error("no memory type");
+        return t;
     }
 };
 
@@ -127,26 +102,16 @@ struct Buffer {
     void* map = nullptr;
 };
 
+// Host-visible, coherent and mapped, with TRANSFER_SRC|DST besides `usage` (the shared harness's buffers).
 Buffer make_buffer(const Lvp& v, VkDeviceSize size, VkBufferUsageFlags usage) {
-    Buffer b;
-    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    bci.size = size;
-    bci.usage = usage;
-    VKC(vkCreateBuffer(v.dev, &bci, nullptr, &b.buf));
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(v.dev, b.buf, &req);
-    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex =
-        v.mem_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &b.mem));
-    VKC(vkBindBufferMemory(v.dev, b.buf, b.mem, 0));
-    VKC(vkMapMemory(v.dev, b.mem, 0, VK_WHOLE_SIZE, 0, &b.map));
-    return b;
+    const tilevk::test::Device::Buffer b = v.device->make_buffer(size, usage);
+    if (b.map == nullptr) throw std::runtime_error("make_buffer failed");
+    return {b.buffer, b.memory, b.map};
 }
 void free_buffer(const Lvp& v, Buffer& b) {
-    vkDestroyBuffer(v.dev, b.buf, nullptr);
-    vkFreeMemory(v.dev, b.mem, nullptr);
+    tilevk::test::Device::Buffer d{b.buf, b.mem, b.map, 0};
+    v.device->destroy(d);
+    b = {};
 }
 
 VkShaderModule make_shader(const Lvp& v, const uint32_t* code, size_t bytes) {

@@ -7,12 +7,14 @@
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "kXcheck_frag.spv.h"
 #include "kXcheck_noflat_frag.spv.h"
 #include "kXcheck_vert.spv.h"
 #include "rast/geometry/planes.h"
+#include "vk_harness.h"
 
 namespace xcheck {
 
@@ -53,36 +55,18 @@ class Lavapipe {
     Lavapipe() = default;
     Lavapipe(const Lavapipe&) = delete;  // owns its Vulkan objects
     Lavapipe& operator=(const Lavapipe&) = delete;
+    // lavapipe through the shared test harness (tests/harness/vk_harness.h), no validation layer: wide lines, large
+    // points, depth bias clamp and depth clamp, plus VK_EXT_line_rasterization's Bresenham lines where offered.
     bool init() {
-        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-        // 1.1: VK_EXT_line_rasterization requires VK_KHR_get_physical_device_properties2, and the flipped-viewport
-        // case needs a negative height (VK_KHR_maintenance1); both are core in 1.1 (the validation layer says so).
-        app.apiVersion = VK_API_VERSION_1_1;
-        VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-        ici.pApplicationInfo = &app;
-        if (vkCreateInstance(&ici, nullptr, &inst_) != VK_SUCCESS) return false;
-        uint32_t n = 0;
-        vkEnumeratePhysicalDevices(inst_, &n, nullptr);
-        std::vector<VkPhysicalDevice> pds(n);
-        vkEnumeratePhysicalDevices(inst_, &n, pds.data());
-        for (auto pd : pds) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(pd, &p);
-            if (std::strstr(p.deviceName, "llvmpipe")) pd_ = pd;
-        }
+        harness_ = std::make_unique<tilevk::test::Harness>(/*validation=*/false);
+        if (harness_->instance() == VK_NULL_HANDLE) return false;
+        pd_ = harness_->find_device("llvmpipe");
         if (!pd_) return false;
-        float prio = 1.0f;
-        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-        qci.queueFamilyIndex = 0;
-        qci.queueCount = 1;
-        qci.pQueuePriorities = &prio;
         VkPhysicalDeviceFeatures feats{};
         feats.wideLines = VK_TRUE;
         feats.largePoints = VK_TRUE;
         feats.depthBiasClamp = VK_TRUE;
         feats.depthClamp = VK_TRUE;
-        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-        dci.pEnabledFeatures = &feats;
         VkPhysicalDeviceLineRasterizationFeaturesEXT line_feats{
             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
         line_feats.bresenhamLines = VK_TRUE;
@@ -93,15 +77,12 @@ class Lavapipe {
         vkEnumerateDeviceExtensionProperties(pd_, nullptr, &next, exts.data());
         for (const auto& e : exts)
             if (std::strcmp(e.extensionName, ext) == 0) has_line_ext_ = true;
-        if (has_line_ext_) {
-            dci.enabledExtensionCount = 1;
-            dci.ppEnabledExtensionNames = &ext;
-            dci.pNext = &line_feats;
-        }
-        dci.queueCreateInfoCount = 1;
-        dci.pQueueCreateInfos = &qci;
-        if (vkCreateDevice(pd_, &dci, nullptr, &dev_) != VK_SUCCESS) return false;
-        vkGetDeviceQueue(dev_, 0, 0, &queue_);
+        std::vector<const char*> enabled;
+        if (has_line_ext_) enabled.push_back(ext);
+        device_ = std::make_unique<tilevk::test::Device>(pd_, &feats, enabled, has_line_ext_ ? &line_feats : nullptr);
+        if (!device_->ok()) return false;
+        dev_ = device_->device();
+        queue_ = device_->queue();
         return setup();
     }
     // Every object is destroyed explicitly (vkDestroy* of VK_NULL_HANDLE is a no-op, so a half-done init() is fine):
@@ -110,7 +91,6 @@ class Lavapipe {
         if (dev_) {
             vkDeviceWaitIdle(dev_);
             for (const auto& p : pipes_) vkDestroyPipeline(dev_, p.pipe, nullptr);
-            vkDestroyCommandPool(dev_, pool_, nullptr);  // frees cmd_
             vkDestroyPipelineLayout(dev_, layout_, nullptr);
             for (VkShaderModule m : {vs_, fs_, fs_noflat_}) vkDestroyShaderModule(dev_, m, nullptr);
             vkDestroyFramebuffer(dev_, fb_ms_, nullptr);
@@ -124,9 +104,7 @@ class Lavapipe {
             vkDestroyBuffer(dev_, rb_, nullptr);
             vkDestroyBuffer(dev_, vb_, nullptr);
             for (VkDeviceMemory m : {ms_mem_, image_mem_, rb_mem_, vb_mem_}) vkFreeMemory(dev_, m, nullptr);
-            vkDestroyDevice(dev_, nullptr);
-        }
-        if (inst_) vkDestroyInstance(inst_, nullptr);
+        }  // device_ and then harness_ destroy the device and the instance
     }
 
     bool has_line_ext() const { return has_line_ext_; }
@@ -178,26 +156,12 @@ class Lavapipe {
     }
 
   private:
-    uint32_t host_memory_type(uint32_t bits) {
-        VkPhysicalDeviceMemoryProperties mp;
-        vkGetPhysicalDeviceMemoryProperties(pd_, &mp);
-        for (uint32_t i = 0; i < mp.memoryTypeCount; ++i)
-            if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) return i;
-        return 0;
-    }
+    uint32_t host_memory_type(uint32_t bits) { return device_->memory_type(bits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT); }
+    // A mapped host-visible buffer of the shared harness (TRANSFER_SRC|DST besides `usage`), freed by ~Lavapipe.
     bool buffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer* b, VkDeviceMemory* m, void** map) {
-        VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-        ci.size = size;
-        ci.usage = usage;
-        if (vkCreateBuffer(dev_, &ci, nullptr, b) != VK_SUCCESS) return false;
-        VkMemoryRequirements mr;
-        vkGetBufferMemoryRequirements(dev_, *b, &mr);
-        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        ai.allocationSize = mr.size;
-        ai.memoryTypeIndex = host_memory_type(mr.memoryTypeBits);
-        if (vkAllocateMemory(dev_, &ai, nullptr, m) != VK_SUCCESS) return false;
-        vkBindBufferMemory(dev_, *b, *m, 0);
-        return vkMapMemory(dev_, *m, 0, VK_WHOLE_SIZE, 0, map) == VK_SUCCESS;
+        const tilevk::test::Device::Buffer made = device_->make_buffer(size, usage);
+        *b = made.buffer, *m = made.memory, *map = made.map;
+        return made.map != nullptr;
     }
     VkPipeline pipeline(VkPrimitiveTopology topo, float line_width, bool bresenham, VkFormat col_format,
                         const DepthBias* bias, const Extra& x) {
@@ -370,9 +334,8 @@ class Lavapipe {
         li.pushConstantRangeCount = 1;
         li.pPushConstantRanges = &pcr;
         if (vkCreatePipelineLayout(dev_, &li, nullptr, &layout_) != VK_SUCCESS) return false;
-        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        if (vkCreateCommandPool(dev_, &pi, nullptr, &pool_) != VK_SUCCESS) return false;
+        pool_ = device_->pool();  // resettable command buffers; destroyed (with cmd_) by device_
+        if (pool_ == VK_NULL_HANDLE) return false;
         VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         cai.commandPool = pool_;
         cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -380,7 +343,8 @@ class Lavapipe {
         return vkAllocateCommandBuffers(dev_, &cai, &cmd_) == VK_SUCCESS;
     }
 
-    VkInstance inst_ = VK_NULL_HANDLE;
+    std::unique_ptr<tilevk::test::Harness> harness_;
+    std::unique_ptr<tilevk::test::Device> device_;  // after harness_: destroyed first
     VkPhysicalDevice pd_ = VK_NULL_HANDLE;
     VkDevice dev_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;

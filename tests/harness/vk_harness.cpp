@@ -28,11 +28,11 @@ Harness::Harness(bool validation, const std::vector<const char*>& extensions) {
     // The instance extensions of Vulkan 1.1 (physical-device queries of extensions, device groups, external
     // handle capabilities): both drivers offer them.
     std::vector<const char*> exts = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
-                          VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME,
-                          VK_KHR_DEVICE_GROUP_CREATION_EXTENSION_NAME,
-                          VK_KHR_EXTERNAL_MEMORY_CAPABILITIES_EXTENSION_NAME,
-                          VK_KHR_EXTERNAL_FENCE_CAPABILITIES_EXTENSION_NAME,
-                          VK_KHR_EXTERNAL_SEMAPHORE_CAPABILITIES_EXTENSION_NAME};
+                                     VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME,
+                                     VK_KHR_DEVICE_GROUP_CREATION_EXTENSION_NAME,
+                                     VK_KHR_EXTERNAL_MEMORY_CAPABILITIES_EXTENSION_NAME,
+                                     VK_KHR_EXTERNAL_FENCE_CAPABILITIES_EXTENSION_NAME,
+                                     VK_KHR_EXTERNAL_SEMAPHORE_CAPABILITIES_EXTENSION_NAME};
     exts.insert(exts.end(), extensions.begin(), extensions.end());
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     // Every warning and error, of every type (validation, performance, general: the loader's own warnings too).

@@ -70,9 +70,10 @@ class Device {
     void destroy(Image& i);
     // Records with `record`, submits with a fence and waits. Returns the submission's result, else the wait's.
     VkResult run(const std::function<void(VkCommandBuffer)>& record);
+    // The first memory type in `bits` with all of `flags`, or ~0u.
+    uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
 
   private:
-    uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
     VkPhysicalDevice pd_;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
