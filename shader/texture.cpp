@@ -311,14 +311,22 @@ bool image_ok(const ImageView* img) {
            img->height && img->levels && img->levels <= kMaxMipLevels && img->layers;
 }
 
-// The texel at (x, y, layer) of level lv, swizzled; (0, 0, 0, 0) outside the level or the view's layers.
+// The texel at (x, y, layer) of level lv, swizzled. Outside the level or the view's layers (robustBufferAccess for
+// texel buffers): the format's zero texel, (0, 0, 0, 0) with alpha 1 (the integer 1 for integer formats) when the
+// format has no alpha, swizzled as a texel (lp_build_fetch_texel's out_of_bound_ret_zero: a format swizzle of
+// zeros; docs/lavapipe-rules.md §12).
 Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d) {
-    if (lv >= img.levels) return {0, 0, 0, 0};
+    const format::FormatInfo& fi = format::format_info(img.format);
+    auto outside = [&] {
+        Vec4 r{0, 0, 0, 0};
+        if (!fi.has_alpha) r[3] = format::is_integer(fi) ? std::bit_cast<float>(1u) : 1.0f;
+        return swizzled(r, img);
+    };
+    if (lv >= img.levels) return outside();
     const int32_t w = int32_t(std::max(1u, img.width >> lv));
     const int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> lv));
-    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return {0, 0, 0, 0};
+    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return outside();
     const ImageLevel& il = img.level[lv];
-    const format::FormatInfo& fi = format::format_info(img.format);
     const Vec4 r = decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
                                   uint64_t(x) * fi.bytes);
     return swizzled(r, img);

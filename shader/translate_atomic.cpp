@@ -73,10 +73,8 @@ bool Translator::op_atomic(const Instr& in) {
     }
     AtomicOp kind{};
     if (!atomic_kind(in.op, kind)) return false;
-    // Vertex and fragment atomics (vertexPipelineStoresAndAtomics, fragmentStoresAndAtomics) are not reported:
-    // their helper-lane and coverage rules are not tested yet.
-    if (stage_ != Stage::Compute)
-        fail("unsupported " + opname(in.op) + " in a " + stage_name(stage_) + " shader (atomics: compute only)");
+    // Any stage: buffer atomics take effect under side_effect_mask() (fragment: live, covered lanes only, so
+    // helper lanes and discarded fragments change nothing and get 0), as stores do.
     const bool store = in.op == spv::Op::OpAtomicStore;
     const uint32_t ptr_id = store ? in[1] : in[3];
     const Value& pv = val(ptr_id);

@@ -109,11 +109,6 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
     const Case cases[] = {
         {Stage::Fragment, R"(#version 450
             layout(location=0) out vec4 c;
-            layout(set=0,binding=0) buffer B { uint n; } b;
-            void main() { c = vec4(float(atomicAdd(b.n, 1u))); })",
-         "unsupported OpAtomicIAdd in a fragment shader"},
-        {Stage::Fragment, R"(#version 450
-            layout(location=0) out vec4 c;
             layout(location=0) in vec4 v;
             void main() { double d = double(v.x); c = vec4(float(d * d)); })",
          "Float64"},
