@@ -3,6 +3,7 @@
 // llvmpipe's fixed-point 8-bit filtering). Every access is bounds-checked; a missing descriptor reads zero.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -623,6 +624,20 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
 std::array<float, 4> sample_2d(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer) {
     if (!image_ok(&img)) return {0, 0, 0, 0};
     return sample_lambda(img, smp, final_lambda(smp, 0.0f), s, t, float(layer), false, false, SampleArgs{});
+}
+
+uint32_t* storage_image_word(const Descriptor* const* slots, uint32_t num_slots, uint32_t handle, uint32_t x,
+                             uint32_t y, uint32_t layer) {
+    const uint32_t s = handle & 0xFFFF;
+    if (s >= num_slots || slots[s] == nullptr || slots[s]->image_writable == nullptr) return nullptr;
+    const ImageView* img = slots[s]->image;
+    if (!image_ok(img) || (img->format != Format::R32_UINT && img->format != Format::R32_SINT)) return nullptr;
+    if (x >= img->width || y >= img->height || layer >= img->layers) return nullptr;  // unsigned: negative is out
+    const ImageLevel& il = img->level[0];
+    uint8_t* p = slots[s]->image_writable + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
+                 uint64_t(x) * 4;
+    if (reinterpret_cast<uintptr_t>(p) % std::atomic_ref<uint32_t>::required_alignment != 0) return nullptr;
+    return reinterpret_cast<uint32_t*>(p);
 }
 
 std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer) {

@@ -134,6 +134,31 @@ void Translator::storage_image_access(const Instr& in) {
     image_written_ = true;
 }
 
+// OpImageTexelPointer (the address of an image atomic): a Texel pointer to the texel of a 2D or 2D-array storage
+// image, used only by the OpAtomic* that follow (translate_atomic.cpp).
+void Translator::image_texel_pointer(const Instr& in) {
+    const Value& iv = val(in[3]);
+    if (iv.ptr < 0) fail("OpImageTexelPointer on a non-pointer");
+    const Pointer ip = pointers_[size_t(iv.ptr)];
+    const Type& it = type(ip.type);
+    if (ip.space != Space::Handle || it.kind != Type::Image || it.sampled != 2 || it.ms != 0 ||
+        spv::Dim(it.dim) != spv::Dim::Dim2D)
+        fail("unsupported OpImageTexelPointer (image atomics: 2D and 2D-array single-sample storage images only)");
+    uint32_t sample = 0;
+    if (!const_of(in[5], sample) || sample != 0) fail("OpImageTexelPointer with a sample index");
+    if (flat_of(in[4]) < (it.arrayed ? 3u : 2u)) fail("storage image coordinate with too few components");
+    Pointer p;
+    p.space = Space::Texel;
+    p.type = type(in[1]).elem;
+    p.base = alloc();
+    load(ip, ip.type, p.base, 0);
+    p.dyn = reg(in[4]);
+    p.offset = it.arrayed ? uint32_t(kSampleArray) : 0u;
+    p.writable = true;
+    pointers_.push_back(p);
+    vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
+}
+
 // Sampled images, texel fetches, input attachments, size queries.
 bool Translator::op_image(const Instr& in) {
     switch (in.op) {
@@ -156,6 +181,9 @@ bool Translator::op_image(const Instr& in) {
             return image_sample(in);
         case spv::Op::OpImageWrite:
             storage_image_access(in);
+            return true;
+        case spv::Op::OpImageTexelPointer:
+            image_texel_pointer(in);
             return true;
         case spv::Op::OpImageRead: {
             const Type& read_type = type(val(in[3]).type);

@@ -1,12 +1,16 @@
 // Side effects outside compute and out-of-bounds buffer accesses through the API, on tilevk and lavapipe with the
 // validation layer, bytes compared, plus every result checked against values computed here:
 // - suite ApiStagesStores (vertexPipelineStoresAndAtomics, fragmentStoresAndAtomics): storage-buffer stores and
-//   atomics from vertex shaders, storage-buffer atomics and storage-image stores from fragment shaders, with
+//   atomics from vertex shaders, storage-buffer atomics, storage-image stores and image atomics from fragment
+//   shaders, with
 //   discards, helper lanes at triangle edges and a depth test that fails, with and without EarlyFragmentTests.
 //   Only results that do not depend on the order (or, for vertices, the number) of invocations are used: counters
 //   of fragments, bits per pixel and draw, per-pixel and per-vertex values, the largest vertex index.
+// - suite ApiImageAtomics: every 32-bit image atomic on R32_UINT and R32_SINT storage images from compute, and
+//   outside the image.
 // - suite ApiRobustBufferAccess (robustBufferAccess): uniform, storage and uniform texel buffer reads past the
 //   bound range, stores and atomics past it; a vertex attribute past the end of its vertex buffer.
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <vector>
@@ -16,12 +20,14 @@
 namespace tilevk::test::breadth {
 namespace {
 
+#include "ia_ops_comp.h"
 #include "rb_access_comp.h"
 #include "ss_store_early_frag.h"
 #include "ss_store_frag.h"
 #include "ss_store_vert.h"
 
 constexpr uint32_t kSize = 32;  // every target here is 32x32
+constexpr uint32_t kBlocks = kSize / 4;  // ss_store.frag's per-block counters
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 class ApiStagesStores : public ApiBreadth {
@@ -50,7 +56,7 @@ struct StorePush {
 
 // The sections of stores_scene's bytes.
 struct StoreResult {
-    Bytes colour, depth, frag, vert, image;
+    Bytes colour, depth, frag, vert, image, blocks;
 };
 StoreResult split(const Bytes& b, bool depth) {
     StoreResult r;
@@ -64,6 +70,7 @@ StoreResult split(const Bytes& b, bool depth) {
     take(4 + kSize * kSize * 4, r.frag);
     take(8 + 6 * 4, r.vert);
     take(kSize * kSize * 4, r.image);
+    take(kBlocks * kBlocks * 4, r.blocks);
     return r;
 }
 uint32_t word(const Bytes& b, size_t i) {
@@ -74,8 +81,8 @@ uint32_t word(const Bytes& b, size_t i) {
 
 // Draws `draws` triangles with ss_store.vert and `fs` (draw d: vertices 3d..3d+2, push constants {d, z[d],
 // partial}) into a cleared RGBA8 target (and a D32 depth target cleared to 1 with test LESS, when `depth`), the
-// fragment shader's buffer, the vertex shader's buffer and an r32ui storage image all zero at the start. Returns
-// colour, depth (if any), the fragment buffer, the vertex buffer and the storage image.
+// fragment shader's buffer, the vertex shader's buffer and two r32ui storage images (per pixel, per 4x4 block) all
+// zero at the start. Returns colour, depth (if any), the fragment buffer, the vertex buffer and the two images.
 Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<float>& z) {
     const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, D = VK_FORMAT_D32_SFLOAT;
     Device::Buffer frag = k.buffer(4 + kSize * kSize * 4, kStorage);
@@ -84,6 +91,10 @@ Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<f
         k.image(VK_FORMAT_R32_UINT, kSize, kSize,
                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const VkImageView img_view = k.view(img.image, VK_FORMAT_R32_UINT, VK_IMAGE_ASPECT_COLOR_BIT);
+    Device::Image blocks =
+        k.image(VK_FORMAT_R32_UINT, kBlocks, kBlocks,
+                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    const VkImageView blocks_view = k.view(blocks.image, VK_FORMAT_R32_UINT, VK_IMAGE_ASPECT_COLOR_BIT);
     Target tg{};
     DepthTarget dt{};
     if (depth)
@@ -93,14 +104,17 @@ Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<f
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const VkDescriptorSetLayout dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages},
                                                     {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stages},
-                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages}});
+                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages},
+                                                    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stages}});
     const VkPipelineLayout layout = k.pipeline_layout({dsl}, {{stages, 0, sizeof(StorePush)}});
     const VkDescriptorSet set = k.descriptor_set(dsl);
     const VkDescriptorBufferInfo fb_info{frag.buffer, 0, VK_WHOLE_SIZE}, vb_info{vert.buffer, 0, VK_WHOLE_SIZE};
-    const VkDescriptorImageInfo ii{VK_NULL_HANDLE, img_view, VK_IMAGE_LAYOUT_GENERAL};
+    const VkDescriptorImageInfo ii{VK_NULL_HANDLE, img_view, VK_IMAGE_LAYOUT_GENERAL},
+        bi{VK_NULL_HANDLE, blocks_view, VK_IMAGE_LAYOUT_GENERAL};
     k.write(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &fb_info, nullptr);
     k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &ii);
     k.write(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &vb_info, nullptr);
+    k.write(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &bi);
 
     Pipe p;
     p.vs = SPV(ss_store_vert);
@@ -113,24 +127,26 @@ Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<f
     if (depth) p.ds = &ds;
     const VkPipeline pipe = k.pipeline(p);
 
-    auto image_barrier = [&](VkCommandBuffer c, VkImageLayout from, VkImageLayout to) {
+    auto image_barrier = [&](VkCommandBuffer c, VkImageLayout from, VkImageLayout to, VkImage image) {
         VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
         b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
         b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
         b.oldLayout = from;
         b.newLayout = to;
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = img.image;
+        b.image = image;
         b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
                              0, nullptr, 1, &b);
     };
     EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        image_barrier(c, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdClearColorImage(c, img.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
-        image_barrier(c, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
+        for (VkImage i : {img.image, blocks.image}) {
+            image_barrier(c, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, i);
+            vkCmdClearColorImage(c, i, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+            image_barrier(c, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL, i);
+        }
         if (depth)
             begin_pass(c, dt.rp, dt.fb, kSize, kSize, {clear_color(0, 0, 0, 0), clear_depth(1.0f)});
         else
@@ -143,7 +159,8 @@ Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<f
             vkCmdDraw(c, 3, 1, 3 * d, 0);
         }
         vkCmdEndRenderPass(c);
-        image_barrier(c, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        for (VkImage i : {img.image, blocks.image})
+            image_barrier(c, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, i);
         VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
         mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -153,7 +170,8 @@ Bytes stores_scene(Kit& k, Spv fs, bool depth, bool partial, const std::vector<f
               VK_SUCCESS);
     Bytes out = k.read(depth ? dt.col.image : tg.image.image, kSize, kSize, 4);
     if (depth) out = concat({out, k.read(dt.dep.image, kSize, kSize, 4, VK_IMAGE_ASPECT_DEPTH_BIT)});
-    return concat({out, Kit::bytes(frag), Kit::bytes(vert), k.read(img.image, kSize, kSize, 4)});
+    return concat({out, Kit::bytes(frag), Kit::bytes(vert), k.read(img.image, kSize, kSize, 4),
+                   k.read(blocks.image, kBlocks, kBlocks, 4)});
 }
 
 VkPhysicalDeviceFeatures stores_features() {
@@ -179,15 +197,18 @@ TEST_F(ApiStagesStores, FragmentSideEffectsFollowCoverageAndDiscard) {
     const StoreResult r = split(b, false);
     ASSERT_EQ(r.image.size(), size_t(kSize * kSize * 4));
     uint32_t written = 0;
+    std::vector<uint32_t> per_block(kBlocks * kBlocks, 0);
     for (uint32_t y = 0; y < kSize; ++y)
         for (uint32_t x = 0; x < kSize; ++x) {
             const bool coloured = r.colour[(y * kSize + x) * 4] == 255;
             written += coloured;
+            per_block[(y / 4) * kBlocks + x / 4] += coloured;
             EXPECT_FALSE(coloured && discarded(x, y)) << x << "," << y;
             EXPECT_EQ(word(r.frag, 1 + y * kSize + x), coloured ? 1u : 0u) << x << "," << y;
             EXPECT_EQ(word(r.image, y * kSize + x), coloured ? x + kSize * y + 1 : 0u) << x << "," << y;
         }
     EXPECT_EQ(word(r.frag, 0), written);
+    for (uint32_t i = 0; i < kBlocks * kBlocks; ++i) EXPECT_EQ(word(r.blocks, i), per_block[i]) << "block " << i;
     EXPECT_GT(written, 100u);  // a partial triangle: some pixels in, many out
     EXPECT_LT(written, 700u);
     expect_vertices(r.vert, 3);
@@ -206,12 +227,14 @@ TEST_F(ApiStagesStores, DepthTestOrdersSideEffectsByEarlyFragmentTests) {
         const StoreResult r = split(b, true);
         ASSERT_EQ(r.image.size(), size_t(kSize * kSize * 4));
         uint32_t count = 0;
+        std::vector<uint32_t> per_block(kBlocks * kBlocks, 0);
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x) {
                 const uint32_t i = y * kSize + x;
                 const bool kept = !discarded(x, y);
                 const uint32_t bits = kept ? (early ? 1u : 3u) : 0u;
                 count += std::popcount(bits);
+                per_block[(y / 4) * kBlocks + x / 4] += (bits & 1) + (bits & 2 ? 0x100u : 0u);
                 EXPECT_EQ(word(r.frag, 1 + i), bits) << x << "," << y;
                 EXPECT_EQ(word(r.image, i), kept ? x + kSize * y + 1 : 0u) << x << "," << y;
                 EXPECT_EQ(r.colour[i * 4], kept ? 255 : 0) << x << "," << y;
@@ -219,8 +242,134 @@ TEST_F(ApiStagesStores, DepthTestOrdersSideEffectsByEarlyFragmentTests) {
                 EXPECT_EQ(z, kept || early ? 0.5f : 1.0f) << x << "," << y;
             }
         EXPECT_EQ(word(r.frag, 0), count);
+        for (uint32_t i = 0; i < kBlocks * kBlocks; ++i) EXPECT_EQ(word(r.blocks, i), per_block[i]) << "block " << i;
         expect_vertices(r.vert, 6);
     }
+}
+
+// ---- Image atomics ---------------------------------------------------------------------------------------------
+
+class ApiImageAtomics : public ApiStagesStores {};
+
+constexpr uint32_t kIaW = 16, kIaH = 8;  // ia_ops.comp's images (it uses columns 0..7)
+
+// The images' starting texels: u row 2 (min) and row 4 (and) all ones, row 6 (exchange) 77 + x, row 7
+// (compare-exchange) 3x for even x and 3x + 1 for odd; s row 2 (add) 1000, row 3 (compare-exchange) -x for even x
+// and 5 - x for odd; everything else 0.
+std::vector<uint32_t> ia_start(bool sint) {
+    std::vector<uint32_t> t(kIaW * kIaH, 0);
+    for (uint32_t x = 0; x < kIaW; ++x) {
+        auto at = [&](uint32_t y) -> uint32_t& { return t[y * kIaW + x]; };
+        if (!sint) {
+            at(2) = at(4) = ~0u;
+            at(6) = 77 + x;
+            at(7) = 3 * x + (x & 1);
+        } else {
+            at(2) = 1000;
+            at(3) = uint32_t(-int32_t(x) + ((x & 1) ? 5 : 0));
+        }
+    }
+    return t;
+}
+
+// ia_ops.comp over 16x8 invocations; returns the r32ui image, the r32i image and the returned values.
+Bytes image_atomics_scene(Kit& k) {
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const VkFormat fmts[2] = {VK_FORMAT_R32_UINT, VK_FORMAT_R32_SINT};
+    Device::Image imgs[2] = {k.image(fmts[0], kIaW, kIaH, usage), k.image(fmts[1], kIaW, kIaH, usage)};
+    Device::Buffer starts[2] = {k.buffer_of(ia_start(false), 0), k.buffer_of(ia_start(true), 0)};
+    Device::Buffer out = k.buffer(27 * 4, kStorage);
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    const VkDescriptorSetLayout dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs},
+                                                    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs},
+                                                    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs}});
+    const VkPipelineLayout layout = k.pipeline_layout({dsl});
+    const VkDescriptorSet set = k.descriptor_set(dsl);
+    for (uint32_t i = 0; i < 2; ++i) {
+        const VkDescriptorImageInfo ii{VK_NULL_HANDLE, k.view(imgs[i].image, fmts[i], VK_IMAGE_ASPECT_COLOR_BIT),
+                                       VK_IMAGE_LAYOUT_GENERAL};
+        k.write(set, i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &ii);
+    }
+    const VkDescriptorBufferInfo oi{out.buffer, 0, VK_WHOLE_SIZE};
+    k.write(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &oi, nullptr);
+    const VkPipeline p = compute_pipeline(k, SPV(ia_ops_comp), layout);
+    auto barrier = [](VkCommandBuffer c, VkImage img, VkImageLayout from, VkImageLayout to) {
+        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+        b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+        b.oldLayout = from;
+        b.newLayout = to;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = img;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
+                             0, nullptr, 1, &b);
+    };
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        for (uint32_t i = 0; i < 2; ++i) {
+            barrier(c, imgs[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            VkBufferImageCopy r{};
+            r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            r.imageExtent = {kIaW, kIaH, 1};
+            vkCmdCopyBufferToImage(c, starts[i].buffer, imgs[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+            barrier(c, imgs[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+        }
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+        vkCmdDispatch(c, 2, 2, 1);
+        for (uint32_t i = 0; i < 2; ++i)
+            barrier(c, imgs[i].image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr,
+                             0, nullptr);
+    }),
+              VK_SUCCESS);
+    return concat({k.read(imgs[0].image, kIaW, kIaH, 4), k.read(imgs[1].image, kIaW, kIaH, 4), Kit::bytes(out)});
+}
+
+// Every image atomic's result, computed here from the 16 operands each texel takes (ia_ops.comp).
+TEST_F(ApiImageAtomics, EveryAtomicOnR32UintAndSint) {
+    for (const VkFormat f : {VK_FORMAT_R32_UINT, VK_FORMAT_R32_SINT}) {
+        VkFormatProperties tp, lp;
+        vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), f, &tp);
+        vkGetPhysicalDeviceFormatProperties(lavapipe_->physical(), f, &lp);
+        EXPECT_TRUE(tp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_ATOMIC_BIT) << f;
+        EXPECT_TRUE(lp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_ATOMIC_BIT) << f;
+    }
+    const Bytes b = both(image_atomics_scene);
+    ASSERT_EQ(b.size(), size_t(2 * kIaW * kIaH + 27) * 4);
+    std::vector<uint32_t> u = ia_start(false), s = ia_start(true), o(27, 0);
+    for (uint32_t t = 0; t < 8; ++t) {
+        auto us = [&](uint32_t row) -> uint32_t& { return u[row * kIaW + t]; };
+        auto ss = [&](uint32_t row) -> uint32_t& { return s[row * kIaW + t]; };
+        for (uint32_t gy = 0; gy < kIaH; ++gy)
+            for (const uint32_t gx : {t, t + 8}) {
+                const uint32_t i = gx + 16 * gy;
+                us(0) += i + 1;
+                us(1) = std::max(us(1), i * 2654435761u);
+                us(2) = std::min(us(2), i * 2654435761u);
+                us(3) |= 1u << (i % 32);
+                us(4) &= ~(1u << ((i * 7) % 32));
+                us(5) ^= i * 0x01010101u;
+                ss(0) = uint32_t(std::min(int32_t(ss(0)), int32_t(i) * 40503 - 2000000));
+                ss(1) = uint32_t(std::max(int32_t(ss(1)), int32_t(i) * -40503 + 100));
+                ss(2) -= i;
+            }
+        o[t] = us(6);  // the one exchange of texel t, by invocation i = t
+        us(6) = t + 1000;
+        o[8 + t] = us(7);
+        if (us(7) == 3 * t) us(7) = 500 + t;
+        o[16 + t] = ss(3);
+        if (int32_t(ss(3)) == -int32_t(t)) ss(3) = uint32_t(int32_t(t) - 50);
+    }
+    for (uint32_t i = 0; i < kIaW * kIaH; ++i) {
+        EXPECT_EQ(word(b, i), u[i]) << "r32ui texel " << i % kIaW << "," << i / kIaW;
+        EXPECT_EQ(word(b, kIaW * kIaH + i), s[i]) << "r32i texel " << i % kIaW << "," << i / kIaW;
+    }
+    for (uint32_t i = 0; i < 27; ++i) EXPECT_EQ(word(b, 2 * kIaW * kIaH + i), o[i]) << "returned value " << i;
 }
 
 // ---- robustBufferAccess ------------------------------------------------------------------------------------------
