@@ -8,6 +8,8 @@
 //   of fragments, bits per pixel and draw, per-pixel and per-vertex values, the largest vertex index.
 // - suite ApiImageAtomics: every 32-bit image atomic on R32_UINT and R32_SINT storage images from compute, and
 //   outside the image.
+// - suite ApiStorageTexelBuffers: imageLoad / imageStore / imageSize / atomics on storage texel buffers, past
+//   their ranges too.
 // - suite ApiRobustBufferAccess (robustBufferAccess): uniform, storage and uniform texel buffer reads past the
 //   bound range, stores and atomics past it; a vertex attribute past the end of its vertex buffer.
 #include <algorithm>
@@ -25,6 +27,7 @@ namespace {
 #include "ss_store_early_frag.h"
 #include "ss_store_frag.h"
 #include "ss_store_vert.h"
+#include "tb_ops_comp.h"
 
 constexpr uint32_t kSize = 32;  // every target here is 32x32
 constexpr uint32_t kBlocks = kSize / 4;  // ss_store.frag's per-block counters
@@ -370,6 +373,116 @@ TEST_F(ApiImageAtomics, EveryAtomicOnR32UintAndSint) {
         EXPECT_EQ(word(b, kIaW * kIaH + i), s[i]) << "r32i texel " << i % kIaW << "," << i / kIaW;
     }
     for (uint32_t i = 0; i < 27; ++i) EXPECT_EQ(word(b, 2 * kIaW * kIaH + i), o[i]) << "returned value " << i;
+}
+
+// ---- Storage texel buffers ---------------------------------------------------------------------------------------
+
+class ApiStorageTexelBuffers : public ApiStagesStores {};
+
+constexpr uint32_t kTexelOffset = 256;                          // the rgba8 and rgba32f views start here
+constexpr uint8_t kUntouchedByte = 0x7f;                        // the rgba32f buffer's bytes before the dispatch
+constexpr uint32_t kSrc = 20, kDst = 24, kCnt = 8, kFsrc = 10;  // the views' texels
+
+uint8_t src_byte(uint32_t i) {
+    return uint8_t(i * 37 + 11);
+}
+float fsrc_value(uint32_t i) {
+    return float(i) * 1.5f - 3.0f;
+}
+
+// A buffer view of `b` (kit-owned).
+VkBufferView buffer_view(Kit& k, const Device::Buffer& b, VkFormat f, VkDeviceSize offset, VkDeviceSize range) {
+    VkBufferViewCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    ci.buffer = b.buffer;
+    ci.format = f;
+    ci.offset = offset;
+    ci.range = range;
+    VkBufferView v = VK_NULL_HANDLE;
+    EXPECT_EQ(vkCreateBufferView(k.d, &ci, nullptr, &v), VK_SUCCESS) << f;
+    k.undo(VK_OBJECT_TYPE_BUFFER_VIEW, v, [&k, v] { vkDestroyBufferView(k.d, v, nullptr); });
+    return v;
+}
+
+// tb_ops.comp over 32 invocations; returns the rgba32f buffer (all of it), the r32ui buffer and `o`.
+Bytes texel_buffers_scene(Kit& k) {
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+    std::vector<uint8_t> src(kTexelOffset + 64 * 4);
+    for (uint32_t i = 0; i < src.size(); ++i) src[i] = src_byte(i);
+    std::vector<float> fsrc(64);
+    for (uint32_t i = 0; i < fsrc.size(); ++i) fsrc[i] = fsrc_value(i);
+    Device::Buffer sb = k.buffer_of(src, usage), fb = k.buffer_of(fsrc, usage);
+    Device::Buffer db = k.buffer_of(std::vector<uint8_t>(kTexelOffset + 32 * 16, kUntouchedByte), usage);
+    Device::Buffer cb = k.buffer(kCnt * 4 + 64, usage);
+    Device::Buffer out = k.buffer(163 * 4, kStorage);
+    const VkBufferView views[4] = {buffer_view(k, sb, VK_FORMAT_R8G8B8A8_UNORM, kTexelOffset, kSrc * 4),
+                                   buffer_view(k, db, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelOffset, kDst * 16),
+                                   buffer_view(k, cb, VK_FORMAT_R32_UINT, 0, kCnt * 4),
+                                   buffer_view(k, fb, VK_FORMAT_R32_SFLOAT, 0, kFsrc * 4)};
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (uint32_t i = 0; i < 4; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1, cs});
+    bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs});
+    const VkDescriptorSetLayout dsl = k.set_layout(bindings);
+    const VkPipelineLayout layout = k.pipeline_layout({dsl});
+    const VkDescriptorSet set = k.descriptor_set(dsl);
+    for (uint32_t i = 0; i < 4; ++i) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set;
+        w.dstBinding = i;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+        w.pTexelBufferView = &views[i];
+        vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+    }
+    const VkDescriptorBufferInfo oi{out.buffer, 0, VK_WHOLE_SIZE};
+    k.write(set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &oi, nullptr);
+    const VkPipeline p = compute_pipeline(k, SPV(tb_ops_comp), layout);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+        vkCmdDispatch(c, 2, 1, 1);
+        VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(c, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr,
+                             0, nullptr);
+    }),
+              VK_SUCCESS);
+    return concat({Kit::bytes(db), Kit::bytes(cb), Kit::bytes(out)});
+}
+
+// Loads convert as texel fetches do (UNORM8: c * fl(1/255)), stores as image stores, atomics as on images; past a
+// view's range loads give (0, 0, 0, 0) (alpha 1 for R32_SFLOAT), stores and atomics do nothing (atomics return 0).
+TEST_F(ApiStorageTexelBuffers, LoadStoreAtomicsAndSizes) {
+    const Bytes b = both(texel_buffers_scene);
+    const size_t db_size = kTexelOffset + 32 * 16, cb_size = kCnt * 4 + 64;
+    ASSERT_EQ(b.size(), db_size + cb_size + 163 * 4);
+    for (uint32_t byte = 0; byte < db_size; ++byte) {
+        const uint32_t rel = byte - kTexelOffset, texel = rel / 16;
+        if (byte < kTexelOffset || texel >= kDst) {
+            EXPECT_EQ(b[byte], kUntouchedByte) << "byte " << byte;
+            continue;
+        }
+        if (rel % 4 != 0) continue;
+        const uint32_t c = (rel % 16) / 4;
+        const float loaded = texel < kSrc ? float(src_byte(kTexelOffset + texel * 4 + c)) * (1.0f / 255.0f) : 0.0f;
+        const float want = loaded * 2.0f + 0.25f;
+        EXPECT_EQ(std::bit_cast<float>(word(b, byte / 4)), want) << "texel " << texel << "." << c;
+    }
+    for (uint32_t t = 0; t < kCnt + 16; ++t) {
+        uint32_t sum = 0;
+        for (uint32_t i = t; t < kCnt && i < 32; i += 10) sum += i + 1;
+        EXPECT_EQ(word(b, db_size / 4 + t), sum) << "counter " << t;
+    }
+    const size_t o = (db_size + cb_size) / 4;
+    for (uint32_t i = 0; i < 32; ++i) {
+        const uint32_t want[5] = {i < kFsrc ? std::bit_cast<uint32_t>(fsrc_value(i)) : 0u, 0, 0,
+                                  std::bit_cast<uint32_t>(1.0f), 0};
+        for (uint32_t c = 0; c < 5; ++c) EXPECT_EQ(word(b, o + i * 5 + c), want[c]) << i << "." << c;
+    }
+    EXPECT_EQ(word(b, o + 160), kSrc);
+    EXPECT_EQ(word(b, o + 161), kDst);
+    EXPECT_EQ(word(b, o + 162), kCnt);
 }
 
 // ---- robustBufferAccess ------------------------------------------------------------------------------------------
