@@ -60,9 +60,9 @@ Features make_supported() {
     c.multiViewport = VK_TRUE;          // 16 viewports accepted; with no viewport-index output viewport 0 is used
     // shader/ bounds-checks every buffer access against the descriptor's range (loads 0, stores and atomics dropped,
     // atomics return 0) and rast/geometry fetches vertices past their buffer as (0,0,0,1) / (0,0,0,0), as lavapipe
-    // (docs/lavapipe-rules.md §9 "buffer bounds"; api_breadth ApiRobustBufferAccess).
+    // (docs/lavapipe-rules.md §12 "Buffer bounds"; api_breadth ApiRobustBufferAccess).
     c.robustBufferAccess = VK_TRUE;
-    // Buffer and image stores and buffer atomics in vertex and fragment shaders: fragment side effects only from
+    // Buffer and image stores and atomics in vertex and fragment shaders: fragment side effects only from
     // live, covered lanes, after the depth test only with EarlyFragmentTests (lavapipe's depth modes);
     // api_breadth ApiStagesStores.
     c.vertexPipelineStoresAndAtomics = VK_TRUE;
