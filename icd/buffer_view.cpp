@@ -19,13 +19,13 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateBufferView(VkDevice device, const VkBuf
         return fail(VK_ERROR_OUT_OF_HOST_MEMORY,  // invalid usage: the closest code vkCreateBufferView may return
                     "vkCreateBufferView: offset %" PRIu64 " lies outside the buffer", uint64_t(pCreateInfo->offset));
     // The view's format must have the texel-buffer feature of each texel-buffer usage of the buffer: uniform texel
-    // buffers are read by shader/ (texelFetch); no format has STORAGE_TEXEL_BUFFER (no imageLoad/imageStore).
+    // buffers are read by shader/ (texelFetch), storage ones read, written and used by atomics (imageBuffer).
     const FormatInfo* f = find_format(pCreateInfo->format);
     const VkFormatFeatureFlags have = f != nullptr ? VkFormatFeatureFlags(f->buffer) : 0;
     if ((buf->usage & VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT) && !(have & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT))
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
                     "vkCreateBufferView: %s has no VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT (the buffer's usage has "
-                    "VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT); storage texel buffers are not implemented",
+                    "VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)",
                     vk_enum_name(pCreateInfo->format));
     if ((buf->usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) && !(have & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,

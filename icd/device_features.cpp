@@ -58,6 +58,15 @@ Features make_supported() {
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
     c.multiViewport = VK_TRUE;          // 16 viewports accepted; with no viewport-index output viewport 0 is used
+    // shader/ bounds-checks every buffer access against the descriptor's range (loads 0, stores and atomics dropped,
+    // atomics return 0) and rast/geometry fetches vertices past their buffer as (0,0,0,1) / (0,0,0,0), as lavapipe
+    // (docs/lavapipe-rules.md §12 "Buffer bounds"; api_breadth ApiRobustBufferAccess).
+    c.robustBufferAccess = VK_TRUE;
+    // Buffer and image stores and atomics in vertex and fragment shaders: fragment side effects only from
+    // live, covered lanes, after the depth test only with EarlyFragmentTests (lavapipe's depth modes);
+    // api_breadth ApiStagesStores.
+    c.vertexPipelineStoresAndAtomics = VK_TRUE;
+    c.fragmentStoresAndAtomics = VK_TRUE;
 
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
     // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.

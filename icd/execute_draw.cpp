@@ -314,6 +314,14 @@ shader::Descriptor descriptor_of(DrawContext& ctx, const BoundSets& bs, uint32_t
             out.buffer.data = set.inline_data.data() + lb.inline_offset;
             out.buffer.size = lb.count;
             break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: {  // imageLoad / imageStore / atomics on the view's one row
+            out.image = texel_buffer_of(ctx, d.buffer_view);
+            const BufferView* v = from_handle<BufferView>(d.buffer_view);
+            const FormatInfo* f = v != nullptr ? find_format(v->format) : nullptr;
+            if (out.image != nullptr && f != nullptr && (f->buffer & format::kStorageTexelBuffer))
+                out.image_writable = v->buffer->data() + v->offset;
+            break;
+        }
         case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:  // imageLoad / imageStore / imageSize on level 0 of the view
             out.image = image_of(ctx, d.image_view);
             if (out.image != nullptr && (format::image_features(*d.image_view->format) & format::kStorageImage))

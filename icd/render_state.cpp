@@ -89,7 +89,7 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
 bool texel_buffer_view_of(const BufferView& v, shader::ImageView* out) {
     if (v.buffer == nullptr || v.buffer->data() == nullptr) return false;
     const FormatInfo* f = find_format(v.format);
-    if (f == nullptr || !(f->buffer & format::kUniformTexelBuffer)) return false;
+    if (f == nullptr || !(f->buffer & (format::kUniformTexelBuffer | format::kStorageTexelBuffer))) return false;
     if (v.offset > v.buffer->size) return false;
     const VkDeviceSize range = std::min(v.range, v.buffer->size - v.offset);
     const VkDeviceSize texels = std::min<VkDeviceSize>(range / f->bytes, kMaxTexelBufferElements);

@@ -123,11 +123,29 @@ inline uint32_t atomic_on_word(AtomicOp op, uint32_t* word, uint32_t v, uint32_t
     }
 }
 
+// Image atomics: the texel's word found by texture.cpp (bounds, format, writability), then as on a buffer.
+[[gnu::always_inline]] inline void op_atomic_image(const Inst& in, Machine& mc) {
+    uint32_t* d = D;
+    const uint32_t *a = A, *c = C;
+    const uint32_t* x = mc.R + size_t(in.b) * kLanes;
+    const uint32_t* y = x + kLanes;
+    const uint32_t* layer = (in.imm & kSampleArray) ? y + kLanes : nullptr;
+    const auto op = AtomicOp(in.pad);
+    for (int l = 0; l < kLanes; ++l) {
+        const uint32_t cmp = d[l];
+        d[l] = 0;
+        if (a[l] == kNoReg) continue;  // inactive lane
+        uint32_t* word = storage_image_word(mc.slots, mc.num_slots, a[l], x[l], y[l], layer ? layer[l] : 0u);
+        if (word != nullptr) d[l] = atomic_on_word(op, word, c[l], cmp);
+    }
+}
+
 #define TILEVK_EXEC_SHARED_OPS(X)     \
     X(LoadShared, op_load_shared)     \
     X(StoreShared, op_store_shared)   \
     X(AtomicShared, op_atomic_shared) \
-    X(AtomicBuf, op_atomic_buf)
+    X(AtomicBuf, op_atomic_buf)       \
+    X(AtomicImage, op_atomic_image)
 
 }  // namespace
 }  // namespace tilevk::shader::exec

@@ -164,8 +164,9 @@ enum class Op : uint16_t {
     JumpIfAny,   // if any lane of a is set: pc = imm
     Kill,        // live &= ~a (OpKill / demote); the kill register is d
     Halt,
-    // Compute only, appended after Halt on purpose: the compiled tier's op table (jit/analysis.cpp) ends at Halt,
-    // and jit::compile refuses programs with workgroup memory, barriers or atomics by name (they stay interpreted).
+    // Interpreter only, appended after Halt on purpose: the compiled tier's op table (jit/analysis.cpp) ends at
+    // Halt, and jit::compile refuses programs with workgroup memory, barriers or atomics by name. Workgroup memory,
+    // barriers and subgroups are compute only; atomics and storage images work in every stage.
     LoadShared,    // d = shared[min(imm + a, n - 1)] (one word of the workgroup's memory, same for every lane)
     StoreShared,   // shared[min(imm + a, n - 1)] = b under mask c, lanes in order (the last lane wins)
     AtomicBuf,     // d = atomic pad:AtomicOp on buffer(slot imm + elem a)[byte b + extra], value c, comparator d;
@@ -188,6 +189,10 @@ enum class Op : uint16_t {
     // outside the view's level 0 or layers loads (0, 0, 0, 1 if the format has no alpha) and stores nothing.
     ImageLoad,   // d..d+3 = the texel decoded (format/texel_codec.h decode_color)
     ImageStore,  // texel = c..c+3 encoded (store_image_texel) under mask d, lanes in order
+    // d = atomic pad:AtomicOp on the 32-bit texel of an R32_UINT / R32_SINT view at the coordinates b, value c,
+    // comparator d, lanes in order (std::atomic_ref); a lane whose handle a is kNoReg (inactive), a coordinate
+    // outside the view or another format: nothing done, d = 0 (storage_image_word)
+    AtomicImage,
 };
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
@@ -316,5 +321,10 @@ std::string translate(const std::vector<uint32_t>& spirv, Stage stage, std::stri
 
 // Run one image instruction (texture.cpp). regs = register file base (register r = regs + r * kLanes).
 void exec_image(const Inst& in, uint32_t* regs, const Descriptor* const* slots, uint32_t num_slots);
+// The writable word of an image atomic (texture.cpp): the texel (x, y, layer) of the R32_UINT / R32_SINT storage
+// image behind descriptor slot `handle`, or null (no such storage image, another format, outside level 0 of the
+// view or its layers, misaligned).
+uint32_t* storage_image_word(const Descriptor* const* slots, uint32_t num_slots, uint32_t handle, uint32_t x,
+                             uint32_t y, uint32_t layer);
 
 }  // namespace tilevk::shader

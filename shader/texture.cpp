@@ -3,6 +3,7 @@
 // llvmpipe's fixed-point 8-bit filtering). Every access is bounds-checked; a missing descriptor reads zero.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -311,14 +312,22 @@ bool image_ok(const ImageView* img) {
            img->height && img->levels && img->levels <= kMaxMipLevels && img->layers;
 }
 
-// The texel at (x, y, layer) of level lv, swizzled; (0, 0, 0, 0) outside the level or the view's layers.
+// The texel at (x, y, layer) of level lv, swizzled. Outside the level or the view's layers (robustBufferAccess for
+// texel buffers): the format's zero texel, (0, 0, 0, 0) with alpha 1 (the integer 1 for integer formats) when the
+// format has no alpha, swizzled as a texel (lp_build_fetch_texel's out_of_bound_ret_zero: a format swizzle of
+// zeros; docs/lavapipe-rules.md §12).
 Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d) {
-    if (lv >= img.levels) return {0, 0, 0, 0};
+    const format::FormatInfo& fi = format::format_info(img.format);
+    auto outside = [&] {
+        Vec4 r{0, 0, 0, 0};
+        if (!fi.has_alpha) r[3] = format::is_integer(fi) ? std::bit_cast<float>(1u) : 1.0f;
+        return swizzled(r, img);
+    };
+    if (lv >= img.levels) return outside();
     const int32_t w = int32_t(std::max(1u, img.width >> lv));
     const int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> lv));
-    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return {0, 0, 0, 0};
+    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return outside();
     const ImageLevel& il = img.level[lv];
-    const format::FormatInfo& fi = format::format_info(img.format);
     const Vec4 r = decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
                                   uint64_t(x) * fi.bytes);
     return swizzled(r, img);
@@ -615,6 +624,20 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
 std::array<float, 4> sample_2d(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer) {
     if (!image_ok(&img)) return {0, 0, 0, 0};
     return sample_lambda(img, smp, final_lambda(smp, 0.0f), s, t, float(layer), false, false, SampleArgs{});
+}
+
+uint32_t* storage_image_word(const Descriptor* const* slots, uint32_t num_slots, uint32_t handle, uint32_t x,
+                             uint32_t y, uint32_t layer) {
+    const uint32_t s = handle & 0xFFFF;
+    if (s >= num_slots || slots[s] == nullptr || slots[s]->image_writable == nullptr) return nullptr;
+    const ImageView* img = slots[s]->image;
+    if (!image_ok(img) || (img->format != Format::R32_UINT && img->format != Format::R32_SINT)) return nullptr;
+    if (x >= img->width || y >= img->height || layer >= img->layers) return nullptr;  // unsigned: negative is out
+    const ImageLevel& il = img->level[0];
+    uint8_t* p = slots[s]->image_writable + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
+                 uint64_t(x) * 4;
+    if (reinterpret_cast<uintptr_t>(p) % std::atomic_ref<uint32_t>::required_alignment != 0) return nullptr;
+    return reinterpret_cast<uint32_t*>(p);
 }
 
 std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer) {

@@ -73,10 +73,8 @@ bool Translator::op_atomic(const Instr& in) {
     }
     AtomicOp kind{};
     if (!atomic_kind(in.op, kind)) return false;
-    // Vertex and fragment atomics (vertexPipelineStoresAndAtomics, fragmentStoresAndAtomics) are not reported:
-    // their helper-lane and coverage rules are not tested yet.
-    if (stage_ != Stage::Compute)
-        fail("unsupported " + opname(in.op) + " in a " + stage_name(stage_) + " shader (atomics: compute only)");
+    // Any stage: buffer atomics take effect under side_effect_mask() (fragment: live, covered lanes only, so
+    // helper lanes and discarded fragments change nothing and get 0), as stores do.
     const bool store = in.op == spv::Op::OpAtomicStore;
     const uint32_t ptr_id = store ? in[1] : in[3];
     const Value& pv = val(ptr_id);
@@ -113,6 +111,12 @@ bool Translator::op_atomic(const Instr& in) {
     // Inactive lanes get an element / word index of kNoReg: the kernel skips them (their result is 0).
     auto gen = [&](uint32_t d) {
         if (comparator != kNoReg) emit(SOp::Mov, d, comparator);
+        if (p.space == Space::Texel) {  // the handle is kNoReg in lanes without effect: the kernel skips them
+            image_written_ = true;
+            const uint32_t handle = emit1(SOp::Select, p.base, konst(kNoReg), side_effect_mask());
+            emit(SOp::AtomicImage, d, handle, p.dyn, value, p.offset).pad = uint16_t(kind);
+            return;
+        }
         if (p.space == Space::Shared) {
             const uint32_t idx = emit1(SOp::Select, dyn, konst(kNoReg), cur_mask_);
             Inst& a = emit(SOp::AtomicShared, d, idx, kNoReg, value, p.base + p.offset);
@@ -121,7 +125,7 @@ bool Translator::op_atomic(const Instr& in) {
             return;
         }
         if (p.space != Space::Buffer || p.base == 0 || !p.writable)
-            fail("unsupported " + opname(in.op) + " outside a storage buffer or Workgroup memory");
+            fail("unsupported " + opname(in.op) + " outside a storage buffer, a storage image or Workgroup memory");
         buffer_written_ = true;
         const uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
         const uint32_t e = emit1(SOp::Select, elem, konst(kNoReg), side_effect_mask());

@@ -101,7 +101,21 @@ bool Translator::image_sample(const Instr& in) {
     return true;
 }
 
-// imageLoad / imageStore on a storage image (2D or 2D array, declare_image_type): integer coordinates, the view's
+// The coordinate registers of a storage image access: the coordinate's own (x, y[, layer]), or for a storage texel
+// buffer (x, 0) (the view is one row).
+uint32_t Translator::storage_coord(const Type& it, uint32_t coord) {
+    if (spv::Dim(it.dim) == spv::Dim::Buffer) {
+        const uint32_t xy = alloc(2);
+        emit(SOp::Mov, xy, reg(coord));
+        emit(SOp::Mov, xy + 1, zero_);
+        return xy;
+    }
+    if (flat_of(coord) < (it.arrayed ? 3u : 2u)) fail("storage image coordinate with too few components");
+    return reg(coord);
+}
+
+// imageLoad / imageStore on a storage image (2D or 2D array, declare_image_type) or a storage texel buffer: integer
+// coordinates, the view's
 // format decides the conversion (texture.cpp), as lavapipe's lp_build_img_op_soa does with the bound view's format.
 void Translator::storage_image_access(const Instr& in) {
     const bool write = in.op == spv::Op::OpImageWrite;
@@ -118,14 +132,13 @@ void Translator::storage_image_access(const Instr& in) {
                  spv::ImageOperandsMask::NonPrivateTexel | spv::ImageOperandsMask::VolatileTexel);
     if (in.n > operands_at && (in[operands_at] & ~allowed) != 0)
         fail("unsupported image operands (sample, lod, offsets) in " + opname(in.op));
-    const uint32_t ncoord = it.arrayed ? 3 : 2;
-    if (flat_of(coord) < ncoord) fail("storage image coordinate with too few components");
     const uint32_t flags = it.arrayed ? uint32_t(kSampleArray) : 0u;
+    const uint32_t xy = storage_coord(it, coord);
     if (!write) {
         if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
         const uint32_t d = def(in, 4);
         // another lane (or workgroup) may have stored to the texel: keep what each lane loaded while active
-        keep_active(d, 4, [&](uint32_t t) { emit(SOp::ImageLoad, t, reg(image), reg(coord), kNoReg, flags); });
+        keep_active(d, 4, [&](uint32_t t) { emit(SOp::ImageLoad, t, reg(image), xy, kNoReg, flags); });
         return;
     }
     const uint32_t n = flat_of(in[3]);
@@ -135,8 +148,34 @@ void Translator::storage_image_access(const Instr& in) {
         texel = alloc(4);
         for (uint32_t i = 0; i < 4; ++i) emit(SOp::Mov, texel + i, i < n ? reg(in[3]) + i : zero_);
     }
-    emit(SOp::ImageStore, side_effect_mask(), reg(image), reg(coord), texel, flags);
+    emit(SOp::ImageStore, side_effect_mask(), reg(image), xy, texel, flags);
     image_written_ = true;
+}
+
+// OpImageTexelPointer (the address of an image atomic): a Texel pointer to the texel of a 2D or 2D-array storage
+// image or a storage texel buffer, used only by the OpAtomic* that follow (translate_atomic.cpp).
+void Translator::image_texel_pointer(const Instr& in) {
+    const Value& iv = val(in[3]);
+    if (iv.ptr < 0) fail("OpImageTexelPointer on a non-pointer");
+    const Pointer ip = pointers_[size_t(iv.ptr)];
+    const Type& it = type(ip.type);
+    if (ip.space != Space::Handle || it.kind != Type::Image || it.sampled != 2 || it.ms != 0 ||
+        (spv::Dim(it.dim) != spv::Dim::Dim2D && spv::Dim(it.dim) != spv::Dim::Buffer))
+        fail(
+            "unsupported OpImageTexelPointer (image atomics: 2D and 2D-array single-sample storage images and "
+            "storage texel buffers only)");
+    uint32_t sample = 0;
+    if (!const_of(in[5], sample) || sample != 0) fail("OpImageTexelPointer with a sample index");
+    Pointer p;
+    p.space = Space::Texel;
+    p.type = type(in[1]).elem;
+    p.base = alloc();
+    load(ip, ip.type, p.base, 0);
+    p.dyn = storage_coord(it, in[4]);
+    p.offset = it.arrayed ? uint32_t(kSampleArray) : 0u;
+    p.writable = true;
+    pointers_.push_back(p);
+    vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
 }
 
 // Sampled images, texel fetches, input attachments, size queries.
@@ -161,6 +200,9 @@ bool Translator::op_image(const Instr& in) {
             return image_sample(in);
         case spv::Op::OpImageWrite:
             storage_image_access(in);
+            return true;
+        case spv::Op::OpImageTexelPointer:
+            image_texel_pointer(in);
             return true;
         case spv::Op::OpImageRead: {
             const Type& read_type = type(val(in[3]).type);

@@ -42,6 +42,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::Sampled1D:
         case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
+        case spv::Capability::ImageBuffer:      // storage texel buffers: imageLoad / imageStore / atomics / imageSize
         case spv::Capability::StorageImageExtendedFormats:
         case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
@@ -311,9 +312,9 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
         return;
     }
     if (spv::Dim(t.dim) == spv::Dim::Buffer) {
-        // Uniform texel buffer: fetched like a 1D image of one level (the icd binds the buffer view as one);
-        // storage texel buffers (imageLoad/imageStore) are not implemented.
-        if (t.sampled == 2) fail("unsupported storage texel buffer (imageBuffer)");
+        // Texel buffers: one row of one level (the icd binds the buffer view as one); uniform ones are fetched
+        // like a 1D image, storage ones (imageBuffer) read, written and used by atomics as a 2D storage image at
+        // y = 0 (translate_image.cpp).
         if (t.arrayed) fail("invalid arrayed texel buffer");
         return;
     }

@@ -56,7 +56,9 @@ struct Decorations {
 
 // Local: SoA words, one per lane; Shared: compute's Workgroup memory, flat words every lane sees (both addressed
 // by word, with the same flat layout); Buffer: bytes through a descriptor; Handle: image/sampler descriptors.
-enum class Space : uint8_t { Local, Shared, Buffer, Handle };
+// Texel: an OpImageTexelPointer (image atomics): base = the image handle register, dyn = the first coordinate
+// register, offset = kSampleArray or 0.
+enum class Space : uint8_t { Local, Shared, Buffer, Handle, Texel };
 
 struct Pointer {
     Space space = Space::Local;
@@ -151,7 +153,10 @@ class Translator {
     void subgroup_ballot_helper(const Instr& in);
     uint32_t side_effect_mask();  // lanes whose buffer writes take effect (fragment: live ones only)
     bool image_sample(const Instr& in);
-    void storage_image_access(const Instr& in);  // OpImageRead / OpImageWrite on a storage image
+    void storage_image_access(const Instr& in);
+    void image_texel_pointer(const Instr& in);                       // OpImageTexelPointer (translate_image.cpp)
+    uint32_t storage_coord(const Type& image_type, uint32_t coord);  // its (x, y[, layer]) registers  // OpImageRead /
+                                                                     // OpImageWrite on a storage image
     void glsl_op(const Instr& in);               // translate_glsl.cpp: GLSL.std.450
     // helpers for instructions with a result (type in[1], id in[2])
     uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result

@@ -329,6 +329,8 @@ std::string op_name(Op op) {
             return "ImageLoad";
         case Op::ImageStore:
             return "ImageStore";
+        case Op::AtomicImage:
+            return "AtomicImage";
         default:
             break;
     }

@@ -40,7 +40,6 @@ namespace tilevk::test::breadth {
 #include "ab_sample_uint_frag.h"
 #include "ab_shadow_frag.h"
 #include "ab_spec_frag.h"
-#include "ab_storage_texel_frag.h"
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"

@@ -410,8 +410,8 @@ TEST_F(ApiCompute, BadInputIsRefusedByName) {
     refused(
         SPV(cp_shared_size_comp), &big, "main",
         "Workgroup variables need 32772 bytes, more than VkPhysicalDeviceLimits::maxComputeSharedMemorySize = 32768");
-    refused(SPV(cp_image_atomic_comp), nullptr, "main", "OpImageTexelPointer");  // image atomics: not yet
-    compute_pipeline(k, SPV(cp_shared_size_comp), s.layout);                     // 8192 words: exactly the limit
+    refused(SPV(cp_image_atomic_comp), nullptr, "main", "only 32-bit integer atomics");  // a float image atomic
+    compute_pipeline(k, SPV(cp_shared_size_comp), s.layout);  // 8192 words: exactly the limit
 
     VkPipeline p = compute_pipeline(k, SPV(cp_ids_comp), s.layout);  // (1, 1, 2)
     const std::string err = stderr_of([&] {

@@ -200,7 +200,7 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
         EXPECT_EQ(create_device(nullptr, &over), VK_SUCCESS);
     }
     for (size_t offset :
-         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, robustBufferAccess),
+         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, sampleRateShading),
           offsetof(VkPhysicalDeviceFeatures, shaderFloat64)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);

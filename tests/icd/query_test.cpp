@@ -657,17 +657,24 @@ TEST_F(Queries, TimestampsAreMonotonicNanoseconds) {
     vkDestroyQueryPool(dev.device(), pool, nullptr);
 }
 
-// No storage texel-buffer format features are reported: shader/ has no imageLoad/imageStore. (Uniform texel
-// buffers are read by texelFetch: tests/icd/api_breadth_descriptors_test.cpp UniformTexelBuffers.)
-TEST_F(Queries, NoStorageTexelBufferFormatFeatures) {
+// Storage texel buffers share the storage images' code (shader/ imageBuffer as one row): exactly the formats with
+// STORAGE_IMAGE have STORAGE_TEXEL_BUFFER, exactly those with STORAGE_IMAGE_ATOMIC (R32_UINT, R32_SINT) have
+// STORAGE_TEXEL_BUFFER_ATOMIC. (tests/icd/api_breadth_stages_stores_test.cpp ApiStorageTexelBuffers uses them.)
+TEST_F(Queries, StorageTexelBufferFormatsAreTheStorageImageFormats) {
+    uint32_t storage = 0, atomic = 0;
     for (int f = 1; f <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++f) {
         VkFormatProperties fp;
         vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), VkFormat(f), &fp);
-        EXPECT_EQ(fp.bufferFeatures &
-                      (VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT | VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_ATOMIC_BIT),
-                  0u)
+        const bool image = fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+        const bool image_atomic = fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_ATOMIC_BIT;
+        EXPECT_EQ(bool(fp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT), image) << "format " << f;
+        EXPECT_EQ(bool(fp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_ATOMIC_BIT), image_atomic)
             << "format " << f;
+        storage += image;
+        atomic += image_atomic;
     }
+    EXPECT_EQ(storage, 16u);  // the formats Vulkan requires for STORAGE_IMAGE
+    EXPECT_EQ(atomic, 2u);
 }
 
 // Invalid on purpose (no validation layer): what tilevk lacks fails clearly and never crashes.
