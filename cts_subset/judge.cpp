@@ -16,6 +16,11 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
         std::memcpy(&v, t + 8 * i, 8);
         return double(v);
     }
+    if (p.name.rfind("buffer", 0) == 0) {  // a compute case's buffer: 32-bit words (compute.hpp)
+        uint32_t v;
+        std::memcpy(&v, t, 4);
+        return v;
+    }
     if (p.name == "depth") {
         if (p.format == VK_FORMAT_D16_UNORM || p.format == VK_FORMAT_D16_UNORM_S8_UINT) {
             uint16_t v;
@@ -33,7 +38,9 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
 }
 
 uint32_t channels(const Plane& p) {
-    return p.name == "color" ? p.texel_bytes : p.name == "queries" ? 2 : 1;
+    // Colour and a compute case's storage images: one value per byte.
+    if (p.name == "color" || p.name.rfind("image", 0) == 0) return p.texel_bytes;
+    return p.name == "queries" ? 2 : 1;
 }
 
 const Plane* find_color(const std::vector<Plane>& planes) {
