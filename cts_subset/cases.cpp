@@ -5,6 +5,7 @@ namespace tilevk::cts {
 void add_quirk_cases(CaseList& out);    // cases_quirks.cpp
 void add_linear_cases(CaseList& out);   // cases_linear.cpp
 void add_random_cases(CaseList& out);   // cases_random.cpp
+void add_random_compute_cases(CaseList& out);  // cases_random_compute.cpp
 void add_feature_cases(CaseList& out);  // cases_features.cpp
 void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
@@ -56,6 +57,7 @@ CaseList all_cases() {
     add_compute_cases(out);
     add_linear_cases(out);
     add_random_cases(out);
+    add_random_compute_cases(out);
     add_extreme_cases(out);
     add_dynamic_state_cases(out);
     return out;

@@ -99,6 +99,31 @@ void add_basic_cases(CaseList& out) {
         s.steps = {dispatch(0, 16)};
         add_compute_case(out, "basic.saxpy_push_constant_spec_count", std::move(s), words_are(1, want));
     }
+    // Signed division and GLSL's % on ints (OpSDiv truncates; glslang makes % an OpSMod: the sign of the divisor),
+    // over every sign combination.
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(16) +
+                     "layout(std430, binding=0) readonly buffer I { ivec2 ab[]; };\n"
+                     "layout(std430, binding=1) buffer O { ivec2 qr[]; };\n"
+                     "void main() { uint i = gl_GlobalInvocationID.x; ivec2 v = ab[i]; qr[i] = ivec2(v.x / v.y, "
+                     "v.x % v.y); }\n"};
+        const int32_t as[] = {-1234, 1234, -1000, 999, -1, 0, 7, -7}, bs[] = {1000, -1000, 3, -3};
+        std::vector<uint32_t> in, want;
+        for (int32_t a : as)
+            for (int32_t b : bs) {
+                in.push_back(uint32_t(a));
+                in.push_back(uint32_t(b));
+                const int32_t q = a / b, rem = a % b;  // C++ truncates: the remainder has the dividend's sign
+                want.push_back(uint32_t(q));
+                want.push_back(uint32_t(rem != 0 && (rem < 0) != (b < 0) ? rem + b : rem));
+            }
+        s.buffers = {{in, false, false}, {std::vector<uint32_t>(in.size(), kMarker)}};
+        s.steps = {dispatch(0, 2)};
+        add_compute_case(out, "basic.signed_division_and_modulo", std::move(s), words_are(1, want));
+        out.back().named_difference =
+            "lavapipe's OpSMod keeps the dividend's sign (gallivm do_int_mod computes nir imod as irem)";
+    }
     // A uniform buffer read by every invocation; an empty dispatch (no groups) writes nothing.
     {
         ComputeSpec s;
