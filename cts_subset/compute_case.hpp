@@ -28,7 +28,7 @@ inline std::string glsl_header(uint32_t x, uint32_t y = 1, uint32_t z = 1) {
 }
 
 // Buffer `i` must equal `want`, word by word.
-inline Check words_are(uint32_t i, std::vector<uint32_t> want) {
+inline Check words_are(uint32_t i, const std::vector<uint32_t>& want) {
     return [i, want](const std::vector<Plane>& planes) -> std::string {
         const std::vector<uint32_t> got = buffer_words(planes, i);
         if (got.size() != want.size()) return "buffer" + std::to_string(i) + " has the wrong size";

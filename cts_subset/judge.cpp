@@ -157,7 +157,7 @@ Check even_coverage(int ch) {
     };
 }
 
-Check palette_only(std::vector<uint32_t> palette) {
+Check palette_only(const std::vector<uint32_t>& palette) {
     return [palette](const std::vector<Plane>& planes) -> std::string {
         const Plane* p = find_color(planes);
         if (!p) return "palette_only: no RGBA8 colour plane";
@@ -189,7 +189,7 @@ Check pixel_is(int x, int y, uint32_t rgba) {
     };
 }
 
-Check all_of(std::vector<Check> checks) {
+Check all_of(const std::vector<Check>& checks) {
     return [checks](const std::vector<Plane>& planes) -> std::string {
         for (const Check& c : checks)
             if (auto e = c(planes); !e.empty()) return e;
