@@ -5,9 +5,11 @@ namespace tilevk::cts {
 void add_quirk_cases(CaseList& out);    // cases_quirks.cpp
 void add_linear_cases(CaseList& out);   // cases_linear.cpp
 void add_random_cases(CaseList& out);   // cases_random.cpp
+void add_random_compute_cases(CaseList& out);  // cases_random_compute.cpp
 void add_feature_cases(CaseList& out);  // cases_features.cpp
 void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
+void add_compute_cases(CaseList& out);  // cases_compute.cpp
 
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
@@ -52,8 +54,10 @@ CaseList all_cases() {
     add_query_cases(out);
     add_feature_cases(out);
     add_format_cases(out);
+    add_compute_cases(out);
     add_linear_cases(out);
     add_random_cases(out);
+    add_random_compute_cases(out);
     add_extreme_cases(out);
     add_dynamic_state_cases(out);
     return out;

@@ -31,7 +31,9 @@ const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source
     if (auto it = cache.find(key); it != cache.end()) return it->second;
     if (!initialised) initialised = glslang::InitializeProcess();
 
-    EShLanguage lang = stage == Stage::kVertex ? EShLangVertex : EShLangFragment;
+    EShLanguage lang = stage == Stage::kVertex     ? EShLangVertex
+                       : stage == Stage::kFragment ? EShLangFragment
+                                                   : EShLangCompute;
     glslang::TShader shader(lang);
     const char* text = source.c_str();
     shader.setStrings(&text, 1);

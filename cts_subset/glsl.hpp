@@ -9,7 +9,7 @@
 
 namespace tilevk::cts {
 
-enum class Stage { kVertex, kFragment };
+enum class Stage { kVertex, kFragment, kCompute };
 
 // The SPIR-V version compile_glsl targets (--spirv): 1.0 for Vulkan 1.0 by default; 1.3 (Vulkan 1.1) and 1.5
 // (Vulkan 1.2) run the same cases through the later forms of the same shaders (SPIR-V 1.4 lists every global in the

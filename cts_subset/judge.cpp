@@ -16,6 +16,11 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
         std::memcpy(&v, t + 8 * i, 8);
         return double(v);
     }
+    if (p.name.rfind("buffer", 0) == 0) {  // a compute case's buffer: 32-bit words (compute.hpp)
+        uint32_t v;
+        std::memcpy(&v, t, 4);
+        return v;
+    }
     if (p.name == "depth") {
         if (p.format == VK_FORMAT_D16_UNORM || p.format == VK_FORMAT_D16_UNORM_S8_UINT) {
             uint16_t v;
@@ -33,7 +38,9 @@ double channel(const Plane& p, const uint8_t* t, uint32_t i) {
 }
 
 uint32_t channels(const Plane& p) {
-    return p.name == "color" ? p.texel_bytes : p.name == "queries" ? 2 : 1;
+    // Colour and a compute case's storage images: one value per byte.
+    if (p.name == "color" || p.name.rfind("image", 0) == 0) return p.texel_bytes;
+    return p.name == "queries" ? 2 : 1;
 }
 
 const Plane* find_color(const std::vector<Plane>& planes) {
@@ -150,7 +157,7 @@ Check even_coverage(int ch) {
     };
 }
 
-Check palette_only(std::vector<uint32_t> palette) {
+Check palette_only(const std::vector<uint32_t>& palette) {
     return [palette](const std::vector<Plane>& planes) -> std::string {
         const Plane* p = find_color(planes);
         if (!p) return "palette_only: no RGBA8 colour plane";
@@ -182,7 +189,7 @@ Check pixel_is(int x, int y, uint32_t rgba) {
     };
 }
 
-Check all_of(std::vector<Check> checks) {
+Check all_of(const std::vector<Check>& checks) {
     return [checks](const std::vector<Plane>& planes) -> std::string {
         for (const Check& c : checks)
             if (auto e = c(planes); !e.empty()) return e;

@@ -37,7 +37,7 @@ Check exactly_once(int ch, int x0 = 0, int y0 = 0, int x1 = 0, int y1 = 0);
 // times, so with culling off every pixel is covered an even number of times.
 Check even_coverage(int ch);
 // Every pixel of the colour plane is one of `palette` (RGBA8 words, R in the low byte).
-Check palette_only(std::vector<uint32_t> palette);
+Check palette_only(const std::vector<uint32_t>& palette);
 // The colour plane at (x,y) is exactly `rgba`.
 Check pixel_is(int x, int y, uint32_t rgba);
 // Analytic coverage, as the CTS triangle verifier does with its fuzz band: every pixel whose centre lies inside some
@@ -46,7 +46,7 @@ Check pixel_is(int x, int y, uint32_t rgba);
 // viewport, and positions inside the clip volume (window x = (x/w + 1) * width / 2).
 Check coverage_band(const Scene& scene, float margin);
 // All checks in order; the first failure wins.
-Check all_of(std::vector<Check> checks);
+Check all_of(const std::vector<Check>& checks);
 
 // Hook for an independent coverage oracle (oracle.hpp: rast/'s reference method), run on every case's scene
 // and each device's planes. `applies` false: the case is outside the oracle's domain (`note` says why).

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "alloc_count.h"
+#include "compute_vk.h"
 #include "frame_scene.h"
 #include "frame_vk.h"
 #include "vk_context.hpp"
@@ -64,6 +65,50 @@ bool parse_draw_list(const std::string& text, std::vector<bool>& keep, size_t dr
     return true;
 }
 
+// What one process measured: cold pipeline, first frame, the timed frames, faults and allocations while timing,
+// and the hash of the final result.
+struct Timed {
+    double cold_ms = 0, first_ms = 0;
+    std::vector<double> times, record, cpu;
+    long faults = 0;
+    uint64_t allocs = 0, hash = 0;
+};
+
+// The same timing for a graphics scene (SceneOnDevice) and a compute kernel (ComputeOnDevice).
+template <typename On>
+Timed time_frames(On& on, int frames, int warmup) {
+    Timed t;
+    t.cold_ms = on.cold_pipeline_ms();
+    t.first_ms = on.frame();
+    for (int i = 0; i < warmup; ++i) on.frame();
+    t.times.reserve(size_t(frames));  // the harness itself allocates nothing while it counts
+    t.record.reserve(size_t(frames));
+    t.cpu.reserve(size_t(frames));
+    rusage before{}, after{};
+    getrusage(RUSAGE_SELF, &before);
+    const uint64_t allocs_before = tilevk::bench::allocations();
+    for (int i = 0; i < frames; ++i) {
+        const double cpu0 = process_cpu_ms();
+        t.times.push_back(on.frame());
+        t.cpu.push_back(process_cpu_ms() - cpu0);
+        t.record.push_back(on.last_record_ms());
+    }
+    t.allocs = tilevk::bench::allocations() - allocs_before;
+    getrusage(RUSAGE_SELF, &after);
+    t.faults = after.ru_minflt - before.ru_minflt;
+    t.hash = on.image_hash();
+    return t;
+}
+
+// Binary PPM of the final image (alpha dropped), for looking at it.
+void write_ppm(const std::string& path, const tilevk::bench::BenchScene& scene, const uint8_t* px) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) return;
+    std::fprintf(f, "P6\n%u %u\n255\n", scene.width, scene.height);
+    for (size_t i = 0; i < size_t(scene.width) * scene.height; ++i) std::fwrite(px + 4 * i, 1, 3, f);
+    std::fclose(f);
+}
+
 int usage() {
     std::fprintf(stderr,
                  "usage: tilevk-frame-bench --device tilevk|llvmpipe --scene NAME[@WxH] [--frames N] [--warmup N] "
@@ -84,6 +129,7 @@ int main(int argc, char** argv) {
         auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
         if (a == "--list") {
             for (const std::string& n : tilevk::bench::scene_names()) std::printf("%s\n", n.c_str());
+            for (const std::string& n : tilevk::bench::compute_scene_names()) std::printf("%s\n", n.c_str());
             return 0;
         }
         if (a == "--device") {
@@ -110,8 +156,17 @@ int main(int argc, char** argv) {
         setenv("VK_ICD_FILENAMES", icd.c_str(), 1);
     }
     try {
-        tilevk::bench::BenchScene scene = tilevk::bench::make_scene(scene_name);
-        if (!draw_list.empty()) {
+        // A compute scene is one kernel (compute_vk.h); its BenchScene carries only the name, description and size.
+        const bool compute = tilevk::bench::is_compute_scene(scene_name);
+        tilevk::bench::BenchScene scene;
+        if (compute) {
+            scene.name = scene_name;
+            scene.description = tilevk::bench::compute_scene_description(scene_name);
+            tilevk::bench::compute_scene_size(scene_name, scene.width, scene.height);
+        } else {
+            scene = tilevk::bench::make_scene(scene_name);
+        }
+        if (!draw_list.empty() && !compute) {
             std::vector<bool> keep;
             if (!parse_draw_list(draw_list, keep, scene.draws.size())) {
                 std::fprintf(stderr, "tilevk-frame-bench: bad --draws '%s' (the scene has %zu draws)\n",
@@ -131,42 +186,19 @@ int main(int argc, char** argv) {
             return 1;
         }
         const long base_rss = rss_kb();
-        double cold_ms = 0, first_ms = 0;
-        std::vector<double> times, record, cpu;
-        long faults = 0;
-        uint64_t allocs = 0;
-        uint64_t hash = 0;
-        {
+        Timed t;
+        if (compute) {
+            tilevk::bench::ComputeOnDevice on(ctx, scene_name);
+            t = time_frames(on, frames, warmup);
+        } else {
             tilevk::bench::SceneOnDevice on(ctx, scene);
-            cold_ms = on.cold_pipeline_ms();
-            first_ms = on.frame();
-            for (int i = 0; i < warmup; ++i) on.frame();
-            times.reserve(size_t(frames));  // the harness itself allocates nothing while it counts
-            record.reserve(size_t(frames));
-            cpu.reserve(size_t(frames));
-            rusage before{}, after{};
-            getrusage(RUSAGE_SELF, &before);
-            const uint64_t allocs_before = tilevk::bench::allocations();
-            for (int i = 0; i < frames; ++i) {
-                const double cpu0 = process_cpu_ms();
-                times.push_back(on.frame());
-                cpu.push_back(process_cpu_ms() - cpu0);
-                record.push_back(on.last_record_ms());
-            }
-            allocs = tilevk::bench::allocations() - allocs_before;
-            getrusage(RUSAGE_SELF, &after);
-            faults = after.ru_minflt - before.ru_minflt;
-            hash = on.image_hash();
-            if (!dump.empty()) {  // binary PPM (alpha dropped), for looking at the image
-                std::FILE* f = std::fopen(dump.c_str(), "wb");
-                if (f) {
-                    std::fprintf(f, "P6\n%u %u\n255\n", scene.width, scene.height);
-                    const uint8_t* px = on.image_bytes();
-                    for (size_t i = 0; i < size_t(scene.width) * scene.height; ++i) std::fwrite(px + 4 * i, 1, 3, f);
-                    std::fclose(f);
-                }
-            }
+            t = time_frames(on, frames, warmup);
+            if (!dump.empty()) write_ppm(dump, scene, on.image_bytes());
         }
+        const double cold_ms = t.cold_ms, first_ms = t.first_ms;
+        const std::vector<double>&times = t.times, &record = t.record, &cpu = t.cpu;
+        const long faults = t.faults;
+        const uint64_t allocs = t.allocs, hash = t.hash;
         rusage ru{};
         getrusage(RUSAGE_SELF, &ru);
         size_t tris = 0;

@@ -25,6 +25,7 @@ DEFAULT_SCENES = [
     "tri4_flat", "tri16_flat", "tri64_flat", "tri4_smooth", "tri16_smooth", "tri64_smooth", "tri4_depth",
     "tri16_depth", "tri64_depth", "blend16", "msaa4_tri16", "meshes_lit", "draws1000", "large_textured",
     "tri16_flat@1024x1024", "blend16@1024x1024", "meshes_lit@1024x1024",
+    "compute_saxpy", "compute_histogram256", "compute_matmul512",
 ]
 DEFAULT_SCALING = ["tri16_flat", "blend16", "meshes_lit"]
 DRIVERS = ["tilevk", "llvmpipe"]
@@ -165,7 +166,8 @@ def main():
             print(f"frame-bench: MISMATCH in {scene}: the images are not identical (" +
                   ", ".join(f"{d} {'/'.join(h)}" for d, h in hashes.items()) +
                   "); tilevk-frame-bench --dump FILE.ppm --draws LIST narrows it down", file=sys.stderr, flush=True)
-        if not args.no_stages:
+        # The stage timers time rasterization stages; a compute scene (one dispatch) has none of them.
+        if not args.no_stages and not scene.startswith("compute_"):
             s["stages_ms"], s["stage_run_frame_ms"] = stage_times(binary, scene, args.threads, args.frames,
                                                                    args.warmup)
         result["scenes"].append(s)

@@ -15,7 +15,8 @@ import subprocess
 import sys
 
 SCENES = ["tri4_flat@320x240", "tri16_smooth@320x240", "tri64_depth@320x240", "blend16@320x240",
-          "msaa4_tri16@320x240", "meshes_lit@320x240", "draws1000@640x480", "large_textured@320x240"]
+          "msaa4_tri16@320x240", "meshes_lit@320x240", "draws1000@640x480", "large_textured@320x240",
+          "compute_saxpy", "compute_histogram256"]
 
 
 def main():

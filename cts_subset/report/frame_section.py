@@ -3,7 +3,8 @@
 Table: per scene, the median frame time of tilevk and lavapipe (same thread count, alternating processes), the
 ratio with its per-round range, the spread of each driver's round medians, peak RSS of each driver's own
 process, cold pipeline + first frame, minor page faults per steady frame, whether the images are identical, and
-tilevk's time per stage. Charts: the stages (thread time per frame) and the thread scaling.
+tilevk's time per stage. Charts: the stages (thread time per frame) and the thread scaling. The compute scenes
+(`compute_*`: one dispatch per frame, bench/frame/compute_vk.cpp) get their own table after the frame table.
 """
 import html
 import math
@@ -35,13 +36,49 @@ def _stages(s):
     return [(STAGE_LABELS.get(k, k), v) for k, v in st.items()]
 
 
+def is_compute(s):
+    return s["scene"].startswith("compute_")
+
+
+def graphics_scenes(fb):
+    return [s for s in fb["scenes"] if not is_compute(s)]
+
+
+def compute_rows(fb):
+    """(header, rows) of the compute table: one dispatch per frame, tilevk / lavapipe."""
+    header = ["kernel", "size", "tilevk ms", "lavapipe ms", "ratio (rounds)", "spread t / l",
+              "cold pipeline + 1st frame ms t / l", "results", "what it is"]
+    rows = []
+    for s in fb["scenes"]:
+        if not is_compute(s):
+            continue
+        t, l = s["tilevk"], s["llvmpipe"]
+        rr = s["round_ratios"]
+        rows.append([
+            s["scene"], s["size"], f"{t['median_ms']:.1f}", f"{l['median_ms']:.1f}",
+            f"{s['ratio']:.2f} ({min(rr):.2f}–{max(rr):.2f})",
+            f"{100 * t['spread']:.0f} % / {100 * l['spread']:.0f} %",
+            f"{t['cold_ms']:.1f} / {l['cold_ms']:.1f}",
+            "identical" if s["images_identical"] else
+            f"DIFFER: tilevk {t['image_hash'][:8]}, lavapipe {l['image_hash'][:8]}",
+            s["description"],
+        ])
+    return header, rows
+
+
+def compute_intro(fb):
+    return (f"Compute kernels in the same harness: a frame = record (a vkCmdFillBuffer reset where the kernel "
+            f"accumulates), vkCmdDispatch, submit, wait; {fb['threads']} threads each, the same rounds and frames. "
+            f"Results: the result buffer's bytes hashed on both drivers.")
+
+
 def table_rows(fb):
     """(header, rows) of the frame table, as plain strings."""
     header = ["scene", "size", "tilevk ms", "lavapipe ms", "ratio (rounds)", "spread t / l", "peak RSS MB t / l",
               "cold pipeline + 1st frame ms t / l", "faults/frame t / l", "allocations/frame t / l", "images",
               "tilevk stages (thread ms)"]
     rows = []
-    for s in fb["scenes"]:
+    for s in graphics_scenes(fb):
         t, l = s["tilevk"], s["llvmpipe"]
         rr = s["round_ratios"]
         stages = ", ".join(f"{k} {v:.1f}" for k, v in _stages(s) if v >= 0.05) or "–"
@@ -62,8 +99,8 @@ def table_rows(fb):
 
 
 def intro_lines(fb):
-    ratios = [s["ratio"] for s in fb["scenes"]]
-    small = [s["ratio"] for s in fb["scenes"] if s["scene"].startswith(("tri4_", "tri16_"))]
+    ratios = [s["ratio"] for s in graphics_scenes(fb)]
+    small = [s["ratio"] for s in graphics_scenes(fb) if s["scene"].startswith(("tri4_", "tri16_"))]
     lines = [
         f"Whole frames through the Vulkan API (record the command buffer, submit, wait), tilevk and lavapipe at "
         f"{fb['threads']} threads each (TILEVK_THREADS = LP_NUM_THREADS), one process per driver and round, "
@@ -91,6 +128,12 @@ def markdown(fb):
     md.append("| " + " | ".join(header) + " |")
     md.append("|" + "---|" * len(header))
     md += ["| " + " | ".join(r) + " |" for r in rows]
+    cheader, crows = compute_rows(fb)
+    if crows:
+        md += ["", "### Compute benchmark", "", compute_intro(fb), ""]
+        md.append("| " + " | ".join(cheader) + " |")
+        md.append("|" + "---|" * len(cheader))
+        md += ["| " + " | ".join(r) + " |" for r in crows]
     if fb.get("scaling"):
         md += ["", "Thread scaling (median frame ms, tilevk / lavapipe):", ""]
         threads = sorted({r["threads"] for r in fb["scaling"]})
@@ -114,13 +157,21 @@ def html_section(fb):
         cls = "" if r[10] == "identical" else " class='Fail'"  # a mismatch row is red
         h.append(f"<tr{cls}>" + "".join(f"<td>{esc(x)}</td>" for x in r) + "</tr>")
     h.append("</table>")
+    cheader, crows = compute_rows(fb)
+    if crows:
+        h += ["<h3>Compute benchmark</h3>", f"<p>{esc(compute_intro(fb))}</p>"]
+        h.append("<table><tr>" + "".join(f"<th>{esc(x)}</th>" for x in cheader) + "</tr>")
+        for r in crows:
+            cls = "" if r[7] == "identical" else " class='Fail'"
+            h.append(f"<tr{cls}>" + "".join(f"<td>{esc(x)}</td>" for x in r) + "</tr>")
+        h.append("</table>")
     h.append("<p><img src='frame_stages.png'> <img src='frame_scaling.png'></p>")
     return h
 
 
 def stage_chart(fb, path):
     """One bar per scene: each stage's share of tilevk's thread time, labelled with the frame times."""
-    scenes = fb["scenes"]
+    scenes = graphics_scenes(fb)
     fig, ax = plt.subplots(figsize=(11, 0.42 * len(scenes) + 1.8))
     y = list(range(len(scenes)))
     left = [0.0] * len(scenes)

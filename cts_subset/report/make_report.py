@@ -295,6 +295,15 @@ def main():
         md.append(f"| {run['label']} | {n['Pass']}/{tot} | {n['Fail']} | {n['NotSupported']} | "
                   f"{fmt(g)} over {timed} timed cases | "
                   f"{fmt(100.0 * same / px if px else None, '.4f')} % of {px} px in {compared} compared cases |")
+    md += ["", "Case groups (main run; the first two parts of the name, e.g. `compute.atomic`):", "",
+           "| group | cases | passed | failed | not supported |", "|---|---|---|---|---|"]
+    group_rows = []
+    for g in sorted({".".join(c["name"].split(".")[:2]) for c in main_run["cases"]}):
+        cs = [c for c in main_run["cases"] if ".".join(c["name"].split(".")[:2]) == g]
+        group_rows.append([g, str(len(cs)), str(sum(c["status"] == "Pass" for c in cs)),
+                           str(sum(c["status"] == "Fail" for c in cs)),
+                           str(sum(c["status"] == "NotSupported" for c in cs))])
+    md += ["| " + " | ".join(r) + " |" for r in group_rows]
     ns = [c for c in main_run["cases"] if c["status"] == "NotSupported"]
     if ns:
         on_ours = sum(1 for c in ns if c["reason"].startswith(main_run["device_name"]))
@@ -353,6 +362,10 @@ def main():
                  f"<td>{n['NotSupported']}</td><td>{fmt(geomean([ratio(c) for c in run['cases']]))}</td></tr>")
     h.append("</table>")
     h += [f"<p>{esc(line)}</p>" for line in intro[cut:] if line and not line.startswith("|") and line != "## Runs"]
+    h.append("<h3>Case groups</h3><table><tr><th>group</th><th>cases</th><th>passed</th><th>failed</th>"
+             "<th>not supported</th></tr>")
+    h += ["<tr>" + "".join(f"<td>{esc(x)}</td>" for x in r) + "</tr>" for r in group_rows]
+    h.append("</table>")
     h.append("<h2>Charts</h2><img src='speed_accuracy.png'> <img src='time_ratio.png'>")
     h.append("<h3>Per scene</h3><img src='speed_accuracy_scenes.png'>")
     h.append("<h3>Per case group</h3><img src='speed_accuracy_groups.png'>")

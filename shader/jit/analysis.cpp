@@ -222,6 +222,9 @@ Lowering lowering(const Inst& in) {
     // generated code hands it to the interpreter. (Floor ... FMod, libm calls too, run as lane calls: lanes.cpp.)
     if (in.op == Op::Fma) return Lowering::Helper;
 #endif
+    // A load from one buffer (not an array of descriptors) is a masked gather (lanes.cpp load_buf); from a
+    // descriptor array, each lane may read another buffer: the interpreter's loop.
+    if (in.op == Op::LoadBuf) return in.n == 1 ? Lowering::Native : Lowering::Helper;
     return op_info(in.op).lowering;
 }
 

@@ -107,6 +107,7 @@ class LaneEmitter {
     bool load_local(const Inst& in);
     void lane_call(const Inst& in, const void* fn);
     void load_buf_uniform(const Inst& in);
+    void load_buf(const Inst& in);
 
     const ProgramImpl& p_;
     const Analysis& an_;

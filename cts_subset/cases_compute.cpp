@@ -1,0 +1,185 @@
+// compute.basic.*, compute.shared.* and compute.ssbo.*: dispatches through compute.hpp's harness, every result buffer
+// compared byte for byte with the reference, and each case's answer computed here from the definitions (the
+// built-ins, sums and prefix sums, std430 offsets) as an independent check.
+#include "compute_case.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+// --- compute.basic: every built-in at workgroup sizes with and without powers of two ---
+
+// Each invocation writes 16 words at its flat global index: GlobalInvocationID, LocalInvocationID, WorkGroupID,
+// NumWorkGroups (xyz, padded to 4), LocalInvocationIndex in the fourth word of the first.
+const char* kBuiltinsBody =
+    "layout(std430, binding=0) buffer Out { uvec4 v[]; } o;\n"
+    "void main() {\n"
+    "  uvec3 total = gl_NumWorkGroups * gl_WorkGroupSize;\n"
+    "  uint flat_id = gl_GlobalInvocationID.x + total.x * (gl_GlobalInvocationID.y + total.y * "
+    "gl_GlobalInvocationID.z);\n"
+    "  o.v[flat_id * 4 + 0] = uvec4(gl_GlobalInvocationID, gl_LocalInvocationIndex);\n"
+    "  o.v[flat_id * 4 + 1] = uvec4(gl_LocalInvocationID, 0);\n"
+    "  o.v[flat_id * 4 + 2] = uvec4(gl_WorkGroupID, 0);\n"
+    "  o.v[flat_id * 4 + 3] = uvec4(gl_NumWorkGroups, 0);\n"
+    "}\n";
+
+std::vector<uint32_t> builtins_answer(const uint32_t l[3], const uint32_t g[3]) {
+    const uint32_t tx = l[0] * g[0], ty = l[1] * g[1], tz = l[2] * g[2];
+    std::vector<uint32_t> w(size_t(tx) * ty * tz * 16);
+    for (uint32_t z = 0; z < tz; ++z)
+        for (uint32_t y = 0; y < ty; ++y)
+            for (uint32_t x = 0; x < tx; ++x) {
+                uint32_t* r = &w[(x + tx * (y + ty * z)) * 16];
+                const uint32_t lx = x % l[0], ly = y % l[1], lz = z % l[2];
+                const uint32_t rec[16] = {
+                    x,    y,    z, lx + l[0] * (ly + l[1] * lz), lx, ly, lz, 0, x / l[0], y / l[1], z / l[2], 0, g[0],
+                    g[1], g[2], 0};
+                std::copy(rec, rec + 16, r);
+            }
+    return w;
+}
+
+void add_builtin_case(CaseList& out, const std::string& name, std::array<uint32_t, 3> l, std::array<uint32_t, 3> g,
+                      bool by_spec, bool indirect) {
+    ComputeSpec s;
+    const std::vector<uint32_t> want = builtins_answer(l.data(), g.data());
+    if (by_spec) {
+        // The size comes from specialization constants 0..2 (the WorkgroupSize built-in in the module).
+        s.shaders = {"#version 450\nlayout(local_size_x_id=0, local_size_y_id=1, local_size_z_id=2) in;\n" +
+                     std::string(kBuiltinsBody)};
+        s.spec_values = {l[0], l[1], l[2]};
+    } else {
+        s.shaders = {glsl_header(l[0], l[1], l[2]) + kBuiltinsBody};
+    }
+    s.buffers = {{std::vector<uint32_t>(want.size(), kMarker)}};
+    if (indirect) {
+        // Counts at byte offset 8 of buffer 1, after two words the dispatch must not read.
+        s.buffers.push_back({{7, 7, g[0], g[1], g[2], 9}});
+        s.steps = {dispatch_indirect(0, 1, 8)};
+    } else {
+        s.steps = {dispatch(0, g[0], g[1], g[2])};
+    }
+    add_compute_case(out, "basic." + name, std::move(s), words_are(0, want));
+}
+
+void add_basic_cases(CaseList& out) {
+    const struct {
+        const char* name;
+        std::array<uint32_t, 3> l, g;
+    } sizes[] = {{"size_1x1x1", {1, 1, 1}, {3, 2, 1}},         {"size_16x1x1", {16, 1, 1}, {4, 1, 1}},
+                 {"size_8x8x1", {8, 8, 1}, {2, 3, 1}},         {"size_4x4x4", {4, 4, 4}, {2, 1, 2}},
+                 {"size_7x3x2", {7, 3, 2}, {3, 2, 2}},         {"size_5x1x1", {5, 1, 1}, {7, 1, 1}},
+                 {"size_1x1x13", {1, 1, 13}, {2, 1, 3}},       {"size_128x1x1", {128, 1, 1}, {3, 1, 1}},
+                 {"size_17x1x1_many", {17, 1, 1}, {61, 1, 1}}, {"size_3x5x7", {3, 5, 7}, {1, 2, 1}}};
+    for (const auto& z : sizes) add_builtin_case(out, "builtins." + std::string(z.name), z.l, z.g, false, false);
+    add_builtin_case(out, "builtins.spec_size_12x5x1", {12, 5, 1}, {2, 2, 1}, true, false);
+    add_builtin_case(out, "builtins.spec_size_3x3x3", {3, 3, 3}, {1, 2, 3}, true, false);
+    add_builtin_case(out, "builtins.indirect_4x4x1", {4, 4, 1}, {3, 2, 2}, false, true);
+    add_builtin_case(out, "builtins.indirect_spec_9x1x1", {9, 1, 1}, {5, 1, 1}, true, true);
+
+    // SAXPY with a from a push constant and n from a specialization constant (the tail beyond n untouched).
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(64) +
+                     "layout(constant_id=0) const uint N = 1;\n"
+                     "layout(push_constant) uniform P { float a; } p;\n"
+                     "layout(std430, binding=0) readonly buffer X { float x[]; };\n"
+                     "layout(std430, binding=1) buffer Y { float y[]; };\n"
+                     "void main() { uint i = gl_GlobalInvocationID.x; if (i < N) y[i] = p.a * x[i] + y[i]; }\n"};
+        const uint32_t n = 1000;
+        s.spec_values = {n};
+        s.push = {fbits(2.5f)};
+        std::vector<uint32_t> x(1024), y(1024), want(1024);
+        for (uint32_t i = 0; i < 1024; ++i) {
+            x[i] = fbits(float(i) * 0.5f);
+            y[i] = fbits(float(i % 7));
+            // a * x + y with small integers and halves: exact in float whether or not the driver fuses it
+            want[i] = i < n ? fbits(2.5f * (float(i) * 0.5f) + float(i % 7)) : y[i];
+        }
+        s.buffers = {{x, false, false}, {y}};
+        s.steps = {dispatch(0, 16)};
+        add_compute_case(out, "basic.saxpy_push_constant_spec_count", std::move(s), words_are(1, want));
+    }
+    // Signed division and GLSL's % on ints (OpSDiv truncates; glslang makes % an OpSMod: the sign of the divisor),
+    // over every sign combination.
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(16) +
+                     "layout(std430, binding=0) readonly buffer I { ivec2 ab[]; };\n"
+                     "layout(std430, binding=1) buffer O { ivec2 qr[]; };\n"
+                     "void main() { uint i = gl_GlobalInvocationID.x; ivec2 v = ab[i]; qr[i] = ivec2(v.x / v.y, "
+                     "v.x % v.y); }\n"};
+        const int32_t as[] = {-1234, 1234, -1000, 999, -1, 0, 7, -7}, bs[] = {1000, -1000, 3, -3};
+        std::vector<uint32_t> in, want;
+        for (int32_t a : as)
+            for (int32_t b : bs) {
+                in.push_back(uint32_t(a));
+                in.push_back(uint32_t(b));
+                const int32_t q = a / b, rem = a % b;  // C++ truncates: the remainder has the dividend's sign
+                want.push_back(uint32_t(q));
+                want.push_back(uint32_t(rem != 0 && (rem < 0) != (b < 0) ? rem + b : rem));
+            }
+        s.buffers = {{in, false, false}, {std::vector<uint32_t>(in.size(), kMarker)}};
+        s.steps = {dispatch(0, 2)};
+        add_compute_case(out, "basic.signed_division_and_modulo", std::move(s), words_are(1, want));
+        out.back().named_difference =
+            "lavapipe's OpSMod keeps the dividend's sign (gallivm do_int_mod computes nir imod as irem)";
+    }
+    // A uniform buffer read by every invocation; an empty dispatch (no groups) writes nothing.
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(32) +
+                     "layout(std140, binding=0) uniform U { uvec4 k[4]; } u;\n"
+                     "layout(std430, binding=1) buffer O { uint o[]; };\n"
+                     "void main() { uint i = gl_GlobalInvocationID.x; o[i] = u.k[i % 4].x * 1000u + u.k[i % 4].w; }\n"};
+        std::vector<uint32_t> k = {1, 0, 0, 11, 2, 0, 0, 22, 3, 0, 0, 33, 4, 0, 0, 44}, want(64);
+        for (uint32_t i = 0; i < 64; ++i) want[i] = (i % 4 + 1) * 1000 + (i % 4 + 1) * 11;
+        s.buffers = {{k, true, false}, {std::vector<uint32_t>(64, kMarker)}};
+        s.steps = {dispatch(0, 2), dispatch(0, 0)};
+        add_compute_case(out, "basic.uniform_buffer_and_empty_dispatch", std::move(s), words_are(1, want));
+    }
+    // One dispatch writes the group counts the next one reads indirectly (compute -> indirect command).
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(1) +
+                         "layout(std430, binding=0) buffer C { uint c[4]; };\n"
+                         "void main() { c[0] = 3u; c[1] = 2u; c[2] = 1u; }\n",
+                     glsl_header(4) +
+                         "layout(std430, binding=1) buffer O { uint o[]; };\n"
+                         "void main() { uint i = gl_WorkGroupID.y * 12u + gl_GlobalInvocationID.x; o[i] = i + 1u; }\n"};
+        std::vector<uint32_t> want(32, kMarker);
+        for (uint32_t i = 0; i < 24; ++i) want[i] = i + 1;
+        s.buffers = {{{0, 0, 0, 0}, false, true}, {std::vector<uint32_t>(32, kMarker)}};
+        s.steps = {dispatch(0, 1), dispatch_indirect(1, 0, 0)};
+        add_compute_case(out, "basic.indirect_counts_from_compute", std::move(s), words_are(1, want));
+    }
+    // Ten dispatches in a chain, each reading what the previous one wrote: a read-after-write between every pair.
+    {
+        ComputeSpec s;
+        s.shaders = {glsl_header(64) +
+                     "layout(std430, binding=0) buffer A { uint a[]; };\n"
+                     "void main() { uint i = gl_GlobalInvocationID.x; a[i] = a[i] * 3u + (i ^ 5u); }\n"};
+        std::vector<uint32_t> a(256);
+        for (uint32_t i = 0; i < 256; ++i) a[i] = i * 7 + 1;
+        s.buffers = {{a}};
+        for (int d = 0; d < 10; ++d) {
+            s.steps.push_back(dispatch(0, 4));
+            for (uint32_t i = 0; i < 256; ++i) a[i] = a[i] * 3 + (i ^ 5);
+        }
+        add_compute_case(out, "basic.chained_dispatches", std::move(s), words_are(0, a));
+    }
+}
+
+}  // namespace
+
+void add_compute_shared_cases(CaseList& out);  // cases_compute_shared.cpp
+void add_compute_atomic_cases(CaseList& out);  // cases_compute_atomic.cpp
+void add_compute_image_cases(CaseList& out);   // cases_compute_image.cpp
+
+void add_compute_cases(CaseList& out) {
+    add_basic_cases(out);
+    add_compute_shared_cases(out);
+    add_compute_atomic_cases(out);
+    add_compute_image_cases(out);
+}
+
+}  // namespace tilevk::cts
