@@ -2,6 +2,7 @@
 // the compiler vectorizes (-mavx2), dispatched by one switch. The kernels live with their family (exec_arith.h,
 // exec_math.h, exec_memory.h; images in texture.cpp), each family listing its opcodes in one X-macro; control flow
 // and the hottest moves are here. Runs with FTZ/DAZ like lavapipe.
+#include <emmintrin.h>
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
@@ -169,6 +170,26 @@ inline void copy_lanes(uint32_t* dst, const uint32_t* src) {
     std::memcpy(dst, src, kLanes * 4);
 }
 
+// Lane l of w = bit l of mask ? ~0 : 0 (SSE2, 4 lanes at a time: the fragment stage does this per 4x4 block, and
+// the per-lane loop cost ~60 instructions).
+inline void lanes_from_mask(uint32_t mask, uint32_t* w) {
+    const __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
+    for (int q = 0; q < kLanes / 4; ++q) {
+        const __m128i m = _mm_and_si128(_mm_set1_epi32(int(mask >> (4 * q))), bits);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(w + 4 * q), _mm_cmpeq_epi32(m, bits));
+    }
+}
+
+// Bit l = bit 0 of lane l of w.
+inline uint32_t mask_from_lanes(const uint32_t* w) {
+    uint32_t mask = 0;
+    for (int q = 0; q < kLanes / 4; ++q) {
+        const __m128i v = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(w + 4 * q)), 31);
+        mask |= uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v))) << (4 * q);
+    }
+    return mask;
+}
+
 }  // namespace
 
 void Program::reserve(Scratch& scratch) const {
@@ -293,17 +314,13 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
     }
     uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
     uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
-    LANES {
-        entry[l] = ~0u;  // helper lanes run too (derivatives)
-        live[l] = (fb.cover_mask >> l) & 1 ? ~0u : 0u;
-    }
+    LANES entry[l] = ~0u;  // helper lanes run too (derivatives)
+    lanes_from_mask(fb.cover_mask, live);
     {
         FloatEnv env;
         run_program(p, s);
     }
-    uint32_t out = 0;
-    LANES out |= (live[l] & 1u) << l;
-    fb.live_mask = out & fb.cover_mask;
+    fb.live_mask = mask_from_lanes(live) & fb.cover_mask;
     for (const IoCopy& c : p.io_out) {
         const uint32_t* w = M + size_t(c.word) * kLanes;
         switch (c.slot) {
