@@ -235,13 +235,19 @@ TVK_AVX2 Levels select_levels(__m256 lambda, const ImageView& img, const Sampler
 
 // Byte shuffles moving channel c's byte of every RGBA (row 0) or BGRA (row 1) word to the bottom of the word, the
 // other bytes zeroed (-128: a zero byte)
-#define TVK_PICK(b) b, -128, -128, -128, b + 4, -128, -128, -128, b + 8, -128, -128, -128, b + 12, -128, -128, -128
-#define TVK_PICK2(b) \
-    { TVK_PICK(b), TVK_PICK(b) }
-alignas(32) constexpr int8_t kPickBytes[2][4][32] = {{TVK_PICK2(0), TVK_PICK2(1), TVK_PICK2(2), TVK_PICK2(3)},
-                                                     {TVK_PICK2(2), TVK_PICK2(1), TVK_PICK2(0), TVK_PICK2(3)}};
-#undef TVK_PICK2
-#undef TVK_PICK
+struct PickTable {
+    alignas(32) int8_t bytes[2][4][32];
+};
+constexpr PickTable make_pick_table() {
+    PickTable t{};
+    for (int bgra = 0; bgra < 2; ++bgra)
+        for (int c = 0; c < 4; ++c) {
+            const int src = (bgra && c < 3) ? 2 - c : c;
+            for (int i = 0; i < 32; ++i) t.bytes[bgra][c][i] = int8_t(i % 4 == 0 ? src + i % 16 : -128);
+        }
+    return t;
+}
+constexpr PickTable kPick = make_pick_table();
 
 // Eight lanes (half h) filtered at their levels L, as floats per channel in RGBA order.
 // Inlined: a call per half would pass its results through memory.
@@ -256,7 +262,7 @@ TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, 
     // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
-    const auto& pick = kPickBytes[levels.bgra ? 1 : 0];
+    const auto& pick = kPick.bytes[levels.bgra ? 1 : 0];
     for (int c = 0; c < 4; ++c) {
         const __m256i ch = _mm256_shuffle_epi8(words, _mm256_load_si256(reinterpret_cast<const __m256i*>(pick[c])));
         out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
