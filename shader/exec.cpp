@@ -2,8 +2,10 @@
 // the compiler vectorizes (-mavx2), dispatched by one switch. The kernels live with their family (exec_arith.h,
 // exec_math.h, exec_memory.h; images in texture.cpp), each family listing its opcodes in one X-macro; control flow
 // and the hottest moves are here. Runs with FTZ/DAZ like lavapipe.
+#include <emmintrin.h>
 #include <pmmintrin.h>
 #include <xmmintrin.h>
+#include <cstddef>
 
 #include "shader/exec_arith.h"
 #include "shader/exec_atomic.h"
@@ -115,7 +117,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
 namespace {
 
 // Set up the scratch for a program: sizes, constants, resolved descriptors.
-void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push) {
+// zero_local false: the caller zeroes the local words itself (run_fragment: only those no input writes).
+void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push,
+             bool zero_local = true) {
     if (s.last != p.serial) {
         s.regs.assign(size_t(p.num_regs) * kLanes, 0);
         for (size_t i = 0; i + 1 < p.const_regs.size(); i += 2)
@@ -125,7 +129,8 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
     s.back_edges = 0;
     size_t words = size_t(std::max(1u, p.local_words)) * kLanes;
     if (s.local.size() < words) s.local.resize(words);
-    std::memset(s.local.data(), 0, words * 4);  // variables start at zero, so results never depend on history
+    // variables start at zero, so results never depend on history
+    if (zero_local) std::memset(s.local.data(), 0, words * 4);
     if (s.slots.size() != p.num_slots) s.slots.resize(p.num_slots);
     push.buffer.data = bindings.push_constants.data();
     push.buffer.size = bindings.push_constants.size();
@@ -167,6 +172,26 @@ void ensure_frames(Scratch::Impl& s, size_t batches) {
 
 inline void copy_lanes(uint32_t* dst, const uint32_t* src) {
     std::memcpy(dst, src, kLanes * 4);
+}
+
+// Lane l of w = bit l of mask ? ~0 : 0 (SSE2, 4 lanes at a time: the fragment stage does this per 4x4 block, and
+// the per-lane loop cost ~60 instructions).
+inline void lanes_from_mask(uint32_t mask, uint32_t* w) {
+    const __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
+    for (int q = 0; q < kLanes / 4; ++q) {
+        const __m128i m = _mm_and_si128(_mm_set1_epi32(int(mask >> (4 * q))), bits);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(w + 4 * q), _mm_cmpeq_epi32(m, bits));
+    }
+}
+
+// Bit l = bit 0 of lane l of w.
+inline uint32_t mask_from_lanes(const uint32_t* w) {
+    uint32_t mask = 0;
+    for (int q = 0; q < kLanes / 4; ++q) {
+        const __m128i v = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(w + 4 * q)), 31);
+        mask |= uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v))) << (4 * q);
+    }
+    return mask;
 }
 
 }  // namespace
@@ -254,72 +279,124 @@ void Program::run_vertex(const Bindings& bindings, VertexBatch& vb, Scratch& scr
     }
 }
 
+namespace {
+
+// Where an IoCopy of a fragment program lives in a FragmentBlock: its byte offset, or ~0u for a value computed per
+// run (or, for outputs, nothing written).
+uint32_t block_bytes(const IoCopy& c, bool out) {
+    const auto lanes = [](size_t at, uint32_t i) { return uint32_t(at + size_t(i) * sizeof(Lanes)); };
+    if (out) {
+        switch (c.slot) {
+            case IoSlot::Output:
+                return lanes(offsetof(FragmentBlock, outputs), c.index);
+            case IoSlot::FragDepth:
+                return lanes(offsetof(FragmentBlock, frag_depth), 0);
+            case IoSlot::SampleMask:
+                return lanes(offsetof(FragmentBlock, sample_mask), 0);
+            default:
+                return ~0u;
+        }
+    }
+    switch (c.slot) {
+        case IoSlot::Input:
+            return lanes(offsetof(FragmentBlock, inputs), c.index);
+        case IoSlot::FragCoord:
+            return lanes(offsetof(FragmentBlock, frag_coord), c.index);
+        case IoSlot::PointCoord:
+            return lanes(offsetof(FragmentBlock, point_coord), c.index);
+        case IoSlot::SampleMaskIn:
+            return lanes(offsetof(FragmentBlock, sample_mask_in), 0);
+        default:
+            return ~0u;
+    }
+}
+
+// io as runs: a copy extends the previous run when both its word and its bytes follow on.
+std::vector<IoRun> plan_runs(const std::vector<IoCopy>& io, bool out) {
+    std::vector<IoRun> runs;
+    for (size_t i = 0; i < io.size(); ++i) {
+        const uint32_t bytes = block_bytes(io[i], out);
+        if (bytes == ~0u) {
+            if (!out) runs.push_back({io[i].word, uint32_t(i), 0});
+            continue;
+        }
+        IoRun* last = runs.empty() ? nullptr : &runs.back();
+        if (last && last->count && last->word + last->count == io[i].word &&
+            last->bytes + last->count * sizeof(Lanes) == bytes)
+            ++last->count;
+        else
+            runs.push_back({io[i].word, bytes, 1});
+    }
+    return runs;
+}
+
+// A fragment input no copy covers: the block's values for it.
+void write_fragment_builtin(const IoCopy& c, const FragmentBlock& fb, uint32_t* w) {
+    switch (c.slot) {
+        case IoSlot::FrontFacing:
+            LANES w[l] = fb.front_facing ? ~0u : 0u;
+            break;
+        case IoSlot::SampleId:
+            LANES w[l] = fb.sample_id;
+            break;
+        case IoSlot::ViewIndex:
+            LANES w[l] = fb.view_index;
+            break;
+        case IoSlot::HelperInvocation:
+            LANES w[l] = (fb.cover_mask >> l) & 1 ? 0u : ~0u;
+            break;
+        default:  // a slot no fragment input has: the word stays zero, as if never written (plan_fragment_io)
+            LANES w[l] = 0;
+            break;
+    }
+}
+
+}  // namespace
+
+void plan_fragment_io(ProgramImpl& p) {
+    p.frag_in = plan_runs(p.io_in, false);
+    p.frag_out = plan_runs(p.io_out, true);
+    // every input writes all 16 lanes of its word: the rest start at zero
+    std::vector<bool> written(std::max(1u, p.local_words), false);
+    for (const IoCopy& c : p.io_in)
+        if (c.word < written.size()) written[c.word] = true;
+    p.frag_zero.clear();
+    for (uint32_t w = 0; w < written.size(); ++w) {
+        if (written[w]) continue;
+        if (!p.frag_zero.empty() && p.frag_zero.back().first + p.frag_zero.back().second == w)
+            ++p.frag_zero.back().second;
+        else
+            p.frag_zero.emplace_back(w, 1);
+    }
+}
+
 void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch& scratch) const {
     const ProgramImpl& p = *impl_;
     Scratch::Impl& s = *scratch.impl();
     Descriptor push;
-    prepare(p, bindings, s, push);
+    prepare(p, bindings, s, push, false);
     uint32_t* M = s.local.data();
-    for (const IoCopy& c : p.io_in) {
-        uint32_t* w = M + size_t(c.word) * kLanes;
-        switch (c.slot) {
-            case IoSlot::Input:
-                copy_lanes(w, fb.inputs[c.index / 4][c.index % 4]);
-                break;
-            case IoSlot::FragCoord:
-                copy_lanes(w, fb.frag_coord[c.index]);
-                break;
-            case IoSlot::PointCoord:
-                copy_lanes(w, fb.point_coord[c.index]);
-                break;
-            case IoSlot::FrontFacing:
-                LANES w[l] = fb.front_facing ? ~0u : 0u;
-                break;
-            case IoSlot::SampleMaskIn:
-                copy_lanes(w, fb.sample_mask_in);
-                break;
-            case IoSlot::SampleId:
-                LANES w[l] = fb.sample_id;
-                break;
-            case IoSlot::ViewIndex:
-                LANES w[l] = fb.view_index;
-                break;
-            case IoSlot::HelperInvocation:
-                LANES w[l] = (fb.cover_mask >> l) & 1 ? 0u : ~0u;
-                break;
-            default:
-                break;
-        }
+    for (const auto& [word, count] : p.frag_zero) std::memset(M + size_t(word) * kLanes, 0, size_t(count) * kLanes * 4);
+    const auto* block = reinterpret_cast<std::byte*>(&fb);
+    for (const IoRun& r : p.frag_in) {
+        uint32_t* w = M + size_t(r.word) * kLanes;
+        if (!r.count) write_fragment_builtin(p.io_in[r.bytes], fb, w);
+        for (uint32_t k = 0; k < r.count; ++k)
+            std::memcpy(w + size_t(k) * kLanes, block + r.bytes + size_t(k) * sizeof(Lanes), sizeof(Lanes));
     }
     uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
     uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
-    LANES {
-        entry[l] = ~0u;  // helper lanes run too (derivatives)
-        live[l] = (fb.cover_mask >> l) & 1 ? ~0u : 0u;
-    }
+    LANES entry[l] = ~0u;  // helper lanes run too (derivatives)
+    lanes_from_mask(fb.cover_mask, live);
     {
         FloatEnv env;
         run_program(p, s);
     }
-    uint32_t out = 0;
-    LANES out |= (live[l] & 1u) << l;
-    fb.live_mask = out & fb.cover_mask;
-    for (const IoCopy& c : p.io_out) {
-        const uint32_t* w = M + size_t(c.word) * kLanes;
-        switch (c.slot) {
-            case IoSlot::Output:
-                copy_lanes(fb.outputs[c.index / 4][c.index % 4], w);
-                break;
-            case IoSlot::FragDepth:
-                copy_lanes(fb.frag_depth, w);
-                break;
-            case IoSlot::SampleMask:
-                copy_lanes(fb.sample_mask, w);
-                break;
-            default:
-                break;
-        }
-    }
+    fb.live_mask = mask_from_lanes(live) & fb.cover_mask;
+    auto* out = reinterpret_cast<std::byte*>(&fb);
+    for (const IoRun& r : p.frag_out)
+        for (uint32_t k = 0; k < r.count; ++k)
+            std::memcpy(out + r.bytes + size_t(k) * sizeof(Lanes), M + size_t(r.word + k) * kLanes, sizeof(Lanes));
 }
 
 namespace {

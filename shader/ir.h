@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shader/program.h"
@@ -265,6 +266,13 @@ struct IoCopy {
     uint32_t word;   // local memory word
 };
 
+// The fragment stage's copies between local memory and a FragmentBlock, planned once per program (exec.cpp
+// plan_fragment_io): `count` consecutive words from local word `word` on, to or from the block's bytes at `bytes`
+// on (64 per word). count 0: io_in[bytes] is a value the run computes (FrontFacing, SampleId, ...).
+struct IoRun {
+    uint32_t word, bytes, count;
+};
+
 // A descriptor binding the program reads: resolved once per run into the scratch table.
 struct SlotBinding {
     uint32_t set, binding, count;
@@ -278,6 +286,10 @@ struct ProgramImpl {
     std::vector<uint32_t> const_regs;  // register index, value pairs... stored as (reg, value)
     uint32_t local_words = 0;          // SoA local memory words (each kLanes wide)
     std::vector<IoCopy> io_in, io_out;
+    // Fragment programs: io_in and io_out as runs of whole-word copies, in their order, and the local words no input
+    // writes (word, count), the only ones each run zeroes (plan_fragment_io).
+    std::vector<IoRun> frag_in, frag_out;
+    std::vector<std::pair<uint32_t, uint32_t>> frag_zero;
     std::vector<SlotBinding> slots;  // slot 0 is the push-constant block
     uint32_t num_slots = 1;          // total resolved descriptors
     uint32_t shared_words = 0;       // compute: 32-bit words of Workgroup storage (one block per workgroup)
@@ -307,6 +319,9 @@ struct Scratch::Impl {
     bool done = false;     // this frame's run reached Halt (or the watchdog)
     std::vector<std::unique_ptr<Impl>> frames;
 };
+
+// Fills frag_in, frag_out and frag_zero from io_in, io_out and local_words (exec.cpp).
+void plan_fragment_io(ProgramImpl& p);
 
 // Interpret the program (exec.cpp).
 void execute(const ProgramImpl& p, Scratch::Impl& s);

@@ -81,7 +81,9 @@ void Scratch::set_stop_flag(const std::atomic<bool>* stop) {
 }
 
 Program::Program(std::unique_ptr<ProgramImpl> impl, ProgramInterface iface)
-    : impl_(std::move(impl)), interface_(std::move(iface)), linear_(analyze_linear_shader()) {}
+    : impl_(std::move(impl)), interface_(std::move(iface)), linear_(analyze_linear_shader()) {
+    if (impl_->stage == Stage::Fragment) plan_fragment_io(*impl_);
+}
 Program::~Program() = default;
 size_t Program::instruction_count() const {
     return impl_->code.size();

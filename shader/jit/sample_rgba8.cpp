@@ -97,7 +97,8 @@ TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
 // 64-bit loads instead of two 8-lane gathers, which take 2-3 times longer on the hosts measured (shader/jit/README.md,
 // "The RGBA8 sampler's loads"). llvmpipe fetches its texels with scalar loads too (lp_bld_gather.c).
 TVK_AVX2 void load_pairs(const uint8_t* base, __m256i off, __m256i& left, __m256i& right) {
-    alignas(32) int32_t o[8];
+    // unsigned: every offset is in [0, 2^31) (level_table), and a zero-extended index needs no movslq
+    alignas(32) uint32_t o[8];
     _mm256_store_si256(reinterpret_cast<__m256i*>(o), off);
     auto pair = [base, &o](int l0, int l1) {
         const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + o[l0]));
@@ -120,7 +121,11 @@ TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageVi
                                                                    bool clamp_v) {
     const uint32_t n = levels.levels;
     const __m256i off = lookup(levels.offset, n, lv), pitch = lookup(levels.pitch, n, lv);
-    const Axis x = axis(s, lookup(levels.w, n, lv), clamp_u), y = axis(t, lookup(levels.h, n, lv), clamp_v);
+    // level sizes max(1, size >> lv) (level_table) by shifts: cheaper than two more look-ups
+    const __m256i one = _mm256_set1_epi32(1);
+    const __m256i w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(levels.width)), lv), one);
+    const __m256i hgt = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(levels.height)), lv), one);
+    const Axis x = axis(s, w, clamp_u), y = axis(t, hgt, clamp_v);
     const __m256i row0 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i0, pitch));
     const __m256i row1 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i1, pitch));
     const __m256i x0 = _mm256_slli_epi32(x.i0, 2);
@@ -164,77 +169,104 @@ TVK_AVX2 __m256 load_half(const uint32_t* R, uint32_t r, int h) {
     return _mm256_loadu_ps(reinterpret_cast<const float*>(R + size_t(r) * kLanes + 8 * h));
 }
 
-// Eight lanes (half h) of the instruction. False: a NaN reached the LOD (the caller runs exec_image instead).
-// Inlined: a call per half would pass its results through memory.
-TVK_AVX2 __attribute__((always_inline)) inline bool half(const Inst& in, const uint32_t* R, const ImageView& img,
-                                                         const SamplerState& smp, const ViewLevelTable& levels, int h,
-                                                         __m256 out[4]) {
-    const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
-    __m256 lambda;
-    if (in.imm & kSampleExplicitLod) {
-        lambda = load_half(R, in.c, h);
-    } else {
-        // implicit: one LOD per 2x2 quad from its top-left pixel (the quad is one 128-bit half of the vector)
-        const __m256 w0 = _mm256_set1_ps(float(img.width)), h0 = _mm256_set1_ps(float(img.height));
-        const __m256 s0 = _mm256_shuffle_ps(s, s, 0x00), t0 = _mm256_shuffle_ps(t, t, 0x00);
-        const __m256 dsdx = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(s, s, 0x55), s0), w0);
-        const __m256 dtdx = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(t, t, 0x55), t0), h0);
-        const __m256 dsdy = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(s, s, 0xAA), s0), w0);
-        const __m256 dtdy = _mm256_mul_ps(_mm256_sub_ps(_mm256_shuffle_ps(t, t, 0xAA), t0), h0);
-        const __m256 rx = _mm256_add_ps(_mm256_mul_ps(dsdx, dsdx), _mm256_mul_ps(dtdx, dtdx));
-        const __m256 ry = _mm256_add_ps(_mm256_mul_ps(dsdy, dsdy), _mm256_mul_ps(dtdy, dtdy));
-        const __m256 rho2 = max_std(rx, ry);
-        if (_mm256_movemask_ps(_mm256_cmp_ps(rho2, rho2, _CMP_UNORD_Q))) return false;
-        lambda = _mm256_mul_ps(fast_log2(rho2), _mm256_set1_ps(0.5f));
-        if (in.imm & kSampleBias) lambda = _mm256_add_ps(lambda, load_half(R, in.c, h));
-    }
+// The implicit LOD's rho^2 of the block's four 2x2 quads in one vector: quad 0 | 1 in position 0 of each 128-bit
+// half, quad 2 | 3 in position 2 (the other positions hold the same quads' values with rx and ry swapped in
+// max_std). Per quad from its top-left pixel, lane order top-left, top-right, bottom-left, bottom-right; the same
+// operations as raw_lambda: dsdx = (s[tr] - s[tl]) * width, rx = dsdx * dsdx + dtdx * dtdx, max_std(rx, ry).
+TVK_AVX2 __m256 quad_rho2(const uint32_t* R, uint32_t s_reg, const ImageView& img) {
+    const __m256 s0 = load_half(R, s_reg, 0), s1 = load_half(R, s_reg, 1);
+    const __m256 t0 = load_half(R, s_reg + 1, 0), t1 = load_half(R, s_reg + 1, 1);
+    const __m256 w0 = _mm256_set1_ps(float(img.width)), h0 = _mm256_set1_ps(float(img.height));
+    // [tr - tl, bl - tl] of quads 0 | 1 (from half 0) and 2 | 3 (from half 1)
+    const __m256 ds = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_shuffle_ps(s0, s1, _MM_SHUFFLE(2, 1, 2, 1)), _mm256_shuffle_ps(s0, s1, 0)), w0);
+    const __m256 dt = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(2, 1, 2, 1)), _mm256_shuffle_ps(t0, t1, 0)), h0);
+    const __m256 r = _mm256_add_ps(_mm256_mul_ps(ds, ds), _mm256_mul_ps(dt, dt));  // [rx, ry, rx, ry]
+    return max_std(r, _mm256_permute_ps(r, _MM_SHUFFLE(2, 3, 0, 1)));
+}
+
+// Quad values of quad_rho2's layout spread over half h's eight lanes (quads 0 | 1 or 2 | 3).
+TVK_AVX2 __m256i quad_spread(__m256i v, int h) {
+    return h == 0 ? _mm256_shuffle_epi32(v, 0x00) : _mm256_shuffle_epi32(v, 0xAA);
+}
+
+// The levels a lane reads and their blend weight.
+struct Levels {
+    __m256i lv, hi, mw;
+};
+
+// From lambda before the sampler's bias: bias, NaN -> 0, clamps, then exec_image's level selection (magnified
+// lanes read level 0 only).
+TVK_AVX2 Levels select_levels(__m256 lambda, const ImageView& img, const SamplerState& smp) {
     lambda = _mm256_add_ps(lambda, _mm256_set1_ps(smp.mip_lod_bias));
     lambda = _mm256_and_ps(lambda, _mm256_cmp_ps(lambda, lambda, _CMP_ORD_Q));  // NaN -> 0
     lambda = min_std(max_std(lambda, _mm256_set1_ps(smp.min_lod)), _mm256_set1_ps(smp.max_lod));
     const __m256 mag = _mm256_cmp_ps(lambda, _mm256_setzero_ps(), _CMP_LE_OQ);
     const int32_t max_level = int32_t(img.levels - 1);
     const __m256 max_level_f = _mm256_set1_ps(float(max_level));
-    __m256i lv, hi, mw;
+    Levels L;
     if (smp.mipmap_mode == MipmapMode::Nearest) {
         // ceil(lambda + 0.5) - 1, clamped to the view's levels
         const __m256 dl =
             _mm256_sub_ps(_mm256_ceil_ps(_mm256_add_ps(lambda, _mm256_set1_ps(0.5f))), _mm256_set1_ps(1.0f));
         const __m256 c = _mm256_blendv_ps(min_std(dl, max_level_f), _mm256_setzero_ps(),
                                           _mm256_cmp_ps(dl, _mm256_setzero_ps(), _CMP_LT_OQ));
-        lv = _mm256_cvttps_epi32(c);
-        hi = lv;
-        mw = _mm256_setzero_si256();
+        L.lv = _mm256_cvttps_epi32(c);
+        L.hi = L.lv;
+        L.mw = _mm256_setzero_si256();
     } else {
         const __m256 fl0 = _mm256_floor_ps(lambda);
         const __m256 top = _mm256_cmp_ps(fl0, max_level_f, _CMP_GE_OQ);
         const __m256 inside = _mm256_andnot_ps(top, _mm256_cmp_ps(fl0, _mm256_setzero_ps(), _CMP_GE_OQ));
         const __m256i lo = _mm256_cvttps_epi32(_mm256_and_ps(fl0, inside));
-        lv = _mm256_blendv_epi8(lo, _mm256_set1_epi32(max_level), _mm256_castps_si256(top));
-        hi = _mm256_blendv_epi8(lv, _mm256_add_epi32(lo, _mm256_set1_epi32(1)), _mm256_castps_si256(inside));
+        L.lv = _mm256_blendv_epi8(lo, _mm256_set1_epi32(max_level), _mm256_castps_si256(top));
+        L.hi = _mm256_blendv_epi8(L.lv, _mm256_add_epi32(lo, _mm256_set1_epi32(1)), _mm256_castps_si256(inside));
         // mip_weight(lambda - fl0): w = frac * 256; !(w > 0) -> 0; w >= 256 -> 255; else trunc(w)
         const __m256 wf = _mm256_mul_ps(_mm256_sub_ps(lambda, fl0), _mm256_set1_ps(256.0f));
         __m256i wi = _mm256_cvttps_epi32(_mm256_and_ps(wf, _mm256_cmp_ps(wf, _mm256_setzero_ps(), _CMP_GT_OQ)));
         wi = _mm256_blendv_epi8(wi, _mm256_set1_epi32(255),
                                 _mm256_castps_si256(_mm256_cmp_ps(wf, _mm256_set1_ps(256.0f), _CMP_GE_OQ)));
-        mw = _mm256_and_si256(wi, _mm256_castps_si256(inside));
+        L.mw = _mm256_and_si256(wi, _mm256_castps_si256(inside));
     }
-    // magnified lanes read level 0 only
-    lv = _mm256_andnot_si256(_mm256_castps_si256(mag), lv);
-    hi = _mm256_andnot_si256(_mm256_castps_si256(mag), hi);
-    mw = _mm256_andnot_si256(_mm256_castps_si256(mag), mw);
+    const __m256i keep = _mm256_castps_si256(mag);
+    return {_mm256_andnot_si256(keep, L.lv), _mm256_andnot_si256(keep, L.hi), _mm256_andnot_si256(keep, L.mw)};
+}
+
+// Byte shuffles moving channel c's byte of every RGBA (row 0) or BGRA (row 1) word to the bottom of the word, the
+// other bytes zeroed (-128: a zero byte)
+struct PickTable {
+    alignas(32) int8_t bytes[2][4][32];
+};
+constexpr PickTable make_pick_table() {
+    PickTable t{};
+    for (int bgra = 0; bgra < 2; ++bgra)
+        for (int c = 0; c < 4; ++c) {
+            const int src = (bgra && c < 3) ? 2 - c : c;
+            for (int i = 0; i < 32; ++i) t.bytes[bgra][c][i] = int8_t(i % 4 == 0 ? src + i % 16 : -128);
+        }
+    return t;
+}
+constexpr PickTable kPick = make_pick_table();
+
+// Eight lanes (half h) filtered at their levels L, as floats per channel in RGBA order.
+// Inlined: a call per half would pass its results through memory.
+TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, const uint32_t* R, const ImageView& img,
+                                                                const SamplerState& smp, const ViewLevelTable& levels,
+                                                                int h, const Levels& L, __m256 out[4]) {
+    const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     const bool clamp_u = smp.address_u == AddressMode::ClampToEdge, clamp_v = smp.address_v == AddressMode::ClampToEdge;
-    Wide a = level_bilinear(img, levels, lv, s, t, clamp_u, clamp_v);
-    if (!_mm256_testz_si256(mw, mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
-        a = lerp(spread(mw), a, level_bilinear(img, levels, hi, s, t, clamp_u, clamp_v));
+    Wide a = level_bilinear(img, levels, L.lv, s, t, clamp_u, clamp_v);
+    if (!_mm256_testz_si256(L.mw, L.mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
+        a = lerp(spread(L.mw), a, level_bilinear(img, levels, L.hi, s, t, clamp_u, clamp_v));
     // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
+    const auto& pick = kPick.bytes[levels.bgra ? 1 : 0];
     for (int c = 0; c < 4; ++c) {
-        const int src = (levels.bgra && c < 3) ? 2 - c : c;
-        const __m256i ch = _mm256_and_si256(_mm256_srli_epi32(words, 8 * src), _mm256_set1_epi32(255));
+        const __m256i ch = _mm256_shuffle_epi8(words, _mm256_load_si256(reinterpret_cast<const __m256i*>(pick[c])));
         out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
     }
-    return true;
 }
 
 }  // namespace
@@ -245,11 +277,28 @@ namespace {
 TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, const SamplerState& smp,
                           const ViewLevelTable& levels) {
     if (!levels.rgba8 || !sampler_fits(smp, levels)) return false;
-    // both halves before any write: a half that meets a NaN sends the whole instruction to exec_image, which must
-    // see the registers unchanged (the destination may be a source)
+    // everything computed before any write: a NaN in the implicit LOD sends the whole instruction to exec_image,
+    // which must see the registers unchanged (the destination may be a source)
+    Levels L[2];
+    if (in.imm & kSampleExplicitLod) {
+        for (int h = 0; h < 2; ++h) L[h] = select_levels(load_half(R, in.c, h), img, smp);
+    } else {
+        // implicit: one LOD per 2x2 quad, all four quads of the block in one vector
+        const __m256 rho2 = quad_rho2(R, in.b, img);
+        if (_mm256_movemask_ps(_mm256_cmp_ps(rho2, rho2, _CMP_UNORD_Q))) return false;
+        const __m256 lambda = _mm256_mul_ps(fast_log2(rho2), _mm256_set1_ps(0.5f));
+        if (in.imm & kSampleBias) {  // a bias per lane: the quads' values spread over the lanes first
+            for (int h = 0; h < 2; ++h) {
+                const __m256 q = _mm256_castsi256_ps(quad_spread(_mm256_castps_si256(lambda), h));
+                L[h] = select_levels(_mm256_add_ps(q, load_half(R, in.c, h)), img, smp);
+            }
+        } else {  // the same for every lane of a quad: selected once, then spread
+            const Levels q = select_levels(lambda, img, smp);
+            for (int h = 0; h < 2; ++h) L[h] = {quad_spread(q.lv, h), quad_spread(q.hi, h), quad_spread(q.mw, h)};
+        }
+    }
     __m256 out[2][4];
-    for (int h = 0; h < 2; ++h)
-        if (!half(in, R, img, smp, levels, h, out[h])) return false;
+    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, levels, h, L[h], out[h]);
     for (int c = 0; c < 4; ++c) {
         float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
         _mm256_storeu_ps(d, out[0][c]);
