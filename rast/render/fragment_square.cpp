@@ -40,17 +40,19 @@ inline __m256 row_value(__m256 dady, __m256 py, __m256 t, bool fused) {
 }
 
 // Eight pixels of RGBA floats -> 32 bytes in memory order (pack_rgba8_pairs' conversion; with eight consecutive
-// pixels in raster order the byte shuffle alone puts them in place).
-inline __m256i pack_row8(bool bgra, const __m256 c[4]) {
-    const __m256 one = _mm256_set1_ps(1.0f), k255 = _mm256_set1_ps(255.0f);
+// pixels in raster order the byte shuffle alone puts them in place). Four named vectors rather than an array: GCC
+// keeps an array of vectors on the stack, and the packs then wait on store forwarding.
+inline __m256i unorm8_lanes(__m256 x) {
+    return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(_mm256_set1_ps(1.0f), x), _mm256_set1_ps(255.0f)));
+}
+inline __m256i pack_row8(bool bgra, __m256 r, __m256 g, __m256 b, __m256 a) {
     const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
                                                   5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15)
                                : _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
                                                   5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-    __m256i u[4];
-    for (int k = 0; k < 4; ++k) u[k] = _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(one, c[k]), k255));
-    return _mm256_shuffle_epi8(_mm256_packus_epi16(_mm256_packs_epi32(u[0], u[1]), _mm256_packs_epi32(u[2], u[3])),
-                               order);
+    const __m256i rg = _mm256_packs_epi32(unorm8_lanes(r), unorm8_lanes(g));
+    const __m256i ba = _mm256_packs_epi32(unorm8_lanes(b), unorm8_lanes(a));
+    return _mm256_shuffle_epi8(_mm256_packus_epi16(rg, ba), order);
 }
 
 // blend_rgba8.cpp over_pair: every byte adds(mul_norm(s, sa), mul_norm(d, 255 - sa)) in 16-bit lanes.
@@ -94,17 +96,24 @@ void shade_row(const SquareCtx& c, float py_value, int size, uint8_t* row) {
     const __m256 wdady = _mm256_set1_ps(c.wplane.dady), one = _mm256_set1_ps(1.0f);
     const bool bgra = c.sp->bgra;
     for (int i = 0; i < size; i += 8) {
-        __m256 ch[4] = {row_value(dady0, py, _mm256_load_ps(c.t[0] + i), kFused),
-                        row_value(dady1, py, _mm256_load_ps(c.t[1] + i), kFused),
-                        row_value(dady2, py, _mm256_load_ps(c.t[2] + i), kFused),
-                        row_value(dady3, py, _mm256_load_ps(c.t[3] + i), kFused)};
+        __m256 r = row_value(dady0, py, _mm256_load_ps(c.t[0] + i), kFused);
+        __m256 g = row_value(dady1, py, _mm256_load_ps(c.t[1] + i), kFused);
+        __m256 b = row_value(dady2, py, _mm256_load_ps(c.t[2] + i), kFused);
+        __m256 a = row_value(dady3, py, _mm256_load_ps(c.t[3] + i), kFused);
         if constexpr (kW == WMode::kPerPixel) {
             const __m256 oow = _mm256_div_ps(one, row_value(wdady, py, _mm256_load_ps(c.t[4] + i), kFused));
-            for (__m256& v : ch) v = fragment::mul_oow(v, oow);
+            r = fragment::mul_oow(r, oow);
+            g = fragment::mul_oow(g, oow);
+            b = fragment::mul_oow(b, oow);
+            a = fragment::mul_oow(a, oow);
         } else if constexpr (kW == WMode::kConstW) {
-            for (__m256& v : ch) v = _mm256_mul_ps(v, c.oow);  // oow is not NaN: mul_oow's NaN choice is moot
+            // oow is not NaN: mul_oow's NaN choice is moot
+            r = _mm256_mul_ps(r, c.oow);
+            g = _mm256_mul_ps(g, c.oow);
+            b = _mm256_mul_ps(b, c.oow);
+            a = _mm256_mul_ps(a, c.oow);
         }
-        const __m256i s = pack_row8(bgra, ch);
+        const __m256i s = pack_row8(bgra, r, g, b, a);
         auto* p = reinterpret_cast<__m256i*>(row + size_t(i) * 4);
         if constexpr (kOver) {
             const __m256i d = _mm256_loadu_si256(p);
