@@ -115,8 +115,8 @@ uint16_t early_depth(const BlockArgs& a, Block& k) {
     return lanes;
 }
 
-// A uniform shader (plan.uniform_shader): one run per primitive and worker; block.outputs stays valid for every
-// block of the primitive, since every lane sees the same flat inputs.
+// A uniform shader (plan.uniform_shader): one run per primitive and worker (for a copy of a flat input, the copy);
+// block.outputs stays valid for every block of the primitive, since every lane sees the same flat inputs.
 void run_uniform(FragmentWorker& w, const BlockArgs& a) {
     if (w.uniform_prim == a.prim && w.uniform_front == a.front_facing) return;
     shader::FragmentBlock& b = w.block;
@@ -130,7 +130,10 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
         const uint32_t v = bits_of(attribs[in.plane + in.comp]);
         for (int l = 0; l < kBlockLanes; ++l) lanes[l] = v;
     }
-    a.draw->pipe->fragment->run_fragment(a.draw->bindings, b, w.scratch);
+    if (a.plan->copy_location >= 0)
+        copy_lanes<sizeof b.outputs[0]>(b.outputs[0], b.inputs[a.plan->copy_location]);  // what the run would do
+    else
+        a.draw->pipe->fragment->run_fragment(a.draw->bindings, b, w.scratch);
     w.uniform_prim = a.prim;
     w.uniform_front = a.front_facing;
 }

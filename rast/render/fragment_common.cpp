@@ -42,6 +42,13 @@ BlockFn fast_block_function() {
     return isa_base::shade_block_fast;
 }
 
+SquareFn fast_square_function() {
+#if TILEVK_AVX2_VARIANT
+    if (kernel_isa() == Isa::kAvx2) return isa_avx2::shade_square_fast;
+#endif
+    return nullptr;
+}
+
 void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
                         fragment::DepthStencilBlock& zs) {
     const size_t bytes = depth_bytes(t.format);

@@ -42,6 +42,19 @@ inline uint32_t* input_lanes(shader::FragmentBlock& b, const InputPlan& in) {
 
 enum class ColorPath : uint8_t { kGeneric, kNone, kOpaqueRgba8, kOpaqueBgra8, kRgba8 };
 
+// Fully covered squares of 8x8 pixels or more that one fused kernel shades row by row (fragment_square.cpp), when
+// the draw is 1x without depth/stencil, queries, alpha to coverage or alpha to one, its shader copies one vec4
+// input interpolated alike on all four components (not flat) to colour 0, and colour 0 is the only target written:
+// an RGBA8/BGRA8 target, opaque or standard alpha blending (Rgba8Blend::over).
+struct SquarePlan {
+    bool ok = false;
+    bool perspective = false;  // the copied input divides by w
+    bool bgra = false;
+    bool over = false;        // false: opaque, every channel written
+    uint8_t wmask_mem = 0xf;  // over: channel write mask in memory order
+    uint32_t plane[4] = {};   // float offset of each component's slot plane from the first attribute plane
+};
+
 // What the fast path derived from one draw's state, once per scene (fragment_stage.cpp make_plan).
 struct DrawPlan {
     bool fast = false;              // false: the reference path (unsupported states)
@@ -54,6 +67,7 @@ struct DrawPlan {
     ColorPath color[kMaxColorTargets] = {};
     fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
     uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
+    SquarePlan square;
 };
 
 // One worker's fragment-stage state (shader scratch and block, per-draw counters, stage timing).
@@ -98,12 +112,20 @@ struct BlockArgs {
 // The fast pipeline for the instruction set this process runs (rast/core/cpu.h kernel_isa()).
 BlockFn fast_block_function();
 
+// Shades the fully covered square [x, x+size)^2 of a draw whose plan.square.ok holds, in one fused pass
+// (fragment_square.cpp); false, writing nothing, where it does not (size not a multiple of 8, portable build): the
+// caller then shades the square block by block. Null when the running build has no square kernel.
+using SquareFn = bool (*)(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
+SquareFn fast_square_function();
+
 // The fast pipeline of one instruction-set build (fragment_block.cpp).
 namespace isa_base {
 void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+bool shade_square_fast(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
 }
 namespace isa_avx2 {
 void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
+bool shade_square_fast(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
 }
 
 // ---- shared by every block function and the reference pipeline (fragment_common.cpp) ----

@@ -76,6 +76,41 @@ uint16_t inside_mask(int32_t x, int32_t y, int32_t width, int32_t height) {
     return m;
 }
 
+// SquarePlan (fragment_plan.h) from a finished plan: whether the fused square kernel reproduces the block pipeline.
+void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
+    SquarePlan& sq = plan.square;
+    const PipelineState& pipe = *draw.pipe;
+    if (!pipe.fragment || plan.copy_location < 0 || plan.uniform_shader || fb.samples != 1 || draw.depth_mode != 0 ||
+        pipe.alpha_to_coverage || pipe.alpha_to_one || fb.num_color < 1 || !fb.color[0].data)
+        return;
+    for (uint32_t c = 1; c < fb.num_color && c < kMaxColorTargets; ++c)
+        if (fb.color[c].data && plan.color[c] != ColorPath::kNone) return;
+    const ColorPath path = plan.color[0];
+    if (path == ColorPath::kRgba8) {
+        if (!plan.rgba8[0].ok || !plan.rgba8[0].over) return;
+        sq.over = true;
+        sq.bgra = plan.rgba8[0].bgra;
+        sq.wmask_mem = plan.rgba8[0].wmask_mem;
+    } else if (path == ColorPath::kOpaqueRgba8 || path == ColorPath::kOpaqueBgra8) {
+        sq.bgra = path == ColorPath::kOpaqueBgra8;
+    } else {
+        return;
+    }
+    // All four components of the copied location, interpolated alike (flat ones go through the block pipeline).
+    uint32_t found = 0;
+    geometry::Interp interp = geometry::Interp::kFlat;
+    for (const InputPlan& in : plan.inputs) {
+        if (in.loc != uint32_t(plan.copy_location) || in.comp >= 4) continue;
+        if (found != 0 && in.interp != interp) return;
+        interp = in.interp;
+        sq.plane[in.comp] = in.plane;
+        found |= 1u << in.comp;
+    }
+    if (found != 0xf || interp == geometry::Interp::kFlat) return;
+    sq.perspective = interp == geometry::Interp::kPerspective;
+    sq.ok = true;
+}
+
 // What the fast path needs to know about a draw, derived once per scene.
 // Fills `plan` in place (its input list keeps its storage from the last scene: no allocation in a steady frame).
 void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
@@ -144,6 +179,7 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
             if (plan.rgba8[c].ok) plan.color[c] = ColorPath::kRgba8;
         }
     }
+    make_square_plan(draw, fb, plan);
 }
 
 }  // namespace
@@ -160,6 +196,7 @@ void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, con
     fused_ = fused;
     fast_ = fragment_fast_paths();
     block_fn_ = fast_block_function();
+    square_fn_ = fast_square_function();
     while (workers_.size() < workers) workers_.push_back(std::make_unique<FragmentWorker>());
     for (auto& w : workers_) {
         w->scratch.set_stop_flag(stop_);
@@ -283,8 +320,13 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
             shade_block(w, draw, prim, cov.front_facing, x, y, masks);
     };
     for_each_block4(cov, one_block);
+    const bool squares = plan && square_fn_ && plan->square.ok && (cov.sample_mask & 1u);
     for (size_t i = 0; i < cov.num_full; ++i) {
         const FullBlock& f = cov.full[i];
+        if (squares && !stopped() && square_fn_(args, f.x, f.y, f.size)) {
+            if (draw.samples_passed) w.samples_passed[prim.draw] += uint64_t(f.size) * uint64_t(f.size);
+            continue;
+        }
         for (int32_t by = f.y; by < f.y + f.size; by += 4)
             for (int32_t bx = f.x; bx < f.x + f.size; bx += 4) {
                 // Full squares lie inside the framebuffer (coverage.h); the check costs two compares.

@@ -72,6 +72,7 @@ class FragmentStage final : public CoverageConsumer {
     bool fast_ = true;
     std::vector<DrawPlan> plans_;  // per draw record (fast path)
     BlockFn block_fn_ = nullptr;   // the fast path's block function (fragment_plan.h)
+    SquareFn square_fn_ = nullptr;  // its fused full-square kernel, or null (fragment_plan.h)
     const std::vector<uint8_t>* tile_linear_ = nullptr;
     const std::vector<fragment::LinearRegion>* rect_boxes_ = nullptr;
     std::vector<std::unique_ptr<FragmentWorker>> workers_;

@@ -25,9 +25,11 @@ enum class Stage : uint8_t {
     kSetup,     // primitive assembly, clip codes, clipping, triangle setup, binning
     kCoverage,  // the 64->16->4 descent (per tile, everything but the fragment stage's own time)
     kShade,     // interpolation and the fragment shader
-    kOutput,    // depth/stencil, alpha to coverage, blending, colour stores
-    kAttach,    // load-op clears and staging copies of attachments (icd/)
-    kResolve,   // multisample resolve (icd/)
+    // depth/stencil, alpha to coverage, blending, colour stores; and the whole of a square that the fused full-square
+    // kernel shades (fragment_square.cpp: its interpolation cannot be timed apart)
+    kOutput,
+    kAttach,   // load-op clears and staging copies of attachments (icd/)
+    kResolve,  // multisample resolve (icd/)
     kCount
 };
 inline constexpr int kNumStages = static_cast<int>(Stage::kCount);

@@ -74,6 +74,12 @@ layout(location = 0) out vec4 o;
 void main() { o = vec4(c.rg, dFdx(uv.x) * 64.0, uv.y); })",
 };
 constexpr int kNumFs = sizeof(kFs) / sizeof(kFs[0]);
+constexpr int kCopyFs = 3;  // kFs[3]: a plain copy of a perspective vec4
+// A plain copy of a noperspective vec4 (not in kFs: the random scenes keep their shader sequence).
+constexpr const char* kCopyNoPerspectiveFs = R"(#version 450
+layout(location = 0) noperspective in vec4 c;
+layout(location = 0) out vec4 o;
+void main() { o = c; })";
 
 struct Vertex {
     float pos[4];
@@ -91,7 +97,7 @@ struct SceneDesc {
     fragment::DepthFormat depth;
     bool stencil;
     std::vector<PipelineState> pipes;
-    std::vector<int> shaders;  // kFs index per pipe
+    std::vector<int> shaders;  // kFs index per pipe (-1: kCopyNoPerspectiveFs)
     std::vector<std::vector<Vertex>> draws;
 };
 
@@ -119,6 +125,7 @@ class FragmentStageTest : public ::testing::Test {
     void SetUp() override {
         vs_ = shader::test::make_program(Stage::Vertex, kVs);
         for (const char* src : kFs) fs_.push_back(shader::test::make_program(Stage::Fragment, src));
+        copy_noperspective_ = shader::test::make_program(Stage::Fragment, kCopyNoPerspectiveFs);
     }
     void TearDown() override { set_fragment_fast_paths(true); }
 
@@ -255,8 +262,51 @@ class FragmentStageTest : public ::testing::Test {
         return t;
     }
 
+    // A random scene turned into what the fused square kernel takes (fragment_plan.h SquarePlan): 1x, no depth,
+    // a copy shader, colour 0 RGBA8/BGRA8 opaque or SRC_ALPHA/ONE_MINUS_SRC_ALPHA (any write mask), and large
+    // triangles (whole 64x64 tiles and 16x16 squares), some with one w for all vertices (a constant 1/w).
+    SceneDesc square_scene(std::mt19937& rng, int iter) {
+        SceneDesc d = random_scene(rng, iter);
+        d.samples = 1;
+        d.depth = fragment::DepthFormat::None;
+        d.stencil = false;
+        d.format0 = rng() % 2 ? fragment::ColorFormat::R8G8B8A8_UNORM : fragment::ColorFormat::B8G8R8A8_UNORM;
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f), c(-0.1f, 1.1f), wr(0.5f, 2.0f);
+        for (size_t i = 0; i < d.pipes.size(); ++i) {
+            PipelineState& p = d.pipes[i];
+            const bool noperspective = rng() % 3 == 0;
+            d.shaders[i] = noperspective ? -1 : kCopyFs;
+            p.fragment = noperspective ? copy_noperspective_.get() : fs_[kCopyFs].get();
+            p.samples = 1;
+            p.cull = CullMode(0);
+            p.alpha_to_coverage = false;
+            p.depth_stencil = {};
+            fragment::BlendAttachment& a = p.blend[0];
+            a = {};
+            a.blend_enable = rng() % 4 != 0;
+            a.src_color = a.src_alpha = fragment::BlendFactor::SrcAlpha;
+            a.dst_color = a.dst_alpha = fragment::BlendFactor::OneMinusSrcAlpha;
+            a.write_mask = a.blend_enable && rng() % 3 == 0 ? uint8_t(1 + rng() % 15) : 0xf;
+            p.blend[1].write_mask = 0;
+            std::vector<Vertex>& v = d.draws[i];
+            v.clear();
+            const bool one_w = rng() % 2;
+            const float w_all = rng() % 2 ? 1.0f : wr(rng);
+            for (int t = 0; t < 1 + int(rng() % 3); ++t)
+                for (int k = 0; k < 3; ++k) {
+                    const float w = one_w ? w_all : wr(rng);
+                    // corners well outside the viewport: every tile has whole squares
+                    const float x = (k == 1 ? 3.0f : -1.2f) + 0.2f * u(rng),
+                                y = (k == 2 ? 3.0f : -1.2f) + 0.2f * u(rng);
+                    v.push_back({{x * w, y * w, 0.5f * w, w}, {c(rng), c(rng), c(rng), c(rng)}});
+                }
+        }
+        return d;
+    }
+
     std::shared_ptr<const shader::Program> vs_;
     std::vector<std::shared_ptr<const shader::Program>> fs_;
+    std::shared_ptr<const shader::Program> copy_noperspective_;
 };
 
 TEST_F(FragmentStageTest, FastPathWritesTheReferenceBytes) {
@@ -307,6 +357,26 @@ TEST_F(FragmentStageTest, BothInstructionSetsWriteTheSameBytes) {
     }
     set_kernel_isa_for_testing(before);
     EXPECT_GT(changed, 100);
+}
+
+// Whole squares of copy-shader draws take the fused square kernel (fragment_square.cpp) in the AVX2 build: the
+// same bytes and occlusion counts as the reference path, at 1 and 2 threads, and as the portable build.
+TEST_F(FragmentStageTest, SquareKernelWritesTheReferenceBytes) {
+    const Isa before = kernel_isa();
+    std::mt19937 rng(4242);
+    for (int iter = 0; iter < 80; ++iter) {
+        const SceneDesc d = square_scene(rng, iter);
+        const Targets ref = render(d, false, 1);
+        ASSERT_TRUE(ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35)) << "nothing drawn, iter " << iter;
+        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
+            if (!set_kernel_isa_for_testing(isa)) continue;
+            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
+            const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
+            ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(fast.passed == ref.passed) << name << " samples passed, iter " << iter << ": " << describe(d);
+        }
+        set_kernel_isa_for_testing(before);
+    }
 }
 
 TEST_F(FragmentStageTest, SwitchReadsBack) {
