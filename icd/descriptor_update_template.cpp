@@ -72,7 +72,8 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSetWithTemplate(VkDevice device, 
         buffers.clear();
         views.clear();
         // An inline uniform block entry: descriptorCount bytes at pData + offset (the stride is ignored).
-        VkWriteDescriptorSetInlineUniformBlock block{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_INLINE_UNIFORM_BLOCK};
+        VkWriteDescriptorSetInlineUniformBlock block{};
+        block.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_INLINE_UNIFORM_BLOCK;
         if (e.descriptorType == VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK) {
             block.dataSize = e.descriptorCount;
             block.pData = base + e.offset;
