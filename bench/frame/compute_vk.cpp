@@ -5,16 +5,13 @@
 #include <functional>
 #include <stdexcept>
 
+#include "frame_timing.h"
 #include "glsl.hpp"
 
 namespace tilevk::bench {
 namespace {
 
 using cts::vk_check;
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 constexpr uint32_t kSaxpyN = 1u << 20, kHistN = 1u << 20, kHistPerInvocation = 16, kMat = 512;
 
@@ -324,17 +321,8 @@ double ComputeOnDevice::last_record_ms() const {
 
 double ComputeOnDevice::frame() {
     Impl& m = *impl_;
-    const auto t0 = Clock::now();
-    m.record();
-    m.record_ms = ms_since(t0);
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &m.cb;
-    vk_check(vkQueueSubmit(m.c->queue, 1, &si, m.fence), "vkQueueSubmit");
-    vk_check(vkWaitForFences(m.dev(), 1, &m.fence, VK_TRUE, 600ull * 1000 * 1000 * 1000), "vkWaitForFences");
-    const double ms = ms_since(t0);
-    vk_check(vkResetFences(m.dev(), 1, &m.fence), "vkResetFences");
-    return ms;
+    return timed_frame(
+        m.dev(), m.c->queue, m.cb, m.fence, [&m] { m.record(); }, &m.record_ms);
 }
 
 const uint8_t* ComputeOnDevice::image_bytes() const {
