@@ -228,7 +228,8 @@ void Objects::make_resources(const ComputeSpec& s) {
         img.staging =
             frame::make_buffer(c, gc, img.bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         std::memset(img.staging.mapped, 0, img.bytes);
-        std::memcpy(img.staging.mapped, im.init.data(), std::min<size_t>(im.init.size(), img.bytes));
+        if (!im.init.empty())  // data() of an empty vector may be null, which memcpy must not get
+            std::memcpy(img.staging.mapped, im.init.data(), std::min<size_t>(im.init.size(), img.bytes));
         images.push_back(img);
     }
 }
@@ -569,7 +570,7 @@ std::vector<uint32_t> buffer_words(const std::vector<Plane>& planes, uint32_t i)
     for (const Plane& p : planes) {
         if (p.name != name) continue;
         std::vector<uint32_t> w(p.data.size() / 4);
-        std::memcpy(w.data(), p.data.data(), w.size() * 4);
+        if (!w.empty()) std::memcpy(w.data(), p.data.data(), w.size() * 4);
         return w;
     }
     return {};

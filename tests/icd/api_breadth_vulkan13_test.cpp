@@ -261,9 +261,12 @@ std::array<uint32_t, 12> dot_model(const uint32_t* a, const uint32_t* b, uint32_
     std::array<uint32_t, 12> r{};
     const bool sign1[3] = {true, false, true}, sign2[3] = {true, false, false};
     for (int f = 0; f < 3; ++f) {
-        int64_t vec = 0, packed = 0, shifted = 0;
+        // The 32-bit vectors' sum is only kept modulo 2^32 (two unsigned lanes' product overflows int64): it is
+        // summed modulo 2^64, where unsigned arithmetic wraps.
+        uint64_t vec = 0;
+        int64_t packed = 0, shifted = 0;
         for (int k = 0; k < 4; ++k) {
-            vec += lane(a[k], sign1[f]) * lane(b[k], sign2[f]);
+            vec += uint64_t(lane(a[k], sign1[f])) * uint64_t(lane(b[k], sign2[f]));
             packed += packed_lane(a[0], k, sign1[f]) * packed_lane(b[0], k, sign2[f]);
             const auto shift = [](uint32_t v, bool s) { return s ? int64_t(int32_t(v) >> 17) : int64_t(v >> 17); };
             shifted += shift(a[k], sign1[f]) * shift(b[k], sign2[f]);
