@@ -1,4 +1,5 @@
-// compute.image.* (imageLoad / imageStore / imageSize over the 16 storage formats Vulkan requires) and
+// compute.image.* (imageLoad / imageStore / imageSize over the 16 storage formats Vulkan requires and the 23 of
+// shaderStorageImageExtendedFormats) and
 // compute.sync.* (a dispatch's writes seen by a later transfer, draw or dispatch in the same command buffer, and the
 // reverse), judged byte for byte and, where the answer is known, against it.
 #include "compute_case.hpp"
@@ -31,14 +32,58 @@ const StorageFormat kFormats[] = {
     {VK_FORMAT_R32G32B32A32_UINT, "rgba32_uint", "rgba32ui", "u", 16},
     {VK_FORMAT_R32G32B32A32_SINT, "rgba32_sint", "rgba32i", "i", 16},
     {VK_FORMAT_R32G32B32A32_SFLOAT, "rgba32_sfloat", "rgba32f", "", 16},
+    // shaderStorageImageExtendedFormats
+    {VK_FORMAT_R16G16_SFLOAT, "rg16_sfloat", "rg16f", "", 4},
+    {VK_FORMAT_B10G11R11_UFLOAT_PACK32, "b10g11r11_ufloat", "r11f_g11f_b10f", "", 4},
+    {VK_FORMAT_R16_SFLOAT, "r16_sfloat", "r16f", "", 2},
+    {VK_FORMAT_R16G16B16A16_UNORM, "rgba16_unorm", "rgba16", "", 8},
+    {VK_FORMAT_A2B10G10R10_UNORM_PACK32, "a2b10g10r10_unorm", "rgb10_a2", "", 4},
+    {VK_FORMAT_R16G16_UNORM, "rg16_unorm", "rg16", "", 4},
+    {VK_FORMAT_R8G8_UNORM, "rg8_unorm", "rg8", "", 2},
+    {VK_FORMAT_R16_UNORM, "r16_unorm", "r16", "", 2},
+    {VK_FORMAT_R8_UNORM, "r8_unorm", "r8", "", 1},
+    {VK_FORMAT_R16G16B16A16_SNORM, "rgba16_snorm", "rgba16_snorm", "", 8},
+    {VK_FORMAT_R16G16_SNORM, "rg16_snorm", "rg16_snorm", "", 4},
+    {VK_FORMAT_R8G8_SNORM, "rg8_snorm", "rg8_snorm", "", 2},
+    {VK_FORMAT_R16_SNORM, "r16_snorm", "r16_snorm", "", 2},
+    {VK_FORMAT_R8_SNORM, "r8_snorm", "r8_snorm", "", 1},
+    {VK_FORMAT_R16G16_SINT, "rg16_sint", "rg16i", "i", 4},
+    {VK_FORMAT_R8G8_SINT, "rg8_sint", "rg8i", "i", 2},
+    {VK_FORMAT_R16_SINT, "r16_sint", "r16i", "i", 2},
+    {VK_FORMAT_R8_SINT, "r8_sint", "r8i", "i", 1},
+    {VK_FORMAT_A2B10G10R10_UINT_PACK32, "a2b10g10r10_uint", "rgb10_a2ui", "u", 4},
+    {VK_FORMAT_R16G16_UINT, "rg16_uint", "rg16ui", "u", 4},
+    {VK_FORMAT_R8G8_UINT, "rg8_uint", "rg8ui", "u", 2},
+    {VK_FORMAT_R16_UINT, "r16_uint", "r16ui", "u", 2},
+    {VK_FORMAT_R8_UINT, "r8_uint", "r8ui", "u", 1},
 };
 
+bool is_half(VkFormat f) {
+    return f == VK_FORMAT_R16G16B16A16_SFLOAT || f == VK_FORMAT_R16G16_SFLOAT || f == VK_FORMAT_R16_SFLOAT;
+}
+bool is_snorm(VkFormat f) {
+    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R16G16B16A16_SNORM || f == VK_FORMAT_R16G16_SNORM ||
+           f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R16_SNORM || f == VK_FORMAT_R8_SNORM;
+}
+uint32_t snorm_bits(VkFormat f) {
+    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R8_SNORM ? 8 : 16;
+}
+
 // Texels every format represents exactly: random bytes, except that float formats get finite values (halves with
-// exponents below 30, floats of at most 24 significant bits) so that no NaN payload is at the drivers' mercy.
+// exponents below 30, floats of at most 24 significant bits, B10G11R11 fields with exponents below 31) so that no
+// NaN payload is at the drivers' mercy.
 std::vector<uint8_t> texels(const StorageFormat& f, uint32_t n, uint32_t seed) {
     Lcg g{seed};
     std::vector<uint8_t> b(size_t(n) * f.texel_bytes);
-    if (f.format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+    if (f.format == VK_FORMAT_B10G11R11_UFLOAT_PACK32) {
+        for (size_t i = 0; i + 3 < b.size(); i += 4) {
+            const auto field = [&](uint32_t mbits) {
+                return uint32_t(g.next() * 31.0f) << mbits | uint32_t(g.next() * float(1u << mbits));
+            };
+            const uint32_t w = field(6) | field(6) << 11 | field(5) << 22;
+            std::memcpy(&b[i], &w, 4);
+        }
+    } else if (is_half(f.format)) {
         for (size_t i = 0; i + 1 < b.size(); i += 2) {
             const uint16_t h = uint16_t(uint32_t(g.next() * 2.0f) << 15 | uint32_t(g.next() * 30.0f) << 10 |
                                         uint32_t(g.next() * 1024.0f));
@@ -57,7 +102,8 @@ std::vector<uint8_t> texels(const StorageFormat& f, uint32_t n, uint32_t seed) {
 }
 
 // imageLoad from image 0, imageStore mirrored in x into image 1, imageSize into buffer 0. A load and store of the
-// same format gives back the texel's bytes, except SNORM -128, which reads as -1.0 and is written back as -127.
+// same format gives back the texel's bytes, except SNORM -2^(n-1), which reads as -1.0 and is written back as
+// -(2^(n-1) - 1).
 void add_copy_case(CaseList& out, const StorageFormat& f) {
     constexpr uint32_t kW = 19, kH = 11;  // not a multiple of the 4x4 blocks, partly covered workgroups
     const std::string type = std::string(f.prefix) + "image2D";
@@ -77,13 +123,15 @@ void add_copy_case(CaseList& out, const StorageFormat& f) {
     s.buffers = {{{kMarker, kMarker}}};
     s.images = {{f.format, kW, kH, in}, {f.format, kW, kH, {}}};
     s.steps = {dispatch(0, (kW + 7) / 8, (kH + 3) / 4)};
-    const bool snorm = f.format == VK_FORMAT_R8G8B8A8_SNORM;
     std::vector<uint8_t> want(in.size());
     for (uint32_t y = 0; y < kH; ++y)
         for (uint32_t x = 0; x < kW; ++x)
             std::memcpy(&want[(y * kW + kW - 1 - x) * f.texel_bytes], &in[(y * kW + x) * f.texel_bytes], f.texel_bytes);
-    if (snorm)
+    if (is_snorm(f.format) && snorm_bits(f.format) == 8)
         for (uint8_t& b : want) b = b == 0x80 ? 0x81 : b;
+    if (is_snorm(f.format) && snorm_bits(f.format) == 16)
+        for (size_t i = 0; i + 1 < want.size(); i += 2)
+            if (want[i] == 0x00 && want[i + 1] == 0x80) want[i] = 0x01;
     Check check = [want](const std::vector<Plane>& planes) -> std::string {
         for (const Plane& p : planes) {
             if (p.name != "image1") continue;

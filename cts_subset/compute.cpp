@@ -32,6 +32,12 @@ ComputeStep dispatch_indirect(uint32_t shader, uint32_t buffer, uint32_t offset)
     s.dst = offset;
     return s;
 }
+ComputeStep dispatch_base(uint32_t shader, const uint32_t base[3], const uint32_t groups[3]) {
+    ComputeStep s = dispatch(shader, groups[0], groups[1], groups[2]);
+    s.kind = Kind::kDispatchBase;
+    std::copy(base, base + 3, s.base);
+    return s;
+}
 ComputeStep fill(uint32_t buffer, uint32_t value) {
     ComputeStep s;
     s.kind = Kind::kFill;
@@ -79,13 +85,30 @@ uint32_t storage_texel_bytes(VkFormat f) {
         case VK_FORMAT_R32G32_UINT:
         case VK_FORMAT_R32G32_SINT:
         case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R16G16B16A16_UNORM:
+        case VK_FORMAT_R16G16B16A16_SNORM:
             return 8;
+        case VK_FORMAT_R8G8_UNORM:
+        case VK_FORMAT_R8G8_SNORM:
+        case VK_FORMAT_R8G8_UINT:
+        case VK_FORMAT_R8G8_SINT:
+        case VK_FORMAT_R16_UNORM:
+        case VK_FORMAT_R16_SNORM:
+        case VK_FORMAT_R16_UINT:
+        case VK_FORMAT_R16_SINT:
+        case VK_FORMAT_R16_SFLOAT:
+            return 2;
+        case VK_FORMAT_R8_UNORM:
+        case VK_FORMAT_R8_SNORM:
+        case VK_FORMAT_R8_UINT:
+        case VK_FORMAT_R8_SINT:
+            return 1;
         case VK_FORMAT_R32G32B32A32_UINT:
         case VK_FORMAT_R32G32B32A32_SINT:
         case VK_FORMAT_R32G32B32A32_SFLOAT:
             return 16;
         default:
-            return 4;  // the 8-bit RGBA formats and the R32 ones
+            return 4;  // the 8-bit RGBA formats, the R32 ones and the other 32-bit texels (RG16, packed)
     }
 }
 
@@ -98,6 +121,7 @@ struct Sync {
 Sync sync_of(Kind k) {
     switch (k) {
         case Kind::kDispatch:
+        case Kind::kDispatchBase:
             return {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT};
         case Kind::kDispatchIndirect:
@@ -105,8 +129,10 @@ Sync sync_of(Kind k) {
                     VK_ACCESS_SHADER_WRITE_BIT,
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT |
                         VK_ACCESS_INDIRECT_COMMAND_READ_BIT};
-        case Kind::kDraw:
-            return {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+        case Kind::kDraw:  // the attachment, and storage writes of the vertex and fragment shaders
+            return {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                     VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT |
                         VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
         default:
@@ -175,6 +201,7 @@ struct Objects {
     Cleanup gc;
     std::vector<Buffer> buffers;
     std::vector<VkDeviceSize> sizes;
+    std::vector<VkBufferView> texel_views;  // per buffer: its storage texel buffer view, or null
     std::vector<Img> images;
     VkDescriptorSetLayout dsl = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -207,11 +234,22 @@ void Objects::make_resources(const ComputeSpec& s) {
                                      VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
     for (const ComputeBuffer& b : s.buffers) {
         const VkDeviceSize bytes = std::max<VkDeviceSize>(4, b.words.size() * 4);
-        Buffer buf = frame::make_buffer(c, gc, bytes, usage);
+        const bool texel = b.texel_format != VK_FORMAT_UNDEFINED;
+        Buffer buf = frame::make_buffer(c, gc, bytes, texel ? usage | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT : usage);
         std::memset(buf.mapped, 0, bytes);
         if (!b.words.empty()) std::memcpy(buf.mapped, b.words.data(), b.words.size() * 4);
+        VkBufferView view = VK_NULL_HANDLE;
+        if (texel) {
+            VkBufferViewCreateInfo vci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+            vci.buffer = buf.buffer;
+            vci.format = b.texel_format;
+            vci.range = VK_WHOLE_SIZE;
+            vk_check(vkCreateBufferView(c.device, &vci, nullptr, &view), "vkCreateBufferView");
+            later([dev = c.device, view] { vkDestroyBufferView(dev, view, nullptr); });
+        }
         buffers.push_back(buf);
         sizes.push_back(bytes);
+        texel_views.push_back(view);
     }
     for (size_t j = 0; j < s.images.size(); ++j) {
         const ComputeImage& im = s.images[j];
@@ -237,10 +275,13 @@ void Objects::make_resources(const ComputeSpec& s) {
 void Objects::make_descriptors(const ComputeSpec& s) {
     VkDevice dev = c.device;
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    uint32_t nstorage = 0, nuniform = 0;
+    uint32_t nstorage = 0, nuniform = 0, ntexel = 0;
     for (const ComputeBuffer& b : s.buffers) {
-        const VkDescriptorType t = b.uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        (b.uniform ? nuniform : nstorage)++;
+        const bool texel = b.texel_format != VK_FORMAT_UNDEFINED;
+        const VkDescriptorType t = texel       ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER
+                                   : b.uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        (texel ? ntexel : b.uniform ? nuniform : nstorage)++;
         bindings.push_back({uint32_t(bindings.size()), t, 1, kAllStages, nullptr});
     }
     for (size_t j = 0; j < s.images.size(); ++j)
@@ -262,6 +303,7 @@ void Objects::make_descriptors(const ComputeSpec& s) {
     std::vector<VkDescriptorPoolSize> sizes_;
     if (nstorage) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nstorage});
     if (nuniform) sizes_.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nuniform});
+    if (ntexel) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, ntexel});
     if (!s.images.empty()) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint32_t(s.images.size())});
     if (sizes_.empty()) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1});
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -286,7 +328,9 @@ void Objects::make_descriptors(const ComputeSpec& s) {
         w.dstBinding = uint32_t(i);
         w.descriptorCount = 1;
         w.descriptorType = bindings[i].descriptorType;
-        if (i < s.buffers.size()) {
+        if (i < s.buffers.size() && texel_views[i] != VK_NULL_HANDLE) {
+            w.pTexelBufferView = &texel_views[i];
+        } else if (i < s.buffers.size()) {
             binfo[i] = {buffers[i].buffer, 0, VK_WHOLE_SIZE};
             w.pBufferInfo = &binfo[i];
         } else {
@@ -321,6 +365,9 @@ void Objects::make_pipelines(const ComputeSpec& s) {
         ci.stage.module = module(Stage::kCompute, glsl);
         ci.stage.pName = "main";
         ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
+        if (std::any_of(s.steps.begin(), s.steps.end(),
+                        [](const ComputeStep& st) { return st.kind == Kind::kDispatchBase; }))
+            ci.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_KHR;
         ci.layout = layout;
         VkPipeline p;
         vk_check(vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p), "vkCreateComputePipelines");
@@ -437,14 +484,21 @@ void record_step(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, con
     switch (st.kind) {
         case Kind::kDispatch:
         case Kind::kDispatchIndirect:
+        case Kind::kDispatchBase:
             vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.pipelines.at(st.shader));
             vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.layout, 0, 1, &o.set, 0, nullptr);
             if (!s.push.empty())
                 vkCmdPushConstants(cb, o.layout, kAllStages, 0, uint32_t(s.push.size() * 4), s.push.data());
-            if (st.kind == Kind::kDispatch)
+            if (st.kind == Kind::kDispatch) {
                 vkCmdDispatch(cb, st.groups[0], st.groups[1], st.groups[2]);
-            else
+            } else if (st.kind == Kind::kDispatchBase) {
+                const auto base =
+                    reinterpret_cast<PFN_vkCmdDispatchBaseKHR>(vkGetDeviceProcAddr(o.c.device, "vkCmdDispatchBaseKHR"));
+                if (base == nullptr) throw VkError("vkCmdDispatchBaseKHR is not available");
+                base(cb, st.base[0], st.base[1], st.base[2], st.groups[0], st.groups[1], st.groups[2]);
+            } else {
                 vkCmdDispatchIndirect(cb, o.buffers.at(st.src).buffer, st.dst);
+            }
             return;
         case Kind::kFill:
             vkCmdFillBuffer(cb, o.buffers.at(st.dst).buffer, 0, VK_WHOLE_SIZE, st.value);
@@ -541,6 +595,18 @@ std::vector<Plane> run_compute(const DeviceContext& c, const ComputeSpec& s) {
 }
 
 std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
+    if (std::any_of(s.steps.begin(), s.steps.end(),
+                    [](const ComputeStep& st) { return st.kind == Kind::kDispatchBase; }) &&
+        !c.has_extension(VK_KHR_DEVICE_GROUP_EXTENSION_NAME))
+        return "vkCmdDispatchBaseKHR needs VK_KHR_device_group";
+    for (const ComputeBuffer& b : s.buffers) {
+        if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(c.physical, b.texel_format, &fp);
+        if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT))
+            return std::string("format ") + format_name(b.texel_format) +
+                   " lacks VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT";
+    }
     for (const ComputeImage& im : s.images) {
         VkFormatProperties fp;
         vkGetPhysicalDeviceFormatProperties(c.physical, im.format, &fp);

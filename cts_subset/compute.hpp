@@ -16,10 +16,12 @@ struct DeviceContext;
 
 // Set 0, binding i: buffer i (a storage buffer, or a uniform buffer when `uniform`); it is host-visible, starts
 // with `words` and is read back as the plane "buffer<i>" (R32_UINT words, one row) unless `read_back` is false.
+// With `texel_format` set, binding i is a storage texel buffer of that format over the whole buffer instead.
 struct ComputeBuffer {
     std::vector<uint32_t> words;
     bool uniform = false;
     bool read_back = true;
+    VkFormat texel_format = VK_FORMAT_UNDEFINED;
 };
 
 // Set 0, binding (number of buffers) + j: storage image j, 2D, one level, VK_IMAGE_LAYOUT_GENERAL throughout,
@@ -33,15 +35,27 @@ struct ComputeImage {
 };
 
 struct ComputeStep {
-    enum class Kind { kDispatch, kDispatchIndirect, kFill, kCopyBuffer, kCopyBufferToImage, kCopyImageToBuffer, kDraw };
+    enum class Kind {
+        kDispatch,
+        kDispatchIndirect,
+        kDispatchBase,
+        kFill,
+        kCopyBuffer,
+        kCopyBufferToImage,
+        kCopyImageToBuffer,
+        kDraw
+    };
     Kind kind = Kind::kDispatch;
     uint32_t shader = 0;             // dispatches: index into ComputeSpec::shaders
-    uint32_t groups[3] = {1, 1, 1};  // kDispatch: group counts
+    uint32_t groups[3] = {1, 1, 1};  // kDispatch, kDispatchBase: group counts
+    uint32_t base[3] = {0, 0, 0};    // kDispatchBase: the first workgroup (vkCmdDispatchBaseKHR)
     uint32_t src = 0, dst = 0;       // buffer/image indices; kDispatchIndirect: the buffer in src, byte offset in dst
     uint32_t value = 0;              // kFill: the word
 };
 ComputeStep dispatch(uint32_t shader, uint32_t x, uint32_t y = 1, uint32_t z = 1);
 ComputeStep dispatch_indirect(uint32_t shader, uint32_t buffer, uint32_t offset);
+// vkCmdDispatchBaseKHR (VK_KHR_device_group; its pipelines get VK_PIPELINE_CREATE_DISPATCH_BASE_BIT).
+ComputeStep dispatch_base(uint32_t shader, const uint32_t base[3], const uint32_t groups[3]);
 ComputeStep fill(uint32_t buffer, uint32_t value);
 ComputeStep copy_buffer(uint32_t src, uint32_t dst);  // the smaller of the two sizes
 ComputeStep copy_buffer_to_image(uint32_t buffer, uint32_t image);

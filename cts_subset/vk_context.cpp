@@ -22,7 +22,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_PRIMITIVE_TOPOLOGY_LIST_RESTART_EXTENSION_NAME,
                                          VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME,
-                                         VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME};
+                                         VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME,
+                                         VK_KHR_DEVICE_GROUP_EXTENSION_NAME};
 
 }  // namespace
 
@@ -73,9 +74,19 @@ Instance::Instance(ValidationLog* validation) {
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
     const char* layer = "VK_LAYER_KHRONOS_validation";
-    // get_physical_device_properties2 first: the feature structs of the device extensions are read through it.
-    const char* exts[] = {VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME, VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
-                          VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    // get_physical_device_properties2: the feature structs of the device extensions are read through it;
+    // device_group_creation, which VK_KHR_device_group (vkCmdDispatchBaseKHR) needs on a Vulkan 1.0 instance, when
+    // the loader offers it.
+    std::vector<const char*> exts = {VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME};
+    {
+        uint32_t n = 0;
+        vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+        std::vector<VkExtensionProperties> offered(n);
+        vkEnumerateInstanceExtensionProperties(nullptr, &n, offered.data());
+        for (const VkExtensionProperties& e : offered)
+            if (std::strcmp(e.extensionName, VK_KHR_DEVICE_GROUP_CREATION_EXTENSION_NAME) == 0)
+                exts.push_back(VK_KHR_DEVICE_GROUP_CREATION_EXTENSION_NAME);
+    }
     VkDebugUtilsMessengerCreateInfoEXT mci = ValidationLog::messenger_info(validation);
     // The layer's default checks plus synchronization validation (off by default): missing or wrong barriers are
     // harness bugs that a CPU driver, which runs commands in order, would never show in an image.
@@ -83,15 +94,16 @@ Instance::Instance(ValidationLog* validation) {
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
-    ci.enabledExtensionCount = 1;
-    ci.ppEnabledExtensionNames = exts;
     if (validation) {
         features.pNext = &mci;  // messages of vkCreateInstance/vkDestroyInstance themselves
         ci.pNext = &features;
         ci.enabledLayerCount = 1;
         ci.ppEnabledLayerNames = &layer;
-        ci.enabledExtensionCount = 3;
+        exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        exts.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
     }
+    ci.enabledExtensionCount = uint32_t(exts.size());
+    ci.ppEnabledExtensionNames = exts.data();
     vk_check(vkCreateInstance(&ci, nullptr, &instance_),
              validation ? "vkCreateInstance with VK_LAYER_KHRONOS_validation" : "vkCreateInstance");
     if (validation) {

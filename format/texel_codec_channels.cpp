@@ -361,9 +361,9 @@ bool pack_clear_channels(const FormatInfo& f, const uint32_t words[4], uint8_t* 
 
 bool can_store_image(const FormatInfo& f) {
     if ((f.layout != Layout::kArray && f.layout != Layout::kPacked) || f.depth != DepthFormat::None) return false;
-    if (f.kind == ChannelKind::None || f.kind == ChannelKind::Srgb8 || f.kind == ChannelKind::Ufloat11 ||
-        f.kind == ChannelKind::SharedExp)
-        return false;
+    // B10G11R11: lp_build_store_rgba_soa packs it with lp_build_float_to_r11g11b10, the fragment output's conversion
+    if (f.kind == ChannelKind::Ufloat11) return true;
+    if (f.kind == ChannelKind::None || f.kind == ChannelKind::Srgb8 || f.kind == ChannelKind::SharedExp) return false;
     for (int i = 0; i < f.channels; ++i) {
         const Channel& ch = f.channel[i];
         const bool ok = ((ch.numeric == Numeric::kUnorm || ch.numeric == Numeric::kSnorm) && ch.bits <= 16) ||
@@ -375,6 +375,10 @@ bool can_store_image(const FormatInfo& f) {
 }
 
 void store_image_texel(const FormatInfo& f, const uint32_t words[4], uint8_t* texel) {
+    if (f.kind == ChannelKind::Ufloat11) {  // all three fields rewritten, no channel kept (no mask)
+        encode_channels(f, words, texel, UnormPath::Avx8, 0x7);
+        return;
+    }
     for (int i = 0; i < f.channels; ++i) {
         const Channel& ch = f.channel[i];
         bits::insert(texel, ch.shift, ch.bits, image_store_channel(ch, words[rgba_index(ch.component)]));

@@ -18,11 +18,52 @@ namespace {
 
 #include "si_frag_load_frag.h"
 #include "si_gradient_comp.h"
+#include "si_load_a2b10g10r10_uint_comp.h"
+#include "si_load_a2b10g10r10_unorm_comp.h"
+#include "si_load_b10g11r11_ufloat_comp.h"
+#include "si_load_r16_sfloat_comp.h"
+#include "si_load_r16_sint_comp.h"
+#include "si_load_r16_snorm_comp.h"
+#include "si_load_r16_uint_comp.h"
+#include "si_load_r16_unorm_comp.h"
+#include "si_load_r16g16_sfloat_comp.h"
+#include "si_load_r16g16_sint_comp.h"
+#include "si_load_r16g16_snorm_comp.h"
+#include "si_load_r16g16_uint_comp.h"
+#include "si_load_r16g16_unorm_comp.h"
+#include "si_load_r16g16b16a16_snorm_comp.h"
+#include "si_load_r16g16b16a16_unorm_comp.h"
+#include "si_load_r8_sint_comp.h"
+#include "si_load_r8_snorm_comp.h"
+#include "si_load_r8_uint_comp.h"
+#include "si_load_r8_unorm_comp.h"
+#include "si_load_r8g8_sint_comp.h"
+#include "si_load_r8g8_snorm_comp.h"
+#include "si_load_r8g8_uint_comp.h"
+#include "si_load_r8g8_unorm_comp.h"
 #include "si_readback_comp.h"
 #include "si_size_comp.h"
+#include "si_store_a2b10g10r10_uint_comp.h"
+#include "si_store_a2b10g10r10_unorm_comp.h"
+#include "si_store_b10g11r11_ufloat_comp.h"
+#include "si_store_noformat_float_comp.h"
+#include "si_store_noformat_sint_comp.h"
+#include "si_store_noformat_uint_comp.h"
+#include "si_store_r16_sfloat_comp.h"
+#include "si_store_r16_sint_comp.h"
+#include "si_store_r16_snorm_comp.h"
+#include "si_store_r16_uint_comp.h"
+#include "si_store_r16_unorm_comp.h"
+#include "si_store_r16g16_sfloat_comp.h"
+#include "si_store_r16g16_sint_comp.h"
+#include "si_store_r16g16_snorm_comp.h"
+#include "si_store_r16g16_uint_comp.h"
+#include "si_store_r16g16_unorm_comp.h"
 #include "si_store_r16g16b16a16_sfloat_comp.h"
 #include "si_store_r16g16b16a16_sint_comp.h"
+#include "si_store_r16g16b16a16_snorm_comp.h"
 #include "si_store_r16g16b16a16_uint_comp.h"
+#include "si_store_r16g16b16a16_unorm_comp.h"
 #include "si_store_r32_sfloat_comp.h"
 #include "si_store_r32_sint_comp.h"
 #include "si_store_r32_uint_comp.h"
@@ -32,13 +73,26 @@ namespace {
 #include "si_store_r32g32b32a32_sfloat_comp.h"
 #include "si_store_r32g32b32a32_sint_comp.h"
 #include "si_store_r32g32b32a32_uint_comp.h"
+#include "si_store_r8_sint_comp.h"
+#include "si_store_r8_snorm_comp.h"
+#include "si_store_r8_uint_comp.h"
+#include "si_store_r8_unorm_comp.h"
+#include "si_store_r8g8_sint_comp.h"
+#include "si_store_r8g8_snorm_comp.h"
+#include "si_store_r8g8_uint_comp.h"
+#include "si_store_r8g8_unorm_comp.h"
 #include "si_store_r8g8b8a8_sint_comp.h"
 #include "si_store_r8g8b8a8_snorm_comp.h"
 #include "si_store_r8g8b8a8_uint_comp.h"
 #include "si_store_r8g8b8a8_unorm_comp.h"
 #include "si_transform_comp.h"
 
-class ApiStorageImage : public ApiBreadth {};
+struct ExtFormat;
+class ApiStorageImage : public ApiBreadth {
+  protected:
+    void check_extended_store(const ExtFormat& ef, const Spv& spv, Device* tilevk = nullptr,
+                              Device* lavapipe = nullptr);
+};
 
 constexpr uint32_t kW = 16, kH = 8;  // every storage image here (the shaders' 2x2 workgroups of 8x4)
 constexpr VkImageUsageFlags kStorageUsage =
@@ -437,6 +491,263 @@ TEST_F(ApiStorageImage, ComputeThenDrawAndDrawThenCompute) {
         }
     }
     EXPECT_EQ(wrong, 0u);
+}
+
+// ---- shaderStorageImageExtendedFormats --------------------------------------------------------------------------
+
+// One channel of a texel read as a little-endian integer: its RGBA index, first bit and width (the spec's format
+// definitions: array formats from the lowest address, packed formats from the top bit down).
+struct ExtChannel {
+    int rgba, shift, bits;
+};
+struct ExtFormat {
+    VkFormat format;
+    Spv store, load;
+    Kind kind;
+    bool ufloat;  // B10G11R11: unsigned 11/11/10-bit floats, 5-bit exponents
+    uint32_t bytes;
+    std::vector<ExtChannel> channels;
+};
+
+std::vector<ExtFormat> extended_formats() {
+    const std::vector<ExtChannel> r8{{0, 0, 8}}, rg8{{0, 0, 8}, {1, 8, 8}}, r16{{0, 0, 16}},
+        rg16{{0, 0, 16}, {1, 16, 16}}, rgba16{{0, 0, 16}, {1, 16, 16}, {2, 32, 16}, {3, 48, 16}},
+        a2b10g10r10{{0, 0, 10}, {1, 10, 10}, {2, 20, 10}, {3, 30, 2}}, b10g11r11{{0, 0, 11}, {1, 11, 11}, {2, 22, 10}};
+#define EXT(F, name, kind, uf, bytes, ch) \
+    { VK_FORMAT_##F, SPV(si_store_##name##_comp), SPV(si_load_##name##_comp), Kind::kind, uf, bytes, ch }
+    return {
+        EXT(R16G16_SFLOAT, r16g16_sfloat, Float, false, 4, rg16),
+        EXT(B10G11R11_UFLOAT_PACK32, b10g11r11_ufloat, Float, true, 4, b10g11r11),
+        EXT(R16_SFLOAT, r16_sfloat, Float, false, 2, r16),
+        EXT(R16G16B16A16_UNORM, r16g16b16a16_unorm, Unorm, false, 8, rgba16),
+        EXT(A2B10G10R10_UNORM_PACK32, a2b10g10r10_unorm, Unorm, false, 4, a2b10g10r10),
+        EXT(R16G16_UNORM, r16g16_unorm, Unorm, false, 4, rg16),
+        EXT(R8G8_UNORM, r8g8_unorm, Unorm, false, 2, rg8),
+        EXT(R16_UNORM, r16_unorm, Unorm, false, 2, r16),
+        EXT(R8_UNORM, r8_unorm, Unorm, false, 1, r8),
+        EXT(R16G16B16A16_SNORM, r16g16b16a16_snorm, Snorm, false, 8, rgba16),
+        EXT(R16G16_SNORM, r16g16_snorm, Snorm, false, 4, rg16),
+        EXT(R8G8_SNORM, r8g8_snorm, Snorm, false, 2, rg8),
+        EXT(R16_SNORM, r16_snorm, Snorm, false, 2, r16),
+        EXT(R8_SNORM, r8_snorm, Snorm, false, 1, r8),
+        EXT(R16G16_SINT, r16g16_sint, Sint, false, 4, rg16),
+        EXT(R8G8_SINT, r8g8_sint, Sint, false, 2, rg8),
+        EXT(R16_SINT, r16_sint, Sint, false, 2, r16),
+        EXT(R8_SINT, r8_sint, Sint, false, 1, r8),
+        EXT(A2B10G10R10_UINT_PACK32, a2b10g10r10_uint, Uint, false, 4, a2b10g10r10),
+        EXT(R16G16_UINT, r16g16_uint, Uint, false, 4, rg16),
+        EXT(R8G8_UINT, r8g8_uint, Uint, false, 2, rg8),
+        EXT(R16_UINT, r16_uint, Uint, false, 2, r16),
+        EXT(R8_UINT, r8_uint, Uint, false, 1, r8),
+    };
+#undef EXT
+}
+
+// lavapipe's float -> unsigned small float (lp_bld_format_float.c lp_build_float_to_smallfloat, as the rule states
+// it): negative and -Inf -> 0, +Inf -> Inf, NaN -> exponent and top mantissa bit set; otherwise the mantissa cut to
+// `mbits` bits, the largest finite value past it, and below 2^-14 the float product x * 2^-112 (a float denormal:
+// round to nearest even at 2^-149) whose mantissa keeps its top `mbits` bits.
+uint32_t expected_ufloat(uint32_t word, int mbits) {
+    const uint32_t exp_ones = 31u << mbits;
+    if ((word & 0x7fffffffu) > 0x7f800000u) return exp_ones | (1u << (mbits - 1));
+    if (word == 0x7f800000u) return exp_ones;
+    if (word >> 31) return 0;
+    const uint32_t cut = word & ~((1u << (23 - mbits)) - 1u);
+    const double v = double(f32(cut));
+    const double largest = std::ldexp(double((2u << mbits) - 1u), 15 - mbits);  // 2^15 * (2 - 2^-mbits)
+    if (v >= largest) return (30u << mbits) | ((1u << mbits) - 1u);
+    if (v >= std::ldexp(1.0, -14)) {
+        int e = 0;
+        const double m = std::frexp(v, &e);  // v = m * 2^e, m in [0.5, 1)
+        return uint32_t(e - 1 + 15) << mbits | (uint32_t(std::ldexp(m, mbits + 1)) & ((1u << mbits) - 1u));
+    }
+    const auto denormal = uint32_t(std::nearbyint(std::ldexp(v, 37)));  // x * 2^-112 in units of 2^-149
+    return denormal >> (23 - mbits);
+}
+
+// The words stored into a format: the kind's edge cases, then random values (store_words); for the small floats
+// their own edges (the largest finite values, denormals, the cut mantissa) and values up to 70000.
+std::vector<uint32_t> extended_store_words(const ExtFormat& ef) {
+    if (!ef.ufloat)
+        return store_words(StoreFormat{ef.format, {}, ef.kind, 4, ef.channels[0].bits}, uint32_t(ef.format));
+    std::vector<uint32_t> w;
+    for (float f : {0.0f,     -0.0f,    1.0f,     -1.0f,    0.1f,        65024.0f,         65023.0f,
+                    64512.0f, 64600.0f, 65100.0f, 70000.0f, 1e-5f,       6.103515625e-05f, 6.0e-05f,
+                    3.0e-6f,  1e-9f,    1e-30f,   3.0e38f,  1.00390625f, 1.0078125f,       1.015625f})
+        w.push_back(std::bit_cast<uint32_t>(f));
+    for (uint32_t b : {0x7fc00000u, 0xffc00001u, 0x7f800000u, 0xff800000u, 0x7f800001u, 0x00000001u}) w.push_back(b);
+    std::mt19937 rng(uint32_t(ef.format));
+    std::uniform_real_distribution<float> small(-0.01f, 1e-4f), wide(-100.0f, 70000.0f);
+    while (w.size() < size_t(kW) * kH * 4) w.push_back(std::bit_cast<uint32_t>(rng() % 3 ? wide(rng) : small(rng)));
+    return w;
+}
+
+uint32_t expected_ext_store(const ExtFormat& ef, const ExtChannel& ch, uint32_t word) {
+    if (ef.ufloat) return expected_ufloat(word, ch.bits - 5);
+    const uint32_t mask = ch.bits == 32 ? 0xffffffffu : (1u << ch.bits) - 1u;
+    switch (ef.kind) {
+        case Kind::Unorm: {  // the low n bits of fl(fl(c * (2^n-1)/2^n) + 2^(23-n)): rne(c * (2^n-1)) in floats
+            const float c = clamp_upper_first(f32(word), 0.0f, 1.0f);
+            const float scale = float(double(mask) / double(mask + 1u));
+            return std::bit_cast<uint32_t>(c * scale + float(1u << (23 - ch.bits))) & mask;
+        }
+        case Kind::Snorm:
+            return uint32_t(int32_t(std::nearbyint(clamp_upper_first(f32(word), -1.0f, 1.0f) * float(mask >> 1)))) &
+                   mask;
+        default:
+            return expected_channel(ef.kind, ch.bits, word);
+    }
+}
+
+uint64_t texel_bits(const Bytes& b, size_t at, uint32_t bytes) {
+    uint64_t v = 0;
+    std::memcpy(&v, &b[at], bytes);
+    return v;
+}
+
+// si_store.comp (or the format-less si_store_noformat.comp) into one extended format, every texel checked against
+// the rules above; the bytes are compared with lavapipe by both().
+void ApiStorageImage::check_extended_store(const ExtFormat& ef, const Spv& spv, Device* tilevk, Device* lavapipe) {
+    const std::vector<uint32_t> words = extended_store_words(ef);
+    const StoreFormat sf{ef.format, spv, ef.kind, 1, int(ef.bytes * 8)};
+    const auto scene = [&](Kit& k) { return store_scene(k, sf, words); };
+    const Bytes got = tilevk != nullptr ? both_on(*tilevk, *lavapipe, scene) : both(scene);
+    ASSERT_EQ(got.size(), size_t(ef.bytes) * kW * kH) << "format " << ef.format;
+    size_t wrong = 0;
+    for (size_t i = 0; i < size_t(kW) * kH; ++i) {
+        const uint64_t texel = texel_bits(got, i * ef.bytes, ef.bytes);
+        for (const ExtChannel& ch : ef.channels) {
+            const uint32_t word = words[i * 4 + size_t(ch.rgba)];
+            const auto have = uint32_t((texel >> ch.shift) & ((uint64_t(1) << ch.bits) - 1u));
+            const uint32_t want = expected_ext_store(ef, ch, word);
+            if (have != want && wrong++ < 4)
+                ADD_FAILURE() << "format " << ef.format << " texel " << i << " channel " << ch.rgba << ": stored 0x"
+                              << std::hex << have << ", the rule says 0x" << want << " (word 0x" << word << ")"
+                              << std::dec;
+        }
+    }
+    EXPECT_EQ(wrong, 0u) << "format " << ef.format;
+}
+
+// Every format of shaderStorageImageExtendedFormats reports STORAGE_IMAGE on tilevk and stores by the rules.
+TEST_F(ApiStorageImage, EveryExtendedFormatStoresByTheRules) {
+    VkPhysicalDeviceFeatures features{};
+    vkGetPhysicalDeviceFeatures(tilevk_->physical(), &features);
+    EXPECT_TRUE(features.shaderStorageImageExtendedFormats);
+    for (const ExtFormat& ef : extended_formats()) {
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), ef.format, &fp);
+        EXPECT_TRUE(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) << "format " << ef.format;
+        check_extended_store(ef, ef.store);
+    }
+}
+
+// shaderStorageImageWriteWithoutFormat: the same stores from shaders that declare no format (Unknown), one per
+// sampled type, into formats of every kind: the view's format converts, exactly as with the qualifier.
+TEST_F(ApiStorageImage, StoresWithoutFormatConvertByTheView) {
+    VkPhysicalDeviceFeatures features{};
+    vkGetPhysicalDeviceFeatures(tilevk_->physical(), &features);
+    EXPECT_TRUE(features.shaderStorageImageWriteWithoutFormat);
+    VkPhysicalDeviceFeatures enable{};
+    enable.shaderStorageImageExtendedFormats = VK_TRUE;
+    enable.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+    Device tdev(tilevk_->physical(), &enable), ldev(lavapipe_->physical(), &enable);
+    ASSERT_TRUE(tdev.ok() && ldev.ok());
+    for (const ExtFormat& ef : extended_formats()) {
+        const Spv spv = ef.kind == Kind::Sint   ? SPV(si_store_noformat_sint_comp)
+                        : ef.kind == Kind::Uint ? SPV(si_store_noformat_uint_comp)
+                                                : SPV(si_store_noformat_float_comp);
+        check_extended_store(ef, spv, &tdev, &ldev);
+    }
+}
+
+// A half's value (exact; NaNs quieted with their payload kept, as VCVTPH2PS).
+uint32_t half_bits_to_float_bits(uint32_t h) {
+    const uint32_t sign = (h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
+    if (e == 31) return sign | 0x7f800000u | (m << 13) | (m ? 0x400000u : 0u);
+    const float mag = e == 0 ? std::ldexp(float(m), -24) : std::ldexp(float(m | 0x400u), int(e) - 25);
+    return sign | std::bit_cast<uint32_t>(mag);
+}
+
+// An unsigned small float's value (5-bit exponent, `mbits` mantissa): exact; Inf and NaN with the mantissa on top.
+uint32_t ufloat_bits_to_float_bits(uint32_t v, int mbits) {
+    const uint32_t e = (v >> mbits) & 0x1fu, m = v & ((1u << mbits) - 1u);
+    if (e == 31) return 0x7f800000u | (m << (23 - mbits));
+    return std::bit_cast<uint32_t>(e == 0 ? std::ldexp(float(m), -14 - mbits)
+                                          : std::ldexp(float(m | (1u << mbits)), int(e) - 15 - mbits));
+}
+
+// One loaded channel, as a texel fetch decodes it: UNORM c * fl(1/(2^n-1)), SNORM max(c * fl(1/(2^(n-1)-1)), -1),
+// integers zero- or sign-extended.
+uint32_t expected_ext_load(const ExtFormat& ef, const ExtChannel& ch, uint32_t c) {
+    const uint32_t mask = (1u << ch.bits) - 1u;
+    const auto sext = [&] { return int32_t(c << (32 - ch.bits)) >> (32 - ch.bits); };
+    if (ef.ufloat) return ufloat_bits_to_float_bits(c, ch.bits - 5);
+    switch (ef.kind) {
+        case Kind::Unorm:
+            return std::bit_cast<uint32_t>(float(c) * float(1.0 / double(mask)));
+        case Kind::Snorm:
+            return std::bit_cast<uint32_t>(std::max(float(sext()) * float(1.0 / double(mask >> 1)), -1.0f));
+        case Kind::Float:
+            return half_bits_to_float_bits(c);
+        case Kind::Uint:
+            return c;
+        case Kind::Sint:
+            return uint32_t(sext());
+    }
+    return 0;
+}
+
+// si_load.comp on every extended format filled with random bytes, each invocation loading the texel to its left
+// (column 0 loads outside: (0, 0, 0) and alpha 0, or 1 when the format has no alpha); missing channels read 0 and
+// alpha 1 (the integer 1 for integer formats).
+TEST_F(ApiStorageImage, EveryExtendedFormatLoadsLikeATexelFetch) {
+    for (const ExtFormat& ef : extended_formats()) {
+        std::vector<uint8_t> data(size_t(ef.bytes) * kW * kH);
+        std::mt19937 rng(uint32_t(ef.format) * 7u);
+        for (auto& b : data) b = uint8_t(rng());
+        const Bytes got = both([&](Kit& k) {
+            Device::Image img = k.image(ef.format, kW, kH, kStorageUsage);
+            fill(k, img.image, data);
+            const Device::Buffer out = k.buffer(size_t(kW) * kH * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            const SetOf s = set_of(k, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+            write_storage_image(k, s.set, 0, k.view(img.image, ef.format, VK_IMAGE_ASPECT_COLOR_BIT));
+            write_buffer(k, s.set, 1, out);
+            const VkPipeline p = compute_pipeline(k, ef.load, s.layout);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+                vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+                vkCmdDispatch(c, kW / 8, kH / 4, 1);
+            }),
+                      VK_SUCCESS);
+            return Kit::bytes(out);
+        });
+        ASSERT_EQ(got.size(), size_t(kW) * kH * 16) << "format " << ef.format;
+        const bool integer = ef.kind == Kind::Uint || ef.kind == Kind::Sint;
+        const uint32_t one = integer ? 1u : std::bit_cast<uint32_t>(1.0f);
+        const bool has_alpha = ef.channels.size() == 4;
+        size_t wrong = 0;
+        for (uint32_t y = 0; y < kH; ++y) {
+            for (uint32_t x = 0; x < kW; ++x) {
+                uint32_t want[4] = {0, 0, 0, one};
+                if (x == 0) {
+                    want[3] = has_alpha ? 0u : one;
+                } else {
+                    const uint64_t texel = texel_bits(data, (size_t(y) * kW + x - 1) * ef.bytes, ef.bytes);
+                    for (const ExtChannel& ch : ef.channels)
+                        want[ch.rgba] =
+                            expected_ext_load(ef, ch, uint32_t((texel >> ch.shift) & ((uint64_t(1) << ch.bits) - 1u)));
+                }
+                uint32_t have[4];
+                std::memcpy(have, &got[(size_t(y) * kW + x) * 16], 16);
+                if (std::memcmp(have, want, 16) != 0 && wrong++ < 4)
+                    ADD_FAILURE() << "format " << ef.format << " (" << x << ", " << y << "): loaded " << std::hex
+                                  << have[0] << " " << have[1] << " " << have[2] << " " << have[3] << ", want "
+                                  << want[0] << " " << want[1] << " " << want[2] << " " << want[3] << std::dec;
+            }
+        }
+        EXPECT_EQ(wrong, 0u) << "format " << ef.format;
+    }
 }
 
 }  // namespace
