@@ -67,10 +67,9 @@ Features make_supported() {
     // api_breadth ApiStagesStores.
     c.vertexPipelineStoresAndAtomics = VK_TRUE;
     c.fragmentStoresAndAtomics = VK_TRUE;
-    // Storage images of the 23 extended formats (format/support.txt) and stores without a declared format, each
-    // converted by the view's format as lavapipe does (api_breadth ApiStorageImage.EveryExtendedFormat*).
+    // Storage images of the 23 extended formats (format/support.txt), converted as lavapipe converts them
+    // (api_breadth ApiStorageImage.EveryExtendedFormat*, cts compute.image.*).
     c.shaderStorageImageExtendedFormats = VK_TRUE;
-    c.shaderStorageImageWriteWithoutFormat = VK_TRUE;
 
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
     // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.

@@ -44,9 +44,6 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::ImageBuffer:      // storage texel buffers: imageLoad / imageStore / atomics / imageSize
         case spv::Capability::StorageImageExtendedFormats:
-        // imageStore always converts to the bound view's format (texture.cpp exec_image_store), as lavapipe does, so
-        // a store without a declared format needs nothing more. Loads without one are not offered (lavapipe neither).
-        case spv::Capability::StorageImageWriteWithoutFormat:
         case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
         case spv::Capability::SampledImageArrayDynamicIndexing:
