@@ -50,9 +50,11 @@ void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);
 CaseList all_cases();
 // The fuzzers' cases for one seed (tilevk-cts --fuzz): random.seed_N and extreme.random.seed_N, built from the
-// minimisation knobs in the environment at the time of the call (TILEVK_CTS_RANDOM_DRAWS, TILEVK_CTS_EXTREME_KEEP).
+// minimisation knobs in the environment at the time of the call (TILEVK_CTS_RANDOM_DRAWS, TILEVK_CTS_EXTREME_KEEP),
+// and random.compute.seed_N (cases_random_compute.cpp; one dispatch, nothing to minimise).
 Case random_seed_case(uint32_t seed);
 Case extreme_seed_case(uint32_t seed);
+Case random_compute_seed_case(uint32_t seed);
 
 // --- scene helpers ---
 inline Vertex vtx(float x, float y, float z = 0.0f, float w = 1.0f, std::array<float, 4> c = {1, 1, 1, 1}) {

@@ -143,12 +143,14 @@ void add_random_compute_cases(CaseList& out) {
         if (std::sscanf(env, "%u:%u", &first, &count) != 2)
             throw std::runtime_error("TILEVK_CTS_RANDOM_COMPUTE_SEEDS: expected FIRST:COUNT, got " + std::string(env));
     }
-    for (uint32_t seed = first; seed < first + count; ++seed) {
-        Case c;
-        c.name = "random.compute.seed_" + std::to_string(seed);
-        c.scene = [seed] { return compute_scene(random_compute_spec(seed)); };
-        out.push_back(std::move(c));
-    }
+    for (uint32_t seed = first; seed < first + count; ++seed) out.push_back(random_compute_seed_case(seed));
+}
+
+Case random_compute_seed_case(uint32_t seed) {
+    Case c;
+    c.name = "random.compute.seed_" + std::to_string(seed);
+    c.scene = [seed] { return compute_scene(random_compute_spec(seed)); };
+    return c;
 }
 
 }  // namespace tilevk::cts

@@ -110,6 +110,13 @@ int run_fuzz(const FuzzConfig& cfg, const std::function<CaseResult(const Case&)>
                             ":1 TILEVK_CTS_EXTREME_KEEP=" + hex(mask) +
                             " TILEVK_CTS_EXTREME_DUMP=1 tilevk-cts --filter " + ec.name);
         }
+        // A compute shader is one dispatch: no part to drop, the dump prints its GLSL.
+        const Case cc = random_compute_seed_case(seed);
+        if (const CaseResult r = run(cc); r.status == Status::kFail) {
+            ++failures;
+            report(cfg, cc.name + ": " + r.reason + " | TILEVK_CTS_RANDOM_COMPUTE_SEEDS=" + std::to_string(seed) +
+                            ":1 TILEVK_CTS_RANDOM_DUMP=1 tilevk-cts --filter " + cc.name);
+        }
         if (!have_spirv_ctx && !(have_spirv_ctx = open_tilevk(spirv_ctx))) {
             ++failures;
             report(cfg, "spirv seed " + std::to_string(seed) + ": no tilevk device to run mutations on");

@@ -2,6 +2,7 @@
 // printed, so any failure can be reproduced), seed after seed until the time or the seed budget is spent:
 //   the random differential scene random.seed_N (tilevk against lavapipe, byte for byte),
 //   the extreme-vertex scene extreme.random.seed_N (byte for byte, or the exact answer where lavapipe is wrong),
+//   the random compute shader random.compute.seed_N (byte for byte),
 //   and a SPIR-V mutation of seed N of random.seed_N's shaders, created and drawn on tilevk alone (a clean error or
 //   a frame; never a crash or a hang: the last "fuzz: spirv seed N" line names the culprit if the process dies).
 // A failing scene is minimised (draws / triangles dropped while it still fails) and reported with the command that

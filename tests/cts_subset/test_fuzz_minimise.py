@@ -1,6 +1,7 @@
 """End-to-end proof that tilevk-cts --fuzz catches, minimises and reproduces a failure: with --selftest-perturb one
-bit of the device-under-test's read-back is flipped, so the seed's random scene and its extreme-vertex scene must
-both fail; the minimiser must then keep exactly one draw / one triangle (any part still fails), the failure lines
+bit of the device-under-test's read-back is flipped, so the seed's random scene, its extreme-vertex scene and its
+random compute shader must all fail; the minimiser must then keep exactly one draw / one triangle (any part still
+fails; the compute case has no parts), the failure lines
 must also be in the --fuzz-log file, and each printed reproduction (environment + --filter) must run that one
 case again and fail it."""
 import json
@@ -25,14 +26,15 @@ with tempfile.TemporaryDirectory() as tmp:
     if logged != fails:
         problems.append(f"the log file holds {logged}, expected the printed failures {fails}")
     for name, knob in ((f"random.seed_{seed}", "TILEVK_CTS_RANDOM_DRAWS"),
-                       (f"extreme.random.seed_{seed}", "TILEVK_CTS_EXTREME_KEEP")):
+                       (f"extreme.random.seed_{seed}", "TILEVK_CTS_EXTREME_KEEP"),
+                       (f"random.compute.seed_{seed}", None)):
         line = next((f for f in fails if f.startswith(name + ":")), None)
         if line is None:
             problems.append(f"{name}: no failure reported")
             continue
         reproduction = line.split(" | ", 1)[1].split()
         env = dict(kv.split("=", 1) for kv in reproduction if "=" in kv and not kv.startswith("-"))
-        mask = int(env.get(knob, "0"), 16)
+        mask = int(env.get(knob, "0"), 16) if knob else 1
         if bin(mask).count("1") != 1:
             problems.append(f"{name}: {knob}={env.get(knob)} keeps {bin(mask).count('1')} parts, expected 1")
         args = reproduction[reproduction.index("tilevk-cts") + 1:]
