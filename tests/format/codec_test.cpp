@@ -214,6 +214,30 @@ TEST(ImageStore, ChannelsFollowTheStoreRules) {
     EXPECT_FALSE(can_store_image(format_info(Format::D32_SFLOAT)));
 }
 
+// The packed extended storage formats by hand: A2B10G10R10 UNORM rne(x * 1023) in floats (0.5 -> 511.5 -> 512, NaN
+// -> 1023) and alpha rne(0.4 * 3) = 1; B10G11R11 1.0 = 2^0 -> exponent 15, 0.5 -> 14, 70000 past 64512 -> the
+// largest 10-bit value (30 << 5 | 31), each field in its place (R bits 0-10, G 11-21, B 22-31).
+TEST(ImageStore, PackedExtendedFormats) {
+    const auto word = [](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    uint8_t bytes[4] = {};
+    const auto texel = [&] {
+        uint32_t t;
+        std::memcpy(&t, bytes, 4);
+        return t;
+    };
+    const uint32_t a2b10[4] = {word(1.0f), word(0.5f), 0x7fc00000u, word(0.4f)};
+    store_image_texel(format_info(Format::A2B10G10R10_UNORM_PACK32), a2b10, bytes);
+    EXPECT_EQ(texel(), 1023u | 512u << 10 | 1023u << 20 | 1u << 30);
+    const uint32_t uf[4] = {word(1.0f), word(0.5f), word(70000.0f), word(9.0f)};
+    store_image_texel(format_info(Format::B10G11R11_UFLOAT_PACK32), uf, bytes);
+    EXPECT_EQ(texel(), (15u << 6) | (14u << 6) << 11 | (30u << 5 | 31u) << 22);
+    EXPECT_TRUE(can_store_image(format_info(Format::B10G11R11_UFLOAT_PACK32)));
+}
+
 TEST(FormatTable, SupportNeedsTheCodec) {
     int supported = 0;
     for (size_t i = 0; i < size_t(Format::kCount); ++i) {
