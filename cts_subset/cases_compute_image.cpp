@@ -145,6 +145,45 @@ void add_copy_case(CaseList& out, const StorageFormat& f) {
                      all_of({words_are(0, {kW, kH}), check}));
 }
 
+// The same copy through storage texel buffers: 64 texels loaded from texel buffer 0 and stored mirrored into texel
+// buffer 1 of the same format, and the loaded values' bits (floatBitsToUint for float formats) into buffer 2.
+void add_texel_buffer_copy_case(CaseList& out, const StorageFormat& f) {
+    constexpr uint32_t kN = 64;
+    const std::string type = std::string(f.prefix) + "imageBuffer";
+    const std::string bits = std::string(f.prefix).empty() ? "floatBitsToUint" : "uvec4";
+    ComputeSpec s;
+    s.shaders = {glsl_header(kN) + "layout(binding=0, " + f.qualifier + ") readonly uniform " + type +
+                 " src;\n"
+                 "layout(binding=1, " +
+                 f.qualifier + ") writeonly uniform " + type +
+                 " dst;\n"
+                 "layout(std430, binding=2) buffer B { uvec4 loaded[]; };\n"
+                 "void main() {\n"
+                 "  int i = int(gl_GlobalInvocationID.x);\n"
+                 "  imageStore(dst, " +
+                 std::to_string(kN - 1) + " - i, imageLoad(src, i));\n  loaded[i] = " + bits +
+                 "(imageLoad(src, i));\n"
+                 "}\n"};
+    const std::vector<uint8_t> in = texels(f, kN, uint32_t(f.format) + 1000u);
+    std::vector<uint32_t> words((in.size() + 3) / 4, 0);
+    std::memcpy(words.data(), in.data(), in.size());
+    s.buffers = {{words, false, true, f.format},
+                 {std::vector<uint32_t>(words.size(), kMarker), false, true, f.format},
+                 {std::vector<uint32_t>(kN * 4, kMarker)}};
+    s.steps = {dispatch(0, 1)};
+    std::vector<uint8_t> want(in.size());
+    for (uint32_t i = 0; i < kN; ++i)
+        std::memcpy(&want[(kN - 1 - i) * f.texel_bytes], &in[i * f.texel_bytes], f.texel_bytes);
+    if (is_snorm(f.format) && snorm_bits(f.format) == 8)
+        for (uint8_t& b : want) b = b == 0x80 ? 0x81 : b;
+    if (is_snorm(f.format) && snorm_bits(f.format) == 16)
+        for (size_t i = 0; i + 1 < want.size(); i += 2)
+            if (want[i] == 0x00 && want[i + 1] == 0x80) want[i] = 0x01;
+    std::vector<uint32_t> want_words(words.size(), 0);
+    std::memcpy(want_words.data(), want.data(), want.size());
+    add_compute_case(out, std::string("texel_buffer.load_store.") + f.name, std::move(s), words_are(1, want_words));
+}
+
 // imageStore of values computed from the invocation (conversions, rounding and clamping of out-of-range values
 // in the format's direction): byte comparison only.
 void add_store_case(CaseList& out, const StorageFormat& f) {
@@ -270,6 +309,7 @@ void add_sync_cases(CaseList& out) {
 void add_compute_image_cases(CaseList& out) {
     for (const StorageFormat& f : kFormats) add_copy_case(out, f);
     for (const StorageFormat& f : kFormats) add_store_case(out, f);
+    for (const StorageFormat& f : kFormats) add_texel_buffer_copy_case(out, f);
     add_sync_cases(out);
 }
 
