@@ -205,7 +205,6 @@ bool pack_clear_channels(const FormatInfo& f, const uint32_t words[4], uint8_t* 
 //   SNORM n (n <= 16)  rne(fl(clamp(x, -1, 1) * (2^(n-1)-1))) (NaN -> 2^(n-1)-1), masked to n bits
 //   UINT / SINT        unsigned min with 2^n-1 / clamped to [-2^(n-1), 2^(n-1)-1]; 32-bit channels as they are
 //   SFLOAT             16-bit float_to_half_rtz (lp_build_float_to_half), 32-bit the float's bits
-//   B10G11R11_UFLOAT   lp_build_float_to_r11g11b10: encode_channels' small-float conversion (all three channels)
 // The clamps take the upper bound first (lp_build_clamp: MINPS then MAXPS), which sends NaN to the upper bound.
 // Loads (imageLoad) decode through decode_color, as texel fetches do (lp_build_fetch_rgba_soa).
 
