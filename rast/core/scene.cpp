@@ -101,8 +101,11 @@ uint32_t Scene::reserve(uint32_t n) {
 }
 
 SetupStatus Scene::setup_triangle_at(uint32_t slot, const TriangleInput& tri, bool* ccw) {
+    // Not cleared first: setup writes every field a binned primitive's readers use (the header, and the planes and
+    // pixel planes up to num_planes; add_triangle's Prim leaves pix[] beyond them undefined too). A 1x triangle
+    // then leaves 3 of the Prim's 9 cache lines unwritten: the store is a large part of a small triangle's
+    // memory traffic.
     Prim& p = prims_[slot];
-    p = Prim{};
     const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p);
     if (st != SetupStatus::kAccepted) return st;
     reserved_boxes_[slot - (num_prims_ - reserved_boxes_.size())] = tile_box(p);
