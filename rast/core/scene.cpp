@@ -101,8 +101,11 @@ uint32_t Scene::reserve(uint32_t n) {
 }
 
 SetupStatus Scene::setup_triangle_at(uint32_t slot, const TriangleInput& tri, bool* ccw) {
+    // Not cleared first: setup writes every field a binned primitive's readers use (the header, and the planes and
+    // pixel planes up to num_planes; add_triangle's Prim leaves pix[] beyond them undefined too). A 1x triangle
+    // then leaves 3 of the Prim's 9 cache lines unwritten: the store is a large part of a small triangle's
+    // memory traffic.
     Prim& p = prims_[slot];
-    p = Prim{};
     const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p);
     if (st != SetupStatus::kAccepted) return st;
     reserved_boxes_[slot - (num_prims_ - reserved_boxes_.size())] = tile_box(p);
@@ -111,25 +114,46 @@ SetupStatus Scene::setup_triangle_at(uint32_t slot, const TriangleInput& tri, bo
 }
 
 void Scene::bin_reserved(uint32_t first, uint32_t n, ThreadPool& pool) {
-    // Bands of tile rows: each task walks every reserved primitive in API order and bins it into the band's rows
-    // only, so every bin gets its commands in API order whatever the number of tasks or threads.
+    // Bands of tile rows, each binned by one task into its rows only, so every bin gets its commands in API order
+    // whatever the number of tasks or threads. First the slots are sorted into bands, chunk by chunk (a slot in
+    // the rows of several bands goes to each), so a band task visits its own slots only: walking every slot in
+    // every band cost O(bands x slots).
     const int32_t rows_per_band =
         pool.num_workers() == 1 ? tiles_y_ : std::max<int32_t>(1, tiles_y_ / int32_t(4 * pool.num_workers()));
     const size_t bands = size_t((tiles_y_ + rows_per_band - 1) / rows_per_band);
+    constexpr uint32_t kChunk = 4096;
+    const size_t chunks = (size_t(n) + kChunk - 1) / kChunk;
+    if (band_slots_.size() < chunks * bands) band_slots_.resize(chunks * bands);  // never shrinks: reused
+    chunk_accepted_.assign(chunks, 0);
+    pool.run(chunks, [&](unsigned, size_t chunk) {
+        std::vector<uint32_t>* lists = band_slots_.data() + chunk * bands;
+        for (size_t b = 0; b < bands; ++b) lists[b].clear();
+        const uint32_t end = std::min<uint32_t>(n, uint32_t(chunk) * kChunk + kChunk);
+        uint32_t accepted = 0;
+        for (uint32_t i = uint32_t(chunk) * kChunk; i < end; ++i) {
+            const TileBox& b = reserved_boxes_[i];  // an empty row range for a slot not accepted
+            if (b.ty0 > b.ty1) continue;
+            ++accepted;
+            for (int32_t band = b.ty0 / rows_per_band; band <= b.ty1 / rows_per_band; ++band) lists[band].push_back(i);
+        }
+        chunk_accepted_[chunk] = accepted;
+    });
     band_stats_.assign(bands, SceneStats{});
     pool.run(bands, [&](unsigned, size_t band) {
         const int32_t ty_begin = int32_t(band) * rows_per_band, ty_end = std::min(tiles_y_, ty_begin + rows_per_band);
-        for (uint32_t i = 0; i < n; ++i) {
-            const TileBox& b = reserved_boxes_[i];  // an empty row range for a slot not accepted
-            if (b.ty1 < ty_begin || b.ty0 >= ty_end || b.ty0 > b.ty1) continue;
-            bin_rows(first + i, b, ty_begin, ty_end, &band_stats_[band]);
-        }
+        // Counted on the stack and stored once: the bands' totals are neighbours in band_stats_, and a counter
+        // bumped per command there would bounce its cache line between the threads.
+        SceneStats local;
+        for (size_t chunk = 0; chunk < chunks; ++chunk)  // chunks in order: API order within the band
+            for (const uint32_t i : band_slots_[chunk * bands + band])
+                bin_rows(first + i, reserved_boxes_[i], ty_begin, ty_end, &local);
+        band_stats_[band] = local;
     });
     for (const SceneStats& b : band_stats_) {
         stats_.bin_cmds += b.bin_cmds;
         stats_.whole_tiles += b.whole_tiles;
     }
-    for (uint32_t i = 0; i < n; ++i) stats_.prims += reserved_boxes_[i].ty0 <= reserved_boxes_[i].ty1;
+    for (const uint32_t a : chunk_accepted_) stats_.prims += a;
 }
 
 void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_empty_tiles) {

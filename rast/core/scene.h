@@ -89,9 +89,11 @@ class Scene {
     std::vector<TileBox> reserved_boxes_;  // per reserved slot: its tiles once set up and accepted
     std::vector<std::vector<BinCmd>> bins_;
     SceneStats stats_;
-    // Reused from scene to scene (a steady frame allocates nothing): per tile band of bin_reserved, the tiles to
-    // render, per-worker coverage scratch.
+    // Reused from scene to scene (a steady frame allocates nothing): per tile band of bin_reserved and its slots
+    // per chunk, the tiles to render, per-worker coverage scratch.
     std::vector<SceneStats> band_stats_;
+    std::vector<std::vector<uint32_t>> band_slots_;  // [chunk * bands + band]: the chunk's slots in the band's rows
+    std::vector<uint32_t> chunk_accepted_;           // per chunk of bin_reserved: its accepted slots
     std::vector<uint32_t> tiles_to_render_;
     std::vector<std::unique_ptr<TileScratch>> scratch_;
 };

@@ -1,5 +1,6 @@
 #include "rast/geometry/primitive_assembly.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace tilevk::rast::geometry {
@@ -71,6 +72,15 @@ struct Emitter {
 
 uint32_t assemble_primitives(const IndexSource& src, Topology t, bool flatshade_first, uint32_t* out,
                              size_t out_capacity) {
+    // A non-indexed list: primitive k is vertices first + per*k .. first + per*k + per - 1 (fetch_index without an
+    // index buffer, no restart), written in one pass instead of vertex by vertex through the topology switch.
+    const uint32_t per = vertices_per_primitive(t);
+    const bool list = t == Topology::kPointList || t == Topology::kLineList || t == Topology::kTriangleList;
+    if (src.indices == nullptr && list) {
+        const uint32_t prims = static_cast<uint32_t>(std::min<size_t>(src.count / per, out_capacity / per));
+        for (size_t i = 0; i < size_t(prims) * per; ++i) out[i] = src.first + static_cast<uint32_t>(i);
+        return prims;
+    }
     Emitter e{t, out, out_capacity};
     // State of the current run: run position n, first vertex (fans), last two vertices (strips/lists).
     uint32_t n = 0;

@@ -591,6 +591,23 @@ void Renderer::emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const Dr
 void Renderer::unique_vertices(size_t n) {
     unique_.clear();
     if (n == 0) return;
+    // Consecutive indices (every non-indexed list draw): each is used once, in order, so slot i is index first + i.
+    const uint32_t first = assembled_[0];
+    bool consecutive = uint64_t(first) + n - 1 <= 0xFFFFFFFFull;  // no 32-bit wrap
+    for (size_t i = 0; i < n && consecutive; i += 1024) {
+        const size_t end = std::min(n, i + 1024);
+        bool run = true;  // a branch-free inner loop per block, so the check vectorizes
+        for (size_t k = i; k < end; ++k) run &= assembled_[k] == first + static_cast<uint32_t>(k);
+        consecutive = run;
+    }
+    if (consecutive) {
+        unique_.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            unique_[i] = first + static_cast<uint32_t>(i);
+            assembled_[i] = static_cast<uint32_t>(i);
+        }
+        return;
+    }
     const auto [lo_it, hi_it] = std::minmax_element(assembled_.begin(), assembled_.begin() + n);
     const uint32_t lo = *lo_it;
     const uint64_t range = uint64_t(*hi_it) - lo + 1;

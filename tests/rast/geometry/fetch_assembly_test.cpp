@@ -307,6 +307,28 @@ TEST(PrimitiveAssembly, IndexFetchRules) {
     EXPECT_EQ(assemble_primitives(na, Topology::kTriangleList, true, out.data(), 2), 0u);
 }
 
+// Non-indexed lists (a path of their own, written in one pass): vertex first + i for every vertex of a whole
+// primitive, the incomplete last one dropped, the 32-bit position wrapping as fetch_index's does, never more
+// primitives than the output holds; each checked against the strip/fan-free rule spelled out here.
+TEST(PrimitiveAssembly, NonIndexedListsAreConsecutiveVertices) {
+    std::vector<uint32_t> out(64, 0xDEADBEEFu);
+    for (const Topology t : {Topology::kPointList, Topology::kLineList, Topology::kTriangleList}) {
+        const uint32_t per = vertices_per_primitive(t);
+        for (const uint32_t first : {0u, 5u, 0xFFFFFFFEu}) {
+            IndexSource na;
+            na.first = first;
+            na.count = 20;  // 20, 10 and 6 whole primitives (two vertices of a triangle left over)
+            std::fill(out.begin(), out.end(), 0xDEADBEEFu);
+            const uint32_t prims = assemble_primitives(na, t, true, out.data(), out.size());
+            ASSERT_EQ(prims, 20 / per);
+            for (uint32_t i = 0; i < prims * per; ++i) EXPECT_EQ(out[i], uint32_t(first + i)) << i;
+            EXPECT_EQ(out[prims * per], 0xDEADBEEFu) << "past the last whole primitive";
+            // an output of 7 indices holds 7 / per whole primitives
+            EXPECT_EQ(assemble_primitives(na, t, true, out.data(), 7), 7 / per);
+        }
+    }
+}
+
 TEST(LavapipeQuirks, NineVertexTriangleList) {
     // first six vertices: the aero rectangle (X0,Y0) (X0,Y1) (X1,Y1) | (X1,Y0) (X1,Y1) (X0,Y0); last three on y = 7
     const float aero[9][2] = {{1, 2}, {1, 5}, {4, 5}, {4, 2}, {4, 5}, {1, 2}, {0, 7}, {3, 7}, {9, 7}};

@@ -329,5 +329,46 @@ TEST_F(RenderTest, LargeDrawsGiveTheSameBytesForEveryThreadCount) {
     }
 }
 
+// One blended draw large enough that Scene::bin_reserved sorts its slots in several chunks into several tile bands
+// (and triangles that cross band boundaries), overlapping so that every pixel blends many triangles: the colours
+// show the order in which each tile received them. A pool of one bins them one after the other (add_triangle), the
+// reference; 2, 3 and 8 threads split the setup and the bands differently and must give the same bytes.
+TEST_F(RenderTest, LargeBlendedDrawKeepsApiOrderAcrossChunksAndBands) {
+    const int w = 256, h = 320;  // 5 tile rows: several bands at every thread count above one
+    uint64_t state = 7;
+    auto rnd = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(uint32_t(state >> 40)) / float(1u << 24);
+    };
+    std::vector<Vertex> v;
+    for (int t = 0; t < 20000; ++t) {  // ~5 chunks of bin_reserved
+        const float cx = rnd() * 2 - 1, cy = rnd() * 2 - 1;
+        const float s = t % 13 == 0 ? 0.9f : 0.12f;  // some span several tiles and bands
+        const float c[4] = {rnd(), rnd(), rnd(), 0.5f};
+        for (int k = 0; k < 3; ++k)
+            v.push_back({{std::clamp(cx + (rnd() - 0.5f) * s, -0.999f, 0.999f),
+                          std::clamp(cy + (rnd() - 0.5f) * s, -0.999f, 0.999f), 0.5f, 1},
+                         {c[0], c[1], c[2], c[3]}});
+    }
+    auto render = [&](unsigned threads) {
+        Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 0), {}};
+        ThreadPool pool(threads);
+        Renderer r(pool, Method::kHier);
+        PipelineState blend = make_pipeline(vs.get(), fs.get(), w, h);
+        blend.blend[0].blend_enable = true;
+        blend.blend[0].src_color = blend.blend[0].src_alpha = fragment::BlendFactor::SrcAlpha;
+        blend.blend[0].dst_color = blend.blend[0].dst_alpha = fragment::BlendFactor::OneMinusSrcAlpha;
+        r.begin(make_fb(img, false));
+        draw(r, blend, v);
+        r.end();
+        return img;
+    };
+    const Image one = render(1);
+    size_t lit = 0;
+    for (size_t i = 0; i < one.rgba.size(); i += 4) lit += one.rgba[i + 3] != 0;
+    EXPECT_GT(lit, one.rgba.size() / 4 * 9 / 10) << "the draw should cover the target";
+    for (unsigned threads : {2u, 3u, 8u}) EXPECT_EQ(one.rgba, render(threads).rgba) << threads << " threads";
+}
+
 }  // namespace
 }  // namespace tilevk::rast::render
