@@ -2,6 +2,7 @@
 #include "command_buffer.h"
 
 #include <atomic>
+#include <type_traits>
 
 #include "buffer.h"
 #include "descriptor_pool.h"
@@ -34,54 +35,43 @@ T* const* objects(CommandBuffer* cb, const typename T::Handle* handles, uint32_t
     return out;
 }
 
+// The copy/resolve commands: two objects and an array of regions copied into the command buffer's arena.
+template <class Cmd, class SrcHandle, class DstHandle, class Region>
+void record_regions(VkCommandBuffer commandBuffer, SrcHandle src, DstHandle dst, uint32_t count,
+                    const Region* regions) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    if (auto* c = cb->append<Cmd>()) {
+        c->src = from_handle<std::remove_pointer_t<decltype(c->src)>>(src);
+        c->dst = from_handle<std::remove_pointer_t<decltype(c->dst)>>(dst);
+        c->count = count;
+        c->regions = cb->copy(regions, count);
+    }
+}
+
 }  // namespace
 
 // ---- transfer ------------------------------------------------------------------------------------------------
 VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBuffer(VkCommandBuffer commandBuffer, VkBuffer srcBuffer, VkBuffer dstBuffer,
                                              uint32_t regionCount, const VkBufferCopy* pRegions) {
-    CommandBuffer* cb = cb_of(commandBuffer);
-    if (auto* c = cb->append<CmdCopyBuffer>()) {
-        c->src = from_handle<Buffer>(srcBuffer);
-        c->dst = from_handle<Buffer>(dstBuffer);
-        c->count = regionCount;
-        c->regions = cb->copy(pRegions, regionCount);
-    }
+    record_regions<CmdCopyBuffer>(commandBuffer, srcBuffer, dstBuffer, regionCount, pRegions);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyImage(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
                                             VkImage dstImage, VkImageLayout, uint32_t regionCount,
                                             const VkImageCopy* pRegions) {
-    CommandBuffer* cb = cb_of(commandBuffer);
-    if (auto* c = cb->append<CmdCopyImage>()) {
-        c->src = from_handle<Image>(srcImage);
-        c->dst = from_handle<Image>(dstImage);
-        c->count = regionCount;
-        c->regions = cb->copy(pRegions, regionCount);
-    }
+    record_regions<CmdCopyImage>(commandBuffer, srcImage, dstImage, regionCount, pRegions);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyBufferToImage(VkCommandBuffer commandBuffer, VkBuffer srcBuffer, VkImage dstImage,
                                                     VkImageLayout, uint32_t regionCount,
                                                     const VkBufferImageCopy* pRegions) {
-    CommandBuffer* cb = cb_of(commandBuffer);
-    if (auto* c = cb->append<CmdCopyBufferToImage>()) {
-        c->src = from_handle<Buffer>(srcBuffer);
-        c->dst = from_handle<Image>(dstImage);
-        c->count = regionCount;
-        c->regions = cb->copy(pRegions, regionCount);
-    }
+    record_regions<CmdCopyBufferToImage>(commandBuffer, srcBuffer, dstImage, regionCount, pRegions);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdCopyImageToBuffer(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
                                                     VkBuffer dstBuffer, uint32_t regionCount,
                                                     const VkBufferImageCopy* pRegions) {
-    CommandBuffer* cb = cb_of(commandBuffer);
-    if (auto* c = cb->append<CmdCopyImageToBuffer>()) {
-        c->src = from_handle<Image>(srcImage);
-        c->dst = from_handle<Buffer>(dstBuffer);
-        c->count = regionCount;
-        c->regions = cb->copy(pRegions, regionCount);
-    }
+    record_regions<CmdCopyImageToBuffer>(commandBuffer, srcImage, dstBuffer, regionCount, pRegions);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdUpdateBuffer(VkCommandBuffer commandBuffer, VkBuffer dstBuffer,
@@ -133,13 +123,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdClearDepthStencilImage(VkCommandBuffer command
 VKAPI_ATTR void VKAPI_CALL tvk_CmdResolveImage(VkCommandBuffer commandBuffer, VkImage srcImage, VkImageLayout,
                                                VkImage dstImage, VkImageLayout, uint32_t regionCount,
                                                const VkImageResolve* pRegions) {
-    CommandBuffer* cb = cb_of(commandBuffer);
-    if (auto* c = cb->append<CmdResolveImage>()) {
-        c->src = from_handle<Image>(srcImage);
-        c->dst = from_handle<Image>(dstImage);
-        c->count = regionCount;
-        c->regions = cb->copy(pRegions, regionCount);
-    }
+    record_regions<CmdResolveImage>(commandBuffer, srcImage, dstImage, regionCount, pRegions);
 }
 
 // ---- synchronisation -----------------------------------------------------------------------------------------

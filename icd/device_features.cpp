@@ -70,6 +70,11 @@ Features make_supported() {
     // Storage images of the 23 extended formats (format/support.txt), converted as lavapipe converts them
     // (api_breadth ApiStorageImage.EveryExtendedFormat*, cts compute.image.*).
     c.shaderStorageImageExtendedFormats = VK_TRUE;
+    // Uniform and storage buffer arrays at dynamically uniform indices: shader/ carries the element in a register
+    // per lane, clamped to the array as robust indexing (api_breadth ApiDynamicIndexing). The sampled and storage
+    // image forms stay VK_FALSE as in lavapipe 22.3.6, which has no reference for them.
+    c.shaderUniformBufferArrayDynamicIndexing = VK_TRUE;
+    c.shaderStorageBufferArrayDynamicIndexing = VK_TRUE;
 
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
     // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.

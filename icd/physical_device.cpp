@@ -83,8 +83,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.minStorageBufferOffsetAlignment = 16;
     l.minTexelOffset = -8;
     l.maxTexelOffset = 7;
-    l.minTexelGatherOffset = 0;
-    l.maxTexelGatherOffset = 0;
+    // OpImageGather's constant offsets (shader/texture.cpp gather_texels), lavapipe's range.
+    l.minTexelGatherOffset = -32;
+    l.maxTexelGatherOffset = 31;
     l.minInterpolationOffset = -0.5f;
     l.maxInterpolationOffset = 0.4375f;
     l.subPixelInterpolationOffsetBits = 4;

@@ -209,7 +209,9 @@ enum SampleFlags : uint32_t {
     kSample1D = 64,          // 1D image: one coordinate (plus layer)
     kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
     kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
+    kSampleGather = 512,     // OpImageGather / OpImageDrefGather: level 0's 2x2 footprint, component in bits 10..11
 };
+constexpr uint32_t kSampleGatherCompShift = 10;
 
 constexpr uint32_t kNoReg = 0xFFFFFFFFu;
 

@@ -137,6 +137,34 @@ Axis clamp_edge_axis(float c, int32_t n, int32_t off) {
     return {i, std::min(i + 1, n - 1), c - fl};
 }
 
+// REPEAT on a level whose size is not a power of two, in lavapipe's float filter (lp_bld_sample_soa.c
+// lp_build_coord_repeat_npot_linear): the offset joins the normalized coordinate (off / n), the wrap is its
+// fraction, c = fract(s) * n - 0.5; c < 0 or NaN (an unordered compare) takes texel n - 1, else floor(c); the
+// second texel is the next one, 0 after n - 1. Near a texel-centre crossover this can pick the texel before the
+// one floor(s * n - 0.5) picks, with a weight just below 1.
+Axis repeat_npot_axis(float s, int32_t n, int32_t off) {
+    if (off) s = s + float(off) / float(n);
+    const float f = s - std::floor(s);
+    const float c = f * float(n) - 0.5f;
+    const float fl = std::floor(c);
+    const int32_t i = !(c >= 0.0f) ? n - 1 : int32_t(fl);
+    return {i, i != n - 1 ? i + 1 : 0, c - fl};
+}
+
+bool power_of_two(int32_t n) {
+    return (n & (n - 1)) == 0;
+}
+
+// REPEAT nearest on a size that is not a power of two (lp_build_sample_wrap_nearest): the offset joins the
+// normalized coordinate, the texel is trunc(min(fract(s + off/n), 1 - 2^-24) * n) (a NaN fraction takes the
+// bound: texel n - 1).
+int32_t repeat_npot_nearest(float s, int32_t n, int32_t off) {
+    if (off) s = s + float(off) / float(n);
+    float f = s - std::floor(s);
+    f = (f == f) ? std::min(f, 0x1.fffffep-1f) : 0x1.fffffep-1f;
+    return std::clamp(int32_t(f * float(n)), 0, n - 1);
+}
+
 Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
                   bool linear, bool one_d, const SampleArgs& args) {
     const ImageLevel& il = img.level[level];
@@ -158,7 +186,16 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         if (args.dref) return {compare_values(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
-    if (!linear) return fetch(floor_index(u, smp.address_u), one_d ? 0 : floor_index(v, smp.address_v));
+    if (!linear) {
+        // fetch() adds the offsets again: the REPEAT npot index is handed over without them
+        const auto nearest = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
+            return m == AddressMode::Repeat && !smp.unnormalized && !power_of_two(n)
+                       ? repeat_npot_nearest(st, n, off) - off
+                       : floor_index(un, m);
+        };
+        return fetch(nearest(s, u, lv.w, args.off_x, smp.address_u),
+                     one_d ? 0 : nearest(t, v, lv.h, args.off_y, smp.address_v));
+    }
     // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint. A NaN coordinate on a
     // CLAMP_TO_BORDER axis reads the border with the weight NaN - floor(NaN) = NaN (lp_build_ifloor_fract), which
     // the lerps carry into the result.
@@ -176,6 +213,10 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         ay = mirror_axis(t, lv.h, args.off_y);
     if (smp.address_u == AddressMode::ClampToEdge) ax = clamp_edge_axis(u, lv.w, args.off_x);
     if (!one_d && smp.address_v == AddressMode::ClampToEdge) ay = clamp_edge_axis(v, lv.h, args.off_y);
+    if (smp.address_u == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.w))
+        ax = repeat_npot_axis(s, lv.w, args.off_x);
+    if (!one_d && smp.address_v == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.h))
+        ay = repeat_npot_axis(t, lv.h, args.off_y);
     a = ax.w, b = one_d ? 0.0f : ay.w;
     // fetch() adds the offsets again: hand it offset-free indices
     i0 = ax.i0 - args.off_x, i1 = ax.i1 - args.off_x, j0 = ay.i0 - args.off_y, j1 = ay.i1 - args.off_y;
@@ -199,6 +240,93 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         r[c] = one_d ? x0 : lerp(b, x0, lerp(a, t01[c], t11[c]));
     }
     return r;
+}
+
+// One axis of OpImageGather's 2x2 footprint (lp_build_sample_wrap_linear with is_gather): the two texel indices
+// before the offsets and wrap of `fetch_gather` where *final is false, else final. `s` is the normalized
+// coordinate, `u` = s * n (texels). Gather's own forms, where they differ from the filter's:
+// CLAMP_TO_EDGE truncates c - 0.5 and c + 0.5 of the clamped coordinate (texels 0 and 0 next to the edge, not 0
+// and 1); MIRRORED_REPEAT mirrors the coordinate with its sign kept, and it and MIRROR_CLAMP_TO_EDGE fold negative
+// indices by ones' complement (a NaN, INT_MIN from cvttps2dq, ends at n - 1).
+void gather_axis(float s, float u, int32_t n, int32_t off, AddressMode m, int32_t* i0, int32_t* i1, bool* final) {
+    const auto ifloor = [](float x) {
+        return x == x && std::fabs(x) < 2147483648.0f ? int32_t(std::floor(x)) : INT32_MIN;
+    };
+    const auto fold = [n](int32_t i) { return std::min(i < 0 ? ~i : i, n - 1); };
+    *final = true;
+    switch (m) {
+        case AddressMode::ClampToEdge: {
+            float c = u;
+            if (off) c = c + float(off);
+            c = c < float(n) ? c : float(n);
+            c = c > 0.0f ? c : 0.0f;
+            *i0 = int32_t(c - 0.5f);
+            *i1 = std::min(int32_t(c + 0.5f), n - 1);
+            return;
+        }
+        case AddressMode::MirroredRepeat: {
+            if (off) s = s + float(off) / float(n);
+            const float h = s * 0.5f;
+            const float f = h - std::nearbyint(h);
+            const float c = (f + f) * float(n);
+            const int32_t j = ifloor(c - 0.5f);
+            *i0 = fold(j), *i1 = fold(j + 1);
+            return;
+        }
+        case AddressMode::MirrorClampToEdge: {
+            float c = u;
+            if (off) c = c + float(off);
+            const int32_t j = ifloor(c - 0.5f);
+            *i0 = fold(j), *i1 = fold(j + 1);
+            return;
+        }
+        case AddressMode::Repeat:
+            if (!power_of_two(n)) {
+                const Axis a = repeat_npot_axis(s, n, off);
+                *i0 = a.i0, *i1 = a.i1;
+                return;
+            }
+            [[fallthrough]];
+        default:
+            *final = false;
+            *i0 = floor_index(u - 0.5f, m);
+            *i1 = *i0 + 1;
+            return;
+    }
+}
+
+// OpImageGather / OpImageDrefGather at level 0 of the view (gallivm's gather: mip filter NONE, min and mag filter
+// LINEAR, lp_build_sample_image_linear): component `comp` (through the view's swizzle) of the footprint's texels,
+// or their depth comparisons, in the order (i0, j1), (i1, j1), (i1, j0), (i0, j0). A ZERO or ONE swizzle gives
+// zeros or ones.
+Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer, uint32_t comp,
+                   const SampleArgs& args) {
+    const uint8_t swz = img.swizzle[comp & 3];
+    const float one = integer_format(img) ? std::bit_cast<float>(1u) : 1.0f;
+    if (swz == kSwizzleOne) return {one, one, one, one};
+    if (swz >= 4) return {0, 0, 0, 0};
+    const ImageLevel& il = img.level[0];
+    Level lv;
+    lv.w = int32_t(img.width), lv.h = int32_t(img.height);
+    lv.fi = &format::format_info(img.format);
+    lv.bpp = lv.fi->bytes;
+    lv.row_pitch = il.row_pitch;
+    lv.base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
+    const float u = smp.unnormalized ? s : s * float(lv.w);
+    const float v = smp.unnormalized ? t : t * float(lv.h);
+    int32_t x[2], y[2];
+    bool x_final, y_final;
+    gather_axis(s, u, lv.w, args.off_x, smp.address_u, &x[0], &x[1], &x_final);
+    gather_axis(t, v, lv.h, args.off_y, smp.address_v, &y[0], &y[1], &y_final);
+    const Vec4 border = border_color(smp);
+    auto value = [&](int32_t i, int32_t j) {
+        const int32_t wx = x_final ? i : wrap(i + args.off_x, lv.w, smp.address_u);
+        const int32_t wy = y_final ? j : wrap(j + args.off_y, lv.h, smp.address_v);
+        const Vec4 c = (wx < 0 || wy < 0) ? border : texel(lv, wx, wy);
+        if (args.dref) return compare_values(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f;
+        return c[swz];
+    };
+    return {value(x[0], y[1]), value(x[1], y[1]), value(x[1], y[0]), value(x[0], y[0])};
 }
 
 using Bytes = std::array<int32_t, 4>;
@@ -265,14 +393,10 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
-        // REPEAT with a non-power-of-two size wraps the float coordinate: trunc(min(fract(s + off/n), 1-2^-24)*n)
         auto axis = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
-            if (m != AddressMode::Repeat || (n & (n - 1)) == 0 || smp.unnormalized)
+            if (m != AddressMode::Repeat || power_of_two(n) || smp.unnormalized)
                 return wrap(safe_floor(un) + off, n, m);
-            if (off) st = st + float(off) / float(n);
-            float f = st - std::floor(st);
-            f = (f == f) ? std::min(f, 0x1.fffffep-1f) : 0x1.fffffep-1f;
-            return std::clamp(int32_t(f * float(n)), 0, n - 1);
+            return repeat_npot_nearest(st, n, off);
         };
         int32_t x = axis(s, u, w, args.off_x, smp.address_u);
         int32_t y = one_d ? 0 : axis(t, v, h, args.off_y, smp.address_v);
@@ -373,13 +497,17 @@ float final_lambda(const SamplerState& smp, float lambda) {
 
 // One filtered lookup at a final lambda: level selection (mag / nearest / linear mip), lavapipe's 8-bit path or
 // its float path, the view's swizzle (not for depth comparisons).
+// The array layer a sampling coordinate selects: rounded to nearest even, clamped to the view's layers, NaN as 0.
+uint32_t layer_index(const ImageView& img, float layer_f) {
+    return uint32_t(std::nearbyint(std::clamp(layer_f == layer_f ? layer_f : 0.0f, 0.0f, float(img.layers - 1))));
+}
+
 Vec4 sample_lambda(const ImageView& img, const SamplerState& smp, float lambda, float s, float t, float layer_f,
                    bool one_d, bool dref, const SampleArgs& args) {
     const bool mag = lambda <= 0.0f;
     const bool linear = (mag ? smp.mag_filter : smp.min_filter) == Filter::Linear;
     const uint32_t max_level = img.levels - 1;
-    const float lyr = std::nearbyint(std::clamp(layer_f == layer_f ? layer_f : 0.0f, 0.0f, float(img.layers - 1)));
-    const uint32_t layer = uint32_t(lyr);
+    const uint32_t layer = layer_index(img, layer_f);
     Vec4 r;
     if (integer_format(img) && (smp.min_filter == Filter::Linear || smp.mag_filter == Filter::Linear ||
                                 smp.mipmap_mode == MipmapMode::Linear)) {
@@ -577,6 +705,11 @@ void exec_sample(const ImageOperands& op) {
         }
         if (!img || !smp) {
             op.write(l, {0, 0, 0, 0});
+            continue;
+        }
+        if (in.imm & kSampleGather) {
+            op.write(l, gather_texels(*img, *smp, s[l], t[l], layer_index(*img, layer_f[l]),
+                                      (in.imm >> kSampleGatherCompShift) & 3, args));
             continue;
         }
         LodInput lod;

@@ -20,8 +20,10 @@ bool Translator::image_sample(const Instr& in) {
         if (o != spv::Op::OpImageFetch) fail("texel buffers are read with texelFetch only");
         flags |= kSample1D;  // one row of `range / texel size` texels, level 0
     }
+    const bool gather = o == spv::Op::OpImageGather || o == spv::Op::OpImageDrefGather;
     bool dref = o == spv::Op::OpImageSampleDrefImplicitLod || o == spv::Op::OpImageSampleDrefExplicitLod ||
-                o == spv::Op::OpImageSampleProjDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefExplicitLod;
+                o == spv::Op::OpImageSampleProjDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefExplicitLod ||
+                o == spv::Op::OpImageDrefGather;
     bool proj = o == spv::Op::OpImageSampleProjImplicitLod || o == spv::Op::OpImageSampleProjExplicitLod ||
                 o == spv::Op::OpImageSampleProjDrefImplicitLod || o == spv::Op::OpImageSampleProjDrefExplicitLod;
     bool implicit = o == spv::Op::OpImageSampleImplicitLod || o == spv::Op::OpImageSampleProjImplicitLod ||
@@ -29,7 +31,15 @@ bool Translator::image_sample(const Instr& in) {
     if (integer && dref) fail("depth comparison on an integer image");
     if (proj) flags |= kSampleProj;
     uint32_t lod = kNoReg, grad = 0;
-    size_t first_op = dref ? 6 : 5;  // the Dref variants carry the reference before the image operands
+    // The Dref variants carry the reference, OpImageGather its component, before the image operands.
+    size_t first_op = dref || gather ? 6 : 5;
+    if (gather) {
+        if (spv::Dim(it.dim) != spv::Dim::Dim2D) fail(opname(o) + " on an image that is not 2D (no cube images)");
+        uint32_t comp = 0;
+        if (o == spv::Op::OpImageGather && (!const_of(in[5], comp) || comp > 3))
+            fail("OpImageGather: the component is not a constant 0..3");
+        flags |= kSampleGather | comp << kSampleGatherCompShift;
+    }
     uint32_t operands = in.n > first_op ? in[first_op] : 0;
     size_t at = first_op + 1;
     if (operands & uint32_t(spv::ImageOperandsMask::Bias)) {
@@ -64,10 +74,14 @@ bool Translator::image_sample(const Instr& in) {
     }
     // SignExtend / ZeroExtend (SPIR-V 1.4; glslang marks every integer sample and fetch with them) take no operand
     // words and change nothing here: texels are widened to 32 bits by their format's own signedness.
+    if (gather && (operands & uint32_t(spv::ImageOperandsMask::Offset | spv::ImageOperandsMask::ConstOffsets)))
+        fail(opname(o) + " with a non-constant offset or four offsets (shaderImageGatherExtended is not supported)");
     uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
                                           spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset |
                                           spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
     if (other) fail("unsupported image operands (dynamic offsets, min lod, sample) in " + opname(o));
+    if (gather && (flags & (kSampleBias | kSampleExplicitLod | kSampleGrad)))
+        fail(opname(o) + " with a bias, LOD or gradients");
     if (implicit) {
         if (stage_ != Stage::Fragment) fail("implicit-LOD sampling outside a fragment shader");
         flags |= kSampleImplicitLod;
@@ -83,7 +97,7 @@ bool Translator::image_sample(const Instr& in) {
         for (uint32_t i = 0; i < ncoord; ++i) emit(SOp::Mov, coords + i, reg(in[4]) + i);
         emit(SOp::Mov, coords + ncoord, reg(in[5]));
         ++ncoord;
-        d = alloc(4);
+        d = alloc(4);  // OpImageDrefGather's four comparisons, the other forms' scalar in the first
         vals_[in[2]] = Value{d, in[1]};
     } else {
         if (type(in[1]).flat != 4) fail("image result must be a 4-component vector");
@@ -197,6 +211,8 @@ bool Translator::op_image(const Instr& in) {
         case spv::Op::OpImageSampleDrefExplicitLod:
         case spv::Op::OpImageSampleProjDrefImplicitLod:
         case spv::Op::OpImageSampleProjDrefExplicitLod:
+        case spv::Op::OpImageGather:
+        case spv::Op::OpImageDrefGather:
             return image_sample(in);
         case spv::Op::OpImageWrite:
             storage_image_access(in);

@@ -7,23 +7,13 @@
 #include <random>
 #include <vector>
 
+#include "bench/shader/bench_shaders.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/renderer.h"
 #include "tests/shader/glsl.h"
 
 namespace tilevk::rast::render {
 namespace {
-
-constexpr const char* kPassVs = R"(#version 450
-layout(location = 0) in vec4 pos;
-layout(location = 1) in vec4 color;
-layout(location = 0) out vec4 v_color;
-void main() { gl_Position = pos; v_color = color; })";
-
-constexpr const char* kColorFs = R"(#version 450
-layout(location = 0) in vec4 v_color;
-layout(location = 0) out vec4 o;
-void main() { o = v_color; })";
 
 struct Vertex {
     float pos[4];
@@ -33,8 +23,10 @@ struct Vertex {
 constexpr int kSize = 1024;
 
 struct Fixture {
-    std::shared_ptr<const shader::Program> vs = shader::test::make_program(shader::Stage::Vertex, kPassVs);
-    std::shared_ptr<const shader::Program> fs = shader::test::make_program(shader::Stage::Fragment, kColorFs);
+    std::shared_ptr<const shader::Program> vs =
+        shader::test::make_program(shader::Stage::Vertex, bench_shaders::kPassVs);
+    std::shared_ptr<const shader::Program> fs =
+        shader::test::make_program(shader::Stage::Fragment, bench_shaders::kPassFs);
     std::vector<uint8_t> rgba;
     std::vector<float> depth;
 };

@@ -122,6 +122,26 @@ Result create_in_tier(const std::vector<uint32_t>& spirv, Stage stage, bool comp
     return r;
 }
 
+// Two vec4 inputs that differ per lane and location.
+FragmentBlock fragment_inputs() {
+    FragmentBlock fb;
+    for (int l = 0; l < kLanes; ++l)
+        for (int loc = 0; loc < 2; ++loc)
+            for (int c = 0; c < 4; ++c)
+                fb.inputs[loc][c][l] =
+                    std::bit_cast<uint32_t>(0.1f * float(lane_x(l) + c) + 0.05f * float(lane_y(l) + loc));
+    return fb;
+}
+
+// The timed loop of the fragment benchmarks: one 16-lane block per iteration.
+void time_fragment(benchmark::State& state, const Program& program, const Bindings& b, FragmentBlock& fb, Scratch& s) {
+    for (auto _ : state) {
+        program.run_fragment(b, fb, s);
+        benchmark::DoNotOptimize(fb.outputs[0][0][0]);
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * kLanes);
+}
+
 void BM_Fragment(benchmark::State& state, const char* src, bool compiled) {
     auto spirv = compile(Stage::Fragment, src);
     Result r = create_in_tier(spirv, Stage::Fragment, compiled);
@@ -130,18 +150,9 @@ void BM_Fragment(benchmark::State& state, const char* src, bool compiled) {
         return;
     }
     Fixture fx;
-    FragmentBlock fb;
-    for (int l = 0; l < kLanes; ++l)
-        for (int loc = 0; loc < 2; ++loc)
-            for (int c = 0; c < 4; ++c)
-                fb.inputs[loc][c][l] =
-                    std::bit_cast<uint32_t>(0.1f * float(lane_x(l) + c) + 0.05f * float(lane_y(l) + loc));
+    FragmentBlock fb = fragment_inputs();
     Scratch s;
-    for (auto _ : state) {
-        r.program->run_fragment(fx.b, fb, s);
-        benchmark::DoNotOptimize(fb.outputs[0][0][0]);
-    }
-    state.SetItemsProcessed(int64_t(state.iterations()) * kLanes);
+    time_fragment(state, *r.program, fx.b, fb, s);
     state.counters["simd_insts"] = double(r.program->instruction_count());
 }
 
@@ -203,12 +214,7 @@ void BM_LlvmFragment(benchmark::State& state, const char* src, int opt) {
         return;
     }
     Fixture fx;
-    FragmentBlock fb;
-    for (int l = 0; l < kLanes; ++l)
-        for (int loc = 0; loc < 2; ++loc)
-            for (int c = 0; c < 4; ++c)
-                fb.inputs[loc][c][l] =
-                    std::bit_cast<uint32_t>(0.1f * float(lane_x(l) + c) + 0.05f * float(lane_y(l) + loc));
+    FragmentBlock fb = fragment_inputs();
     Scratch s;
     {  // the probe's code must give the interpreter's bits, or its speed means nothing
         Result ref = create_in_tier(spirv, Stage::Fragment, false);
@@ -221,11 +227,7 @@ void BM_LlvmFragment(benchmark::State& state, const char* src, int opt) {
             return;
         }
     }
-    for (auto _ : state) {
-        r.program->run_fragment(fx.b, fb, s);
-        benchmark::DoNotOptimize(fb.outputs[0][0][0]);
-    }
-    state.SetItemsProcessed(int64_t(state.iterations()) * kLanes);
+    time_fragment(state, *r.program, fx.b, fb, s);
 }
 #endif
 

@@ -213,9 +213,11 @@ class WaylandTarget final : public PresentTarget {
         if (w.get_error(shm_.display()) != 0) return VK_ERROR_SURFACE_LOST_KHR;
         pump(0);
         Buffer* free_buffer = find_free();
-        // A compositor holds a buffer until a newer one replaces it; with three there is normally one free. A hidden
-        // surface may keep them longer: wait a few refreshes, then drop this frame rather than block.
-        const auto give_up = std::chrono::steady_clock::now() + 4 * refresh_interval();
+        // A compositor holds a buffer until a newer one replaces it; with three there is normally one free. A busy
+        // compositor (a loaded machine) may need several refreshes to release one, and a hidden surface may keep
+        // them: wait up to a second (or four refreshes, if longer), then drop this frame rather than block forever.
+        const auto give_up = std::chrono::steady_clock::now() + std::max<std::chrono::steady_clock::duration>(
+                                                                    4 * refresh_interval(), std::chrono::seconds(1));
         while (free_buffer == nullptr && std::chrono::steady_clock::now() < give_up) {
             pump(int(std::chrono::duration_cast<std::chrono::milliseconds>(refresh_interval()).count()) + 1);
             free_buffer = find_free();

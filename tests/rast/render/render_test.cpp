@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "bench/shader/bench_shaders.h"
 #include "rast/core/thread_pool.h"
 #include "rast/render/renderer.h"
 #include "tests/shader/glsl.h"
@@ -15,17 +16,6 @@ namespace tilevk::rast::render {
 namespace {
 
 using shader::Stage;
-
-constexpr const char* kPassVs = R"(#version 450
-layout(location = 0) in vec4 pos;
-layout(location = 1) in vec4 color;
-layout(location = 0) out vec4 v_color;
-void main() { gl_Position = pos; v_color = color; })";
-
-constexpr const char* kColorFs = R"(#version 450
-layout(location = 0) in vec4 v_color;
-layout(location = 0) out vec4 o;
-void main() { o = v_color; })";
 
 struct Vertex {
     float pos[4];
@@ -94,8 +84,8 @@ bool covered(const float wx[3], const float wy[3], int px, int py) {
 
 class RenderTest : public ::testing::Test {
   protected:
-    std::shared_ptr<const shader::Program> vs = shader::test::make_program(Stage::Vertex, kPassVs);
-    std::shared_ptr<const shader::Program> fs = shader::test::make_program(Stage::Fragment, kColorFs);
+    std::shared_ptr<const shader::Program> vs = shader::test::make_program(Stage::Vertex, bench_shaders::kPassVs);
+    std::shared_ptr<const shader::Program> fs = shader::test::make_program(Stage::Fragment, bench_shaders::kPassFs);
 };
 
 TEST_F(RenderTest, FlatTriangleCoverageMatchesTopLeftRule) {
