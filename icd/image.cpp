@@ -19,8 +19,9 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
         VkDeviceSize h = extent.height >> level ? extent.height >> level : 1;
         offset = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
         l.level_offset[level] = offset;
-        l.row_pitch[level] = w * samples * f.bytes;
-        l.layer_pitch[level] = l.row_pitch[level] * h;
+        l.row_pitch[level] = w * f.bytes;
+        l.sample_pitch[level] = l.row_pitch[level] * h;
+        l.layer_pitch[level] = l.sample_pitch[level] * samples;
         offset += l.layer_pitch[level] * layers;
     }
     l.size = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);

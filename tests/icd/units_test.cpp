@@ -59,9 +59,12 @@ TEST(ImageLayout, PlainLinearLayout) {
     EXPECT_EQ(l.level_offset[2], 192u);
     EXPECT_EQ(l.row_pitch[2], 4u);
     EXPECT_EQ(l.size, 256u);
-    // 4 samples: a row of 5 pixels holds 20 texels.
-    ImageLayout m = compute_image_layout(*find_format(VK_FORMAT_D32_SFLOAT_S8_UINT), {5, 3, 1}, 1, 1, 4);
-    EXPECT_EQ(m.row_pitch[0], 5u * 4u * 8u);
+    // 4 samples, 2 layers: a layer holds 4 sample planes of 3 rows of 5 texels of 8 B (120 B each).
+    ImageLayout m = compute_image_layout(*find_format(VK_FORMAT_D32_SFLOAT_S8_UINT), {5, 3, 1}, 1, 2, 4);
+    EXPECT_EQ(m.row_pitch[0], 40u);
+    EXPECT_EQ(m.sample_pitch[0], 120u);
+    EXPECT_EQ(m.layer_pitch[0], 480u);
+    EXPECT_EQ(m.size, 960u);
 }
 
 TEST(EntryPoints, TableIsSortedAndLevelsFollowTheFirstParameter) {
