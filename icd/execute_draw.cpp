@@ -429,10 +429,11 @@ void note_query_command_in_pass(ExecState& st) {
         st.query_command_pending = true;
 }
 
-void finish_rendering(ExecState& st) {
+bool finish_rendering(ExecState& st, const rr::TileResolves* resolves) {
     DrawContext& ctx = *st.draw;
+    bool resolved = false;
     if (ctx.active) {
-        ctx.renderer.end();
+        resolved = ctx.renderer.end(resolves);
         for (size_t i = 0; i < ctx.staged.size(); ++i) copy_planes(ctx.pool, ctx.staged[i], false);
         ctx.staged.clear();
         ctx.states.clear();
@@ -442,6 +443,7 @@ void finish_rendering(ExecState& st) {
     }
     // The draws of queries ended in this pass are rendered (and counted) now.
     publish_ended_queries(st);
+    return resolved;
 }
 
 void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size_t task)> fn) {

@@ -17,7 +17,7 @@ namespace tilevk::icd {
 struct ImageLayout {
     VkDeviceSize level_offset[kMaxMipLevels] = {};
     VkDeviceSize row_pitch[kMaxMipLevels] = {};
-    VkDeviceSize sample_pitch[kMaxMipLevels] = {};  // row_pitch * height: the bytes of one sample plane
+    VkDeviceSize sample_pitch[kMaxMipLevels] = {};  // row_pitch * height, padded at 4x (image.cpp sample_plane_pitch)
     VkDeviceSize layer_pitch[kMaxMipLevels] = {};   // sample_pitch * samples
     VkDeviceSize size = 0;
 };

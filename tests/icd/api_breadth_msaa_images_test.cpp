@@ -18,8 +18,8 @@ constexpr VkImageLayout kDst = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kSrc = VK_I
                         kColourAtt = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         kDepthAtt = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
 
-Device::Image ms_image(Kit& k, VkFormat f, uint32_t layers, VkImageUsageFlags usage) {
-    Device::Image i = k.dev().make_image(f, kSize, kSize, 1, layers, VK_SAMPLE_COUNT_4_BIT, usage);
+Device::Image ms_image(Kit& k, VkFormat f, uint32_t w, uint32_t h, uint32_t layers, VkImageUsageFlags usage) {
+    Device::Image i = k.dev().make_image(f, w, h, 1, layers, VK_SAMPLE_COUNT_4_BIT, usage);
     EXPECT_NE(i.image, VK_NULL_HANDLE);
     k.undo(VK_OBJECT_TYPE_IMAGE, i.image, [&k, i]() mutable { k.dev().destroy(i); });
     return i;
@@ -76,8 +76,9 @@ void begin_area(VkCommandBuffer c, VkRenderPass rp, VkFramebuffer fb, VkRect2D a
 Bytes msaa_images_scene(Kit& k) {
     const VkImageUsageFlags colour_usage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    const Device::Image a = ms_image(k, kColour, 2, colour_usage), b = ms_image(k, kColour, 1, colour_usage);
-    const Device::Image z = ms_image(k, kDepth, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    const Device::Image a = ms_image(k, kColour, kSize, kSize, 2, colour_usage),
+                        b = ms_image(k, kColour, kSize, kSize, 1, colour_usage);
+    const Device::Image z = ms_image(k, kDepth, kSize, kSize, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     const VkImageAspectFlags ds = VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
     const VkImageUsageFlags one_usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     const Device::Image r = k.image(kColour, kSize, kSize, one_usage, 1, 3);  // the three resolves, one per layer
@@ -167,6 +168,84 @@ Bytes msaa_images_scene(Kit& k) {
 
 TEST_F(ApiMsaaImages, CopyClearRenderAndResolveAgreeOnTheSampleLayout) {
     both(msaa_images_scene);
+}
+
+// The render pass's colour resolves run in the renderer's tiles (rast/render/targets.h TileResolve): a 4x target of
+// 3x3 tiles (the last row and column partial) with two colour attachments, only the second resolved, over a
+// render area that starts and ends inside tiles; the draws touch some tiles only, so tiles without primitives
+// must resolve too, and pixels outside the area must keep the resolve image's own clear.
+Bytes tile_resolve_scene(Kit& k) {
+    constexpr uint32_t W = 150, H = 140;
+    const VkImageUsageFlags ms_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    const Device::Image m0 = ms_image(k, kColour, W, H, 1, ms_usage), m1 = ms_image(k, kColour, W, H, 1, ms_usage);
+    const Device::Image r = k.image(
+        kColour, W, H,
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    VkAttachmentDescription ms =
+        attachment(kColour, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE, kColourAtt);
+    ms.samples = VK_SAMPLE_COUNT_4_BIT;
+    VkAttachmentDescription one = attachment(kColour, VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE, kSrc);
+    one.initialLayout = kColourAtt;
+    const VkAttachmentReference cols[2] = {{0, kColourAtt}, {1, kColourAtt}};
+    const VkAttachmentReference res[2] = {{VK_ATTACHMENT_UNUSED, kColourAtt}, {2, kColourAtt}};
+    VkSubpassDescription sub = subpass(&cols[0]);
+    sub.colorAttachmentCount = 2;
+    sub.pResolveAttachments = res;
+    const VkRenderPass rp = k.render_pass({ms, ms, one}, {sub});
+    const VkFramebuffer fb = k.framebuffer(
+        rp,
+        {k.view(m0.image, kColour, VK_IMAGE_ASPECT_COLOR_BIT), k.view(m1.image, kColour, VK_IMAGE_ASPECT_COLOR_BIT),
+         k.view(r.image, kColour, VK_IMAGE_ASPECT_COLOR_BIT)},
+        W, H);
+    Pipe p;
+    p.fs = SPV(ab_mrt_frag);
+    p.rp = rp;
+    p.samples = VK_SAMPLE_COUNT_4_BIT;
+    p.color_count = 2;
+    p.width = W;
+    p.height = H;
+    p.blend = {alpha_over(), alpha_over()};
+    const VkPipeline pipe = k.pipeline(p);
+    // Two triangles inside the top-left and the middle tiles of the area only (NDC of 150x140 pixels).
+    const std::vector<Vertex> verts = {
+        v(-0.75f, -0.85f, 0, 1, 0.2f, 0.1f, 0.6f), v(-0.3f, -0.8f, 0, 0.1f, 1, 0.3f, 0.9f),
+        v(-0.6f, -0.2f, 0, 0.3f, 0.4f, 1, 0.4f),   v(-0.1f, -0.05f, 0, 1, 1, 0, 0.7f),
+        v(0.2f, 0.1f, 0, 0, 1, 1, 0.5f),           v(-0.05f, 0.3f, 0, 1, 0, 1, 0.8f)};
+    const Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    const Device::Buffer out = k.buffer(VkDeviceSize(W) * H * 4);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        layout(c, r.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        const VkClearColorValue dark{{0.7f, 0.2f, 0.1f, 1.0f}};
+        vkCmdClearColorImage(c, r.image, kDst, &dark, 1, &all);
+        layout(c, r.image, VK_IMAGE_ASPECT_COLOR_BIT, kDst, kColourAtt);
+        const VkClearValue clears[3] = {clear_color(0.1f, 0.3f, 0.5f, 1), clear_color(0.9f, 0.35f, 0.05f, 0.6f), {}};
+        VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        bi.renderPass = rp;
+        bi.framebuffer = fb;
+        bi.renderArea = {{9, 5}, {131, 122}};
+        bi.clearValueCount = 3;
+        bi.pClearValues = clears;
+        vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        bind_vertices(c, vb);
+        vkCmdDraw(c, 6, 1, 0, 0);
+        vkCmdEndRenderPass(c);
+        full_barrier(c);
+        const VkBufferImageCopy down{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {W, H, 1}};
+        vkCmdCopyImageToBuffer(c, r.image, kSrc, out.buffer, 1, &down);
+    }),
+              VK_SUCCESS);
+    Bytes bytes = Kit::bytes(out);
+    auto px = [&](uint32_t x, uint32_t y) { return &bytes[(size_t(y) * W + x) * 4]; };
+    EXPECT_EQ(px(3, 3)[0], 178);  // outside the area: the resolve image's clear (0.7)
+    EXPECT_EQ(px(145, 135)[0], 178);
+    EXPECT_EQ(px(130, 120)[0], 230);  // inside, in a tile without primitives: the second attachment's clear (0.9)
+    return bytes;
+}
+
+TEST_F(ApiMsaaImages, TileResolvesCoverEveryTileOfTheRenderArea) {
+    both(tile_resolve_scene);
 }
 
 }  // namespace
