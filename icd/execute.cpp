@@ -136,13 +136,60 @@ void resolve_in_bands(ExecState& st, const Subpass& s, const ImageView& src, con
     }
 }
 
+// The subpass's colour resolves as the renderer's last scene can run them, tile by tile while each tile is in cache
+// (rast/render/targets.h TileResolve): a 4x attachment the renderer draws into in place (every colour format is),
+// one layer, no multiview (each view is a pass of its own). Any other resolve stays whole-image, after rendering.
+void plan_tile_resolves(const ExecState& st, uint32_t sp, rast::render::TileResolves& out) {
+    out.count = 0;
+    const Subpass& s = st.render_pass->subpasses[sp];
+    if (s.view_mask != 0) return;
+    for (size_t i = 0; i < s.resolves.size() && i < size_t(rast::render::kMaxColorTargets); ++i) {
+        const ImageView* src = attachment_view(st, s.colors[i].attachment);
+        const ImageView* dst = attachment_view(st, s.resolves[i].attachment);
+        if (src == nullptr || dst == nullptr || dst->image->memory == nullptr) continue;
+        if (!can_resolve(*src->format) || !(image_features(*src->format) & format::kColorAttachment) ||
+            src->image->samples != uint32_t(rast::fragment::kMaxSamples) || dst->image->samples != 1 ||
+            dst->format->bytes != src->format->bytes || std::min(src->range.layerCount, st.framebuffer->layers) != 1)
+            continue;
+        const VkRect2D rect = clip_to_view(clip_to_view(st.area, *src), *dst);
+        const uint32_t level = dst->range.baseMipLevel;
+        rast::render::TileResolve& r = out.items[out.count++];
+        r.target = uint32_t(i);
+        r.dst = dst->image->texel(level, dst->range.baseArrayLayer, 0, 0);
+        r.dst_pitch = size_t(dst->image->layout.row_pitch[level]);
+        r.x0 = rect.offset.x;
+        r.y0 = rect.offset.y;
+        r.x1 = rect.offset.x + int32_t(rect.extent.width);
+        r.y1 = rect.offset.y + int32_t(rect.extent.height);
+    }
+}
+
+// Renders the subpass's last scene; with `resolve` its colour resolves are planned for the renderer's tiles.
+// Returns whether they ran there.
+bool finish_subpass(ExecState& st, bool resolve) {
+    static thread_local rast::render::TileResolves plan;  // the submitting thread's, reused
+    if (!resolve) {
+        finish_rendering(st);
+        return false;
+    }
+    plan_tile_resolves(st, st.subpass, plan);
+    return finish_rendering(st, plan.count != 0 ? &plan : nullptr);
+}
+
 // Resolves the subpass's colour attachments into its resolve attachments over the render area, then its
 // depth/stencil attachment into its depth/stencil resolve attachment (lavapipe's lvp_execute.c render_resolve runs
 // them in the other order; they write different attachments).
-void resolve_attachments(ExecState& st, uint32_t sp) {
+// `tiled`: the resolves plan_tile_resolves chose were done by the renderer's tiles.
+void resolve_attachments(ExecState& st, uint32_t sp, bool tiled) {
     const rast::render::StageScope timed(rast::render::Stage::kResolve);
     const Subpass& s = st.render_pass->subpasses[sp];
-    for (size_t i = 0; i < s.resolves.size(); ++i) {
+    rast::render::TileResolves done;
+    if (tiled) plan_tile_resolves(st, sp, done);
+    for (size_t i = 0, next = 0; i < s.resolves.size(); ++i) {
+        if (next < done.count && done.items[next].target == i) {
+            ++next;
+            continue;
+        }
         uint32_t src_a = s.colors[i].attachment, dst_a = s.resolves[i].attachment;
         const ImageView* src_view = attachment_view(st, src_a);
         const ImageView* dst_view = attachment_view(st, dst_a);
@@ -265,20 +312,20 @@ struct CommandRunner {
     }
     void operator()(const CmdNextSubpass&) {
         if (st.render_pass == nullptr) return;
-        finish_rendering(st);
+        const bool tiled = finish_subpass(st, st.view_mask == 0);
         st.query_command_pending = false;  // it belonged to the subpass that ended
         if (next_view(st)) return;
-        resolve_attachments(st, st.subpass);
+        resolve_attachments(st, st.subpass, tiled);
         ++st.subpass;
         load_attachments(st, st.subpass);
         begin_subpass_views(st);
     }
     void operator()(const CmdEndRenderPass&) {
         if (st.render_pass == nullptr) return;
-        finish_rendering(st);
+        const bool tiled = finish_subpass(st, st.view_mask == 0 && !st.suspending);
         st.query_command_pending = false;
         if (next_view(st)) return;
-        if (!st.suspending) resolve_attachments(st, st.subpass);
+        if (!st.suspending) resolve_attachments(st, st.subpass, tiled);
         st.view_mask = 0;
         st.subpass_command = nullptr;
         st.render_pass = nullptr;

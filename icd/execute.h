@@ -2,6 +2,7 @@
 #pragma once
 #include "command_buffer.h"
 #include "formats.h"
+#include "rast/render/targets.h"
 
 #include <atomic>
 #include <optional>
@@ -148,8 +149,10 @@ void exec_draw(ExecState& st, const CmdDraw& c);
 void exec_draw(ExecState& st, const CmdDrawIndexed& c);
 void exec_draw(ExecState& st, const CmdDrawIndirect& c);
 void exec_draw(ExecState& st, const CmdDrawIndexedIndirect& c);
-// Ends the renderer's pass if one is running: renders what is binned and writes the targets back.
-void finish_rendering(ExecState& st);
+// Ends the renderer's pass if one is running: renders what is binned and writes the targets back. `resolves`: the
+// subpass's colour resolves, done tile by tile as its last scene renders (rast/render/targets.h TileResolve); returns
+// true if they were (else the caller resolves).
+bool finish_rendering(ExecState& st, const rast::render::TileResolves* resolves = nullptr);
 // The descriptors and push constants `program` reads, from the sets bound at the compute bind point (the graphics
 // path's translation, execute_draw.cpp). Outside render passes only.
 void build_compute_bindings(ExecState& st, const shader::Program& program, shader::Bindings& b);

@@ -1,17 +1,14 @@
 // Draws at vkQueueSubmit: bound state -> rast::render (PipelineState, DrawCall, shader::Bindings), one Renderer per
-// queue. The renderer's targets are sample planes (rast/render/targets.h) while tilevk images interleave samples
-// per pixel and keep D32_SFLOAT_S8_UINT's stencil in the texel (icd/image.h): such attachments are copied into
-// planar staging memory when a subpass's rendering starts and copied back when it ends. 1x single-aspect
-// attachments are rendered in place.
+// queue. The renderer's targets are sample planes (rast/render/targets.h), as tilevk images are (icd/image.h): every
+// attachment whose texel is the renderer's element is rendered in place, at 1x and 4x. Only an aspect of a packed
+// depth/stencil texel (D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT) is copied into planar staging memory when a subpass's
+// rendering starts and copied back when it ends.
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <deque>
 #include <initializer_list>
 #include <type_traits>
-
-#include <emmintrin.h>
-#include <xmmintrin.h>
 
 #include "buffer.h"
 #include "buffer_view.h"
@@ -40,12 +37,12 @@ static_assert(rast::render::kMaxColorTargets == int(kMaxColorAttachments) &&
 
 namespace rr = rast::render;
 
-// One plane of an attachment copied out of the image: element (x, y, sample s) of the image lives at
-// image + y*row_pitch + (x*samples + s)*texel_bytes + byte_offset, in the staging copy at
+// One aspect of an attachment copied out of the image: element (x, y, sample s) of the image lives at
+// image + s*sample_pitch + y*row_pitch + x*texel_bytes + byte_offset, in the staging copy at
 // plane + s*w*h*elem + (y*w + x)*elem.
 struct Staged {
     uint8_t* image = nullptr;
-    size_t row_pitch = 0;
+    size_t row_pitch = 0, sample_pitch = 0;
     uint32_t samples = 1, texel_bytes = 0, byte_offset = 0, elem = 0, w = 0, h = 0;
     uint32_t copy_bytes = 0;  // bytes of each element that belong to this aspect (D24S8 depth: 3 of 4)
     std::vector<uint8_t> plane;
@@ -92,78 +89,41 @@ std::optional<DrawOrigin> interrupted_draw(const DrawContext& ctx) {
 
 namespace {
 
-// One row of every sample: w pixels between the image (a pixel's samples adjacent, img_step bytes per pixel) and
-// the planes (plane_size bytes apart, elements elem bytes apart), one pass over the image row. N is the element's
-// copied bytes when the compiler may inline the copy, 0 for any other count.
+// One row of one sample: w elements between the image (texel_bytes apart) and the plane (elem bytes apart). N is the
+// element's copied bytes when the compiler may inline the copy, 0 for any other count.
 template <size_t N>
-void copy_row(const Staged& s, uint8_t* img, uint8_t* pl, size_t plane_size, bool to_staging) {
+void copy_row(const Staged& s, uint8_t* img, uint8_t* pl, bool to_staging) {
     const size_t bytes = N ? N : s.copy_bytes;
-    const size_t img_step = size_t(s.samples) * s.texel_bytes;
-    for (uint32_t x = 0; x < s.w; ++x)
-        for (uint32_t sm = 0; sm < s.samples; ++sm) {
-            uint8_t* i = img + x * img_step + sm * s.texel_bytes;
-            uint8_t* p = pl + sm * plane_size + x * s.elem;
-            if (to_staging)
-                std::memcpy(p, i, bytes);
-            else
-                std::memcpy(i, p, bytes);
-        }
-}
-
-// copy_row for four samples of whole 4-byte texels (4x colour targets, 4x D32F): four pixels at a time as a 4x4
-// transpose of 32-bit words, its own inverse (image: a pixel's four samples adjacent; planes: a sample's pixels
-// adjacent). Shuffles only, so the bytes are copy_row's; it was ~7 % of a 4x MSAA frame as one memcpy per texel.
-void copy_row_4x4(const Staged& s, uint8_t* img, uint8_t* pl, size_t plane_size, bool to_staging) {
-    uint32_t x = 0;
-    for (; x + 4 <= s.w; x += 4) {
-        uint8_t* pixels = img + size_t(x) * 16;
-        uint8_t* planes = pl + size_t(x) * 4;
-        __m128 r[4];
-        for (size_t k = 0; k < 4; ++k) {
-            const uint8_t* from = to_staging ? pixels + 16 * k : planes + k * plane_size;
-            r[k] = _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(from)));
-        }
-        _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
-        for (size_t k = 0; k < 4; ++k) {
-            uint8_t* to = to_staging ? planes + k * plane_size : pixels + 16 * k;
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(to), _mm_castps_si128(r[k]));
-        }
+    for (uint32_t x = 0; x < s.w; ++x) {
+        uint8_t* i = img + x * s.texel_bytes;
+        uint8_t* p = pl + x * s.elem;
+        if (to_staging)
+            std::memcpy(p, i, bytes);
+        else
+            std::memcpy(i, p, bytes);
     }
-    for (; x < s.w; ++x)
-        for (uint32_t sm = 0; sm < 4; ++sm) {
-            uint8_t* i = img + size_t(x) * 16 + sm * 4;
-            uint8_t* p = pl + sm * plane_size + size_t(x) * 4;
-            if (to_staging)
-                std::memcpy(p, i, 4);
-            else
-                std::memcpy(i, p, 4);
-        }
 }
 
 // Copies rows [y0, y1) of every sample between the image and its staging planes.
 void copy_plane_rows(Staged& s, bool to_staging, uint32_t y0, uint32_t y1) {
     const size_t plane_size = size_t(s.w) * s.h * s.elem;
     auto row_copier = [&s]() {
-        if (s.samples == 4 && s.texel_bytes == 4 && s.elem == 4 && s.copy_bytes == 4) return &copy_row_4x4;
         switch (s.copy_bytes) {
             case 1:
                 return &copy_row<1>;
-            case 2:
-                return &copy_row<2>;
+            case 3:
+                return &copy_row<3>;
             case 4:
                 return &copy_row<4>;
-            case 8:
-                return &copy_row<8>;
-            case 16:
-                return &copy_row<16>;
             default:
                 return &copy_row<0>;
         }
     };
     const auto copy = row_copier();
-    for (uint32_t y = y0; y < y1; ++y)
-        copy(s, s.image + y * s.row_pitch + s.byte_offset, s.plane.data() + size_t(y) * s.w * s.elem, plane_size,
-             to_staging);
+    for (uint32_t sm = 0; sm < s.samples; ++sm)
+        for (uint32_t y = y0; y < y1; ++y)
+            copy(s, s.image + sm * s.sample_pitch + y * s.row_pitch + s.byte_offset,
+                 s.plane.data() + sm * plane_size + size_t(y) * s.w * s.elem, to_staging);
 }
 
 // Bands of rows on the pool's workers: each band is its own rows of image and planes.
@@ -181,8 +141,8 @@ void copy_planes(rast::ThreadPool& pool, Staged& s, bool to_staging) {
     });
 }
 
-// Points the renderer at one aspect of a view: in place when the image layout already is a sample plane,
-// else through staging. Returns (data, row pitch, sample stride).
+// Points the renderer at one aspect of a view: in place when the image's texel is the renderer's element (the
+// image's sample planes are the renderer's), else through staging. Returns (data, row pitch, sample stride).
 struct PlaneRef {
     uint8_t* data;
     size_t row_pitch, sample_stride;
@@ -194,10 +154,12 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t layer_offset, u
     uint8_t* base = img.texel(level, v.range.baseArrayLayer + layer_offset, 0, 0);
     const size_t pitch = img.layout.row_pitch[level];
     if (copy_bytes == 0) copy_bytes = elem;
-    if (img.samples == 1 && img.format->bytes == elem && copy_bytes == elem) return {base + byte_offset, pitch, 0};
+    const size_t sample_pitch = img.samples > 1 ? size_t(img.sample_pitch(level)) : 0;
+    if (img.format->bytes == elem && copy_bytes == elem) return {base + byte_offset, pitch, sample_pitch};
     Staged& s = ctx.staged.emplace_back();
     s.image = base;
     s.row_pitch = pitch;
+    s.sample_pitch = sample_pitch;
     s.samples = img.samples;
     s.texel_bytes = img.format->bytes;
     s.byte_offset = byte_offset;
@@ -467,10 +429,11 @@ void note_query_command_in_pass(ExecState& st) {
         st.query_command_pending = true;
 }
 
-void finish_rendering(ExecState& st) {
+bool finish_rendering(ExecState& st, const rr::TileResolves* resolves) {
     DrawContext& ctx = *st.draw;
+    bool resolved = false;
     if (ctx.active) {
-        ctx.renderer.end();
+        resolved = ctx.renderer.end(resolves);
         for (size_t i = 0; i < ctx.staged.size(); ++i) copy_planes(ctx.pool, ctx.staged[i], false);
         ctx.staged.clear();
         ctx.states.clear();
@@ -480,6 +443,7 @@ void finish_rendering(ExecState& st) {
     }
     // The draws of queries ended in this pass are rendered (and counted) now.
     publish_ended_queries(st);
+    return resolved;
 }
 
 void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size_t task)> fn) {

@@ -142,13 +142,18 @@ void exec_copy_image(const CmdCopyImage& c) {
         }
         const bool whole_texel = buffer_texel_bytes(f, aspect) == f.bytes;
         const uint32_t off = aspect_offset(f, aspect), bytes = buffer_texel_bytes(f, aspect);
-        for (uint32_t l = 0; l < layers; ++l) {
+        const VkDeviceSize src_sample = c.src->sample_pitch(r.srcSubresource.mipLevel);
+        const VkDeviceSize dst_sample = c.dst->sample_pitch(r.dstSubresource.mipLevel);
+        for (uint32_t l = 0; l < layers * c.src->samples; ++l) {  // every sample plane of every layer
+            const uint32_t layer = l / c.src->samples, sample = l % c.src->samples;
             for (uint32_t y = 0; y < r.extent.height; ++y) {
-                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + l,
-                                                uint32_t(r.srcOffset.x), uint32_t(r.srcOffset.y) + y);
-                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer + l,
-                                          uint32_t(r.dstOffset.x), uint32_t(r.dstOffset.y) + y);
-                const size_t texels = size_t(r.extent.width) * c.src->samples;
+                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + layer,
+                                                uint32_t(r.srcOffset.x), uint32_t(r.srcOffset.y) + y) +
+                                   sample * src_sample;
+                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer + layer,
+                                          uint32_t(r.dstOffset.x), uint32_t(r.dstOffset.y) + y) +
+                             sample * dst_sample;
+                const size_t texels = r.extent.width;
                 if (whole_texel) {
                     std::memmove(d, s, texels * f.bytes);  // formats are size-compatible: a raw copy
                 } else {
@@ -192,15 +197,19 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
         return;
     }
     const uint32_t tb = img.format->bytes;
-    const size_t texels = size_t(rect.extent.width) * img.samples;
+    const size_t texels = rect.extent.width;
     if (rect.extent.height == 0 || texels == 0) return;
     uint8_t* first = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y));
     for (size_t x = 0; x < texels; ++x) std::memcpy(first + x * tb + byte_offset, texel + byte_offset, byte_count);
-    // Whole texels: the rows below are byte copies of the first (a memcpy per row, not per texel). A partial
-    // texel (one aspect of a packed depth/stencil texel) must keep the other bytes of each row.
+    // Whole texels: the rows below (and every row of the other sample planes) are byte copies of the first (a
+    // memcpy per row, not per texel). A partial texel (one aspect of a packed depth/stencil texel) must keep the
+    // other bytes of each row.
     const bool whole_texels = byte_offset == 0 && byte_count == tb;
-    for (uint32_t y = 1; y < rect.extent.height; ++y) {
-        uint8_t* row = img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y) + y);
+    const VkDeviceSize sample_pitch = img.sample_pitch(level);
+    for (uint32_t i = 1; i < rect.extent.height * img.samples; ++i) {
+        const uint32_t y = i % rect.extent.height, sample = i / rect.extent.height;
+        uint8_t* row =
+            img.texel(level, layer, uint32_t(rect.offset.x), uint32_t(rect.offset.y) + y) + sample * sample_pitch;
         if (whole_texels) {
             std::memcpy(row, first, texels * tb);
         } else {
@@ -270,7 +279,7 @@ bool can_resolve(const FormatInfo& f) {
 }
 
 // lavapipe resolves with util_blitter's MSAA-resolve shader (docs/lavapipe-rules.md, "Resolve"): rast/fragment's
-// resolve_rect, verified against lavapipe; the image's samples of a pixel are adjacent.
+// resolve_rect, verified against lavapipe; the image's samples of a pixel are sample_pitch bytes apart.
 void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOffset2D src_offset, const Image& dst,
                   uint32_t dst_level, uint32_t dst_layer, VkOffset2D dst_offset, VkExtent2D extent) {
     if (!image_ok(&src, src_level, src_layer, 1, src_offset.x, src_offset.y, extent.width, extent.height, "resolve") ||
@@ -283,12 +292,11 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
         return;
     }
     const uint32_t tb = src.format->bytes;
-    rast::fragment::resolve_rect(src.format->id,
-                                 src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y)), tb,
-                                 src.layout.row_pitch[src_level],
-                                 dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y)),
-                                 dst.layout.row_pitch[dst_level], int(extent.width), int(extent.height),
-                                 rast::geometry::host_has_fma(), size_t(src.samples) * tb);
+    rast::fragment::resolve_rect(
+        src.format->id, src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y)),
+        size_t(src.sample_pitch(src_level)), src.layout.row_pitch[src_level],
+        dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y)),
+        dst.layout.row_pitch[dst_level], int(extent.width), int(extent.height), rast::geometry::host_has_fma(), tb);
 }
 
 // The depth/stencil resolve of a render pass (VK_KHR_depth_stencil_resolve), SAMPLE_ZERO for every aspect as lavapipe
@@ -309,12 +317,12 @@ void resolve_depth_stencil_rect(const Image& src, uint32_t src_level, uint32_t s
                   src.samples, vk_enum_name(vk_format(*src.format)), dst.samples, vk_enum_name(vk_format(*dst.format)));
         return;
     }
-    const uint32_t tb = src.format->bytes;
+    // Sample 0 is the first sample plane: its rows are the destination's rows, byte for byte.
+    const size_t row_bytes = size_t(extent.width) * src.format->bytes;
     for (uint32_t y = 0; y < extent.height; ++y) {
         const uint8_t* s = src.texel(src_level, src_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
         uint8_t* d = dst.texel(dst_level, dst_layer, uint32_t(offset.x), uint32_t(offset.y) + y);
-        for (uint32_t x = 0; x < extent.width; ++x)
-            std::memcpy(d + size_t(x) * tb, s + size_t(x) * src.samples * tb, tb);
+        std::memcpy(d, s, row_bytes);
     }
 }
 

@@ -10,6 +10,16 @@ namespace tilevk::icd {
 
 constexpr VkDeviceSize kLevelAlignment = 64;
 
+// The bytes from one sample plane to the next. Planes a multiple of 4 KiB apart (1920x1080 RGBA8 is) put a pixel's
+// four samples at one page offset: the fragment stage's and the resolve's four streams then collide in the same L1
+// sets and stall on 4K aliasing of loads behind stores. Past a 4 KiB boundary, planes start 1088 B (17 lines) apart
+// in the page, so the four samples take four distinct offsets.
+static VkDeviceSize sample_plane_pitch(VkDeviceSize plane_bytes, uint32_t samples) {
+    if (samples <= 1) return plane_bytes;
+    constexpr VkDeviceSize kPage = 4096, kStagger = 17 * 64;
+    return (plane_bytes + kPage - 1) / kPage * kPage + kStagger;
+}
+
 ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_t levels, uint32_t layers,
                                  uint32_t samples) {
     ImageLayout l;
@@ -19,8 +29,9 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
         VkDeviceSize h = extent.height >> level ? extent.height >> level : 1;
         offset = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
         l.level_offset[level] = offset;
-        l.row_pitch[level] = w * samples * f.bytes;
-        l.layer_pitch[level] = l.row_pitch[level] * h;
+        l.row_pitch[level] = w * f.bytes;
+        l.sample_pitch[level] = sample_plane_pitch(l.row_pitch[level] * h, samples);
+        l.layer_pitch[level] = l.sample_pitch[level] * samples;
         offset += l.layer_pitch[level] * layers;
     }
     l.size = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);

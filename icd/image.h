@@ -1,9 +1,12 @@
 // VkImage with tilevk's one plain linear layout, used for both OPTIMAL and LINEAR tiling:
-//   level-major; inside a level, array layers one after another; inside a layer, rows of `row_pitch` bytes;
-//   inside a row, pixels; inside a pixel, its samples one after another (sample s of pixel x at (x*samples+s)).
-//   Texel (x, y, layer, level, sample) is at  level_offset[level] + layer*layer_pitch[level] + y*row_pitch[level]
-//                                              + (x*samples + sample)*texel_bytes.
-// Levels start on 64-byte boundaries; rows are packed (no row padding).
+//   level-major; inside a level, array layers one after another; inside a layer, one plane per sample (sample 0
+//   first, `sample_pitch` bytes each); inside a plane, rows of `row_pitch` bytes; inside a row, pixels.
+//   Texel (x, y, layer, level, sample) is at  level_offset[level] + layer*layer_pitch[level]
+//                                              + sample*sample_pitch[level] + y*row_pitch[level] + x*texel_bytes.
+// Levels start on 64-byte boundaries; rows are packed (no row padding). Sample planes are the renderer's own target
+// layout (rast/render/targets.h), so a multisampled attachment is rendered in place, with no staging copy in or out
+// (and no second copy of its memory); single-sampled images have one plane, the plain row layout. No API call shows
+// a multisampled image's layout (such images are OPTIMAL only and never copied to or from buffers or host memory).
 #pragma once
 #include "formats.h"
 #include "memory.h"
@@ -14,7 +17,8 @@ namespace tilevk::icd {
 struct ImageLayout {
     VkDeviceSize level_offset[kMaxMipLevels] = {};
     VkDeviceSize row_pitch[kMaxMipLevels] = {};
-    VkDeviceSize layer_pitch[kMaxMipLevels] = {};
+    VkDeviceSize sample_pitch[kMaxMipLevels] = {};  // row_pitch * height, padded at 4x (image.cpp sample_plane_pitch)
+    VkDeviceSize layer_pitch[kMaxMipLevels] = {};   // sample_pitch * samples
     VkDeviceSize size = 0;
 };
 
@@ -39,8 +43,10 @@ struct Image : NonDispatchableObject {
     // Address of sample 0 of texel (x, y) of a subresource.
     uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
         return memory->data + memory_offset + layout.level_offset[level] + layer * layout.layer_pitch[level] +
-               y * layout.row_pitch[level] + VkDeviceSize(x) * samples * format->bytes;
+               y * layout.row_pitch[level] + VkDeviceSize(x) * format->bytes;
     }
+    // Bytes from sample s of a texel to sample s+1 of the same texel.
+    VkDeviceSize sample_pitch(uint32_t level) const { return layout.sample_pitch[level]; }
 };
 
 // Computes the layout described above.

@@ -251,19 +251,38 @@ void FragmentStage::prefetch(uint32_t payload, int step) const {
     for (size_t off = 0; off < bytes; off += 64) __builtin_prefetch(head + off);
 }
 
-void FragmentStage::end_tile(unsigned worker, const TileInfo&) {
+// The tile's part of each TileResolve, after the tile's FP state is restored: the whole-image resolve it replaces
+// runs in the workers' own state.
+void FragmentStage::resolve_tile(const TileInfo& tile) const {
+    const StageScope timed(Stage::kResolve);
+    for (uint32_t i = 0; i < resolves_->count; ++i) {
+        const TileResolve& r = resolves_->items[i];
+        const ColorTarget& t = fb_.color[r.target];
+        const int32_t x0 = std::max(r.x0, tile.x0), x1 = std::min(r.x1, tile.x0 + tile.width);
+        const int32_t y0 = std::max(r.y0, tile.y0), y1 = std::min(r.y1, tile.y0 + tile.height);
+        if (x0 >= x1 || y0 >= y1 || t.data == nullptr) continue;
+        const size_t bytes = fragment::format_info(t.format).bytes;
+        fragment::resolve_rect(t.format, t.data + size_t(y0) * t.row_pitch + size_t(x0) * bytes, t.sample_stride,
+                               t.row_pitch, r.dst + size_t(y0) * r.dst_pitch + size_t(x0) * bytes, r.dst_pitch, x1 - x0,
+                               y1 - y0, geometry::host_has_fma(), bytes);
+    }
+}
+
+void FragmentStage::end_tile(unsigned worker, const TileInfo& tile) {
     const FragmentWorker& w = *workers_[worker];
     geometry::flush_denormals_end(w.saved_fp_state);
-    if (!stage_timers_on()) return;
-    // The tile's CPU time; the fragment stage's part of it from the time stamps of its (short) calls, the rest is
-    // the core's descent and bin walk. Only short intervals are measured with the time-stamp counter: one that
-    // spans a move to another CPU could be off by the CPUs' counter offset.
-    const double cpu = double(thread_cpu_ns() - w.tile_cpu_start);
-    const double consumer = std::min(ticks_to_ns(w.tile_consumer), cpu);
-    const double shade = std::min(ticks_to_ns(w.tile_shade), consumer);  // sampled: may exceed on one tile
-    add_stage_ns(Stage::kCoverage, uint64_t(cpu - consumer));
-    add_stage_ns(Stage::kShade, uint64_t(shade));
-    add_stage_ns(Stage::kOutput, uint64_t(consumer - shade));
+    if (stage_timers_on()) {
+        // The tile's CPU time; the fragment stage's part of it from the time stamps of its (short) calls, the rest
+        // is the core's descent and bin walk. Only short intervals are measured with the time-stamp counter: one
+        // that spans a move to another CPU could be off by the CPUs' counter offset.
+        const double cpu = double(thread_cpu_ns() - w.tile_cpu_start);
+        const double consumer = std::min(ticks_to_ns(w.tile_consumer), cpu);
+        const double shade = std::min(ticks_to_ns(w.tile_shade), consumer);  // sampled: may exceed on one tile
+        add_stage_ns(Stage::kCoverage, uint64_t(cpu - consumer));
+        add_stage_ns(Stage::kShade, uint64_t(shade));
+        add_stage_ns(Stage::kOutput, uint64_t(consumer - shade));
+    }
+    if (resolves_ != nullptr) resolve_tile(tile);  // timed as kResolve on its own
 }
 
 bool FragmentStage::stop_tile(unsigned, uint32_t next_payload) {

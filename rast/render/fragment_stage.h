@@ -40,6 +40,10 @@ class FragmentStage final : public CoverageConsumer {
     // touch it), and each rectangle's pixel box. Null pointers: not in linear mode.
     void set_linear(const std::vector<uint8_t>* tile_linear, const std::vector<fragment::LinearRegion>* rect_boxes);
 
+    // The resolves each tile runs after its last primitive (targets.h TileResolve); null: none. Must outlive
+    // rasterize().
+    void set_tile_resolves(const TileResolves* resolves) { resolves_ = resolves; }
+
     void begin_tile(unsigned worker, const TileInfo& tile) override;
     void primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& coverage) override;
     bool stop_tile(unsigned worker, uint32_t next_payload) override;
@@ -64,6 +68,8 @@ class FragmentStage final : public CoverageConsumer {
     void shade_block(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
                      int32_t y, const uint16_t raster_masks[4]);
 
+    void resolve_tile(const TileInfo& tile) const;
+
     Framebuffer fb_;
     const DrawRecords* draws_ = nullptr;
     const std::vector<PrimRecord>* prims_ = nullptr;
@@ -76,6 +82,7 @@ class FragmentStage final : public CoverageConsumer {
     const std::vector<uint8_t>* tile_linear_ = nullptr;
     const std::vector<fragment::LinearRegion>* rect_boxes_ = nullptr;
     std::vector<std::unique_ptr<FragmentWorker>> workers_;
+    const TileResolves* resolves_ = nullptr;
     const std::atomic<bool>* stop_ = nullptr;
     Interruption* interruption_ = nullptr;
     bool stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }

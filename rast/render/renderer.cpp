@@ -132,12 +132,16 @@ void Renderer::begin(const Framebuffer& fb) {
     reset_linear_tiles();
 }
 
-void Renderer::end() {
-    flush();
+bool Renderer::end(const TileResolves* resolves) {
+    const bool resolved = render_scene(resolves);
+    draws_.clear();
+    return resolved;
 }
 
 // Renders the binned scene (unless the device is lost) and empties it; the draw records stay to the callers.
-void Renderer::render_scene() {
+// With `resolves`, every tile is visited (an empty one still resolves) and true is returned once they ran.
+bool Renderer::render_scene(const TileResolves* resolves) {
+    bool resolved = false;
     if (!prims_.empty() && stopped()) interruption_.note(false, draws_.back().id);
     if (!prims_.empty() && !stopped()) {
         fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
@@ -145,7 +149,10 @@ void Renderer::render_scene() {
             fragment_->set_linear(&tile_linear_, &rect_boxes_);
         else
             fragment_->set_linear(nullptr, nullptr);
-        scene_->rasterize(*fragment_, pool_);
+        fragment_->set_tile_resolves(resolves);
+        scene_->rasterize(*fragment_, pool_, resolves != nullptr);
+        fragment_->set_tile_resolves(nullptr);
+        resolved = resolves != nullptr;
         for (uint32_t d = 0; d < draws_.size(); ++d)
             if (uint64_t* sink = draws_[d].samples_passed) *sink += fragment_->samples_passed(d);
     }
@@ -153,6 +160,7 @@ void Renderer::render_scene() {
     prims_.clear();
     planes_.clear();
     reset_linear_tiles();
+    return resolved;
 }
 
 void Renderer::flush() {

@@ -37,7 +37,10 @@ class Renderer {
     void begin(const Framebuffer& fb);
     // Returns an empty string on success, else why the draw could not be rendered (nothing was drawn).
     std::string draw(const PipelineState& pipe, const DrawCall& call, const shader::Bindings& bindings);
-    void end();
+    // Renders what is binned. With `resolves` (the pass's last scene), also resolves them tile by tile (targets.h
+    // TileResolve) and returns true; false if the scene had nothing to render (the caller resolves, nothing was
+    // written).
+    bool end(const TileResolves* resolves = nullptr);
 
     // Whether lavapipe's viewport/interpolation fmuladds are fused (host FMA) — one decision for the process.
     static bool fused();
@@ -62,7 +65,7 @@ class Renderer {
 
   private:
     void flush();
-    void render_scene();
+    bool render_scene(const TileResolves* resolves = nullptr);
     // A draw that alone fills a scene: renders what is binned and goes on in a fresh scene with its record, now
     // draw 0 (memory stays bounded, and a lost device is noticed between instances, not after a huge binning).
     void flush_within_draw(uint32_t* draw_index, const DrawRecord& rec);

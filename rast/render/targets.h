@@ -45,6 +45,21 @@ struct Framebuffer {
     uint32_t view_index = 0;
 };
 
+// Colour resolves (4 samples -> 1, rast/fragment resolve_rect) that the driver hands the last scene of a render pass
+// (Renderer::end): each tile resolves its pixels inside the rect right after its last primitive, while they are in
+// the worker's cache, instead of a pass over the whole multisampled image afterwards. Each tile writes only its own
+// destination pixels with the very function the whole-image resolve calls, so the bytes are the same.
+struct TileResolve {
+    uint32_t target = 0;     // the colour target resolved (4 samples)
+    uint8_t* dst = nullptr;  // pixel (x, y) of the framebuffer at dst + y*dst_pitch + x*bytes (one sample)
+    size_t dst_pitch = 0;
+    int32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the pixels resolved: [x0, x1) x [y0, y1)
+};
+struct TileResolves {
+    TileResolve items[kMaxColorTargets];
+    uint32_t count = 0;
+};
+
 inline size_t depth_bytes(fragment::DepthFormat f) {
     return f == fragment::DepthFormat::D16 ? 2 : (f == fragment::DepthFormat::None ? 0 : 4);
 }

@@ -59,9 +59,16 @@ TEST(ImageLayout, PlainLinearLayout) {
     EXPECT_EQ(l.level_offset[2], 192u);
     EXPECT_EQ(l.row_pitch[2], 4u);
     EXPECT_EQ(l.size, 256u);
-    // 4 samples: a row of 5 pixels holds 20 texels.
-    ImageLayout m = compute_image_layout(*find_format(VK_FORMAT_D32_SFLOAT_S8_UINT), {5, 3, 1}, 1, 1, 4);
-    EXPECT_EQ(m.row_pitch[0], 5u * 4u * 8u);
+    // 4 samples, 2 layers: a layer holds 4 sample planes of 3 rows of 5 texels of 8 B (120 B each), each plane
+    // padded to 4 KiB plus 1088 B (image.cpp sample_plane_pitch): 5184 B apart.
+    ImageLayout m = compute_image_layout(*find_format(VK_FORMAT_D32_SFLOAT_S8_UINT), {5, 3, 1}, 1, 2, 4);
+    EXPECT_EQ(m.row_pitch[0], 40u);
+    EXPECT_EQ(m.sample_pitch[0], 5184u);
+    EXPECT_EQ(m.layer_pitch[0], 4u * 5184u);
+    EXPECT_EQ(m.size, 2u * 4u * 5184u);
+    // 1920x1080 RGBA8 (8 294 400 B, a multiple of 4 KiB): the four samples of a pixel sit at four page offsets.
+    ImageLayout f = compute_image_layout(*find_format(VK_FORMAT_R8G8B8A8_UNORM), {1920, 1080, 1}, 1, 1, 4);
+    EXPECT_EQ(f.sample_pitch[0] % 4096, 1088u);
 }
 
 TEST(EntryPoints, TableIsSortedAndLevelsFollowTheFirstParameter) {
