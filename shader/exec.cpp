@@ -514,7 +514,7 @@ void Program::run_workgroup(const Bindings& bindings, std::span<const ComputeBat
         for (size_t b = 0; b < batches.size(); ++b) {
             Scratch::Impl& f = frame_of(s, b);
             if (f.done) continue;
-            const size_t pc = execute_code(p.code.data(), f, f.resume_pc);
+            const size_t pc = p.jit ? jit::run(*p.jit, f, f.resume_pc) : execute_code(p.code.data(), f, f.resume_pc);
             f.done = pc == kRunDone;
             f.resume_pc = pc;
             running |= !f.done;

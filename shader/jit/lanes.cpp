@@ -209,7 +209,8 @@ bool LaneEmitter::pass(size_t first, size_t end, const std::vector<Uses>& uses, 
     half_ = h;
     for (size_t i = first; i < end; ++i) {
         uses_ = &uses[i - first];
-        if (!op(p_.code[i]) || overflow_) return false;
+        const Inst& in = p_.code[i];
+        if (!(in.op == Op::LoadShared ? load_shared(in) : op(in)) || overflow_) return false;
         end_instruction();
     }
     for (Phys& ph : phys_) {

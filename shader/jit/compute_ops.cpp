@@ -1,0 +1,152 @@
+// Compute's Workgroup memory in the compiled tier: LoadShared inside segments (a gather per 8-lane half), and the
+// sync ops StoreShared and AtomicShared as the interpreter's lane loops (exec_atomic.h) written out for the 16
+// lanes: the same words in the same lane order, so the same memory and the same atomic results. Shared memory is
+// one flat block per workgroup (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the
+// shared atomics are plain read-modify-writes, as in the interpreter.
+#include <cstddef>
+
+#include "shader/jit/codegen.h"
+#include "shader/jit/jit.h"
+
+namespace tilevk::shader::jit {
+
+using namespace asmjit;
+
+namespace {
+
+// Word `lane` of IR register r in the register file.
+x86::Mem lane_of(uint32_t r, int lane) {
+    return x86::dword_ptr(kRegsBase, int32_t(size_t(r) * kLanes * 4 + size_t(lane) * 4));
+}
+
+// The operands a lane loop reads exist, and imm + index clamps into the variable (exec_atomic.h's min(imm + a,
+// n - 1), which needs n >= 1).
+bool lane_loop_ok(const ProgramImpl& p, const Inst& in, std::initializer_list<uint32_t> regs) {
+    for (uint32_t r : regs)
+        if (r >= p.num_regs) return false;
+    return in.n != 0 && in.n <= p.shared_words;
+}
+
+// rax = min(imm + (uint64_t)eax, n - 1): the word index of exec_atomic.h, computed in 64 bits as it is there.
+void clamp_index(x86::Assembler& a, const Inst& in) {
+    a.add(x86::rax, int32_t(in.imm));
+    a.mov(x86::rcx, uint64_t(in.n) - 1);
+    a.cmp(x86::rax, x86::rcx);
+    a.cmova(x86::rax, x86::rcx);
+}
+
+// r9d = atomic_result(op, old = ecx, v = r8d, cmp = the lane's d) (exec_atomic.h)
+bool atomic_result(x86::Assembler& a, const Inst& in, int lane) {
+    using namespace x86;
+    a.mov(r9d, ecx);
+    switch (AtomicOp(in.pad)) {
+        case AtomicOp::Load:
+            return true;
+        case AtomicOp::Store:
+        case AtomicOp::Exchange:
+            a.mov(r9d, r8d);
+            return true;
+        case AtomicOp::CompareExchange:
+            a.cmp(ecx, lane_of(in.d, lane));
+            a.cmove(r9d, r8d);
+            return true;
+        case AtomicOp::IAdd:
+            a.add(r9d, r8d);
+            return true;
+        case AtomicOp::SMin:  // int32(v) < int32(old) ? v : old
+            a.cmp(r8d, ecx);
+            a.cmovl(r9d, r8d);
+            return true;
+        case AtomicOp::SMax:
+            a.cmp(r8d, ecx);
+            a.cmovg(r9d, r8d);
+            return true;
+        case AtomicOp::UMin:
+            a.cmp(r8d, ecx);
+            a.cmovb(r9d, r8d);
+            return true;
+        case AtomicOp::UMax:
+            a.cmp(r8d, ecx);
+            a.cmova(r9d, r8d);
+            return true;
+        case AtomicOp::And:
+            a.and_(r9d, r8d);
+            return true;
+        case AtomicOp::Or:
+            a.or_(r9d, r8d);
+            return true;
+        case AtomicOp::Xor:
+            a.xor_(r9d, r8d);
+            return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+// exec_atomic.h op_store_shared: the lanes of mask c in lane order, each writing b to its clamped word.
+bool emit_store_shared(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
+    if (!lane_loop_ok(p, in, {in.a, in.b, in.c})) return false;
+    using namespace x86;
+    a.mov(rdx, qword_ptr(kFrameBase, int32_t(offsetof(Frame, shared))));
+    for (int l = 0; l < kLanes; ++l) {
+        Label skip = a.newLabel();
+        a.cmp(lane_of(in.c, l), 0);
+        a.je(skip);
+        a.mov(eax, lane_of(in.a, l));  // zero-extends into rax
+        clamp_index(a, in);
+        a.mov(ecx, lane_of(in.b, l));
+        a.mov(dword_ptr(rdx, rax, 2), ecx);
+        a.bind(skip);
+    }
+    return true;
+}
+
+// exec_atomic.h op_atomic_shared: lane by lane, an inactive lane (index kNoReg) gets 0, an active one the old word
+// after writing atomic_result to it; the comparator is read from d before the lane's result replaces it.
+bool emit_atomic_shared(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
+    if (!lane_loop_ok(p, in, {in.a, in.c, in.d})) return false;
+    using namespace x86;
+    a.mov(rdx, qword_ptr(kFrameBase, int32_t(offsetof(Frame, shared))));
+    for (int l = 0; l < kLanes; ++l) {
+        Label active = a.newLabel(), next = a.newLabel();
+        a.mov(eax, lane_of(in.a, l));
+        a.cmp(eax, int32_t(kNoReg));
+        a.jne(active);
+        a.mov(lane_of(in.d, l), 0);
+        a.jmp(next);
+        a.bind(active);
+        clamp_index(a, in);
+        a.lea(rsi, ptr(rdx, rax, 2));
+        a.mov(ecx, dword_ptr(rsi));
+        a.mov(r8d, lane_of(in.c, l));
+        if (!atomic_result(a, in, l)) return false;
+        a.mov(dword_ptr(rsi), r9d);
+        a.mov(lane_of(in.d, l), ecx);
+        a.bind(next);
+    }
+    return true;
+}
+
+// exec_atomic.h op_load_shared for one half: d = shared[min(imm + a, n - 1)] per lane, as one gather from word imm
+// on with the index clamped to n - 1 - imm first (the same word: imm <= n - 1, and the sum cannot wrap then).
+bool LaneEmitter::load_shared(const Inst& in) {
+    if (in.n == 0 || in.n > p_.shared_words) return false;
+    using namespace x86;
+    a_.mov(rax, qword_ptr(kFrameBase, int32_t(offsetof(Frame, shared))));
+    if (in.imm >= in.n - 1) {  // every index clamps to the last word
+        Ymm d = temp();
+        a_.vpbroadcastd(d, dword_ptr(rax, int32_t(in.n - 1) * 4));
+        def(in.d, d);
+        return true;
+    }
+    Ymm a = use(in.a), idx = temp(), mask = temp(), d = temp();
+    a_.vpminud(idx, a, pool_.splat(in.n - 1 - in.imm));
+    a_.vpcmpeqd(mask, mask, mask);
+    a_.vpxor(d, d, d);
+    a_.vpgatherdd(d, ptr(rax, idx, 2, int32_t(in.imm) * 4), mask);
+    def(in.d, d);
+    return true;
+}
+
+}  // namespace tilevk::shader::jit
