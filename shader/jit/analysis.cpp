@@ -158,9 +158,9 @@ constexpr OpEntry kOps[] = {
     {Op::JumpIfAny, "JumpIfAny", N},
     {Op::Kill, "Kill", N},
     {Op::Halt, "Halt", N},
-    // Compute and storage images. LoadShared is a gather inside segments (compute_ops.cpp); StoreShared and the
+    // Compute and storage images. LoadShared is a gather inside segments (memory_ops.cpp); StoreShared and the
     // atomics are sync points whose lanes apply in lane order, as the interpreter's loops do: StoreShared and
-    // AtomicShared are emitted as that loop (compute_ops.cpp), the rest are the interpreter's code for the one
+    // AtomicShared are emitted as that loop (memory_ops.cpp), the rest are the interpreter's code for the one
     // instruction. Barrier ends the run with its pc (compile.cpp), the next run resumes after it.
     {Op::LoadShared, "LoadShared", N},
     {Op::StoreShared, "StoreShared", N},
@@ -245,6 +245,8 @@ Lowering lowering(const Inst& in) {
     // A load from one buffer (not an array of descriptors) is a masked gather (lanes.cpp load_buf); from a
     // descriptor array, each lane may read another buffer: the interpreter's loop.
     if (in.op == Op::LoadBuf) return in.n == 1 ? Lowering::Native : Lowering::Helper;
+    // A store to one buffer is the interpreter's lane loop written out (memory_ops.cpp), a sync op.
+    if (in.op == Op::StoreBuf) return in.n == 1 ? Lowering::Native : Lowering::Helper;
     return op_info(in.op).lowering;
 }
 
@@ -255,6 +257,7 @@ bool is_sync(const Inst& in) {
         case Op::JumpIfAny:
         case Op::Halt:
         case Op::Barrier:
+        case Op::StoreBuf:      // lanes in order, like StoreShared
         case Op::StoreShared:   // lanes in order over all 16 lanes: the last lane writing a word wins
         case Op::AtomicShared:  // the same, and each lane sees the lanes before it
             return true;

@@ -135,19 +135,22 @@ bool Generator::sync(const Inst& in) {
             return emit_store_shared(a_, p_, in);
         case Op::AtomicShared:
             return emit_atomic_shared(a_, p_, in);
-        default: {
-            if (lowering(in) != Lowering::Helper) return false;
-            // the interpreter's code for this one instruction: the instruction and a Halt, run by execute_code
-            Inst* code = out_.helper_code.get() + 2 * helpers_used_++;
-            code[0] = in;
-            code[1] = Inst{Op::Halt};
-            call(in.op == Op::Sample ? reinterpret_cast<const void*>(&run_sample)
-                                     : reinterpret_cast<const void*>(&run_one_instruction),
-                 code);
-            ++out_.helper_ops;
-            return true;
-        }
+        case Op::StoreBuf:
+            if (lowering(in) == Lowering::Native) return emit_store_buf(a_, p_, in);
+            break;
+        default:
+            break;
     }
+    if (lowering(in) != Lowering::Helper) return false;
+    // the interpreter's code for this one instruction: the instruction and a Halt, run by execute_code
+    Inst* code = out_.helper_code.get() + 2 * helpers_used_++;
+    code[0] = in;
+    code[1] = Inst{Op::Halt};
+    call(in.op == Op::Sample ? reinterpret_cast<const void*>(&run_sample)
+                             : reinterpret_cast<const void*>(&run_one_instruction),
+         code);
+    ++out_.helper_ops;
+    return true;
 }
 
 bool Generator::generate(std::string* why) {

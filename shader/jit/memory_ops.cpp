@@ -1,6 +1,7 @@
-// Compute's Workgroup memory in the compiled tier: LoadShared inside segments (a gather per 8-lane half), and the
-// sync ops StoreShared and AtomicShared as the interpreter's lane loops (exec_atomic.h) written out for the 16
-// lanes: the same words in the same lane order, so the same memory and the same atomic results. Shared memory is
+// Memory ops of the compiled tier: compute's Workgroup memory — LoadShared inside segments (a gather per 8-lane
+// half), the sync ops StoreShared and AtomicShared — and StoreBuf to one buffer, the sync ops as the interpreter's
+// lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the same words in the same lane order, so
+// the same memory and the same atomic results. Shared memory is
 // one flat block per workgroup (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the
 // shared atomics are plain read-modify-writes, as in the interpreter.
 #include <cstddef>
@@ -125,6 +126,41 @@ bool emit_atomic_shared(x86::Assembler& a, const ProgramImpl& p, const Inst& in)
         a.mov(lane_of(in.d, l), ecx);
         a.bind(next);
     }
+    return true;
+}
+
+// exec_memory.h op_store_buf for one buffer (in.n == 1, so only element 0 stores): the lanes of mask d in lane
+// order, each storing c at byte b + extra when the descriptor is there and writable and the word lies inside it.
+bool emit_store_buf(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
+    for (uint32_t r : {in.a, in.b, in.c, in.d})
+        if (r >= p.num_regs) return false;
+    if (in.n != 1) return false;
+    if (in.imm >= p.num_slots) return true;  // the slot is past the table: no lane stores (the interpreter's check)
+    using namespace x86;
+    Label done = a.newLabel();
+    a.mov(rax, qword_ptr(kSlotsBase, int32_t(in.imm) * 8));
+    a.test(rax, rax);
+    a.jz(done);
+    a.mov(rdx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, writable))));
+    a.test(rdx, rdx);
+    a.jz(done);
+    a.mov(rsi, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, size))));
+    a.mov(rdi, uint64_t(in.extra) + 4);  // off + 4 <= size with off = b + extra, in 64 bits
+    for (int l = 0; l < kLanes; ++l) {
+        Label skip = a.newLabel();
+        a.cmp(lane_of(in.d, l), 0);
+        a.je(skip);
+        a.cmp(lane_of(in.a, l), 0);  // a[l] >= n: another element of a one-element array
+        a.jne(skip);
+        a.mov(eax, lane_of(in.b, l));  // zero-extends
+        a.add(rax, rdi);                 // off + 4, no wrap in 64 bits
+        a.cmp(rax, rsi);
+        a.ja(skip);
+        a.mov(ecx, lane_of(in.c, l));
+        a.mov(dword_ptr(rdx, rax, 0, -4), ecx);
+        a.bind(skip);
+    }
+    a.bind(done);
     return true;
 }
 
