@@ -28,12 +28,15 @@ bool lane_loop_ok(const ProgramImpl& p, const Inst& in, std::initializer_list<ui
     return in.n != 0 && in.n <= p.shared_words;
 }
 
-// rax = min(imm + (uint64_t)eax, n - 1): the word index of exec_atomic.h, computed in 64 bits as it is there.
+// rax = min(imm + (uint64_t)eax, n - 1): the word index of exec_atomic.h, computed in 64 bits as it is there;
+// r10 = n - 1 (set once per instruction by last_word).
+void last_word(x86::Assembler& a, const Inst& in) {
+    a.mov(x86::r10, uint64_t(in.n) - 1);
+}
 void clamp_index(x86::Assembler& a, const Inst& in) {
-    a.add(x86::rax, int32_t(in.imm));
-    a.mov(x86::rcx, uint64_t(in.n) - 1);
-    a.cmp(x86::rax, x86::rcx);
-    a.cmova(x86::rax, x86::rcx);
+    if (in.imm != 0) a.add(x86::rax, int32_t(in.imm));
+    a.cmp(x86::rax, x86::r10);
+    a.cmova(x86::rax, x86::r10);
 }
 
 // r9d = atomic_result(op, old = ecx, v = r8d, cmp = the lane's d) (exec_atomic.h)
@@ -90,6 +93,7 @@ bool emit_store_shared(x86::Assembler& a, const ProgramImpl& p, const Inst& in) 
     if (!lane_loop_ok(p, in, {in.a, in.b, in.c})) return false;
     using namespace x86;
     a.mov(rdx, qword_ptr(kFrameBase, int32_t(offsetof(Frame, shared))));
+    last_word(a, in);
     for (int l = 0; l < kLanes; ++l) {
         Label skip = a.newLabel();
         a.cmp(lane_of(in.c, l), 0);
@@ -109,6 +113,7 @@ bool emit_atomic_shared(x86::Assembler& a, const ProgramImpl& p, const Inst& in)
     if (!lane_loop_ok(p, in, {in.a, in.c, in.d})) return false;
     using namespace x86;
     a.mov(rdx, qword_ptr(kFrameBase, int32_t(offsetof(Frame, shared))));
+    last_word(a, in);
     for (int l = 0; l < kLanes; ++l) {
         Label active = a.newLabel(), next = a.newLabel();
         a.mov(eax, lane_of(in.a, l));
@@ -164,8 +169,11 @@ bool emit_store_buf(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
     return true;
 }
 
-// exec_atomic.h op_load_shared for one half: d = shared[min(imm + a, n - 1)] per lane, as one gather from word imm
-// on with the index clamped to n - 1 - imm first (the same word: imm <= n - 1, and the sum cannot wrap then).
+// exec_atomic.h op_load_shared for one half: d = shared[min(imm + a, n - 1)] per lane, with the index clamped to
+// n - 1 - imm first (the same word: imm <= n - 1, and the sum cannot wrap then). Gathers are slow on the machines
+// this runs on (README "The RGBA8 sampler's loads"), and a workgroup's lanes mostly read one row of a tile (x
+// consecutive words) or one word (a value every lane of the row needs): those two are a plain load and a
+// broadcast, checked per half at run time; any other pattern is a gather. The same words either way.
 bool LaneEmitter::load_shared(const Inst& in) {
     if (in.n == 0 || in.n > p_.shared_words) return false;
     using namespace x86;
@@ -176,11 +184,30 @@ bool LaneEmitter::load_shared(const Inst& in) {
         def(in.d, d);
         return true;
     }
-    Ymm a = use(in.a), idx = temp(), mask = temp(), d = temp();
+    static const uint32_t kSteps[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    Ymm a = use(in.a), idx = temp(), t = temp(), d = temp();
+    Label not_row = a_.newLabel(), gather = a_.newLabel(), done = a_.newLabel();
+    const int32_t base = int32_t(in.imm) * 4;
     a_.vpminud(idx, a, pool_.splat(in.n - 1 - in.imm));
-    a_.vpcmpeqd(mask, mask, mask);
+    a_.vpbroadcastd(t, idx.xmm());
+    a_.vpsubd(t, idx, t);  // each lane's index minus lane 0's
+    a_.vmovd(ecx, idx.xmm());
+    a_.vpcmpeqd(d, t, pool_.vector(kSteps));
+    a_.vmovmskps(edx, d);
+    a_.cmp(edx, 0xFF);
+    a_.jne(not_row);
+    a_.vmovdqu(d, ptr(rax, rcx, 2, base));  // consecutive words
+    a_.jmp(done);
+    a_.bind(not_row);
+    a_.vptest(t, t);
+    a_.jnz(gather);
+    a_.vpbroadcastd(d, dword_ptr(rax, rcx, 2, base));  // one word
+    a_.jmp(done);
+    a_.bind(gather);
+    a_.vpcmpeqd(t, t, t);
     a_.vpxor(d, d, d);
-    a_.vpgatherdd(d, ptr(rax, idx, 2, int32_t(in.imm) * 4), mask);
+    a_.vpgatherdd(d, ptr(rax, idx, 2, base), t);
+    a_.bind(done);
     def(in.d, d);
     return true;
 }
