@@ -1,5 +1,5 @@
-// Memory ops of the compiled tier: compute's Workgroup memory — LoadShared inside segments (a gather per 8-lane
-// half), the sync ops StoreShared and AtomicShared — and StoreBuf to one buffer, the sync ops as the interpreter's
+// Memory ops of the compiled tier: LoadBuf from one buffer and compute's LoadShared inside segments (a load, a
+// broadcast or a gather per 8-lane half), the sync ops StoreShared and AtomicShared, and StoreBuf to one buffer, the sync ops as the interpreter's
 // lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the same words in the same lane order, so
 // the same memory and the same atomic results. Shared memory is
 // one flat block per workgroup (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the
@@ -14,6 +14,9 @@ namespace tilevk::shader::jit {
 using namespace asmjit;
 
 namespace {
+
+// A missing descriptor reads through kNoBuffer (no data, size 0).
+const Descriptor kNoBuffer{};
 
 // Word `lane` of IR register r in the register file.
 x86::Mem lane_of(uint32_t r, int lane) {
@@ -167,6 +170,70 @@ bool emit_store_buf(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
     }
     a.bind(done);
     return true;
+}
+
+// exec_memory.h op_load_buf for a single buffer (in.n == 1) as one masked gather: a lane reads the word at byte
+// b + extra when its element index a is 0, the buffer has data and b + extra + 4 <= size; every other lane gets 0
+// (a masked-off lane of vpgatherdd keeps the zeroed destination and touches no memory). The bound is computed in
+// 64 bits and capped at 2^31 (gather indices are signed dwords), which changes nothing for a valid descriptor: its
+// range is at most maxStorageBufferRange = 2^27 (maxUniformBufferRange 16384). Past the cap (invalid usage) a lane
+// reads 0 where the interpreter reads the word; every lane that reads stays inside the buffer either way.
+void LaneEmitter::load_buf(const Inst& in) {
+    if (in.imm >= p_.num_slots) {
+        Ymm d = temp();
+        a_.vpxor(d, d, d);
+        def(in.d, d);
+        return;
+    }
+    using namespace x86;
+    // The sources first: a temp is only reserved from the moment it is taken, so a later use() could reuse it.
+    Ymm a = use(in.a), b = use(in.b), d = temp(), lim = temp(), bad = temp(), mask = temp();
+    a_.vpxor(d, d, d);
+    a_.mov(rax, qword_ptr(kSlotsBase, int32_t(in.imm) * 8));
+    a_.mov(rcx, reinterpret_cast<uint64_t>(&kNoBuffer));
+    a_.test(rax, rax);
+    a_.cmovz(rax, rcx);
+    a_.mov(rdx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, data))));
+    a_.mov(rcx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, size))));
+    a_.mov(rsi, uint64_t(1) << 31);
+    a_.cmp(rcx, rsi);
+    a_.cmovb(rsi, rcx);  // rsi = min(size, 2^31)
+    a_.xor_(ecx, ecx);
+    a_.test(rdx, rdx);
+    a_.cmovz(rsi, rcx);  // no data: nothing is inside
+    a_.mov(rcx, uint64_t(in.extra) + 4);
+    a_.sub(rsi, rcx);  // the largest b that is inside; negative: none
+    a_.mov(rcx, uint64_t(int64_t(-1)));
+    a_.cmovl(rsi, rcx);
+    a_.vmovd(lim.xmm(), esi);
+    a_.vpbroadcastd(lim, lim.xmm());
+    a_.vpcmpgtd(bad, b, lim);  // b > bound (signed: the bound is below 2^31)
+    a_.vpcmpgtd(mask, d, b);   // b >= 2^31 (negative as a signed dword); d is zero here
+    a_.vpor(bad, bad, mask);
+    a_.vpcmpeqd(mask, a, d);  // element index 0
+    a_.vpandn(mask, bad, mask);
+    a_.mov(rdi, uint64_t(in.extra));
+    a_.add(rdi, rdx);
+    // Every lane inside and the offsets 4 bytes apart (a row of a buffer, as x[gl_GlobalInvocationID.x] reads):
+    // one plain load of the same 32 bytes; gathers are slow here (load_shared).
+    static const uint32_t kSteps[8] = {0, 4, 8, 12, 16, 20, 24, 28};
+    Label gather = a_.newLabel(), done = a_.newLabel();
+    a_.vmovmskps(ecx, mask);
+    a_.cmp(ecx, 0xFF);
+    a_.jne(gather);
+    a_.vpbroadcastd(bad, b.xmm());
+    a_.vpsubd(bad, b, bad);
+    a_.vpcmpeqd(bad, bad, pool_.vector(kSteps));
+    a_.vmovmskps(ecx, bad);
+    a_.cmp(ecx, 0xFF);
+    a_.jne(gather);
+    a_.vmovd(ecx, b.xmm());  // zero-extends: the offset is below 2^31 here
+    a_.vmovdqu(d, ptr(rdi, rcx));
+    a_.jmp(done);
+    a_.bind(gather);
+    a_.vpgatherdd(d, ptr(rdi, b, 0), mask);
+    a_.bind(done);
+    def(in.d, d);
 }
 
 // exec_atomic.h op_load_shared for one half: d = shared[min(imm + a, n - 1)] per lane, with the index clamped to
