@@ -120,8 +120,8 @@ namespace {
 // zero_local false: the caller zeroes the local words itself (run_fragment: only those no input writes).
 // resolve false: s.slots already holds these bindings' descriptors and &push (the workgroup's earlier batch on this
 // scratch): the look-ups were a third of a small compute batch's set-up.
-void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push,
-             bool zero_local = true, bool resolve = true) {
+void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push, bool zero_local = true,
+             bool resolve = true) {
     if (s.last != p.serial) {
         s.regs.assign(size_t(p.num_regs) * kLanes, 0);
         for (size_t i = 0; i + 1 < p.const_regs.size(); i += 2)

@@ -1,9 +1,9 @@
 // Memory ops of the compiled tier: LoadBuf from one buffer and compute's LoadShared inside segments (a load, a
-// broadcast or a gather per 8-lane half), the sync ops StoreShared and AtomicShared, and StoreBuf to one buffer, the sync ops as the interpreter's
-// lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the same words in the same lane order, so
-// the same memory and the same atomic results. Shared memory is
-// one flat block per workgroup (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the
-// shared atomics are plain read-modify-writes, as in the interpreter.
+// broadcast or a gather per 8-lane half), the sync ops StoreShared and AtomicShared, and StoreBuf to one buffer, the
+// sync ops as the interpreter's lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the same words
+// in the same lane order, so the same memory and the same atomic results. Shared memory is one flat block per workgroup
+// (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the shared atomics are plain
+// read-modify-writes, as in the interpreter.
 #include <cstddef>
 
 #include "shader/jit/codegen.h"
@@ -161,7 +161,7 @@ bool emit_store_buf(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
         a.cmp(lane_of(in.a, l), 0);  // a[l] >= n: another element of a one-element array
         a.jne(skip);
         a.mov(eax, lane_of(in.b, l));  // zero-extends
-        a.add(rax, rdi);                 // off + 4, no wrap in 64 bits
+        a.add(rax, rdi);               // off + 4, no wrap in 64 bits
         a.cmp(rax, rsi);
         a.ja(skip);
         a.mov(ecx, lane_of(in.c, l));
