@@ -118,8 +118,10 @@ namespace {
 
 // Set up the scratch for a program: sizes, constants, resolved descriptors.
 // zero_local false: the caller zeroes the local words itself (run_fragment: only those no input writes).
-void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push,
-             bool zero_local = true) {
+// resolve false: s.slots already holds these bindings' descriptors and &push (the workgroup's earlier batch on this
+// scratch): the look-ups were a third of a small compute batch's set-up.
+void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, Descriptor& push, bool zero_local = true,
+             bool resolve = true) {
     if (s.last != p.serial) {
         s.regs.assign(size_t(p.num_regs) * kLanes, 0);
         for (size_t i = 0; i + 1 < p.const_regs.size(); i += 2)
@@ -131,6 +133,7 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
     if (s.local.size() < words) s.local.resize(words);
     // variables start at zero, so results never depend on history
     if (zero_local) std::memset(s.local.data(), 0, words * 4);
+    if (!resolve && s.slots.size() == p.num_slots) return;
     if (s.slots.size() != p.num_slots) s.slots.resize(p.num_slots);
     push.buffer.data = bindings.push_constants.data();
     push.buffer.size = bindings.push_constants.size();
@@ -442,8 +445,8 @@ void write_subgroup_builtin(const IoCopy& c, const std::array<uint32_t, 3>& size
 
 // A compute batch's start: the scratch prepared, the built-ins copied into local memory, the entry mask.
 void start_compute(const ProgramImpl& p, const std::array<uint32_t, 3>& size, const Bindings& bindings,
-                   const ComputeBatch& cb, Scratch::Impl& s, Descriptor& push) {
-    prepare(p, bindings, s, push);
+                   const ComputeBatch& cb, Scratch::Impl& s, Descriptor& push, bool resolve = true) {
+    prepare(p, bindings, s, push, true, resolve);
     uint32_t* M = s.local.data();
     for (const IoCopy& c : p.io_in) {
         uint32_t* w = M + size_t(c.word) * kLanes;
@@ -455,9 +458,15 @@ void start_compute(const ProgramImpl& p, const std::array<uint32_t, 3>& size, co
             case IoSlot::LocalInvocationIndex:
                 copy_lanes(w, cb.local_index);
                 break;
-            case IoSlot::GlobalInvocationId:  // wraps in 32 bits as the SPIR-V arithmetic would
-                LANES w[l] = cb.workgroup_id[i] * size[i] + cb.local_id[i][l];
+            case IoSlot::GlobalInvocationId: {  // wraps in 32 bits as the SPIR-V arithmetic would
+                // SSE2 by hand: GCC kept the multiply in the per-lane loop (w might alias cb)
+                const __m128i base = _mm_set1_epi32(int(cb.workgroup_id[i] * size[i]));
+                for (int q = 0; q < kLanes; q += 4) {
+                    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(cb.local_id[i] + q));
+                    _mm_storeu_si128(reinterpret_cast<__m128i*>(w + q), _mm_add_epi32(base, id));
+                }
                 break;
+            }
             case IoSlot::WorkgroupId:
                 LANES w[l] = cb.workgroup_id[i];
                 break;
@@ -494,7 +503,7 @@ void Program::run_workgroup(const Bindings& bindings, std::span<const ComputeBat
     FloatEnv env;
     if (!p.has_barrier) {
         for (const ComputeBatch& cb : batches) {
-            start_compute(p, interface_.local_size, bindings, cb, s, push);
+            start_compute(p, interface_.local_size, bindings, cb, s, push, &cb == batches.data());
             s.shared = shared;
             run_program(p, s);
         }
@@ -514,7 +523,7 @@ void Program::run_workgroup(const Bindings& bindings, std::span<const ComputeBat
         for (size_t b = 0; b < batches.size(); ++b) {
             Scratch::Impl& f = frame_of(s, b);
             if (f.done) continue;
-            const size_t pc = execute_code(p.code.data(), f, f.resume_pc);
+            const size_t pc = p.jit ? jit::run(*p.jit, f, f.resume_pc) : execute_code(p.code.data(), f, f.resume_pc);
             f.done = pc == kRunDone;
             f.resume_pc = pc;
             running |= !f.done;

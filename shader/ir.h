@@ -165,9 +165,9 @@ enum class Op : uint16_t {
     JumpIfAny,   // if any lane of a is set: pc = imm
     Kill,        // live &= ~a (OpKill / demote); the kill register is d
     Halt,
-    // Interpreter only, appended after Halt on purpose: the compiled tier's op table (jit/analysis.cpp) ends at
-    // Halt, and jit::compile refuses programs with workgroup memory, barriers or atomics by name. Workgroup memory,
-    // barriers and subgroups are compute only; atomics and storage images work in every stage.
+    // Appended after Halt; the compiled tier's op table (jit/analysis.cpp) lists them too (shader/jit/README.md,
+    // "Compute"), and an op appended after these stays Unknown there until someone decides how to compile it.
+    // Workgroup memory, barriers and subgroups are compute only; atomics and storage images work in every stage.
     LoadShared,    // d = shared[min(imm + a, n - 1)] (one word of the workgroup's memory, same for every lane)
     StoreShared,   // shared[min(imm + a, n - 1)] = b under mask c, lanes in order (the last lane wins)
     AtomicBuf,     // d = atomic pad:AtomicOp on buffer(slot imm + elem a)[byte b + extra], value c, comparator d;
@@ -185,9 +185,9 @@ enum class Op : uint16_t {
     SgBroadcast,       // d = a of lane b (b read from the lowest active lane; taken modulo kSubgroupSize)
     SgBroadcastFirst,  // d = a of the lowest active lane
     SgBallot,          // d = the bits (1 << lane id) of the active lanes whose a is true
-    // Storage images (any stage; after Halt so that jit::compile leaves their programs to the interpreter, by
-    // name): a = handle, b = first integer coordinate (x, y[, layer]), imm = kSampleArray or 0. A coordinate
-    // outside the view's level 0 or layers loads (0, 0, 0, 1 if the format has no alpha) and stores nothing.
+    // Storage images (any stage): a = handle, b = first integer coordinate (x, y[, layer]), imm = kSampleArray or 0.
+    // A coordinate outside the view's level 0 or layers loads (0, 0, 0, 1 if the format has no alpha) and stores
+    // nothing.
     ImageLoad,   // d..d+3 = the texel decoded (format/texel_codec.h decode_color)
     ImageStore,  // texel = c..c+3 encoded (store_image_texel) under mask d, lanes in order
     // d = atomic pad:AtomicOp on the 32-bit texel of an R32_UINT / R32_SINT view at the coordinates b, value c,

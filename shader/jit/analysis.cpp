@@ -158,6 +158,26 @@ constexpr OpEntry kOps[] = {
     {Op::JumpIfAny, "JumpIfAny", N},
     {Op::Kill, "Kill", N},
     {Op::Halt, "Halt", N},
+    // Compute and storage images. LoadShared is a gather inside segments (memory_ops.cpp); StoreShared and the
+    // atomics are sync points whose lanes apply in lane order, as the interpreter's loops do: StoreShared and
+    // AtomicShared are emitted as that loop (memory_ops.cpp), the rest are the interpreter's code for the one
+    // instruction. Barrier ends the run with its pc (compile.cpp), the next run resumes after it.
+    {Op::LoadShared, "LoadShared", N},
+    {Op::StoreShared, "StoreShared", N},
+    {Op::AtomicBuf, "AtomicBuf", H},
+    {Op::AtomicShared, "AtomicShared", N},
+    {Op::Barrier, "Barrier", N},
+    {Op::SgLaneId, "SgLaneId", H},
+    {Op::SgElect, "SgElect", H},
+    {Op::SgAll, "SgAll", H},
+    {Op::SgAny, "SgAny", H},
+    {Op::SgAllEqual, "SgAllEqual", H},
+    {Op::SgBroadcast, "SgBroadcast", H},
+    {Op::SgBroadcastFirst, "SgBroadcastFirst", H},
+    {Op::SgBallot, "SgBallot", H},
+    {Op::ImageLoad, "ImageLoad", H},
+    {Op::ImageStore, "ImageStore", H},
+    {Op::AtomicImage, "AtomicImage", H},
 };
 
 constexpr bool table_in_enum_order() {
@@ -225,6 +245,8 @@ Lowering lowering(const Inst& in) {
     // A load from one buffer (not an array of descriptors) is a masked gather (lanes.cpp load_buf); from a
     // descriptor array, each lane may read another buffer: the interpreter's loop.
     if (in.op == Op::LoadBuf) return in.n == 1 ? Lowering::Native : Lowering::Helper;
+    // A store to one buffer is the interpreter's lane loop written out (memory_ops.cpp), a sync op.
+    if (in.op == Op::StoreBuf) return in.n == 1 ? Lowering::Native : Lowering::Helper;
     return op_info(in.op).lowering;
 }
 
@@ -234,6 +256,10 @@ bool is_sync(const Inst& in) {
         case Op::JumpIfNone:
         case Op::JumpIfAny:
         case Op::Halt:
+        case Op::Barrier:
+        case Op::StoreBuf:      // lanes in order, like StoreShared
+        case Op::StoreShared:   // lanes in order over all 16 lanes: the last lane writing a word wins
+        case Op::AtomicShared:  // the same, and each lane sees the lanes before it
             return true;
         default:
             return lowering(in) != Lowering::Native;
@@ -276,6 +302,26 @@ Footprint footprint(const Inst& in) {
             break;
         case Op::StoreBuf:
             f.read(in.d), f.read(in.a), f.read(in.b), f.read(in.c);  // d is the store mask
+            break;
+        case Op::AtomicBuf:
+        case Op::AtomicShared:  // d is the comparator as well as the result
+            f.read(in.a), f.read(in.b), f.read(in.c), f.read(in.d), f.write(in.d);
+            f.reads_dest = true;
+            break;
+        case Op::ImageLoad:  // handle, x, y, layer; four results
+            f.read(in.a);
+            for (uint32_t i = 0; i < 3 && in.b != kNoReg; ++i) f.read(in.b + i);
+            for (uint32_t i = 0; i < 4 && in.d != kNoReg; ++i) f.write(in.d + i);
+            break;
+        case Op::ImageStore:  // handle, x, y, layer, four values, the mask d
+            f.read(in.a), f.read(in.d);
+            for (uint32_t i = 0; i < 3 && in.b != kNoReg; ++i) f.read(in.b + i);
+            for (uint32_t i = 0; i < 4 && in.c != kNoReg; ++i) f.read(in.c + i);
+            break;
+        case Op::AtomicImage:  // handle, x, y, layer, value; d the comparator and the result
+            f.read(in.a), f.read(in.c), f.read(in.d), f.write(in.d);
+            for (uint32_t i = 0; i < 3 && in.b != kNoReg; ++i) f.read(in.b + i);
+            f.reads_dest = true;
             break;
         case Op::Bfi:
             f.read(in.a), f.read(in.b), f.read(in.c), f.read(in.imm), f.write(in.d);
@@ -327,6 +373,7 @@ Analysis analyze(const ProgramImpl& p) {
             }
             an.label[in.imm] = 1;
         }
+        if (in.op == Op::Barrier) an.label[i + 1] = 1;  // a run resumes there (compile.cpp's resume table)
     }
 
     an.is_const.assign(regs, 0);

@@ -108,6 +108,7 @@ class LaneEmitter {
     void lane_call(const Inst& in, const void* fn);
     void load_buf_uniform(const Inst& in);
     void load_buf(const Inst& in);
+    bool load_shared(const Inst& in);  // memory_ops.cpp
 
     const ProgramImpl& p_;
     const Analysis& an_;
@@ -119,5 +120,11 @@ class LaneEmitter {
     int half_ = 0;
     bool overflow_ = false;
 };
+
+// The memory sync ops as the interpreter's lane loops (memory_ops.cpp), at a sync point (every value in its home,
+// rax, rcx, rdx, rsi, rdi, r8, r9 and r10 free). False when the instruction's operands are out of range.
+bool emit_store_shared(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);
+bool emit_atomic_shared(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);
+bool emit_store_buf(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);  // in.n == 1 only
 
 }  // namespace tilevk::shader::jit

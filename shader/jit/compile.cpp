@@ -52,6 +52,7 @@ class Generator {
         return x86::ymmword_ptr(kRegsBase, int32_t(size_t(r) * kLanes * 4 + size_t(half) * 32));
     }
     void any_lane(uint32_t r);  // ZF = no lane of r set
+    void resume_table();        // the jump from Frame::resume to the instruction after its Barrier
     void call(const void* fn, const Inst* code);
     bool sync(const Inst& in);
 
@@ -62,7 +63,7 @@ class Generator {
     ConstantPool pool_;
     LaneEmitter lanes_;
     std::vector<Label> labels_;
-    Label exit_, loop_limit_;
+    Label exit_, return_, loop_limit_;
     size_t helpers_used_ = 0;
 };
 
@@ -70,6 +71,18 @@ void Generator::any_lane(uint32_t r) {
     a_.vmovups(x86::ymm0, home(r, 0));
     a_.vpor(x86::ymm0, x86::ymm0, home(r, 1));
     a_.vptest(x86::ymm0, x86::ymm0);
+}
+
+// A program with barriers runs in phases (exec.cpp run_workgroup): a run that starts at the pc after a Barrier jumps
+// to that instruction's label (analyze() makes one there). Barriers are few, so a chain of compares does.
+void Generator::resume_table() {
+    if (!p_.has_barrier) return;
+    a_.mov(x86::rax, x86::qword_ptr(kFrameBase, int32_t(offsetof(Frame, resume))));
+    for (size_t pc = 0; pc < p_.code.size(); ++pc) {
+        if (p_.code[pc].op != Op::Barrier) continue;
+        a_.cmp(x86::rax, int32_t(pc + 1));
+        a_.je(labels_[pc + 1]);
+    }
 }
 
 // fn(frame->scratch, code): every YMM register is free here (a sync point) and the callee-saved bases survive.
@@ -114,19 +127,30 @@ bool Generator::sync(const Inst& in) {
         case Op::Halt:
             a_.jmp(exit_);
             return true;
-        default: {
-            if (lowering(in) != Lowering::Helper) return false;
-            // the interpreter's code for this one instruction: the instruction and a Halt, run by execute_code
-            Inst* code = out_.helper_code.get() + 2 * helpers_used_++;
-            code[0] = in;
-            code[1] = Inst{Op::Halt};
-            call(in.op == Op::Sample ? reinterpret_cast<const void*>(&run_sample)
-                                     : reinterpret_cast<const void*>(&run_one_instruction),
-                 code);
-            ++out_.helper_ops;
+        case Op::Barrier:  // every value is in its home (a sync point): return where the next phase resumes
+            a_.mov(x86::rax, uint64_t(&in - p_.code.data()) + 1);
+            a_.jmp(return_);
             return true;
-        }
+        case Op::StoreShared:
+            return emit_store_shared(a_, p_, in);
+        case Op::AtomicShared:
+            return emit_atomic_shared(a_, p_, in);
+        case Op::StoreBuf:
+            if (lowering(in) == Lowering::Native) return emit_store_buf(a_, p_, in);
+            break;
+        default:
+            break;
     }
+    if (lowering(in) != Lowering::Helper) return false;
+    // the interpreter's code for this one instruction: the instruction and a Halt, run by execute_code
+    Inst* code = out_.helper_code.get() + 2 * helpers_used_++;
+    code[0] = in;
+    code[1] = Inst{Op::Halt};
+    call(in.op == Op::Sample ? reinterpret_cast<const void*>(&run_sample)
+                             : reinterpret_cast<const void*>(&run_one_instruction),
+         code);
+    ++out_.helper_ops;
+    return true;
 }
 
 bool Generator::generate(std::string* why) {
@@ -142,7 +166,12 @@ bool Generator::generate(std::string* why) {
     for (size_t i = 0; i <= n; ++i)
         if (an_.label[i]) labels_[i] = a_.newLabel();
     exit_ = a_.newLabel();
+    return_ = a_.newLabel();
     loop_limit_ = a_.newLabel();
+    if (size_t(p_.shared_words) * 4 > INT32_MAX) {
+        *why = "the shared memory is too large for 32-bit displacements";
+        return false;
+    }
 
     // void entry(Frame* rdi): save the callee-saved registers used as bases; rsp stays 16-byte aligned for calls
     using namespace x86;
@@ -156,6 +185,7 @@ bool Generator::generate(std::string* why) {
     a_.mov(kRegsBase, qword_ptr(rdi, int32_t(offsetof(Frame, regs))));
     a_.mov(kLocalBase, qword_ptr(rdi, int32_t(offsetof(Frame, local))));
     a_.mov(kSlotsBase, qword_ptr(rdi, int32_t(offsetof(Frame, slots))));
+    resume_table();
 
     std::vector<Uses> uses;
     for (size_t pc = 0; pc < n;) {
@@ -184,6 +214,8 @@ bool Generator::generate(std::string* why) {
     for (const Inst& in : p_.code) out_.native_ops += is_sync(in) && lowering(in) == Lowering::Native;
 
     a_.bind(exit_);
+    a_.mov(rax, uint64_t(kRunDone));
+    a_.bind(return_);
     a_.vzeroupper();
     a_.pop(r14);
     a_.pop(r13);
@@ -218,16 +250,6 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
         *why_not = "the CPU lacks AVX2 or FMA";
         return nullptr;
     }
-    // A run of the compiled code cannot stop at a barrier and resume (Program::run_workgroup's lock-step phases),
-    // and this tier has no shared-memory, atomic, subgroup or storage-image ops: such programs stay in the
-    // interpreter, by name.
-    for (const Inst& in : p.code)
-        if (in.op > Op::Halt) {
-            *why_not = "IR op " + op_name(in.op) +
-                       ": Workgroup memory, OpControlBarrier, OpAtomic*, OpGroupNonUniform* and storage images "
-                       "(OpImageRead / OpImageWrite) run in the interpreter only";
-            return nullptr;
-        }
     const Analysis an = analyze(p);
     if (an.unknown_at >= 0) {
         const Inst& in = p.code[size_t(an.unknown_at)];
@@ -290,50 +312,17 @@ std::shared_ptr<const Code> compile(const ProgramImpl& p, std::string* why_not) 
     return code;
 }
 
-void run(const Code& code, Scratch::Impl& s) {
+size_t run(const Code& code, Scratch::Impl& s, size_t pc) {
     static_assert(sizeof(std::atomic<bool>) == 1 && std::atomic<bool>::is_always_lock_free,
                   "the generated code reads the stop flag as one byte");
-    Frame f{s.regs.data(), s.local.data(), s.slots.data(), &s, s.stop, 0};
-    code.entry(&f);
+    // back_edges continues the count of the run's earlier phases (exec.cpp's watchdog counts over all of them)
+    Frame f{s.regs.data(), s.local.data(), s.slots.data(), &s, s.stop, s.back_edges, s.shared, pc};
+    const size_t next = code.entry(&f);
+    s.back_edges = f.back_edges;
+    return next;
 }
 
 std::string op_name(Op op) {
-    switch (op) {  // the compute ops after Halt, which this tier does not compile (generate_code)
-        case Op::LoadShared:
-            return "LoadShared";
-        case Op::StoreShared:
-            return "StoreShared";
-        case Op::AtomicBuf:
-            return "AtomicBuf";
-        case Op::AtomicShared:
-            return "AtomicShared";
-        case Op::Barrier:
-            return "Barrier";
-        case Op::SgLaneId:
-            return "SgLaneId";
-        case Op::SgElect:
-            return "SgElect";
-        case Op::SgAll:
-            return "SgAll";
-        case Op::SgAny:
-            return "SgAny";
-        case Op::SgAllEqual:
-            return "SgAllEqual";
-        case Op::SgBroadcast:
-            return "SgBroadcast";
-        case Op::SgBroadcastFirst:
-            return "SgBroadcastFirst";
-        case Op::SgBallot:
-            return "SgBallot";
-        case Op::ImageLoad:
-            return "ImageLoad";
-        case Op::ImageStore:
-            return "ImageStore";
-        case Op::AtomicImage:
-            return "AtomicImage";
-        default:
-            break;
-    }
     const OpInfo info = op_info(op);
     return info.name ? info.name : "op #" + std::to_string(unsigned(op));
 }

@@ -20,9 +20,12 @@ struct Frame {
     const Descriptor* const* slots;  // resolved descriptors (slot 0: push constants)
     Scratch::Impl* scratch;
     const std::atomic<bool>* stop;  // the driver's time limit (Scratch::set_stop_flag), or null
-    uint64_t back_edges;            // loop watchdog without a stop flag: back edges taken in this run
+    uint64_t back_edges;            // loop watchdog without a stop flag: back edges taken in this run (all phases)
+    uint32_t* shared;               // compute: the workgroup's shared memory (Scratch::Impl::shared)
+    uint64_t resume;                // where the run starts: 0, or the pc after a Barrier an earlier run stopped at
 };
-using Entry = void (*)(Frame*);
+// Returns kRunDone after Halt or the watchdog, else the pc after the Barrier the run stopped at.
+using Entry = size_t (*)(Frame*);
 
 // A compiled program. Owns the executable memory and the instructions the generated code hands back to the
 // interpreter one at a time.
@@ -40,8 +43,10 @@ struct Code {
 // then runs in the interpreter, never with a wrong result.
 std::shared_ptr<const Code> compile(const ProgramImpl& p, std::string* why_not);
 
-// Runs the compiled program on `s` (prepared by Program::run_*, floating-point environment already set).
-void run(const Code& code, Scratch::Impl& s);
+// Runs the compiled program on `s` (prepared by Program::run_*, floating-point environment already set) from pc 0
+// or, in a workgroup's lock-step phases, from the pc after a Barrier; returns as execute_code does (kRunDone, or the
+// pc after the Barrier the run stopped at).
+size_t run(const Code& code, Scratch::Impl& s, size_t pc = 0);
 
 // CPUID (and the OS's saved register state) says the host runs AVX2 and FMA code.
 bool host_supported();

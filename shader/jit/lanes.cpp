@@ -209,7 +209,8 @@ bool LaneEmitter::pass(size_t first, size_t end, const std::vector<Uses>& uses, 
     half_ = h;
     for (size_t i = first; i < end; ++i) {
         uses_ = &uses[i - first];
-        if (!op(p_.code[i]) || overflow_) return false;
+        const Inst& in = p_.code[i];
+        if (!(in.op == Op::LoadShared ? load_shared(in) : op(in)) || overflow_) return false;
         end_instruction();
     }
     for (Phys& ph : phys_) {
@@ -428,52 +429,6 @@ void LaneEmitter::load_buf_uniform(const Inst& in) {
     a_.test(rdx, rdx);
     a_.cmovz(rdi, rsi);  // no data
     a_.vpbroadcastd(d, dword_ptr(rdi));
-    def(in.d, d);
-}
-
-// exec_memory.h op_load_buf for a single buffer (in.n == 1) as one masked gather: a lane reads the word at byte
-// b + extra when its element index a is 0, the buffer has data and b + extra + 4 <= size; every other lane gets 0
-// (a masked-off lane of vpgatherdd keeps the zeroed destination and touches no memory). The bound is computed in
-// 64 bits and capped at 2^31 (gather indices are signed dwords), which changes nothing for a valid descriptor: its
-// range is at most maxStorageBufferRange = 2^27 (maxUniformBufferRange 16384). Past the cap (invalid usage) a lane
-// reads 0 where the interpreter reads the word; every lane that reads stays inside the buffer either way.
-void LaneEmitter::load_buf(const Inst& in) {
-    if (in.imm >= p_.num_slots) {
-        Ymm d = temp();
-        a_.vpxor(d, d, d);
-        def(in.d, d);
-        return;
-    }
-    using namespace x86;
-    // The sources first: a temp is only reserved from the moment it is taken, so a later use() could reuse it.
-    Ymm a = use(in.a), b = use(in.b), d = temp(), lim = temp(), bad = temp(), mask = temp();
-    a_.vpxor(d, d, d);
-    a_.mov(rax, qword_ptr(kSlotsBase, int32_t(in.imm) * 8));
-    a_.mov(rcx, reinterpret_cast<uint64_t>(&kNoDescriptor));
-    a_.test(rax, rax);
-    a_.cmovz(rax, rcx);
-    a_.mov(rdx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, data))));
-    a_.mov(rcx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, size))));
-    a_.mov(rsi, uint64_t(1) << 31);
-    a_.cmp(rcx, rsi);
-    a_.cmovb(rsi, rcx);  // rsi = min(size, 2^31)
-    a_.xor_(ecx, ecx);
-    a_.test(rdx, rdx);
-    a_.cmovz(rsi, rcx);  // no data: nothing is inside
-    a_.mov(rcx, uint64_t(in.extra) + 4);
-    a_.sub(rsi, rcx);  // the largest b that is inside; negative: none
-    a_.mov(rcx, uint64_t(int64_t(-1)));
-    a_.cmovl(rsi, rcx);
-    a_.vmovd(lim.xmm(), esi);
-    a_.vpbroadcastd(lim, lim.xmm());
-    a_.vpcmpgtd(bad, b, lim);  // b > bound (signed: the bound is below 2^31)
-    a_.vpcmpgtd(mask, d, b);   // b >= 2^31 (negative as a signed dword); d is zero here
-    a_.vpor(bad, bad, mask);
-    a_.vpcmpeqd(mask, a, d);  // element index 0
-    a_.vpandn(mask, bad, mask);
-    a_.mov(rdi, uint64_t(in.extra));
-    a_.add(rdi, rdx);
-    a_.vpgatherdd(d, ptr(rdi, b, 0), mask);
     def(in.d, d);
 }
 
