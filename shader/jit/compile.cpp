@@ -225,7 +225,7 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
         if (in.op > Op::Halt) {
             *why_not = "IR op " + op_name(in.op) +
                        ": Workgroup memory, OpControlBarrier, OpAtomic*, OpGroupNonUniform* and storage images "
-                       "(OpImageRead / OpImageWrite) run in the interpreter only";
+                       "(OpImageRead / OpImageWrite) and PhysicalStorageBuffer pointers run in the interpreter only";
             return nullptr;
         }
     const Analysis an = analyze(p);
@@ -331,6 +331,12 @@ std::string op_name(Op op) {
             return "ImageStore";
         case Op::AtomicImage:
             return "AtomicImage";
+        case Op::LoadPtr:
+            return "LoadPtr";
+        case Op::StorePtr:
+            return "StorePtr";
+        case Op::AtomicPtr:
+            return "AtomicPtr";
         default:
             break;
     }
