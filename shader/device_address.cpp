@@ -10,9 +10,14 @@
 namespace tilevk::shader {
 namespace {
 
+struct Range {
+    uint64_t end;   // one past the last byte's address
+    uint8_t* data;  // the first byte (pointers are made from it, not from the shader's integer)
+};
+
 struct Registry {
     std::shared_mutex mutex;
-    std::map<uint64_t, uint64_t> ranges;  // first byte -> one past the last
+    std::map<uint64_t, Range> ranges;  // by the first byte's address
 };
 
 Registry& registry() {
@@ -26,7 +31,8 @@ void register_device_memory(const void* data, uint64_t size) {
     Registry& r = registry();
     std::unique_lock lock(r.mutex);
     const auto first = uint64_t(reinterpret_cast<uintptr_t>(data));
-    r.ranges[first] = first + size;
+    // the driver's device memory, which shaders write (program.h takes it as const void* for both calls)
+    r.ranges[first] = Range{first + size, static_cast<uint8_t*>(const_cast<void*>(data))};
 }
 
 void unregister_device_memory(const void* data) {
@@ -43,8 +49,8 @@ void* DeviceAddressCheck::find(uint64_t address, uint32_t bytes) const {
     auto it = ranges.upper_bound(address);  // the first allocation starting after `address`
     if (it == ranges.begin()) return nullptr;
     --it;
-    if (address + bytes < address || address + bytes > it->second) return nullptr;  // past its end (or wrapping)
-    return reinterpret_cast<void*>(uintptr_t(address));
+    if (address + bytes < address || address + bytes > it->second.end) return nullptr;  // past its end (or wrapping)
+    return it->second.data + (address - it->first);
 }
 
 }  // namespace tilevk::shader
