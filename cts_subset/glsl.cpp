@@ -19,7 +19,17 @@ void set_spirv_target(SpirvTarget target) {
 }
 
 uint32_t spirv_target_vulkan_minor() {
-    return g_target == SpirvTarget::kSpirv10 ? 0 : g_target == SpirvTarget::kSpirv13 ? 1 : 2;
+    switch (g_target) {
+        case SpirvTarget::kSpirv10:
+            return 0;
+        case SpirvTarget::kSpirv13:
+            return 1;
+        case SpirvTarget::kSpirv15:
+            return 2;
+        case SpirvTarget::kSpirv16:
+            break;
+    }
+    return 3;
 }
 
 const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source) {
@@ -41,10 +51,12 @@ const std::vector<uint32_t>& compile_glsl(Stage stage, const std::string& source
     shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, minor == 0   ? glslang::EShTargetVulkan_1_0
                                                   : minor == 1 ? glslang::EShTargetVulkan_1_1
-                                                               : glslang::EShTargetVulkan_1_2);
+                                                  : minor == 2 ? glslang::EShTargetVulkan_1_2
+                                                               : glslang::EShTargetVulkan_1_3);
     shader.setEnvTarget(glslang::EShTargetSpv, minor == 0   ? glslang::EShTargetSpv_1_0
                                                : minor == 1 ? glslang::EShTargetSpv_1_3
-                                                            : glslang::EShTargetSpv_1_5);
+                                               : minor == 2 ? glslang::EShTargetSpv_1_5
+                                                            : glslang::EShTargetSpv_1_6);
     auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
     if (!shader.parse(GetDefaultResources(), 450, false, messages))
         throw std::runtime_error(std::string("glslang: ") + shader.getInfoLog() + "\n" + source);

@@ -14,7 +14,7 @@ enum class Stage { kVertex, kFragment, kCompute };
 // The SPIR-V version compile_glsl targets (--spirv): 1.0 for Vulkan 1.0 by default; 1.3 (Vulkan 1.1) and 1.5
 // (Vulkan 1.2) run the same cases through the later forms of the same shaders (SPIR-V 1.4 lists every global in the
 // entry point's interface, for one). Set before the first compile; the instance asks for the matching Vulkan version.
-enum class SpirvTarget { kSpirv10, kSpirv13, kSpirv15 };
+enum class SpirvTarget { kSpirv10, kSpirv13, kSpirv15, kSpirv16 };
 void set_spirv_target(SpirvTarget target);
 uint32_t spirv_target_vulkan_minor();  // 0, 1 or 2: the Vulkan 1.x whose environment the SPIR-V version belongs to
 

@@ -108,6 +108,8 @@ bool parse(int argc, char** argv, Options& o) {
                 set_spirv_target(SpirvTarget::kSpirv13);
             else if (n == "1.5")
                 set_spirv_target(SpirvTarget::kSpirv15);
+            else if (n == "1.6")
+                set_spirv_target(SpirvTarget::kSpirv16);
             else
                 return false;
         } else if (a == "--start-after") {

@@ -209,6 +209,13 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.depth_clip_control, VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME);
         link(out.extended_dynamic_state, VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME);
         link(out.extended_dynamic_state2, VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME);
+        // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
+        // needs maintenance4 (core in 1.3, required of every 1.3 device).
+        VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
+        if (spirv_target_vulkan_minor() >= 3) {
+            maintenance4.pNext = chain;
+            chain = &maintenance4;
+        }
         if (chain != nullptr) {
             auto features2 = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
                 vkGetInstanceProcAddr(instance_, "vkGetPhysicalDeviceFeatures2KHR"));

@@ -45,10 +45,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_BindBufferMemory(VkDevice, VkBuffer buffer, V
     return VK_SUCCESS;
 }
 
-// Vulkan 1.2 core commands. Their valid use needs bufferDeviceAddress (and the capture-replay features), which
-// tilevk does not report (vkAllocateMemory refuses the address flags; VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT is
-// valid without the feature and accepted, as no VUID ties the two); they still answer what is true: a buffer's
-// address is where its bytes are, and nothing has an opaque capture address.
+// Vulkan 1.2 core commands (VK_KHR_buffer_device_address): a buffer's address is where its bytes are in host memory,
+// which shaders reach through PhysicalStorageBuffer pointers (shader/translate_pointer.cpp) when the memory was
+// allocated with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT (memory.cpp). bufferDeviceAddressCaptureReplay is VK_FALSE,
+// so nothing has an opaque capture address: 0, as the spec allows when no capture address was asked for.
 VKAPI_ATTR VkDeviceAddress VKAPI_CALL tvk_GetBufferDeviceAddress(VkDevice, const VkBufferDeviceAddressInfo* pInfo) {
     const Buffer* buf = from_handle<Buffer>(pInfo->buffer);
     return buf->memory == nullptr ? 0 : VkDeviceAddress(reinterpret_cast<uintptr_t>(buf->data()));

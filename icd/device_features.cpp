@@ -111,7 +111,15 @@ Features make_supported() {
     // Availability/visibility chains (optional) are not reported: no test tells them apart.
     f.core.v12.vulkanMemoryModel = VK_TRUE;
     f.core.v12.vulkanMemoryModelDeviceScope = VK_TRUE;
+    // PhysicalStorageBuffer pointers are host addresses, read and written by the interpreter after a lookup in the
+    // allocations made with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT (shader/translate_pointer.cpp, exec_pointer.h;
+    // ApiBufferDeviceAddress). No capture/replay (addresses are wherever malloc puts them); one device per group.
+    f.core.v12.bufferDeviceAddress = VK_TRUE;
     f.core.v13.privateData = VK_TRUE;  // private_data.cpp
+    // Storage image loads and texel fetches outside the view give (0, 0, 0, 0), alpha 1 for formats without alpha,
+    // stores outside do nothing (shader/texture.cpp, lavapipe's rules: docs/lavapipe-rules.md §9) — the spec's
+    // texel replacement, with robustImageAccess enabled or not (ApiStorageImage.RobustImageAccessFeature).
+    f.core.v13.robustImageAccess = VK_TRUE;
     // Inline uniform blocks: bytes inside the descriptor set, read as a uniform buffer (descriptor_pool.cpp,
     // execute_draw.cpp). Not after bind: descriptor indexing (which that needs) is not reported.
     f.core.v13.inlineUniformBlock = VK_TRUE;

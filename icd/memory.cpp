@@ -5,6 +5,7 @@
 #include "device.h"
 #include "entrypoints.h"
 #include "physical_device.h"
+#include "shader/program.h"
 #include "vk_names.h"
 
 namespace tilevk::icd {
@@ -16,16 +17,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
         return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: memory type %u does not exist",
                     pAllocateInfo->memoryTypeIndex);
     }
+    bool device_address = false;
     if (const auto* flags = find_in_chain<VkMemoryAllocateFlagsInfo>(pAllocateInfo->pNext,
                                                                      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO)) {
-        constexpr VkMemoryAllocateFlags kAddress =
-            VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT | VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_REPLAY_BIT;
-        if ((flags->flags & kAddress) != 0) {
+        // Addresses are host addresses: there is nothing to capture and replay (bufferDeviceAddressCaptureReplay
+        // is VK_FALSE).
+        if ((flags->flags & VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_REPLAY_BIT) != 0) {
             return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                        "vkAllocateMemory: VkMemoryAllocateFlagsInfo::flags %s need the bufferDeviceAddress feature, "
-                        "which tilevk does not support",
-                        vk_flags_name<VkMemoryAllocateFlagBits>(flags->flags & kAddress).c_str());
+                        "vkAllocateMemory: VkMemoryAllocateFlagsInfo::flags VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_"
+                        "REPLAY_BIT needs the bufferDeviceAddressCaptureReplay feature, which tilevk does not support");
         }
+        device_address = (flags->flags & VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT) != 0;
     }
     VkDeviceSize size = pAllocateInfo->allocationSize;
     if (size > dev->physical_device->memory.memoryHeaps[0].size) {
@@ -44,6 +46,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
     }
     mem->data = static_cast<uint8_t*>(p);
     mem->size = size;
+    // Buffers with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT must be bound to such memory: shaders may reach these
+    // bytes, and only these, through PhysicalStorageBuffer pointers (shader/program.h register_device_memory).
+    mem->device_address = device_address;
+    if (device_address) shader::register_device_memory(mem->data, size);
     *pMemory = to_handle(mem);
     return VK_SUCCESS;
 }
@@ -51,6 +57,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
 VKAPI_ATTR void VKAPI_CALL tvk_FreeMemory(VkDevice, VkDeviceMemory memory, const VkAllocationCallbacks*) {
     DeviceMemory* mem = from_handle<DeviceMemory>(memory);
     if (mem == nullptr) return;
+    if (mem->device_address) shader::unregister_device_memory(mem->data);
     free(mem->data);
     destroy_object(mem);
 }

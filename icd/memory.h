@@ -14,6 +14,7 @@ struct DeviceMemory : NonDispatchableObject {
     uint8_t* data = nullptr;
     VkDeviceSize size = 0;
     bool mapped = false;
+    bool device_address = false;  // allocated with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT: in shader/'s registry
 };
 
 }  // namespace tilevk::icd

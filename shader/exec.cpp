@@ -11,6 +11,7 @@
 #include "shader/exec_atomic.h"
 #include "shader/exec_math.h"
 #include "shader/exec_memory.h"
+#include "shader/exec_pointer.h"
 #include "shader/exec_subgroup.h"
 #include "shader/jit/jit.h"
 
@@ -43,6 +44,7 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             TILEVK_EXEC_PACK_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_MEMORY_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SHARED_OPS(TILEVK_EXEC_CALL)
+            TILEVK_EXEC_POINTER_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SUBGROUP_OPS(TILEVK_EXEC_CALL)
 #define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
             TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)

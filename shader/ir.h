@@ -194,6 +194,12 @@ enum class Op : uint16_t {
     // comparator d, lanes in order (std::atomic_ref); a lane whose handle a is kNoReg (inactive), a coordinate
     // outside the view or another format: nothing done, d = 0 (storage_image_word)
     AtomicImage,
+    // PhysicalStorageBuffer pointers (buffer device addresses, any stage; exec_pointer.h): a = the address's low
+    // word, b = its high word, extra = a constant byte offset. A word outside the memory the driver registered
+    // (program.h register_device_memory) loads 0 and stores nothing.
+    LoadPtr,    // d = the word, in the lanes of mask c (0 elsewhere)
+    StorePtr,   // the word = c in the lanes of mask d, lanes in order
+    AtomicPtr,  // d = atomic pad:AtomicOp on the word, value c, comparator d, in the lanes of mask register n
 };
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.

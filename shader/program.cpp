@@ -16,13 +16,15 @@ namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203;
 
-// The target environment follows the module's SPIR-V version (1.0 -> Vulkan 1.0, 1.1..1.3 -> 1.1, 1.4+ -> 1.2).
+// The target environment follows the module's SPIR-V version (1.0 -> Vulkan 1.0, 1.1..1.3 -> 1.1, 1.4 -> 1.1 with
+// SPIR-V 1.4, 1.5 -> 1.2, 1.6 -> 1.3).
 spv_target_env target_env(uint32_t version) {
     uint32_t minor = (version >> 8) & 0xff;
     if (minor == 0) return SPV_ENV_VULKAN_1_0;
     if (minor <= 3) return SPV_ENV_VULKAN_1_1;
     if (minor == 4) return SPV_ENV_VULKAN_1_1_SPIRV_1_4;
-    return SPV_ENV_VULKAN_1_2;
+    if (minor == 5) return SPV_ENV_VULKAN_1_2;
+    return SPV_ENV_VULKAN_1_3;
 }
 
 // Passes that inline, promote memory to SSA and remove dead code. Deliberately no "simplification" or
@@ -107,7 +109,7 @@ Result Program::create(std::span<const uint32_t> spirv, Stage stage, std::string
     if (spirv.size() < 5) return finish("invalid SPIR-V: module shorter than its 5-word header");
     if (spirv[0] != kSpirvMagic) return finish("invalid SPIR-V: bad magic number");
     uint32_t version = spirv[1];
-    if (version < 0x10000 || version > 0x10500) return finish("unsupported SPIR-V version (1.0-1.5 accepted)");
+    if (version < 0x10000 || version > 0x10600) return finish("unsupported SPIR-V version (1.0-1.6 accepted)");
 
     spv_target_env env = target_env(version);
     std::string messages;

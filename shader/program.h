@@ -162,7 +162,19 @@ struct ProgramInterface {
     uint32_t shared_memory_bytes = 0;  // compute: Workgroup variables, 4 bytes per 32-bit scalar, tightly packed
     bool uses_barriers = false;        // compute: OpControlBarrier (the workgroup's batches run in lock-step)
     bool uses_atomics = false;         // OpAtomic* on storage buffers or Workgroup memory
+    bool writes_device_addresses = false;  // stores or atomics through PhysicalStorageBuffer pointers
 };
+
+// ---------------------------------------------------------------------------------------------------------------
+// Device addresses (PhysicalStorageBuffer pointers, VK_KHR_buffer_device_address)
+// ---------------------------------------------------------------------------------------------------------------
+
+// A shader's PhysicalStorageBuffer pointer is a host address. The driver registers every allocation that buffer
+// device addresses may point into (device_address.cpp); a load, store or atomic through a pointer whose bytes are not
+// wholly inside one registered allocation reads 0 and writes nothing, so a wrong address in a shader (the
+// application's bug) cannot touch the driver's or the application's other memory.
+void register_device_memory(const void* data, uint64_t size);
+void unregister_device_memory(const void* data);
 
 // ---------------------------------------------------------------------------------------------------------------
 // Resources the driver fills (plain data, no Vulkan types)

@@ -78,8 +78,9 @@ bool Translator::op_atomic(const Instr& in) {
     const bool store = in.op == spv::Op::OpAtomicStore;
     const uint32_t ptr_id = store ? in[1] : in[3];
     const Value& pv = val(ptr_id);
-    if (pv.ptr < 0) fail(opname(in.op) + " on a non-pointer");
-    const Pointer p = pointers_[size_t(pv.ptr)];
+    const bool phys = pv.type != 0 && is_phys_pointer(pv.type);
+    if (pv.ptr < 0 && !phys) fail(opname(in.op) + " on a non-pointer");
+    const Pointer p = phys ? phys_pointer(ptr_id) : pointers_[size_t(pv.ptr)];
     const Type& t = type(p.type);
     if (t.kind != Type::Int) fail("unsupported " + opname(in.op) + " on a non-integer (only 32-bit integer atomics)");
     uint32_t value = zero_;
@@ -111,6 +112,13 @@ bool Translator::op_atomic(const Instr& in) {
     // Inactive lanes get an element / word index of kNoReg: the kernel skips them (their result is 0).
     auto gen = [&](uint32_t d) {
         if (comparator != kNoReg) emit(SOp::Mov, d, comparator);
+        if (p.space == Space::Phys) {  // lanes outside the side-effect mask do nothing and get 0
+            iface_.writes_device_addresses = true;
+            Inst& a = emit(SOp::AtomicPtr, d, p.base, p.base + 1, value, 0, p.offset);
+            a.n = side_effect_mask();
+            a.pad = uint16_t(kind);
+            return;
+        }
         if (p.space == Space::Texel) {  // the handle is kNoReg in lanes without effect: the kernel skips them
             image_written_ = true;
             const uint32_t handle = emit1(SOp::Select, p.base, konst(kNoReg), side_effect_mask());

@@ -93,7 +93,9 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
         case Type::Bool:
         case Type::Int:
         case Type::Float:
+        case Type::Pointer:  // (a PhysicalStorageBuffer pointer or a 64-bit integer: two words, low first)
             scalar(reg, off, ty);
+            if (t.flat == 2) scalar(reg + 1, off + 4, ty);
             break;
         case Type::Vector:
             for (uint32_t i = 0; i < t.count; ++i) scalar(reg + i, off + i * p.vec_stride, t.elem);
@@ -136,6 +138,11 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
 }
 
 void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
+    if (p.space == Space::Phys) {  // (OpCopyMemory; loads through such pointers come from op_pointer)
+        Pointer q = p;
+        q.offset += off;
+        return load_phys(q, ty, dst);
+    }
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Shared) {
@@ -189,6 +196,11 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
 }
 
 void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off) {
+    if (p.space == Space::Phys) {
+        Pointer q = p;
+        q.offset += off;
+        return store_phys(q, ty, src);
+    }
     const Type& t = type(ty);
     uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     if (p.space == Space::Shared) {
@@ -217,6 +229,25 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
         emit(SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
     };
     walk_buffer_layout(p, ty, src, off, scalar);
+}
+
+// Through a PhysicalStorageBuffer pointer (translate_pointer.cpp), the buffer layout as above.
+void Translator::load_phys(const Pointer& p, uint32_t ty, uint32_t dst) {
+    // only the block's lanes: other lanes' pointers may be anything (the registry would catch them; this keeps
+    // their results 0 and deterministic)
+    walk_buffer_layout(p, ty, dst, p.offset, [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
+        emit(SOp::LoadPtr, d, p.base, p.base + 1, cur_mask_, 0, byte_off);
+        if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
+    });
+}
+
+void Translator::store_phys(const Pointer& p, uint32_t ty, uint32_t src) {
+    iface_.writes_device_addresses = true;
+    const uint32_t mask = side_effect_mask();
+    walk_buffer_layout(p, ty, src, p.offset, [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
+        const uint32_t v = type(sty).kind == Type::Bool ? emit1(SOp::And, s, konst(1)) : s;
+        emit(SOp::StorePtr, mask, p.base, p.base + 1, v, 0, byte_off);
+    });
 }
 
 uint32_t Translator::side_effect_mask() {

@@ -49,6 +49,11 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::SampledImageArrayDynamicIndexing:
         case spv::Capability::UniformBufferArrayDynamicIndexing:
         case spv::Capability::StorageBufferArrayDynamicIndexing:
+        // Buffer device addresses (translate_pointer.cpp). glslang declares Int64 with every buffer_reference
+        // module; 64-bit integers exist only for the address arithmetic translate_pointer.cpp lists (shaderInt64
+        // stays VK_FALSE) and any other use is refused by name.
+        case spv::Capability::PhysicalStorageBufferAddresses:
+        case spv::Capability::Int64:
             return true;
         default:
             return false;
@@ -60,7 +65,8 @@ bool extension_supported(const std::string& e) {
            e == "SPV_EXT_demote_to_helper_invocation" || e == "SPV_KHR_storage_buffer_storage_class" ||
            e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
            e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product" ||
-           e == "SPV_KHR_vulkan_memory_model";
+           e == "SPV_KHR_vulkan_memory_model" || e == "SPV_KHR_physical_storage_buffer" ||
+           e == "SPV_EXT_physical_storage_buffer";
 }
 
 }  // namespace
@@ -81,8 +87,9 @@ void Translator::declare(const Instr& in) {
                 fail("unsupported extended instruction set " + literal_string(in, 2));
             return;
         case spv::Op::OpMemoryModel:
-            if (spv::AddressingModel(in[1]) != spv::AddressingModel::Logical)
-                fail("unsupported addressing model (only Logical)");
+            if (spv::AddressingModel(in[1]) != spv::AddressingModel::Logical &&
+                spv::AddressingModel(in[1]) != spv::AddressingModel::PhysicalStorageBuffer64)
+                fail("unsupported addressing model (only Logical and PhysicalStorageBuffer64)");
             return;
         case spv::Op::OpExecutionMode:
         case spv::Op::OpExecutionModeId:
@@ -220,12 +227,14 @@ void Translator::declare_type(const Instr& in) {
             break;
         case spv::Op::OpTypeInt:
         case spv::Op::OpTypeFloat:
-            if (in[2] != 32)
+            // 64-bit integers: the address arithmetic of translate_pointer.cpp only (op_int64)
+            if (in[2] != 32 && !(in.op == spv::Op::OpTypeInt && in[2] == 64))
                 fail(std::string(in.op == spv::Op::OpTypeInt ? "int" : "float") + std::to_string(in[2]) +
                      " types are not supported (32-bit only)");
             t.kind = in.op == spv::Op::OpTypeInt ? Type::Int : Type::Float;
             t.is_signed = in.op == spv::Op::OpTypeInt && in[3];
-            t.flat = 1;
+            t.wide = in[2] == 64;
+            t.flat = t.wide ? 2 : 1;
             break;
         case spv::Op::OpTypeVector:
         case spv::Op::OpTypeMatrix:
@@ -248,6 +257,13 @@ void Translator::declare_type(const Instr& in) {
             t = Type{}, t.kind = Type::Pointer;
             t.storage = spv::StorageClass(in[2]);
             t.elem = in[3];
+            // a PhysicalStorageBuffer pointer is a value: its 64-bit address in two registers
+            if (t.storage == spv::StorageClass::PhysicalStorageBuffer) t.flat = 2;
+            break;
+        case spv::Op::OpTypeForwardPointer:  // structs may hold it before its OpTypePointer: its size now
+            t = Type{}, t.kind = Type::Pointer;
+            t.storage = spv::StorageClass(in[2]);
+            if (t.storage == spv::StorageClass::PhysicalStorageBuffer) t.flat = 2;
             break;
         case spv::Op::OpTypeFunction:
             t.kind = Type::Function;
@@ -330,6 +346,13 @@ void Translator::declare_constant(const Instr& in) {
         case spv::Op::OpConstant: {
             const Type& t = type(in[1]);
             if (t.kind != Type::Int && t.kind != Type::Float) fail("unsupported constant type");
+            if (t.wide) {  // low word, high word
+                const uint32_t r = alloc(2);
+                set_const(r, in[3]);
+                set_const(r + 1, in.n > 4 ? in[4] : 0);
+                vals_[in[2]] = Value{r, in[1]};
+                return;
+            }
             vals_[in[2]] = Value{konst(in[3]), in[1]};
             return;
         }

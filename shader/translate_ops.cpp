@@ -63,12 +63,15 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpMemoryBarrier:
             return;
         case spv::Op::OpExtInst:
+            refuse_other_int64(in);  // GLSL.std.450 has no 64-bit integer forms here
             return glsl_op(in);
         case spv::Op::OpFunctionCall:
             fail("unsupported opcode OpFunctionCall (function was not inlined)");
         default:
             break;
     }
+    if (op_pointer(in)) return;
+    refuse_other_int64(in);
     if (op_arith(in) || op_logic(in) || op_composite(in) || op_fragment(in) || op_memory(in) || op_image(in) ||
         op_atomic(in) || op_subgroup(in) || op_dot(in))
         return;
@@ -272,8 +275,8 @@ bool Translator::op_logic(const Instr& in) {
             const Value& v = val(in[3]);
             if (v.is_phi)
                 unary(in, SOp::Mov);
-            else if (v.ptr >= 0)
-                vals_[in[2]] = Value{kNoReg, in[1], v.ptr};
+            else if (v.ptr >= 0)  // (PhysicalStorageBuffer pointers have registers too)
+                vals_[in[2]] = Value{v.reg, in[1], v.ptr};
             else
                 alias(in, v.reg);
             return true;

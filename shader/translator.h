@@ -45,6 +45,7 @@ struct Type {
     spv::StorageClass storage = spv::StorageClass::Function;
     uint32_t flat = 0;  // number of 32-bit scalars when flattened (registers a value of this type occupies)
     uint32_t dim = 0, arrayed = 0, ms = 0, sampled = 0;  // images
+    bool wide = false;  // a 64-bit integer (two registers: low word, high word; translate_pointer.cpp)
 };
 
 struct Decorations {
@@ -58,7 +59,9 @@ struct Decorations {
 // by word, with the same flat layout); Buffer: bytes through a descriptor; Handle: image/sampler descriptors.
 // Texel: an OpImageTexelPointer (image atomics): base = the image handle register, dyn = the first coordinate
 // register, offset = kSampleArray or 0.
-enum class Space : uint8_t { Local, Shared, Buffer, Handle, Texel };
+// Phys: a PhysicalStorageBuffer pointer (translate_pointer.cpp): base = the first of the two registers holding its
+// address (low word, high word), offset = a constant byte offset; buffer layout as Buffer.
+enum class Space : uint8_t { Local, Shared, Buffer, Handle, Texel, Phys };
 
 struct Pointer {
     Space space = Space::Local;
@@ -148,6 +151,16 @@ class Translator {
     bool op_atomic(const Instr& in);    // translate_atomic.cpp: OpAtomic*, OpControlBarrier
     bool op_subgroup(const Instr& in);  // translate_subgroup.cpp: OpGroupNonUniform* (compute)
     bool op_dot(const Instr& in);       // translate_dot.cpp: OpSDot, OpUDot, OpSUDot (+AccSat)
+    // translate_pointer.cpp: PhysicalStorageBuffer pointers and the 64-bit integer arithmetic on their addresses
+    bool op_pointer(const Instr& in);
+    bool op_int64(const Instr& in);
+    void refuse_other_int64(const Instr& in);
+    bool is_phys_pointer(uint32_t type_id) const;
+    Pointer phys_pointer(uint32_t id);                  // the pointer a PhysicalStorageBuffer pointer value holds
+    uint32_t address_add(uint32_t addr, uint32_t off);  // two registers: addr + sign-extended 32-bit off
+    void phys_access_chain(const Instr& in, uint32_t base_id, uint32_t elem, size_t first_index);
+    void load_phys(const Pointer& p, uint32_t type, uint32_t dst);
+    void store_phys(const Pointer& p, uint32_t type, uint32_t src);
     uint32_t packed_byte(uint32_t x, uint32_t k, bool is_signed);
     bool subgroup_collective(const Instr& in);
     void subgroup_ballot_helper(const Instr& in);

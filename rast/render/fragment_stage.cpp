@@ -149,7 +149,7 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
         // The outputs cannot vary across a primitive when every input is flat, no per-fragment built-in is read
         // (front facing is per primitive), nothing is discarded or written besides colour, and there are no
         // derivatives (helper lanes): one run per primitive then gives every fragment's result.
-        bool writes_memory = false;
+        bool writes_memory = iface.writes_device_addresses;
         for (const shader::DescriptorUse& d : iface.descriptors) writes_memory |= d.written;
         const uint32_t per_prim_builtins = shader::bit(shader::BuiltIn::FrontFacing);
         plan.uniform_shader = all_flat && !(iface.builtins_read & ~per_prim_builtins) && !iface.uses_discard &&

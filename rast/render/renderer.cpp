@@ -69,11 +69,13 @@ fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
     t.writes_depth = i.writes_frag_depth;
     t.uses_discard = i.uses_discard;
     t.writes_sample_mask = i.builtins_written & shader::bit(shader::BuiltIn::SampleMask);
+    t.writes_memory = i.writes_device_addresses;
     for (const shader::DescriptorUse& d : i.descriptors) t.writes_memory |= d.written;
     return t;
 }
 
 bool vertex_writes_memory(const shader::Program* vs) {
+    if (vs->interface().writes_device_addresses) return true;
     for (const shader::DescriptorUse& d : vs->interface().descriptors)
         if (d.written) return true;
     return false;

@@ -121,6 +121,7 @@ void shade_range(const VertexStageConfig& cfg, const Fetches& fetches, std::span
 }
 
 bool writes_memory(const shader::Program& p) {
+    if (p.interface().writes_device_addresses) return true;
     for (const shader::DescriptorUse& d : p.interface().descriptors)
         if (d.written) return true;
     return false;

@@ -323,6 +323,16 @@ size_t run(const Code& code, Scratch::Impl& s, size_t pc) {
 }
 
 std::string op_name(Op op) {
+    switch (op) {  // the pointer ops, which this tier does not compile (analysis.cpp has no row for them)
+        case Op::LoadPtr:
+            return "LoadPtr";
+        case Op::StorePtr:
+            return "StorePtr";
+        case Op::AtomicPtr:
+            return "AtomicPtr";
+        default:
+            break;
+    }
     const OpInfo info = op_info(op);
     return info.name ? info.name : "op #" + std::to_string(unsigned(op));
 }

@@ -2,7 +2,8 @@
 
   test_validation.py RUNNER full      every case, tilevk vs lavapipe, with --validation: no case may carry a
                                       message, none may arrive outside a case, every case must have run.
-  test_validation.py RUNNER full-spirv15  the same with every shader compiled to SPIR-V 1.5 (Vulkan 1.2).
+  test_validation.py RUNNER full-spirv15  the same with every shader compiled to SPIR-V 1.5 (Vulkan 1.2);
+                                      full-spirv16: SPIR-V 1.6 (Vulkan 1.3).
                                       Image differences are not judged here (the cts_tilevk_vs_lavapipe_* slices
                                       do that), so a case failing on pixels alone does not fail this test.
   test_validation.py RUNNER selftest  proves the check can fail: --selftest-validation records one invalid
@@ -102,6 +103,8 @@ with tempfile.TemporaryDirectory() as tmp:
         problems = full(runner, tmp)
     elif mode == "full-spirv15":  # the same with SPIR-V 1.5 modules on a Vulkan 1.2 instance (tilevk-cts --spirv)
         problems = full(runner, tmp, ["--spirv", "1.5"])
+    elif mode == "full-spirv16":  # SPIR-V 1.6 modules on a Vulkan 1.3 instance
+        problems = full(runner, tmp, ["--spirv", "1.6"])
     else:
         problems = selftest(runner, tmp)
 print("\n".join(problems) or f"{mode}: ok")

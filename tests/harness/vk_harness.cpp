@@ -23,7 +23,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
 
 }  // namespace
 
-Harness::Harness(bool validation, const std::vector<const char*>& extensions) {
+Harness::Harness(bool validation, const std::vector<const char*>& extensions, uint32_t api_version) {
     const char* layers[] = {"VK_LAYER_KHRONOS_validation"};
     // The instance extensions of Vulkan 1.1 (physical-device queries of extensions, device groups, external
     // handle capabilities): both drivers offer them.
@@ -45,8 +45,9 @@ Harness::Harness(bool validation, const std::vector<const char*>& extensions) {
     mci.pUserData = &messages_;
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "tilevk-icd-test";
-    // Vulkan 1.2, what tilevk reports: the validation layer holds both drivers to its rules (SPIR-V up to 1.5).
-    app.apiVersion = VK_API_VERSION_1_2;
+    // Vulkan 1.2 by default: the validation layer holds both drivers to its rules (SPIR-V up to 1.5); the tests of
+    // Vulkan 1.3 itself ask for 1.3.
+    app.apiVersion = api_version;
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pNext = &mci;  // also catches messages from vkCreateInstance/vkDestroyInstance
     ci.pApplicationInfo = &app;
@@ -152,6 +153,10 @@ Device::Buffer Device::make_buffer(VkDeviceSize size, VkBufferUsageFlags extra_u
     ai.allocationSize = req.size;
     ai.memoryTypeIndex =
         memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    // a buffer whose address shaders use must live in memory allocated for device addresses
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    if ((extra_usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0) ai.pNext = &flags;
     vkAllocateMemory(device_, &ai, nullptr, &b.memory);
     vkBindBufferMemory(device_, b.buffer, b.memory, 0);
     vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.map);

@@ -19,10 +19,11 @@ struct Messages {
 
 class Harness {
   public:
-    // Creates the instance (Vulkan 1.2, validation + debug utils). ok() tells whether it worked, including the
-    // messenger: without it the layer would print to stdout and message_count() would stay 0.
-    // `extensions`: instance extensions to enable besides VK_EXT_debug_utils.
-    explicit Harness(bool validation = true, const std::vector<const char*>& extensions = {});
+    // Creates the instance (Vulkan 1.2 unless `api_version` says otherwise, validation + debug utils). ok() tells
+    // whether it worked, including the messenger: without it the layer would print to stdout and message_count()
+    // would stay 0. `extensions`: instance extensions to enable besides VK_EXT_debug_utils.
+    explicit Harness(bool validation = true, const std::vector<const char*>& extensions = {},
+                     uint32_t api_version = VK_API_VERSION_1_2);
     ~Harness();
     bool ok() const { return instance_ != VK_NULL_HANDLE && messenger_ != VK_NULL_HANDLE; }
     VkInstance instance() const { return instance_; }
@@ -62,7 +63,8 @@ class Device {
         VkImage image = VK_NULL_HANDLE;
         VkDeviceMemory memory = VK_NULL_HANDLE;
     };
-    // TRANSFER_SRC|DST (| extra_usage), host visible and coherent, mapped.
+    // TRANSFER_SRC|DST (| extra_usage), host visible and coherent, mapped; with SHADER_DEVICE_ADDRESS in
+    // extra_usage, its memory is allocated with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT.
     Buffer make_buffer(VkDeviceSize size, VkBufferUsageFlags extra_usage = 0);
     void destroy(Buffer& b);
     Image make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,

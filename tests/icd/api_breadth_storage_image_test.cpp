@@ -88,6 +88,7 @@ struct ExtFormat;
 class ApiStorageImage : public ApiBreadth {
   protected:
     void check_extended_store(const ExtFormat& ef);
+    void load_transform_store(Device& tilevk, Device& lavapipe);
 };
 
 constexpr uint32_t kW = 16, kH = 8;  // every storage image here (the shaders' 2x2 workgroups of 8x4)
@@ -310,12 +311,12 @@ TEST_F(ApiStorageImage, EveryStorageFormatStoresByTheRules) {
 // si_transform.comp: four storage images at once (maxPerStageDescriptorStorageImages = 4). RGBA8 and R32_UINT
 // sources loaded one texel off (loads outside the image give 0, alpha 1 where the format has no alpha), the results
 // transformed into RGBA32F / RGBA32UI, plus stores outside the destination, which change nothing.
-TEST_F(ApiStorageImage, LoadTransformStoreWithOutOfBoundsAccesses) {
+void ApiStorageImage::load_transform_store(Device& tilevk, Device& lavapipe) {
     std::vector<uint8_t> rgba8(size_t(kW) * kH * 4), r32(size_t(kW) * kH * 4);
     std::mt19937 rng(12);
     for (auto& b : rgba8) b = uint8_t(rng());
     for (auto& b : r32) b = uint8_t(rng() | (rng() % 7 == 0 ? 0xff : 0));  // some 0xffffffff (wraps to 0)
-    const Bytes got = both([&](Kit& k) {
+    const Bytes got = both_on(tilevk, lavapipe, [&](Kit& k) {
         Device::Image src = k.image(VK_FORMAT_R8G8B8A8_UNORM, kW, kH, kStorageUsage);
         Device::Image srcu = k.image(VK_FORMAT_R32_UINT, kW, kH, kStorageUsage);
         Device::Image dst = k.image(VK_FORMAT_R32G32B32A32_SFLOAT, kW, kH, kStorageUsage);
@@ -363,6 +364,21 @@ TEST_F(ApiStorageImage, LoadTransformStoreWithOutOfBoundsAccesses) {
         }
     }
     EXPECT_EQ(wrong, 0u);
+}
+
+TEST_F(ApiStorageImage, LoadTransformStoreWithOutOfBoundsAccesses) {
+    load_transform_store(*tilevk_, *lavapipe_);
+}
+
+// The same with robustImageAccess (VK_EXT_image_robustness, Vulkan 1.3) enabled: its texel replacement for loads
+// outside the image ((0, 0, 0, 0), or alpha 1 for a format without alpha) and stores outside doing nothing are what
+// the loads and stores above check, on both drivers.
+TEST_F(ApiStorageImage, RobustImageAccessFeature) {
+    VkPhysicalDeviceImageRobustnessFeatures rf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_IMAGE_ROBUSTNESS_FEATURES};
+    rf.robustImageAccess = VK_TRUE;
+    auto dev = device_pair({VK_EXT_IMAGE_ROBUSTNESS_EXTENSION_NAME}, &rf);
+    ASSERT_TRUE(dev->ok());
+    load_transform_store(dev->tilevk, dev->lavapipe);
 }
 
 // si_size.comp: imageSize of a 2D-array view of level 1, layers 1-2 of a 32x16 image with 3 levels and 4 layers

@@ -1,9 +1,9 @@
 // Vulkan 1.2 as a whole (suite ApiVulkan12): the version reported, the features Vulkan 1.2 requires (the spec's
-// "Feature Requirements"), every 1.2 command reachable, and buffer device addresses refused by name (the feature is
-// not reported). The 1.2 pieces themselves are tested where they are: timeline semaphores
-// (api_breadth_timeline_test.cpp), imageless framebuffers, render pass 2, depth/stencil resolves and separate
-// depth/stencil layouts (api_breadth_ds_resolve_test.cpp), a dynamic broadcast id (ApiCompute), SPIR-V 1.5 modules
-// (the conformance subset with --spirv 1.5).
+// "Feature Requirements"), every 1.2 command reachable, and the allocations of buffer device addresses (capture and
+// replay refused by name; the shaders that use addresses: api_breadth_bda_test.cpp). The 1.2 pieces themselves are
+// tested where they are: timeline semaphores (api_breadth_timeline_test.cpp), imageless framebuffers, render pass 2,
+// depth/stencil resolves and separate depth/stencil layouts (api_breadth_ds_resolve_test.cpp), a dynamic broadcast id
+// (ApiCompute), SPIR-V 1.5 modules (the conformance subset with --spirv 1.5).
 #include "api_breadth.h"
 #include "stderr_capture.h"
 
@@ -37,9 +37,9 @@ struct Features12 {
     }
 };
 
-// The Vulkan 1.2 members every 1.2 device must support (Vulkan spec, "Feature Requirements"; descriptor indexing and
-// buffer device address only with their extensions, which tilevk does not offer; the memory model with
-// VK_KHR_vulkan_memory_model, which both drivers offer).
+// The Vulkan 1.2 members every 1.2 device must support (Vulkan spec, "Feature Requirements"; descriptor indexing only
+// with its extension, which tilevk does not offer), plus the three a 1.3 device must (vulkanMemoryModel,
+// vulkanMemoryModelDeviceScope, bufferDeviceAddress).
 void expect_required_12(const VkPhysicalDeviceVulkan12Features& f, const char* who) {
     EXPECT_TRUE(f.uniformBufferStandardLayout) << who;
     EXPECT_TRUE(f.subgroupBroadcastDynamicId) << who;
@@ -49,21 +49,23 @@ void expect_required_12(const VkPhysicalDeviceVulkan12Features& f, const char* w
     EXPECT_TRUE(f.timelineSemaphore) << who;
     EXPECT_TRUE(f.shaderSubgroupExtendedTypes) << who;
     EXPECT_TRUE(f.vulkanMemoryModel) << who;
+    EXPECT_TRUE(f.vulkanMemoryModelDeviceScope) << who;
+    EXPECT_TRUE(f.bufferDeviceAddress) << who;
 }
 
 TEST_F(ApiVulkan12, ReportsVulkan12AndTheFeaturesItRequires) {
     VkPhysicalDeviceProperties p{};
     vkGetPhysicalDeviceProperties(tilevk_->physical(), &p);
     EXPECT_EQ(VK_API_VERSION_MAJOR(p.apiVersion), 1u);
-    EXPECT_EQ(VK_API_VERSION_MINOR(p.apiVersion), 2u);  // icd/meson.build icd_api_minor
+    EXPECT_GE(VK_API_VERSION_MINOR(p.apiVersion), 2u);  // icd/meson.build icd_api_minor (ApiVulkan13: 3)
     const Features12 t(tilevk_->physical()), l(lavapipe_->physical());
     expect_required_12(t.v12, "tilevk");
     expect_required_12(l.v12, "lavapipe (proves the list holds for a 1.3 driver)");
     EXPECT_EQ(t.layouts.separateDepthStencilLayouts, t.v12.separateDepthStencilLayouts);
     EXPECT_EQ(t.extended.shaderSubgroupExtendedTypes, t.v12.shaderSubgroupExtendedTypes);
-    // Not reported: shader/ has no PhysicalStorageBuffer pointers (vkCreateBuffer refuses the usage, below).
-    EXPECT_FALSE(t.v12.bufferDeviceAddress);
-    EXPECT_FALSE(t.address.bufferDeviceAddress);
+    // The promoted struct answers as the Vulkan12 one; no capture/replay, no multi-device addresses.
+    EXPECT_TRUE(t.address.bufferDeviceAddress);
+    EXPECT_FALSE(t.v12.bufferDeviceAddressCaptureReplay || t.v12.bufferDeviceAddressMultiDevice);
     EXPECT_EQ(t.v12.descriptorIndexing, VK_FALSE);
     // No 8-, 16- or 64-bit shader types, so "subgroup operations on every supported type" is all types there are.
     VkPhysicalDeviceFeatures core{};
@@ -155,11 +157,11 @@ TEST_F(ApiVulkan12, Spirv15CopyLogicalAndIntegerTextures) {
     }
 }
 
-// Without bufferDeviceAddress a memory allocation flag for addresses is invalid usage
-// (VUID-VkMemoryAllocateInfo-flags-03331): tilevk (alone, no layer) refuses it by name. The buffer usage bit is valid
-// without the feature (no VUID ties them) and accepted. vkGetBufferDeviceAddress itself answers where the bytes are
-// (two buffers bound 256 bytes apart in one allocation are 256 apart), and nothing has a capture address.
-TEST_F(ApiVulkan12, BufferDeviceAddressAllocationsAreRefusedByName) {
+// Without bufferDeviceAddressCaptureReplay the capture-replay allocation flag is invalid usage
+// (VUID-VkMemoryAllocateInfo-flags-03330): tilevk (alone, no layer) refuses it by name.
+// VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT and the buffer usage bit are accepted. vkGetBufferDeviceAddress answers where
+// the bytes are (two buffers bound 256 bytes apart in one allocation are 256 apart), and nothing has a capture address.
+TEST_F(ApiVulkan12, BufferDeviceAddressAllocations) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
     Device dev(plain.find_device("tilevk"), nullptr, {}, nullptr);
@@ -173,19 +175,19 @@ TEST_F(ApiVulkan12, BufferDeviceAddressAllocationsAreRefusedByName) {
     vkDestroyBuffer(d, with_usage, nullptr);
 
     VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
-    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT | VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_REPLAY_BIT;
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flags};
     mai.allocationSize = 512;
     VkDeviceMemory none = VK_NULL_HANDLE;
     const std::string err =
         stderr_of([&] { EXPECT_EQ(vkAllocateMemory(d, &mai, nullptr, &none), VK_ERROR_FEATURE_NOT_PRESENT); });
-    EXPECT_NE(err.find("VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT"), std::string::npos) << err;
+    EXPECT_NE(err.find("VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_CAPTURE_REPLAY_BIT"), std::string::npos) << err;
+    EXPECT_NE(err.find("bufferDeviceAddressCaptureReplay"), std::string::npos) << err;
     EXPECT_EQ(none, VkDeviceMemory(VK_NULL_HANDLE));
 
-    mai.pNext = nullptr;
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
     VkDeviceMemory mem = VK_NULL_HANDLE;
     ASSERT_EQ(vkAllocateMemory(d, &mai, nullptr, &mem), VK_SUCCESS);
-    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     VkBuffer b[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
     VkDeviceAddress at[2] = {0, 0};
     auto address = reinterpret_cast<PFN_vkGetBufferDeviceAddress>(vkGetDeviceProcAddr(d, "vkGetBufferDeviceAddress"));

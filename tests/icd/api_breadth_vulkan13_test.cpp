@@ -2,8 +2,8 @@
 // with the validation layer on, bytes compared, plus the answers computed here: zero-initialized workgroup memory
 // (VK_KHR_zero_initialize_workgroup_memory), subgroup size control with full subgroups
 // (VK_EXT_subgroup_size_control), integer dot products (VK_KHR_shader_integer_dot_product), the Vulkan memory model
-// (VK_KHR_vulkan_memory_model) and inline uniform blocks (VK_EXT_inline_uniform_block). Vulkan 1.3 itself is not
-// reported until all of them work (icd/README.md).
+// (VK_KHR_vulkan_memory_model) and inline uniform blocks (VK_EXT_inline_uniform_block); then Vulkan 1.3 itself: the
+// version reported with every feature and limit 1.3 requires (ReportsVulkan13WithEverythingItRequires).
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -473,6 +473,87 @@ TEST_F(ApiVulkan13, InlineUniformBlocks) {
     std::vector<uint32_t> got(20);
     std::memcpy(got.data(), out.data(), out.size());
     EXPECT_EQ(got, want);
+}
+
+// The features and limits the Vulkan 1.3 spec requires ("Feature Requirements", "Required Limits"), on one driver.
+// Where each works: robustImageAccess ApiStorageImage.RobustImageAccessFeature; inlineUniformBlock, the memory
+// model, zero-initialized workgroup memory, subgroup size control, integer dot products above; bufferDeviceAddress
+// ApiBufferDeviceAddress; dynamicRendering ApiDynamicRendering; synchronization2, privateData,
+// pipelineCreationCacheControl, maintenance4, demote and terminate: their suites (icd/README.md "Extensions").
+void expect_required_13(VkPhysicalDevice pd, const char* who) {
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f11};
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, &f12};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
+    vkGetPhysicalDeviceFeatures2(pd, &f2);
+    EXPECT_TRUE(f2.features.robustBufferAccess) << who;
+    EXPECT_TRUE(f11.multiview) << who;
+    for (const VkBool32 v :
+         {f12.uniformBufferStandardLayout, f12.subgroupBroadcastDynamicId, f12.imagelessFramebuffer,
+          f12.separateDepthStencilLayouts, f12.hostQueryReset, f12.timelineSemaphore, f12.shaderSubgroupExtendedTypes,
+          f12.vulkanMemoryModel, f12.vulkanMemoryModelDeviceScope, f12.bufferDeviceAddress})
+        EXPECT_TRUE(v) << who << ": a VkPhysicalDeviceVulkan12Features member";
+    EXPECT_TRUE(f13.robustImageAccess) << who;
+    EXPECT_TRUE(f13.inlineUniformBlock) << who;
+    EXPECT_TRUE(f13.pipelineCreationCacheControl) << who;
+    EXPECT_TRUE(f13.privateData) << who;
+    EXPECT_TRUE(f13.shaderDemoteToHelperInvocation) << who;
+    EXPECT_TRUE(f13.shaderTerminateInvocation) << who;
+    EXPECT_TRUE(f13.subgroupSizeControl) << who;
+    EXPECT_TRUE(f13.computeFullSubgroups) << who;
+    EXPECT_TRUE(f13.synchronization2) << who;
+    EXPECT_TRUE(f13.shaderZeroInitializeWorkgroupMemory) << who;
+    EXPECT_TRUE(f13.dynamicRendering) << who;
+    EXPECT_TRUE(f13.shaderIntegerDotProduct) << who;
+    EXPECT_TRUE(f13.maintenance4) << who;
+    // descriptorBindingInlineUniformBlockUpdateAfterBind: required only with descriptorIndexing
+    if (f12.descriptorIndexing) EXPECT_TRUE(f13.descriptorBindingInlineUniformBlockUpdateAfterBind) << who;
+
+    VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+    VkPhysicalDeviceMaintenance4Properties m4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES, &p13};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &m4};
+    vkGetPhysicalDeviceProperties2(pd, &p2);
+    EXPECT_EQ(VK_API_VERSION_MAJOR(p2.properties.apiVersion), 1u) << who;
+    EXPECT_EQ(VK_API_VERSION_MINOR(p2.properties.apiVersion), 3u) << who;  // icd/meson.build icd_api_minor
+    EXPECT_GE(p13.maxInlineUniformBlockSize, 256u) << who;
+    EXPECT_GE(p13.maxPerStageDescriptorInlineUniformBlocks, 4u) << who;
+    EXPECT_GE(p13.maxPerStageDescriptorUpdateAfterBindInlineUniformBlocks, 4u) << who;
+    EXPECT_GE(p13.maxDescriptorSetInlineUniformBlocks, 4u) << who;
+    EXPECT_GE(p13.maxDescriptorSetUpdateAfterBindInlineUniformBlocks, 4u) << who;
+    EXPECT_GE(p13.maxInlineUniformTotalSize, 256u) << who;
+    EXPECT_GE(p13.maxBufferSize, VkDeviceSize(1) << 30) << who;
+    EXPECT_EQ(m4.maxBufferSize, p13.maxBufferSize) << who;  // the promoted struct says the same
+    EXPECT_GE(p13.minSubgroupSize, 1u) << who;
+    EXPECT_GE(p13.maxSubgroupSize, p13.minSubgroupSize) << who;
+}
+
+// tilevk reports Vulkan 1.3 and everything 1.3 requires (lavapipe, a 1.3 driver, proves the list holds), and a
+// device can be made with every required 1.3 feature enabled through VkPhysicalDeviceVulkan1{1,2,3}Features (the
+// validation layer checks the chain against the reported features and the 1.3 device's rules).
+TEST_F(ApiVulkan13, ReportsVulkan13WithEverythingItRequires) {
+    // an instance of Vulkan 1.3, where the Vulkan13 structs are valid (the suite's instance asks for 1.2)
+    Harness h13(true, {}, VK_API_VERSION_1_3);
+    ASSERT_TRUE(h13.ok());
+    const VkPhysicalDevice t = h13.find_device("tilevk"), l = h13.find_device("llvmpipe");
+    ASSERT_TRUE(t != VK_NULL_HANDLE && l != VK_NULL_HANDLE);
+    expect_required_13(t, "tilevk");
+    expect_required_13(l, "lavapipe");
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+    f11.multiview = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f11};
+    f12.bufferDeviceAddress = f12.vulkanMemoryModel = f12.vulkanMemoryModelDeviceScope = VK_TRUE;
+    f12.timelineSemaphore = f12.hostQueryReset = f12.imagelessFramebuffer = VK_TRUE;
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES, &f12};
+    f13.robustImageAccess = f13.inlineUniformBlock = f13.pipelineCreationCacheControl = f13.privateData = VK_TRUE;
+    f13.shaderDemoteToHelperInvocation = f13.shaderTerminateInvocation = VK_TRUE;
+    f13.subgroupSizeControl = f13.computeFullSubgroups = f13.synchronization2 = VK_TRUE;
+    f13.shaderZeroInitializeWorkgroupMemory = f13.dynamicRendering = f13.shaderIntegerDotProduct = VK_TRUE;
+    f13.maintenance4 = VK_TRUE;
+    for (const VkPhysicalDevice pd : {t, l}) {
+        Device d(pd, nullptr, {}, &f13);
+        EXPECT_TRUE(d.ok());
+    }
+    EXPECT_EQ(h13.message_count(), 0) << h13.message_report();
 }
 
 }  // namespace

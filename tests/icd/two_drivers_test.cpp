@@ -133,7 +133,7 @@ TEST(TwoDrivers, TilevkProperties) {
     vkGetPhysicalDeviceProperties(pd, &p);
     EXPECT_EQ(p.deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU);
     EXPECT_EQ(VK_API_VERSION_MAJOR(p.apiVersion), 1u);
-    EXPECT_EQ(VK_API_VERSION_MINOR(p.apiVersion), 2u);  // Vulkan 1.2 (icd/meson.build icd_api_minor)
+    EXPECT_EQ(VK_API_VERSION_MINOR(p.apiVersion), 3u);  // Vulkan 1.3 (icd/meson.build icd_api_minor)
     EXPECT_EQ(p.limits.subPixelPrecisionBits, 8u);
     EXPECT_EQ(p.limits.maxImageDimension2D, 16384u);
     EXPECT_EQ(p.limits.maxViewportDimensions[0], 16384u);

@@ -3,7 +3,8 @@
 
   --summary  exactly one device: a CPU named tilevk
   text       every feature struct section, the device extensions and the key limits it prints
-  -j         the Vulkan-profiles JSON it writes: features, extensions, formats, queue families, key properties
+  -j         the Vulkan-profiles JSON it writes: Vulkan 1.3, features, extensions, formats, queue families, key
+             properties
 are compared with icd_report_probe's JSON, which reads the same through the API and checks each claim against the
 driver's behaviour (every feature member reported true creates a device, every false one is refused; every device
 extension can be enabled); the probe exits 1 on a disagreement.
@@ -94,6 +95,11 @@ for f, props in j_formats.items():
             check(flag_set(props.get(k, [])) == flag_set(ours['formats'][f][k]), f'-j: {f} {k}')
 
 jp = dev.get('properties', {}).get('VkPhysicalDeviceProperties', {})
+# Vulkan 1.3 (icd/meson.build icd_api_minor): in the properties (an encoded number) and in the profile's name for it.
+api = jp.get('apiVersion', 0)
+check((api >> 22, (api >> 12) & 0x3ff) == (1, 3), f'-j: apiVersion {api >> 22}.{(api >> 12) & 0x3ff}, not 1.3')
+for name, prof in profile.get('profiles', {}).items():
+    check(prof.get('api-version', '').startswith('1.3.'), f'-j: profile {name} api-version {prof.get("api-version")}')
 for k, v in ours['properties'].items():
     got = jp.get(k, jp.get('limits', {}).get(k))
     if isinstance(v, bool):
