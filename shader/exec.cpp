@@ -406,6 +406,24 @@ void plan_fragment_io(ProgramImpl& p) {
     }
 }
 
+namespace {
+
+// A fragment program's run on its prepared scratch: every lane enters (helper lanes too, for derivatives), the
+// covered ones live. Returns the live mask.
+uint32_t run_fragment_lanes(const ProgramImpl& p, Scratch::Impl& s, uint32_t cover_mask) {
+    uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
+    uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
+    LANES entry[l] = ~0u;
+    lanes_from_mask(cover_mask, live);
+    {
+        FloatEnv env;
+        run_program(p, s);
+    }
+    return mask_from_lanes(live) & cover_mask;
+}
+
+}  // namespace
+
 void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch& scratch) const {
     const ProgramImpl& p = *impl_;
     Scratch::Impl& s = *scratch.impl();
@@ -420,15 +438,7 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
         for (uint32_t k = 0; k < r.count; ++k)
             std::memcpy(w + size_t(k) * kLanes, block + r.bytes + size_t(k) * sizeof(Lanes), sizeof(Lanes));
     }
-    uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
-    uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
-    LANES entry[l] = ~0u;  // helper lanes run too (derivatives)
-    lanes_from_mask(fb.cover_mask, live);
-    {
-        FloatEnv env;
-        run_program(p, s);
-    }
-    fb.live_mask = mask_from_lanes(live) & fb.cover_mask;
+    fb.live_mask = run_fragment_lanes(p, s, fb.cover_mask);
     auto* out = reinterpret_cast<std::byte*>(&fb);
     for (const IoRun& r : p.frag_out)
         for (uint32_t k = 0; k < r.count; ++k)
@@ -458,15 +468,7 @@ uint32_t Program::run_bound_fragment(const FragmentBlock& fb, Scratch& scratch) 
     for (const auto& [word, count] : p.frag_zero) std::memset(M + size_t(word) * kLanes, 0, size_t(count) * kLanes * 4);
     for (const IoRun& r : p.frag_in)
         if (!r.count) write_fragment_builtin(p.io_in[r.bytes], fb, M + size_t(r.word) * kLanes);
-    uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
-    uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
-    LANES entry[l] = ~0u;  // helper lanes run too (derivatives)
-    lanes_from_mask(fb.cover_mask, live);
-    {
-        FloatEnv env;
-        run_program(p, s);
-    }
-    return mask_from_lanes(live) & fb.cover_mask;
+    return run_fragment_lanes(p, s, fb.cover_mask);
 }
 
 namespace {
