@@ -5,7 +5,9 @@
 #include <emmintrin.h>
 #include <pmmintrin.h>
 #include <xmmintrin.h>
+#include <algorithm>
 #include <cstddef>
+#include <iterator>
 
 #include "shader/exec_arith.h"
 #include "shader/exec_atomic.h"
@@ -131,6 +133,7 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
         s.last = p.serial;
     }
     s.back_edges = 0;
+    s.bound_key = 0;  // the slots below are this run's (bind_fragment sets the key after)
     size_t words = size_t(std::max(1u, p.local_words)) * kLanes;
     if (s.local.size() < words) s.local.resize(words);
     // variables start at zero, so results never depend on history
@@ -358,9 +361,42 @@ void write_fragment_builtin(const IoCopy& c, const FragmentBlock& fb, uint32_t* 
 
 }  // namespace
 
+namespace {
+
+// Program::FragmentDirect from io_in and io_out: ok when every input is an Input location or a built-in the run
+// computes, each read once, and every output a component of a colour output whose four components are four
+// consecutive local words.
+Program::FragmentDirect plan_direct(const ProgramImpl& p) {
+    Program::FragmentDirect d;
+    std::fill(std::begin(d.input_word), std::end(d.input_word), ~0u);
+    std::fill(std::begin(d.output_word), std::end(d.output_word), ~0u);
+    for (const IoCopy& c : p.io_in) {
+        if (c.slot == IoSlot::FrontFacing || c.slot == IoSlot::SampleId || c.slot == IoSlot::ViewIndex ||
+            c.slot == IoSlot::HelperInvocation)
+            continue;
+        if (c.slot != IoSlot::Input || c.index >= std::size(d.input_word) || d.input_word[c.index] != ~0u) return d;
+        d.input_word[c.index] = c.word;
+    }
+    uint32_t seen[kMaxColorOutputs] = {};  // components written, one bit each
+    for (const IoCopy& c : p.io_out) {
+        const uint32_t loc = c.index / 4, comp = c.index % 4;
+        if (c.slot != IoSlot::Output || loc >= uint32_t(kMaxColorOutputs) || (seen[loc] >> comp) & 1) return d;
+        if (!seen[loc]) d.output_word[loc] = c.word - comp;
+        if (c.word < comp || d.output_word[loc] != c.word - comp) return d;
+        seen[loc] |= 1u << comp;
+    }
+    for (int loc = 0; loc < kMaxColorOutputs; ++loc)
+        if (seen[loc] && seen[loc] != 0xfu) return d;
+    d.ok = true;
+    return d;
+}
+
+}  // namespace
+
 void plan_fragment_io(ProgramImpl& p) {
     p.frag_in = plan_runs(p.io_in, false);
     p.frag_out = plan_runs(p.io_out, true);
+    p.frag_direct = plan_direct(p);
     // every input writes all 16 lanes of its word: the rest start at zero
     std::vector<bool> written(std::max(1u, p.local_words), false);
     for (const IoCopy& c : p.io_in)
@@ -374,6 +410,24 @@ void plan_fragment_io(ProgramImpl& p) {
             p.frag_zero.emplace_back(w, 1);
     }
 }
+
+namespace {
+
+// A fragment program's run on its prepared scratch: every lane enters (helper lanes too, for derivatives), the
+// covered ones live. Returns the live mask.
+uint32_t run_fragment_lanes(const ProgramImpl& p, Scratch::Impl& s, uint32_t cover_mask) {
+    uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
+    uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
+    LANES entry[l] = ~0u;
+    lanes_from_mask(cover_mask, live);
+    {
+        FloatEnv env;
+        run_program(p, s);
+    }
+    return mask_from_lanes(live) & cover_mask;
+}
+
+}  // namespace
 
 void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch& scratch) const {
     const ProgramImpl& p = *impl_;
@@ -389,19 +443,37 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
         for (uint32_t k = 0; k < r.count; ++k)
             std::memcpy(w + size_t(k) * kLanes, block + r.bytes + size_t(k) * sizeof(Lanes), sizeof(Lanes));
     }
-    uint32_t* entry = s.regs.data() + size_t(p.reg_entry_mask) * kLanes;
-    uint32_t* live = s.regs.data() + size_t(p.reg_live) * kLanes;
-    LANES entry[l] = ~0u;  // helper lanes run too (derivatives)
-    lanes_from_mask(fb.cover_mask, live);
-    {
-        FloatEnv env;
-        run_program(p, s);
-    }
-    fb.live_mask = mask_from_lanes(live) & fb.cover_mask;
+    fb.live_mask = run_fragment_lanes(p, s, fb.cover_mask);
     auto* out = reinterpret_cast<std::byte*>(&fb);
     for (const IoRun& r : p.frag_out)
         for (uint32_t k = 0; k < r.count; ++k)
             std::memcpy(out + r.bytes + size_t(k) * sizeof(Lanes), M + size_t(r.word + k) * kLanes, sizeof(Lanes));
+}
+
+const Program::FragmentDirect& Program::fragment_direct() const {
+    return impl_->frag_direct;
+}
+
+uint32_t* Program::bind_fragment(const Bindings& bindings, uint64_t bindings_key, Scratch& scratch) const {
+    const ProgramImpl& p = *impl_;
+    Scratch::Impl& s = *scratch.impl();
+    if (bindings_key == 0 || s.bound_key != bindings_key || s.last != p.serial) {
+        prepare(p, bindings, s, s.bound_push, false);
+        s.bound_key = bindings_key;
+    }
+    return s.local.data();
+}
+
+// run_fragment's steps between its input and output copies, on the bound scratch.
+uint32_t Program::run_bound_fragment(const FragmentBlock& fb, Scratch& scratch) const {
+    const ProgramImpl& p = *impl_;
+    Scratch::Impl& s = *scratch.impl();
+    s.back_edges = 0;
+    uint32_t* M = s.local.data();
+    for (const auto& [word, count] : p.frag_zero) std::memset(M + size_t(word) * kLanes, 0, size_t(count) * kLanes * 4);
+    for (const IoRun& r : p.frag_in)
+        if (!r.count) write_fragment_builtin(p.io_in[r.bytes], fb, M + size_t(r.word) * kLanes);
+    return run_fragment_lanes(p, s, fb.cover_mask);
 }
 
 namespace {

@@ -298,6 +298,7 @@ struct ProgramImpl {
     // writes (word, count), the only ones each run zeroes (plan_fragment_io).
     std::vector<IoRun> frag_in, frag_out;
     std::vector<std::pair<uint32_t, uint32_t>> frag_zero;
+    Program::FragmentDirect frag_direct;  // what direct runs write and read (plan_fragment_io)
     std::vector<SlotBinding> slots;  // slot 0 is the push-constant block
     uint32_t num_slots = 1;          // total resolved descriptors
     uint32_t shared_words = 0;       // compute: 32-bit words of Workgroup storage (one block per workgroup)
@@ -315,6 +316,10 @@ struct Scratch::Impl {
     std::vector<uint32_t> local;
     std::vector<const Descriptor*> slots;
     uint64_t last = 0;  // serial of the program the registers were prepared for
+    // Program::bind_fragment: the bindings key the slots were resolved for (0 after any other run), and the
+    // push-constant descriptor slot 0 points to while bound
+    uint64_t bound_key = 0;
+    Descriptor bound_push;
     uint64_t loop_limit_hits = 0;
     const std::atomic<bool>* stop = nullptr;  // Scratch::set_stop_flag
     uint64_t back_edges = 0;                  // loop watchdog: back edges taken in this run (all its phases)
@@ -328,7 +333,7 @@ struct Scratch::Impl {
     std::vector<std::unique_ptr<Impl>> frames;
 };
 
-// Fills frag_in, frag_out and frag_zero from io_in, io_out and local_words (exec.cpp).
+// Fills frag_in, frag_out, frag_zero and frag_direct from io_in, io_out and local_words (exec.cpp).
 void plan_fragment_io(ProgramImpl& p);
 
 // Interpret the program (exec.cpp).

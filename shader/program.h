@@ -403,6 +403,24 @@ class Program {
     // Runs one batch. Thread-safe (the Program is immutable); each thread needs its own Scratch.
     void run_vertex(const Bindings& bindings, VertexBatch& batch, Scratch& scratch) const;
     void run_fragment(const Bindings& bindings, FragmentBlock& block, Scratch& scratch) const;
+
+    // Direct fragment runs: run_fragment without the FragmentBlock's arrays, for the fragment stage, which shades
+    // many blocks of one draw on one scratch. The caller binds (descriptors resolved and the scratch sized once per
+    // bindings_key; a key names one Bindings content, 0 never matches, and any other run on the scratch unbinds it),
+    // writes every input word of fragment_direct() (interpolated values, float bits) into the returned local memory,
+    // runs, and reads the colour outputs from local memory. The same program state as run_fragment, so the same bits.
+    struct FragmentDirect {
+        bool ok = false;  // the program's only inputs are Input locations and FrontFacing, SampleId, ViewIndex or
+                          // HelperInvocation, and its only outputs whole vec4 colour outputs
+        // local word of each (location * 4 + component) the program reads, ~0u for the others
+        uint32_t input_word[kMaxLocations * 4];
+        uint32_t output_word[kMaxColorOutputs];  // first of the four words of each colour output, ~0u: not written
+    };
+    const FragmentDirect& fragment_direct() const;
+    uint32_t* bind_fragment(const Bindings& bindings, uint64_t bindings_key, Scratch& scratch) const;
+    // Runs the bound program on its local memory; reads only the block's scalars (cover_mask, front_facing,
+    // sample_id, view_index). Returns the live mask (cover_mask minus the discarded lanes).
+    uint32_t run_bound_fragment(const FragmentBlock& scalars, Scratch& scratch) const;
     // Runs one whole compute workgroup: its batches (in LocalInvocationIndex order, all with the same workgroup
     // id) share one block of Workgroup memory, zeroed first, and run in lock-step phases between OpControlBarriers
     // (shader/README.md, "Compute"). A workgroup runs on one thread; storage-buffer atomics are real atomics, so

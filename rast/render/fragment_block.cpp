@@ -46,6 +46,7 @@ struct Block {
     fragment::LaneCoords centre;  // lane coordinates at the pixel centres (1x: also the depth sample positions)
     alignas(32) float z[4][kBlockLanes];
     fragment::DepthStencilBlock zs[4];
+    const uint32_t* local = nullptr;  // a direct run's local memory (DrawPlan::direct): the colours are there
 };
 
 // Returns the lanes any sample covers (0: nothing to do). pass starts as cover, sample by sample: the mask arrays
@@ -138,6 +139,38 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
     w.uniform_front = a.front_facing;
 }
 
+// A direct run (DrawPlan::direct): run_shader's interpolation, written into the program's local words of the inputs
+// it reads, and the run on them. Returns the live lanes; k.local holds the colour outputs after it.
+uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+    const DrawPlan& plan = *a.plan;
+    const shader::Program* fs = a.draw->pipe->fragment;
+    shader::FragmentBlock& b = w.block;  // its scalars only
+    uint32_t* local = fs->bind_fragment(a.draw->bindings, plan.bindings_key, w.scratch);
+    alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
+    if (plan.perspective) {
+        fragment::eval_plane_fast(plane_of(a.planes, 3), k.centre, a.fused, wlanes);
+        fragment::reciprocal_fast(wlanes, oow);
+    }
+    const float* attribs = a.planes + kPrimHeaderFloats;
+    for (const InputPlan& in : plan.inputs) {
+        if (in.word == ~0u) continue;
+        const float* p = attribs + in.plane;
+        uint32_t* dst = local + size_t(in.word) * kBlockLanes;
+        if (in.interp == geometry::Interp::kFlat) {
+            for (int l = 0; l < kBlockLanes; ++l) dst[l] = bits_of(p[in.comp]);
+            continue;
+        }
+        fragment::interpolate_input(plane_of(p, int(in.comp)), k.centre, a.fused,
+                                    in.interp == geometry::Interp::kPerspective ? oow : nullptr, dst);
+    }
+    b.cover_mask = lanes;
+    b.front_facing = a.front_facing ? 1u : 0u;
+    b.sample_id = 0;
+    b.view_index = a.fb->view_index;
+    k.local = local;
+    return static_cast<uint16_t>(fs->run_bound_fragment(b, w.scratch) & lanes);
+}
+
 // The shader's inputs for `lanes` (built-ins it reads, then the planned components: a * fl(1/w) for perspective
 // ones, the reciprocal once per block), then its run (or the copy of a copied input). Returns the live lanes.
 uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
@@ -145,6 +178,7 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     const shader::Program* fs = a.draw->pipe->fragment;
     shader::FragmentBlock& b = w.block;
     w.uniform_prim = nullptr;  // block.inputs/outputs are about to change
+    if (plan.direct) return run_direct(w, a, k, lanes);
     b.cover_mask = lanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
@@ -259,9 +293,9 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
         const ColorTarget& t = fb.color[c];
         if (!t.data || plan.color[c] == ColorPath::kNone) continue;
-        if (write_color_in_place(a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c]), opt))
-            continue;
-        std::memcpy(src, w.block.outputs[c], sizeof src);
+        const uint32_t* words = k.local ? k.local + size_t(plan.output_word[c]) * kBlockLanes : w.block.outputs[c][0];
+        if (write_color_in_place(a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(words), opt)) continue;
+        std::memcpy(src, words, sizeof src);
         if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
         const size_t bytes = plan.color_bytes[c];
         for (int s = 0; s < k.samples; ++s) {

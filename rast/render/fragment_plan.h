@@ -35,6 +35,7 @@ struct InputPlan {
     uint32_t loc = 0, comp = 0;
     uint32_t plane = 0;  // float offset of its plane from the primitive's first attribute plane
     geometry::Interp interp = geometry::Interp::kPerspective;
+    uint32_t word = ~0u;  // DrawPlan::direct: the program's local word for it, ~0u: the program does not read it
 };
 inline uint32_t* input_lanes(shader::FragmentBlock& b, const InputPlan& in) {
     return in.loc == kPointCoordLoc ? b.point_coord[in.comp] : b.inputs[in.loc][in.comp];
@@ -68,6 +69,12 @@ struct DrawPlan {
     fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
     uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
     SquarePlan square;
+    // Direct runs (shader::Program::FragmentDirect): the inputs interpolated straight into the program's local
+    // words (InputPlan::word), the colours read from its output words, no FragmentBlock copies. For a shader that is
+    // run per block (not uniform, not a copy), without alpha to coverage, whose inputs the plan all provides.
+    bool direct = false;
+    uint64_t bindings_key = 0;                    // names the draw's bindings in this scene (bind_fragment)
+    uint32_t output_word[kMaxColorTargets] = {};  // colour c's first local word, for the targets written
 };
 
 // One worker's fragment-stage state (shader scratch and block, per-draw counters, stage timing).

@@ -113,6 +113,31 @@ void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& p
 
 // What the fast path needs to know about a draw, derived once per scene.
 // Fills `plan` in place (its input list keeps its storage from the last scene: no allocation in a steady frame).
+// DrawPlan::direct, after the inputs and colour paths are planned. Each plan gets a key of its own: a draw record's
+// bindings may change between scenes at the same address.
+void make_direct_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
+    static std::atomic<uint64_t> next_key{1};
+    const shader::Program* fs = draw.pipe->fragment;
+    if (!fs || plan.uniform_shader || plan.copy_location >= 0 || draw.pipe->alpha_to_coverage) return;
+    const shader::Program::FragmentDirect& d = fs->fragment_direct();
+    if (!d.ok) return;
+    uint32_t provided[shader::kMaxLocations] = {};  // components the plan interpolates, per location
+    for (const InputPlan& in : plan.inputs) {
+        if (in.loc >= uint32_t(shader::kMaxLocations)) return;  // gl_PointCoord: a FragmentBlock input
+        provided[in.loc] |= 1u << in.comp;
+    }
+    for (uint32_t i = 0; i < std::size(d.input_word); ++i)
+        if (d.input_word[i] != ~0u && !((provided[i / 4] >> (i % 4)) & 1)) return;  // would keep a stale word
+    for (uint32_t c = 0; c < fb.num_color && c < uint32_t(kMaxColorTargets); ++c) {
+        if (plan.color[c] == ColorPath::kNone) continue;
+        if (c >= uint32_t(shader::kMaxColorOutputs) || d.output_word[c] == ~0u) return;
+        plan.output_word[c] = d.output_word[c];
+    }
+    for (InputPlan& in : plan.inputs) in.word = d.input_word[in.loc * 4 + in.comp];
+    plan.direct = true;
+    plan.bindings_key = next_key.fetch_add(1, std::memory_order_relaxed);
+}
+
 void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     std::vector<InputPlan> inputs = std::move(plan.inputs);
     inputs.clear();
@@ -180,6 +205,7 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
         }
     }
     make_square_plan(draw, fb, plan);
+    make_direct_plan(draw, fb, plan);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 
 #include <immintrin.h>
 
+#include <bit>
+
 namespace tilevk::shader::jit {
 
 namespace {
@@ -26,8 +28,9 @@ bool sampler_fits(const SamplerState& smp, const ViewLevelTable& t) {
 // Whether the view's table was prepared (prepare_view) from the view as it is now.
 bool table_current(const ImageView& img) {
     const ViewLevelTable& t = img.table;
+    // the swizzles as one word: std::array's operator== is a memcmp call here (~24 instructions a call)
     return t.format == img.format && t.width == img.width && t.height == img.height && t.levels == img.levels &&
-           t.swizzle == img.swizzle;
+           std::bit_cast<uint32_t>(t.swizzle) == std::bit_cast<uint32_t>(img.swizzle);
 }
 
 // table[lv] per lane, lv in [0, levels - 1]: one permute for views of at most 8 levels (lv < 8), two beyond

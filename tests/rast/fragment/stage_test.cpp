@@ -5,9 +5,10 @@
 // FragCoord, FragDepth, FrontFacing — are rendered both ways and compared byte for byte (colour, depth, stencil).
 #include <gtest/gtest.h>
 #include <algorithm>
-
+#include <array>
 #include <cstring>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,23 @@ layout(location = 0) noperspective in vec4 c;
 layout(location = 0) out vec4 o;
 void main() { o = c; })";
 
+// Shaders the fragment stage runs directly (DrawPlan::direct: inputs written into the program's local words, no
+// FragmentBlock copies), with push constants so that each draw's own bindings show in its pixels; the second
+// declares an input it never reads, and both read gl_FrontFacing.
+const char* const kPushFs[] = {
+    R"(#version 450
+layout(push_constant) uniform P { vec4 tint; vec4 add; } pc;
+layout(location = 0) in vec4 c;
+layout(location = 0) out vec4 o;
+void main() { o = (gl_FrontFacing ? c : c.bgra) * pc.tint + pc.add; })",
+    R"(#version 450
+layout(push_constant) uniform P { vec4 tint; vec4 add; } pc;
+layout(location = 0) in vec4 c;
+layout(location = 1) in vec2 uv;
+layout(location = 0) out vec4 o;
+void main() { o = gl_FrontFacing ? vec4(uv * pc.tint.xy, pc.add.zw) : pc.tint; })",
+};
+
 struct Vertex {
     float pos[4];
     float color[4];
@@ -99,6 +117,8 @@ struct SceneDesc {
     std::vector<PipelineState> pipes;
     std::vector<int> shaders;  // kFs index per pipe (-1: kCopyNoPerspectiveFs)
     std::vector<std::vector<Vertex>> draws;
+    std::vector<std::array<float, 8>> push;  // per draw, when not empty: its push constants
+    size_t split = 0;                        // > 0: the draws from this one on are a second scene of the renderer
 };
 
 // A failing scene, readably.
@@ -126,6 +146,7 @@ class FragmentStageTest : public ::testing::Test {
         vs_ = shader::test::make_program(Stage::Vertex, kVs);
         for (const char* src : kFs) fs_.push_back(shader::test::make_program(Stage::Fragment, src));
         copy_noperspective_ = shader::test::make_program(Stage::Fragment, kCopyNoPerspectiveFs);
+        for (const char* src : kPushFs) push_fs_.push_back(shader::test::make_program(Stage::Fragment, src));
     }
     void TearDown() override { set_fragment_fast_paths(true); }
 
@@ -250,12 +271,17 @@ class FragmentStageTest : public ::testing::Test {
         r.begin(fb);
         t.passed.assign(d.pipes.size(), 0);
         for (size_t i = 0; i < d.pipes.size(); ++i) {
+            if (d.split && i == d.split) {  // the same renderer and workers render a second scene
+                r.end();
+                r.begin(fb);
+            }
             DrawCall call;
             call.samples_passed = &t.passed[i];
             call.count = uint32_t(d.draws[i].size());
             call.vertex_buffers = {
                 {reinterpret_cast<const uint8_t*>(d.draws[i].data()), uint32_t(d.draws[i].size() * sizeof(Vertex))}};
             shader::Bindings bindings;
+            if (!d.push.empty()) bindings.push_constants = std::as_bytes(std::span(d.push[i]));
             EXPECT_EQ(r.draw(d.pipes[i], call, bindings), "");
         }
         r.end();
@@ -307,6 +333,7 @@ class FragmentStageTest : public ::testing::Test {
     std::shared_ptr<const shader::Program> vs_;
     std::vector<std::shared_ptr<const shader::Program>> fs_;
     std::shared_ptr<const shader::Program> copy_noperspective_;
+    std::vector<std::shared_ptr<const shader::Program>> push_fs_;
 };
 
 TEST_F(FragmentStageTest, FastPathWritesTheReferenceBytes) {
@@ -377,6 +404,45 @@ TEST_F(FragmentStageTest, SquareKernelWritesTheReferenceBytes) {
         }
         set_kernel_isa_for_testing(before);
     }
+}
+
+// Direct runs bind each draw's descriptors once per worker and scene (Program::bind_fragment): draws of one scene
+// with other push constants, and a second scene of the same renderer whose draw records (and their bindings) take
+// the first scene's places, must still see their own. Random scenes whose draws take kPushFs shaders or kFs ones
+// (discard, noperspective, derivatives: direct as well), each with its own push constants, at 1 and 2 threads.
+TEST_F(FragmentStageTest, DirectRunsUseEachDrawsOwnBindings) {
+    std::mt19937 rng(1357);
+    std::uniform_real_distribution<float> u(-0.5f, 1.5f);
+    int direct_draws = 0;
+    for (int iter = 0; iter < 120; ++iter) {
+        SceneDesc d = random_scene(rng, iter);
+        if (d.pipes.size() < 2) {  // at least one draw per scene
+            d.pipes.push_back(d.pipes[0]);
+            d.shaders.push_back(d.shaders[0]);
+            d.draws.push_back(d.draws[0]);
+        }
+        for (size_t i = 0; i < d.pipes.size(); ++i) {
+            if (rng() % 3 != 0) {
+                const size_t k = rng() % std::size(kPushFs);
+                d.pipes[i].fragment = push_fs_[k].get();
+                d.shaders[i] = 100 + int(k);
+                d.pipes[i].blend[1].write_mask = 0;
+            }
+            std::array<float, 8> pc;
+            for (float& v : pc) v = u(rng);
+            d.push.push_back(pc);
+            if (d.shaders[i] >= 100) ++direct_draws;
+        }
+        d.split = iter % 2 ? 1 + rng() % (d.pipes.size() - 1) : 0;
+        const Targets ref = render(d, false, 1);
+        const Targets fast = render(d, true, 1 + unsigned(iter % 2));
+        const std::string what = "iter " + std::to_string(iter) + " split " + std::to_string(d.split) + ": ";
+        ASSERT_TRUE(fast.color0 == ref.color0) << "colour 0, " << what << describe(d);
+        ASSERT_TRUE(fast.color1 == ref.color1) << "colour 1, " << what << describe(d);
+        ASSERT_TRUE(fast.depth == ref.depth) << "depth, " << what << describe(d);
+        ASSERT_TRUE(fast.passed == ref.passed) << "samples passed, " << what << describe(d);
+    }
+    EXPECT_GT(direct_draws, 150);
 }
 
 TEST_F(FragmentStageTest, SwitchReadsBack) {
