@@ -100,7 +100,10 @@ TEST(EntryPoints, TableIsSortedAndLevelsFollowTheFirstParameter) {
     const EntryPoint* count = find_entry_point("vkCmdDrawIndirectCount");  // Vulkan 1.2 core (and its KHR alias)
     ASSERT_NE(count, nullptr);
     EXPECT_EQ(count->core_version, VK_MAKE_API_VERSION(0, 1, 2, 0));
-    EXPECT_EQ(find_entry_point("vkCmdBeginRendering"), nullptr);  // Vulkan 1.3: not in the table
+    const EntryPoint* rendering = find_entry_point("vkCmdBeginRendering");  // Vulkan 1.3 core
+    ASSERT_NE(rendering, nullptr);
+    EXPECT_EQ(rendering->core_version, VK_MAKE_API_VERSION(0, 1, 3, 0));
+    EXPECT_EQ(find_entry_point("vkCmdDrawMeshTasksEXT"), nullptr);  // an extension tilevk does not offer
     EXPECT_EQ(find_entry_point(nullptr), nullptr);
 }
 
