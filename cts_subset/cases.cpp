@@ -37,6 +37,10 @@ void add_dynamic_state_cases(CaseList& out) {
 
 CaseList all_cases() {
     CaseList out;
+    // extreme.* first: its fragment results depend on subnormals, and lavapipe 22.3.6's rasterizer threads keep
+    // denormals for good once a half-float target's blend meets an empty block (docs/lavapipe-rules.md §0.2). Before
+    // any such case, they flush them as documented.
+    add_extreme_cases(out);
     add_api_cases(out);
     add_primitive_cases(out);
     add_fill_rule_cases(out);
@@ -58,7 +62,6 @@ CaseList all_cases() {
     add_linear_cases(out);
     add_random_cases(out);
     add_random_compute_cases(out);
-    add_extreme_cases(out);
     add_dynamic_state_cases(out);
     return out;
 }

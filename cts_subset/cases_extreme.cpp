@@ -219,7 +219,35 @@ const Regression kRegressions[] = {
      {{0xbefc25f8, 0xfe967699, 0x3f1dbcd1, 0x3f25e690},
       {0x3f920978, 0x3fa1d496, 0x3d65fa7f, 0x3fa50aa9},
       {0xbf927dd1, 0xbf9318e4, 0x3f1224e6, 0x3f4fcbb1}}},
+    // w = 1e38 and 1e37 (extreme.random.seed_2403, its third triangle): the colour and 1/w planes' setup meets
+    // subnormals. The clipped triangle waits in draw's vbuf until llvmpipe_draw_vbo's final draw_flush, after draw_vbo
+    // has restored the float state, so lavapipe sets it up with denormals kept (rast/geometry/README.md).
+    {"w_1e37_setup_after_draw",
+     64,
+     {{0xbf7609ea, 0x3ec6dd5f, 0x3f727cb6, 0x7e967699},
+      {0x7cb2d340, 0x7c84eb17, 0x7b0c2a59, 0x7cf0bdc2},
+      {0x7d236e58, 0x7d40c316, 0x7b7a3b9d, 0x7cf0bdc2}}},
 };
+
+Scene regression_scene(const Regression& g);
+
+// The same triangle with `count` small ordinary ones after it (extreme_last: before it), all in one draw. After it,
+// in the same batch (so through draw's pipeline), they fill draw's vbuf: the extreme triangle reaches setup inside
+// draw_vbo, with denormals flushed. Before it, in a draw large enough for tilevk's parallel triangle path, it is
+// still in the vbuf at the end of the draw.
+Scene with_small_triangles(const Regression& g, int count, bool extreme_last) {
+    Scene s = regression_scene(g);
+    std::vector<Vertex>& v = s.draws[0].vertices;
+    std::vector<Vertex> small;
+    for (int i = 0; i < count; ++i) {
+        const float x = -0.95f + 0.009f * float(i % 100), y = -0.95f + 0.015f * float(i / 100 % 20);
+        small.push_back(raw(x, y, 0.5f, 1.0f, kRed));
+        small.push_back(raw(x + 0.02f, y, 0.5f, 1.0f, kGreen));
+        small.push_back(raw(x, y + 0.03f, 0.5f, 1.0f, kBlue));
+    }
+    v.insert(extreme_last ? v.begin() : v.end(), small.begin(), small.end());
+    return s;
+}
 
 Scene regression_scene(const Regression& g) {
     std::vector<Vertex> v;
@@ -255,6 +283,11 @@ void add_extreme_cases(CaseList& out) {
     out.push_back(std::move(issue));
     for (const Regression& g : kRegressions)
         out.push_back(extreme_case(std::string("extreme.regression.") + g.name, [&g] { return regression_scene(g); }));
+    const Regression& late_setup = kRegressions[std::size(kRegressions) - 1];
+    out.push_back(extreme_case("extreme.regression.w_1e37_setup_in_draw",
+                               [&late_setup] { return with_small_triangles(late_setup, 200, false); }));
+    out.push_back(extreme_case("extreme.regression.w_1e37_setup_after_large_draw",
+                               [&late_setup] { return with_small_triangles(late_setup, 2100, true); }));
     for (const HandCase& h : kHandCases)
         out.push_back(
             extreme_case(std::string("extreme.class.") + h.name, [h] { return one_extreme(h.x, h.y, h.z, h.w); }));

@@ -44,4 +44,26 @@ class ScopedFlushDenormals {
     ScopedFlushDenormals& operator=(const ScopedFlushDenormals&) = delete;
 };
 
+// The opposite, for setup that lavapipe runs after draw_vbo has restored its thread's float state (denormals kept,
+// round to nearest even): the triangles draw's vbuf still holds when llvmpipe_draw_vbo calls draw_flush.
+class ScopedKeepDenormals {
+  public:
+#if defined(__x86_64__) || defined(__i386__)
+    ScopedKeepDenormals() : saved_(_mm_getcsr()) {
+        _mm_setcsr(saved_ & ~(0x8000u | 0x0040u | 0x6000u));
+    }
+    ~ScopedKeepDenormals() {
+        _mm_setcsr(saved_);
+    }
+
+  private:
+    unsigned saved_;
+#else
+    ScopedKeepDenormals() = default;
+#endif
+  public:
+    ScopedKeepDenormals(const ScopedKeepDenormals&) = delete;
+    ScopedKeepDenormals& operator=(const ScopedKeepDenormals&) = delete;
+};
+
 }  // namespace tilevk::rast::geometry

@@ -171,7 +171,7 @@ void Renderer::flush() {
 }
 
 void Renderer::flush_within_draw(uint32_t* draw_index, const DrawRecord& rec) {
-    if (rect_pairs_) vbuf_flush(*draw_index, rec);
+    vbuf_flush(*draw_index, rec);
     render_scene();
     draws_.keep_only_last();  // the running draw's record (its address is unchanged)
     *draw_index = 0;
@@ -344,7 +344,8 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         if (plan.discard) continue;
         const bool any_clipped =
             std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
-        if (plan.parallel_triangles) {
+        if (plan.parallel_triangles && !last_batch_pending(plan, any_clipped)) {
+            vbuf_flush(draw_index, rec);  // its batches are direct, or end with a direct one that flushes draw's vbuf
             draw_triangles_parallel(plan, draw_index, rec, any_clipped);
             continue;
         }
@@ -356,7 +357,9 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
             first_prim = end_prim;
         }
     }
-    if (rect_pairs_) vbuf_flush(draw_index, rec);  // llvmpipe_draw_vbo ends with draw_flush
+    // llvmpipe_draw_vbo ends with draw_flush, after draw_vbo has restored the thread's float state: the triangles
+    // still in draw's vbuf reach setup with denormals kept (lp_draw_arrays.c).
+    vbuf_flush(draw_index, rec, /*after_draw=*/true);
     return {};
 }
 
@@ -447,7 +450,8 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     rect_cfg_.front_ccw = pipe.front_ccw;
     plan.pair_candidates = !has_flat_input && !plan.unfilled && plan.verts_per_prim == 3;
     rect_pairs_ = fb_.linear_mode && plan.pair_candidates;
-    if (rect_pairs_) {
+    vbuf_triangles_ = plan.verts_per_prim == 3 && !plan.unfilled;
+    if (vbuf_triangles_) {
         // vbuf vertex size: position + one vec4 per fragment input (+ face, + point size), 16 bytes each
         // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size.
         uint32_t slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
@@ -495,6 +499,19 @@ void Renderer::draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index
                            {tri_pipeline_.data(), &plan.ccfg, &plan.fcull, plan.any_cull});
 }
 
+// Whether the instance's last batch takes draw's pipeline, leaving its triangles in draw's vbuf for a later flush
+// (one that may come after draw_vbo, with denormals kept): the parallel path sets every triangle up at once, with
+// denormals flushed, so such an instance takes the batch loop and its vbuf.
+bool Renderer::last_batch_pending(const DrawPlan& plan, bool any_clipped) const {
+    if (!any_clipped || batches_.empty()) return false;
+    uint32_t first = 0;
+    for (size_t b = 0; b + 1 < batches_.size(); ++b) first = std::min(plan.num_prims, first + batches_[b]);
+    const uint32_t end = std::min(plan.num_prims, first + batches_.back());
+    for (size_t k = size_t(first) * 3; k < size_t(end) * 3; ++k)
+        if (shaded_.clipmask[assembled_[k]] != 0) return true;
+    return false;
+}
+
 // One of draw's batches, primitives [first_prim, end_prim): straight to setup, or through draw's pipeline.
 void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim,
                           uint32_t end_prim, bool any_clipped) {
@@ -508,7 +525,7 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
         pipeline_path = shaded_.clipmask[batch_ids[k]] != 0;
     const uint64_t batch_serial = ++plan.vertex_serial;
     // A batch emitted straight to setup flushes draw's pipeline first (draw_pt_emit.c draw_do_flush).
-    if (rect_pairs_ && !pipeline_path) vbuf_flush(draw_index, rec);
+    if (!pipeline_path) vbuf_flush(draw_index, rec);
     if (!pipeline_path && plan.pair_candidates &&
         emit_direct_pairs(draw_index, rec, plan.pipe->topology, plan.indexed, first_prim, end_prim, batch_verts))
         return;
@@ -550,7 +567,7 @@ void Renderer::emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const 
         if (plan.any_cull &&
             !geometry::float_cull_keep(plan.fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
             continue;
-        if (rect_pairs_) {
+        if (vbuf_triangles_) {
             // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch, a clipper-made
             // one is a fresh header per clip call
             uint64_t vbuf_ids[3];

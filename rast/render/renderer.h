@@ -110,10 +110,13 @@ class Renderer {
     void rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
     // setup->rect's outcome applied; returns false when it declined (kTriangles), having drawn nothing.
     bool apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
-    // draw's vbuf stage for triangles leaving the pipeline (clipper, float cull) in linear mode: they collect until
-    // a direct batch, the end of the draw or a full vertex/index buffer, then reach setup as one indexed list.
+    // draw's vbuf stage for triangles leaving the pipeline (clipper, float cull): they collect until a direct batch,
+    // the end of the draw or a full vertex/index buffer, then reach setup as one indexed list (in linear mode as
+    // rectangle pairs where they qualify). after_draw: the flush at the end of llvmpipe_draw_vbo, outside draw_vbo's
+    // denormal flushing, so setup keeps denormals.
     void vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]);
-    void vbuf_flush(uint32_t draw, const DrawRecord& rec);
+    void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
+    bool last_batch_pending(const DrawPlan& plan, bool any_clipped) const;
     ClipRect prim_clip(const PipelineState& pipe) const;
     // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
     void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
@@ -149,6 +152,7 @@ class Renderer {
     // Linear-mode rectangle state of the current draw.
     geometry::RectPairConfig rect_cfg_;
     bool rect_pairs_ = false;  // linear mode and no flat input (lp_setup_vbuf.c: !uses_constant_interp)
+    bool vbuf_triangles_ = false;  // filled triangles: clipped batches reach setup through vbuf_
     struct VbufGroup {
         std::vector<float> records;        // 3 copied vertex records per triangle
         uint32_t stride = 0;               // floats per record

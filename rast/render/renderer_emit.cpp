@@ -3,6 +3,7 @@
 // pairing and vbuf stage that feed them (lp_setup_vbuf.c, lp_setup_rect.c, lp_setup_analysis.c).
 #include <algorithm>
 #include <cstring>
+#include <optional>
 
 #include "rast/core/fixed_point.h"
 #include "rast/fragment/msaa.h"
@@ -155,11 +156,14 @@ void Renderer::vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* 
     }
 }
 
-void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec) {
+void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw) {
+    if (vbuf_.records.empty()) return;
+    std::optional<geometry::ScopedKeepDenormals> keep_denormals;
+    if (after_draw) keep_denormals.emplace();
     // lp_setup_vbuf.c draw_elements, PIPE_PRIM_TRIANGLES: rect() per pair when nr % 6 == 0, else triangles.
     const size_t nr = vbuf_.records.size() / vbuf_.stride;
     auto vert = [&](size_t i) { return vbuf_.records.data() + i * vbuf_.stride; };
-    if (nr % 6 == 0) {
+    if (rect_pairs_ && nr % 6 == 0) {
         for (size_t i = 0; i + 5 < nr; i += 6) {
             const float* t0[3] = {vert(i), vert(i + 1), vert(i + 2)};
             const float* t1[3] = {vert(i + 3), vert(i + 4), vert(i + 5)};
