@@ -10,6 +10,7 @@ void add_feature_cases(CaseList& out);  // cases_features.cpp
 void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
 void add_compute_cases(CaseList& out);  // cases_compute.cpp
+void add_clipping_cases(CaseList& out);  // cases_clipping.cpp
 
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
@@ -45,6 +46,7 @@ CaseList all_cases() {
     add_primitive_cases(out);
     add_fill_rule_cases(out);
     add_culling_cases(out);
+    add_clipping_cases(out);
     add_interpolation_cases(out);
     add_multisample_cases(out);
     add_depth_cases(out);

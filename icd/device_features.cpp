@@ -57,6 +57,11 @@ Features make_supported() {
     c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
+    // ClipDistance and CullDistance written by the vertex shader: draw's user planes in rast/geometry clip.cpp and
+    // its user_cull stage (cull_distance_keep); cts clipping.clip_distance.*, clipping.cull_distance.*. A fragment
+    // shader may not read them (icd/pipeline.cpp refuses it).
+    c.shaderClipDistance = VK_TRUE;
+    c.shaderCullDistance = VK_TRUE;
     c.multiViewport = VK_TRUE;          // 16 viewports accepted; with no viewport-index output viewport 0 is used
     // shader/ bounds-checks every buffer access against the descriptor's range (loads 0, stores and atomics dropped,
     // atomics return 0) and rast/geometry fetches vertices past their buffer as (0,0,0,1) / (0,0,0,0), as lavapipe

@@ -12,6 +12,7 @@
 #include "extensions.h"
 #include "formats.h"
 #include "instance.h"
+#include "shader/program.h"
 
 namespace tilevk::icd {
 namespace {
@@ -106,9 +107,11 @@ VkPhysicalDeviceLimits make_limits() {
     // vkCmdWriteTimestamp reads the host's monotonic clock in nanoseconds (query_pool.cpp), on the one graphics queue.
     l.timestampComputeAndGraphics = VK_TRUE;
     l.timestampPeriod = 1.0f;
-    l.maxClipDistances = 0;  // shaderClipDistance is off
-    l.maxCullDistances = 0;
-    l.maxCombinedClipAndCullDistances = 0;
+    // ClipDistance / CullDistance: lavapipe's 8, 8 and 8 combined (draw's two ccdistance vec4s); icd/pipeline.cpp
+    // refuses a vertex shader with more than 8 together.
+    l.maxClipDistances = shader::kMaxClipDistances;
+    l.maxCullDistances = shader::kMaxClipDistances;
+    l.maxCombinedClipAndCullDistances = shader::kMaxClipDistances;
     l.discreteQueuePriorities = 2;
     // lavapipe's ranges (lavapipe-rules §6): point sizes clamp at 255, line widths in [1, 255].
     l.pointSizeRange[0] = 0.0f;

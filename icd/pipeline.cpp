@@ -129,6 +129,13 @@ std::string translate_stages(Device& dev, const VkGraphicsPipelineCreateInfo& ci
         }
     }
     if (!p.vertex) return "no vertex shader";
+    const shader::ProgramInterface& vi = p.vertex->interface();
+    if (vi.clip_distances + vi.cull_distances > uint32_t(shader::kMaxClipDistances))
+        return "vertex shader: ClipDistance and CullDistance together exceed maxCombinedClipAndCullDistances (8)";
+    // lavapipe interpolates them as fragment inputs; tilevk's fragment stage does not carry them (rast/README.md).
+    if (p.fragment && (p.fragment->interface().builtins_read &
+                       (shader::bit(shader::BuiltIn::ClipDistance) | shader::bit(shader::BuiltIn::CullDistance))))
+        return "fragment shader: reading the built-in ClipDistance or CullDistance is not supported";
     s.vertex = p.vertex.get();
     s.fragment = p.fragment.get();
     return {};

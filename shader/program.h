@@ -146,7 +146,7 @@ struct ProgramInterface {
     std::vector<IoVariable> outputs;  // sorted by location, component
     uint32_t builtins_read = 0;       // BuiltIn bits
     uint32_t builtins_written = 0;    // BuiltIn bits
-    uint32_t clip_distances = 0;      // array sizes of ClipDistance / CullDistance outputs
+    uint32_t clip_distances = 0;      // array sizes of ClipDistance / CullDistance outputs (0: never stored to)
     uint32_t cull_distances = 0;
     uint32_t push_constant_size = 0;         // bytes the shader may read (highest offset + size)
     std::vector<DescriptorUse> descriptors;  // sorted by set, binding

@@ -146,6 +146,8 @@ void Translator::finish_interface() {
             d.written = buffer_written_;
         else if (d.kind == DescriptorKind::StorageImage)
             d.written = image_written_;
+    if (!distance_written_[0]) iface_.clip_distances = 0;
+    if (!distance_written_[1]) iface_.cull_distances = 0;
     p_.shared_words = shared_words_;
     iface_.shared_memory_bytes = shared_words_ * 4;
     std::sort(iface_.descriptors.begin(), iface_.descriptors.end(), [](const DescriptorUse& a, const DescriptorUse& b) {

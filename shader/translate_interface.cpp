@@ -197,6 +197,11 @@ void Translator::walk_interface(bool out, uint32_t ty, uint32_t word, int loc, i
         uint32_t n = tt.flat;
         if (s == IoSlot::ClipDistance) iface_.clip_distances = n;
         if (s == IoSlot::CullDistance) iface_.cull_distances = n;
+        if (out && (s == IoSlot::ClipDistance || s == IoSlot::CullDistance)) {
+            uint32_t* range = distance_words_[s == IoSlot::ClipDistance ? 0 : 1];
+            range[0] = word;
+            range[1] = word + n;
+        }
         if ((s == IoSlot::ClipDistance || s == IoSlot::CullDistance) && n > kMaxClipDistances)
             fail("too many clip/cull distances");
         for (uint32_t j = 0; j < n; ++j) (out ? p_.io_out : p_.io_in).push_back(IoCopy{s, j, word + j});

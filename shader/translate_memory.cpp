@@ -151,6 +151,11 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
         return;
     }
     if (p.space == Space::Local) {
+        // the words this store may reach: a dynamic offset may land anywhere in the variable
+        const uint32_t first = p.dyn == kNoReg ? p.base + p.offset + off : p.base;
+        const uint32_t end = p.dyn == kNoReg ? first + t.flat : p.limit;
+        for (int k = 0; k < 2; ++k)
+            distance_written_[k] |= first < distance_words_[k][1] && distance_words_[k][0] < end;
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
             if (p.dyn == kNoReg && w < p.limit)
@@ -209,6 +214,11 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
         return;
     }
     if (p.space == Space::Local) {
+        // the words this store may reach: a dynamic offset may land anywhere in the variable
+        const uint32_t first = p.dyn == kNoReg ? p.base + p.offset + off : p.base;
+        const uint32_t end = p.dyn == kNoReg ? first + t.flat : p.limit;
+        for (int k = 0; k < 2; ++k)
+            distance_written_[k] |= first < distance_words_[k][1] && distance_words_[k][0] < end;
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
             if (p.dyn == kNoReg && w < p.limit)

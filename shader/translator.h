@@ -226,6 +226,11 @@ class Translator {
     std::vector<uint32_t> entry_iface_;  // the entry point's interface variables
     uint32_t local_words_ = 0;           // SoA local memory words allocated so far
     uint32_t shared_words_ = 0;          // Workgroup memory words allocated so far
+    // The local words [first, end) of the ClipDistance (0) and CullDistance (1) outputs, and whether a store reaches
+    // them: an array no store writes counts as absent (finish_interface), as lavapipe ignores the unwritten
+    // gl_CullDistance[1] glslang declares next to gl_ClipDistance (cts clipping.clip_distance.nine_vertex_batch).
+    uint32_t distance_words_[2][2] = {};
+    bool distance_written_[2] = {};
     uint32_t next_slot_ = 1;             // next descriptor slot (slot 0: push constants)
     std::vector<Block> blocks_;
     std::unordered_map<uint32_t, uint32_t> block_of_;  // label -> index into blocks_

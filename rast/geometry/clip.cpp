@@ -226,6 +226,18 @@ float clip_plane_distance(const float c[4], uint32_t plane, bool clip_halfz, boo
 
 namespace {
 
+// draw_pipe_clip.c getclipdist: the frustum planes' dot product on the clip position, or a user plane's
+// ClipDistance element as the record holds it (interpolated at new vertices).
+float plane_distance(const ClipConfig& cfg, const float* rec, uint32_t plane) {
+    if (plane < kClipUserShift) return clip_plane_distance(clip_pos(rec), plane, cfg.clip_halfz, cfg.guard_band_xy);
+    return clip_distance_element(cfg, rec, plane - kClipUserShift);
+}
+
+// The clip-mask bits the clipper walks: the six frustum planes and the written ClipDistance planes.
+uint32_t clip_planes(const ClipConfig& cfg) {
+    return 0x3Fu | (((1u << cfg.num_clip_distances) - 1u) << kClipUserShift);
+}
+
 // draw's do_clip_tri in float. *imprecise: a plane distance overflowed to Inf/NaN, or an intersection parameter
 // underflowed to 0 (FTZ) although the vertex was off the plane: the float result is not the triangle's clip.
 uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2,
@@ -237,12 +249,15 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
     const float* b[kMaxClippedVertices];
     bool va[kMaxClippedVertices], vb[kMaxClippedVertices];
     bool ea[kMaxClippedVertices], eb[kMaxClippedVertices];
-    bool xa[kMaxClippedVertices], xb[kMaxClippedVertices];  // created on an x or y plane
+    // The x or y frustum plane (0-3) a vertex was created on, or -1. A vertex a user plane creates on an edge whose
+    // two ends lie on the same x/y plane lies on that plane too and counts as on it (cts clipping.clip_distance.
+    // polygon_point: lavapipe does not draw it as a point either).
+    int8_t xa[kMaxClippedVertices], xb[kMaxClippedVertices];
     const float** inlist = a;
     const float** outlist = b;
     bool *in_vflag = va, *out_vflag = vb;
     bool *in_edge = ea, *out_edge = eb;
-    bool *in_xy = xa, *out_xy = xb;
+    int8_t *in_xy = xa, *out_xy = xb;
     uint32_t tmpnr = 0;
     uint32_t n = 3;
     inlist[0] = v0;
@@ -250,7 +265,7 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
     inlist[2] = v2;
     for (int i = 0; i < 3; ++i) {
         in_vflag[i] = in_edge[i] = true;  // decomposition: DRAW_PIPE_EDGE_FLAG_ALL
-        in_xy[i] = false;
+        in_xy[i] = -1;
     }
 
     while (clipmask && n >= 3) {
@@ -259,8 +274,9 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         const float* vert_prev = inlist[0];
         bool vflag_prev = in_vflag[0];
         bool edge_prev = in_edge[0];
-        bool xy_prev = in_xy[0];
-        float dp_prev = clip_plane_distance(clip_pos(vert_prev), plane, cfg.clip_halfz, cfg.guard_band_xy);
+        int8_t xy_prev = in_xy[0];
+        const bool user_plane = plane >= kClipUserShift;
+        float dp_prev = plane_distance(cfg, vert_prev, plane);
         if (is_inf_or_nan(dp_prev)) {
             *imprecise = true;
             return 0;
@@ -273,7 +289,7 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         uint32_t outcount = 0;
         for (uint32_t i = 1; i <= n; ++i) {
             const float* vert = inlist[i];
-            const float dp = clip_plane_distance(clip_pos(vert), plane, cfg.clip_halfz, cfg.guard_band_xy);
+            const float dp = plane_distance(cfg, vert, plane);
             if (is_inf_or_nan(dp)) {
                 *imprecise = true;
                 return 0;
@@ -295,10 +311,14 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
                 if (outcount >= kMaxClippedVertices) return 0;
                 // The edge from a new vertex keeps the flag of the edge it was cut from. The vertex flag hides
                 // the edge along a frustum plane: a vertex going out gets 0, one coming back in copies the
-                // flag of the (outside) vertex before it.
-                out_edge[outcount] = edge_prev;
-                out_vflag[outcount] = dp < 0.0f ? false : vflag_prev;
-                out_xy[outcount] = plane < 4;
+                // flag of the (outside) vertex before it. Along a user plane the edge is shown: a vertex going
+                // out sets both flags.
+                const bool going_out_user = dp < 0.0f && user_plane;
+                out_edge[outcount] = going_out_user ? true : edge_prev;
+                out_vflag[outcount] = going_out_user ? true : (dp < 0.0f ? false : vflag_prev);
+                out_xy[outcount] = plane < 4                                           ? static_cast<int8_t>(plane)
+                                   : user_plane && xy_prev >= 0 && xy_prev == in_xy[i] ? xy_prev
+                                                                                       : int8_t(-1);
                 outlist[outcount++] = nv;
                 const float denom = dp - dp_prev;
                 // Interpolate from the vertex nearer the plane so |t| <= 0.5.
@@ -359,7 +379,7 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         for (int k = 0; k < 3; ++k) {
             if (!(flags & (1u << k)) || !in_vflag[pos[k]]) continue;
             edges |= static_cast<uint8_t>(1u << k);
-            if (!in_xy[pos[k]]) corners |= static_cast<uint8_t>(1u << k);
+            if (in_xy[pos[k]] < 0) corners |= static_cast<uint8_t>(1u << k);
         }
         out[count++] = {{inlist[pos[0]], inlist[pos[1]], inlist[pos[2]]}, edges, corners};
     }
@@ -376,10 +396,12 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
         return 1;
     }
     if ((m0 & m1 & m2) != 0) return 0;
-    clipmask &= 0x3Fu;  // only the six frustum planes exist here (no user clip planes)
+    clipmask &= clip_planes(cfg);
     bool imprecise = false;
     const uint32_t n = clip_triangle_float(cfg, v0, v1, v2, clipmask, scratch, out, &imprecise);
-    if (!cfg.precise_fallback || cfg.guard_band_xy || !clip_inputs_finite(v0, v1, v2)) return n;
+    // The precise clipper knows the frustum planes only: with a user plane cut, draw's result stands.
+    const bool user_cut = (clipmask >> kClipUserShift) != 0;
+    if (!cfg.precise_fallback || cfg.guard_band_xy || user_cut || !clip_inputs_finite(v0, v1, v2)) return n;
     const bool unrepresentable = clip_needs_precision(v0, v1, v2, out, n);
     if (!imprecise && !unrepresentable) return n;
     // The precise clip, into scratch of its own; adopted only when lavapipe's result is materially wrong: not
@@ -409,12 +431,12 @@ bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t
     *out1 = v1;
     if (mask == 0) return true;
     if ((m0 & m1) != 0) return false;
-    uint32_t clipmask = mask & 0x3Fu;
+    uint32_t clipmask = mask & clip_planes(cfg);
     float t0 = 0.0f, t1 = 0.0f;
     while (clipmask) {
         const uint32_t plane = static_cast<uint32_t>(__builtin_ctz(clipmask));
-        const float dp0 = clip_plane_distance(clip_pos(v0), plane, cfg.clip_halfz, cfg.guard_band_xy);
-        const float dp1 = clip_plane_distance(clip_pos(v1), plane, cfg.clip_halfz, cfg.guard_band_xy);
+        const float dp0 = plane_distance(cfg, v0, plane);
+        const float dp1 = plane_distance(cfg, v1, plane);
         if (is_inf_or_nan(dp0) || is_inf_or_nan(dp1)) return false;
         if (dp1 < 0.0f) {
             const float t = dp1 / (dp1 - dp0);
@@ -440,6 +462,18 @@ bool clip_line(const ClipConfig& cfg, const float* v0, const float* v1, uint32_t
         interp(cfg, nv, t1, v1, v0);
         copy_flat(cfg.layout, nv, provoking);
         *out1 = nv;
+    }
+    return true;
+}
+
+bool cull_distance_keep(const ClipConfig& cfg, const float* const* v, uint32_t n) {
+    for (uint32_t i = 0; i < cfg.num_cull_distances; ++i) {
+        bool all_out = true;
+        for (uint32_t k = 0; k < n && all_out; ++k) {
+            const float d = clip_distance_element(cfg, v[k], cfg.num_clip_distances + i);
+            all_out = d < 0.0f || is_inf_or_nan(d);
+        }
+        if (all_out) return false;
     }
     return true;
 }

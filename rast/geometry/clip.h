@@ -30,7 +30,24 @@ struct ClipConfig {
     bool precise_fallback = false;
     // The framebuffer's sample count: where draw's result and the precise one must agree for draw's to be kept.
     uint32_t samples = 1;
+    // The vertex shader's ClipDistance and CullDistance outputs, as lavapipe's NIR holds them: one array, clip
+    // distances first (nir_lower_clip_cull_distance_arrays), in the record's perspective attribute slots from
+    // `distance_slot` on, four per slot (draw's two ccdistance outputs). User plane i is clip-mask bit 6 + i
+    // (kClipUserShift); its distance is element i, interpolated at new vertices like every perspective attribute.
+    int32_t distance_slot = -1;
+    uint32_t num_clip_distances = 0;
+    uint32_t num_cull_distances = 0;
 };
+
+// Element i of a record's combined ClipDistance/CullDistance array (ClipConfig::distance_slot).
+inline float clip_distance_element(const ClipConfig& cfg, const float* record, uint32_t i) {
+    return attrib(record, static_cast<uint32_t>(cfg.distance_slot) + i / 4)[i % 4];
+}
+
+// draw_pipe_user_cull.c: a primitive (n = 1, 2 or 3 vertices) is culled when, for some CullDistance, every vertex
+// has a distance below 0 or not finite. Runs on draw's pipeline path, before the clipper, only when the vertex
+// shader writes CullDistance (which sends every batch down that path: draw_pipe_validate.c draw_need_pipeline).
+bool cull_distance_keep(const ClipConfig& cfg, const float* const* v, uint32_t n);
 
 // Edge bit k: the edge from v[k] to v[(k+1)%3] (k = 0, 1, 2) is drawn by polygonMode LINE, and v[k] is drawn by
 // polygonMode POINT (draw_pipe_unfilled.c: header flag DRAW_PIPE_EDGE_FLAG_k and v[k]->edgeflag).
@@ -50,10 +67,12 @@ struct ClippedTriangle {
 // written to out[] (capacity kMaxClippedTriangles):
 //   m0|m1|m2 == 0 -> 1, the input triangle untouched (no re-ordering);
 //   m0&m1&m2 != 0 -> 0 (trivially outside);
-//   otherwise Sutherland-Hodgman over the set bits in bit order; a NaN/Inf plane distance discards everything;
+//   otherwise Sutherland-Hodgman over the set bits in bit order (the six frustum planes, then the user planes of
+//   ClipDistance); a NaN/Inf plane distance discards everything;
 //   emitted as a fan (p0, p[i-1], p[i]) with flatshade_first, else (p[i-1], p[i], p0). This re-ordering also
 //   happens when nothing was cut. Edge flags (draw_pipe_clip.c do_clip_tri / emit_poly): the fan's inner edges
-//   and the edges the clipper creates along a frustum plane are not drawn in polygonMode LINE; a vertex created
+//   and the edges the clipper creates along a frustum plane are not drawn in polygonMode LINE (along a user plane
+//   they are, and the vertex going out is drawn in polygonMode POINT); a vertex created
 //   where the polygon leaves a plane is not drawn in polygonMode POINT, one where it comes back in is. With flat
 //   attributes, p0 (when it is not the original provoking vertex) is copied into scratch and given the provoking
 //   vertex's flat attributes.

@@ -117,6 +117,13 @@ uint32_t compute_clipmask(const ClipMaskConfig& cfg, const float c[4]) {
     return m;
 }
 
+uint32_t clip_distance_mask(const float* d, uint32_t n) {
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; ++i)
+        if (!(0.0f <= d[i]) || std::isinf(d[i])) m |= 1u << (kClipUserShift + i);
+    return m;
+}
+
 uint32_t prepare_vertex(const ClipMaskConfig& cm, const ViewportConfig& vp, float* record) {
     const uint32_t mask = compute_clipmask(cm, record);
     viewport_transform(vp, record, record + 4);

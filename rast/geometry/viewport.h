@@ -63,6 +63,12 @@ enum ClipBits : uint32_t {
     kClipNear = 1u << 4,    // halfz: z < 0; else z + w < 0
     kClipFar = 1u << 5,     // z > w
 };
+// User plane i (ClipDistance[i]) is bit kClipUserShift + i.
+inline constexpr uint32_t kClipUserShift = 6;
+
+// The user-plane bits of a vertex's clip mask (generate_clipmask): bit 6 + i when 0 > d[i] (unordered: NaN sets
+// it) or d[i] is infinite.
+uint32_t clip_distance_mask(const float* distances, uint32_t num_clip_distances);
 
 struct ClipMaskConfig {
     bool clip_xy = true;     // always on in lavapipe (no guard band outside linear mode)

@@ -221,6 +221,14 @@ void Renderer::record_draw(DrawRecord& rec, const PipelineState& pipe, const Dra
         rec.varyings.point_coord_slot = static_cast<int32_t>(rec.varyings.slot_interp.size());
         rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
     }
+    const shader::ProgramInterface& vi = pipe.vertex->interface();
+    if (const uint32_t distances = vi.clip_distances + vi.cull_distances; distances > 0) {
+        rec.varyings.distance_slot = static_cast<int32_t>(rec.varyings.slot_interp.size());
+        rec.varyings.num_clip_distances = vi.clip_distances;
+        rec.varyings.num_cull_distances = vi.cull_distances;
+        for (uint32_t s = 0; s < (distances + 3) / 4; ++s)
+            rec.varyings.slot_interp.push_back(geometry::Interp::kPerspective);
+    }
     rec.depth_stencil = pipe.depth_stencil;
     {
         const ViewportRect& v = pipe.viewport;
@@ -414,6 +422,9 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
     plan.ccfg.samples = fb_.samples;
+    plan.ccfg.distance_slot = rec.varyings.distance_slot;
+    plan.ccfg.num_clip_distances = rec.varyings.num_clip_distances;
+    plan.ccfg.num_cull_distances = rec.varyings.num_cull_distances;
     clip_scratch_.resize(size_t(geometry::kClipScratchVertices) * geometry::vertex_floats(layout));
     attrib_planes_.resize(layout.num_attribs);
     plan.fcull.cull_front = static_cast<int>(pipe.cull) & static_cast<int>(CullMode::kFront);
@@ -469,7 +480,8 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     // (rectangle pairs, vbuf), no batch that a lavapipe quirk reads (the 9-vertex list batch, the 4-vertex fan).
     // Those run on the workers (add_triangles_parallel).
     plan.parallel_triangles = plan.verts_per_prim == 3 && !plan.unfilled && !fb_.linear_mode && !plan.discard &&
-                              plan.num_prims >= kParallelTriangles && pool_.num_workers() > 1;
+                              plan.ccfg.num_cull_distances == 0 && plan.num_prims >= kParallelTriangles &&
+                              pool_.num_workers() > 1;
     for (const uint32_t batch_prims : batches_) {
         if (!plan.parallel_triangles) break;
         const bool nine = plan.nine_vertex_candidate && size_t(batch_prims) * 3 == 9;
@@ -519,8 +531,9 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
     const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * vpp;
     const size_t batch_verts = size_t(end_prim - first_prim) * vpp;
     // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through draw's
-    // pipeline (clipper, float cull). Unfilled polygons always take it (their stage lives there).
-    bool pipeline_path = plan.unfilled;
+    // pipeline (clipper, float cull). Unfilled polygons and CullDistance always take it (their stages live there:
+    // draw_pipe_validate.c draw_need_pipeline).
+    bool pipeline_path = plan.unfilled || plan.ccfg.num_cull_distances > 0;
     for (size_t k = 0; k < batch_verts && any_clipped && !pipeline_path; ++k)
         pipeline_path = shaded_.clipmask[batch_ids[k]] != 0;
     const uint64_t batch_serial = ++plan.vertex_serial;
@@ -534,6 +547,11 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
                                    : end_prim;
     for (uint32_t p = first_prim; p < batch_end; ++p) {
         const uint32_t* ids = assembled_.data() + size_t(p) * vpp;
+        if (plan.ccfg.num_cull_distances > 0) {  // draw's user_cull stage, first in the pipeline
+            const float* rv[3] = {};
+            for (uint32_t k = 0; k < vpp; ++k) rv[k] = shaded_.record(ids[k]);
+            if (!geometry::cull_distance_keep(plan.ccfg, rv, vpp)) continue;
+        }
         if (vpp == 1) {
             const float* v0 = shaded_.record(ids[0]);
             if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[ids[0]])) continue;

@@ -44,6 +44,8 @@ struct DrawRecord {
         varyings.slot_interp.clear();
         varyings.carry_point_size = false;
         varyings.point_coord_slot = -1;
+        varyings.distance_slot = -1;
+        varyings.num_clip_distances = varyings.num_cull_distances = 0;
         depth_stencil = {};
         depth_mode = 0;
         samples_passed = nullptr;

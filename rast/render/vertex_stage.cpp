@@ -79,6 +79,23 @@ void fetch_batch(const VertexStageConfig& cfg, const Fetches& fetches, const uin
     }
 }
 
+// The combined ClipDistance/CullDistance array of one shaded vertex into its record (VaryingMap::distance_slot),
+// zeros after the last element, and the user planes' clip-mask bits.
+void store_distances(const VaryingMap& v, const shader::VertexBatch& batch, uint32_t lane, float* rec,
+                     uint32_t* clipmask) {
+    float* d = rec + geometry::kAttribOffset + 4 * static_cast<uint32_t>(v.distance_slot);
+    const uint32_t n = v.num_clip_distances + v.num_cull_distances;
+    for (uint32_t i = 0; i < (n + 3) / 4 * 4; ++i) {
+        if (i < v.num_clip_distances)
+            d[i] = as_float(batch.clip_distance[i][lane]);
+        else if (i < n)
+            d[i] = as_float(batch.cull_distance[i - v.num_clip_distances][lane]);
+        else
+            d[i] = 0.0f;
+    }
+    *clipmask |= geometry::clip_distance_mask(d, v.num_clip_distances);
+}
+
 // Vertices [first, end) of `indices` (first a multiple of kLanes) into `out`, already sized.
 void shade_range(const VertexStageConfig& cfg, const Fetches& fetches, std::span<const uint32_t> indices,
                  uint32_t first_vertex, uint32_t end, VertexWorker& worker, ShadedVertices* out) {
@@ -105,6 +122,8 @@ void shade_range(const VertexStageConfig& cfg, const Fetches& fetches, std::span
                     rec[geometry::kAttribOffset + 4 * s + c] = as_float(batch.outputs[loc][c][lane]);
             }
             out->clipmask[first + lane] = geometry::compute_clipmask(cfg.clip, rec + geometry::kClipPosOffset);
+            if (cfg.varyings->distance_slot >= 0)
+                store_distances(*cfg.varyings, batch, lane, rec, &out->clipmask[first + lane]);
             geometry::viewport_transform(cfg.viewport, rec + geometry::kClipPosOffset, rec + geometry::kWinPosOffset);
             out->point_size[first + lane] = writes_point_size ? as_float(batch.point_size[lane]) : 1.0f;
             if (cfg.varyings->carry_point_size) {

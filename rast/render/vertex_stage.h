@@ -36,11 +36,17 @@ struct VertexInputState {
 // `point_coord_slot` (>= 0 when the fragment shader reads gl_PointCoord) is one more attribute after those: lavapipe
 // turns PointCoord into a perspective fragment input (nir_lower_sysvals_to_varyings, VARYING_SLOT_PNTC) whose
 // planes point setup computes (lp_setup_point.c texcoord_coef); vertices carry zeros in it.
+// `distance_slot` (>= 0 when the vertex shader writes ClipDistance or CullDistance) starts the slots after those that
+// carry its combined distance array (geometry::ClipConfig::distance_slot: clip distances, then cull distances, four
+// per slot, perspective-interpolated by the clipper as draw does for CLIPDIST).
 struct VaryingMap {
     std::vector<uint32_t> slot_location;
     std::vector<geometry::Interp> slot_interp;
     bool carry_point_size = false;
     int32_t point_coord_slot = -1;
+    int32_t distance_slot = -1;
+    uint32_t num_clip_distances = 0;
+    uint32_t num_cull_distances = 0;
     geometry::VertexLayout layout() const { return {static_cast<uint32_t>(slot_interp.size()), slot_interp.data()}; }
     uint32_t point_size_slot() const { return static_cast<uint32_t>(slot_location.size()); }
 };
