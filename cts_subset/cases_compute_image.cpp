@@ -185,8 +185,9 @@ void add_texel_buffer_copy_case(CaseList& out, const StorageFormat& f) {
 }
 
 // imageStore of values computed from the invocation (conversions, rounding and clamping of out-of-range values
-// in the format's direction): byte comparison only.
-void add_store_case(CaseList& out, const StorageFormat& f) {
+// in the format's direction): byte comparison only. Without `declared`, the image has no format qualifier
+// (shaderStorageImageWriteWithoutFormat: the view's format converts).
+void add_store_case(CaseList& out, const StorageFormat& f, bool declared) {
     constexpr uint32_t kW = 16, kH = 16;
     const std::string type = std::string(f.prefix) + "image2D";
     const std::string value =
@@ -196,13 +197,15 @@ void add_store_case(CaseList& out, const StorageFormat& f) {
                                        : "vec4(float(p.x) / 7.0 - 1.1, float(p.y) / 3.0, -float(p.x * p.y) / 100.0, "
                                          "float(p.x) * 4099.5 - 1.0e4)";
     ComputeSpec s;
-    s.shaders = {glsl_header(4, 4) + "layout(binding=0, " + f.qualifier + ") writeonly uniform " + type +
+    const std::string qualifier = declared ? std::string(", ") + f.qualifier : std::string();
+    s.shaders = {glsl_header(4, 4) + "layout(binding=0" + qualifier + ") writeonly uniform " + type +
                  " dst;\n"
                  "void main() { uvec2 p = gl_GlobalInvocationID.xy; imageStore(dst, ivec2(p), " +
                  value + "); }\n"};
     s.images = {{f.format, kW, kH, {}}};
     s.steps = {dispatch(0, kW / 4, kH / 4)};
-    add_compute_case(out, std::string("image.store_converted.") + f.name, std::move(s), nullptr);
+    add_compute_case(out, std::string(declared ? "image.store_converted." : "image.store_without_format.") + f.name,
+                     std::move(s), nullptr);
 }
 
 // --- compute.sync ---
@@ -308,7 +311,8 @@ void add_sync_cases(CaseList& out) {
 
 void add_compute_image_cases(CaseList& out) {
     for (const StorageFormat& f : kFormats) add_copy_case(out, f);
-    for (const StorageFormat& f : kFormats) add_store_case(out, f);
+    for (const StorageFormat& f : kFormats) add_store_case(out, f, true);
+    for (const StorageFormat& f : kFormats) add_store_case(out, f, false);
     for (const StorageFormat& f : kFormats) add_texel_buffer_copy_case(out, f);
     add_sync_cases(out);
 }
