@@ -56,6 +56,13 @@ const StorageFormat kFormats[] = {
     {VK_FORMAT_R8G8_UINT, "rg8_uint", "rg8ui", "u", 2},
     {VK_FORMAT_R16_UINT, "r16_uint", "r16ui", "u", 2},
     {VK_FORMAT_R8_UINT, "r8_uint", "r8ui", "u", 1},
+    // Storage formats lavapipe offers beyond Vulkan's lists: GLSL has no qualifier of their own, the shaders declare
+    // the RGBA8 one and the view's format converts.
+    {VK_FORMAT_B8G8R8A8_UNORM, "bgra8_unorm", "rgba8", "", 4},
+    {VK_FORMAT_A8B8G8R8_UNORM_PACK32, "abgr8_unorm", "rgba8", "", 4},
+    {VK_FORMAT_A8B8G8R8_SNORM_PACK32, "abgr8_snorm", "rgba8_snorm", "", 4},
+    {VK_FORMAT_A8B8G8R8_UINT_PACK32, "abgr8_uint", "rgba8ui", "u", 4},
+    {VK_FORMAT_A8B8G8R8_SINT_PACK32, "abgr8_sint", "rgba8i", "i", 4},
 };
 
 bool is_half(VkFormat f) {
@@ -63,10 +70,14 @@ bool is_half(VkFormat f) {
 }
 bool is_snorm(VkFormat f) {
     return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R16G16B16A16_SNORM || f == VK_FORMAT_R16G16_SNORM ||
-           f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R16_SNORM || f == VK_FORMAT_R8_SNORM;
+           f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R16_SNORM || f == VK_FORMAT_R8_SNORM ||
+           f == VK_FORMAT_A8B8G8R8_SNORM_PACK32;
 }
 uint32_t snorm_bits(VkFormat f) {
-    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R8_SNORM ? 8 : 16;
+    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R8_SNORM ||
+                   f == VK_FORMAT_A8B8G8R8_SNORM_PACK32
+               ? 8
+               : 16;
 }
 
 // Texels every format represents exactly: random bytes, except that float formats get finite values (halves with
