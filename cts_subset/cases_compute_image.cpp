@@ -56,6 +56,13 @@ const StorageFormat kFormats[] = {
     {VK_FORMAT_R8G8_UINT, "rg8_uint", "rg8ui", "u", 2},
     {VK_FORMAT_R16_UINT, "r16_uint", "r16ui", "u", 2},
     {VK_FORMAT_R8_UINT, "r8_uint", "r8ui", "u", 1},
+    // Storage formats lavapipe offers beyond Vulkan's lists: GLSL has no qualifier of their own, the shaders declare
+    // the RGBA8 one and the view's format converts.
+    {VK_FORMAT_B8G8R8A8_UNORM, "bgra8_unorm", "rgba8", "", 4},
+    {VK_FORMAT_A8B8G8R8_UNORM_PACK32, "abgr8_unorm", "rgba8", "", 4},
+    {VK_FORMAT_A8B8G8R8_SNORM_PACK32, "abgr8_snorm", "rgba8_snorm", "", 4},
+    {VK_FORMAT_A8B8G8R8_UINT_PACK32, "abgr8_uint", "rgba8ui", "u", 4},
+    {VK_FORMAT_A8B8G8R8_SINT_PACK32, "abgr8_sint", "rgba8i", "i", 4},
 };
 
 bool is_half(VkFormat f) {
@@ -63,10 +70,14 @@ bool is_half(VkFormat f) {
 }
 bool is_snorm(VkFormat f) {
     return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R16G16B16A16_SNORM || f == VK_FORMAT_R16G16_SNORM ||
-           f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R16_SNORM || f == VK_FORMAT_R8_SNORM;
+           f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R16_SNORM || f == VK_FORMAT_R8_SNORM ||
+           f == VK_FORMAT_A8B8G8R8_SNORM_PACK32;
 }
 uint32_t snorm_bits(VkFormat f) {
-    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R8_SNORM ? 8 : 16;
+    return f == VK_FORMAT_R8G8B8A8_SNORM || f == VK_FORMAT_R8G8_SNORM || f == VK_FORMAT_R8_SNORM ||
+                   f == VK_FORMAT_A8B8G8R8_SNORM_PACK32
+               ? 8
+               : 16;
 }
 
 // Texels every format represents exactly: random bytes, except that float formats get finite values (halves with
@@ -185,8 +196,9 @@ void add_texel_buffer_copy_case(CaseList& out, const StorageFormat& f) {
 }
 
 // imageStore of values computed from the invocation (conversions, rounding and clamping of out-of-range values
-// in the format's direction): byte comparison only.
-void add_store_case(CaseList& out, const StorageFormat& f) {
+// in the format's direction): byte comparison only. Without `declared`, the image has no format qualifier
+// (shaderStorageImageWriteWithoutFormat: the view's format converts).
+void add_store_case(CaseList& out, const StorageFormat& f, bool declared) {
     constexpr uint32_t kW = 16, kH = 16;
     const std::string type = std::string(f.prefix) + "image2D";
     const std::string value =
@@ -196,13 +208,15 @@ void add_store_case(CaseList& out, const StorageFormat& f) {
                                        : "vec4(float(p.x) / 7.0 - 1.1, float(p.y) / 3.0, -float(p.x * p.y) / 100.0, "
                                          "float(p.x) * 4099.5 - 1.0e4)";
     ComputeSpec s;
-    s.shaders = {glsl_header(4, 4) + "layout(binding=0, " + f.qualifier + ") writeonly uniform " + type +
+    const std::string qualifier = declared ? std::string(", ") + f.qualifier : std::string();
+    s.shaders = {glsl_header(4, 4) + "layout(binding=0" + qualifier + ") writeonly uniform " + type +
                  " dst;\n"
                  "void main() { uvec2 p = gl_GlobalInvocationID.xy; imageStore(dst, ivec2(p), " +
                  value + "); }\n"};
     s.images = {{f.format, kW, kH, {}}};
     s.steps = {dispatch(0, kW / 4, kH / 4)};
-    add_compute_case(out, std::string("image.store_converted.") + f.name, std::move(s), nullptr);
+    add_compute_case(out, std::string(declared ? "image.store_converted." : "image.store_without_format.") + f.name,
+                     std::move(s), nullptr);
 }
 
 // --- compute.sync ---
@@ -308,7 +322,8 @@ void add_sync_cases(CaseList& out) {
 
 void add_compute_image_cases(CaseList& out) {
     for (const StorageFormat& f : kFormats) add_copy_case(out, f);
-    for (const StorageFormat& f : kFormats) add_store_case(out, f);
+    for (const StorageFormat& f : kFormats) add_store_case(out, f, true);
+    for (const StorageFormat& f : kFormats) add_store_case(out, f, false);
     for (const StorageFormat& f : kFormats) add_texel_buffer_copy_case(out, f);
     add_sync_cases(out);
 }

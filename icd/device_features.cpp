@@ -75,6 +75,10 @@ Features make_supported() {
     // Storage images of the 23 extended formats (format/support.txt), converted as lavapipe converts them
     // (api_breadth ApiStorageImage.EveryExtendedFormat*, cts compute.image.*).
     c.shaderStorageImageExtendedFormats = VK_TRUE;
+    // Stores through images declared without a format take the view's format (shader/ never reads the type's
+    // format), as lavapipe reports (PIPE_CAP_IMAGE_STORE_FORMATTED); reads without a format are not reported there
+    // (no PIPE_CAP_IMAGE_LOAD_FORMATTED in llvmpipe) and not here (api_breadth ApiStorageImage.WriteWithoutFormat*).
+    c.shaderStorageImageWriteWithoutFormat = VK_TRUE;
     // Uniform and storage buffer arrays at dynamically uniform indices: shader/ carries the element in a register
     // per lane, clamped to the array as robust indexing (api_breadth ApiDynamicIndexing). The sampled and storage
     // image forms stay VK_FALSE as in lavapipe 22.3.6, which has no reference for them.

@@ -45,8 +45,10 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFormatProperties2(VkPhysicalDevi
     for_each_out(pFormatProperties->pNext, [&](VkBaseOutStructure* s) {
         if (s->sType != VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_3) return;
         // VK_KHR_format_feature_flags2: the 32 bits of Vulkan 1.0 are the same bits of the 64-bit flags. Of the
-        // bits above them only depth comparison applies: every sampled depth format takes OpImage*Dref* lookups
-        // (shader/texture.cpp shadow compare; api_breadth DepthCompareSampling).
+        // bits above them, depth comparison: every sampled depth format takes OpImage*Dref* lookups
+        // (shader/texture.cpp shadow compare; api_breadth DepthCompareSampling); stores without a format: every
+        // storage image and storage texel buffer format, the view's format converting the value
+        // (shaderStorageImageWriteWithoutFormat, device_features.cpp; lvp_formats.c sets the bit on the same sets).
         auto* p3 = reinterpret_cast<VkFormatProperties3*>(s);
         const FormatInfo* f = find_format(format);
         const bool depth = f != nullptr && (f->aspects & VK_IMAGE_ASPECT_DEPTH_BIT) != 0;
@@ -54,11 +56,13 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceFormatProperties2(VkPhysicalDevi
             VkFormatFeatureFlags2 v2 = v1;
             if (depth && (v1 & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
                 v2 |= VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT;
+            if (v1 & (VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT))
+                v2 |= VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT;
             return v2;
         };
         p3->linearTilingFeatures = widen(p.linearTilingFeatures);
         p3->optimalTilingFeatures = widen(p.optimalTilingFeatures);
-        p3->bufferFeatures = p.bufferFeatures;
+        p3->bufferFeatures = widen(p.bufferFeatures);
     });
 }
 

@@ -44,6 +44,10 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::ImageBuffer:      // storage texel buffers: imageLoad / imageStore / atomics / imageSize
         case spv::Capability::StorageImageExtendedFormats:
+        // Stores to a storage image or texel buffer declared without a format (Unknown): the view's format decides
+        // the conversion anyway (the image type's format is not read), as in llvmpipe, whose only formatted-access
+        // cap is PIPE_CAP_IMAGE_STORE_FORMATTED; reads without a format stay refused as there.
+        case spv::Capability::StorageImageWriteWithoutFormat:
         case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
         case spv::Capability::ShaderNonUniform:
         case spv::Capability::SampledImageArrayDynamicIndexing:

@@ -473,7 +473,9 @@ TEST_F(ApiExtensions, Maintenance1NegativeViewportTrimAndMaintenance3) {
 }
 
 // Format properties through VkFormatProperties3: the low 32 bits are the Vulkan 1.0 flags, and sampled depth
-// formats take depth comparisons, on both drivers (hand rule); tilevk also reports nothing above bit 31 but that.
+// formats take depth comparisons, on both drivers (hand rule); tilevk also reports nothing above bit 31 but that and
+// STORAGE_WRITE_WITHOUT_FORMAT exactly on its storage image / storage texel buffer formats
+// (shaderStorageImageWriteWithoutFormat).
 TEST_F(ApiExtensions, FormatFeatureFlags2) {
     auto props2 = instance_proc<PFN_vkGetPhysicalDeviceFormatProperties2KHR>("vkGetPhysicalDeviceFormatProperties2KHR");
     for (VkPhysicalDevice pd : {tilevk_->physical(), lavapipe_->physical()}) {
@@ -490,10 +492,16 @@ TEST_F(ApiExtensions, FormatFeatureFlags2) {
                 EXPECT_TRUE(p3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT) << f;
             }
             if (pd == tilevk_->physical()) {
+                const VkFormatFeatureFlags2 write_nf = VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT;
                 EXPECT_EQ(p3.optimalTilingFeatures >> 32,
-                          depth && (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
-                              ? (VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT >> 32)
-                              : 0u)
+                          ((depth && (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
+                                ? VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT
+                                : 0u) |
+                           (p.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT ? write_nf : 0u)) >>
+                              32)
+                    << f;
+                EXPECT_EQ(p3.bufferFeatures >> 32,
+                          (p.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT ? write_nf : 0u) >> 32)
                     << f;
             }
         }

@@ -551,8 +551,8 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
 // What the issue found accepted silently, refused now (no validation layer: invalid usage on purpose): a pipeline
 // for dynamic rendering (no render pass, VkPipelineRenderingCreateInfo) on a device without the dynamicRendering
 // feature enabled (ApiDynamicRendering.RefusalsWithoutTheFeatures checks its message), and a
-// buffer view on a STORAGE_TEXEL_BUFFER buffer in a format without the feature (B8G8R8A8_UNORM). The same requests with
-// a render pass / a UNIFORM_TEXEL_BUFFER buffer succeed.
+// buffer view on a STORAGE_TEXEL_BUFFER buffer in a format without the feature (R5G6B5_UNORM_PACK16). The same requests
+// with a render pass / a UNIFORM_TEXEL_BUFFER buffer succeed.
 TEST_F(ApiBreadth, DynamicRenderingPipelinesAndStorageTexelViewsAreRefused) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
@@ -579,7 +579,7 @@ TEST_F(ApiBreadth, DynamicRenderingPipelinesAndStorageTexelViewsAreRefused) {
         Device::Buffer b = dev.make_buffer(256, usage);
         VkBufferViewCreateInfo vci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
         vci.buffer = b.buffer;
-        vci.format = VK_FORMAT_B8G8R8A8_UNORM;
+        vci.format = VK_FORMAT_R5G6B5_UNORM_PACK16;
         vci.range = VK_WHOLE_SIZE;
         VkBufferView view = VK_NULL_HANDLE;
         const VkResult vr = vkCreateBufferView(dev.device(), &vci, nullptr, &view);

@@ -46,6 +46,9 @@ namespace {
 #include "si_store_a2b10g10r10_uint_comp.h"
 #include "si_store_a2b10g10r10_unorm_comp.h"
 #include "si_store_b10g11r11_ufloat_comp.h"
+#include "si_store_nofmt_f_comp.h"
+#include "si_store_nofmt_i_comp.h"
+#include "si_store_nofmt_u_comp.h"
 #include "si_store_r16_sfloat_comp.h"
 #include "si_store_r16_sint_comp.h"
 #include "si_store_r16_snorm_comp.h"
@@ -306,6 +309,59 @@ TEST_F(ApiStorageImage, EveryStorageFormatStoresByTheRules) {
         }
         EXPECT_EQ(wrong, 0u) << "format " << sf.format;
     }
+}
+
+// shaderStorageImageWriteWithoutFormat: one module per sampled type whose image has no format (Unknown) stores
+// into views of several formats; the view's format converts, so each texel follows the same store rules as with
+// the format declared, on both drivers (devices with the feature enabled). STORAGE_WRITE_WITHOUT_FORMAT is reported
+// (VkFormatProperties3) exactly on the storage formats.
+TEST_F(ApiStorageImage, WriteWithoutFormatConvertsByTheViewsFormat) {
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+    auto dev = device_pair({}, &f2);
+    ASSERT_TRUE(dev->ok());
+    const StoreFormat formats[] = {
+        {VK_FORMAT_R8G8B8A8_UNORM, SPV(si_store_nofmt_f_comp), Kind::Unorm, 4, 8},
+        {VK_FORMAT_R8G8B8A8_SNORM, SPV(si_store_nofmt_f_comp), Kind::Snorm, 4, 8},
+        {VK_FORMAT_R16G16B16A16_SFLOAT, SPV(si_store_nofmt_f_comp), Kind::Float, 4, 16},
+        {VK_FORMAT_R32_SFLOAT, SPV(si_store_nofmt_f_comp), Kind::Float, 1, 32},
+        {VK_FORMAT_R32G32B32A32_SFLOAT, SPV(si_store_nofmt_f_comp), Kind::Float, 4, 32},
+        {VK_FORMAT_R8G8B8A8_UINT, SPV(si_store_nofmt_u_comp), Kind::Uint, 4, 8},
+        {VK_FORMAT_R16G16B16A16_UINT, SPV(si_store_nofmt_u_comp), Kind::Uint, 4, 16},
+        {VK_FORMAT_R32_UINT, SPV(si_store_nofmt_u_comp), Kind::Uint, 1, 32},
+        {VK_FORMAT_R32G32_SINT, SPV(si_store_nofmt_i_comp), Kind::Sint, 2, 32},
+        {VK_FORMAT_R8G8B8A8_SINT, SPV(si_store_nofmt_i_comp), Kind::Sint, 4, 8},
+        // Storage formats beyond Vulkan's lists (lavapipe's too), whose bytes are those of RGBA8.
+        {VK_FORMAT_A8B8G8R8_UNORM_PACK32, SPV(si_store_nofmt_f_comp), Kind::Unorm, 4, 8},
+        {VK_FORMAT_A8B8G8R8_SNORM_PACK32, SPV(si_store_nofmt_f_comp), Kind::Snorm, 4, 8},
+        {VK_FORMAT_A8B8G8R8_UINT_PACK32, SPV(si_store_nofmt_u_comp), Kind::Uint, 4, 8},
+        {VK_FORMAT_A8B8G8R8_SINT_PACK32, SPV(si_store_nofmt_i_comp), Kind::Sint, 4, 8},
+    };
+    for (const StoreFormat& sf : formats) {
+        VkFormatProperties3 p3{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_3};
+        VkFormatProperties2 p2{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_2, &p3};
+        vkGetPhysicalDeviceFormatProperties2(tilevk_->physical(), sf.format, &p2);
+        EXPECT_TRUE(p3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT) << sf.format;
+        EXPECT_FALSE(p3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_STORAGE_READ_WITHOUT_FORMAT_BIT) << sf.format;
+        const std::vector<uint32_t> words = store_words(sf, uint32_t(sf.format) + 5);
+        const Bytes got = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) { return store_scene(k, sf, words); });
+        const size_t texel = size_t(sf.channels * sf.bits / 8);
+        ASSERT_EQ(got.size(), texel * kW * kH);
+        size_t wrong = 0;
+        for (size_t t = 0; t < size_t(kW) * kH; ++t)
+            for (int ch = 0; ch < sf.channels; ++ch) {
+                uint32_t have = 0;
+                std::memcpy(&have, &got[t * texel + size_t(ch * sf.bits / 8)], size_t(sf.bits / 8));
+                wrong += have != expected_channel(sf.kind, sf.bits, words[t * 4 + size_t(ch)]);
+            }
+        EXPECT_EQ(wrong, 0u) << "format " << sf.format;
+    }
+    VkFormatProperties3 p3{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_3};
+    VkFormatProperties2 p2{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_2, &p3};
+    vkGetPhysicalDeviceFormatProperties2(tilevk_->physical(), VK_FORMAT_R8G8B8A8_SRGB, &p2);  // not a storage format
+    EXPECT_FALSE(p3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT);
+    vkGetPhysicalDeviceFormatProperties2(tilevk_->physical(), VK_FORMAT_R32_UINT, &p2);
+    EXPECT_TRUE(p3.bufferFeatures & VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT);
 }
 
 // si_transform.comp: four storage images at once (maxPerStageDescriptorStorageImages = 4). RGBA8 and R32_UINT
