@@ -18,6 +18,23 @@ uint32_t resolve_count(const Image& img, uint32_t base, uint32_t count, bool lay
     return count == (layers ? VK_REMAINING_ARRAY_LAYERS : VK_REMAINING_MIP_LEVELS) ? total - base : count;
 }
 
+// The stored layers (image.h) a copy region names: a 3D image's slices z .. z+depth-1, else its array layers. A
+// negative z becomes a huge index, which image_ok refuses.
+struct LayerSpan {
+    uint32_t first, count;
+};
+LayerSpan region_layers(const Image& img, const VkImageSubresourceLayers& s, int32_t z, uint32_t depth) {
+    if (img.type == VK_IMAGE_TYPE_3D) return {uint32_t(z), depth};
+    return {s.baseArrayLayer, resolve_count(img, s.baseArrayLayer, s.layerCount, true)};
+}
+
+// The stored layers a clear range covers at `level`: every slice of a 3D image's level (its one array layer is the
+// whole level), else the range's array layers.
+LayerSpan clear_layers(const Image& img, const VkImageSubresourceRange& r, uint32_t level) {
+    if (img.type == VK_IMAGE_TYPE_3D) return {0, img.level_depth(level)};
+    return {r.baseArrayLayer, resolve_count(img, r.baseArrayLayer, r.layerCount, true)};
+}
+
 VkRect2D full_rect(const Image& img, uint32_t level) {
     return {{0, 0}, {img.level_width(level), img.level_height(level)}};
 }
@@ -35,8 +52,9 @@ bool buffer_ok(const Buffer* b, VkDeviceSize offset, VkDeviceSize size, const ch
 
 bool image_ok(const Image* img, uint32_t level, uint32_t base_layer, uint32_t layers, int32_t x, int32_t y, uint32_t w,
               uint32_t h, const char* what) {
-    bool ok = img != nullptr && img->memory != nullptr && level < img->mip_levels && base_layer < img->array_layers &&
-              layers <= img->array_layers - base_layer && x >= 0 && y >= 0 && img->memory_offset <= img->memory->size &&
+    bool ok = img != nullptr && img->memory != nullptr && level < img->mip_levels &&
+              base_layer < img->level_layers(level) && layers <= img->level_layers(level) - base_layer && x >= 0 &&
+              y >= 0 && img->memory_offset <= img->memory->size &&
               img->layout.size <= img->memory->size - img->memory_offset;
     if (ok) {
         ok = uint64_t(x) + w <= img->level_width(level) && uint64_t(y) + h <= img->level_height(level);
@@ -90,10 +108,10 @@ void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r
     const uint32_t bytes = buffer_texel_bytes(*img.format, s.aspectMask);
     const uint64_t row_len = r.bufferRowLength ? r.bufferRowLength : r.imageExtent.width;
     const uint64_t img_height = r.bufferImageHeight ? r.bufferImageHeight : r.imageExtent.height;
-    const uint32_t layers = resolve_count(img, s.baseArrayLayer, s.layerCount, true);
+    const auto [first, layers] = region_layers(img, s, r.imageOffset.z, r.imageExtent.depth);
     const char* what = to_image ? "vkCmdCopyBufferToImage" : "vkCmdCopyImageToBuffer";
     if (r.imageExtent.width == 0 || r.imageExtent.height == 0 || layers == 0) return;
-    if (!image_ok(&img, s.mipLevel, s.baseArrayLayer, layers, r.imageOffset.x, r.imageOffset.y, r.imageExtent.width,
+    if (!image_ok(&img, s.mipLevel, first, layers, r.imageOffset.x, r.imageOffset.y, r.imageExtent.width,
                   r.imageExtent.height, what)) {
         return;
     }
@@ -103,10 +121,9 @@ void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r
     if (!buffer_ok(&buf, r.bufferOffset, span, what)) return;
     for (uint32_t l = 0; l < layers; ++l) {
         for (uint32_t y = 0; y < r.imageExtent.height; ++y) {
-            // texel (x, y, layer l) of the region is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
+            // texel (x, y, layer or slice l) is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
             uint8_t* brow = buf.data() + r.bufferOffset + ((l * img_height + y) * row_len) * bytes;
-            uint8_t* irow =
-                img.texel(s.mipLevel, s.baseArrayLayer + l, uint32_t(r.imageOffset.x), uint32_t(r.imageOffset.y) + y);
+            uint8_t* irow = img.texel(s.mipLevel, first + l, uint32_t(r.imageOffset.x), uint32_t(r.imageOffset.y) + y);
             copy_row(img, s.aspectMask, irow, brow, r.imageExtent.width, to_image);
         }
     }
@@ -130,13 +147,16 @@ void exec_copy_image(const CmdCopyImage& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageCopy& r = c.regions[i];
         const VkImageAspectFlags aspect = r.srcSubresource.aspectMask;
-        const uint32_t layers =
-            resolve_count(*c.src, r.srcSubresource.baseArrayLayer, r.srcSubresource.layerCount, true);
+        // Between a 3D image and a 2D one (VK_KHR_maintenance1) the 3D side's extent.depth slices pair with the
+        // 2D side's layers; the layer count of a 2D side is then extent.depth.
+        const LayerSpan src = region_layers(*c.src, r.srcSubresource, r.srcOffset.z, r.extent.depth);
+        const LayerSpan dst = region_layers(*c.dst, r.dstSubresource, r.dstOffset.z, r.extent.depth);
+        const uint32_t layers = std::min(src.count, dst.count);
         const FormatInfo& f = *c.src->format;
-        if (!image_ok(c.src, r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer, layers, r.srcOffset.x,
-                      r.srcOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
-            !image_ok(c.dst, r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer, layers, r.dstOffset.x,
-                      r.dstOffset.y, r.extent.width, r.extent.height, "vkCmdCopyImage") ||
+        if (!image_ok(c.src, r.srcSubresource.mipLevel, src.first, layers, r.srcOffset.x, r.srcOffset.y, r.extent.width,
+                      r.extent.height, "vkCmdCopyImage") ||
+            !image_ok(c.dst, r.dstSubresource.mipLevel, dst.first, layers, r.dstOffset.x, r.dstOffset.y, r.extent.width,
+                      r.extent.height, "vkCmdCopyImage") ||
             c.dst->samples != c.src->samples || c.dst->format->bytes != f.bytes) {
             continue;
         }
@@ -147,11 +167,11 @@ void exec_copy_image(const CmdCopyImage& c) {
         for (uint32_t l = 0; l < layers * c.src->samples; ++l) {  // every sample plane of every layer
             const uint32_t layer = l / c.src->samples, sample = l % c.src->samples;
             for (uint32_t y = 0; y < r.extent.height; ++y) {
-                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, r.srcSubresource.baseArrayLayer + layer,
-                                                uint32_t(r.srcOffset.x), uint32_t(r.srcOffset.y) + y) +
+                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, src.first + layer, uint32_t(r.srcOffset.x),
+                                                uint32_t(r.srcOffset.y) + y) +
                                    sample * src_sample;
-                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, r.dstSubresource.baseArrayLayer + layer,
-                                          uint32_t(r.dstOffset.x), uint32_t(r.dstOffset.y) + y) +
+                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, dst.first + layer, uint32_t(r.dstOffset.x),
+                                          uint32_t(r.dstOffset.y) + y) +
                              sample * dst_sample;
                 const size_t texels = r.extent.width;
                 if (whole_texel) {
@@ -252,10 +272,10 @@ void exec_clear_color_image(const CmdClearColorImage& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageSubresourceRange& r = c.ranges[i];
         const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
-        const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
         for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
-            if (!image_ok(c.image, m, r.baseArrayLayer, layers, 0, 0, 0, 0, "vkCmdClearColorImage")) break;
-            clear_color_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), c.color);
+            const LayerSpan l = clear_layers(*c.image, r, m);
+            if (!image_ok(c.image, m, l.first, l.count, 0, 0, 0, 0, "vkCmdClearColorImage")) break;
+            clear_color_rect(*c.image, m, l.first, l.count, full_rect(*c.image, m), c.color);
         }
     }
 }
@@ -265,11 +285,10 @@ void exec_clear_depth_stencil_image(const CmdClearDepthStencilImage& c) {
     for (uint32_t i = 0; i < c.count; ++i) {
         const VkImageSubresourceRange& r = c.ranges[i];
         const uint32_t levels = resolve_count(*c.image, r.baseMipLevel, r.levelCount, false);
-        const uint32_t layers = resolve_count(*c.image, r.baseArrayLayer, r.layerCount, true);
         for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
-            if (!image_ok(c.image, m, r.baseArrayLayer, layers, 0, 0, 0, 0, "vkCmdClearDepthStencilImage")) break;
-            clear_depth_stencil_rect(*c.image, m, r.baseArrayLayer, layers, full_rect(*c.image, m), r.aspectMask,
-                                     c.value);
+            const LayerSpan l = clear_layers(*c.image, r, m);
+            if (!image_ok(c.image, m, l.first, l.count, 0, 0, 0, 0, "vkCmdClearDepthStencilImage")) break;
+            clear_depth_stencil_rect(*c.image, m, l.first, l.count, full_rect(*c.image, m), r.aspectMask, c.value);
         }
     }
 }

@@ -27,12 +27,13 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
     for (uint32_t level = 0; level < levels; ++level) {
         VkDeviceSize w = extent.width >> level ? extent.width >> level : 1;
         VkDeviceSize h = extent.height >> level ? extent.height >> level : 1;
+        VkDeviceSize d = extent.depth >> level ? extent.depth >> level : 1;  // 3D: slices stored as layers (image.h)
         offset = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
         l.level_offset[level] = offset;
         l.row_pitch[level] = w * f.bytes;
         l.sample_pitch[level] = sample_plane_pitch(l.row_pitch[level] * h, samples);
         l.layer_pitch[level] = l.sample_pitch[level] * samples;
-        offset += l.layer_pitch[level] * layers;
+        offset += l.layer_pitch[level] * layers * d;
     }
     l.size = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
     return l;
@@ -60,21 +61,21 @@ VkResult check_image_create_info(const Device& dev, const VkImageCreateInfo* ci,
     VkImageFormatProperties props{};
     const VkResult supported = tvk_GetPhysicalDeviceImageFormatProperties(
         to_handle(dev.physical_device), ci->format, ci->imageType, ci->tiling, usage, ci->flags, &props);
-    if (supported != VK_SUCCESS || ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.depth != 1 ||
-        ci->extent.width > props.maxExtent.width || ci->extent.height > props.maxExtent.height || ci->mipLevels == 0 ||
-        ci->mipLevels > props.maxMipLevels || ci->arrayLayers == 0 || ci->arrayLayers > props.maxArrayLayers ||
-        (ci->samples & props.sampleCounts) == 0) {
+    if (supported != VK_SUCCESS || ci->extent.width == 0 || ci->extent.height == 0 || ci->extent.depth == 0 ||
+        ci->extent.width > props.maxExtent.width || ci->extent.height > props.maxExtent.height ||
+        ci->extent.depth > props.maxExtent.depth || ci->mipLevels == 0 || ci->mipLevels > props.maxMipLevels ||
+        ci->arrayLayers == 0 || ci->arrayLayers > props.maxArrayLayers || (ci->samples & props.sampleCounts) == 0) {
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
                     "%s: %s, %s, %s, usage %s, flags %s, extent %ux%ux%u, %u levels, "
                     "%u layers, %s: not supported (vkGetPhysicalDeviceImageFormatProperties: %s; maxExtent "
-                    "%ux%u, %u levels, %u layers, sample counts %s)",
+                    "%ux%ux%u, %u levels, %u layers, sample counts %s)",
                     command, vk_enum_name(ci->imageType), vk_enum_name(ci->format), vk_enum_name(ci->tiling),
                     vk_flags_name<VkImageUsageFlagBits>(usage).c_str(),
                     vk_flags_name<VkImageCreateFlagBits>(ci->flags).c_str(), ci->extent.width, ci->extent.height,
                     ci->extent.depth, ci->mipLevels, ci->arrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(ci->samples).c_str(),
                     supported == VK_SUCCESS ? "supported" : "VK_ERROR_FORMAT_NOT_SUPPORTED", props.maxExtent.width,
-                    props.maxExtent.height, props.maxMipLevels, props.maxArrayLayers,
+                    props.maxExtent.height, props.maxExtent.depth, props.maxMipLevels, props.maxArrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(props.sampleCounts).c_str());
     }
     *format = f;
@@ -98,6 +99,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     Image* img = create_object<Image>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (img == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateImage: out of host memory");
     img->format = f;
+    img->type = ci->imageType;
     img->extent = ci->extent;
     img->mip_levels = ci->mipLevels;
     img->array_layers = ci->arrayLayers;
@@ -139,7 +141,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_GetImageSubresourceLayout(VkDevice, VkImage image
     if (has_depth_and_stencil(*img->format)) {
         pLayout->offset += aspect_offset(*img->format, pSub->aspectMask);  // interleaved depth/stencil texels
     }
-    pLayout->size = l.layer_pitch[level];
+    pLayout->size = l.layer_pitch[level] * (img->type == VK_IMAGE_TYPE_3D ? img->level_depth(level) : 1);
     pLayout->rowPitch = l.row_pitch[level];
     pLayout->arrayPitch = l.layer_pitch[level];
     pLayout->depthPitch = l.layer_pitch[level];

@@ -1,6 +1,7 @@
 // VkImage with tilevk's one plain linear layout, used for both OPTIMAL and LINEAR tiling:
-//   level-major; inside a level, array layers one after another; inside a layer, one plane per sample (sample 0
-//   first, `sample_pitch` bytes each); inside a plane, rows of `row_pitch` bytes; inside a row, pixels.
+//   level-major; inside a level, array layers one after another (a 3D image's depth slices take the place of its
+//   layers: slice z of a level is stored, addressed and copied as layer z); inside a layer, one plane per sample
+//   (sample 0 first, `sample_pitch` bytes each); inside a plane, rows of `row_pitch` bytes; inside a row, pixels.
 //   Texel (x, y, layer, level, sample) is at  level_offset[level] + layer*layer_pitch[level]
 //                                              + sample*sample_pitch[level] + y*row_pitch[level] + x*texel_bytes.
 // Levels start on 64-byte boundaries; rows are packed (no row padding). Sample planes are the renderer's own target
@@ -18,7 +19,7 @@ struct ImageLayout {
     VkDeviceSize level_offset[kMaxMipLevels] = {};
     VkDeviceSize row_pitch[kMaxMipLevels] = {};
     VkDeviceSize sample_pitch[kMaxMipLevels] = {};  // row_pitch * height, padded at 4x (image.cpp sample_plane_pitch)
-    VkDeviceSize layer_pitch[kMaxMipLevels] = {};   // sample_pitch * samples
+    VkDeviceSize layer_pitch[kMaxMipLevels] = {};   // sample_pitch * samples (a 3D image: the depth pitch)
     VkDeviceSize size = 0;
 };
 
@@ -28,6 +29,7 @@ struct Image : NonDispatchableObject {
     Image() : NonDispatchableObject(kType) {}
 
     const FormatInfo* format = nullptr;
+    VkImageType type = VK_IMAGE_TYPE_2D;
     VkExtent3D extent{};
     uint32_t mip_levels = 1;
     uint32_t array_layers = 1;
@@ -40,6 +42,9 @@ struct Image : NonDispatchableObject {
 
     uint32_t level_width(uint32_t level) const { return extent.width >> level ? extent.width >> level : 1; }
     uint32_t level_height(uint32_t level) const { return extent.height >> level ? extent.height >> level : 1; }
+    uint32_t level_depth(uint32_t level) const { return extent.depth >> level ? extent.depth >> level : 1; }
+    // The layers of a level as they are stored: a 3D image's depth slices, else its array layers.
+    uint32_t level_layers(uint32_t level) const { return type == VK_IMAGE_TYPE_3D ? level_depth(level) : array_layers; }
     // Address of sample 0 of texel (x, y) of a subresource.
     uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
         return memory->data + memory_offset + layout.level_offset[level] + layer * layout.layer_pitch[level] +

@@ -23,7 +23,7 @@ VkPhysicalDeviceLimits make_limits() {
     VkPhysicalDeviceLimits l{};
     l.maxImageDimension1D = kMaxImageDimension;
     l.maxImageDimension2D = kMaxImageDimension;
-    l.maxImageDimension3D = 256;
+    l.maxImageDimension3D = kMaxImageDimension3D;
     l.maxImageDimensionCube = 4096;
     l.maxImageArrayLayers = kMaxArrayLayers;
     l.maxTexelBufferElements = kMaxTexelBufferElements;
@@ -206,7 +206,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     *pProps = {};
     const FormatInfo* f = find_format(format);
     if (f == nullptr || !has_image_support(*f)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    if (type != VK_IMAGE_TYPE_2D) return VK_ERROR_FORMAT_NOT_SUPPORTED;  // only 2D images are implemented
+    // 2D and 3D images are implemented (a 3D image's slices are stored as layers, image.h); 1D is not yet.
+    if (type != VK_IMAGE_TYPE_2D && type != VK_IMAGE_TYPE_3D) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     if (flags != 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;                // no cube/mutable/sparse/alias images
     VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? VkFormatFeatureFlags(f->optimal)
                                 : tiling == VK_IMAGE_TILING_LINEAR ? VkFormatFeatureFlags(f->linear)
@@ -226,14 +227,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
             return VK_ERROR_FORMAT_NOT_SUPPORTED;
     }
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, 1};
+    const bool is_3d = type == VK_IMAGE_TYPE_3D;
+    // 3D as lavapipe (frontends/lavapipe/lvp_formats.c lvp_get_image_format_properties): the 2D width, height and
+    // level count, depth up to maxImageDimension3D, one array layer, one sample.
+    pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, is_3d ? kMaxImageDimension3D : 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
-    pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxArrayLayers;
+    pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR || is_3d ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
     // Multisampled images cannot be sampled, read as input attachments or used as storage images (the shader path
     // reads one sample per texel; subpassInputMS and storage images with samples are refused).
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment &&
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && !is_3d &&
                                    !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT |
                                               VK_IMAGE_USAGE_STORAGE_BIT))
                                ? VkSampleCountFlags(f->sample_counts) & kSampleCounts

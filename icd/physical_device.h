@@ -11,6 +11,10 @@ struct Instance;
 constexpr uint32_t kMaxImageDimension = 16384;
 constexpr uint32_t kMaxMipLevels = 15;  // log2(16384) + 1
 constexpr uint32_t kMaxArrayLayers = 256;
+// maxImageDimension3D and a 3D image's maxExtent.depth: lavapipe's 1 << PIPE_CAP_MAX_TEXTURE_3D_LEVELS
+// (frontends/lavapipe/lvp_device.c, lvp_formats.c; drivers/llvmpipe/lp_limits.h LP_MAX_TEXTURE_3D_LEVELS = 12), i.e.
+// 4096 although 12 levels end at 2048. tilevk's layout (image.h) has no such bound: it takes the reported value.
+constexpr uint32_t kMaxImageDimension3D = 4096;
 constexpr uint32_t kMaxTexelBufferElements = 65536;  // the Vulkan 1.0 minimum; texel buffers are 1D views
 constexpr VkSampleCountFlags kSampleCounts = VK_SAMPLE_COUNT_1_BIT | VK_SAMPLE_COUNT_4_BIT;
 constexpr uint32_t kMaxMultiviewViews = 6;  // maxMultiviewViewCount (lavapipe 22.3 reports 6)

@@ -54,6 +54,7 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     out->base = img.memory->data + img.memory_offset;
     out->width = img.level_width(b);
     out->height = img.level_height(b);
+    out->depth = img.level_depth(b);  // 1 but for a 3D view (whose layer_pitch below is the depth pitch)
     out->levels = std::min<uint32_t>(v.range.levelCount, uint32_t(out->level.size()));
     out->layers = v.range.layerCount;
     const VkComponentSwizzle mapping[4] = {v.components.r, v.components.g, v.components.b, v.components.a};

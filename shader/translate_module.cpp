@@ -338,8 +338,14 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
         if (t.arrayed) fail("invalid arrayed texel buffer");
         return;
     }
-    if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D)
-        fail("unsupported image dimension (only 1D and 2D, arrays included)");
+    if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D) {
+        // icd/ makes 3D images and views, but their shader access (sampler3D, image3D) is not implemented yet
+        const char* name = spv::Dim(t.dim) == spv::Dim::Dim3D  ? "Dim3D (sampler3D / image3D)"
+                           : spv::Dim(t.dim) == spv::Dim::Cube ? "Cube (samplerCube)"
+                           : spv::Dim(t.dim) == spv::Dim::Rect ? "Rect"
+                                                               : "this dimension";
+        fail(std::string("unsupported image dimension ") + name + " (only 1D and 2D, arrays included)");
+    }
     // Storage images (imageLoad / imageStore / imageSize): 2D and 2D arrays, the only image views icd/ makes.
     if (t.sampled == 2 && spv::Dim(t.dim) != spv::Dim::Dim2D)
         fail("unsupported storage image dimension (only 2D, arrays included)");

@@ -172,7 +172,6 @@ void Device::destroy(Buffer& b) {
 
 Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
                                  VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
-    Image img;
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = format;
@@ -184,6 +183,11 @@ Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t heigh
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return make_image(ci);
+}
+
+Device::Image Device::make_image(const VkImageCreateInfo& ci) {
+    Image img;
     if (vkCreateImage(device_, &ci, nullptr, &img.image) != VK_SUCCESS) return {};
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, img.image, &req);

@@ -69,6 +69,8 @@ class Device {
     void destroy(Buffer& b);
     Image make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
                      VkSampleCountFlagBits samples, VkImageUsageFlags usage);
+    // Any image (3D, other flags): made from `ci`, bound to fresh memory. Empty when vkCreateImage fails.
+    Image make_image(const VkImageCreateInfo& ci);
     void destroy(Image& i);
     // Records with `record`, submits with a fence and waits. Returns the submission's result, else the wait's.
     VkResult run(const std::function<void(VkCommandBuffer)>& record);

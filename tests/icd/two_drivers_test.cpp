@@ -173,7 +173,7 @@ TEST(TwoDrivers, TilevkProperties) {
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_STORAGE_BIT, 0, &ifp),
               VK_ERROR_FORMAT_NOT_SUPPORTED);
     EXPECT_EQ(
-        vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_3D,
+        vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_1D,
                                                  VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_TRANSFER_DST_BIT, 0, &ifp),
         VK_ERROR_FORMAT_NOT_SUPPORTED);
     ASSERT_EQ(
