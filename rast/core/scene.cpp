@@ -15,6 +15,7 @@ Scene::Scene(const SceneConfig& config) : config_(config) {
     config_.height = std::clamp(config_.height, 1, 16384);
     config_.samples = config_.samples > 1 ? 4 : 1;
     if (config_.tile_size != 16 && config_.tile_size != 32) config_.tile_size = 64;
+    config_.keep_edges = config_.keep_edges || reads_edges(config_.method);
     tiles_x_ = (config_.width + config_.tile_size - 1) / config_.tile_size;
     tiles_y_ = (config_.height + config_.tile_size - 1) / config_.tile_size;
     bins_.resize(static_cast<size_t>(tiles_x_) * tiles_y_);
@@ -30,20 +31,23 @@ void Scene::reset() {
 
 SetupStatus Scene::add_triangle(const TriangleInput& tri) {
     Prim p;
-    const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p);
-    return st == SetupStatus::kAccepted ? bin(p) : st;
+    PrimEdges e;
+    const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p, &e);
+    return st == SetupStatus::kAccepted ? bin(p, e) : st;
 }
 
 SetupStatus Scene::add_convex(const ConvexInput& in) {
     Prim p;
-    const SetupStatus st = setup_convex(in, config_.samples, {0, 0, config_.width, config_.height}, &p);
-    return st == SetupStatus::kAccepted ? bin(p) : st;
+    PrimEdges e;
+    const SetupStatus st = setup_convex(in, config_.samples, {0, 0, config_.width, config_.height}, &p, &e);
+    return st == SetupStatus::kAccepted ? bin(p, e) : st;
 }
 
 SetupStatus Scene::add_box(const BoxInput& in) {
     Prim p;
-    const SetupStatus st = setup_box(in, config_.samples, {0, 0, config_.width, config_.height}, &p);
-    return st == SetupStatus::kAccepted ? bin(p) : st;
+    PrimEdges e;
+    const SetupStatus st = setup_box(in, config_.samples, {0, 0, config_.width, config_.height}, &p, &e);
+    return st == SetupStatus::kAccepted ? bin(p, e) : st;
 }
 
 Scene::TileBox Scene::tile_box(const Prim& prim) const {
@@ -83,9 +87,13 @@ bool Scene::bin_rows(uint32_t index, const TileBox& box, int32_t ty_begin, int32
     return any;
 }
 
-SetupStatus Scene::bin(Prim& prim) {
+SetupStatus Scene::bin(const Prim& prim, const PrimEdges& edges) {
     if (num_prims_ == prims_.size()) prims_.emplace_back();
     prims_[num_prims_] = prim;
+    if (keep_edges()) {
+        if (num_prims_ >= edges_.size()) edges_.resize(size_t(num_prims_) + 1);
+        edges_[num_prims_] = edges;
+    }
     if (!bin_rows(num_prims_, tile_box(prim), 0, tiles_y_, &stats_)) return SetupStatus::kClipped;
     ++num_prims_;
     ++stats_.prims;
@@ -95,18 +103,21 @@ SetupStatus Scene::bin(Prim& prim) {
 uint32_t Scene::reserve(uint32_t n) {
     const uint32_t first = num_prims_;
     if (prims_.size() < size_t(first) + n) prims_.resize(size_t(first) + n);
+    if (keep_edges() && edges_.size() < size_t(first) + n) edges_.resize(size_t(first) + n);
     reserved_boxes_.assign(n, {0, 1, 0, 0, 0});  // rows 1..0: not accepted
     num_prims_ += n;
     return first;
 }
 
 SetupStatus Scene::setup_triangle_at(uint32_t slot, const TriangleInput& tri, bool* ccw) {
-    // Not cleared first: setup writes every field a binned primitive's readers use (the header, and the planes and
-    // pixel planes up to num_planes; add_triangle's Prim leaves pix[] beyond them undefined too). A 1x triangle
-    // then leaves 3 of the Prim's 9 cache lines unwritten: the store is a large part of a small triangle's
-    // memory traffic.
+    // Not cleared first: setup writes every field a binned primitive's readers use (the header, and the pixel planes
+    // up to num_planes, d only at 4x; add_triangle's Prim leaves pix[] beyond them undefined too). A 1x triangle
+    // then writes 2 of the Prim's 4 cache lines: the store is a large part of a small triangle's memory traffic.
+    // The edges go to a local unless the method reads them.
     Prim& p = prims_[slot];
-    const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p);
+    PrimEdges local;
+    PrimEdges* e = keep_edges() ? &edges_[slot] : &local;
+    const SetupStatus st = setup_triangle(tri, config_.samples, {0, 0, config_.width, config_.height}, &p, e);
     if (st != SetupStatus::kAccepted) return st;
     reserved_boxes_[slot - (num_prims_ - reserved_boxes_.size())] = tile_box(p);
     *ccw = p.front_facing == tri.front_ccw;  // setup's front = (ccw == front_ccw)
@@ -176,12 +187,12 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
         // Primitives are read in API order with gaps, each a cache miss of its own, and so are the consumer's
         // records they lead to: the hot lines of a primitive and the consumer's record are fetched kAhead
         // commands ahead, what that record points to kDataAhead commands ahead (the record has arrived by then).
+        // The hot lines: the header and the first pixel planes (a 1x triangle's all), at 4x also the offsets.
         constexpr size_t kAhead = 6, kDataAhead = 3;
+        const int hot_lines = config_.samples == 1 ? 2 : 4;
         auto fetch = [&](size_t k) {
             const char* p = reinterpret_cast<const char*>(&prims_[bin[k].prim]);
-            __builtin_prefetch(p);
-            __builtin_prefetch(p + 64);
-            __builtin_prefetch(p + 128);
+            for (int l = 0; l < hot_lines; ++l) __builtin_prefetch(p + 64 * l);
             consumer.prefetch(bin[k].payload, 0);
         };
         for (size_t k = 0; k < std::min(kAhead, bin.size()); ++k) fetch(k);
@@ -193,7 +204,7 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
             if (i + kAhead < bin.size()) fetch(i + kAhead);
             if (i + kDataAhead < bin.size()) consumer.prefetch(bin[i + kDataAhead].payload, 1);
             const Prim& prim = prims_[cmd.prim];
-            raster_prim_in_tile(method, prim, geom, cmd.whole_tile, &s);
+            raster_prim_in_tile(method, prim, keep_edges() ? &edges_[cmd.prim] : nullptr, geom, cmd.whole_tile, &s);
             if (s.num_blocks == 0 && s.num_full == 0 && s.num_blocks16 == 0) continue;
             PrimCoverage cov;
             cov.payload = prim.payload;

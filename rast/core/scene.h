@@ -19,6 +19,7 @@ namespace tilevk::rast {
 
 class ThreadPool;
 struct Prim;         // set-up primitive (setup.h)
+struct PrimEdges;    // its 64-bit planes (setup.h)
 struct BinCmd;       // tile command (setup.h)
 struct TileScratch;  // coverage lists of one worker (tile_raster.h)
 
@@ -27,6 +28,10 @@ struct SceneConfig {
     int samples = 1;                // 1 or 4
     int tile_size = 64;             // 16, 32 or 64 (the 32-bit in-tile bound is proved for <= 64)
     Method method = Method::kHier;
+    // Keep each primitive's PrimEdges (64-bit planes, float coordinates: setup.h) so that set_method may switch to
+    // the reference or float method, which read them. A user whose method stays hier or bbox (the renderer) turns it
+    // off: setup then writes about half the memory per primitive. Always on when `method` reads them.
+    bool keep_edges = true;
 };
 
 struct SceneStats {
@@ -66,10 +71,16 @@ class Scene {
     int32_t tiles_x() const { return tiles_x_; }
     int32_t tiles_y() const { return tiles_y_; }
     const SceneStats& stats() const { return stats_; }
-    void set_method(Method m) { config_.method = m; }
+    // The reference and float methods evaluate the 64-bit planes, hier and bbox only the pixel planes.
+    static bool reads_edges(Method m) { return m == Method::kReference || m == Method::kFloat; }
+    // A scene made with keep_edges off stays with a method that does not read them (an invalid switch is ignored).
+    void set_method(Method m) {
+        if (config_.keep_edges || !reads_edges(m)) config_.method = m;
+    }
 
   private:
-    SetupStatus bin(Prim& prim);
+    SetupStatus bin(const Prim& prim, const PrimEdges& edges);
+    bool keep_edges() const { return config_.keep_edges; }
     // The tiles of a primitive's pixel box (inclusive) and its payload: all that binning a primitive within one
     // tile needs, so bin_reserved's bands, which walk every slot, read 12 bytes per slot instead of the primitive
     // (a cache miss each).
@@ -85,6 +96,7 @@ class Scene {
     int32_t tiles_x_ = 0, tiles_y_ = 0;
     // prims_[0, num_prims_) are the scene's primitives; the vector never shrinks, so a steady frame reuses it.
     std::vector<Prim, HugePageAllocator<Prim>> prims_;
+    std::vector<PrimEdges> edges_;  // per primitive (as prims_) when keep_edges(), else empty
     uint32_t num_prims_ = 0;
     std::vector<TileBox> reserved_boxes_;  // per reserved slot: its tiles once set up and accepted
     std::vector<std::vector<BinCmd>> bins_;

@@ -71,7 +71,7 @@ SetupStatus finish_common(const PrimCommon& common, int samples, Prim* out) {
 // At 4x every sample of pixel ((maxX-1)>>8)+1 has X >= maxX + 32. The method-equivalence tests (whose reference uses
 // the box as loop bounds) check this argument on a million triangles.
 SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const PrimCommon& common, int samples,
-                       const ClipRect& fb, bool force_min, bool force_max, Prim* out) {
+                       const ClipRect& fb, bool force_min, bool force_max, Prim* out, PrimEdges* edges) {
     const ClipRect clip = intersect(common.clip, fb);
     const int32_t x0 = std::max(px0, clip.x0), y0 = std::max(py0, clip.y0);
     const int32_t x1 = std::min(px1, clip.x1 - 1), y1 = std::min(py1, clip.y1 - 1);
@@ -80,12 +80,12 @@ SetupStatus finish_box(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const
     if (const SetupStatus st = finish_common(common, samples, out); st != SetupStatus::kAccepted) return st;
     int n = out->num_shape_planes;
     out->num_scissor_planes = 0;
-    if (x0 > px0 || force_min) out->planes[n++] = min_x_plane(x0);
-    if (y0 > py0 || force_min) out->planes[n++] = min_y_plane(y0);
-    if (x1 < px1 || force_max) out->planes[n++] = max_x_plane(x1);
-    if (y1 < py1 || force_max) out->planes[n++] = max_y_plane(y1);
+    if (x0 > px0 || force_min) edges->planes[n++] = min_x_plane(x0);
+    if (y0 > py0 || force_min) edges->planes[n++] = min_y_plane(y0);
+    if (x1 < px1 || force_max) edges->planes[n++] = max_x_plane(x1);
+    if (y1 < py1 || force_max) edges->planes[n++] = max_y_plane(y1);
     out->num_planes = static_cast<uint8_t>(n);
-    compute_pixel_planes(samples, out);
+    compute_pixel_planes(samples, *edges, out);
     return SetupStatus::kAccepted;
 }
 
@@ -113,7 +113,7 @@ constexpr int32_t kLavapipeTile = 64;  // llvmpipe's TILE_SIZE: binning works on
 // gives the same coverage; it stays the 1x path.
 SetupStatus finish_box_msaa(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const LavapipeBox& lp,
                             const PrimCommon& common, int samples, const ClipRect& fb, bool force_min, bool force_max,
-                            Prim* out) {
+                            Prim* out, PrimEdges* edges) {
     const ClipRect clip = intersect(common.clip, fb);
     const int32_t rx0 = clip.x0, ry0 = clip.y0, rx1 = clip.x1 - 1, ry1 = clip.y1 - 1;  // inclusive region
     if (rx0 > rx1 || ry0 > ry1) return SetupStatus::kClipped;
@@ -143,38 +143,33 @@ SetupStatus finish_box_msaa(int32_t px0, int32_t py0, int32_t px1, int32_t py1, 
     const bool left_plane = left && x0 == rx0 - 1, top_plane = top && y0 == ry0 - 1;
     constexpr int64_t kAdj = 127;
     int n = out->num_shape_planes;
-    if (left_plane) out->planes[n++] = {-(int64_t{rx0 - 1} * kFixedOne + kAdj), 1, 0};
-    if (top_plane) out->planes[n++] = {-(int64_t{ry0 - 1} * kFixedOne + kAdj), 0, 1};
+    if (left_plane) edges->planes[n++] = {-(int64_t{rx0 - 1} * kFixedOne + kAdj), 1, 0};
+    if (top_plane) edges->planes[n++] = {-(int64_t{ry0 - 1} * kFixedOne + kAdj), 0, 1};
     out->num_scissor_planes = static_cast<uint8_t>(n - out->num_shape_planes);
-    if (!left_plane && (x0 > px0 || force_min)) out->planes[n++] = min_x_plane(x0);
-    if (!top_plane && (y0 > py0 || force_min)) out->planes[n++] = min_y_plane(y0);
-    if (x1 < px1 || force_max) out->planes[n++] = max_x_plane(x1);
-    if (y1 < py1 || force_max) out->planes[n++] = max_y_plane(y1);
+    if (!left_plane && (x0 > px0 || force_min)) edges->planes[n++] = min_x_plane(x0);
+    if (!top_plane && (y0 > py0 || force_min)) edges->planes[n++] = min_y_plane(y0);
+    if (x1 < px1 || force_max) edges->planes[n++] = max_x_plane(x1);
+    if (y1 < py1 || force_max) edges->planes[n++] = max_y_plane(y1);
     out->num_planes = static_cast<uint8_t>(n);
-    compute_pixel_planes(samples, out);
+    compute_pixel_planes(samples, *edges, out);
     return SetupStatus::kAccepted;
 }
 
 }  // namespace
 
-void compute_pixel_planes(int samples, Prim* prim) {
+void compute_pixel_planes(int samples, const PrimEdges& edges, Prim* prim) {
     for (int k = 0; k < prim->num_planes; ++k) {
-        const EdgePlane& p = prim->planes[k];
+        const EdgePlane& p = edges.planes[k];
         PixelPlane& q = prim->pix[k];
         q.a = p.a, q.b = p.b;
-        q.up = std::max(p.a, 0) + std::max(p.b, 0), q.dn = std::min(p.a, 0) + std::min(p.b, 0);
         // Sample 0 at 1x sits on the lattice (offset 0); at 4x at kSamplePos4x[0].
-        int64_t cs[4];
+        int64_t cs[4] = {0, 0, 0, 0};
         for (int s = 0; s < samples; ++s) {
             const int64_t sx = samples == 1 ? 0 : kSamplePos4x[s][0], sy = samples == 1 ? 0 : kSamplePos4x[s][1];
             cs[s] = ceil_shift(p.c + p.a * sx + p.b * sy, kSubpixelBits);  // ceil((c + a*sx + b*sy) / 256)
         }
         q.c0 = cs[0];
-        q.dlo = q.dhi = 0;
-        for (int s = 0; s < 4; ++s) {
-            q.d[s] = s < samples ? static_cast<int32_t>(cs[s] - cs[0]) : 0;
-            q.dlo = std::min(q.dlo, q.d[s]), q.dhi = std::max(q.dhi, q.d[s]);
-        }
+        for (int s = 1; s < samples; ++s) prim->d[k][s - 1] = static_cast<int32_t>(cs[s] - cs[0]);
     }
 }
 
@@ -224,7 +219,7 @@ void triangle_vertex_order(const TriangleInput& in, int samples, int order[3]) {
     ccw_order(!snap_triangle(in, samples, x, y, &area) || area >= 0, in.flatshade_first, order);
 }
 
-SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out) {
+SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect& fb, Prim* out, PrimEdges* edges) {
     int32_t x[3], y[3];
     int64_t area = 0;
     if (!snap_triangle(in, samples, x, y, &area)) return SetupStatus::kOutOfRange;
@@ -239,7 +234,7 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
     int32_t vx[3], vy[3];
     for (int i = 0; i < 3; ++i) {
         vx[i] = x[order[i]], vy[i] = y[order[i]];
-        out->fx[i] = in.x[order[i]], out->fy[i] = in.y[order[i]];
+        edges->fx[i] = in.x[order[i]], edges->fy[i] = in.y[order[i]];
     }
     out->front_facing = front;
     out->is_triangle = true;
@@ -250,7 +245,7 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
         const int32_t dy = vy[i] - vy[j], dx = vx[i] - vx[j];
         const bool horizontal_bias = in.bottom_edge_rule ? dx < 0 : dx > 0;
         const int64_t bias = (dy < 0 || (dy == 0 && horizontal_bias)) ? 1 : 0;
-        out->planes[i] = {int64_t{dy} * vx[i] - int64_t{dx} * vy[i] + bias, -dy, dx};
+        edges->planes[i] = {int64_t{dy} * vx[i] - int64_t{dx} * vy[i] + bias, -dy, dx};
     }
     out->num_shape_planes = 3;
     // Inclusive pixel box: x0 = minX>>8, x1 = (maxX-1)>>8 (arithmetic shifts = floor); y likewise, one unit
@@ -261,18 +256,19 @@ SetupStatus setup_triangle(const TriangleInput& in, int samples, const ClipRect&
     const int32_t px0 = minx >> kSubpixelBits, py0 = (miny + adj) >> kSubpixelBits;
     const int32_t px1 = (maxx - 1) >> kSubpixelBits, py1 = (maxy - 1 + adj) >> kSubpixelBits;
     if (samples > 1)  // lp_setup_tri.c's bbox is the pixel box itself
-        return finish_box_msaa(px0, py0, px1, py1, {px0, py0, px1, py1}, in.common, samples, fb, false, false, out);
-    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/false, /*force_max=*/false, out);
+        return finish_box_msaa(px0, py0, px1, py1, {px0, py0, px1, py1}, in.common, samples, fb, false, false, out,
+                               edges);
+    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/false, /*force_max=*/false, out, edges);
 }
 
-SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out) {
+SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb, Prim* out, PrimEdges* edges) {
     if (in.num_planes < 1 || in.num_planes > 4) return SetupStatus::kInvalid;
     for (int i = 0; i < in.num_planes; ++i) {
         const EdgePlane& p = in.planes[i];
         if (p.a <= -(1 << 23) || p.a >= (1 << 23) || p.b <= -(1 << 23) || p.b >= (1 << 23) ||
             p.c <= -(int64_t{1} << 47) || p.c >= (int64_t{1} << 47))
             return SetupStatus::kInvalid;
-        out->planes[i] = p;
+        edges->planes[i] = p;
     }
     for (int32_t v : {in.min_x, in.min_y, in.max_x, in.max_y})
         if (v <= -kMaxFixed || v >= kMaxFixed) return SetupStatus::kOutOfRange;
@@ -287,26 +283,26 @@ SetupStatus setup_convex(const ConvexInput& in, int samples, const ClipRect& fb,
         const LavapipeBox lp = {
             (in.min_x + kFixedOne - 1) >> kSubpixelBits, (in.min_y + kFixedOne - 1) >> kSubpixelBits,
             ((in.max_x + kFixedOne - 1) >> kSubpixelBits) - 1, ((in.max_y + kFixedOne - 1) >> kSubpixelBits) - 1};
-        return finish_box_msaa(px0, py0, px1, py1, lp, in.common, samples, fb, true, true, out);
+        return finish_box_msaa(px0, py0, px1, py1, lp, in.common, samples, fb, true, true, out, edges);
     }
-    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/true, /*force_max=*/true, out);
+    return finish_box(px0, py0, px1, py1, in.common, samples, fb, /*force_min=*/true, /*force_max=*/true, out, edges);
 }
 
-SetupStatus setup_box(const BoxInput& in, int samples, const ClipRect& fb, Prim* out) {
+SetupStatus setup_box(const BoxInput& in, int samples, const ClipRect& fb, Prim* out, PrimEdges* edges) {
     for (int32_t v : {in.x0, in.y0, in.x1, in.y1})
         if (v <= -kMaxFixed || v >= kMaxFixed) return SetupStatus::kOutOfRange;
     if (in.x0 >= in.x1 || in.y0 >= in.y1) return SetupStatus::kDegenerate;
     // x0 <= X < x1 as planes: X - x0 + 1 > 0 and x1 - X > 0 (lavapipe's point planes with c++ on left/top).
-    out->planes[0] = {-int64_t{in.x0} + 1, 1, 0};
-    out->planes[1] = {-int64_t{in.y0} + 1, 0, 1};
-    out->planes[2] = {int64_t{in.x1}, -1, 0};
-    out->planes[3] = {int64_t{in.y1}, 0, -1};
+    edges->planes[0] = {-int64_t{in.x0} + 1, 1, 0};
+    edges->planes[1] = {-int64_t{in.y0} + 1, 0, 1};
+    edges->planes[2] = {int64_t{in.x1}, -1, 0};
+    edges->planes[3] = {int64_t{in.y1}, 0, -1};
     out->num_shape_planes = 4;
     out->front_facing = in.front_facing;
     out->is_triangle = false;
     return finish_box(in.x0 >> kSubpixelBits, in.y0 >> kSubpixelBits, (in.x1 - 1) >> kSubpixelBits,
                       (in.y1 - 1) >> kSubpixelBits, in.common, samples, fb, /*force_min=*/false,
-                      /*force_max=*/false, out);
+                      /*force_max=*/false, out, edges);
 }
 
 }  // namespace tilevk::rast

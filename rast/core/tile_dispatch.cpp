@@ -11,11 +11,12 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
     return isa_base::tile_setup(prim, tile, out, num_out);
 }
 
-void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch) {
+void raster_prim_in_tile(Method method, const Prim& prim, const PrimEdges* edges, const TileGeom& tile, bool whole,
+                         TileScratch* scratch) {
 #if TILEVK_AVX2_VARIANT
-    if (kernel_isa() == Isa::kAvx2) return isa_avx2::raster_prim_in_tile(method, prim, tile, whole, scratch);
+    if (kernel_isa() == Isa::kAvx2) return isa_avx2::raster_prim_in_tile(method, prim, edges, tile, whole, scratch);
 #endif
-    isa_base::raster_prim_in_tile(method, prim, tile, whole, scratch);
+    isa_base::raster_prim_in_tile(method, prim, edges, tile, whole, scratch);
 }
 
 }  // namespace tilevk::rast

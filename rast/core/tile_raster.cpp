@@ -350,7 +350,7 @@ void raster_per_sample(const Prim& prim, const TileGeom& t, Inside inside, TileS
     }
 }
 
-void raster_reference(const Prim& prim, const TileGeom& t, TileScratch* out) {
+void raster_reference(const Prim& prim, const PrimEdges& edges, const TileGeom& t, TileScratch* out) {
     raster_per_sample(
         prim, t,
         [&](int32_t px, int32_t py, int s) {
@@ -359,7 +359,7 @@ void raster_reference(const Prim& prim, const TileGeom& t, TileScratch* out) {
             const int64_t X = int64_t{px} * kFixedOne + sx, Y = int64_t{py} * kFixedOne + sy;
             // The scissor planes cut samples (lavapipe's 4x scissor, setup.cpp), so the box cannot stand for them.
             for (int k = 0; k < prim.num_shape_planes + prim.num_scissor_planes; ++k) {
-                const EdgePlane& p = prim.planes[k];
+                const EdgePlane& p = edges.planes[k];
                 if (!(p.c + p.a * X + p.b * Y > 0)) return false;  // E = c + a*X + b*Y > 0
             }
             return true;
@@ -369,9 +369,9 @@ void raster_reference(const Prim& prim, const TileGeom& t, TileScratch* out) {
 
 // --- float: unsnapped float edge functions at the sample's window position ---------------------------------------
 
-void raster_float(const Prim& prim, const TileGeom& t, TileScratch* out) {
+void raster_float(const Prim& prim, const PrimEdges& edges, const TileGeom& t, TileScratch* out) {
     if (!prim.is_triangle) {
-        raster_reference(prim, t, out);
+        raster_reference(prim, edges, t, out);
         return;
     }
     raster_per_sample(
@@ -387,16 +387,16 @@ void raster_float(const Prim& prim, const TileGeom& t, TileScratch* out) {
             }
             for (int i = 0; i < 3; ++i) {
                 const int j = (i + 1) % 3;
-                const float dy = prim.fy[i] - prim.fy[j], dx = prim.fx[i] - prim.fx[j];
+                const float dy = edges.fy[i] - edges.fy[j], dx = edges.fx[i] - edges.fx[j];
                 // E = DY*(x_i - X) - DX*(y_i - Y), top-left edges inclusive.
-                const float e = dy * (prim.fx[i] - X) - dx * (prim.fy[i] - Y);
+                const float e = dy * (edges.fx[i] - X) - dx * (edges.fy[i] - Y);
                 const bool top_left = dy < 0.0f || (dy == 0.0f && dx > 0.0f);
                 if (!(e > 0.0f || (e == 0.0f && top_left))) return false;
             }
             const int64_t SX = int64_t{px} * kFixedOne + kSamplePos4x[s][0],
                           SY = int64_t{py} * kFixedOne + kSamplePos4x[s][1];
             for (int k = prim.num_shape_planes; k < prim.num_shape_planes + prim.num_scissor_planes; ++k) {
-                const EdgePlane& p = prim.planes[k];  // only at 4x
+                const EdgePlane& p = edges.planes[k];  // only at 4x
                 if (!(p.c + p.a * SX + p.b * SY > 0)) return false;
             }
             return true;
@@ -414,8 +414,16 @@ TileClass tile_setup_n(const Prim& prim, const TileGeom& tile, TilePlane* out, i
         const PixelPlane& p = prim.pix[k];
         // Value at the tile origin pixel: c0 + a*tx0 + b*ty0 (|.| < 2^48 + 2^38: 64-bit).
         const int64_t c = p.c0 + int64_t{p.a} * tile.x0 + int64_t{p.b} * tile.y0;
-        const int64_t lo = c + p.dlo, hi = c + p.dhi;
-        const int64_t min_v = lo + span * p.dn, max_v = hi + span * p.up;  // extremes over the tile
+        int32_t d[4] = {0, 0, 0, 0};  // the samples' offsets; sample 0's is 0
+        int32_t dlo = 0, dhi = 0;
+        if constexpr (kSamples == 4)
+            for (int s = 1; s < 4; ++s) {
+                d[s] = prim.d[k][s - 1];
+                dlo = std::min(dlo, d[s]), dhi = std::max(dhi, d[s]);
+            }
+        const int32_t up = std::max(p.a, 0) + std::max(p.b, 0), dn = std::min(p.a, 0) + std::min(p.b, 0);
+        const int64_t lo = c + dlo, hi = c + dhi;
+        const int64_t min_v = lo + span * dn, max_v = hi + span * up;  // extremes over the tile
         if (max_v <= 0) return TileClass::kReject;
         if (!out) {
             n += min_v <= 0;  // planes > 0 over the whole tile are dropped
@@ -429,7 +437,7 @@ TileClass tile_setup_n(const Prim& prim, const TileGeom& tile, TilePlane* out, i
         n += min_v <= 0;
         tp.a = p.a, tp.b = p.b;
         tp.lo = static_cast<int32_t>(lo), tp.hi = static_cast<int32_t>(hi);
-        for (int s = 0; s < kSamples; ++s) tp.c[s] = static_cast<int32_t>(c + p.d[s]);
+        for (int s = 0; s < kSamples; ++s) tp.c[s] = static_cast<int32_t>(c + d[s]);
         fill_step_table<kSamples == 4>(&tp);
     }
     *num_out = n;
@@ -442,12 +450,13 @@ TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int
     return tile.samples == 1 ? tile_setup_n<1>(prim, tile, out, num_out) : tile_setup_n<4>(prim, tile, out, num_out);
 }
 
-void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch) {
+void raster_prim_in_tile(Method method, const Prim& prim, const PrimEdges* edges, const TileGeom& tile, bool whole,
+                         TileScratch* scratch) {
     scratch->num_blocks = 0;
     scratch->num_full = 0;
     scratch->num_blocks16 = 0;
-    if (method == Method::kReference) return raster_reference(prim, tile, scratch);
-    if (method == Method::kFloat) return raster_float(prim, tile, scratch);
+    if (method == Method::kReference) return raster_reference(prim, *edges, tile, scratch);
+    if (method == Method::kFloat) return raster_float(prim, *edges, tile, scratch);
     if (whole) {
         push_full(scratch, tile.x0, tile.y0, tile.size);
         return;

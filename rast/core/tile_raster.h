@@ -41,15 +41,19 @@ struct TileScratch {
 };
 
 // Appends the coverage of `prim` in `tile` to scratch (cleared first). `whole` = binned as a whole-tile command.
-void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+// `edges`: the primitive's PrimEdges, read by the reference and float methods only (may be null for the others).
+void raster_prim_in_tile(Method method, const Prim& prim, const PrimEdges* edges, const TileGeom& tile, bool whole,
+                         TileScratch* scratch);
 
 namespace isa_base {
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
-void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+void raster_prim_in_tile(Method method, const Prim& prim, const PrimEdges* edges, const TileGeom& tile, bool whole,
+                         TileScratch* scratch);
 }  // namespace isa_base
 namespace isa_avx2 {
 TileClass tile_setup(const Prim& prim, const TileGeom& tile, TilePlane* out, int* num_out);
-void raster_prim_in_tile(Method method, const Prim& prim, const TileGeom& tile, bool whole, TileScratch* scratch);
+void raster_prim_in_tile(Method method, const Prim& prim, const PrimEdges* edges, const TileGeom& tile, bool whole,
+                         TileScratch* scratch);
 }  // namespace isa_avx2
 
 }  // namespace tilevk::rast

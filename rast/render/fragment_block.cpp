@@ -119,7 +119,7 @@ uint16_t early_depth(const BlockArgs& a, Block& k) {
 // A uniform shader (plan.uniform_shader): one run per primitive and worker (for a copy of a flat input, the copy);
 // block.outputs stays valid for every block of the primitive, since every lane sees the same flat inputs.
 void run_uniform(FragmentWorker& w, const BlockArgs& a) {
-    if (w.uniform_prim == a.prim && w.uniform_front == a.front_facing) return;
+    if (w.uniform_prim == a.planes && w.uniform_front == a.front_facing) return;
     shader::FragmentBlock& b = w.block;
     b.cover_mask = shader::kAllLanes;
     b.front_facing = a.front_facing ? 1u : 0u;
@@ -135,7 +135,7 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
         copy_lanes<sizeof b.outputs[0]>(b.outputs[0], b.inputs[a.plan->copy_location]);  // what the run would do
     else
         a.draw->pipe->fragment->run_fragment(a.draw->bindings, b, w.scratch);
-    w.uniform_prim = a.prim;
+    w.uniform_prim = a.planes;
     w.uniform_front = a.front_facing;
 }
 

@@ -81,8 +81,9 @@ struct DrawPlan {
 struct FragmentWorker {
     shader::Scratch scratch;
     shader::FragmentBlock block;
-    // The primitive whose uniform shader result block.outputs holds (DrawPlan::uniform_shader), or null.
-    const PrimRecord* uniform_prim = nullptr;
+    // The record (PrimRecord::planes) of the primitive whose uniform shader result block.outputs holds
+    // (DrawPlan::uniform_shader), or null.
+    const float* uniform_prim = nullptr;
     bool uniform_front = false;
     std::vector<uint64_t> samples_passed;  // per draw record of the current scene
     // Stage timing (stage_timer.h), when on: the current tile's start (CPU time), and its fragment-stage and shading

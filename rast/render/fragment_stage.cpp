@@ -213,12 +213,11 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
 FragmentStage::FragmentStage() = default;
 FragmentStage::~FragmentStage() = default;
 
-void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, const std::vector<PrimRecord>& prims,
-                            const std::vector<float>& planes, bool fused, unsigned workers) {
+void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, const PrimStore& prims, bool fused,
+                            unsigned workers) {
     fb_ = fb;
     draws_ = &draws;
     prims_ = &prims;
-    planes_ = &planes;
     fused_ = fused;
     fast_ = fragment_fast_paths();
     block_fn_ = fast_block_function();
@@ -264,17 +263,12 @@ void FragmentStage::begin_tile(unsigned worker, const TileInfo&) {
 }
 
 void FragmentStage::prefetch(uint32_t payload, int step) const {
-    if (payload >= prims_->size()) return;
-    const PrimRecord* rec = prims_->data() + payload;
-    if (step == 0) {
-        __builtin_prefetch(rec);
-        return;
-    }
-    // The position planes, the depth offset and the first attribute planes: three lines hold the header and at
-    // least two attributes wherever the record starts (never past the end of the store).
-    const char* head = reinterpret_cast<const char*>(planes_->data() + rec->plane_base);
-    const size_t bytes = std::min<size_t>(192, (planes_->size() - rec->plane_base) * sizeof(float));
-    for (size_t off = 0; off < bytes; off += 64) __builtin_prefetch(head + off);
+    // The record's header (draw, position plane, depth offset) and its first attribute planes: the header and at
+    // least two attributes lie in the three lines from its start. Step 1 has nothing left to fetch: the record
+    // holds the draw index itself, so no second dependent fetch is needed.
+    if (step != 0 || !prims_->contains(payload)) return;
+    const char* head = reinterpret_cast<const char*>(prims_->record(payload));
+    for (size_t off = 0; off < 192; off += 64) __builtin_prefetch(head + off);
 }
 
 // The tile's part of each TileResolve, after the tile's FP state is restored: the whole-image resolve it replaces
@@ -313,13 +307,13 @@ void FragmentStage::end_tile(unsigned worker, const TileInfo& tile) {
 
 bool FragmentStage::stop_tile(unsigned, uint32_t next_payload) {
     if (!stopped()) return false;
-    interruption_->note(false, (*draws_)[(*prims_)[next_payload].draw].id);
+    interruption_->note(false, (*draws_)[prims_->header(next_payload).draw].id);
     return true;
 }
 
 void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimCoverage& cov) {
     const TickScope timed(workers_[worker]->tile_consumer);
-    const PrimRecord& prim = (*prims_)[cov.payload];
+    const PrimRecord prim = prims_->header(cov.payload);
     const DrawRecord& draw = (*draws_)[prim.draw];
     if (stopped()) {
         interruption_->note(false, draw.id);
@@ -339,7 +333,7 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
             r.width = std::min(b.x + b.width, tile.x0 + tile.width) - r.x;
             r.height = std::min(b.y + b.height, tile.y0 + tile.height) - r.y;
         }
-        const float* pl = planes_->data() + prim.plane_base;
+        const float* pl = prim.planes;
         const float* input = draw.linear_slot >= 0
                                  ? pl + kPrimHeaderFloats + size_t(kPlaneFloats) * uint32_t(draw.linear_slot)
                                  : nullptr;
@@ -356,7 +350,7 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
     FragmentWorker& w = *workers_[worker];
     const DrawPlan* plan = fast_ && plans_[prim.draw].fast ? &plans_[prim.draw] : nullptr;
     const BlockFn fast = block_fn_;  // the fast pipeline for this CPU (fragment_plan.h)
-    const BlockArgs args{&fb_, &draw, plan, &prim, planes_->data() + prim.plane_base, cov.front_facing, fused_};
+    const BlockArgs args{&fb_, &draw, plan, &prim, prim.planes, cov.front_facing, fused_};
     auto one_block = [&](int32_t x, int32_t y, const uint16_t masks[4]) {
         if (stopped()) return;  // checked between shader batches: the rest of the tile is skipped
         if (plan)
@@ -397,7 +391,7 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
     w.uniform_prim = nullptr;  // block.outputs is about to change
     const PipelineState& pipe = *draw.pipe;
     const int samples = fb_.samples;
-    const float* planes = planes_->data() + prim.plane_base;
+    const float* planes = prim.planes;
     const float depth_offset = planes[kPlaneFloats];
 
     // Coverage per sample in shader lane order.

@@ -33,8 +33,7 @@ class FragmentStage final : public CoverageConsumer {
     ~FragmentStage() override;
 
     // Points the stage at the scene about to be rasterized (the references must outlive rasterize()).
-    void prepare(const Framebuffer& fb, const DrawRecords& draws, const std::vector<PrimRecord>& prims,
-                 const std::vector<float>& planes, bool fused, unsigned workers);
+    void prepare(const Framebuffer& fb, const DrawRecords& draws, const PrimStore& prims, bool fused, unsigned workers);
 
     // Linear mode: per 64x64 tile (row-major) whether its bin can be llvmpipe's linear bin (only rectangles
     // touch it), and each rectangle's pixel box. Null pointers: not in linear mode.
@@ -72,8 +71,7 @@ class FragmentStage final : public CoverageConsumer {
 
     Framebuffer fb_;
     const DrawRecords* draws_ = nullptr;
-    const std::vector<PrimRecord>* prims_ = nullptr;
-    const std::vector<float>* planes_ = nullptr;
+    const PrimStore* prims_ = nullptr;
     bool fused_ = true;
     bool fast_ = true;
     std::vector<DrawPlan> plans_;  // per draw record (fast path)

@@ -124,13 +124,13 @@ void Renderer::begin(const Framebuffer& fb) {
     cfg.height = fb.height;
     cfg.samples = fb.samples;
     cfg.method = method_;
+    cfg.keep_edges = false;  // the method stays method_ (kept anyway when it reads them)
     if (!scene_ || scene_->config().width != cfg.width || scene_->config().height != cfg.height ||
         scene_->config().samples != cfg.samples)
         scene_ = std::make_unique<Scene>(cfg);
     scene_->reset();
     draws_.clear();
     prims_.clear();
-    planes_.clear();
     reset_linear_tiles();
 }
 
@@ -146,7 +146,7 @@ bool Renderer::render_scene(const TileResolves* resolves) {
     bool resolved = false;
     if (!prims_.empty() && stopped()) interruption_.note(false, draws_.back().id);
     if (!prims_.empty() && !stopped()) {
-        fragment_->prepare(fb_, draws_, prims_, planes_, fused(), pool_.num_workers());
+        fragment_->prepare(fb_, draws_, prims_, fused(), pool_.num_workers());
         if (fb_.linear_mode)
             fragment_->set_linear(&tile_linear_, &rect_boxes_);
         else
@@ -160,7 +160,6 @@ bool Renderer::render_scene(const TileResolves* resolves) {
     }
     scene_->reset();
     prims_.clear();
-    planes_.clear();
     reset_linear_tiles();
     return resolved;
 }
@@ -313,7 +312,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         interruption_.note(false, call.id);
         return {};
     }
-    if (prims_.size() >= kMaxScenePrims) flush();
+    if (prims_.count() >= kMaxScenePrims) flush();
     DrawTimer timer;  // after the flush: a flush's rendering is timed by the fragment stage
 
     uint32_t draw_index = static_cast<uint32_t>(draws_.size());
@@ -334,7 +333,7 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     if (!plan_draw(plan, pipe, call, rec, src)) return {};
 
     for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
-        if (inst > 0 && prims_.size() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
+        if (inst > 0 && prims_.count() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
         plan.vcfg.instance = inst;
         uint64_t hits_before = 0;
         for (const auto& w : vertex_workers_) hits_before += w->scratch.loop_limit_hits();

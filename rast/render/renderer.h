@@ -122,9 +122,9 @@ class Renderer {
     void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
     geometry::DepthBias depth_bias_for_target(const PipelineState& pipe) const;
     geometry::PlaneSetupConfig plane_setup_config(const DrawRecord& rec) const;
-    // Appends a primitive record and its planes (position plane, depth offset, attrib_planes_[0, num_attribs)).
-    void push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
-                   uint32_t num_attribs);
+    // Appends a primitive record (position plane, depth offset, attrib_planes_[0, num_attribs)); returns its payload.
+    uint32_t push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
+                       uint32_t num_attribs);
 
     bool stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
 
@@ -135,8 +135,7 @@ class Renderer {
     Framebuffer fb_;
     std::unique_ptr<Scene> scene_;
     DrawRecords draws_;
-    std::vector<PrimRecord> prims_;
-    std::vector<float> planes_;
+    PrimStore prims_;  // the scene's primitive records; a primitive's payload names its record
     std::unique_ptr<FragmentStage> fragment_;
     std::vector<std::unique_ptr<VertexWorker>> vertex_workers_;  // per worker
     // Per-draw temporaries, kept to reuse their memory.

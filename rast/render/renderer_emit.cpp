@@ -195,16 +195,16 @@ void Renderer::add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, c
     if (in.x0 >= in.x1 || in.y0 >= in.y1) return;
     in.common.clip = clip;
     in.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
-    in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.common.payload = prims_.next_payload();
     in.front_facing = front;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
     // The setup JIT on (c0, c1, c2) as given: no cw reorder for rectangles.
     const geometry::PlaneSetupConfig pcfg = plane_setup_config(rec);
     geometry::TrianglePlanes tp;
     geometry::setup_triangle_planes(pcfg, c0, c1, c2, &tp, attrib_planes_.data());
-    push_prim(draw, PrimKind::kRect, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
+    const uint32_t payload = push_prim(draw, PrimKind::kRect, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
     if (fb_.linear_mode) {
-        prims_.back().rect = static_cast<uint32_t>(rect_boxes_.size());
+        prims_.set_rect(payload, static_cast<uint32_t>(rect_boxes_.size()));
         rect_boxes_.push_back(
             {in.x0 / kFixedOne, in.y0 / kFixedOne, (in.x1 - in.x0) / kFixedOne, (in.y1 - in.y0) / kFixedOne});
     } else {
@@ -240,21 +240,15 @@ ClipRect Renderer::prim_clip(const PipelineState& pipe) const {
     return r;
 }
 
-void Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
-                         uint32_t num_attribs) {
-    PrimRecord pr;
-    pr.draw = draw;
-    pr.plane_base = static_cast<uint32_t>(planes_.size());
-    pr.kind = kind;
-    prims_.push_back(pr);
-    const size_t base = planes_.size();
-    planes_.resize(base + kPrimHeaderFloats + size_t(kPlaneFloats) * num_attribs);
-    float* dst = planes_.data() + base;
-    std::memcpy(dst, &pos, sizeof(float) * kPlaneFloats);
-    dst[kPlaneFloats] = depth_offset;
+uint32_t Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::AttribPlane& pos, float depth_offset,
+                             uint32_t num_attribs) {
+    const uint32_t payload = prims_.append(1, record_floats(num_attribs));
+    prims_.set_header(payload, pos, depth_offset, draw, kind, 0);
     // No attributes: attrib_planes_ may be empty with a null data(), and memcpy from null is UB even for 0 bytes.
     if (num_attribs != 0)
-        std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(), sizeof(float) * kPlaneFloats * num_attribs);
+        std::memcpy(prims_.record(payload) + kPrimHeaderFloats, attrib_planes_.data(),
+                    sizeof(float) * kPlaneFloats * num_attribs);
+    return payload;
 }
 
 void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing) {
@@ -277,7 +271,7 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     in.max_y = ls.max_y;
     in.common.clip = prim_clip(pipe);
     in.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
-    in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.common.payload = prims_.next_payload();
     in.front_facing = front_facing;
     if (scene_->add_convex(in) != SetupStatus::kAccepted) return;
     // one pixel of margin around the line's fixed-point box (llvmpipe's own line box is not modelled)
@@ -305,7 +299,7 @@ void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, f
     in.y1 = std::min<int64_t>(ps.y1, int64_t(clip.y1) * kFixedOne);
     in.common.clip = clip;
     in.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
-    in.common.payload = static_cast<uint32_t>(prims_.size());
+    in.common.payload = prims_.next_payload();
     in.front_facing = front_facing;
     if (scene_->add_box(in) != SetupStatus::kAccepted) return;
     if (fb_.linear_mode)
@@ -324,7 +318,7 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
     proto.common.clip = prim_clip(pipe);
     proto.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     const geometry::PlaneSetupConfig pcfg = plane_setup_config(rec);
-    const size_t prim_floats = kPrimHeaderFloats + size_t(kPlaneFloats) * pcfg.layout.num_attribs;
+    const uint32_t prim_floats = record_floats(pcfg.layout.num_attribs);
     const uint32_t rec_floats = geometry::vertex_floats(pcfg.layout);
     while (clip_workers_.size() < pool_.num_workers()) clip_workers_.emplace_back();
     for (auto& c : clip_workers_) c.resize(size_t(geometry::kClipScratchVertices) * rec_floats);
@@ -364,10 +358,8 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
     const uint32_t total = piece_first_[n];
 
     const uint32_t scene_first = scene_->reserve(total);
-    const uint32_t rec_first = static_cast<uint32_t>(prims_.size());
-    const size_t plane_first = planes_.size();
-    prims_.resize(prims_.size() + total);
-    planes_.resize(planes_.size() + prim_floats * total);
+    const uint32_t rec_first = prims_.append(total, prim_floats);  // record k's payload: rec_first + k * rec_step
+    const uint32_t rec_step = prim_floats / kRecordAlign;
     auto set_up = [&](uint32_t k, const float* a, const float* b, const float* c, geometry::AttribPlane* attribs) {
         TriangleInput tri = proto;
         const float* v[3] = {a, b, c};
@@ -375,19 +367,17 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
             tri.x[j] = geometry::win_pos(v[j])[0];
             tri.y[j] = geometry::win_pos(v[j])[1];
         }
-        tri.common.payload = rec_first + k;
+        const uint32_t payload = rec_first + k * rec_step;
+        tri.common.payload = payload;
         bool ccw = true;
         if (scene_->setup_triangle_at(scene_first + k, tri, &ccw) != SetupStatus::kAccepted) return;
         // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
         geometry::TrianglePlanes tp;
         geometry::setup_triangle_planes(pcfg, a, ccw ? b : c, ccw ? c : b, &tp, attribs);
-        const size_t base = plane_first + prim_floats * k;
-        float* dst = planes_.data() + base;
-        std::memcpy(dst, &tp.pos, sizeof(float) * kPlaneFloats);
-        dst[kPlaneFloats] = tp.depth_offset;
+        prims_.set_header(payload, tp.pos, tp.depth_offset, draw, PrimKind::kTriangle, 0);
         if (pcfg.layout.num_attribs != 0)
-            std::memcpy(dst + kPrimHeaderFloats, attribs, sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
-        prims_[rec_first + k] = {draw, static_cast<uint32_t>(base), PrimKind::kTriangle, 0};
+            std::memcpy(prims_.record(payload) + kPrimHeaderFloats, attribs,
+                        sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
     };
     pool_.run(chunks, [&](unsigned w, size_t chunk) {
         geometry::ScopedFlushDenormals flush_denormals;  // setup and planes as on the drawing thread
@@ -432,7 +422,7 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     tri.flatshade_first = true;
     tri.common.clip = prim_clip(pipe);
     tri.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
-    tri.common.payload = static_cast<uint32_t>(prims_.size());
+    tri.common.payload = prims_.next_payload();
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
     int core_order[3];
     triangle_vertex_order(tri, fb_.samples, core_order);  // flatshade_first: cw triangles become (v0, v2, v1)
@@ -459,19 +449,7 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     geometry::TrianglePlanes tp;
     geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
 
-    PrimRecord pr;
-    pr.draw = draw;
-    pr.plane_base = static_cast<uint32_t>(planes_.size());
-    pr.kind = PrimKind::kTriangle;
-    prims_.push_back(pr);
-    const size_t base = planes_.size();
-    planes_.resize(base + kPrimHeaderFloats + size_t(kPlaneFloats) * pcfg.layout.num_attribs);
-    float* dst = planes_.data() + base;
-    std::memcpy(dst, &tp.pos, sizeof(float) * kPlaneFloats);
-    dst[kPlaneFloats] = tp.depth_offset;
-    if (pcfg.layout.num_attribs != 0)  // as in push_prim: never memcpy from a null data()
-        std::memcpy(dst + kPrimHeaderFloats, attrib_planes_.data(),
-                    sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
+    push_prim(draw, PrimKind::kTriangle, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
 }
 
 }  // namespace tilevk::rast::render

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "bench/shader/bench_shaders.h"
@@ -358,6 +359,85 @@ TEST_F(RenderTest, LargeBlendedDrawKeepsApiOrderAcrossChunksAndBands) {
     for (size_t i = 0; i < one.rgba.size(); i += 4) lit += one.rgba[i + 3] != 0;
     EXPECT_GT(lit, one.rgba.size() / 4 * 9 / 10) << "the draw should cover the target";
     for (unsigned threads : {2u, 3u, 8u}) EXPECT_EQ(one.rgba, render(threads).rgba) << threads << " threads";
+}
+
+// Primitive records of every kind and size in one scene: a large draw with one varying and one with three (records
+// of 28 and 52 floats, set up on the workers at every thread count above one), scissored (box planes; at 4x
+// lavapipe's sample scissor planes), lines, points and small draws between them. The hier method reads the compact
+// pixel planes (at 4x their per-sample offsets), the reference method the 64-bit planes a scene keeps only for it:
+// both must give the same bytes, at every thread count (a pool of one sets every record up one after the other).
+TEST_F(RenderTest, RecordsOfEveryKindAndSizeAgreeAcrossMethodsAndThreads) {
+    const auto vs3 = shader::test::make_program(Stage::Vertex, R"(#version 450
+layout(location=0) in vec4 pos; layout(location=1) in vec4 col;
+layout(location=0) out vec4 a; layout(location=1) out vec4 b; layout(location=2) out vec4 c;
+void main() { gl_Position = pos; a = col; b = col.zxyw * 0.5; c = vec4(pos.xy * 0.5 + 0.5, col.x, 1.0); })");
+    const auto fs3 = shader::test::make_program(Stage::Fragment, R"(#version 450
+layout(location=0) in vec4 a; layout(location=1) in vec4 b; layout(location=2) in vec4 c;
+layout(location=0) out vec4 color;
+void main() { color = vec4(a.x * 0.3 + b.y * 0.4 + c.x * 0.3, a.y * 0.5 + c.y * 0.5, b.z + c.z * 0.25, a.w); })");
+    const int w = 200, h = 140;
+    uint64_t state = 5;
+    auto rnd = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(uint32_t(state >> 40)) / float(1u << 24);
+    };
+    auto triangles = [&](int n, float size) {
+        std::vector<Vertex> v;
+        for (int t = 0; t < n; ++t) {
+            const float cx = rnd() * 2 - 1, cy = rnd() * 2 - 1, z = rnd();
+            const float c[4] = {rnd(), rnd(), rnd(), 1.0f};
+            for (int k = 0; k < 3; ++k)
+                v.push_back({{std::clamp(cx + (rnd() - 0.5f) * size, -0.999f, 0.999f),
+                              std::clamp(cy + (rnd() - 0.5f) * size, -0.999f, 0.999f), z, 1},
+                             {c[0], c[1], c[2], c[3]}});
+        }
+        return v;
+    };
+    const std::vector<Vertex> one = triangles(2500, 0.08f), three = triangles(2500, 0.1f), few = triangles(9, 0.5f);
+    const std::vector<Vertex> segs = triangles(60, 0.3f);  // pairs of its vertices as lines, its vertices as points
+    auto render = [&](unsigned threads, int samples, Method method) {
+        const size_t planes = size_t(samples);
+        Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4 * planes, 0),
+                  std::vector<float>(size_t(w) * h * planes, 1.0f)};
+        ThreadPool pool(threads);
+        Renderer r(pool, method);
+        PipelineState p1 = make_pipeline(vs.get(), fs.get(), w, h);
+        p1.samples = samples;
+        p1.depth_stencil.depth_test = p1.depth_stencil.depth_write = true;
+        p1.depth_stencil.depth_compare = fragment::CompareOp::Less;
+        PipelineState p3 = p1;
+        p3.vertex = vs3.get();
+        p3.fragment = fs3.get();
+        p3.scissor = {13, 9, 171, 122};  // box planes on every side; at 4x the sample scissor planes
+        PipelineState lines = p3, points = p1;
+        lines.topology = geometry::Topology::kLineList;
+        points.topology = geometry::Topology::kPointList;
+        Framebuffer fb = make_fb(img, true);
+        fb.samples = samples;
+        fb.color[0].sample_stride = size_t(w) * h * 4;
+        fb.depth_stencil.depth_sample_stride = size_t(w) * h * 4;
+        r.begin(fb);
+        draw(r, p1, one);
+        draw(r, p3, few);
+        draw(r, p3, three);
+        draw(r, lines, segs);
+        draw(r, p1, few);
+        draw(r, points, segs);
+        r.end();
+        return img;
+    };
+    for (int samples : {1, 4}) {
+        const Image want = render(1, samples, Method::kHier);
+        size_t lit = 0;
+        for (size_t i = 0; i < want.rgba.size(); i += 4) lit += want.rgba[i + 3] != 0;
+        EXPECT_GT(lit, want.rgba.size() / 4 / 2) << "the scene should cover most of the target";
+        for (const auto& [threads, method] : {std::pair{3u, Method::kHier}, std::pair{1u, Method::kReference},
+                                              std::pair{2u, Method::kReference}, std::pair{2u, Method::kBBox}}) {
+            const Image got = render(threads, samples, method);
+            EXPECT_EQ(want.rgba, got.rgba) << threads << " threads, " << samples << "x, " << to_string(method);
+            EXPECT_EQ(want.depth, got.depth) << threads << " threads, " << samples << "x, " << to_string(method);
+        }
+    }
 }
 
 }  // namespace
