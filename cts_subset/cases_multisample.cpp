@@ -45,8 +45,11 @@ Scene subpixel_lines() {
 
 }  // namespace
 
+void add_sampled_ms_cases(CaseList& out);  // cases_sampled_ms.cpp
+
 void add_multisample_cases(CaseList& out) {
     const std::string g = "multisample.";
+    add_sampled_ms_cases(out);
     out.push_back({g + "coverage_4x_triangles", [] { return ms_scene(random_triangles(11)); }, nullptr, ""});
     out.push_back({g + "coverage_4x_triangle_strip",
                    [] { return ms_scene(random_triangles(12, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, 10)); }, nullptr,

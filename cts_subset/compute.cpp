@@ -210,6 +210,7 @@ struct Objects {
     VkRenderPass render_pass = VK_NULL_HANDLE;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     VkPipeline graphics = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;  // of the multisampled images' descriptors
     int attachment = -1;
 
     explicit Objects(const DeviceContext& ctx) : c(ctx) {}
@@ -253,15 +254,28 @@ void Objects::make_resources(const ComputeSpec& s) {
     }
     for (size_t j = 0; j < s.images.size(); ++j) {
         const ComputeImage& im = s.images[j];
+        const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
+        if (ms && !im.attachment) throw std::runtime_error("harness: a multisampled image must be the attachment");
         VkImageUsageFlags u =
-            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+            ms ? VK_IMAGE_USAGE_SAMPLED_BIT
+               : VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         if (im.attachment) {
             u |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
             attachment = int(j);
         }
         Img img;
-        img.image = frame::make_image(c, gc, im.format, im.width, im.height, 1, VK_SAMPLE_COUNT_1_BIT, u);
+        img.image = frame::make_image(c, gc, im.format, im.width, im.height, 1, im.samples, u);
         img.view = frame::make_view(c, gc, img.image, im.format, VK_IMAGE_ASPECT_COLOR_BIT, 1);
+        if (ms) {
+            img.bytes = 0;
+            images.push_back(img);
+            if (sampler == VK_NULL_HANDLE) {
+                VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // nearest, repeat
+                vk_check(vkCreateSampler(c.device, &sci, nullptr, &sampler), "vkCreateSampler");
+                later([dev = c.device, smp = sampler] { vkDestroySampler(dev, smp, nullptr); });
+            }
+            continue;
+        }
         img.bytes = VkDeviceSize(im.width) * im.height * storage_texel_bytes(im.format);
         img.staging =
             frame::make_buffer(c, gc, img.bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -284,8 +298,14 @@ void Objects::make_descriptors(const ComputeSpec& s) {
         (texel ? ntexel : b.uniform ? nuniform : nstorage)++;
         bindings.push_back({uint32_t(bindings.size()), t, 1, kAllStages, nullptr});
     }
-    for (size_t j = 0; j < s.images.size(); ++j)
-        bindings.push_back({uint32_t(bindings.size()), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, kAllStages, nullptr});
+    uint32_t nstorage_images = 0;
+    for (const ComputeImage& im : s.images) {
+        const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
+        nstorage_images += ms ? 0 : 1;
+        bindings.push_back({uint32_t(bindings.size()),
+                            ms ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+                            kAllStages, nullptr});
+    }
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     lci.bindingCount = uint32_t(bindings.size());
     lci.pBindings = bindings.data();
@@ -304,7 +324,9 @@ void Objects::make_descriptors(const ComputeSpec& s) {
     if (nstorage) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nstorage});
     if (nuniform) sizes_.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nuniform});
     if (ntexel) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, ntexel});
-    if (!s.images.empty()) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint32_t(s.images.size())});
+    if (nstorage_images) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nstorage_images});
+    if (nstorage_images < s.images.size())
+        sizes_.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(s.images.size()) - nstorage_images});
     if (sizes_.empty()) sizes_.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1});
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
@@ -335,7 +357,8 @@ void Objects::make_descriptors(const ComputeSpec& s) {
             w.pBufferInfo = &binfo[i];
         } else {
             const size_t j = i - s.buffers.size();
-            iinfo[j] = {VK_NULL_HANDLE, images[j].view, VK_IMAGE_LAYOUT_GENERAL};
+            const bool ms = s.images[j].samples != VK_SAMPLE_COUNT_1_BIT;
+            iinfo[j] = {ms ? sampler : VK_NULL_HANDLE, images[j].view, VK_IMAGE_LAYOUT_GENERAL};
             w.pImageInfo = &iinfo[j];
         }
         writes.push_back(w);
@@ -384,8 +407,8 @@ void Objects::make_graphics(const ComputeSpec& s) {
     const ComputeImage& t = s.images[attachment];
     VkAttachmentDescription ad{};
     ad.format = t.format;
-    ad.samples = VK_SAMPLE_COUNT_1_BIT;
-    ad.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    ad.samples = t.samples;
+    ad.loadOp = t.samples != VK_SAMPLE_COUNT_1_BIT ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     ad.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     ad.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     ad.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
@@ -441,7 +464,7 @@ void Objects::make_graphics(const ComputeSpec& s) {
     rs.cullMode = VK_CULL_MODE_NONE;
     rs.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    ms.rasterizationSamples = t.samples;
     VkPipelineColorBlendAttachmentState cba{};
     cba.colorWriteMask = 0xF;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -468,6 +491,9 @@ void record_draw(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s) {
     rb.renderPass = o.render_pass;
     rb.framebuffer = o.framebuffer;
     rb.renderArea = {{0, 0}, {t.width, t.height}};
+    const VkClearValue zero{};  // a multisampled attachment is cleared (make_graphics), the others loaded
+    rb.clearValueCount = 1;
+    rb.pClearValues = &zero;
     vkCmdBeginRenderPass(cb, &rb, VK_SUBPASS_CONTENTS_INLINE);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, o.graphics);
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &o.set, 0, nullptr);
@@ -525,7 +551,8 @@ void record(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, const st
     for (size_t j = 0; j < o.images.size(); ++j) {
         transition(cb, o.images[j].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                    VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, kTransfer, kTransferRW);
-        copy_image(cb, o.images[j].staging.buffer, o.images[j].image, s.images[j], true);
+        if (s.images[j].samples == VK_SAMPLE_COUNT_1_BIT)
+            copy_image(cb, o.images[j].staging.buffer, o.images[j].image, s.images[j], true);
     }
     Kind prev = Kind::kFill;  // the uploads are transfers
     for (const ComputeStep& st : steps) {
@@ -536,7 +563,8 @@ void record(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, const st
     // Read-back: every image into its staging buffer, then everything to the host.
     barrier(cb, prev, Kind::kFill);
     for (size_t j = 0; j < o.images.size(); ++j)
-        copy_image(cb, o.images[j].staging.buffer, o.images[j].image, s.images[j], false);
+        if (s.images[j].samples == VK_SAMPLE_COUNT_1_BIT)
+            copy_image(cb, o.images[j].staging.buffer, o.images[j].image, s.images[j], false);
     Sync all = sync_of(prev);
     all.stage |= VK_PIPELINE_STAGE_TRANSFER_BIT;
     all.src_access |= VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -586,6 +614,7 @@ std::vector<Plane> run_compute(const DeviceContext& c, const ComputeSpec& s) {
     }
     for (size_t j = 0; j < s.images.size(); ++j) {
         const ComputeImage& im = s.images[j];
+        if (im.samples != VK_SAMPLE_COUNT_1_BIT) continue;
         Plane p{"image" + std::to_string(j), im.format, im.width, im.height, storage_texel_bytes(im.format), {}};
         const auto* bytes = static_cast<const uint8_t*>(o.images[j].staging.mapped);
         p.data.assign(bytes, bytes + o.images[j].bytes);
@@ -610,11 +639,19 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
     for (const ComputeImage& im : s.images) {
         VkFormatProperties fp;
         vkGetPhysicalDeviceFormatProperties(c.physical, im.format, &fp);
-        VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+        const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
+        VkFormatFeatureFlags need = ms ? VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT : VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
         if (im.attachment) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
         if ((fp.optimalTilingFeatures & need) != need)
             return std::string("format ") + format_name(im.format) + " lacks " +
                    format_features_name(need & ~fp.optimalTilingFeatures);
+        VkImageFormatProperties ip{};
+        if (ms && (vkGetPhysicalDeviceImageFormatProperties(
+                       c.physical, im.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, 0, &ip) != VK_SUCCESS ||
+                   !(ip.sampleCounts & im.samples)))
+            return std::string("format ") + format_name(im.format) +
+                   ": no sampled multisampled image of that count (VkImageFormatProperties::sampleCounts)";
     }
     if (s.images.size() > c.props.limits.maxPerStageDescriptorStorageImages)
         return std::to_string(s.images.size()) +

@@ -32,6 +32,10 @@ struct ComputeImage {
     uint32_t width = 16, height = 16;
     std::vector<uint8_t> init;
     bool attachment = false;
+    // More than 1: a multisampled colour attachment of the draw (`attachment` must be set), bound as a combined
+    // image sampler (sampler2DMS, nearest) instead of a storage image; the draw's render pass clears it to zero;
+    // it is neither uploaded nor read back (a dispatch copies its samples into a buffer).
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 struct ComputeStep {

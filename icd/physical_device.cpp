@@ -98,8 +98,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.framebufferStencilSampleCounts = kSampleCounts;
     l.framebufferNoAttachmentsSampleCounts = kSampleCounts;
     l.maxColorAttachments = kMaxColorAttachments;
+    // 4x images are read by texelFetch with a sample index (shader/texture.cpp), every sampled format alike.
     l.sampledImageColorSampleCounts = kSampleCounts;
-    l.sampledImageIntegerSampleCounts = VK_SAMPLE_COUNT_1_BIT;
+    l.sampledImageIntegerSampleCounts = kSampleCounts;
     l.sampledImageDepthSampleCounts = kSampleCounts;
     l.sampledImageStencilSampleCounts = kSampleCounts;
     l.storageImageSampleCounts = VK_SAMPLE_COUNT_1_BIT;
@@ -235,11 +236,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR || is_3d ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
-    // Multisampled images cannot be sampled, read as input attachments or used as storage images (the shader path
-    // reads one sample per texel; subpassInputMS and storage images with samples are refused).
+    // Multisampled images can be sampled (texelFetch with a sample index, textureSamples: shader/texture.cpp), as
+    // lavapipe's (lvp_formats.c: 4x for optimal 2D attachment formats whatever the usage), but not read as input
+    // attachments or used as storage images: subpassInputMS and storage images with samples are refused
+    // (shaderStorageImageMultisample is off), where lavapipe offers them. 3D images have one sample.
     pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && !is_3d &&
-                                   !(usage & (VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT |
-                                              VK_IMAGE_USAGE_STORAGE_BIT))
+                                   !(usage & (VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT))
                                ? VkSampleCountFlags(f->sample_counts) & kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);
     pProps->maxResourceSize = 1ull << 31;

@@ -7,6 +7,7 @@
 #include "image_view.h"
 #include "memory.h"
 #include "physical_device.h"
+#include "rast/fragment/block.h"
 
 namespace tilevk::icd {
 
@@ -47,7 +48,10 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
 bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     if (v.image == nullptr || v.image->memory == nullptr) return false;
     const Image& img = *v.image;
-    if (!(image_features(*v.format) & (format::kSampledImage | format::kStorageImage)) || img.samples != 1)
+    // A multisampled image is only ever a sampled image (physical_device.cpp: no 4x with STORAGE or
+    // INPUT_ATTACHMENT usage), read by texelFetch with a sample index: one level, its sample planes.
+    if (!(image_features(*v.format) & (format::kSampledImage | format::kStorageImage)) ||
+        (img.samples != 1 && (img.samples != uint32_t(rast::fragment::kMaxSamples) || img.mip_levels != 1)))
         return false;
     out->format = v.format->id;
     const uint32_t b = v.range.baseMipLevel;
@@ -57,6 +61,8 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     out->depth = img.level_depth(b);  // 1 but for a 3D view (whose layer_pitch below is the depth pitch)
     out->levels = std::min<uint32_t>(v.range.levelCount, uint32_t(out->level.size()));
     out->layers = v.range.layerCount;
+    out->samples = img.samples;
+    out->sample_pitch = img.samples > 1 ? img.layout.sample_pitch[b] : 0;
     const VkComponentSwizzle mapping[4] = {v.components.r, v.components.g, v.components.b, v.components.a};
     for (uint8_t c = 0; c < 4; ++c) {
         switch (mapping[c]) {

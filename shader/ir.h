@@ -216,6 +216,8 @@ enum SampleFlags : uint32_t {
     kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
     kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
     kSampleGather = 512,     // OpImageGather / OpImageDrefGather: level 0's 2x2 footprint, component in bits 10..11
+    kSampleMs = 4096,        // Fetch: c holds the sample index (level 0 of a multisampled view); QueryLevels: the
+                             // view's sample count instead of its levels (OpImageQuerySamples)
 };
 constexpr uint32_t kSampleGatherCompShift = 10;
 

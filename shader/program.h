@@ -218,6 +218,8 @@ struct ImageView {
     uint32_t width = 0, height = 0, depth = 1;  // of level 0 of the view
     uint32_t levels = 1;                        // mip levels in the view
     uint32_t layers = 1;                        // array layers in the view
+    uint32_t samples = 1;                       // 1, or 4 for a multisampled view (one level)
+    uint64_t sample_pitch = 0;                  // bytes between the sample planes of a multisampled view
     std::array<ImageLevel, kMaxMipLevels> level{};
     // The view's component mapping, applied to every fetched/filtered result (not to depth comparisons): per
     // output channel, the source channel 0-3, or kSwizzleZero / kSwizzleOne.

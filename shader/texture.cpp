@@ -440,7 +440,9 @@ bool image_ok(const ImageView* img) {
 // texel buffers): the format's zero texel, (0, 0, 0, 0) with alpha 1 (the integer 1 for integer formats) when the
 // format has no alpha, swizzled as a texel (lp_build_fetch_texel's out_of_bound_ret_zero: a format swizzle of
 // zeros; docs/lavapipe-rules.md §12).
-Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d) {
+// A texel fetch; `sample` picks the sample plane of a multisampled view (lp_bld_sample_soa.c
+// lp_build_sample_ms_offset: an index below 0 or past the view's sample count is outside, as a coordinate is).
+Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d, int32_t sample = 0) {
     const format::FormatInfo& fi = format::format_info(img.format);
     auto outside = [&] {
         Vec4 r{0, 0, 0, 0};
@@ -451,9 +453,11 @@ Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_
     const int32_t w = int32_t(std::max(1u, img.width >> lv));
     const int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> lv));
     if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return outside();
+    if (sample < 0 || uint32_t(sample) >= img.samples) return outside();
     const ImageLevel& il = img.level[lv];
-    const Vec4 r = decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +
-                                  uint64_t(x) * fi.bytes);
+    const Vec4 r =
+        decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(sample) * img.sample_pitch +
+                       uint64_t(y) * il.row_pitch + uint64_t(x) * fi.bytes);
     return swizzled(r, img);
 }
 
@@ -600,7 +604,7 @@ struct ImageOperands {
 void exec_query_levels(const ImageOperands& op) {
     for (int l = 0; l < kLanes; ++l) {
         const ImageView* img = op.image(l);
-        op.reg(op.in.d)[l] = img ? img->levels : 0;
+        op.reg(op.in.d)[l] = img ? ((op.in.imm & kSampleMs) ? img->samples : img->levels) : 0;
     }
 }
 
@@ -627,7 +631,10 @@ void exec_fetch(const ImageOperands& op) {
         const int32_t x = int32_t(op.reg(op.in.b)[l]) + op.off_x();
         const int32_t y = op.one_d() ? 0 : int32_t(op.reg(op.in.b + 1)[l]) + op.off_y();
         const int32_t layer = op.arrayed() ? int32_t(op.reg(op.in.b + op.layer_comp())[l]) : 0;
-        op.write(l, img ? fetch_at(*img, x, y, layer, lod[l], op.one_d()) : Vec4{0, 0, 0, 0});
+        // a multisampled fetch reads level 0 and takes the sample index in place of the LOD
+        const bool ms = op.in.imm & kSampleMs;
+        op.write(l, img ? fetch_at(*img, x, y, layer, ms ? 0u : lod[l], op.one_d(), ms ? int32_t(lod[l]) : 0)
+                        : Vec4{0, 0, 0, 0});
     }
 }
 

@@ -1,5 +1,6 @@
 // Images: sampling (implicit/explicit LOD, bias, gradients, projection, depth comparison, constant offsets),
-// texel fetches (also of uniform texel buffers), input attachments, size and level queries.
+// texel fetches (also of uniform texel buffers and of multisampled images), input attachments, size, level and
+// sample-count queries.
 #include "shader/translator.h"
 
 namespace tilevk::shader {
@@ -72,14 +73,23 @@ bool Translator::image_sample(const Instr& in) {
         }
         flags |= kSampleOffset | (uint32_t(uint8_t(int8_t(off[0]))) << 16) | (uint32_t(uint8_t(int8_t(off[1]))) << 24);
     }
+    // texelFetch(sampler2DMS[Array], p, sample): level 0 of the view, the sample's plane (texture.cpp exec_fetch)
+    if (operands & uint32_t(spv::ImageOperandsMask::Sample)) {
+        if (o != spv::Op::OpImageFetch || !it.ms) fail("a Sample image operand outside a multisampled texel fetch");
+        flags |= kSampleMs;
+        lod = reg(in[at++]);
+    } else if (it.ms) {
+        fail(opname(o) + " on a multisampled image without a sample index");
+    }
     // SignExtend / ZeroExtend (SPIR-V 1.4; glslang marks every integer sample and fetch with them) take no operand
     // words and change nothing here: texels are widened to 32 bits by their format's own signedness.
     if (gather && (operands & uint32_t(spv::ImageOperandsMask::Offset | spv::ImageOperandsMask::ConstOffsets)))
         fail(opname(o) + " with a non-constant offset or four offsets (shaderImageGatherExtended is not supported)");
-    uint32_t other = operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod |
-                                          spv::ImageOperandsMask::Grad | spv::ImageOperandsMask::ConstOffset |
-                                          spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
-    if (other) fail("unsupported image operands (dynamic offsets, min lod, sample) in " + opname(o));
+    uint32_t other =
+        operands & ~uint32_t(spv::ImageOperandsMask::Bias | spv::ImageOperandsMask::Lod | spv::ImageOperandsMask::Grad |
+                             spv::ImageOperandsMask::ConstOffset | spv::ImageOperandsMask::Sample |
+                             spv::ImageOperandsMask::SignExtend | spv::ImageOperandsMask::ZeroExtend);
+    if (other) fail("unsupported image operands (dynamic offsets, min lod) in " + opname(o));
     if (gather && (flags & (kSampleBias | kSampleExplicitLod | kSampleGrad)))
         fail(opname(o) + " with a bias, LOD or gradients");
     if (implicit) {
@@ -258,6 +268,9 @@ bool Translator::op_image(const Instr& in) {
         }
         case spv::Op::OpImageQueryLevels:
             emit(SOp::QueryLevels, def(in), reg(in[3]));
+            return true;
+        case spv::Op::OpImageQuerySamples:  // textureSamples: the view's sample count (lavapipe: num_samples)
+            emit(SOp::QueryLevels, def(in), reg(in[3]), kNoReg, kNoReg, kSampleMs);
             return true;
         default:
             return false;

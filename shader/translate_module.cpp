@@ -317,7 +317,13 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
     t.ms = in[6];
     t.sampled = in[7];
     t.flat = 1;
-    if (t.ms) fail("unsupported multisampled image type");
+    // Multisampled images are sampled images only (sampler2DMS[Array]: texelFetch with a sample index and
+    // textureSamples, translate_image.cpp); storage images and input attachments with samples are not supported
+    // (shaderStorageImageMultisample is off; 4x images cannot have STORAGE or INPUT_ATTACHMENT usage).
+    if (t.ms && (t.sampled == 2 || spv::Dim(t.dim) != spv::Dim::Dim2D))
+        fail(spv::Dim(t.dim) == spv::Dim::SubpassData
+                 ? "multisampled input attachment (subpassInputMS) is not supported"
+                 : "multisampled storage image (shaderStorageImageMultisample) or multisampled image that is not 2D");
     if (spv::Dim(t.dim) == spv::Dim::SubpassData) {
         // Input attachment (read by OpImageRead only): needs the fragment's pixel, copied in from gl_FragCoord
         // into two hidden local words.

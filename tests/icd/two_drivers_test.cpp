@@ -157,12 +157,16 @@ TEST(TwoDrivers, TilevkProperties) {
     const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
     EXPECT_EQ(m.memoryTypes[0].propertyFlags, want);
-    // Sampled and storage images are single-sampled only; storage images only in the formats with the feature.
+    // Sampled images of an attachment format may have 4 samples (texelFetch with a sample index), as the limits
+    // say; storage images are single-sampled only, and only in the formats with the feature.
     VkImageFormatProperties ifp;
     ASSERT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_SAMPLED_BIT, 0, &ifp),
               VK_SUCCESS);
-    EXPECT_EQ(ifp.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT));
+    EXPECT_EQ(ifp.sampleCounts, k14);
+    EXPECT_EQ(p.limits.sampledImageColorSampleCounts, k14);
+    EXPECT_EQ(p.limits.sampledImageIntegerSampleCounts, k14);
+    EXPECT_EQ(p.limits.storageImageSampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT));
     ASSERT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_STORAGE_BIT, 0, &ifp),
               VK_SUCCESS);

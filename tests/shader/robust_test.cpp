@@ -125,6 +125,16 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
          "StorageImageMultisample"},
         {Stage::Fragment, R"(#version 450
             layout(location=0) out vec4 c;
+            layout(set=0,binding=0, rgba8) uniform readonly image2DMS img;
+            void main() { c = imageLoad(img, ivec2(0), 1); })",
+         "StorageImageMultisample"},
+        {Stage::Fragment, R"(#version 450
+            layout(location=0) out vec4 c;
+            layout(input_attachment_index=0, set=0, binding=0) uniform subpassInputMS ia;
+            void main() { c = subpassLoad(ia, 2); })",
+         "subpassInputMS"},
+        {Stage::Fragment, R"(#version 450
+            layout(location=0) out vec4 c;
             layout(location=0) in vec4 v;
             void main() { c = vec4(interpolateAtCentroid(v).x); })",
          "InterpolateAtCentroid"},

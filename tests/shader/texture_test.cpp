@@ -107,6 +107,48 @@ TEST(ShaderTexture, TexelFetchAndBounds) {
     EXPECT_EQ(r.prog->interface().descriptors[0].kind, DescriptorKind::CombinedImageSampler);
 }
 
+// texelFetch(sampler2DMS, p, s) reads sample plane s (sample_pitch bytes apart) of level 0; a sample index below 0
+// or past the view's count is outside, as a coordinate is (zeros: RGBA8 has alpha); textureSamples is the view's
+// count. The expected texels are the test's own bytes.
+TEST(ShaderTexture, MultisampledFetchAndSampleCount) {
+    constexpr uint32_t kW = 4, kH = 4, kSamples = 4, kPitch = kW * kH * 4 + 64;  // padded planes, as icd/image.cpp
+    std::vector<uint8_t> bytes(kPitch * kSamples);
+    for (uint32_t s = 0; s < kSamples; ++s)
+        for (uint32_t i = 0; i < kW * kH; ++i) {
+            uint8_t* p = bytes.data() + s * kPitch + i * 4;
+            p[0] = uint8_t(i * 16), p[1] = uint8_t(s * 60), p[2] = uint8_t(200 - s), p[3] = uint8_t(255 - i);
+        }
+    ImageView view;
+    view.format = Format::R8G8B8A8_UNORM;
+    view.width = kW, view.height = kH;
+    view.samples = kSamples;
+    view.sample_pitch = kPitch;
+    view.level[0] = ImageLevel{0, kW * 4, uint64_t(kPitch) * kSamples};
+    view.base = bytes.data();
+    SamplerState smp;
+    FsTex r("color = texelFetch(tex, ivec2(v.xy), int(v.z)); if (v.w > 0.0) color = vec4(textureSamples(tex));",
+            "layout(set=0, binding=0) uniform sampler2DMS tex;\n");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &view, &smp});
+    auto sample_of = [](int l) { return l % 6 - 1; };  // -1 .. 4
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u(float(l % 5));  // x; 4 is outside
+        r.block.inputs[0][1][l] = u(float(l / 5));
+        r.block.inputs[0][2][l] = u(float(sample_of(l)));
+        r.block.inputs[0][3][l] = u(l == 15 ? 1.0f : 0.0f);
+    }
+    r.run();
+    for (int l = 0; l < 15; ++l) {
+        const int x = l % 5, y = l / 5, s = sample_of(l);
+        const bool in = x < int(kW) && s >= 0 && s < int(kSamples);
+        for (int c = 0; c < 4; ++c) {
+            const float want =
+                in ? float(bytes[size_t(s) * kPitch + (size_t(y) * kW + size_t(x)) * 4 + size_t(c)]) * kUnorm8 : 0.0f;
+            EXPECT_EQ(r.out(l, c), want) << "lane " << l << " channel " << c;
+        }
+    }
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(r.out(15, c), 4.0f);
+}
+
 TEST(ShaderTexture, NearestAddressModes) {
     TestImage img;
     const AddressMode modes[] = {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge,
