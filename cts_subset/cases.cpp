@@ -11,6 +11,7 @@ void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
 void add_compute_cases(CaseList& out);  // cases_compute.cpp
 void add_clipping_cases(CaseList& out);  // cases_clipping.cpp
+void add_types_cases(CaseList& out);    // cases_types.cpp: 64-bit integers and doubles
 
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
@@ -61,6 +62,7 @@ CaseList all_cases() {
     add_feature_cases(out);
     add_format_cases(out);
     add_compute_cases(out);
+    add_types_cases(out);
     add_linear_cases(out);
     add_random_cases(out);
     add_random_compute_cases(out);

@@ -84,6 +84,11 @@ Features make_supported() {
     // image forms stay VK_FALSE as in lavapipe 22.3.6, which has no reference for them.
     c.shaderUniformBufferArrayDynamicIndexing = VK_TRUE;
     c.shaderStorageBufferArrayDynamicIndexing = VK_TRUE;
+    // 64-bit integers and doubles: two registers per scalar, interpreted with llvmpipe's semantics (IEEE doubles
+    // under the same FTZ/DAZ, shifts masked, division by 0 and out-of-range conversions as lavapipe); programs using
+    // them stay in the interpreter (shader/README.md "64-bit types"; cts types.*).
+    c.shaderFloat64 = VK_TRUE;
+    c.shaderInt64 = VK_TRUE;
 
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
     // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.
@@ -112,8 +117,9 @@ Features make_supported() {
     // OpGroupNonUniformBroadcast reads its id from a register per subgroup (exec_subgroup.h op_sg_broadcast), so a
     // dynamically uniform id (SPIR-V 1.5) works as a constant one does.
     f.core.v12.subgroupBroadcastDynamicId = VK_TRUE;
-    // Subgroup operations take every type the device supports; there is no 8-, 16- or 64-bit type (shaderInt8,
-    // shaderInt16, shaderInt64, shaderFloat16 and shaderFloat64 are VK_FALSE), so no type is left out.
+    // Subgroup operations take every type the device supports: there is no 8- or 16-bit type (shaderInt8,
+    // shaderInt16 and shaderFloat16 are VK_FALSE); 64-bit values are two registers, which the subgroup operations
+    // move word by word (shader/translate_subgroup.cpp).
     f.core.v12.shaderSubgroupExtendedTypes = VK_TRUE;
     // The Vulkan memory model's operands, scopes and semantics order nothing more than tilevk already does: a
     // workgroup runs on one thread, buffer atomics are sequentially consistent (shader/README.md "Compute").

@@ -15,6 +15,7 @@
 #include "shader/exec_memory.h"
 #include "shader/exec_pointer.h"
 #include "shader/exec_subgroup.h"
+#include "shader/exec_wide.h"
 #include "shader/jit/jit.h"
 
 namespace tilevk::shader {
@@ -48,6 +49,7 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             TILEVK_EXEC_SHARED_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_POINTER_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SUBGROUP_OPS(TILEVK_EXEC_CALL)
+            TILEVK_EXEC_WIDE_OPS(TILEVK_EXEC_CALL)
 #define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
             TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)
 #undef TILEVK_EXEC_LIBM
@@ -149,11 +151,13 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
 }
 
 struct FloatEnv {
-    // lavapipe runs shaders with denormals flushed (FTZ) and treated as zero (DAZ), rounding to nearest. The fragment
-    // stage's tiles already run that way: MXCSR is then left alone (a write costs more than the compare).
+    // lavapipe runs vertex and fragment shaders with denormals flushed (FTZ) and treated as zero (DAZ), rounding to
+    // nearest. The fragment stage's tiles already run that way: MXCSR is then left alone (a write costs more than the
+    // compare). Compute shaders run on llvmpipe's compute thread pool (lp_cs_tpool.c), which never sets the denormal
+    // modes: denormals are kept there (cts types.float64.*: float(x) of a double below FLT_MIN stays a denormal).
     unsigned saved = _mm_getcsr();
-    unsigned wanted = (saved & ~0x6000u) | 0x8040u;
-    FloatEnv() {
+    unsigned wanted;
+    explicit FloatEnv(bool flush = true) : wanted((saved & ~0xE040u) | (flush ? 0x8040u : 0u)) {
         if (wanted != saved) _mm_setcsr(wanted);
     }
     ~FloatEnv() {
@@ -574,7 +578,7 @@ void Program::run_workgroup(const Bindings& bindings, std::span<const ComputeBat
         std::memset(shared, 0, size_t(p.shared_words) * 4);
     }
     Descriptor push;
-    FloatEnv env;
+    FloatEnv env(false);
     if (!p.has_barrier) {
         for (const ComputeBatch& cb : batches) {
             start_compute(p, interface_.local_size, bindings, cb, s, push, &cb == batches.data());

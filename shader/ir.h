@@ -200,7 +200,102 @@ enum class Op : uint16_t {
     LoadPtr,    // d = the word, in the lanes of mask c (0 elsewhere)
     StorePtr,   // the word = c in the lanes of mask d, lanes in order
     AtomicPtr,  // d = atomic pad:AtomicOp on the word, value c, comparator d, in the lanes of mask register n
+    // 64-bit integers and doubles (exec_wide.h): pad = WideOp. A 64-bit operand or result is two registers, low word
+    // then high word (r, r + 1); which of d, a, b, c are 64-bit is WideOp's shape (wide_shape).
+    Wide,
 };
+
+// Inst::pad of Op::Wide (translate_wide.cpp, exec_wide.h). Shapes: see wide_shape.
+enum class WideOp : uint16_t {
+    // 64-bit integer: d, a, b 64-bit (shifts: b is a 32-bit count, masked to 0..63 as llvmpipe)
+    IAdd,
+    ISub,
+    IMul,
+    SDiv,
+    UDiv,
+    SRem,
+    SMod,
+    UMod,
+    And,
+    Or,
+    Xor,
+    SMin,
+    SMax,
+    UMin,
+    UMax,
+    Shl,
+    ShrL,
+    ShrA,
+    INeg,
+    Not,
+    SAbs,
+    SSign,
+    // double: d, a, b, c 64-bit
+    FAdd,
+    FSub,
+    FMul,
+    FDiv,
+    FMod,
+    FRem,
+    FMin,
+    FMax,
+    Step,
+    FNeg,
+    FAbs,
+    Floor,
+    Ceil,
+    Trunc,
+    RoundEven,
+    Fract,
+    FSign,
+    Sqrt,
+    InvSqrt,
+    FClamp,
+    FFma,
+    SmoothStep,  // FFma: fused (a * b + c rounded once)
+    // comparisons: d a 32-bit mask, a and b 64-bit
+    IEq,
+    INe,
+    SLt,
+    SLe,
+    ULt,
+    ULe,
+    FOrdEq,
+    FOrdNe,
+    FOrdLt,
+    FOrdLe,
+    FUnordEq,
+    FUnordNe,
+    FUnordLt,
+    FUnordLe,
+    IsNan,
+    IsInf,
+    BitCount,
+    // conversions (the name says which side is 32-bit)
+    F32ToF64,
+    S32ToF64,
+    U32ToF64,
+    F32ToS64,
+    F32ToU64,  // a 32-bit, d 64-bit
+    F64ToF32,
+    F64ToS32,
+    F64ToU32,
+    S64ToF32,
+    U64ToF32,  // a 64-bit, d 32-bit
+    S64ToF64,
+    U64ToF64,
+    F64ToS64,
+    F64ToU64,  // both 64-bit
+};
+// Which operands of a WideOp are 64-bit: bit 0 d, bit 1 a, bit 2 b, bit 3 c.
+constexpr uint32_t wide_shape(WideOp o) {
+    if (o >= WideOp::Shl && o <= WideOp::ShrA) return 0b0011;
+    if (o <= WideOp::SmoothStep) return 0b1111;
+    if (o <= WideOp::BitCount) return 0b0110;
+    if (o <= WideOp::F32ToU64) return 0b0001;
+    if (o <= WideOp::U64ToF32) return 0b0010;
+    return 0b0011;
+}
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
 enum class AtomicOp : uint16_t { Load, Store, Exchange, CompareExchange, IAdd, SMin, SMax, UMin, UMax, And, Or, Xor };

@@ -54,7 +54,7 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
             p.offset += uint32_t(it->second.offset);
             p.matrix_stride = uint32_t(it->second.matrix_stride);
             p.row_major = it->second.row_major;
-            p.vec_stride = 4;
+            p.vec_stride = 0;
             p.type = t.members[cv];
         } else if (t.kind == Type::Array || t.kind == Type::RuntimeArray) {
             uint32_t stride = uint32_t(deco_[p.type].array_stride);
@@ -66,18 +66,19 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
                 add_dyn(stride);
             p.type = t.elem;
         } else if (t.kind == Type::Matrix) {
-            uint32_t col_stride = p.row_major ? 4 : p.matrix_stride;
+            uint32_t col_stride = p.row_major ? scalar_bytes(type(t.elem).elem) : p.matrix_stride;
             if (is_const)
                 p.offset += std::min(cv, t.count) * col_stride;
             else
                 add_dyn(col_stride);
-            p.vec_stride = p.row_major ? p.matrix_stride : 4;
+            p.vec_stride = p.row_major ? p.matrix_stride : 0;
             p.type = t.elem;
         } else if (t.kind == Type::Vector) {
+            const uint32_t stride = p.vec_stride ? p.vec_stride : scalar_bytes(t.elem);
             if (is_const)
-                p.offset += std::min(cv, t.count) * p.vec_stride;
+                p.offset += std::min(cv, t.count) * stride;
             else
-                add_dyn(p.vec_stride);
+                add_dyn(stride);
             p.type = t.elem;
         } else {
             fail("access chain into a non-composite");
@@ -97,15 +98,20 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
             scalar(reg, off, ty);
             if (t.flat == 2) scalar(reg + 1, off + 4, ty);
             break;
-        case Type::Vector:
-            for (uint32_t i = 0; i < t.count; ++i) scalar(reg + i, off + i * p.vec_stride, t.elem);
+        case Type::Vector: {  // (64-bit components: two registers and two words each)
+            const uint32_t words = type(t.elem).flat, stride = p.vec_stride ? p.vec_stride : words * 4;
+            for (uint32_t i = 0; i < t.count; ++i)
+                for (uint32_t w = 0; w < words; ++w) scalar(reg + i * words + w, off + i * stride + w * 4, t.elem);
             break;
+        }
         case Type::Matrix: {
             const Type& col = type(t.elem);
+            const uint32_t words = type(col.elem).flat, size = words * 4;
             for (uint32_t c = 0; c < t.count; ++c)
                 for (uint32_t r = 0; r < col.count; ++r) {
-                    uint32_t o = p.row_major ? c * 4 + r * p.matrix_stride : c * p.matrix_stride + r * 4;
-                    scalar(reg + c * col.count + r, off + o, col.elem);
+                    uint32_t o = p.row_major ? c * size + r * p.matrix_stride : c * p.matrix_stride + r * size;
+                    for (uint32_t w = 0; w < words; ++w)
+                        scalar(reg + (c * col.count + r) * words + w, off + o + w * 4, col.elem);
                 }
             break;
         }
@@ -113,7 +119,7 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
             uint32_t stride = uint32_t(deco_[ty].array_stride);
             if (!stride) fail("buffer array without ArrayStride");
             Pointer q = p;
-            q.vec_stride = 4;
+            q.vec_stride = 0;
             for (uint32_t i = 0; i < t.count; ++i)
                 walk_buffer_layout(q, t.elem, reg + i * type(t.elem).flat, off + i * stride, scalar);
             break;
@@ -126,7 +132,7 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
                 Pointer q = p;
                 q.matrix_stride = uint32_t(it->second.matrix_stride);
                 q.row_major = it->second.row_major;
-                q.vec_stride = 4;
+                q.vec_stride = 0;
                 walk_buffer_layout(q, t.members[m], reg + at, off + uint32_t(it->second.offset), scalar);
                 at += type(t.members[m]).flat;
             }

@@ -53,11 +53,11 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::SampledImageArrayDynamicIndexing:
         case spv::Capability::UniformBufferArrayDynamicIndexing:
         case spv::Capability::StorageBufferArrayDynamicIndexing:
-        // Buffer device addresses (translate_pointer.cpp). glslang declares Int64 with every buffer_reference
-        // module; 64-bit integers exist only for the address arithmetic translate_pointer.cpp lists (shaderInt64
-        // stays VK_FALSE) and any other use is refused by name.
+        // Buffer device addresses (translate_pointer.cpp).
         case spv::Capability::PhysicalStorageBufferAddresses:
+        // 64-bit integers and doubles: two registers per scalar, translate_wide.cpp (shaderInt64, shaderFloat64)
         case spv::Capability::Int64:
+        case spv::Capability::Float64:
             return true;
         default:
             return false;
@@ -231,10 +231,10 @@ void Translator::declare_type(const Instr& in) {
             break;
         case spv::Op::OpTypeInt:
         case spv::Op::OpTypeFloat:
-            // 64-bit integers: the address arithmetic of translate_pointer.cpp only (op_int64)
-            if (in[2] != 32 && !(in.op == spv::Op::OpTypeInt && in[2] == 64))
+            // 64-bit integers and doubles: two registers, low word first (translate_wide.cpp)
+            if (in[2] != 32 && in[2] != 64)
                 fail(std::string(in.op == spv::Op::OpTypeInt ? "int" : "float") + std::to_string(in[2]) +
-                     " types are not supported (32-bit only)");
+                     " types are not supported (32- and 64-bit only)");
             t.kind = in.op == spv::Op::OpTypeInt ? Type::Int : Type::Float;
             t.is_signed = in.op == spv::Op::OpTypeInt && in[3];
             t.wide = in[2] == 64;

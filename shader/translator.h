@@ -74,7 +74,9 @@ struct Pointer {
     uint32_t elem_const = 0;
     bool in_array = false;  // Buffer/Handle: still pointing at the descriptor array itself
     // buffer layout of what is pointed at
-    uint32_t vec_stride = 4, matrix_stride = 16;
+    // vec_stride: bytes between a vector's components, 0 = the component's own size (4, or 8 for 64-bit types);
+    // a row-major matrix's column vectors step by the matrix stride
+    uint32_t vec_stride = 0, matrix_stride = 16;
     bool row_major = false;
     bool writable = false;
 };
@@ -153,8 +155,23 @@ class Translator {
     bool op_dot(const Instr& in);       // translate_dot.cpp: OpSDot, OpUDot, OpSUDot (+AccSat)
     // translate_pointer.cpp: PhysicalStorageBuffer pointers and the 64-bit integer arithmetic on their addresses
     bool op_pointer(const Instr& in);
-    bool op_int64(const Instr& in);
-    void refuse_other_int64(const Instr& in);
+    // translate_wide.cpp: 64-bit integers and doubles (two registers per scalar, Op::Wide)
+    bool op_wide(const Instr& in);
+    bool op_wide_convert(const Instr& in);
+    bool op_wide_composite(const Instr& in);
+    bool op_wide_matrix(const Instr& in);
+    bool glsl_wide(const Instr& in);
+    bool glsl_wide_composite(const Instr& in, uint32_t e);
+    bool is_wide_type(uint32_t t) const;       // a 64-bit scalar, or a vector or matrix of them
+    bool is_wide_value(uint32_t id) const;     // a value of such a type
+    uint32_t words_of(uint32_t t) const;       // registers per component: 2 for 64-bit types, else 1
+    uint32_t components_of(uint32_t t) const;  // scalars in a scalar/vector/matrix type
+    uint32_t konst64(uint64_t v);              // two constant registers
+    // one Op::Wide (d = kNoReg: new registers); returns d
+    uint32_t wide(WideOp o, uint32_t d, uint32_t a, uint32_t b = kNoReg, uint32_t c = kNoReg);
+    void wide_each(const Instr& in, WideOp o, std::initializer_list<uint32_t> ids, uint32_t d = kNoReg);
+    uint32_t dot64(uint32_t a, uint32_t b, uint32_t n);
+    std::unordered_map<uint32_t, uint32_t> f2s_of_;  // OpConvertFToS result id -> its double operand id
     bool is_phys_pointer(uint32_t type_id) const;
     Pointer phys_pointer(uint32_t id);                  // the pointer a PhysicalStorageBuffer pointer value holds
     uint32_t address_add(uint32_t addr, uint32_t off);  // two registers: addr + sign-extended 32-bit off
@@ -206,6 +223,7 @@ class Translator {
     Value& val(uint32_t id);
     uint32_t reg(uint32_t id) { return val(id).reg; }
     uint32_t component_type(uint32_t t) const;  // scalar type of a scalar/vector/matrix
+    uint32_t scalar_bytes(uint32_t t) const { return type(t).wide ? 8 : 4; }  // buffer size of a scalar type
     uint32_t flat_index(uint32_t t, const uint32_t* idx, size_t n, uint32_t* out_type) const;
 
     // memory

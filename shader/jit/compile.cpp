@@ -323,13 +323,15 @@ size_t run(const Code& code, Scratch::Impl& s, size_t pc) {
 }
 
 std::string op_name(Op op) {
-    switch (op) {  // the pointer ops, which this tier does not compile (analysis.cpp has no row for them)
+    switch (op) {  // the pointer and 64-bit ops, which this tier does not compile (analysis.cpp has no row for them)
         case Op::LoadPtr:
             return "LoadPtr";
         case Op::StorePtr:
             return "StorePtr";
         case Op::AtomicPtr:
             return "AtomicPtr";
+        case Op::Wide:  // 64-bit integers and doubles (shader/README.md "64-bit types")
+            return "Wide";
         default:
             break;
     }

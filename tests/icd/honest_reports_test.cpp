@@ -204,7 +204,7 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
     }
     for (size_t offset :
          {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, sampleRateShading),
-          offsetof(VkPhysicalDeviceFeatures, shaderFloat64)}) {
+          offsetof(VkPhysicalDeviceFeatures, shaderInt16)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);
         StderrCapture capture;

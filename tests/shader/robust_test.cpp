@@ -110,8 +110,8 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
         {Stage::Fragment, R"(#version 450
             layout(location=0) out vec4 c;
             layout(location=0) in vec4 v;
-            void main() { double d = double(v.x); c = vec4(float(d * d)); })",
-         "Float64"},
+            void main() { double d = double(v.x); c = vec4(float(ldexp(d, 3))); })",
+         "Ldexp on 64-bit values"},
         {Stage::Fragment, R"(#version 450
             layout(location=0) out vec4 c;
             layout(set=0,binding=0) uniform samplerCube t;
