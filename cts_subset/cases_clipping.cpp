@@ -73,10 +73,11 @@ Scene distance_scene(Draw d, const Distances& n, uint32_t size = 64) {
 
 void set_plane(Draw& d, int k, float a, float b, float c, float w) {
     d.push_constants.resize(32, 0.0f);
-    d.push_constants[size_t(4 * k)] = a;
-    d.push_constants[size_t(4 * k + 1)] = b;
-    d.push_constants[size_t(4 * k + 2)] = c;
-    d.push_constants[size_t(4 * k + 3)] = w;
+    const size_t at = 4 * size_t(k);
+    d.push_constants[at] = a;
+    d.push_constants[at + 1] = b;
+    d.push_constants[at + 2] = c;
+    d.push_constants[at + 3] = w;
 }
 
 // Two triangles covering the target, one colour per corner.
