@@ -11,7 +11,7 @@ void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
 void add_compute_cases(CaseList& out);  // cases_compute.cpp
 void add_clipping_cases(CaseList& out);  // cases_clipping.cpp
-void add_types_cases(CaseList& out);    // cases_types.cpp: 64-bit integers and doubles
+void add_types_cases(CaseList& out);     // cases_types.cpp: 64-bit integers and doubles
 
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
