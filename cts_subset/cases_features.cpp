@@ -2,7 +2,8 @@
 // lavapipe: logic ops (every op; UNORM8, sRGB, float and R8 targets, 4x, write masks), alpha to one (with blending,
 // with alpha to coverage, at 4x), multiViewport (16 viewports, viewport 0 used), negative viewport heights
 // (VK_KHR_maintenance1), 8-bit indices (VK_EXT_index_type_uint8), primitive restart on list topologies
-// (VK_EXT_primitive_topology_list_restart) and clip-space depth in [-w, w] (VK_EXT_depth_clip_control).
+// (VK_EXT_primitive_topology_list_restart), clip-space depth in [-w, w] (VK_EXT_depth_clip_control) and dual-source
+// blending (dualSrcBlend).
 #include <iterator>
 
 #include "case.hpp"
@@ -281,10 +282,92 @@ void add_depth_clip_control_cases(CaseList& out) {
                    nullptr, ""});
 }
 
+// The top layer's shader writes a second colour (Location 0, Index 1) that differs from the first in every channel.
+Draw dual_source_draw(VkPipelineColorBlendAttachmentState blend) {
+    Draw d;
+    d.blend = blend;
+    const float constants[4] = {0.25f, 0.5f, 0.75f, 0.6f};
+    std::copy(constants, constants + 4, d.blend_constants);
+    d.fragment_glsl =
+        "#version 450\n"
+        "layout(location=0) in vec4 v_color;\n"
+        "layout(location=1) in vec2 v_uv;\n"
+        "layout(location=0, index=0) out vec4 o_color;\n"
+        "layout(location=0, index=1) out vec4 o_second;\n"
+        "void main() {\n"
+        "  o_color = v_color;\n"
+        "  o_second = vec4(v_color.gbr * 0.8 + vec3(0.1, 0.3, 0.05), 1.0 - v_color.a * 0.7);\n"
+        "}\n";
+    return d;
+}
+
+// dualSrcBlend: each SRC1 factor as source and as destination, the complementary pairs lavapipe turns into a lerp,
+// separate alpha, alpha to one, on UNORM8 (RGBA, BGRA, R8, 565 without alpha), 16-bit UNORM, 10-bit, sRGB, half and
+// float targets and at 4x.
+void add_dual_source_cases(CaseList& out) {
+    struct Pair {
+        const char* name;
+        VkBlendFactor src, dst;
+    };
+    const Pair pairs[] = {
+        {"one_src1_color", VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_SRC1_COLOR},
+        {"src1_color_one_minus_src1_color", VK_BLEND_FACTOR_SRC1_COLOR, VK_BLEND_FACTOR_ONE_MINUS_SRC1_COLOR},
+        {"src1_alpha_one_minus_src1_alpha", VK_BLEND_FACTOR_SRC1_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA},
+        {"one_minus_src1_alpha_src1_alpha", VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA, VK_BLEND_FACTOR_SRC1_ALPHA},
+        {"one_minus_src1_color_dst_color", VK_BLEND_FACTOR_ONE_MINUS_SRC1_COLOR, VK_BLEND_FACTOR_DST_COLOR}};
+    for (const Pair& p : pairs) {
+        const Draw d = dual_source_draw(blend_on(p.src, p.dst));
+        out.push_back({std::string("feature.dual_src_blend.") + p.name, [=] { return two_layers(d); }, nullptr, ""});
+    }
+    VkPipelineColorBlendAttachmentState sep = {VK_TRUE,
+                                               VK_BLEND_FACTOR_SRC1_COLOR,
+                                               VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+                                               VK_BLEND_OP_SUBTRACT,
+                                               VK_BLEND_FACTOR_ONE,
+                                               VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA,
+                                               VK_BLEND_OP_REVERSE_SUBTRACT,
+                                               0xF};
+    const Draw separate = dual_source_draw(sep);
+    out.push_back({"feature.dual_src_blend.separate_alpha", [=] { return two_layers(separate); }, nullptr, ""});
+    Draw to_one = dual_source_draw(blend_on(VK_BLEND_FACTOR_SRC1_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC1_COLOR));
+    to_one.alpha_to_one = true;
+    out.push_back({"feature.dual_src_blend.alpha_to_one", [=] { return two_layers(to_one); }, nullptr, ""});
+    const Draw masked =
+        dual_source_draw(blend_on(VK_BLEND_FACTOR_SRC1_COLOR, VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA, 0xB));
+    out.push_back({"feature.dual_src_blend.write_mask_b", [=] { return two_layers(masked); }, nullptr, ""});
+    const struct {
+        const char* name;
+        VkFormat f;
+    } formats[] = {{"b8g8r8a8_unorm", VK_FORMAT_B8G8R8A8_UNORM},
+                   {"r8_unorm", VK_FORMAT_R8_UNORM},
+                   {"r5g6b5_unorm", VK_FORMAT_R5G6B5_UNORM_PACK16},
+                   {"r16g16b16a16_unorm", VK_FORMAT_R16G16B16A16_UNORM},
+                   {"a2b10g10r10_unorm", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+                   {"r8g8b8a8_srgb", VK_FORMAT_R8G8B8A8_SRGB},
+                   {"r16g16b16a16_sfloat", VK_FORMAT_R16G16B16A16_SFLOAT},
+                   {"r32g32b32a32_sfloat", VK_FORMAT_R32G32B32A32_SFLOAT},
+                   {"r32_sfloat", VK_FORMAT_R32_SFLOAT}};
+    for (const auto& f : formats)
+        for (const Pair& p : {pairs[0], pairs[1], pairs[4]}) {
+            const Draw d = dual_source_draw(blend_on(p.src, p.dst));
+            out.push_back({std::string("feature.dual_src_blend.") + f.name + "." + p.name,
+                           [=] { return two_layers(d, f.f); }, nullptr, ""});
+        }
+    const Draw msaa = dual_source_draw(blend_on(VK_BLEND_FACTOR_SRC1_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA));
+    out.push_back({"feature.dual_src_blend.4x",
+                   [=] {
+                       Scene s = two_layers(msaa);
+                       s.target.samples = VK_SAMPLE_COUNT_4_BIT;
+                       return s;
+                   },
+                   nullptr, ""});
+}
+
 }  // namespace
 
 void add_feature_cases(CaseList& out) {
     add_logic_op_cases(out);
+    add_dual_source_cases(out);
     add_alpha_to_one_cases(out);
     add_viewport_feature_cases(out);
     add_index_cases(out);

@@ -57,6 +57,10 @@ Features make_supported() {
     c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
+    // The SRC1 factors on attachment 0 blend with the fragment output of Location 0, Index 1 (shader/
+    // kSecondColorOutput), converted as the first source; such draws take the reference fragment pipeline
+    // (feature.dual_src_blend.*).
+    c.dualSrcBlend = VK_TRUE;
     // ClipDistance and CullDistance written by the vertex shader: draw's user planes in rast/geometry clip.cpp and
     // its user_cull stage (cull_distance_keep); cts clipping.clip_distance.*, clipping.cull_distance.*. A fragment
     // shader may not read them (icd/pipeline.cpp refuses it).

@@ -57,7 +57,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxVertexOutputComponents = 64;
     l.maxFragmentInputComponents = 64;
     l.maxFragmentOutputAttachments = kMaxColorAttachments;
-    l.maxFragmentDualSrcAttachments = 0;  // dualSrcBlend is off
+    l.maxFragmentDualSrcAttachments = 1;  // dualSrcBlend: Location 0, Index 1 (lavapipe's 1)
     l.maxFragmentCombinedOutputResources = kMaxColorAttachments;
     l.maxComputeSharedMemorySize = kMaxComputeSharedMemorySize;  // checked at vkCreateComputePipelines
     for (int i = 0; i < 3; ++i) {

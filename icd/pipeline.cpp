@@ -274,8 +274,15 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, PipelineStat
         b.write_mask = uint8_t(a.colorWriteMask & 0xf);
         b.logic_op_enable = cb->logicOpEnable;  // VkLogicOp numbers its values as rast/fragment does
         b.logic_op = fr::LogicOp(cb->logicOp);
-        if (a.blendEnable && !fr::blend_supported(b))
-            return "dual-source blend factors (feature dualSrcBlend) are not supported";
+        for (VkBlendFactor f :
+             {a.srcColorBlendFactor, a.dstColorBlendFactor, a.srcAlphaBlendFactor, a.dstAlphaBlendFactor})
+            if (uint32_t(f) > uint32_t(VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA))
+                return "blend factor " + std::to_string(uint32_t(f)) + " is not a VkBlendFactor";
+        // The second source is colour output Location 0, Index 1, which only attachment 0 can blend with
+        // (maxFragmentDualSrcAttachments 1, as lavapipe: llvmpipe looks for SRC1 factors on its first target only).
+        if (i > 0 && fr::uses_second_source(b))
+            return "pColorBlendAttachments[" + std::to_string(i) +
+                   "] uses a dual-source blend factor (VK_BLEND_FACTOR_SRC1_*): maxFragmentDualSrcAttachments is 1";
     }
     std::memcpy(s.blend_constants, cb->blendConstants, sizeof s.blend_constants);
     return {};

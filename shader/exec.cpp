@@ -381,15 +381,15 @@ Program::FragmentDirect plan_direct(const ProgramImpl& p) {
         if (c.slot != IoSlot::Input || c.index >= std::size(d.input_word) || d.input_word[c.index] != ~0u) return d;
         d.input_word[c.index] = c.word;
     }
-    uint32_t seen[kMaxColorOutputs] = {};  // components written, one bit each
+    uint32_t seen[kColorOutputSlots] = {};  // components written, one bit each
     for (const IoCopy& c : p.io_out) {
         const uint32_t loc = c.index / 4, comp = c.index % 4;
-        if (c.slot != IoSlot::Output || loc >= uint32_t(kMaxColorOutputs) || (seen[loc] >> comp) & 1) return d;
+        if (c.slot != IoSlot::Output || loc >= uint32_t(kColorOutputSlots) || (seen[loc] >> comp) & 1) return d;
         if (!seen[loc]) d.output_word[loc] = c.word - comp;
         if (c.word < comp || d.output_word[loc] != c.word - comp) return d;
         seen[loc] |= 1u << comp;
     }
-    for (int loc = 0; loc < kMaxColorOutputs; ++loc)
+    for (int loc = 0; loc < kColorOutputSlots; ++loc)
         if (seen[loc] && seen[loc] != 0xfu) return d;
     d.ok = true;
     return d;

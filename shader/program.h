@@ -35,6 +35,9 @@ constexpr uint32_t kSubgroupSize = 8;
 static_assert(kLanes % kSubgroupSize == 0, "a batch holds whole subgroups");
 constexpr int kMaxLocations = 32;    // stage input/output locations (vec4 slots)
 constexpr int kMaxColorOutputs = 8;  // fragment output locations
+// The fragment output of Location 0, Index 1 (the second source of dual-source blending) is kept after them.
+constexpr int kSecondColorOutput = kMaxColorOutputs;
+constexpr int kColorOutputSlots = kMaxColorOutputs + 1;
 constexpr int kMaxClipDistances = 8;
 constexpr int kMaxMipLevels = 16;
 
@@ -348,7 +351,7 @@ struct alignas(64) FragmentBlock {
     alignas(64) Lanes sample_mask_in{};            // in: gl_SampleMaskIn[0]
     alignas(64) Lanes point_coord[2]{};            // in: gl_PointCoord
     alignas(64) Lanes inputs[kMaxLocations][4]{};  // in: interpolated varyings
-    alignas(64) Lanes outputs[kMaxColorOutputs][4]{};  // out: colour outputs, [location][component][lane]
+    alignas(64) Lanes outputs[kColorOutputSlots][4]{};  // out: colour outputs, [location][component][lane]
     alignas(64) Lanes frag_depth{};                    // out: gl_FragDepth (float bits) when written
     alignas(64) Lanes sample_mask{};                   // out: gl_SampleMask[0] when written
 };
@@ -416,7 +419,7 @@ class Program {
                           // HelperInvocation, and its only outputs whole vec4 colour outputs
         // local word of each (location * 4 + component) the program reads, ~0u for the others
         uint32_t input_word[kMaxLocations * 4];
-        uint32_t output_word[kMaxColorOutputs];  // first of the four words of each colour output, ~0u: not written
+        uint32_t output_word[kColorOutputSlots];  // first of the four words of each colour output, ~0u: not written
     };
     const FragmentDirect& fragment_direct() const;
     uint32_t* bind_fragment(const Bindings& bindings, uint64_t bindings_key, Scratch& scratch) const;

@@ -237,6 +237,12 @@ void Translator::walk_interface(bool out, uint32_t ty, uint32_t word, int loc, i
     if (n > 4 || comp + n > 4) fail("interface variable wider than 4 components");
     int maxloc = out && stage_ == Stage::Fragment ? kMaxColorOutputs : kMaxLocations;
     if (loc >= maxloc) fail("location " + std::to_string(loc) + " out of range");
+    if (out && stage_ == Stage::Fragment && dd.index == 1) {
+        // The second source of dual-source blending (maxFragmentDualSrcAttachments 1).
+        if (loc != 0)
+            fail("fragment output Location " + std::to_string(loc) + " with Index 1: only Location 0 has one");
+        loc = kSecondColorOutput;
+    }
     for (uint32_t j = 0; j < n; ++j)
         (out ? p_.io_out : p_.io_in)
             .push_back(IoCopy{out ? IoSlot::Output : IoSlot::Input, uint32_t(loc * 4 + comp + int(j)), word + j});

@@ -209,7 +209,8 @@ void Translator::decorate(const Instr& in) {
             d.non_writable = true;
             return;
         case spv::Decoration::Index:
-            if (arg != 0) fail("unsupported decoration Index (dual-source blending)");
+            if (arg > 1) fail("decoration Index " + std::to_string(arg) + " (only 0 and 1 exist)");
+            d.index = int(arg);
             return;
         case spv::Decoration::PerPrimitiveNV:
         case spv::Decoration::PerVertexKHR:

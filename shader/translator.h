@@ -50,6 +50,7 @@ struct Type {
 
 struct Decorations {
     int location = -1, component = 0, builtin = -1;
+    int index = 0;  // fragment outputs: 1 = the second source of dual-source blending
     bool flat = false, noperspective = false, centroid = false, sample = false;
     int set = -1, binding = -1, offset = -1, array_stride = 0, matrix_stride = 0;
     bool row_major = false, block = false, buffer_block = false, non_writable = false;

@@ -42,6 +42,14 @@ PipeFactor to_pipe(BlendFactor f) {
             return kInvConstAlpha;
         case BlendFactor::SrcAlphaSaturate:
             return kSrcAlphaSat;
+        case BlendFactor::Src1Color:
+            return kSrc1Color;
+        case BlendFactor::OneMinusSrc1Color:
+            return kInvSrc1Color;
+        case BlendFactor::Src1Alpha:
+            return kSrc1Alpha;
+        case BlendFactor::OneMinusSrc1Alpha:
+            return kInvSrc1Alpha;
         default:
             return kUnsupported;
     }
@@ -113,7 +121,8 @@ template <int N>
 struct PxN {
     static constexpr uint32_t kMax = (1u << N) - 1u;
     uint32_t s[4], d[4], k[4];  // src, dst, constant (RGBA order; d[3] valid only with alpha)
-    uint32_t sa, ka;
+    uint32_t s1[4];             // the second source (dual-source blending), converted as src
+    uint32_t sa, ka, s1a;
 };
 
 // lp_build_mul_norm: p = a*b; p += p >> N; p += 2^(N-1); p >> N
@@ -174,6 +183,14 @@ template <int N>
             return kMax - p.k[c];
         case kInvConstAlpha:
             return kMax - p.ka;
+        case kSrc1Color:
+            return p.s1[c];
+        case kSrc1Alpha:
+            return p.s1a;
+        case kInvSrc1Color:
+            return kMax - p.s1[c];
+        case kInvSrc1Alpha:
+            return kMax - p.s1a;
         default:
             return 0;
     }
@@ -238,7 +255,8 @@ inline uint32_t logic_op_bits(LogicOp op, uint32_t s, uint32_t d, int bits) {
 
 struct PxF {
     float s[4], d[4], k[4];
-    float sa, ka;
+    float s1[4];  // the second source (dual-source blending)
+    float sa, ka, s1a;
     bool ftz;
 };
 
@@ -289,6 +307,14 @@ float factorf(PipeFactor f, int c, bool alpha_chan, bool has_alpha, const PxF& p
             return fsub(p, 1.0f, p.k[c]);
         case kInvConstAlpha:
             return fsub(p, 1.0f, p.ka);
+        case kSrc1Color:
+            return p.s1[c];
+        case kSrc1Alpha:
+            return p.s1a;
+        case kInvSrc1Color:
+            return fsub(p, 1.0f, p.s1[c]);
+        case kInvSrc1Alpha:
+            return fsub(p, 1.0f, p.s1a);
         default:
             return 0.0f;
     }
@@ -417,10 +443,10 @@ uint8_t lerp8(uint8_t x, uint8_t v0, uint8_t v1) {
     return uint8_t((v0 + (r & 0xff)) & 0xff);
 }
 
-bool blend_supported(const BlendAttachment& a) {
-    if (!a.blend_enable) return true;
-    return to_pipe(a.src_color) != kUnsupported && to_pipe(a.dst_color) != kUnsupported &&
-           to_pipe(a.src_alpha) != kUnsupported && to_pipe(a.dst_alpha) != kUnsupported;
+bool uses_second_source(const BlendAttachment& a) {
+    if (!a.blend_enable || a.logic_op_enable) return false;
+    auto dual = [](BlendFactor f) { return f >= BlendFactor::Src1Color && f <= BlendFactor::OneMinusSrc1Alpha; };
+    return dual(a.src_color) || dual(a.dst_color) || dual(a.src_alpha) || dual(a.dst_alpha);
 }
 
 namespace {
@@ -467,30 +493,37 @@ PreparedBlend prepare_blend(const BlendAttachment& a, ColorFormat f, const float
 }
 
 template <int N>
-void blend_norm_pixel(const PreparedBlend& pr, const uint32_t s[4], const uint32_t d[4], uint32_t out[4]) {
+void blend_norm_pixel(const PreparedBlend& pr, const uint32_t s[4], const uint32_t s1[4], const uint32_t d[4],
+                      uint32_t out[4]) {
     PxN<N> p;
     for (int c = 0; c < 4; ++c) {
         p.s[c] = s[c];
+        p.s1[c] = s1[c];
         p.d[c] = d[c];
         p.k[c] = pr.kn[c];
     }
     p.sa = p.s[3];
+    p.s1a = p.s1[3];
     p.ka = p.k[3];
     blend_norm<N>(pr.pb, *pr.fi, colour_channels(*pr.fi), p, out);
 }
 
 // Targets with an integer blend type other than UNORM8: the source in the blend type, the stored texel widened to
 // it, blend or logic op, the write mask selecting the stored value, and every channel narrowed back.
-void blend_int_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, const BlendOptions& opt) {
+void blend_int_prepared(const PreparedBlend& pr, const float src[4], const float src1[4], uint8_t* dst,
+                        const BlendOptions& opt) {
     const FormatInfo& fi = *pr.fi;
-    uint32_t s[4], d[4], out[4];
-    for (int c = 0; c < 4; ++c) s[c] = out[c] = format::output_to_blend_type(fi, bits_of(src[c]), opt.unorm_path);
+    uint32_t s[4], s1[4], d[4], out[4];
+    for (int c = 0; c < 4; ++c) {
+        s[c] = out[c] = format::output_to_blend_type(fi, bits_of(src[c]), opt.unorm_path);
+        s1[c] = format::output_to_blend_type(fi, bits_of(src1[c]), opt.unorm_path);
+    }
     format::load_blend_type(fi, dst, d);
     if (pr.blend) {
         if (pr.int_bits == 8)
-            blend_norm_pixel<8>(pr, s, d, out);
+            blend_norm_pixel<8>(pr, s, s1, d, out);
         else
-            blend_norm_pixel<16>(pr, s, d, out);
+            blend_norm_pixel<16>(pr, s, s1, d, out);
     } else if (pr.logic) {
         for (int c = 0; c < 4; ++c) out[c] = logic_op_bits(pr.logic_op, s[c], d[c], pr.int_bits);
     }
@@ -499,15 +532,19 @@ void blend_int_prepared(const PreparedBlend& pr, const float src[4], uint8_t* ds
     format::store_blend_type(fi, out, dst);
 }
 
-void blend_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, const BlendOptions& opt) {
+// src1: the second source of dual-source blending (kZeroSource when the state has no SRC1 factor).
+void blend_prepared(const PreparedBlend& pr, const float src[4], const float src1[4], uint8_t* dst,
+                    const BlendOptions& opt) {
     const FormatInfo& fi = *pr.fi;
     if (fi.kind == ChannelKind::Unorm8) {
         PxN<8> p;
         for (int c = 0; c < 4; ++c) {
             p.s[c] = float_to_unorm8(src[c], opt.unorm_path);
+            p.s1[c] = float_to_unorm8(src1[c], opt.unorm_path);
             p.k[c] = pr.k8[c];
         }
         p.sa = p.s[3];
+        p.s1a = p.s1[3];
         p.ka = p.k[3];
         uint32_t out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
         if (pr.blend || pr.logic) {
@@ -524,19 +561,21 @@ void blend_prepared(const PreparedBlend& pr, const float src[4], uint8_t* dst, c
         format::store_unorm8(fi, out8, dst, pr.wmask);
         return;
     }
-    if (pr.int_bits) return blend_int_prepared(pr, src, dst, opt);
+    if (pr.int_bits) return blend_int_prepared(pr, src, src1, dst, opt);
     PxF p;
     p.ftz = pr.ftz;
     for (int c = 0; c < 4; ++c) {
         p.s[c] = src[c];
+        p.s1[c] = src1[c];
         p.k[c] = pr.kf[c];
         if (fi.kind == ChannelKind::Srgb8) {
-            // sources: clamp_zero_one_nanzero
-            float s = src[c] > 0.0f ? src[c] : 0.0f;
-            p.s[c] = sse_min(s, 1.0f);
+            // both sources: clamp_zero_one_nanzero
+            p.s[c] = sse_min(src[c] > 0.0f ? src[c] : 0.0f, 1.0f);
+            p.s1[c] = sse_min(src1[c] > 0.0f ? src1[c] : 0.0f, 1.0f);
         }
     }
     p.sa = p.s[3];
+    p.s1a = p.s1[3];
     p.ka = p.k[3];
     float out[4] = {p.s[0], p.s[1], p.s[2], p.s[3]};
     if (pr.blend) {
@@ -569,11 +608,13 @@ void blend_pixel(const BlendAttachment& a, ColorFormat f, const float constants[
                  const BlendOptions& opt) {
     const PreparedBlend pr = prepare_blend(a, f, constants, opt);
     if (pr.wmask == 0) return;
-    blend_prepared(pr, src, dst, opt);
+    static constexpr float kZeroSource[4] = {};
+    blend_prepared(pr, src, kZeroSource, dst, opt);
 }
 
 void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4][kBlockLanes],
-                 uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt) {
+                 uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt,
+                 const float (*src1)[kBlockLanes]) {
     const PreparedBlend pr = prepare_blend(a, f, constants, opt);
     if (pr.wmask == 0 || lane_mask == 0) return;
     if (pr.fi->kind == ChannelKind::Unorm8 && !pr.blend && !pr.logic && pr.fi->channels == 4 && pr.wmask == 0xf) {
@@ -583,8 +624,11 @@ void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[
     for (int l = 0; l < kBlockLanes; ++l) {
         if (!(lane_mask & (1u << l))) continue;
         const float s[4] = {src[0][l], src[1][l], src[2][l], src[3][l]};
+        float s1[4] = {};
+        if (src1)
+            for (int c = 0; c < 4; ++c) s1[c] = src1[c][l];
         uint8_t* px = block + size_t(lane_y(l)) * pitch + size_t(lane_x(l)) * pr.fi->bytes;
-        blend_prepared(pr, s, px, opt);
+        blend_prepared(pr, s, s1, px, opt);
     }
 }
 
@@ -595,7 +639,7 @@ Rgba8Blend prepare_rgba8_blend(const BlendAttachment& a, ColorFormat f, const fl
                                const BlendOptions& opt) {
     Rgba8Blend b;
     if ((f != ColorFormat::R8G8B8A8_UNORM && f != ColorFormat::B8G8R8A8_UNORM) || opt.unorm_path != UnormPath::Avx8 ||
-        !blend_supported(a) || a.logic_op_enable)
+        uses_second_source(a) || a.logic_op_enable)
         return b;
     const PreparedBlend pr = prepare_blend(a, f, constants, opt);
     b.ok = true;

@@ -36,7 +36,7 @@ enum class BlendFactor : uint8_t {
     ConstantAlpha,
     OneMinusConstantAlpha,
     SrcAlphaSaturate,
-    Src1Color,  // dual-source factors: not supported by these kernels
+    Src1Color,  // dual-source factors: the second source is the fragment shader's Location 0, Index 1 output
     OneMinusSrc1Color,
     Src1Alpha,
     OneMinusSrc1Alpha,
@@ -129,17 +129,20 @@ struct BlendOptions {
     UnormPath unorm_path = UnormPath::Avx8;
 };
 
-// False for the dual-source factors (the caller reports VK_ERROR_FEATURE_NOT_PRESENT or similar).
-bool blend_supported(const BlendAttachment& a);
+// Dual-source blending: blending is on (and no logic op replaces it) with a SRC1 factor in any of the four
+// slots (llvmpipe util_blend_state_is_dual). Such a state blends with a second source, converted as the first.
+bool uses_second_source(const BlendAttachment& a);
 
 // One pixel: src RGBA float (shader output), dst the stored pixel bytes (format_info(f).bytes), updated in place.
 void blend_pixel(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4], uint8_t* dst,
                  const BlendOptions& opt = {});
 
 // The lanes of `lane_mask` (shader lane order) of a 4x4 block whose pixel (0,0) is at `block`, rows `pitch`
-// bytes apart. src[c][lane] is the shader's colour output, SoA.
+// bytes apart. src[c][lane] is the shader's colour output, SoA; src1 the second source of a dual-source state
+// (null: zeros).
 void blend_block(const BlendAttachment& a, ColorFormat f, const float constants[4], const float src[4][kBlockLanes],
-                 uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt = {});
+                 uint16_t lane_mask, uint8_t* block, size_t pitch, const BlendOptions& opt = {},
+                 const float (*src1)[kBlockLanes] = nullptr);
 
 // The fast path for 4-channel UNORM8 targets (R8G8B8A8 / B8G8R8A8): every state blend_block supports for them
 // (all single-source factors, the five ops, any write mask, blending on or off), prepared once per draw.

@@ -16,6 +16,8 @@ enum PipeFactor : uint8_t {
     kSrcAlphaSat = 0x06,
     kConstColor = 0x07,
     kConstAlpha = 0x08,
+    kSrc1Color = 0x09,  // dual-source factors: the fragment shader's Location 0, Index 1 output
+    kSrc1Alpha = 0x0A,
     kZero = 0x11,
     kInvSrcColor = 0x12,
     kInvSrcAlpha = 0x13,
@@ -23,6 +25,8 @@ enum PipeFactor : uint8_t {
     kInvDstColor = 0x15,
     kInvConstColor = 0x17,
     kInvConstAlpha = 0x18,
+    kInvSrc1Color = 0x19,
+    kInvSrc1Alpha = 0x1A,
     kUnsupported = 0xff,
 };
 

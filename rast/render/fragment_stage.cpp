@@ -145,7 +145,8 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     plan.inputs = std::move(inputs);
     if (!draw.pipe) return;
     const PipelineState& pipe = *draw.pipe;
-    plan.fast = true;
+    // Dual-source blending takes the reference pipeline, the only one that reads the second colour output.
+    plan.fast = !fragment::uses_second_source(pipe.blend[0]);
 
     const shader::Program* fs = pipe.fragment;
     bool all_flat = true;
@@ -520,18 +521,26 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
     // Blend and write each colour target, per sample plane.
     fragment::BlendOptions opt;
     opt.fused = fused_;
-    float src[4][kBlockLanes];
+    float src[4][kBlockLanes], src1[4][kBlockLanes];
     for (uint32_t c = 0; c < fb_.num_color && c < shader::kMaxColorOutputs; ++c) {
         const ColorTarget& t = fb_.color[c];
         if (!t.data) continue;
         for (int ch = 0; ch < 4; ++ch) std::memcpy(src[ch], b.outputs[c][ch], sizeof(float) * kBlockLanes);
         if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
+        // Dual-source blending (attachment 0 only): the second output, under alpha to one as the first
+        // (lp_state_fs.c applies it to both colour outputs).
+        const bool dual = c == 0 && fragment::uses_second_source(pipe.blend[0]);
+        if (dual) {
+            for (int ch = 0; ch < 4; ++ch)
+                std::memcpy(src1[ch], b.outputs[shader::kSecondColorOutput][ch], sizeof(float) * kBlockLanes);
+            if (pipe.alpha_to_one) std::fill(src1[3], src1[3] + kBlockLanes, 1.0f);
+        }
         const size_t bytes = fragment::format_info(t.format).bytes;
         for (int s = 0; s < samples; ++s) {
             if (!final_mask[s]) continue;
             uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
             fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
-                                  t.row_pitch, opt);
+                                  t.row_pitch, opt, dual ? src1 : nullptr);
         }
     }
 }

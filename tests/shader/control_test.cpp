@@ -1,4 +1,4 @@
-// Control flow (masks), discard/demote, derivatives and helper lanes on 4x4 fragment blocks.
+// Control flow (masks), discard/demote, derivatives and helper lanes on 4x4 fragment blocks; the colour outputs.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -346,4 +346,27 @@ TEST(ShaderControl, DemoteKeepsHelperRunning) {
         EXPECT_EQ(f(fb.outputs[0][1][l]), lane_x(l) > 1 ? 1.0f : 0.0f) << l;
     }
     EXPECT_EQ(fb.live_mask, live);
+}
+
+// Location 0, Index 1 (dual-source blending's second source) lands in its own slot, not on location 0; Index 1 is
+// refused on any other location.
+TEST(ShaderOutputs, SecondColorOutputHasItsOwnSlot) {
+    FsRun r("color = v * 2.0; second = v + vec4(1.0);", "layout(location=0, index=1) out vec4 second;\n");
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) r.set_v(l, c, float(l) + 0.25f * float(c));
+    r.run();
+    for (int l = 0; l < kLanes; ++l)
+        for (int c = 0; c < 4; ++c) {
+            const float v = float(l) + 0.25f * float(c);
+            EXPECT_EQ(r.out(l, c), v * 2.0f);
+            EXPECT_EQ(f(r.block.outputs[kSecondColorOutput][c][l]), v + 1.0f);
+        }
+    const std::vector<uint32_t> spirv = tilevk::shader::test::compile_glsl(Stage::Fragment,
+                                                                           "#version 450\n"
+                                                                           "layout(location=1, index=1) out vec4 c1;\n"
+                                                                           "void main() { c1 = vec4(1.0); }\n");
+    ASSERT_FALSE(spirv.empty());
+    const Result bad = Program::create(spirv, Stage::Fragment);
+    EXPECT_FALSE(bad.program);
+    EXPECT_NE(bad.error.find("Index 1"), std::string::npos) << bad.error;
 }

@@ -2,6 +2,7 @@
 // against a spec-style reference that applies lavapipe's documented rewrites, float shortcuts, masks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -290,12 +291,57 @@ TEST(FragmentBlend, WriteMaskAndLaneMask) {
             }
 }
 
-TEST(FragmentBlend, DualSourceNotSupported) {
+// Dual-source blending on a UNORM8 target: ONE * src + SRC1_COLOR * dst per channel, computed here with the
+// defining 8-bit formulas (sources converted to bytes first; ADD saturates); alpha with ONE_MINUS_SRC1_ALPHA.
+TEST(FragmentBlend, SecondSourceFactorsUnorm8) {
     BlendAttachment a;
     a.blend_enable = true;
-    EXPECT_TRUE(blend_supported(a));
-    a.dst_color = BlendFactor::Src1Alpha;
-    EXPECT_FALSE(blend_supported(a));
+    a.src_color = BlendFactor::One;
+    a.dst_color = BlendFactor::Src1Color;
+    a.src_alpha = BlendFactor::One;
+    a.dst_alpha = BlendFactor::OneMinusSrc1Alpha;
+    auto mul = [](uint32_t x, uint32_t y) {
+        uint32_t p = x * y;
+        p += p >> 8;
+        return (p + 0x80) >> 8;
+    };
+    const float constants[4] = {};
+    float src[4][kBlockLanes] = {}, src1[4][kBlockLanes] = {};
+    uint8_t img[4 * 16] = {};
+    for (int l = 0; l < kBlockLanes; ++l)
+        for (int c = 0; c < 4; ++c) {
+            src[c][l] = float(l * 4 + c) / 255.0f;          // converts to exactly l*4+c
+            src1[c][l] = float(255 - 13 * l - c) / 255.0f;  // exactly 255-13l-c
+            img[lane_y(l) * 16 + lane_x(l) * 4 + c] = uint8_t(200 - 7 * l + c);
+        }
+    uint8_t before[sizeof img];
+    std::memcpy(before, img, sizeof img);
+    blend_block(a, ColorFormat::R8G8B8A8_UNORM, constants, src, 0xffff, img, 16, {}, src1);
+    for (int l = 0; l < kBlockLanes; ++l)
+        for (int c = 0; c < 4; ++c) {
+            const uint32_t s = uint32_t(l * 4 + c), s1 = uint32_t(255 - 13 * l - c);
+            const uint32_t d = before[lane_y(l) * 16 + lane_x(l) * 4 + c];
+            const uint32_t dst_factor = c < 3 ? s1 : 255 - uint32_t(255 - 13 * l - 3);
+            const uint32_t want = std::min<uint32_t>(255, mul(s, 255) + mul(d, dst_factor));
+            ASSERT_EQ(img[lane_y(l) * 16 + lane_x(l) * 4 + c], want) << "lane " << l << " channel " << c;
+        }
+    // Without the second source the factor reads zeros: only the source term remains.
+    std::memcpy(img, before, sizeof img);
+    blend_block(a, ColorFormat::R8G8B8A8_UNORM, constants, src, 0xffff, img, 16);
+    for (int l = 0; l < kBlockLanes; ++l) EXPECT_EQ(img[lane_y(l) * 16 + lane_x(l) * 4], l * 4) << "lane " << l;
+}
+
+TEST(FragmentBlend, SecondSourceOnlyWhenBlending) {
+    BlendAttachment a;
+    a.blend_enable = true;
+    EXPECT_FALSE(uses_second_source(a));
+    a.dst_alpha = BlendFactor::OneMinusSrc1Alpha;
+    EXPECT_TRUE(uses_second_source(a));
+    a.logic_op_enable = true;  // a logic op replaces blending
+    EXPECT_FALSE(uses_second_source(a));
+    a.logic_op_enable = false;
+    a.blend_enable = false;
+    EXPECT_FALSE(uses_second_source(a));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
