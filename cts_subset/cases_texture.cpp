@@ -60,7 +60,8 @@ void add_texture_cases(CaseList& out) {
     const Wrap wraps[] = {{"repeat", VK_SAMPLER_ADDRESS_MODE_REPEAT},
                           {"mirrored_repeat", VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT},
                           {"clamp_to_edge", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE},
-                          {"clamp_to_border", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER}};
+                          {"clamp_to_border", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER},
+                          {"mirror_clamp_to_edge", VK_SAMPLER_ADDRESS_MODE_MIRROR_CLAMP_TO_EDGE}};
     for (const Wrap& w : wraps)
         for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
             TextureSpec t;
@@ -107,7 +108,7 @@ void add_texture_cases(CaseList& out) {
     // gallivm's float filter blends two mip levels with lp_build_lerp, a fused multiply-add fma(f, l1 - l0, l0),
     // where tilevk computed l0 * (1 - f) + l1 * f: the last bits differ in float targets (found by the random
     // scene fuzzer, seeds 223 and 720). MIRRORED_REPEAT and CLAMP_TO_BORDER keep lavapipe off its 8-bit path.
-    const Wrap float_wraps[] = {wraps[1], wraps[3]};
+    const Wrap float_wraps[] = {wraps[1], wraps[3], wraps[4]};
     for (const Wrap& w : float_wraps)
         out.push_back({std::string("texture.float_target.mip_linear_") + w.name,
                        [=] {

@@ -104,6 +104,9 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
             auto e = check_format(c, VK_FORMAT_R8G8B8A8_UNORM, need, VK_IMAGE_USAGE_SAMPLED_BIT, VK_SAMPLE_COUNT_1_BIT,
                                   "texture");
             if (!e.empty()) return e;
+            if (d.texture->wrap == VK_SAMPLER_ADDRESS_MODE_MIRROR_CLAMP_TO_EDGE &&
+                !c.has_extension(VK_KHR_SAMPLER_MIRROR_CLAMP_TO_EDGE_EXTENSION_NAME))
+                return "VK_KHR_sampler_mirror_clamp_to_edge";
         }
         if (d.viewport) {
             const VkViewport& v = *d.viewport;

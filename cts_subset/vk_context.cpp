@@ -23,7 +23,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME,
-                                         VK_KHR_DEVICE_GROUP_EXTENSION_NAME};
+                                         VK_KHR_DEVICE_GROUP_EXTENSION_NAME,
+                                         VK_KHR_SAMPLER_MIRROR_CLAMP_TO_EDGE_EXTENSION_NAME};
 
 }  // namespace
 

@@ -108,6 +108,10 @@ Features make_supported() {
     // no geometry or tessellation stage, so multiviewGeometryShader / multiviewTessellationShader stay VK_FALSE.
     f.core.v11.multiview = VK_TRUE;
     f.core.v12.drawIndirectCount = VK_TRUE;  // vkCmdDraw[Indexed]IndirectCount: the count read at execution
+    // MIRROR_CLAMP_TO_EDGE: shader/texture.cpp folds the coordinate as gallivm (lp_build_sample_wrap_*: |x| then
+    // CLAMP_TO_EDGE), nearest, linear and gathers (cts texture.wrap.mirror_clamp_to_edge_*,
+    // texture.float_target.mip_linear_mirror_clamp_to_edge).
+    f.core.v12.samplerMirrorClampToEdge = VK_TRUE;
     f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).

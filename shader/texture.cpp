@@ -137,6 +137,22 @@ Axis clamp_edge_axis(float c, int32_t n, int32_t off) {
     return {i, std::min(i + 1, n - 1), c - fl};
 }
 
+// MIRROR_CLAMP_TO_EDGE in lavapipe's float filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear): the offset
+// joins the texel coordinate, which is folded by |c| and then clamped as CLAMP_TO_EDGE is. A negative coordinate
+// therefore blends the same texels as its mirror image with the mirror image's weight (not 1 - w).
+Axis mirror_clamp_axis(float u, int32_t n, int32_t off) {
+    const float c = off ? u + float(off) : u;
+    return clamp_edge_axis(std::fabs(c), n, 0);
+}
+
+// MIRROR_CLAMP_TO_EDGE nearest (lp_build_sample_wrap_nearest): trunc(|u + off|) as cvttps2dq (NaN and
+// |c| >= 2^31 give INT_MIN), then an unsigned min with n - 1. -1.0 takes texel 1 (floor and mirror would take 0).
+int32_t mirror_clamp_nearest(float u, int32_t n, int32_t off) {
+    const float c = std::fabs(off ? u + float(off) : u);
+    const uint32_t i = c < 2147483648.0f ? uint32_t(int32_t(c)) : 0x80000000u;  // a NaN fails the compare too
+    return int32_t(std::min(i, uint32_t(n - 1)));
+}
+
 // REPEAT on a level whose size is not a power of two, in lavapipe's float filter (lp_bld_sample_soa.c
 // lp_build_coord_repeat_npot_linear): the offset joins the normalized coordinate (off / n), the wrap is its
 // fraction, c = fract(s) * n - 0.5; c < 0 or NaN (an unordered compare) takes texel n - 1, else floor(c); the
@@ -189,6 +205,7 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     if (!linear) {
         // fetch() adds the offsets again: the REPEAT npot index is handed over without them
         const auto nearest = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
+            if (m == AddressMode::MirrorClampToEdge) return mirror_clamp_nearest(un, n, off) - off;
             return m == AddressMode::Repeat && !smp.unnormalized && !power_of_two(n)
                        ? repeat_npot_nearest(st, n, off) - off
                        : floor_index(un, m);
@@ -213,6 +230,8 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         ay = mirror_axis(t, lv.h, args.off_y);
     if (smp.address_u == AddressMode::ClampToEdge) ax = clamp_edge_axis(u, lv.w, args.off_x);
     if (!one_d && smp.address_v == AddressMode::ClampToEdge) ay = clamp_edge_axis(v, lv.h, args.off_y);
+    if (smp.address_u == AddressMode::MirrorClampToEdge) ax = mirror_clamp_axis(u, lv.w, args.off_x);
+    if (!one_d && smp.address_v == AddressMode::MirrorClampToEdge) ay = mirror_clamp_axis(v, lv.h, args.off_y);
     if (smp.address_u == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.w))
         ax = repeat_npot_axis(s, lv.w, args.off_x);
     if (!one_d && smp.address_v == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.h))

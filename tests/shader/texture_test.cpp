@@ -328,6 +328,54 @@ TEST(ShaderTexture, FloatTexelsBilinearAsTwoFusedLerps) {
     EXPECT_GT(differs, 0) << "no lane tells the fused lerps from the weighted sum";
 }
 
+// MIRROR_CLAMP_TO_EDGE as gallivm's float path computes it (the spec's rule, with these roundings): nearest takes
+// trunc(|u|) clamped to n - 1 (u = -1.0 texel 1, a NaN texel n - 1); linear folds u to |u| and then clamps as
+// CLAMP_TO_EDGE, so a negative u blends texels (i0, i0 + 1) of |u| with |u|'s weight.
+TEST(ShaderTexture, MirrorClampToEdgeFoldsTheCoordinate) {
+    TestImage img;
+    SamplerState near;
+    near.address_u = near.address_v = AddressMode::MirrorClampToEdge;
+    FsTex r("color = textureLod(tex, v.xy, 0.0);");
+    r.bindings.set(0, 0, 0, Descriptor{{}, &img.view, &near});
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float texels_u[] = {-1.0f, -2.5f, 0.25f, -9.5f, nan, 3.0f, -0.0f, 1e10f};
+    const int expect[] = {1, 2, 0, 7, 7, 3, 0, 7};
+    for (int l = 0; l < kLanes; ++l) {
+        r.block.inputs[0][0][l] = u(texels_u[l % 8] / 8.0f);
+        r.block.inputs[0][1][l] = u(0.3f);  // y texel 2
+    }
+    r.run();
+    for (int l = 0; l < 8; ++l)
+        for (int c = 0; c < 4; ++c)
+            EXPECT_EQ(r.out(l, c), img.texel(0, expect[l], 2, c)) << "u " << texels_u[l] << " c " << c;
+
+    std::vector<float> texels(4 * 4 * 4);
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = std::sin(float(i) * 0.9f) * 5.0f + 0.3f * float(i);
+    ImageView fv;
+    fv.base = reinterpret_cast<const uint8_t*>(texels.data());
+    fv.format = Format::R32G32B32A32_SFLOAT;
+    fv.width = fv.height = 4;
+    fv.level[0] = ImageLevel{0, 64, 256};
+    SamplerState lin = near;
+    lin.mag_filter = lin.min_filter = Filter::Linear;
+    FsTex q("color = textureLod(tex, v.xy, 0.0);");
+    q.bindings.set(0, 0, 0, Descriptor{{}, &fv, &lin});
+    auto at = [&](int x, int y, int c) { return texels[size_t(y * 16 + x * 4 + c)]; };
+    const auto s_of = [](int l) { return -0.93f + 0.061f * float(l); };
+    for (int l = 0; l < kLanes; ++l) q.block.inputs[0][0][l] = u(s_of(l)), q.block.inputs[0][1][l] = u(0.375f);
+    q.run();
+    for (int l = 0; l < kLanes; ++l) {
+        const float uu = std::max(std::min(std::fabs(s_of(l) * 4.0f), 4.0f) - 0.5f, 0.0f);
+        const int i0 = int(std::floor(uu)), i1 = std::min(i0 + 1, 3);
+        const float a = uu - std::floor(uu);
+        for (int c = 0; c < 4; ++c) {  // t = 0.375: v = 1.5 - 0.5 = 1.0, row 1 with weight 0
+            const float x0 = std::fma(a, at(i1, 1, c) - at(i0, 1, c), at(i0, 1, c));
+            const float x1 = std::fma(a, at(i1, 2, c) - at(i0, 2, c), at(i0, 2, c));
+            EXPECT_EQ(q.out(l, c), std::fma(0.0f, x1 - x0, x0)) << "s " << s_of(l) << " c " << c;
+        }
+    }
+}
+
 // gallivm turns a NaN texel coordinate into INT_MIN (cvttps2dq in lp_build_ifloor / lp_build_ifloor_fract), which
 // CLAMP_TO_BORDER's bounds test sends to the border colour; the linear weight is NaN - floor(NaN) = NaN, carried by
 // the fused lerps.
