@@ -43,6 +43,7 @@ void add_multisample_cases(CaseList& out);
 void add_depth_cases(CaseList& out);
 void add_stencil_cases(CaseList& out);
 void add_blend_cases(CaseList& out);
+void add_overdraw_cases(CaseList& out);
 void add_viewport_cases(CaseList& out);
 void add_texture_cases(CaseList& out);
 void add_mesh_cases(CaseList& out);

@@ -53,6 +53,7 @@ CaseList all_cases() {
     add_depth_cases(out);
     add_stencil_cases(out);
     add_blend_cases(out);
+    add_overdraw_cases(out);
     add_viewport_cases(out);
     add_texture_cases(out);
     add_mesh_cases(out);

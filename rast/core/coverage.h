@@ -95,6 +95,17 @@ class CoverageConsumer {
         (void)payload;
         (void)step;
     }
+    // Occlusion, as llvmpipe's binner does it (lp_setup_whole_tile resets the bin under an opaque whole-tile
+    // command): hides_earlier(payload) true promises that a primitive with this payload covering a whole tile
+    // writes every byte that the tile's earlier primitives wrote, whatever they wrote, and that nothing else of
+    // theirs can be observed (no memory writes, no query counts, no depth or stencil). The tile loop then starts at
+    // the tile's last whole-tile command that hides the earlier ones. Asked only for whole-tile commands, and only
+    // when may_hide() (once per rasterize) is true, so a consumer that never hides costs the loop nothing.
+    virtual bool may_hide() const { return false; }
+    virtual bool hides_earlier(uint32_t payload) const {
+        (void)payload;
+        return false;
+    }
 };
 
 }  // namespace tilevk::rast

@@ -167,6 +167,15 @@ void Scene::bin_reserved(uint32_t first, uint32_t n, ThreadPool& pool) {
     for (const uint32_t a : chunk_accepted_) stats_.prims += a;
 }
 
+// Where a tile's walk starts: at its last whole-tile command whose primitive hides everything before it
+// (CoverageConsumer::hides_earlier), else at 0. Only the commands' whole-tile bits are read until one is found.
+size_t Scene::first_visible(const std::vector<BinCmd>& bin, const CoverageConsumer& consumer, bool hide) {
+    if (!hide) return 0;
+    for (size_t k = bin.size(); k-- > 1;)
+        if (bin[k].whole_tile && consumer.hides_earlier(bin[k].payload)) return k;
+    return 0;
+}
+
 void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_empty_tiles) {
     std::vector<uint32_t>& tiles = tiles_to_render_;
     tiles.clear();
@@ -176,6 +185,9 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
     const std::vector<std::unique_ptr<TileScratch>>& scratch = scratch_;
     const Method method = config_.method;
     const int32_t T = config_.tile_size;
+    // The float method's coverage is not the planes' (it is the naive baseline): a whole-tile command need not
+    // cover its tile there, so nothing is hidden.
+    const bool hide = method != Method::kFloat && consumer.may_hide();
     pool.run(tiles.size(), [&](unsigned worker, size_t task) {
         const uint32_t index = tiles[task];
         const int32_t tx = static_cast<int32_t>(index % tiles_x_), ty = static_cast<int32_t>(index / tiles_x_);
@@ -184,6 +196,7 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
         TileScratch& s = *scratch[worker];
         consumer.begin_tile(worker, info);
         const std::vector<BinCmd>& bin = bins_[index];
+        const size_t start = first_visible(bin, consumer, hide);
         // Primitives are read in API order with gaps, each a cache miss of its own, and so are the consumer's
         // records they lead to: the hot lines of a primitive and the consumer's record are fetched kAhead
         // commands ahead, what that record points to kDataAhead commands ahead (the record has arrived by then).
@@ -195,10 +208,10 @@ void Scene::rasterize(CoverageConsumer& consumer, ThreadPool& pool, bool visit_e
             for (int l = 0; l < hot_lines; ++l) __builtin_prefetch(p + 64 * l);
             consumer.prefetch(bin[k].payload, 0);
         };
-        for (size_t k = 0; k < std::min(kAhead, bin.size()); ++k) fetch(k);
-        for (size_t i = 0; i < bin.size(); ++i) {
+        for (size_t k = start; k < std::min(start + kAhead, bin.size()); ++k) fetch(k);
+        for (size_t i = start; i < bin.size(); ++i) {
             const BinCmd& cmd = bin[i];
-            if (i % CoverageConsumer::kStopCheckInterval == CoverageConsumer::kStopCheckInterval - 1 &&
+            if ((i - start) % CoverageConsumer::kStopCheckInterval == CoverageConsumer::kStopCheckInterval - 1 &&
                 consumer.stop_tile(worker, cmd.payload))
                 break;
             if (i + kAhead < bin.size()) fetch(i + kAhead);

@@ -89,6 +89,7 @@ class Scene {
         uint32_t payload;
     };
     TileBox tile_box(const Prim& prim) const;
+    static size_t first_visible(const std::vector<BinCmd>& bin, const CoverageConsumer& consumer, bool hide);
     // Appends the bin commands of prim `index` (tiles `box`) whose tiles lie in rows [ty_begin, ty_end); counts them.
     bool bin_rows(uint32_t index, const TileBox& box, int32_t ty_begin, int32_t ty_end, SceneStats* stats);
 

@@ -1,5 +1,6 @@
 // The fragment stage's helpers shared by the reference pipeline and every block function, built once (portable
 // code: no instruction-set variant calls anything else through them).
+#include <algorithm>
 #include <cstring>
 
 #include "rast/core/cpu.h"
@@ -96,6 +97,42 @@ void shader_coverage(const shader::Program* fs, bool alpha_to_coverage, const sh
         for (int s = 0; s < samples; ++s)
             for (int l = 0; l < kBlockLanes; ++l)
                 if (!((b.sample_mask[l] >> s) & 1u)) final_mask[s] &= uint16_t(~(1u << l));
+}
+
+bool scene_may_hide(const Framebuffer& fb, const DrawRecords& draws) {
+    if (fb.linear_mode || fb.samples != 1 || fb.depth_stencil.depth || fb.depth_stencil.stencil) return false;
+    bool any = false;
+    for (size_t k = 0; k < draws.size(); ++k) {
+        const DrawRecord& d = draws[k];
+        if (d.samples_passed || !d.pipe) return false;
+        if (const shader::Program* fs = d.pipe->fragment) {
+            const shader::ProgramInterface& i = fs->interface();
+            if (i.writes_device_addresses) return false;
+            for (const shader::DescriptorUse& u : i.descriptors)
+                if (u.written) return false;
+        }
+        any = any || draw_hides_earlier(d, fb);
+    }
+    return any;
+}
+
+bool draw_hides_earlier(const DrawRecord& draw, const Framebuffer& fb) {
+    const PipelineState& pipe = *draw.pipe;
+    if (!pipe.fragment || pipe.alpha_to_coverage || !(pipe.sample_mask & 1u)) return false;
+    const shader::ProgramInterface& i = pipe.fragment->interface();
+    if (i.uses_discard || (i.builtins_written & shader::bit(shader::BuiltIn::SampleMask))) return false;
+    for (uint32_t c = 0; c < fb.num_color; ++c) {
+        if (!fb.color[c].data) continue;
+        if (c >= uint32_t(shader::kMaxColorOutputs)) return false;
+        const fragment::BlendAttachment& b = pipe.blend[c];
+        if (b.logic_op_enable || b.blend_enable || b.write_mask != 0xf) return false;
+        uint32_t components = 0;  // bit k: component k of location c is an output
+        for (const shader::IoVariable& v : i.outputs)
+            if (v.location == c && v.component < 4)
+                components |= ((1u << std::min<uint32_t>(v.components, 4 - v.component)) - 1u) << v.component;
+        if (components != 0xf) return false;
+    }
+    return true;
 }
 
 }  // namespace tilevk::rast::render

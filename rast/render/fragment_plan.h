@@ -157,6 +157,15 @@ void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int
 void shader_coverage(const shader::Program* fs, bool alpha_to_coverage, const shader::FragmentBlock& b, int samples,
                      uint16_t final_mask[4]);
 
+// Occlusion (CoverageConsumer::hides_earlier). scene_may_hide: a single-sampled scene outside linear mode without
+// depth or stencil, in which no draw counts a query or runs a fragment shader that writes memory — llvmpipe's
+// conditions for resetting a bin (lp_setup_whole_tile: no zsbuf, no queries) plus the side effects its reset would
+// drop. draw_hides_earlier: the draw's fragments overwrite every colour target outright (llvmpipe's variant->opaque:
+// no discard, sample mask or alpha to coverage, no blending or logic op, every channel written; and here also an
+// output declared for every component of every target, so that no byte depends on the target's earlier contents).
+bool scene_may_hide(const Framebuffer& fb, const DrawRecords& draws);
+bool draw_hides_earlier(const DrawRecord& draw, const Framebuffer& fb);
+
 // Occlusion counting: lavapipe adds popcount of the post-depth/stencil mask per sample (lp_state_fs.c,
 // lp_build_occlusion_count inside the sample loop under MSAA), i.e. after discard, alpha to coverage, the shader's
 // sample mask and the late test. The final masks here are exactly those.

@@ -239,6 +239,16 @@ void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, con
         plans_.resize(draws.size());
         for (size_t d = 0; d < draws.size(); ++d) make_plan(draws[d], fb, plans_[d]);
     }
+    may_hide_ = scene_may_hide(fb, draws);
+    hides_.assign(may_hide_ ? draws.size() : 0, 0);
+    for (size_t d = 0; d < hides_.size(); ++d) hides_[d] = draw_hides_earlier(draws[d], fb) ? 1 : 0;
+}
+
+// Triangles only: a whole-tile line or point command is possible in principle, but lines and points are
+// rasterized by their own rules, which the whole-tile bit of their planes need not describe.
+bool FragmentStage::hides_earlier(uint32_t payload) const {
+    const PrimRecord prim = prims_->header(payload);
+    return prim.kind == PrimKind::kTriangle && prim.draw < hides_.size() && hides_[prim.draw] != 0;
 }
 
 void FragmentStage::set_linear(const std::vector<uint8_t>* tile_linear,

@@ -49,6 +49,9 @@ class FragmentStage final : public CoverageConsumer {
     void end_tile(unsigned worker, const TileInfo& tile) override;
     // Step 0: the primitive record; step 1: the head of its plane record (the first read of every block).
     void prefetch(uint32_t payload, int step) const override;
+    // Occlusion (fragment_plan.h scene_may_hide / draw_hides_earlier): a triangle of a draw that hides.
+    bool may_hide() const override { return may_hide_; }
+    bool hides_earlier(uint32_t payload) const override;
 
     // Samples of draw record `draw` that passed every per-sample test in the scene last rasterized: the sum of
     // popcount(final mask) per sample plane over all blocks. Counted per (draw, worker), so no two threads share a
@@ -75,6 +78,8 @@ class FragmentStage final : public CoverageConsumer {
     bool fused_ = true;
     bool fast_ = true;
     std::vector<DrawPlan> plans_;  // per draw record (fast path)
+    std::vector<uint8_t> hides_;   // per draw record: draw_hides_earlier, when may_hide_
+    bool may_hide_ = false;
     BlockFn block_fn_ = nullptr;   // the fast path's block function (fragment_plan.h)
     SquareFn square_fn_ = nullptr;  // its fused full-square kernel, or null (fragment_plan.h)
     const std::vector<uint8_t>* tile_linear_ = nullptr;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstdlib>
 
 #include "grid_consumer.h"
@@ -83,6 +84,71 @@ TEST(Threads, PrefetchHintsNameEachTilesPrimitivesAhead) {
     }
     EXPECT_GT(calls, 2000u);
     EXPECT_LT(late, calls / 10);
+}
+
+// Occlusion (CoverageConsumer::hides_earlier): a tile's walk starts at its last whole-tile command whose payload
+// hides, and is otherwise the full walk. The expectation comes from a walk without hiding (which commands covered
+// the whole tile), the walk with hiding must be exactly its suffix, at any thread count; the float method, whose
+// coverage is not the planes', never hides.
+TEST(Threads, TileWalkStartsAtTheLastHidingWholeTileCommand) {
+    struct Walks final : CoverageConsumer {
+        struct Call {
+            uint32_t payload;
+            bool whole;
+            bool operator==(const Call&) const = default;
+        };
+        std::vector<std::vector<Call>> tiles;
+        bool hide = false;
+        int tile_size = 64;
+        explicit Walks(size_t n) : tiles(n) {}
+        static bool hider(uint32_t payload) { return payload % 3 == 0; }
+        void begin_tile(unsigned, const TileInfo& t) override { tiles[t.index].clear(); }
+        void end_tile(unsigned, const TileInfo&) override {}
+        void primitive(unsigned, const TileInfo& t, const PrimCoverage& c) override {
+            // every pixel of the tile covered, however the method reports it
+            int pixels = 0;
+            for (size_t i = 0; i < c.num_full; ++i) pixels += c.full[i].size * c.full[i].size;
+            for (size_t i = 0; i < c.num_blocks; ++i) pixels += std::popcount(c.blocks[i].mask[0]);
+            for (size_t i = 0; i < c.num_blocks16; ++i)
+                for (const uint16_t m : c.blocks16[i].mask) pixels += std::popcount(m);
+            tiles[t.index].push_back({c.payload, pixels == tile_size * tile_size});
+        }
+        bool may_hide() const override { return hide; }
+        bool hides_earlier(uint32_t payload) const override { return hider(payload); }
+    };
+    TriGen gen(5, 300, 200);
+    Scene scene({.width = 300, .height = 200, .samples = 1});
+    for (uint32_t i = 0; i < 600; ++i) {
+        const TriKind kind = i % 7 == 0 ? TriKind::kHuge : (i % 2 ? TriKind::kTiny : TriKind::kMedium);
+        scene.add_triangle(gen.make(kind, 1000 + i));
+    }
+    const size_t n = size_t(scene.tiles_x()) * scene.tiles_y();
+    for (const Method m : {Method::kHier, Method::kBBox, Method::kReference, Method::kFloat}) {
+        scene.set_method(m);
+        ThreadPool one(1);
+        Walks full(n);
+        scene.rasterize(full, one);
+        size_t hidden = 0;
+        for (unsigned threads : {1u, 2u}) {
+            ThreadPool pool(threads);
+            Walks cut(n);
+            cut.hide = true;
+            scene.rasterize(cut, pool);
+            for (size_t t = 0; t < n; ++t) {
+                const std::vector<Walks::Call>& all = full.tiles[t];
+                size_t start = 0;
+                for (size_t k = all.size(); m != Method::kFloat && k-- > 1;)
+                    if (all[k].whole && Walks::hider(all[k].payload)) {
+                        start = k;
+                        break;
+                    }
+                hidden += start;
+                EXPECT_EQ(cut.tiles[t], std::vector<Walks::Call>(all.begin() + long(start), all.end()))
+                    << "tile " << t << ", method " << int(m) << ", " << threads << " threads";
+            }
+        }
+        if (m != Method::kFloat) EXPECT_GT(hidden, 50u) << int(m);  // the scene does exercise hiding
+    }
 }
 
 TEST(Threads, PoolRunsEveryTaskOnceAndIsReusable) {
