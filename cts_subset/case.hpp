@@ -46,6 +46,8 @@ void add_blend_cases(CaseList& out);
 void add_overdraw_cases(CaseList& out);
 void add_viewport_cases(CaseList& out);
 void add_texture_cases(CaseList& out);
+void add_texture_3d_cases(CaseList& out);  // cases_texture_3d.cpp
+void add_texture_1d_cases(CaseList& out);  // cases_texture_1d.cpp
 void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);

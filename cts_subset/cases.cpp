@@ -56,6 +56,8 @@ CaseList all_cases() {
     add_overdraw_cases(out);
     add_viewport_cases(out);
     add_texture_cases(out);
+    add_texture_3d_cases(out);
+    add_texture_1d_cases(out);
     add_mesh_cases(out);
     add_quirk_cases(out);
     add_blit_cases(out);

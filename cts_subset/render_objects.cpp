@@ -113,13 +113,14 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
 }
 
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
-                   VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
+                   VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth, bool one_d,
+                   uint32_t layers) {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.imageType = one_d ? VK_IMAGE_TYPE_1D : depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ci.format = format;
-    ci.extent = {w, h, 1};
+    ci.extent = {w, one_d ? 1 : h, depth};
     ci.mipLevels = mips;
-    ci.arrayLayers = 1;
+    ci.arrayLayers = layers;
     ci.samples = samples;
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = usage;
@@ -147,12 +148,12 @@ VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_
 }
 
 VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
-                      uint32_t mips) {
+                      uint32_t mips, VkImageViewType view_type, uint32_t layers) {
     VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     ci.image = img;
-    ci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    ci.viewType = view_type;
     ci.format = f;
-    ci.subresourceRange = {aspect, 0, mips, 0, 1};
+    ci.subresourceRange = {aspect, 0, mips, 0, layers};
     VkImageView v;
     vk_check(vkCreateImageView(c.device, &ci, nullptr, &v), "vkCreateImageView");
     VkDevice dev = c.device;
@@ -170,7 +171,7 @@ void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_
     b.newLayout = to;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = img;
-    b.subresourceRange = {aspect, 0, mips, 0, 1};
+    b.subresourceRange = {aspect, 0, mips, 0, VK_REMAINING_ARRAY_LAYERS};
     vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
@@ -190,37 +191,62 @@ static void texel(const TextureSpec& t, uint32_t level, uint32_t x, uint32_t y, 
     out[3] = 255;
 }
 
+// A 3D texel encodes its coordinates (red x, green y, blue z, over the level's extent) and alpha its level, so that
+// every filter weight, wrap and level choice shows in the result.
+static void texel_3d(uint32_t level, uint32_t x, uint32_t y, uint32_t z, uint32_t w, uint32_t h, uint32_t d,
+                     uint8_t out[4]) {
+    out[0] = static_cast<uint8_t>(x * 255 / std::max(1u, w - 1));
+    out[1] = static_cast<uint8_t>(y * 255 / std::max(1u, h - 1));
+    out[2] = static_cast<uint8_t>(z * 255 / std::max(1u, d - 1));
+    out[3] = static_cast<uint8_t>(255 - 29 * std::min(level, 8u));
+}
 
 Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
     Texture tex;
     tex.mips = t.mip_levels;
     VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;
     tex.image = make_image(c, gc, f, t.width, t.height, t.mip_levels, VK_SAMPLE_COUNT_1_BIT,
-                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    tex.view = make_view(c, gc, tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT, t.mip_levels);
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, t.depth, t.one_d, t.layers);
+    const VkImageViewType view_type = t.one_d ? (t.layers > 1 ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D)
+                                      : t.depth > 1 ? VK_IMAGE_VIEW_TYPE_3D
+                                                    : VK_IMAGE_VIEW_TYPE_2D;
+    tex.view = make_view(c, gc, tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT, t.mip_levels, view_type, t.layers);
+    const auto half = [](uint32_t n, uint32_t l) { return std::max(1u, n >> l); };
     VkDeviceSize total = 0;
-    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
-         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2))
-        total += VkDeviceSize(w) * h * 4;
+    // a 1D image's layers take the place of its rows
+    const uint32_t rows = t.one_d ? t.layers : t.height;
+    for (uint32_t l = 0; l < t.mip_levels; ++l)
+        total += VkDeviceSize(half(t.width, l)) * (t.one_d ? rows : half(rows, l)) * half(t.depth, l) * 4;
     tex.staging = make_buffer(c, gc, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
     VkDeviceSize offset = 0;
-    for (uint32_t l = 0, w = t.width, h = t.height; l < t.mip_levels;
-         ++l, w = std::max(1u, w / 2), h = std::max(1u, h / 2)) {
-        for (uint32_t y = 0; y < h; ++y)
-            for (uint32_t x = 0; x < w; ++x) texel(t, l, x, y, w, h, bytes + offset + (VkDeviceSize(y) * w + x) * 4);
+    for (uint32_t l = 0; l < t.mip_levels; ++l) {
+        const uint32_t w = half(t.width, l), h = t.one_d ? rows : half(rows, l), d = half(t.depth, l);
+        for (uint32_t z = 0; z < d; ++z)
+            for (uint32_t y = 0; y < h; ++y)
+                for (uint32_t x = 0; x < w; ++x) {
+                    uint8_t* p = bytes + offset + ((VkDeviceSize(z) * h + y) * w + x) * 4;
+                    if (t.one_d) {
+                        texel_3d(l, x, y, 0, w, 5, 1, p);  // green: the layer, by 255 / 4
+                    } else if (t.depth > 1) {
+                        texel_3d(l, x, y, z, w, h, d, p);
+                    } else {
+                        texel(t, l, x, y, w, h, p);
+                    }
+                }
         VkBufferImageCopy r{};
         r.bufferOffset = offset;
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
-        r.imageExtent = {w, h, 1};
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, t.one_d ? t.layers : 1};
+        r.imageExtent = {w, t.one_d ? 1 : h, d};
         tex.copies.push_back(r);
-        offset += VkDeviceSize(w) * h * 4;
+        offset += VkDeviceSize(w) * h * d * 4;
     }
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     si.magFilter = t.mag;
     si.minFilter = t.min;
     si.mipmapMode = t.mip_mode;
     si.addressModeU = si.addressModeV = si.addressModeW = t.wrap;
+    si.addressModeW = t.wrap_w.value_or(t.wrap);
     si.maxLod = t.max_lod;
     si.borderColor = t.border;
     vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");

@@ -42,10 +42,12 @@ struct Buffer {
     void* mapped = nullptr;
 };
 Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBufferUsageFlags usage);
+// depth > 1: a 3D image (and make_view's view_type VK_IMAGE_VIEW_TYPE_3D); one_d: a 1D image (h ignored).
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
-                   VkSampleCountFlagBits samples, VkImageUsageFlags usage);
+                   VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth = 1, bool one_d = false,
+                   uint32_t layers = 1);
 VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
-                      uint32_t mips);
+                      uint32_t mips, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D, uint32_t layers = 1);
 void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_t mips, VkImageLayout from,
              VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src_stage,
              VkPipelineStageFlags dst_stage);

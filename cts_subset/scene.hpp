@@ -36,6 +36,14 @@ enum class TexPattern { kChecker, kGradient };
 
 struct TextureSpec {
     uint32_t width = 16, height = 16, mip_levels = 1;
+    // More than 1: a VK_IMAGE_TYPE_3D image and VIEW_TYPE_3D view whose texels encode their coordinates (the pattern
+    // is ignored; texture.3d.*, which bring their own sampler3D shaders), its depth halving per level too.
+    uint32_t depth = 1;
+    // one_d: a VK_IMAGE_TYPE_1D image of `layers` layers (height ignored), viewed as 1D or, with more than one
+    // layer, 1D_ARRAY; its texels encode x, layer and level (texture.1d.*, with their own sampler1D shaders).
+    bool one_d = false;
+    uint32_t layers = 1;
+    std::optional<VkSamplerAddressMode> wrap_w;  // addressModeW when it differs from `wrap`
     TexPattern pattern = TexPattern::kChecker;
     VkFilter mag = VK_FILTER_NEAREST, min = VK_FILTER_NEAREST;
     VkSamplerMipmapMode mip_mode = VK_SAMPLER_MIPMAP_MODE_NEAREST;

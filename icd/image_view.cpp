@@ -12,14 +12,25 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
                                                    const VkAllocationCallbacks* pAllocator, VkImageView* pView) {
     Device* dev = from_handle<Device>(device);
     Image* img = from_handle<Image>(ci->image);
-    // A 3D view of a 3D image, 2D and 2D-array views of 2D images. The others (1D, cube) are not implemented, nor
-    // 2D views of 3D images (that needs VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT, which tilevk does not offer).
-    const bool is_3d = img->type == VK_IMAGE_TYPE_3D;
-    const bool view_2d = ci->viewType == VK_IMAGE_VIEW_TYPE_2D || ci->viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    if (is_3d ? ci->viewType != VK_IMAGE_VIEW_TYPE_3D : !view_2d) {
+    // A 3D view of a 3D image, 2D and 2D-array views of 2D images, 1D and 1D-array views of 1D images. The others
+    // (cube) are not implemented, nor 2D views of 3D images (that needs VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT,
+    // which tilevk does not offer).
+    bool made = false;
+    switch (img->type) {
+        case VK_IMAGE_TYPE_1D:
+            made = ci->viewType == VK_IMAGE_VIEW_TYPE_1D || ci->viewType == VK_IMAGE_VIEW_TYPE_1D_ARRAY;
+            break;
+        case VK_IMAGE_TYPE_3D:
+            made = ci->viewType == VK_IMAGE_VIEW_TYPE_3D;
+            break;
+        default:
+            made = ci->viewType == VK_IMAGE_VIEW_TYPE_2D || ci->viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+            break;
+    }
+    if (!made) {
         return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                    "vkCreateImageView: %s of a %s image is not implemented (2D and 2D-array views of 2D images, 3D "
-                    "views of 3D images)",
+                    "vkCreateImageView: %s of a %s image is not implemented (1D and 1D-array views of 1D images, 2D "
+                    "and 2D-array views of 2D images, 3D views of 3D images)",
                     vk_enum_name(ci->viewType), vk_enum_name(img->type));
     }
     const FormatInfo* f = find_format(ci->format);

@@ -207,8 +207,17 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     *pProps = {};
     const FormatInfo* f = find_format(format);
     if (f == nullptr || !has_image_support(*f)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    // 2D and 3D images are implemented (a 3D image's slices are stored as layers, image.h); 1D is not yet.
-    if (type != VK_IMAGE_TYPE_2D && type != VK_IMAGE_TYPE_3D) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // 1D, 2D and 3D images are implemented (a 1D image is a row of height 1, a 3D image's slices are stored as
+    // layers, image.h).
+    if (type != VK_IMAGE_TYPE_1D && type != VK_IMAGE_TYPE_2D && type != VK_IMAGE_TYPE_3D)
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // 1D as lavapipe (lvp_formats.c: no compressed formats, 1 sample) but only what is implemented and tested for 1D:
+    // copies, clears and sampling (sampler1D[Array][Shadow], texelFetch, textureSize); rendering into a 1D view and
+    // image1D are not, so no attachment, input attachment or storage usage there, where lavapipe offers them.
+    constexpr VkImageUsageFlags kUsage1D =
+        VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (type == VK_IMAGE_TYPE_1D && (f->layout == format::Layout::kCompressed || (usage & ~kUsage1D) != 0))
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
     if (flags != 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;                // no cube/mutable/sparse/alias images
     VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? VkFormatFeatureFlags(f->optimal)
                                 : tiling == VK_IMAGE_TILING_LINEAR ? VkFormatFeatureFlags(f->linear)
@@ -229,9 +238,13 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     }
     if (have == 0 || (have & need) != need) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     const bool is_3d = type == VK_IMAGE_TYPE_3D;
+    // 3D images are sampled (sampler3D: shader/texture_3d.cpp), copied and cleared; image3D is not implemented
+    // (shader/translate_module.cpp refuses it), so no STORAGE usage, where lavapipe offers it.
+    if (is_3d && (usage & VK_IMAGE_USAGE_STORAGE_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
     // 3D as lavapipe (frontends/lavapipe/lvp_formats.c lvp_get_image_format_properties): the 2D width, height and
     // level count, depth up to maxImageDimension3D, one array layer, one sample.
-    pProps->maxExtent = {kMaxImageDimension, kMaxImageDimension, is_3d ? kMaxImageDimension3D : 1};
+    pProps->maxExtent = {kMaxImageDimension, type == VK_IMAGE_TYPE_1D ? 1 : kMaxImageDimension,
+                         is_3d ? kMaxImageDimension3D : 1};
     pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
     pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR || is_3d ? 1 : kMaxArrayLayers;
     const bool attachment =
@@ -239,8 +252,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     // Multisampled images can be sampled (texelFetch with a sample index, textureSamples: shader/texture.cpp), as
     // lavapipe's (lvp_formats.c: 4x for optimal 2D attachment formats whatever the usage), but not read as input
     // attachments or used as storage images: subpassInputMS and storage images with samples are refused
-    // (shaderStorageImageMultisample is off), where lavapipe offers them. 3D images have one sample.
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && !is_3d &&
+    // (shaderStorageImageMultisample is off), where lavapipe offers them. 1D and 3D images have one sample.
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && type == VK_IMAGE_TYPE_2D &&
                                    !(usage & (VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT))
                                ? VkSampleCountFlags(f->sample_counts) & kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);

@@ -306,13 +306,14 @@ enum SampleFlags : uint32_t {
     kSampleBias = 4,         // c holds a bias added to the implicit LOD
     kSampleArray = 8,        // coordinates have a layer component
     kSampleProj = 16,        // divide by the last coordinate
-    kSampleGrad = 32,        // n..n+3: dx.xy, dy.xy registers
+    kSampleGrad = 32,        // n..n+3: dx.xy, dy.xy registers (3D: n..n+5, dx.xyz, dy.xyz)
     kSample1D = 64,          // 1D image: one coordinate (plus layer)
     kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
     kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
     kSampleGather = 512,     // OpImageGather / OpImageDrefGather: level 0's 2x2 footprint, component in bits 10..11
     kSampleMs = 4096,        // Fetch: c holds the sample index (level 0 of a multisampled view); QueryLevels: the
                              // view's sample count instead of its levels (OpImageQuerySamples)
+    kSample3D = 8192,        // 3D image: coordinates (s, t, r), sizes (w, h, d); texture_3d.cpp
 };
 constexpr uint32_t kSampleGatherCompShift = 10;
 

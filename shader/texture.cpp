@@ -1,6 +1,7 @@
 // Image instructions: texture()/textureLod()/textureGrad()/texelFetch()/textureSize()/textureQueryLevels().
 // Follows the Vulkan spec's filtering equations in float arithmetic (see README.md for how this differs from
-// llvmpipe's fixed-point 8-bit filtering). Every access is bounds-checked; a missing descriptor reads zero.
+// llvmpipe's fixed-point 8-bit filtering). Every access is bounds-checked; a missing descriptor reads zero. The
+// namespace `tex` is not anonymous: texture_3d.cpp shares its address and filter rules (texture_internal.h).
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -11,12 +12,10 @@
 #include "format/texel_codec.h"
 #include "shader/ir.h"
 #include "shader/texture_fixed8.h"
+#include "shader/texture_internal.h"
 
 namespace tilevk::shader {
-
-namespace {
-
-using Vec4 = std::array<float, 4>;
+namespace tex {
 
 // Texels are converted by the texel codec (format/texel_codec.h): UNORM c * fl(1/(2^n-1)), sRGB llvmpipe's cubic
 // polynomial evaluated with fmuladd (fused, as on the FMA hosts this file's other lerps assume), half as VCVTPH2PS,
@@ -97,27 +96,18 @@ Vec4 texel(const Level& lv, int32_t x, int32_t y) {
     return decode(*lv.fi, lv.base + off);
 }
 
-struct SampleArgs {
-    int32_t off_x = 0, off_y = 0;  // constant texel offsets
-    bool dref = false;             // depth compare against `ref`: each texel becomes 0 or 1 before filtering
-    float ref = 0.0f;
-};
-
-struct Axis {
-    int32_t i0, i1;  // texel indices (i1 already wrapped when `wrapped`)
-    float w;
-};
-
 // MIRRORED_REPEAT in lavapipe's float filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear): mirror the
 // normalized coordinate first, m = |2(s/2 - round(s/2))|, then u = m*n - 0.5, i0 = max(floor(u), 0),
 // i1 = min(floor(u) + 1, n - 1). The returned indices are final (the wrap of fetch() leaves them unchanged).
-Axis mirror_axis(float s, int32_t n, int32_t off) {
+// The mirrored coordinate m of s + off / n (lp_build_coord_mirror with posOnly; NaN gives 0).
+float coord_mirror(float s, int32_t n, int32_t off) {
     if (off) s = s + float(off) / float(n);
-    float h = s * 0.5f;
-    float f = h - std::nearbyint(h);
-    float m = std::fabs(f + f);
-    if (!(m == m)) m = 0.0f;
-    float u = m * float(n) - 0.5f;
+    const float h = s * 0.5f, f = h - std::nearbyint(h), m = std::fabs(f + f);
+    return m == m ? m : 0.0f;
+}
+
+Axis mirror_axis(float s, int32_t n, int32_t off) {
+    float u = coord_mirror(s, n, off) * float(n) - 0.5f;
     float fl = std::floor(u);
     int32_t i = safe_floor(u);
     return {std::max(i, 0), std::min(i + 1, n - 1), u - fl};
@@ -181,8 +171,38 @@ int32_t repeat_npot_nearest(float s, int32_t n, int32_t off) {
     return std::clamp(int32_t(f * float(n)), 0, n - 1);
 }
 
+// nearest (lp_build_sample_wrap_nearest): floor(u) + offset (REPEAT on a power of two, CLAMP_TO_BORDER);
+// CLAMP_TO_EDGE truncates u + offset in float (the wrap clamps); MIRRORED_REPEAT truncates m * n of the mirrored
+// s + offset / n below n; REPEAT on other sizes: repeat_npot_nearest.
+int32_t nearest_axis(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized) {
+    if (m == AddressMode::MirrorClampToEdge) return mirror_clamp_nearest(u, n, off);
+    if (m == AddressMode::Repeat && !unnormalized && !power_of_two(n)) return repeat_npot_nearest(s, n, off);
+    if (m == AddressMode::MirroredRepeat && !unnormalized)
+        return std::min(int32_t(coord_mirror(s, n, off) * float(n)), n - 1);
+    if (m == AddressMode::ClampToEdge) {
+        const float c = off ? u + float(off) : u;
+        return c == c ? int32_t(std::clamp(c, -16777216.0f, 16777216.0f)) : 0;  // trunc; the wrap clamps
+    }
+    return floor_index(u, m) + off;
+}
+
+// linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5), unless the address mode has its own rule (above). A NaN
+// coordinate on a CLAMP_TO_BORDER axis reads the border with the weight NaN - floor(NaN) = NaN
+// (lp_build_ifloor_fract), which the lerps carry into the result.
+Axis linear_axis(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized) {
+    if (m == AddressMode::MirroredRepeat && !unnormalized) return mirror_axis(s, n, off);
+    if (m == AddressMode::ClampToEdge) return clamp_edge_axis(u, n, off);
+    if (m == AddressMode::MirrorClampToEdge) return mirror_clamp_axis(u, n, off);
+    if (m == AddressMode::Repeat && !unnormalized && !power_of_two(n)) return repeat_npot_axis(s, n, off);
+    const float uu = u - 0.5f;
+    const int32_t i0 = floor_index(uu, m);
+    const float w = (uu == uu) ? uu - std::floor(uu) : m == AddressMode::ClampToBorder ? uu : 0.0f;
+    return {i0 + off, i0 + 1 + off, w};
+}
+
 Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
                   bool linear, bool one_d, const SampleArgs& args) {
+    if (args.three_d) return sample_level_3d(img, smp, level, s, t, linear, args);
     const ImageLevel& il = img.level[level];
     Level lv;
     lv.w = int32_t(std::max(1u, img.width >> level));
@@ -195,51 +215,22 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     // unnormalized: coordinates are already in texels
     float u = smp.unnormalized ? s : s * float(lv.w);
     float v = smp.unnormalized ? t : t * float(lv.h);
+    // x, y: texel indices with the constant offsets already added, before the wrap
     auto fetch = [&](int32_t x, int32_t y) -> Vec4 {
-        int32_t wx = wrap(x + args.off_x, lv.w, smp.address_u);
-        int32_t wy = one_d ? 0 : wrap(y + args.off_y, lv.h, smp.address_v);
+        int32_t wx = wrap(x, lv.w, smp.address_u);
+        int32_t wy = one_d ? 0 : wrap(y, lv.h, smp.address_v);
         Vec4 c = (wx < 0 || wy < 0) ? border : texel(lv, wx, wy);
         if (args.dref) return {compare_values(smp.compare_op, args.ref, c[0]) ? 1.0f : 0.0f, 0.0f, 0.0f, 1.0f};
         return c;
     };
     if (!linear) {
-        // fetch() adds the offsets again: the REPEAT npot index is handed over without them
-        const auto nearest = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
-            if (m == AddressMode::MirrorClampToEdge) return mirror_clamp_nearest(un, n, off) - off;
-            return m == AddressMode::Repeat && !smp.unnormalized && !power_of_two(n)
-                       ? repeat_npot_nearest(st, n, off) - off
-                       : floor_index(un, m);
-        };
-        return fetch(nearest(s, u, lv.w, args.off_x, smp.address_u),
-                     one_d ? 0 : nearest(t, v, lv.h, args.off_y, smp.address_v));
+        return fetch(nearest_axis(s, u, lv.w, args.off_x, smp.address_u, smp.unnormalized),
+                     one_d ? 0 : nearest_axis(t, v, lv.h, args.off_y, smp.address_v, smp.unnormalized));
     }
-    // linear: i0 = floor(u - 0.5), alpha = frac(u - 0.5); blend the 2x2 footprint. A NaN coordinate on a
-    // CLAMP_TO_BORDER axis reads the border with the weight NaN - floor(NaN) = NaN (lp_build_ifloor_fract), which
-    // the lerps carry into the result.
-    float uu = u - 0.5f, vv = v - 0.5f;
-    int32_t i0 = floor_index(uu, smp.address_u), j0 = one_d ? 0 : floor_index(vv, smp.address_v);
-    auto weight = [](float x, AddressMode m) {
-        return (x == x) ? x - std::floor(x) : m == AddressMode::ClampToBorder ? x : 0.0f;
-    };
-    float a = weight(uu, smp.address_u);
-    float b = one_d ? 0.0f : weight(vv, smp.address_v);
-    int32_t i1 = i0 + 1, j1 = j0 + 1;
-    Axis ax = {i0 + args.off_x, i1 + args.off_x, a}, ay = {j0 + args.off_y, j1 + args.off_y, b};
-    if (smp.address_u == AddressMode::MirroredRepeat && !smp.unnormalized) ax = mirror_axis(s, lv.w, args.off_x);
-    if (!one_d && smp.address_v == AddressMode::MirroredRepeat && !smp.unnormalized)
-        ay = mirror_axis(t, lv.h, args.off_y);
-    if (smp.address_u == AddressMode::ClampToEdge) ax = clamp_edge_axis(u, lv.w, args.off_x);
-    if (!one_d && smp.address_v == AddressMode::ClampToEdge) ay = clamp_edge_axis(v, lv.h, args.off_y);
-    if (smp.address_u == AddressMode::MirrorClampToEdge) ax = mirror_clamp_axis(u, lv.w, args.off_x);
-    if (!one_d && smp.address_v == AddressMode::MirrorClampToEdge) ay = mirror_clamp_axis(v, lv.h, args.off_y);
-    if (smp.address_u == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.w))
-        ax = repeat_npot_axis(s, lv.w, args.off_x);
-    if (!one_d && smp.address_v == AddressMode::Repeat && !smp.unnormalized && !power_of_two(lv.h))
-        ay = repeat_npot_axis(t, lv.h, args.off_y);
-    a = ax.w, b = one_d ? 0.0f : ay.w;
-    // fetch() adds the offsets again: hand it offset-free indices
-    i0 = ax.i0 - args.off_x, i1 = ax.i1 - args.off_x, j0 = ay.i0 - args.off_y, j1 = ay.i1 - args.off_y;
-    if (one_d) j1 = j0;
+    const Axis ax = linear_axis(s, u, lv.w, args.off_x, smp.address_u, smp.unnormalized);
+    const Axis ay = one_d ? Axis{0, 0, 0.0f} : linear_axis(t, v, lv.h, args.off_y, smp.address_v, smp.unnormalized);
+    const float a = ax.w, b = ay.w;
+    const int32_t i0 = ax.i0, i1 = ax.i1, j0 = ay.i0, j1 = ay.i1;
     Vec4 t00 = fetch(i0, j0), t10 = fetch(i1, j0), t01 = fetch(i0, j1), t11 = fetch(i1, j1);
     Vec4 r;
     // lavapipe's float (SoA) filter: lerp(w, p, q) = fmuladd(w, q - p, p) (fused on FMA hosts), along x, then
@@ -348,8 +339,6 @@ Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float
     return {value(x[0], y[1]), value(x[1], y[1]), value(x[1], y[0]), value(x[0], y[0])};
 }
 
-using Bytes = std::array<int32_t, 4>;
-
 // The 8-bit channels of one texel in RGBA order (absent channels read 0, 0, 0, 255), for Unorm8 formats.
 // A texel as lavapipe's 8-bit path fetches it (lp_build_fetch_rgba_aos): 8-bit channels as they are, narrower
 // UNORM channels widened to 8 bits by bit replication (the 8-bit blend type's widening).
@@ -397,10 +386,16 @@ fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, Add
     return fixed8::wrap_repeat_npot(sf, n);
 }
 
+int32_t nearest_fixed8(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized) {
+    if (m != AddressMode::Repeat || power_of_two(n) || unnormalized) return wrap(safe_floor(u) + off, n, m);
+    return repeat_npot_nearest(s, n, off);
+}
+
 // One mip level through the 8-bit path: nearest texels as the float path picks them, linear with 8-bit weights
 // and two lerps along x then one along y.
 Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s,
                           float t, bool linear, bool one_d, const SampleArgs& args) {
+    if (args.three_d) return sample_level_3d_fixed8(img, smp, level, s, t, linear, args);
     const ImageLevel& il = img.level[level];
     int32_t w = int32_t(std::max(1u, img.width >> level));
     int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
@@ -412,13 +407,8 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
-        auto axis = [&](float st, float un, int32_t n, int32_t off, AddressMode m) {
-            if (m != AddressMode::Repeat || power_of_two(n) || smp.unnormalized)
-                return wrap(safe_floor(un) + off, n, m);
-            return repeat_npot_nearest(st, n, off);
-        };
-        int32_t x = axis(s, u, w, args.off_x, smp.address_u);
-        int32_t y = one_d ? 0 : axis(t, v, h, args.off_y, smp.address_v);
+        int32_t x = nearest_fixed8(s, u, w, args.off_x, smp.address_u, smp.unnormalized);
+        int32_t y = one_d ? 0 : nearest_fixed8(t, v, h, args.off_y, smp.address_v, smp.unnormalized);
         return at(x, y);
     }
     fixed8::Pair px = axis_fixed8(s, w, args.off_x, smp.unnormalized, smp.address_u);
@@ -460,8 +450,10 @@ bool image_ok(const ImageView* img) {
 // format has no alpha, swizzled as a texel (lp_build_fetch_texel's out_of_bound_ret_zero: a format swizzle of
 // zeros; docs/lavapipe-rules.md §12).
 // A texel fetch; `sample` picks the sample plane of a multisampled view (lp_bld_sample_soa.c
-// lp_build_sample_ms_offset: an index below 0 or past the view's sample count is outside, as a coordinate is).
-Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d, int32_t sample = 0) {
+// lp_build_sample_ms_offset: an index below 0 or past the view's sample count is outside, as a coordinate is); a 3D
+// view's `layer` is the slice z, inside the level's depth (lp_build_fetch_texel: the minified depth).
+Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_t lv, bool one_d, int32_t sample = 0,
+              bool three_d = false) {
     const format::FormatInfo& fi = format::format_info(img.format);
     auto outside = [&] {
         Vec4 r{0, 0, 0, 0};
@@ -471,7 +463,8 @@ Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_
     if (lv >= img.levels) return outside();
     const int32_t w = int32_t(std::max(1u, img.width >> lv));
     const int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> lv));
-    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= img.layers) return outside();
+    const uint32_t layers = three_d ? std::max(1u, img.depth >> lv) : img.layers;
+    if (x < 0 || y < 0 || x >= w || y >= h || layer < 0 || uint32_t(layer) >= layers) return outside();
     if (sample < 0 || uint32_t(sample) >= img.samples) return outside();
     const ImageLevel& il = img.level[lv];
     const Vec4 r =
@@ -483,9 +476,9 @@ Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_
 // The level of detail before bias and clamps, in texels of level 0: implicit (per 2x2 quad from its top-left
 // lane's differences), from explicit gradients, or the explicit LOD operand.
 struct LodInput {
-    bool explicit_lod = false, grad = false, one_d = false;
-    float lod = 0.0f;                              // explicit LOD
-    float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;  // derivatives in normalized coordinates
+    bool explicit_lod = false, grad = false, one_d = false, three_d = false;
+    float lod = 0.0f;                                                  // explicit LOD
+    float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0, drdx = 0, drdy = 0;  // derivatives in normalized coordinates
 };
 
 float raw_lambda(const ImageView& img, const SamplerState& smp, const LodInput& in) {
@@ -493,6 +486,10 @@ float raw_lambda(const ImageView& img, const SamplerState& smp, const LodInput& 
     if (in.explicit_lod) return in.lod;
     const float w0 = float(img.width), h0 = in.one_d ? 1.0f : float(img.height);
     const float dsdx = in.dsdx * w0, dsdy = in.dsdy * w0, dtdx = in.dtdx * h0, dtdy = in.dtdy * h0;
+    // 3D (lp_build_rho, dims 3): the r terms are added last, (s^2 + t^2) + r^2, with r scaled by the depth
+    const float d0 = float(img.depth), drdx = in.drdx * d0, drdy = in.drdy * d0;
+    float rx2 = dsdx * dsdx + dtdx * dtdx, ry2 = dsdy * dsdy + dtdy * dtdy;
+    if (in.three_d) rx2 = rx2 + drdx * drdx, ry2 = ry2 + drdy * drdy;
     if (smp.mipmap_mode == MipmapMode::Linear) {
         // lavapipe (lp_bld_sample.c lp_build_lod_selector, no rho_approx/brilinear):
         // lambda = 0.5 * fast_log2(max(dsdx^2 + dtdx^2, dsdy^2 + dtdy^2)), 1D: rho = max(|dsdx|, |dsdy|)
@@ -501,13 +498,13 @@ float raw_lambda(const ImageView& img, const SamplerState& smp, const LodInput& 
             const float rho = std::max(std::fabs(dsdx), std::fabs(dsdy));
             rho2 = rho * rho;
         } else {
-            rho2 = std::max(dsdx * dsdx + dtdx * dtdx, dsdy * dsdy + dtdy * dtdy);
+            rho2 = std::max(rx2, ry2);
         }
         if (in.grad && !std::isfinite(rho2)) rho2 = 0.0f;
         return fixed8::fast_log2(rho2) * 0.5f;
     }
     // rho = max(|d(s,t)/dx|, |d(s,t)/dy|) in texels; lambda = log2(rho)
-    const float rx = std::sqrt(dsdx * dsdx + dtdx * dtdx), ry = std::sqrt(dsdy * dsdy + dtdy * dtdy);
+    const float rx = std::sqrt(rx2), ry = std::sqrt(ry2);
     return std::log2(std::max(rx, ry));
 }
 
@@ -538,7 +535,7 @@ Vec4 sample_lambda(const ImageView& img, const SamplerState& smp, float lambda, 
         // filtering"); Vulkan makes such a sampler invalid there
         return {0, 0, 0, 0};
     }
-    if (use_fixed8(img, smp, one_d, dref)) {
+    if (use_fixed8(img, smp, one_d, dref) && (!args.three_d || simple_wrap(smp.address_w))) {
         // lod = lo + frac: levels clamped to the view (frac dropped there), weight trunc(frac*256)
         uint32_t lv = 0, hi = 0;
         int32_t mw = 0;
@@ -607,6 +604,7 @@ struct ImageOperands {
         return s < num_slots && slots[s] ? slots[s]->sampler : nullptr;
     }
     bool one_d() const { return in.imm & kSample1D; }
+    bool three_d() const { return in.imm & kSample3D; }
     bool arrayed() const { return in.imm & kSampleArray; }
     bool dref() const { return in.imm & kSampleDref; }
     bool proj() const { return in.imm & kSampleProj; }
@@ -637,6 +635,7 @@ void exec_query_size(const ImageOperands& op) {
             vals[0] = std::max(1u, img->width >> lv);
             int k = 1;
             if (!op.one_d()) vals[k++] = std::max(1u, img->height >> lv);
+            if (op.three_d()) vals[k++] = std::max(1u, img->depth >> lv);
             if (op.arrayed()) vals[k++] = img->layers;
         }
         for (uint32_t c = 0; c < op.in.extra && c < 3; ++c) op.reg(op.in.d + c)[l] = vals[c];
@@ -649,11 +648,13 @@ void exec_fetch(const ImageOperands& op) {
         const ImageView* img = op.image(l);
         const int32_t x = int32_t(op.reg(op.in.b)[l]) + op.off_x();
         const int32_t y = op.one_d() ? 0 : int32_t(op.reg(op.in.b + 1)[l]) + op.off_y();
-        const int32_t layer = op.arrayed() ? int32_t(op.reg(op.in.b + op.layer_comp())[l]) : 0;
+        // an array layer, or a 3D view's slice z (its third coordinate)
+        const int32_t layer = op.arrayed() || op.three_d() ? int32_t(op.reg(op.in.b + op.layer_comp())[l]) : 0;
         // a multisampled fetch reads level 0 and takes the sample index in place of the LOD
         const bool ms = op.in.imm & kSampleMs;
-        op.write(l, img ? fetch_at(*img, x, y, layer, ms ? 0u : lod[l], op.one_d(), ms ? int32_t(lod[l]) : 0)
-                        : Vec4{0, 0, 0, 0});
+        op.write(l,
+                 img ? fetch_at(*img, x, y, layer, ms ? 0u : lod[l], op.one_d(), ms ? int32_t(lod[l]) : 0, op.three_d())
+                     : Vec4{0, 0, 0, 0});
     }
 }
 
@@ -707,15 +708,18 @@ void exec_sample(const ImageOperands& op) {
     const Inst& in = op.in;
     const bool one_d = op.one_d();
     // coordinates, projected if asked
-    float s[kLanes], t[kLanes], layer_f[kLanes];
+    const bool three_d = op.three_d();
+    float s[kLanes], t[kLanes], r[kLanes], layer_f[kLanes];
     for (int l = 0; l < kLanes; ++l) {
         const float q = op.proj() ? op.fl(op.q_reg(), l) : 1.0f;
         s[l] = op.fl(in.b, l);
         t[l] = one_d ? 0.0f : op.fl(in.b + 1, l);
+        r[l] = three_d ? op.fl(in.b + 2, l) : 0.0f;
         layer_f[l] = op.arrayed() ? op.fl(in.b + op.layer_comp(), l) : 0.0f;
         if (op.proj()) {
             s[l] = s[l] / q;
             t[l] = t[l] / q;
+            r[l] = r[l] / q;
         }
     }
     for (int l = 0; l < kLanes; ++l) {
@@ -723,6 +727,7 @@ void exec_sample(const ImageOperands& op) {
         const SamplerState* smp = op.sampler(l);
         SampleArgs args;
         args.off_x = op.off_x(), args.off_y = op.off_y();
+        args.three_d = three_d, args.r = r[l];
         if (op.dref() && smp) {
             args.dref = smp->compare_enable;
             args.ref = op.fl(in.b + in.extra - 1, l);
@@ -740,18 +745,22 @@ void exec_sample(const ImageOperands& op) {
         }
         LodInput lod;
         lod.one_d = one_d;
+        lod.three_d = three_d;
         lod.explicit_lod = in.imm & kSampleExplicitLod;
         lod.grad = in.imm & kSampleGrad;
         if (lod.explicit_lod) {
             lod.lod = op.fl(in.c, l);
-        } else if (lod.grad) {
-            lod.dsdx = op.fl(in.n, l), lod.dtdx = op.fl(in.n + 1, l);
-            lod.dsdy = op.fl(in.n + 2, l), lod.dtdy = op.fl(in.n + 3, l);
+        } else if (lod.grad) {  // n: dPdx (two components, 3D three), then dPdy
+            const uint32_t dy = in.n + (three_d ? 3 : 2);
+            lod.dsdx = op.fl(in.n, l), lod.dtdx = op.fl(in.n + 1, l), lod.dsdy = op.fl(dy, l),
+            lod.dtdy = op.fl(dy + 1, l);
+            if (three_d) lod.drdx = op.fl(in.n + 2, l), lod.drdy = op.fl(dy + 2, l);
         } else {
             // implicit: one LOD per 2x2 quad from the quad's top-left pixel (coarse derivatives)
             const int q = l & ~3;
             lod.dsdx = s[q + 1] - s[q], lod.dtdx = t[q + 1] - t[q];
             lod.dsdy = s[q + 2] - s[q], lod.dtdy = t[q + 2] - t[q];
+            lod.drdx = r[q + 1] - r[q], lod.drdy = r[q + 2] - r[q];
         }
         float lambda = raw_lambda(*img, *smp, lod);
         if (!smp->unnormalized && !lod.explicit_lod && (in.imm & kSampleBias)) lambda += op.fl(in.c, l);
@@ -760,7 +769,9 @@ void exec_sample(const ImageOperands& op) {
     }
 }
 
-}  // namespace
+}  // namespace tex
+
+using namespace tex;
 
 void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
     const ImageOperands op{in, R, slots, num_slots};

@@ -345,17 +345,19 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
         if (t.arrayed) fail("invalid arrayed texel buffer");
         return;
     }
-    if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D) {
-        // icd/ makes 3D images and views, but their shader access (sampler3D, image3D) is not implemented yet
-        const char* name = spv::Dim(t.dim) == spv::Dim::Dim3D  ? "Dim3D (sampler3D / image3D)"
-                           : spv::Dim(t.dim) == spv::Dim::Cube ? "Cube (samplerCube)"
+    const bool dim_3d = spv::Dim(t.dim) == spv::Dim::Dim3D;
+    if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D && !dim_3d) {
+        const char* name = spv::Dim(t.dim) == spv::Dim::Cube   ? "Cube (samplerCube)"
                            : spv::Dim(t.dim) == spv::Dim::Rect ? "Rect"
                                                                : "this dimension";
-        fail(std::string("unsupported image dimension ") + name + " (only 1D and 2D, arrays included)");
+        fail(std::string("unsupported image dimension ") + name + " (only 1D, 2D and 3D, 1D and 2D arrays included)");
     }
-    // Storage images (imageLoad / imageStore / imageSize): 2D and 2D arrays, the only image views icd/ makes.
+    if (dim_3d && t.arrayed) fail("invalid arrayed 3D image");
+    // Storage images (imageLoad / imageStore / imageSize): 2D and 2D arrays. image3D is not implemented, and icd/
+    // refuses STORAGE usage on 3D images (physical_device.cpp).
     if (t.sampled == 2 && spv::Dim(t.dim) != spv::Dim::Dim2D)
-        fail("unsupported storage image dimension (only 2D, arrays included)");
+        fail(dim_3d ? "unsupported storage image dimension Dim3D (image3D; only 2D, arrays included)"
+                    : "unsupported storage image dimension (only 2D, arrays included)");
 }
 
 void Translator::declare_constant(const Instr& in) {

@@ -343,7 +343,7 @@ Footprint footprint(const Inst& in) {
                 if (in.b != kNoReg)
                     for (uint32_t i = 0; i < std::max<uint32_t>(in.extra, 3) && f.complete(); ++i) f.read(in.b + i);
                 if (in.op == Op::Sample && (in.imm & kSampleGrad))
-                    for (uint32_t i = 0; i < 4; ++i) f.read(in.n + i);
+                    for (uint32_t i = 0; i < ((in.imm & kSample3D) ? 6u : 4u); ++i) f.read(in.n + i);
                 for (uint32_t i = 0; i < 4 && in.d != kNoReg; ++i) f.write(in.d + i);
                 break;
             }

@@ -211,6 +211,20 @@ TEST(Image3DRefusals, ViewsAndParameters) {
     VkImageCreateInfo msaa = image_info(VK_IMAGE_TYPE_3D, rgba8, {4, 4, 4}, 1, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     msaa.samples = VK_SAMPLE_COUNT_4_BIT;
     EXPECT_EQ(vkCreateImage(d.device(), &msaa, nullptr, &img), VK_ERROR_FORMAT_NOT_SUPPORTED);
+    // image3D is not implemented (shader/README.md): no STORAGE usage on 3D images, where lavapipe has it; SAMPLED
+    // (sampler3D) is offered.
+    VkImageFormatProperties props{};
+    EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, rgba8, VK_IMAGE_TYPE_3D, VK_IMAGE_TILING_OPTIMAL,
+                                                       VK_IMAGE_USAGE_STORAGE_BIT, 0, &props),
+              VK_ERROR_FORMAT_NOT_SUPPORTED);
+    EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, rgba8, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                                                       VK_IMAGE_USAGE_STORAGE_BIT, 0, &props),
+              VK_SUCCESS);
+    EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, rgba8, VK_IMAGE_TYPE_3D, VK_IMAGE_TILING_OPTIMAL, sampled, 0,
+                                                       &props),
+              VK_SUCCESS);
+    VkImageCreateInfo storage = image_info(VK_IMAGE_TYPE_3D, rgba8, {4, 4, 4}, 1, 1, VK_IMAGE_USAGE_STORAGE_BIT);
+    EXPECT_EQ(vkCreateImage(d.device(), &storage, nullptr, &img), VK_ERROR_FORMAT_NOT_SUPPORTED);
     VkImageCreateInfo compat = image_info(VK_IMAGE_TYPE_3D, rgba8, {4, 4, 4}, 1, 1, sampled);
     compat.flags = VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
     EXPECT_EQ(vkCreateImage(d.device(), &compat, nullptr, &img), VK_ERROR_FORMAT_NOT_SUPPORTED);

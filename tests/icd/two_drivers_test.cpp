@@ -176,9 +176,15 @@ TEST(TwoDrivers, TilevkProperties) {
     EXPECT_EQ(vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_SRGB, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_STORAGE_BIT, 0, &ifp),
               VK_ERROR_FORMAT_NOT_SUPPORTED);
+    // 1D images: transfers and sampling, no attachments (image_1d_test.cpp)
     EXPECT_EQ(
         vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_1D,
                                                  VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_TRANSFER_DST_BIT, 0, &ifp),
+        VK_SUCCESS);
+    EXPECT_EQ(ifp.sampleCounts, VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT));
+    EXPECT_EQ(
+        vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_1D,
+                                                 VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, 0, &ifp),
         VK_ERROR_FORMAT_NOT_SUPPORTED);
     ASSERT_EQ(
         vkGetPhysicalDeviceImageFormatProperties(pd, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_TYPE_2D,

@@ -1,0 +1,51 @@
+// The address and filter rules shared by texture.cpp (1D, 2D, arrays) and texture_3d.cpp (3D images): one home for
+// each rule, in texture.cpp, declared here for the 3D sampler, which applies them to its third axis too.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "format/texel_codec.h"
+#include "shader/program.h"
+#include "shader/texture_fixed8.h"
+
+namespace tilevk::shader::tex {
+
+using Vec4 = std::array<float, 4>;
+using Bytes = std::array<int32_t, 4>;  // a texel's 8-bit channels in RGBA order (lavapipe's 8-bit filter)
+
+// The extra operands of one lookup.
+struct SampleArgs {
+    int32_t off_x = 0, off_y = 0;  // constant texel offsets (none on 3D: translate_image.cpp refuses them)
+    bool dref = false;             // depth compare against `ref`: each texel becomes 0 or 1 before filtering
+    float ref = 0.0f;
+    bool three_d = false;  // a 3D view: `r` is the third coordinate (normalized)
+    float r = 0.0f;
+};
+
+// One axis of a linear footprint: texel indices (offsets included) and the weight of i1.
+struct Axis {
+    int32_t i0, i1;
+    float w;
+};
+
+Vec4 decode(const format::FormatInfo& f, const uint8_t* p);
+Vec4 border_color(const SamplerState& smp);
+// The texel index after addressing; -1 means "border".
+int32_t wrap(int32_t i, int32_t size, AddressMode m);
+// One axis of a nearest lookup: the texel index before the wrap, offset included; `s` normalized, `u` in texels.
+int32_t nearest_axis(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
+// One axis of a linear lookup in lavapipe's float filter (lp_build_sample_wrap_linear): indices before the wrap.
+Axis linear_axis(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
+// One axis of a linear lookup in lavapipe's 8-bit filter (lp_bld_sample_aos.c): final indices, 8-bit weight.
+fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, AddressMode m);
+// The 8-bit nearest texel index (final) of lavapipe's 8-bit filter (lp_build_sample_wrap_nearest_int).
+int32_t nearest_fixed8(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
+Bytes texel_bytes(const format::FormatInfo& f, const uint8_t* p);
+
+// texture_3d.cpp: one mip level of a 3D view, nearest or trilinear, through the float or the 8-bit filter.
+Vec4 sample_level_3d(const ImageView& img, const SamplerState& smp, uint32_t level, float s, float t, bool linear,
+                     const SampleArgs& args);
+Bytes sample_level_3d_fixed8(const ImageView& img, const SamplerState& smp, uint32_t level, float s, float t,
+                             bool linear, const SampleArgs& args);
+
+}  // namespace tilevk::shader::tex
