@@ -57,6 +57,9 @@ Features make_supported() {
     c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
+    // rast/render shade_samples: one run per sample when lavapipe's min_samples > 1 (icd/pipeline.cpp
+    // per_sample_shading), SampleId, SamplePosition, Sample and Centroid inputs; cts multisample.sample_shading.*.
+    c.sampleRateShading = VK_TRUE;
     // ClipDistance and CullDistance written by the vertex shader: draw's user planes in rast/geometry clip.cpp and
     // its user_cull stage (cull_distance_keep); cts clipping.clip_distance.*, clipping.cull_distance.*. A fragment
     // shader may not read them (icd/pipeline.cpp refuses it).
