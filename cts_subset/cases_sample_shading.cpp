@@ -55,7 +55,7 @@ struct Texel {
 using TexelCheck = std::function<std::string(int sample, const Texel& t)>;
 
 // Runs `each` on every written sample; fails when none is written.
-Check per_sample_check(TexelCheck each) {
+Check per_sample_check(const TexelCheck& each) {
     return [each](const std::vector<Plane>& planes) -> std::string {
         const std::vector<uint32_t> w = buffer_words(planes, 0);
         if (w.size() != kWords) return "buffer0 has the wrong size";
