@@ -45,11 +45,13 @@ Scene subpixel_lines() {
 
 }  // namespace
 
-void add_sampled_ms_cases(CaseList& out);  // cases_sampled_ms.cpp
+void add_sampled_ms_cases(CaseList& out);      // cases_sampled_ms.cpp
+void add_sample_shading_cases(CaseList& out);  // cases_sample_shading.cpp
 
 void add_multisample_cases(CaseList& out) {
     const std::string g = "multisample.";
     add_sampled_ms_cases(out);
+    add_sample_shading_cases(out);
     out.push_back({g + "coverage_4x_triangles", [] { return ms_scene(random_triangles(11)); }, nullptr, ""});
     out.push_back({g + "coverage_4x_triangle_strip",
                    [] { return ms_scene(random_triangles(12, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, 10)); }, nullptr,
@@ -123,20 +125,32 @@ void add_multisample_cases(CaseList& out) {
                        return s;
                    },
                    nullptr, ""});
-    out.push_back({g + "depth_test_4x",
-                   [] {
-                       Draw a = random_triangles(31), b = random_triangles(32);
-                       for (Draw* d : {&a, &b}) {
-                           d->depth_test = d->depth_write = true;
-                           Lcg rng{77};
-                           for (Vertex& v : d->vertices) v.pos[2] = rng.next();
-                       }
-                       Scene s = ms_scene(a);
-                       s.draws.push_back(b);
-                       s.target.depth = VK_FORMAT_D32_SFLOAT;
-                       return s;
-                   },
-                   nullptr, ""});
+    // With sample shading (every sample its own run: depth, blend and store per sample, cases_sample_shading.cpp).
+    for (float min_sample_shading : {-1.0f, 1.0f})
+        out.push_back({g + (min_sample_shading < 0 ? "depth_test_4x" : "sample_shading.depth_test_blend"),
+                       [=] {
+                           Draw a = random_triangles(31), b = random_triangles(32);
+                           for (Draw* d : {&a, &b}) {
+                               d->depth_test = d->depth_write = true;
+                               d->min_sample_shading = min_sample_shading;
+                               Lcg rng{77};
+                               for (Vertex& v : d->vertices) v.pos[2] = rng.next();
+                           }
+                           if (min_sample_shading >= 0)
+                               b.blend = {VK_TRUE,
+                                          VK_BLEND_FACTOR_SRC_ALPHA,
+                                          VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+                                          VK_BLEND_OP_ADD,
+                                          VK_BLEND_FACTOR_ONE,
+                                          VK_BLEND_FACTOR_ZERO,
+                                          VK_BLEND_OP_ADD,
+                                          0xF};
+                           Scene s = ms_scene(a);
+                           s.draws.push_back(b);
+                           s.target.depth = VK_FORMAT_D32_SFLOAT;
+                           return s;
+                       },
+                       nullptr, ""});
 }
 
 }  // namespace tilevk::cts

@@ -465,6 +465,9 @@ void Objects::make_graphics(const ComputeSpec& s) {
     rs.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = t.samples;
+    ms.sampleShadingEnable = s.draw.min_sample_shading >= 0.0f;
+    ms.minSampleShading = ms.sampleShadingEnable ? s.draw.min_sample_shading : 0.0f;
+    ms.alphaToCoverageEnable = s.draw.alpha_to_coverage;
     VkPipelineColorBlendAttachmentState cba{};
     cba.colorWriteMask = 0xF;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -628,6 +631,7 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
                     [](const ComputeStep& st) { return st.kind == Kind::kDispatchBase; }) &&
         !c.has_extension(VK_KHR_DEVICE_GROUP_EXTENSION_NAME))
         return "vkCmdDispatchBaseKHR needs VK_KHR_device_group";
+    if (s.draw.min_sample_shading >= 0.0f && !c.features.sampleRateShading) return "feature sampleRateShading";
     for (const ComputeBuffer& b : s.buffers) {
         if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
         VkFormatProperties fp;

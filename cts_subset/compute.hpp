@@ -73,6 +73,8 @@ struct ComputeDraw {
     std::string vertex_glsl, fragment_glsl;
     uint32_t vertex_count = 3;
     int vertex_buffer = -1;
+    float min_sample_shading = -1.0f;  // >= 0: sampleShadingEnable with this minSampleShading
+    bool alpha_to_coverage = false;
 };
 
 struct ComputeSpec {

@@ -391,6 +391,8 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     ms.pSampleMask = &mask;
     ms.alphaToCoverageEnable = d.alpha_to_coverage;
     ms.alphaToOneEnable = d.alpha_to_one;
+    ms.sampleShadingEnable = d.min_sample_shading >= 0.0f;
+    ms.minSampleShading = ms.sampleShadingEnable ? d.min_sample_shading : 0.0f;
 
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     ds.depthTestEnable = d.depth_test;

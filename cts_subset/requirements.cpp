@@ -69,6 +69,7 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         if (d.dynamic && d.logic_op && !c.extended_dynamic_state2.extendedDynamicState2LogicOp)
             return "VK_EXT_extended_dynamic_state2 extendedDynamicState2LogicOp";
         if (d.alpha_to_one && !f.alphaToOne) return "feature alphaToOne";
+        if (d.min_sample_shading >= 0.0f && !f.sampleRateShading) return "feature sampleRateShading";
         if (d.viewport_count > 1 && !f.multiViewport) return "feature multiViewport";
         if (d.viewport_count > lim.maxViewports) return "maxViewports " + std::to_string(lim.maxViewports);
         if (d.negative_one_to_one && !c.depth_clip_control.depthClipControl)

@@ -86,6 +86,7 @@ struct Draw {
     uint32_t sample_mask = 0xFFFFFFFFu;
     bool alpha_to_coverage = false;
     bool alpha_to_one = false;  // feature alphaToOne
+    float min_sample_shading = -1.0f;  // >= 0: sampleShadingEnable with this minSampleShading (sampleRateShading)
     // Viewport and scissor; unset means the whole target. negative_one_to_one: clip-space depth in [-w, w]
     // (VK_EXT_depth_clip_control); viewport_count > 1 repeats the viewport and scissor (feature multiViewport;
     // every primitive still uses viewport 0).

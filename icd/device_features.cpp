@@ -61,6 +61,9 @@ Features make_supported() {
     // kSecondColorOutput), converted as the first source; such draws take the reference fragment pipeline
     // (feature.dual_src_blend.*).
     c.dualSrcBlend = VK_TRUE;
+    // rast/render shade_samples: one run per sample when lavapipe's min_samples > 1 (icd/pipeline.cpp
+    // per_sample_shading), SampleId, SamplePosition, Sample and Centroid inputs; cts multisample.sample_shading.*.
+    c.sampleRateShading = VK_TRUE;
     // ClipDistance and CullDistance written by the vertex shader: draw's user planes in rast/geometry clip.cpp and
     // its user_cull stage (cull_distance_keep); cts clipping.clip_distance.*, clipping.cull_distance.*. A fragment
     // shader may not read them (icd/pipeline.cpp refuses it).

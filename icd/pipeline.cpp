@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -218,6 +219,23 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     return {};
 }
 
+// lavapipe's min_samples > 1 (docs/lavapipe-rules.md §3): lvp_execute.c update_samples takes
+// ceil(samples * minSampleShading) with sampleShadingEnable, and every sample once that exceeds 1 (so at 4x a
+// minSampleShading above 0.25); a fragment shader that reads SampleId or SamplePosition or has a Sample-decorated
+// input (nir's uses_sample_shading, lvp_pipeline.c force_min_sample) forces every sample too. At 1x llvmpipe's
+// variant key leaves min_samples at 1 (lp_state_fs.c, key->multisample).
+bool per_sample_shading(const VkPipelineMultisampleStateCreateInfo& ms, const shader::Program* fs) {
+    if (ms.rasterizationSamples == VK_SAMPLE_COUNT_1_BIT) return false;
+    if (ms.sampleShadingEnable && std::ceil(float(ms.rasterizationSamples) * ms.minSampleShading) > 1.0f) return true;
+    if (!fs) return false;
+    const shader::ProgramInterface& i = fs->interface();
+    if (i.builtins_read & (shader::bit(shader::BuiltIn::SampleId) | shader::bit(shader::BuiltIn::SamplePosition)))
+        return true;
+    for (const shader::IoVariable& v : i.inputs)
+        if (v.sample) return true;
+    return false;
+}
+
 // Sample count, sample mask, alpha to coverage and to one; depth and stencil tests.
 std::string translate_multisample_depth(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     PipelineState& s = p.state;
@@ -227,8 +245,7 @@ std::string translate_multisample_depth(const VkGraphicsPipelineCreateInfo& ci, 
                    vk_flags_name<VkSampleCountFlagBits>(ms->rasterizationSamples) +
                    " is not supported (VK_SAMPLE_COUNT_1_BIT or VK_SAMPLE_COUNT_4_BIT)";
         s.samples = int(ms->rasterizationSamples);
-        if (ms->sampleShadingEnable && ms->minSampleShading > 0.0f)
-            return "sampleShadingEnable with minSampleShading > 0 (feature sampleRateShading) is not supported";
+        s.per_sample = per_sample_shading(*ms, p.fragment.get());
         s.alpha_to_one = ms->alphaToOneEnable;
         if (ms->pSampleMask) s.sample_mask = ms->pSampleMask[0];
         s.alpha_to_coverage = ms->alphaToCoverageEnable;

@@ -351,6 +351,9 @@ void write_fragment_builtin(const IoCopy& c, const FragmentBlock& fb, uint32_t* 
         case IoSlot::SampleId:
             LANES w[l] = fb.sample_id;
             break;
+        case IoSlot::SamplePosition:
+            LANES w[l] = fb.sample_position[c.index & 1];
+            break;
         case IoSlot::ViewIndex:
             LANES w[l] = fb.view_index;
             break;
@@ -375,8 +378,8 @@ Program::FragmentDirect plan_direct(const ProgramImpl& p) {
     std::fill(std::begin(d.input_word), std::end(d.input_word), ~0u);
     std::fill(std::begin(d.output_word), std::end(d.output_word), ~0u);
     for (const IoCopy& c : p.io_in) {
-        if (c.slot == IoSlot::FrontFacing || c.slot == IoSlot::SampleId || c.slot == IoSlot::ViewIndex ||
-            c.slot == IoSlot::HelperInvocation)
+        if (c.slot == IoSlot::FrontFacing || c.slot == IoSlot::SampleId || c.slot == IoSlot::SamplePosition ||
+            c.slot == IoSlot::ViewIndex || c.slot == IoSlot::HelperInvocation)
             continue;
         if (c.slot != IoSlot::Input || c.index >= std::size(d.input_word) || d.input_word[c.index] != ~0u) return d;
         d.input_word[c.index] = c.word;

@@ -365,6 +365,7 @@ enum class IoSlot : uint8_t {
     SubgroupGtMask,
     SubgroupLeMask,
     SubgroupLtMask,
+    SamplePosition,  // fragment: vec2, index = component
 };
 struct IoCopy {
     IoSlot slot;

@@ -345,7 +345,9 @@ struct alignas(64) FragmentBlock {
     uint32_t cover_mask = kAllLanes;               // in: covered lanes; the other lanes of the block are helper lanes
     uint32_t live_mask = 0;                        // out: cover_mask minus lanes that were discarded (demoted)
     uint32_t front_facing = 1;                     // in: 1 for a front-facing primitive (same for the whole block)
-    uint32_t sample_id = 0;                        // in: for sample shading
+    uint32_t sample_id = 0;                        // in: SampleId, the sample a per-sample run shades (else 0)
+    // in: SamplePosition x, y (float bits): the run's sample position within the pixel; (0.5, 0.5) at 1x
+    uint32_t sample_position[2] = {0x3f000000u, 0x3f000000u};
     uint32_t view_index = 0;                       // in: ViewIndex, the multiview view (same for the whole block)
     alignas(64) Lanes frag_coord[4]{};             // in: x, y (pixel centre, e.g. 10.5), z, 1/w (float bits)
     alignas(64) Lanes sample_mask_in{};            // in: gl_SampleMaskIn[0]

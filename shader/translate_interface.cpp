@@ -43,6 +43,8 @@ uint32_t builtin_bit(spv::BuiltIn b) {
             return bit(BuiltIn::SampleMask);
         case spv::BuiltIn::SampleId:
             return bit(BuiltIn::SampleId);
+        case spv::BuiltIn::SamplePosition:
+            return bit(BuiltIn::SamplePosition);
         case spv::BuiltIn::HelperInvocation:
             return bit(BuiltIn::HelperInvocation);
         case spv::BuiltIn::LocalInvocationId:
@@ -111,6 +113,7 @@ IoSlot builtin_slot(spv::BuiltIn b, Stage stage, bool output) {
         if (b == spv::BuiltIn::PointCoord) return IoSlot::PointCoord;
         if (b == spv::BuiltIn::SampleMask) return IoSlot::SampleMaskIn;
         if (b == spv::BuiltIn::SampleId) return IoSlot::SampleId;
+        if (b == spv::BuiltIn::SamplePosition) return IoSlot::SamplePosition;
         if (b == spv::BuiltIn::HelperInvocation) return IoSlot::HelperInvocation;
         if (b == spv::BuiltIn::ViewIndex) return IoSlot::ViewIndex;
     } else {

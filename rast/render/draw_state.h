@@ -60,6 +60,9 @@ struct PipelineState {
     bool alpha_to_coverage = false;
     // Every colour output's alpha becomes 1.0 after alpha to coverage, before blending (lp_state_fs.c).
     bool alpha_to_one = false;
+    // Sample shading: the fragment shader runs once per sample (llvmpipe's min_samples > 1; icd/ decides it from
+    // sampleShadingEnable, minSampleShading and the shader, docs/lavapipe-rules.md §3). Only with samples > 1.
+    bool per_sample = false;
 
     fragment::DepthStencilState depth_stencil;  // min/max_depth are filled from the viewport by the renderer
     fragment::BlendAttachment blend[kMaxColorTargets];

@@ -17,6 +17,9 @@ namespace tilevk::rast::render::TILEVK_ISA {
 namespace {
 
 using fragment::kBlockLanes;
+// SamplePosition of a per-pixel run, 0.5 in float bits: shaders that read it at 4x shade per sample, which the
+// reference pipeline runs (make_plan), so the fast paths only ever run them at 1x, where lavapipe's is (0.5, 0.5).
+constexpr uint32_t kHalfBits = 0x3f000000u;
 
 // memcpy for lane arrays, in 32-byte units in the AVX2 build. GCC inlines a 256-byte memcpy as 16-byte moves; the
 // AVX2 kernels then read the copy with 32-byte loads, and a load spanning two stores cannot be forwarded from the
@@ -124,6 +127,7 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
     b.cover_mask = shader::kAllLanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
+    b.sample_position[0] = b.sample_position[1] = kHalfBits;
     b.view_index = a.fb->view_index;
     const float* attribs = a.planes + kPrimHeaderFloats;
     for (const InputPlan& in : a.plan->inputs) {
@@ -166,6 +170,7 @@ uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     b.cover_mask = lanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
+    b.sample_position[0] = b.sample_position[1] = kHalfBits;
     b.view_index = a.fb->view_index;
     k.local = local;
     return static_cast<uint16_t>(fs->run_bound_fragment(b, w.scratch) & lanes);
@@ -182,6 +187,7 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     b.cover_mask = lanes;
     b.front_facing = a.front_facing ? 1u : 0u;
     b.sample_id = 0;
+    b.sample_position[0] = b.sample_position[1] = kHalfBits;
     b.view_index = a.fb->view_index;
     const shader::ProgramInterface& iface = fs->interface();
     const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);

@@ -5,6 +5,7 @@
 
 #include "rast/core/cpu.h"
 #include "rast/fragment/block.h"
+#include "rast/fragment/interp.h"
 #include "rast/fragment/msaa.h"
 #include "rast/render/fragment_plan.h"
 
@@ -79,6 +80,101 @@ void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int
                 bytes, zs.depth[l]);
         if (t.stencil)
             t.stencil[size_t(sample) * t.stencil_sample_stride + size_t(py) * t.stencil_row_pitch + px] = zs.stencil[l];
+    }
+}
+
+namespace {
+
+// Where lavapipe interpolates the input at `loc` (the variable's Centroid / Sample decoration; 0 centre).
+enum class InputSite : uint8_t { kCentre, kCentroid, kSample };
+InputSite input_site(const shader::ProgramInterface& iface, uint32_t loc) {
+    for (const shader::IoVariable& v : iface.inputs)
+        if (v.location == loc)
+            return v.sample ? InputSite::kSample : v.centroid ? InputSite::kCentroid : InputSite::kCentre;
+    return InputSite::kCentre;
+}
+
+// FragCoord (xy and z at the run's sample in a per-sample run, else the centre; w at the centre) and the
+// per-block built-ins: SampleMaskIn (the raster coverage, only the run's sample's bit in a per-sample run;
+// lp_state_fs.c sample_mask_in), SampleId and SamplePosition (lavapipe's sample_pos_array: the 4x table at 4x, (0.5,
+// 0.5) at 1x).
+void set_builtin_inputs(shader::FragmentBlock& b, const shader::ProgramInterface& iface, const float* planes, int32_t x,
+                        int32_t y, const RunSite& site, const float wl[kBlockLanes], bool fused) {
+    const int s = site.sample;
+    b.sample_id = s < 0 ? 0u : uint32_t(s);
+    const float* pos = site.samples > 1 ? fragment::kSamplePos4x[s < 0 ? 0 : s] : nullptr;
+    b.sample_position[0] = bits_of(pos ? pos[0] : 0.5f);
+    b.sample_position[1] = bits_of(pos ? pos[1] : 0.5f);
+    if (iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord)) {
+        float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
+        fragment::frag_coord_xy(x, y, fragment::frag_coord_offset(site.samples, s), fx, fy);
+        fragment::eval_depth(plane_of(planes, 2), planes[kPlaneFloats], x, y, fragment::plane_offset(site.samples, s),
+                             fused, fz);
+        for (int l = 0; l < kBlockLanes; ++l) {
+            b.frag_coord[0][l] = bits_of(fx[l]);
+            b.frag_coord[1][l] = bits_of(fy[l]);
+            b.frag_coord[2][l] = bits_of(fz[l]);
+            b.frag_coord[3][l] = bits_of(wl[l]);
+        }
+    }
+    if (iface.builtins_read & shader::bit(shader::BuiltIn::SampleMask))
+        for (int l = 0; l < kBlockLanes; ++l) {
+            uint32_t m = 0;
+            for (int k = 0; k < site.samples; ++k) m |= ((site.cover[k] >> l) & 1u) << k;
+            b.sample_mask_in[l] = s < 0 ? m : m & (1u << s);
+        }
+}
+
+}  // namespace
+
+void set_fragment_inputs(shader::FragmentBlock& b, const DrawRecord& draw, const float* planes, int32_t x, int32_t y,
+                         const RunSite& site, bool fused) {
+    const shader::ProgramInterface& iface = draw.pipe->fragment->interface();
+    const fragment::EvalOffset centre = fragment::plane_offset(site.samples, -1);
+    float wl[kBlockLanes], tmp[kBlockLanes], out[kBlockLanes];
+    fragment::eval_plane(plane_of(planes, 3), x, y, centre, fused, wl);
+    set_builtin_inputs(b, iface, planes, x, y, site, wl, fused);
+    float cx[kBlockLanes], cy[kBlockLanes];
+    bool have_centroid = false;
+    const float* attribs = planes + kPrimHeaderFloats;
+    const size_t num_slots = draw.varyings.slot_location.size();
+    for (size_t slot = 0; slot < num_slots; ++slot) {
+        const uint32_t loc = draw.varyings.slot_location[slot];
+        const float* p = attribs + slot * kPlaneFloats;
+        const geometry::Interp interp = draw.varyings.slot_interp[slot];
+        // At 1x every site is the plane origin, the pixel centre (lp_bld_interp.c adds offsets at 4x only).
+        const InputSite where = site.samples > 1 ? input_site(iface, loc) : InputSite::kCentre;
+        if (where == InputSite::kCentroid && !have_centroid) {
+            fragment::centroid_offsets(site.masks, cx, cy);
+            have_centroid = true;
+        }
+        for (int c = 0; c < 4; ++c) {
+            if (interp == geometry::Interp::kFlat) {
+                for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(p[c]);
+                continue;
+            }
+            if (where == InputSite::kCentroid)
+                fragment::eval_plane_per_lane(plane_of(p, c), x, y, cx, cy, fused, tmp);
+            else
+                fragment::eval_plane(
+                    plane_of(p, c), x, y,
+                    where == InputSite::kSample ? fragment::plane_offset(site.samples, site.sample) : centre, fused,
+                    tmp);
+            if (interp == geometry::Interp::kPerspective) {
+                fragment::perspective_divide(tmp, wl, out);
+                for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(out[l]);
+            } else {
+                for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(tmp[l]);
+            }
+        }
+    }
+    if (draw.varyings.point_coord_slot >= 0) {  // gl_PointCoord: a perspective input (VaryingMap)
+        const float* p = attribs + size_t(draw.varyings.point_coord_slot) * kPlaneFloats;
+        for (int c = 0; c < 2; ++c) {
+            fragment::eval_plane(plane_of(p, c), x, y, centre, fused, tmp);
+            fragment::perspective_divide(tmp, wl, out);
+            for (int l = 0; l < kBlockLanes; ++l) b.point_coord[c][l] = bits_of(out[l]);
+        }
     }
 }
 

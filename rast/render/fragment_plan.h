@@ -99,6 +99,8 @@ struct FragmentWorker {
     void shade_sample_end(uint64_t start) {
         if (start) tile_shade += (stage_ticks() - start) * kShadeSampling;
     }
+    // Sample shading: each sample's run's colour outputs (float bits), blended after every run (lp_state_fs.c).
+    alignas(64) shader::Lanes sample_outputs[fragment::kMaxSamples][shader::kColorOutputSlots][4]{};
     uint64_t hits_seen = 0;       // scratch.loop_limit_hits() after the last primitive
     unsigned saved_fp_state = 0;  // the thread's MXCSR outside its current tile
 };
@@ -151,6 +153,24 @@ void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int3
                         fragment::DepthStencilBlock& zs);
 void store_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
                          const fragment::DepthStencilBlock& zs);
+
+// Where one fragment-shader run interpolates (lp_bld_interp.c attribs_update_simple and pos update): `sample` < 0 a
+// per-pixel run, else the sample a per-sample run shades (sample shading); `masks` the per-sample lane masks that
+// centroid inputs choose from (lavapipe's mask_store as the run starts), `cover` the raster coverage that
+// SampleMaskIn reports.
+struct RunSite {
+    int samples = 1;
+    int sample = -1;
+    const uint16_t* masks = nullptr;
+    const uint16_t* cover = nullptr;
+};
+
+// Fills the block's shader inputs for one run of draw's fragment shader over the block at (x, y): FragCoord,
+// SampleMaskIn, SampleId, SamplePosition and the interpolated inputs, each at lavapipe's location: the pixel
+// centre, the run's sample (Sample-decorated inputs, FragCoord.xyz in a per-sample run; FragCoord.w and the 1/w of
+// perspective inputs stay at the centre), or the centroid (Centroid-decorated inputs at 4x).
+void set_fragment_inputs(shader::FragmentBlock& b, const DrawRecord& draw, const float* planes, int32_t x, int32_t y,
+                         const RunSite& site, bool fused);
 
 // What the shader's outputs do to the per-sample survivors: alpha to coverage (raw float alpha of output 0), then
 // the shader-written sample mask (lavapipe's order, lp_state_fs.c).

@@ -145,6 +145,13 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     plan.inputs = std::move(inputs);
     if (!draw.pipe) return;
     const PipelineState& pipe = *draw.pipe;
+    // Sample shading, and centroid inputs at 4x, take the reference pipeline (shade_block, shade_samples), which
+    // interpolates each input at its own site.
+    if (fb.samples > 1 && pipe.fragment) {
+        if (pipe.per_sample) return;
+        for (const shader::IoVariable& v : pipe.fragment->interface().inputs)
+            if (v.centroid || v.sample) return;
+    }
     // Dual-source blending takes the reference pipeline, the only one that reads the second colour output.
     plan.fast = !fragment::uses_second_source(pipe.blend[0]);
 
@@ -394,9 +401,48 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
     }
 }
 
-// The reference fragment pipeline of one block (over 150 lines): coverage, depth, inputs, shader, the sample masks,
-// late depth and blend in lavapipe's order on lane arrays they all share; shade_block_fast (fragment_block.cpp) is
-// its step-by-step twin, and the two are kept whole so that each step can be read against the other.
+// Sample shading (llvmpipe's sample loop when min_samples > 1, lp_state_fs.c generate_fs_loop): the shader runs
+// once per sample s over the lanes in mask_store[s] (the coverage after early depth/stencil), interpolated at that
+// sample (RunSite). After run s, alpha to coverage with that run's alpha ANDs every sample's mask_store entry, then
+// mask_store[s] becomes the run's own mask (its lanes minus discards), so a run's alpha also trims the samples
+// shaded after it and those before it. A written SampleMask keeps sample s where run s set bit s. Each run's FragDepth
+// replaces z[s] (when `z` is set); its colours go to w.sample_outputs[s].
+void FragmentStage::shade_samples(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing,
+                                  int32_t x, int32_t y, const uint16_t cover[4], const uint16_t pass[4],
+                                  float (*z)[kBlockLanes], uint16_t final_mask[4]) {
+    const PipelineState& pipe = *draw.pipe;
+    const shader::Program* fs = pipe.fragment;
+    const shader::ProgramInterface& iface = fs->interface();
+    const bool writes_mask = iface.builtins_written & shader::bit(shader::BuiltIn::SampleMask);
+    const int samples = fb_.samples;
+    uint16_t store[fragment::kMaxSamples] = {pass[0], pass[1], pass[2], pass[3]};
+    uint16_t written[fragment::kMaxSamples] = {};  // lanes whose run s wrote bit s of SampleMask
+    shader::FragmentBlock& b = w.block;
+    for (int s = 0; s < samples; ++s) {
+        const uint16_t run_mask = store[s];
+        b.cover_mask = run_mask;
+        b.front_facing = front_facing ? 1u : 0u;
+        b.view_index = fb_.view_index;
+        set_fragment_inputs(b, draw, prim.planes, x, y, RunSite{samples, s, store, cover}, fused_);
+        fs->run_fragment(draw.bindings, b, w.scratch);
+        if (pipe.alpha_to_coverage) {
+            float alpha[kBlockLanes];
+            std::memcpy(alpha, b.outputs[0][3], sizeof alpha);
+            fragment::alpha_to_coverage_4x(alpha, store);
+        }
+        store[s] = static_cast<uint16_t>(b.live_mask & run_mask);
+        if (writes_mask)
+            for (int l = 0; l < kBlockLanes; ++l)
+                if ((b.sample_mask[l] >> s) & 1u) written[s] |= uint16_t(1u << l);
+        if (z && iface.writes_frag_depth) std::memcpy(z[s], b.frag_depth, sizeof(float) * kBlockLanes);
+        std::memcpy(w.sample_outputs[s], b.outputs, sizeof w.sample_outputs[s]);
+    }
+    for (int s = 0; s < samples; ++s) final_mask[s] = writes_mask ? uint16_t(store[s] & written[s]) : store[s];
+}
+
+// The reference fragment pipeline of one block: coverage, depth, inputs (set_fragment_inputs), the shader (once, or
+// per sample in shade_samples), the sample masks, late depth and blend in lavapipe's order on lane arrays they all
+// share; shade_block_fast (fragment_block.cpp) is its step-by-step twin for the states its plan covers.
 void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing,
                                 int32_t x, int32_t y, const uint16_t raster_masks[4]) {
     w.uniform_prim = nullptr;  // block.outputs is about to change
@@ -441,77 +487,31 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
     if (!shade_lanes) return;
     const uint64_t shade_start = w.shade_sample_start();
 
-    // Fragment shader inputs.
+    // Fragment shader runs: once per pixel, or once per sample under sample shading.
     shader::FragmentBlock& b = w.block;
     const shader::Program* fs = pipe.fragment;
-    uint16_t live = shade_lanes;
-    if (fs) {
-        b.cover_mask = shade_lanes;
-        b.front_facing = front_facing ? 1u : 0u;
-        b.sample_id = 0;
-        b.view_index = fb_.view_index;
-        const fragment::EvalOffset centre = fragment::plane_offset(samples, -1);
-        float wlanes[kBlockLanes], tmp[kBlockLanes], out[kBlockLanes];
-        fragment::eval_plane(plane_of(planes, 3), x, y, centre, fused_, wlanes);
-        const shader::ProgramInterface& iface = fs->interface();
-        if (iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord)) {
-            float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
-            fragment::frag_coord_xy(x, y, fragment::frag_coord_offset(samples, -1), fx, fy);
-            fragment::eval_depth(zplane, depth_offset, x, y, centre, fused_, fz);
-            for (int l = 0; l < kBlockLanes; ++l) {
-                b.frag_coord[0][l] = bits_of(fx[l]);
-                b.frag_coord[1][l] = bits_of(fy[l]);
-                b.frag_coord[2][l] = bits_of(fz[l]);
-                b.frag_coord[3][l] = bits_of(wlanes[l]);
-            }
+    const bool per_sample = fs && pipe.per_sample && samples > 1;
+    uint16_t final_mask[4] = {};
+    if (per_sample) {
+        shade_samples(w, draw, prim, front_facing, x, y, cover, pass, depth_active ? z : nullptr, final_mask);
+    } else {
+        uint16_t live = shade_lanes;
+        if (fs) {
+            b.cover_mask = shade_lanes;
+            b.front_facing = front_facing ? 1u : 0u;
+            b.view_index = fb_.view_index;
+            set_fragment_inputs(b, draw, planes, x, y, RunSite{samples, -1, pass, cover}, fused_);
+            fs->run_fragment(draw.bindings, b, w.scratch);
+            live = static_cast<uint16_t>(b.live_mask & shade_lanes);
+            if (fs->interface().writes_frag_depth && depth_active)
+                for (int s = 0; s < samples; ++s)
+                    for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&z[s][l], &b.frag_depth[l], 4);
         }
-        if (iface.builtins_read & shader::bit(shader::BuiltIn::SampleMask))
-            for (int l = 0; l < kBlockLanes; ++l) {
-                uint32_t m = 0;
-                for (int s = 0; s < samples; ++s) m |= ((cover[s] >> l) & 1u) << s;
-                b.sample_mask_in[l] = m;
-            }
-        const float* attribs = planes + kPrimHeaderFloats;
-        const size_t num_slots = draw.varyings.slot_location.size();
-        for (size_t slot = 0; slot < num_slots; ++slot) {
-            const uint32_t loc = draw.varyings.slot_location[slot];
-            const float* p = attribs + slot * kPlaneFloats;
-            const geometry::Interp interp = draw.varyings.slot_interp[slot];
-            for (int c = 0; c < 4; ++c) {
-                if (interp == geometry::Interp::kFlat) {
-                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(p[c]);
-                    continue;
-                }
-                fragment::eval_plane(plane_of(p, c), x, y, centre, fused_, tmp);
-                if (interp == geometry::Interp::kPerspective) {
-                    fragment::perspective_divide(tmp, wlanes, out);
-                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(out[l]);
-                } else {
-                    for (int l = 0; l < kBlockLanes; ++l) b.inputs[loc][c][l] = bits_of(tmp[l]);
-                }
-            }
-        }
-        if (draw.varyings.point_coord_slot >= 0) {  // gl_PointCoord: a perspective input (VaryingMap)
-            const float* p = attribs + size_t(draw.varyings.point_coord_slot) * kPlaneFloats;
-            for (int c = 0; c < 2; ++c) {
-                fragment::eval_plane(plane_of(p, c), x, y, centre, fused_, tmp);
-                fragment::perspective_divide(tmp, wlanes, out);
-                for (int l = 0; l < kBlockLanes; ++l) b.point_coord[c][l] = bits_of(out[l]);
-            }
-        }
-        fs->run_fragment(draw.bindings, b, w.scratch);
-        live = static_cast<uint16_t>(b.live_mask & shade_lanes);
-        if (iface.writes_frag_depth && depth_active)
-            for (int s = 0; s < samples; ++s)
-                for (int l = 0; l < kBlockLanes; ++l) std::memcpy(&z[s][l], &b.frag_depth[l], 4);
+        // Per-sample survivors of the shader, alpha to coverage and the shader's sample mask.
+        for (int s = 0; s < samples; ++s) final_mask[s] = pass[s] & live;
+        shader_coverage(fs, pipe.alpha_to_coverage, b, samples, final_mask);
     }
-
     w.shade_sample_end(shade_start);
-
-    // Per-sample survivors of the shader, alpha to coverage and the shader's sample mask.
-    uint16_t final_mask[4];
-    for (int s = 0; s < samples; ++s) final_mask[s] = pass[s] & live;
-    shader_coverage(fs, pipe.alpha_to_coverage, b, samples, final_mask);
 
     // Late depth/stencil: lanes that failed the early test re-run it so their stencil fail ops apply.
     if (depth_active && !(early && early_write)) {
@@ -535,19 +535,21 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
     for (uint32_t c = 0; c < fb_.num_color && c < shader::kMaxColorOutputs; ++c) {
         const ColorTarget& t = fb_.color[c];
         if (!t.data) continue;
-        for (int ch = 0; ch < 4; ++ch) std::memcpy(src[ch], b.outputs[c][ch], sizeof(float) * kBlockLanes);
-        if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
         // Dual-source blending (attachment 0 only): the second output, under alpha to one as the first
         // (lp_state_fs.c applies it to both colour outputs).
         const bool dual = c == 0 && fragment::uses_second_source(pipe.blend[0]);
-        if (dual) {
-            for (int ch = 0; ch < 4; ++ch)
-                std::memcpy(src1[ch], b.outputs[shader::kSecondColorOutput][ch], sizeof(float) * kBlockLanes);
-            if (pipe.alpha_to_one) std::fill(src1[3], src1[3] + kBlockLanes, 1.0f);
-        }
         const size_t bytes = fragment::format_info(t.format).bytes;
         for (int s = 0; s < samples; ++s) {
             if (!final_mask[s]) continue;
+            const shader::Lanes* out = per_sample ? w.sample_outputs[s][c] : b.outputs[c];
+            for (int ch = 0; ch < 4; ++ch) std::memcpy(src[ch], out[ch], sizeof(float) * kBlockLanes);
+            if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
+            if (dual) {
+                const shader::Lanes* out1 = per_sample ? w.sample_outputs[s][shader::kSecondColorOutput]
+                                                       : b.outputs[shader::kSecondColorOutput];
+                for (int ch = 0; ch < 4; ++ch) std::memcpy(src1[ch], out1[ch], sizeof(float) * kBlockLanes);
+                if (pipe.alpha_to_one) std::fill(src1[3], src1[3] + kBlockLanes, 1.0f);
+            }
             uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(y) * t.row_pitch + size_t(x) * bytes;
             fragment::blend_block(pipe.blend[c], t.format, pipe.blend_constants, src, final_mask[s], origin,
                                   t.row_pitch, opt, dual ? src1 : nullptr);

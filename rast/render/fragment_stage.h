@@ -70,6 +70,11 @@ class FragmentStage final : public CoverageConsumer {
     void shade_block(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
                      int32_t y, const uint16_t raster_masks[4]);
 
+    // Its fragment-shader runs under sample shading, one per sample (fragment_stage.cpp).
+    void shade_samples(FragmentWorker& w, const DrawRecord& draw, const PrimRecord& prim, bool front_facing, int32_t x,
+                       int32_t y, const uint16_t cover[4], const uint16_t pass[4], float (*z)[fragment::kBlockLanes],
+                       uint16_t final_mask[4]);
+
     void resolve_tile(const TileInfo& tile) const;
 
     Framebuffer fb_;

@@ -203,7 +203,7 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
         EXPECT_EQ(create_device(nullptr, &over), VK_SUCCESS);
     }
     for (size_t offset :
-         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, sampleRateShading),
+         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, dualSrcBlend),
           offsetof(VkPhysicalDeviceFeatures, shaderInt16)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);

@@ -440,5 +440,50 @@ void main() { color = vec4(a.x * 0.3 + b.y * 0.4 + c.x * 0.3, a.y * 0.5 + c.y * 
     }
 }
 
+// Sample shading (PipelineState::per_sample): one shader run per sample, at that sample's position. The expected
+// bytes are the 4x positions (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875) and SampleId / 3 as
+// UNORM8 by hand (rne(v * 255)); per pixel, SamplePosition is sample 0's and FragCoord the centre (0.5 -> 128).
+TEST_F(RenderTest, SampleShadingRunsOncePerSampleAtItsPosition) {
+    const int w = 8, h = 8;
+    auto fs_id = shader::test::make_program(Stage::Fragment, R"(#version 450
+layout(location=0) in vec4 col; layout(location=0) out vec4 color;
+void main() { color = vec4(gl_SamplePosition, float(gl_SampleID) / 3.0, 1.0); })");
+    auto fs_coord = shader::test::make_program(Stage::Fragment, R"(#version 450
+layout(location=0) in vec4 col; layout(location=0) out vec4 color;
+void main() { color = vec4(fract(gl_FragCoord.xy), col.b, 1.0); })");
+    const uint8_t per_sample_want[4][3] = {{96, 32, 0}, {223, 96, 85}, {32, 159, 170}, {159, 223, 255}};
+    auto render = [&](const shader::Program* f, bool per_sample) {
+        Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4 * 4, 0), {}};
+        ThreadPool pool(1);
+        Renderer r(pool, Method::kHier);
+        PipelineState p = make_pipeline(vs.get(), f, w, h);
+        p.samples = 4;
+        p.per_sample = per_sample;
+        Framebuffer fb = make_fb(img, false);
+        fb.samples = 4;
+        fb.color[0].sample_stride = size_t(w) * h * 4;
+        r.begin(fb);
+        draw(r, p, {{{-1, -1, 0, 1}, {0, 0, 0, 1}}, {{3, -1, 0, 1}, {0, 0, 0, 1}}, {{-1, 3, 0, 1}, {0, 0, 0, 1}}});
+        r.end();
+        return img;
+    };
+    const Image ids = render(fs_id.get(), true);
+    const Image coords = render(fs_coord.get(), true);
+    const Image centre = render(fs_coord.get(), false);
+    for (int s = 0; s < 4; ++s)
+        for (int i = 0; i < w * h; ++i) {
+            const uint8_t* id = &ids.rgba[(size_t(s) * w * h + i) * 4];
+            const uint8_t* at = &coords.rgba[(size_t(s) * w * h + i) * 4];
+            const uint8_t* mid = &centre.rgba[(size_t(s) * w * h + i) * 4];
+            ASSERT_EQ(id[0], per_sample_want[s][0]) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(id[1], per_sample_want[s][1]) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(id[2], per_sample_want[s][2]) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(at[0], per_sample_want[s][0]) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(at[1], per_sample_want[s][1]) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(mid[0], 128) << "sample " << s << " pixel " << i;
+            ASSERT_EQ(mid[1], 128) << "sample " << s << " pixel " << i;
+        }
+}
+
 }  // namespace
 }  // namespace tilevk::rast::render
