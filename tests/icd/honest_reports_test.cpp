@@ -155,7 +155,8 @@ TEST_F(HonestReports, EveryFeatureStructMemberIsAcceptedExactlyWhenReported) {
             }
         }
     }
-    EXPECT_GT(refused, 300);
+    // (a floor proving the loop reached the structs: 295 members refused once 8/16-bit types were reported)
+    EXPECT_GT(refused, 280);
 }
 
 // Expectations written from the design, not read from the driver: what the issue found accepted silently, a
@@ -204,7 +205,7 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
     }
     for (size_t offset :
          {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, sampleRateShading),
-          offsetof(VkPhysicalDeviceFeatures, shaderInt16)}) {
+          offsetof(VkPhysicalDeviceFeatures, shaderResourceMinLod)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);
         StderrCapture capture;
