@@ -12,6 +12,7 @@ void add_format_cases(CaseList& out);   // cases_formats.cpp
 void add_compute_cases(CaseList& out);  // cases_compute.cpp
 void add_clipping_cases(CaseList& out);  // cases_clipping.cpp
 void add_types_cases(CaseList& out);     // cases_types.cpp: 64-bit integers and doubles
+void add_types_narrow_cases(CaseList& out);  // cases_types_narrow.cpp: 8- and 16-bit integers and storage
 
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
@@ -66,6 +67,7 @@ CaseList all_cases() {
     add_format_cases(out);
     add_compute_cases(out);
     add_types_cases(out);
+    add_types_narrow_cases(out);
     add_linear_cases(out);
     add_random_cases(out);
     add_random_compute_cases(out);

@@ -24,7 +24,11 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME,
                                          VK_KHR_DEVICE_GROUP_EXTENSION_NAME,
-                                         VK_KHR_SAMPLER_MIRROR_CLAMP_TO_EDGE_EXTENSION_NAME};
+                                         VK_KHR_SAMPLER_MIRROR_CLAMP_TO_EDGE_EXTENSION_NAME,
+                                         VK_KHR_STORAGE_BUFFER_STORAGE_CLASS_EXTENSION_NAME,
+                                         VK_KHR_16BIT_STORAGE_EXTENSION_NAME,
+                                         VK_KHR_8BIT_STORAGE_EXTENSION_NAME,
+                                         VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME};
 
 }  // namespace
 
@@ -217,6 +221,13 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             maintenance4.pNext = chain;
             chain = &maintenance4;
         }
+        // 8- and 16-bit types: shaderInt8 and the 8/16-bit storage features (types.int16.*, types.int8.*, ...)
+        VkPhysicalDevice16BitStorageFeatures storage16{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_16BIT_STORAGE_FEATURES};
+        VkPhysicalDevice8BitStorageFeatures storage8{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_8BIT_STORAGE_FEATURES};
+        VkPhysicalDeviceShaderFloat16Int8Features int8{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
+        link(storage16, VK_KHR_16BIT_STORAGE_EXTENSION_NAME);
+        link(storage8, VK_KHR_8BIT_STORAGE_EXTENSION_NAME);
+        link(int8, VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
         if (chain != nullptr) {
             auto features2 = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
                 vkGetInstanceProcAddr(instance_, "vkGetPhysicalDeviceFeatures2KHR"));

@@ -96,6 +96,20 @@ Features make_supported() {
     // them stay in the interpreter (shader/README.md "64-bit types"; cts types.*).
     c.shaderFloat64 = VK_TRUE;
     c.shaderInt64 = VK_TRUE;
+    // 8- and 16-bit integers: one register per scalar holding the value zero-extended, wrapped, sign-extended and
+    // shift counts masked as llvmpipe computes its i8/i16 LLVM types; 8/16-bit values (16-bit floats too, converted
+    // as LLVM's fpext/fptrunc) at their byte offsets in storage and uniform buffers and push constants
+    // (shader/README.md "8- and 16-bit types"; cts types.int16.*, types.int8.*, types.storage*). As lavapipe:
+    // storageInputOutput16 VK_FALSE. shaderFloat16 (half arithmetic) is not reported: lavapipe reports it on F16C
+    // hosts and computes half operations in LLVM's half type, which tilevk does not model.
+    c.shaderInt16 = VK_TRUE;
+    f.core.v11.storageBuffer16BitAccess = VK_TRUE;
+    f.core.v11.uniformAndStorageBuffer16BitAccess = VK_TRUE;
+    f.core.v11.storagePushConstant16 = VK_TRUE;
+    f.core.v12.storageBuffer8BitAccess = VK_TRUE;
+    f.core.v12.uniformAndStorageBuffer8BitAccess = VK_TRUE;
+    f.core.v12.storagePushConstant8 = VK_TRUE;
+    f.core.v12.shaderInt8 = VK_TRUE;
 
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
     // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.
@@ -128,9 +142,10 @@ Features make_supported() {
     // OpGroupNonUniformBroadcast reads its id from a register per subgroup (exec_subgroup.h op_sg_broadcast), so a
     // dynamically uniform id (SPIR-V 1.5) works as a constant one does.
     f.core.v12.subgroupBroadcastDynamicId = VK_TRUE;
-    // Subgroup operations take every type the device supports: there is no 8- or 16-bit type (shaderInt8,
-    // shaderInt16 and shaderFloat16 are VK_FALSE); 64-bit values are two registers, which the subgroup operations
-    // move word by word (shader/translate_subgroup.cpp).
+    // Subgroup operations take every type the device supports: 8- and 16-bit values are one register (a
+    // zero-extended value, which Broadcast / BroadcastFirst / AllEqual move and compare as it is; the other
+    // operations on them are refused by name, shader/translate_narrow.cpp); 64-bit values are two registers, which
+    // the subgroup operations move word by word (shader/translate_subgroup.cpp).
     f.core.v12.shaderSubgroupExtendedTypes = VK_TRUE;
     // The Vulkan memory model's operands, scopes and semantics order nothing more than tilevk already does: a
     // workgroup runs on one thread, buffer atomics are sequentially consistent (shader/README.md "Compute").

@@ -13,6 +13,7 @@
 #include "shader/exec_atomic.h"
 #include "shader/exec_math.h"
 #include "shader/exec_memory.h"
+#include "shader/exec_narrow.h"
 #include "shader/exec_pointer.h"
 #include "shader/exec_subgroup.h"
 #include "shader/exec_wide.h"
@@ -50,6 +51,7 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             TILEVK_EXEC_POINTER_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_SUBGROUP_OPS(TILEVK_EXEC_CALL)
             TILEVK_EXEC_WIDE_OPS(TILEVK_EXEC_CALL)
+            TILEVK_EXEC_NARROW_OPS(TILEVK_EXEC_CALL)
 #define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
             TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)
 #undef TILEVK_EXEC_LIBM

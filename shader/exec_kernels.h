@@ -75,9 +75,10 @@ inline int32_t f2s(float x) {
     if (!(x >= -2147483648.0f && x < 2147483648.0f)) return std::numeric_limits<int32_t>::min();
     return int32_t(x);
 }
+// float -> uint32 as lavapipe converts (measured, cts types.convert.f2u): x in (-1, 2^32) truncates, everything
+// else (negative values from -1 down, 2^32 and up, infinities, NaN) gives 0xFFFFFFFF.
 inline uint32_t f2u(float x) {
-    if (!(x > -1.0f)) return 0;  // negative and NaN -> 0
-    if (x >= 4294967296.0f) return 0xFFFFFFFFu;
+    if (!(x > -1.0f && x < 4294967296.0f)) return 0xFFFFFFFFu;
     return uint32_t(x);
 }
 inline float round_even(float x) {

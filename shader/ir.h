@@ -203,6 +203,13 @@ enum class Op : uint16_t {
     // 64-bit integers and doubles (exec_wide.h): pad = WideOp. A 64-bit operand or result is two registers, low word
     // then high word (r, r + 1); which of d, a, b, c are 64-bit is WideOp's shape (wide_shape).
     Wide,
+    // 8- and 16-bit values (exec_narrow.h; shader/README.md "8- and 16-bit types"): a register holds the value
+    // zero-extended. LoadBufN / StoreBufN are LoadBuf / StoreBuf of pad bytes (1 or 2): the element is in bounds
+    // when all its bytes are; loads zero-extend, stores write the low pad bytes of c.
+    LoadBufN,
+    StoreBufN,
+    HalfToFloat,  // d = float(the IEEE half in a's low 16 bits), exact (F16C's VCVTPH2PS, LLVM's fpext)
+    FloatToHalf,  // d = the IEEE half nearest to a, ties to even; NaN: 0x7E00 with a's sign (exec_narrow.h)
 };
 
 // Inst::pad of Op::Wide (translate_wide.cpp, exec_wide.h). Shapes: see wide_shape.

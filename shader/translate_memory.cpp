@@ -99,14 +99,14 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
             if (t.flat == 2) scalar(reg + 1, off + 4, ty);
             break;
         case Type::Vector: {  // (64-bit components: two registers and two words each)
-            const uint32_t words = type(t.elem).flat, stride = p.vec_stride ? p.vec_stride : words * 4;
+            const uint32_t words = type(t.elem).flat, stride = p.vec_stride ? p.vec_stride : scalar_bytes(t.elem);
             for (uint32_t i = 0; i < t.count; ++i)
                 for (uint32_t w = 0; w < words; ++w) scalar(reg + i * words + w, off + i * stride + w * 4, t.elem);
             break;
         }
         case Type::Matrix: {
             const Type& col = type(t.elem);
-            const uint32_t words = type(col.elem).flat, size = words * 4;
+            const uint32_t words = type(col.elem).flat, size = scalar_bytes(col.elem);
             for (uint32_t c = 0; c < t.count; ++c)
                 for (uint32_t r = 0; r < col.count; ++r) {
                     uint32_t o = p.row_major ? c * size + r * p.matrix_stride : c * p.matrix_stride + r * size;
@@ -193,6 +193,11 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
     }
     uint32_t elem = p.elem == kNoReg ? konst(p.elem_const) : p.elem;
     auto scalar = [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
+        if (const uint32_t bytes = scalar_bytes(sty); bytes < 4) {  // 8- and 16-bit values (translate_narrow.cpp)
+            emit(SOp::LoadBufN, d, elem, dyn, kNoReg, p.base, p.offset + byte_off).n = p.limit;
+            p_.code.back().pad = uint16_t(bytes);
+            return;
+        }
         if (p.dyn == kNoReg && p.elem == kNoReg) {
             if (p.elem_const < p.limit)
                 emit(SOp::LoadBufUniform, d, kNoReg, kNoReg, kNoReg, p.base + p.elem_const, p.offset + byte_off);
@@ -242,7 +247,9 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
     auto scalar = [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
         uint32_t v = s;
         if (type(sty).kind == Type::Bool) v = emit1(SOp::And, s, konst(1));
-        emit(SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
+        const uint32_t bytes = scalar_bytes(sty);
+        emit(bytes < 4 ? SOp::StoreBufN : SOp::StoreBuf, mask, elem, dyn, v, p.base, p.offset + byte_off).n = p.limit;
+        if (bytes < 4) p_.code.back().pad = uint16_t(bytes);
     };
     walk_buffer_layout(p, ty, src, off, scalar);
 }
@@ -252,6 +259,7 @@ void Translator::load_phys(const Pointer& p, uint32_t ty, uint32_t dst) {
     // only the block's lanes: other lanes' pointers may be anything (the registry would catch them; this keeps
     // their results 0 and deterministic)
     walk_buffer_layout(p, ty, dst, p.offset, [&](uint32_t d, uint32_t byte_off, uint32_t sty) {
+        if (scalar_bytes(sty) < 4) fail("8- or 16-bit load through a PhysicalStorageBuffer pointer is not supported");
         emit(SOp::LoadPtr, d, p.base, p.base + 1, cur_mask_, 0, byte_off);
         if (type(sty).kind == Type::Bool) emit(SOp::INe, d, d, zero_);
     });
@@ -261,6 +269,7 @@ void Translator::store_phys(const Pointer& p, uint32_t ty, uint32_t src) {
     iface_.writes_device_addresses = true;
     const uint32_t mask = side_effect_mask();
     walk_buffer_layout(p, ty, src, p.offset, [&](uint32_t s, uint32_t byte_off, uint32_t sty) {
+        if (scalar_bytes(sty) < 4) fail("8- or 16-bit store through a PhysicalStorageBuffer pointer is not supported");
         const uint32_t v = type(sty).kind == Type::Bool ? emit1(SOp::And, s, konst(1)) : s;
         emit(SOp::StorePtr, mask, p.base, p.base + 1, v, 0, byte_off);
     });

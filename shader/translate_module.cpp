@@ -1,5 +1,6 @@
 // Module-level declarations: capabilities, extensions, execution modes, decorations, types and constants
 // (variables are declared in translate_interface.cpp).
+#include <algorithm>
 #include <cstring>
 
 #include "shader/spirv_names.h"
@@ -58,6 +59,17 @@ bool capability_supported(spv::Capability c) {
         // 64-bit integers and doubles: two registers per scalar, translate_wide.cpp (shaderInt64, shaderFloat64)
         case spv::Capability::Int64:
         case spv::Capability::Float64:
+        // 8- and 16-bit integers, and 8- and 16-bit values (16-bit floats too) in storage buffers, uniform buffers
+        // and push constants: translate_narrow.cpp (shaderInt8, shaderInt16, the 8/16-bit storage features).
+        // Not StorageInputOutput16 (lavapipe does not report it) nor Float16 (half arithmetic).
+        case spv::Capability::Int8:
+        case spv::Capability::Int16:
+        case spv::Capability::StorageBuffer16BitAccess:
+        case spv::Capability::UniformAndStorageBuffer16BitAccess:
+        case spv::Capability::StoragePushConstant16:
+        case spv::Capability::StorageBuffer8BitAccess:
+        case spv::Capability::UniformAndStorageBuffer8BitAccess:
+        case spv::Capability::StoragePushConstant8:
             return true;
         default:
             return false;
@@ -70,7 +82,7 @@ bool extension_supported(const std::string& e) {
            e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
            e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product" ||
            e == "SPV_KHR_vulkan_memory_model" || e == "SPV_KHR_physical_storage_buffer" ||
-           e == "SPV_EXT_physical_storage_buffer";
+           e == "SPV_EXT_physical_storage_buffer" || e == "SPV_KHR_16bit_storage" || e == "SPV_KHR_8bit_storage";
 }
 
 }  // namespace
@@ -232,13 +244,15 @@ void Translator::declare_type(const Instr& in) {
             break;
         case spv::Op::OpTypeInt:
         case spv::Op::OpTypeFloat:
-            // 64-bit integers and doubles: two registers, low word first (translate_wide.cpp)
-            if (in[2] != 32 && in[2] != 64)
+            // 64-bit integers and doubles: two registers, low word first (translate_wide.cpp); 8- and 16-bit
+            // integers and 16-bit floats: one register, zero-extended (translate_narrow.cpp)
+            if (in[2] != 32 && in[2] != 64 && in[2] != 16 && !(in[2] == 8 && in.op == spv::Op::OpTypeInt))
                 fail(std::string(in.op == spv::Op::OpTypeInt ? "int" : "float") + std::to_string(in[2]) +
-                     " types are not supported (32- and 64-bit only)");
+                     " types are not supported");
             t.kind = in.op == spv::Op::OpTypeInt ? Type::Int : Type::Float;
             t.is_signed = in.op == spv::Op::OpTypeInt && in[3];
             t.wide = in[2] == 64;
+            t.bits = std::min(in[2], 32u);
             t.flat = t.wide ? 2 : 1;
             break;
         case spv::Op::OpTypeVector:
@@ -372,7 +386,8 @@ void Translator::declare_constant(const Instr& in) {
                 vals_[in[2]] = Value{r, in[1]};
                 return;
             }
-            vals_[in[2]] = Value{konst(in[3]), in[1]};
+            // a narrow literal's word is sign-extended for signed types: kept zero-extended here
+            vals_[in[2]] = Value{konst(t.bits < 32 ? in[3] & ((1u << t.bits) - 1) : in[3]), in[1]};
             return;
         }
         case spv::Op::OpConstantTrue:

@@ -63,14 +63,14 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpMemoryBarrier:
             return;
         case spv::Op::OpExtInst:
-            if (in.n > 4 && in[3] == glsl_ext_ && glsl_wide(in)) return;
+            if (op_narrow(in) || (in.n > 4 && in[3] == glsl_ext_ && glsl_wide(in))) return;
             return glsl_op(in);
         case spv::Op::OpFunctionCall:
             fail("unsupported opcode OpFunctionCall (function was not inlined)");
         default:
             break;
     }
-    if (op_pointer(in) || op_wide(in)) return;
+    if (op_narrow(in) || op_pointer(in) || op_wide(in)) return;
     if (op_arith(in) || op_logic(in) || op_composite(in) || op_fragment(in) || op_memory(in) || op_image(in) ||
         op_atomic(in) || op_subgroup(in) || op_dot(in))
         return;

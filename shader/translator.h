@@ -45,7 +45,8 @@ struct Type {
     spv::StorageClass storage = spv::StorageClass::Function;
     uint32_t flat = 0;  // number of 32-bit scalars when flattened (registers a value of this type occupies)
     uint32_t dim = 0, arrayed = 0, ms = 0, sampled = 0;  // images
-    bool wide = false;  // a 64-bit integer (two registers: low word, high word; translate_pointer.cpp)
+    uint32_t bits = 32;  // Int / Float: 8 or 16 for the narrow types (one zero-extended register; translate_narrow.cpp)
+    bool wide = false;   // a 64-bit integer (two registers: low word, high word; translate_pointer.cpp)
 };
 
 struct Decorations {
@@ -173,6 +174,17 @@ class Translator {
     void wide_each(const Instr& in, WideOp o, std::initializer_list<uint32_t> ids, uint32_t d = kNoReg);
     uint32_t dot64(uint32_t a, uint32_t b, uint32_t n);
     std::unordered_map<uint32_t, uint32_t> f2s_of_;  // OpConvertFToS result id -> its double operand id
+    // translate_narrow.cpp: 8- and 16-bit integers, 16-bit float storage (one zero-extended register per scalar)
+    bool op_narrow(const Instr& in);
+    bool op_narrow_convert(const Instr& in);
+    bool bitcast_pieces(const Instr& in);
+    bool glsl_narrow(const Instr& in);
+    uint32_t narrow_bits(uint32_t t) const;  // 8 or 16 for a narrow scalar or vector type, else 0
+    bool is_narrow_value(uint32_t id) const;
+    uint32_t bits_of(uint32_t t) const;        // component width: 8, 16, 32 or 64
+    uint32_t sext(uint32_t r, uint32_t bits);  // r sign-extended from `bits` (a new register; r itself when 32)
+    uint32_t wrap(uint32_t r, uint32_t bits);  // the low `bits` of r
+    uint32_t narrow_operand(uint32_t id, uint32_t i, bool is_signed);
     bool is_phys_pointer(uint32_t type_id) const;
     Pointer phys_pointer(uint32_t id);                  // the pointer a PhysicalStorageBuffer pointer value holds
     uint32_t address_add(uint32_t addr, uint32_t off);  // two registers: addr + sign-extended 32-bit off
@@ -224,7 +236,9 @@ class Translator {
     Value& val(uint32_t id);
     uint32_t reg(uint32_t id) { return val(id).reg; }
     uint32_t component_type(uint32_t t) const;  // scalar type of a scalar/vector/matrix
-    uint32_t scalar_bytes(uint32_t t) const { return type(t).wide ? 8 : 4; }  // buffer size of a scalar type
+    uint32_t scalar_bytes(uint32_t t) const {   // buffer size of a scalar type
+        return type(t).wide ? 8 : type(t).bits < 32 ? type(t).bits / 8 : 4;
+    }
     uint32_t flat_index(uint32_t t, const uint32_t* idx, size_t n, uint32_t* out_type) const;
 
     // memory

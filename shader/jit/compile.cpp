@@ -332,6 +332,14 @@ std::string op_name(Op op) {
             return "AtomicPtr";
         case Op::Wide:  // 64-bit integers and doubles (shader/README.md "64-bit types")
             return "Wide";
+        case Op::LoadBufN:  // 8- and 16-bit buffer access and float16 conversions (shader/README.md)
+            return "LoadBufN";
+        case Op::StoreBufN:
+            return "StoreBufN";
+        case Op::HalfToFloat:
+            return "HalfToFloat";
+        case Op::FloatToHalf:
+            return "FloatToHalf";
         default:
             break;
     }

@@ -315,8 +315,8 @@ void LaneEmitter::int_compare(const Inst& in) {
     def(in.d, d);
 }
 
-// exec.cpp f2u: !(x > -1) -> 0 (negative, NaN); x >= 2^32 -> 0xFFFFFFFF; else truncate. cvttps2dq covers
-// [0, 2^31); [2^31, 2^32) is converted from x - 2^31 (exact there) with the top bit put back.
+// exec_kernels.h f2u: x in (-1, 2^32) truncates (cvttps2dq covers [0, 2^31); [2^31, 2^32) is converted from
+// x - 2^31, exact there, with the top bit put back); outside or NaN all ones, as lavapipe.
 void LaneEmitter::f2u(const Inst& in) {
     Ymm a = use(in.a), big = temp(), t = temp(), m = temp();
     a_.vcmpps(big, a, pool_.splat(fbits(2147483648.0f)), kGeOQ);
@@ -325,10 +325,11 @@ void LaneEmitter::f2u(const Inst& in) {
     a_.vcvttps2dq(t, t);
     a_.vpand(big, big, pool_.splat(0x80000000u));
     a_.vpxor(t, t, big);
-    a_.vcmpps(m, a, pool_.splat(fbits(4294967296.0f)), kGeOQ);
+    a_.vcmpps(m, a, pool_.splat(fbits(-1.0f)), kGtOQ);
+    a_.vcmpps(big, a, pool_.splat(fbits(4294967296.0f)), kLtOQ);
+    a_.vpand(m, m, big);
+    a_.vpxor(m, m, pool_.splat(~0u));
     a_.vpor(t, t, m);
-    a_.vcmpps(m, a, pool_.splat(fbits(-1.0f)), kNgtUS);
-    a_.vpandn(t, m, t);
     def(in.d, t);
 }
 

@@ -155,7 +155,8 @@ TEST_F(HonestReports, EveryFeatureStructMemberIsAcceptedExactlyWhenReported) {
             }
         }
     }
-    EXPECT_GT(refused, 300);
+    // (a floor proving the loop reached the structs: 295 members refused once 8/16-bit types were reported)
+    EXPECT_GT(refused, 280);
 }
 
 // Expectations written from the design, not read from the driver: what the issue found accepted silently, a
@@ -203,8 +204,8 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
         EXPECT_EQ(create_device(nullptr, &over), VK_SUCCESS);
     }
     for (size_t offset :
-         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, dualSrcBlend),
-          offsetof(VkPhysicalDeviceFeatures, shaderInt16)}) {
+         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, samplerAnisotropy),
+          offsetof(VkPhysicalDeviceFeatures, shaderResourceMinLod)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);
         StderrCapture capture;
