@@ -45,6 +45,7 @@ void add_stencil_cases(CaseList& out);
 void add_blend_cases(CaseList& out);
 void add_viewport_cases(CaseList& out);
 void add_texture_cases(CaseList& out);
+void add_texture_cube_cases(CaseList& out);
 void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);

@@ -55,6 +55,7 @@ CaseList all_cases() {
     add_blend_cases(out);
     add_viewport_cases(out);
     add_texture_cases(out);
+    add_texture_cube_cases(out);
     add_mesh_cases(out);
     add_quirk_cases(out);
     add_blit_cases(out);

@@ -40,6 +40,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DotProductInputAll:
         case spv::Capability::DotProductInput4x8BitPacked:
         case spv::Capability::Sampled1D:
+        case spv::Capability::SampledCubeArray:  // samplerCubeArray (shader/texture_cube.cpp)
         case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::ImageBuffer:      // storage texel buffers: imageLoad / imageStore / atomics / imageSize
@@ -342,6 +343,11 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
         // like a 1D image, storage ones (imageBuffer) read, written and used by atomics as a 2D storage image at
         // y = 0 (translate_image.cpp).
         if (t.arrayed) fail("invalid arrayed texel buffer");
+        return;
+    }
+    if (spv::Dim(t.dim) == spv::Dim::Cube) {
+        // samplerCube[Array][Shadow]: sampled through texture_cube.cpp; storage cube images are not implemented
+        if (t.sampled == 2) fail("unsupported storage image dimension Cube (imageCube / imageCubeArray)");
         return;
     }
     if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D) {
