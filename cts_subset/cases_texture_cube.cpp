@@ -14,9 +14,10 @@ const char* const kVertex = R"(#version 450
 layout(location=0) in vec4 in_pos;
 layout(location=1) in vec4 in_color;
 layout(location=2) in vec2 in_uv;
+layout(location=3) in float in_psize;
 layout(location=0) out vec3 v_dir;
 layout(location=1) out vec2 v_uv;
-void main() { gl_Position = in_pos; v_dir = in_color.xyz; v_uv = in_uv; }
+void main() { gl_Position = in_pos; gl_PointSize = in_psize; v_dir = in_color.xyz; v_uv = in_uv; }
 )";
 
 // The fragment shader around `body`, which sets `vec4 o` from `tex`, the direction `d` and `uv` in [0, 1].
