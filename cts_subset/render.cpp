@@ -243,12 +243,11 @@ void make_draw_buffers(const DeviceContext& c, Cleanup& gc, const Scene& s, Draw
 void record_texture_uploads(VkCommandBuffer cb, const std::vector<Texture>& textures) {
     for (const Texture& tex : textures) {
         if (!tex.image) continue;
-        barrier(cb, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, tex.mips, VK_IMAGE_LAYOUT_UNDEFINED,
-                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        barrier(cb, tex.image, tex.aspect, tex.mips, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         vkCmdCopyBufferToImage(cb, tex.staging.buffer, tex.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                uint32_t(tex.copies.size()), tex.copies.data());
-        barrier(cb, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, tex.mips, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        barrier(cb, tex.image, tex.aspect, tex.mips, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
     }

@@ -114,8 +114,9 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
 
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
                    VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth, bool one_d,
-                   uint32_t layers) {
+                   uint32_t layers, VkImageCreateFlags flags) {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.flags = flags;
     ci.imageType = one_d ? VK_IMAGE_TYPE_1D : depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ci.format = format;
     ci.extent = {w, one_d ? 1 : h, depth};
@@ -201,7 +202,63 @@ static void texel_3d(uint32_t level, uint32_t x, uint32_t y, uint32_t z, uint32_
     out[3] = static_cast<uint8_t>(255 - 29 * std::min(level, 8u));
 }
 
+// A cube or cube-array texture (TextureSpec::cube_layers): every layer and level its own values, RGBA8 gradients
+// tinted by layer and level, or D32_SFLOAT depths, so that a wrong face, orientation or level shows.
+static Texture make_cube_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
+    Texture tex;
+    tex.mips = t.mip_levels;
+    const bool depth = t.format == VK_FORMAT_D32_SFLOAT;
+    tex.aspect = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    tex.image = make_image(c, gc, t.format, t.width, t.width, t.mip_levels, VK_SAMPLE_COUNT_1_BIT,
+                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 1, false, t.cube_layers,
+                           VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT);
+    tex.view = make_view(c, gc, tex.image, t.format, tex.aspect, t.mip_levels,
+                         t.cube_layers == 6 ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_CUBE_ARRAY, t.cube_layers);
+    VkDeviceSize total = 0;
+    for (uint32_t l = 0, w = t.width; l < t.mip_levels; ++l, w = std::max(1u, w / 2))
+        total += VkDeviceSize(w) * w * 4 * t.cube_layers;
+    tex.staging = make_buffer(c, gc, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
+    VkDeviceSize offset = 0;
+    for (uint32_t l = 0, w = t.width; l < t.mip_levels; ++l, w = std::max(1u, w / 2)) {
+        for (uint32_t k = 0; k < t.cube_layers; ++k)
+            for (uint32_t y = 0; y < w; ++y)
+                for (uint32_t x = 0; x < w; ++x) {
+                    uint8_t* o = bytes + offset + ((VkDeviceSize(k) * w + y) * w + x) * 4;
+                    if (depth) {
+                        const float d = float((x * 7 + y * 13 + k * 29 + l * 5) % 64) / 63.0f;
+                        std::memcpy(o, &d, 4);
+                        continue;
+                    }
+                    o[0] = uint8_t(x * 255 / std::max(1u, w - 1));
+                    o[1] = uint8_t(y * 255 / std::max(1u, w - 1));
+                    o[2] = uint8_t(k * 40 + l * 23);
+                    o[3] = uint8_t(255 - k * 17 - l * 9);
+                }
+        VkBufferImageCopy r{};
+        r.bufferOffset = offset;
+        r.imageSubresource = {tex.aspect, l, 0, t.cube_layers};
+        r.imageExtent = {w, w, 1};
+        tex.copies.push_back(r);
+        offset += VkDeviceSize(w) * w * 4 * t.cube_layers;
+    }
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = t.mag;
+    si.minFilter = t.min;
+    si.mipmapMode = t.mip_mode;
+    si.addressModeU = si.addressModeV = si.addressModeW = t.wrap;
+    si.maxLod = t.max_lod;
+    si.mipLodBias = t.lod_bias;
+    si.compareEnable = t.compare ? VK_TRUE : VK_FALSE;
+    si.compareOp = t.compare_op;
+    vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");
+    VkDevice dev = c.device;
+    gc.add([dev, s = tex.sampler] { vkDestroySampler(dev, s, nullptr); });
+    return tex;
+}
+
 Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
+    if (t.cube_layers != 0) return make_cube_texture(c, gc, t);
     Texture tex;
     tex.mips = t.mip_levels;
     VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;

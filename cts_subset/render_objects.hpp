@@ -42,10 +42,11 @@ struct Buffer {
     void* mapped = nullptr;
 };
 Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBufferUsageFlags usage);
-// depth > 1: a 3D image (and make_view's view_type VK_IMAGE_VIEW_TYPE_3D); one_d: a 1D image (h ignored).
+// depth > 1: a 3D image (and make_view's view_type VK_IMAGE_VIEW_TYPE_3D); one_d: a 1D image (h ignored); `layers`
+// and `flags` (VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) for cube textures.
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
                    VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth = 1, bool one_d = false,
-                   uint32_t layers = 1);
+                   uint32_t layers = 1, VkImageCreateFlags flags = 0);
 VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
                       uint32_t mips, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D, uint32_t layers = 1);
 void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_t mips, VkImageLayout from,
@@ -60,6 +61,7 @@ struct Texture {
     Buffer staging;
     std::vector<VkBufferImageCopy> copies;
     uint32_t mips = 1;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
 };
 Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t);
 

@@ -50,6 +50,14 @@ struct TextureSpec {
     VkSamplerAddressMode wrap = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
     float max_lod = 16.0f;
+    // Cube textures (cases_texture_cube.cpp): a CUBE view when 6, a CUBE_ARRAY view of that many layers when a
+    // larger multiple of 6 (square: width is the size); their format (R8G8B8A8_UNORM or D32_SFLOAT), sampler
+    // LOD bias and depth comparison.
+    uint32_t cube_layers = 0;
+    VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+    float lod_bias = 0.0f;
+    bool compare = false;
+    VkCompareOp compare_op = VK_COMPARE_OP_LESS;
 };
 
 struct Draw {

@@ -82,6 +82,9 @@ Features make_supported() {
     // Storage images of the 23 extended formats (format/support.txt), converted as lavapipe converts them
     // (api_breadth ApiStorageImage.EveryExtendedFormat*, cts compute.image.*).
     c.shaderStorageImageExtendedFormats = VK_TRUE;
+    // Cube-array views sampled through samplerCubeArray[Shadow] as llvmpipe samples them (shader/texture_cube.cpp;
+    // cts texture.cube.array_*, ShaderTextureCube tests).
+    c.imageCubeArray = VK_TRUE;
     // Stores through images declared without a format take the view's format (shader/ never reads the type's
     // format), as lavapipe reports (PIPE_CAP_IMAGE_STORE_FORMATTED); reads without a format are not reported there
     // (no PIPE_CAP_IMAGE_LOAD_FORMATTED in llvmpipe) and not here (api_breadth ApiStorageImage.WriteWithoutFormat*).

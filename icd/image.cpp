@@ -78,6 +78,14 @@ VkResult check_image_create_info(const Device& dev, const VkImageCreateInfo* ci,
                     props.maxExtent.height, props.maxExtent.depth, props.maxMipLevels, props.maxArrayLayers,
                     vk_flags_name<VkSampleCountFlagBits>(props.sampleCounts).c_str());
     }
+    // A cube-compatible image holds whole square faces (VUID-VkImageCreateInfo-flags-08865/08866).
+    if ((ci->flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) &&
+        (ci->extent.width != ci->extent.height || ci->arrayLayers < 6)) {
+        return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                    "%s: VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT needs a square extent and at least 6 array layers "
+                    "(got %ux%u, %u layers)",
+                    command, ci->extent.width, ci->extent.height, ci->arrayLayers);
+    }
     *format = f;
     return VK_SUCCESS;
 }
@@ -106,6 +114,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     img->samples = ci->samples;
     img->tiling = ci->tiling;
     img->usage = ci->usage;
+    img->cube_compatible = (ci->flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) != 0;
     img->layout = compute_image_layout(*f, ci->extent, ci->mipLevels, ci->arrayLayers, ci->samples);
     *pImage = to_handle(img);
     return VK_SUCCESS;

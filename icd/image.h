@@ -36,6 +36,7 @@ struct Image : NonDispatchableObject {
     uint32_t samples = 1;
     VkImageTiling tiling = VK_IMAGE_TILING_OPTIMAL;
     VkImageUsageFlags usage = 0;
+    bool cube_compatible = false;  // VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT: cube and cube-array views allowed
     ImageLayout layout;
     DeviceMemory* memory = nullptr;
     VkDeviceSize memory_offset = 0;

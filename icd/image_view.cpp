@@ -12,9 +12,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
                                                    const VkAllocationCallbacks* pAllocator, VkImageView* pView) {
     Device* dev = from_handle<Device>(device);
     Image* img = from_handle<Image>(ci->image);
-    // A 3D view of a 3D image, 2D and 2D-array views of 2D images, 1D and 1D-array views of 1D images. The others
-    // (cube) are not implemented, nor 2D views of 3D images (that needs VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT,
-    // which tilevk does not offer).
+    // 1D and 1D-array views of 1D images, 3D views of 3D images, 2D, 2D-array, cube and cube-array views of 2D images
+    // (cube views: of cube-compatible images, 6 layers or a multiple of 6). 2D views of 3D images are not made
+    // (that needs VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT, which tilevk does not offer).
+    const bool view_cube = ci->viewType == VK_IMAGE_VIEW_TYPE_CUBE || ci->viewType == VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
     bool made = false;
     switch (img->type) {
         case VK_IMAGE_TYPE_1D:
@@ -24,14 +25,27 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
             made = ci->viewType == VK_IMAGE_VIEW_TYPE_3D;
             break;
         default:
-            made = ci->viewType == VK_IMAGE_VIEW_TYPE_2D || ci->viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+            made = ci->viewType == VK_IMAGE_VIEW_TYPE_2D || ci->viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY || view_cube;
             break;
     }
     if (!made) {
         return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                    "vkCreateImageView: %s of a %s image is not implemented (1D and 1D-array views of 1D images, 2D "
-                    "and 2D-array views of 2D images, 3D views of 3D images)",
+                    "vkCreateImageView: %s of a %s image is not implemented (1D and 1D-array views of 1D images, 2D, "
+                    "2D-array, cube and cube-array views of 2D images, 3D views of 3D images)",
                     vk_enum_name(ci->viewType), vk_enum_name(img->type));
+    }
+    if (view_cube) {
+        const uint32_t layers = ci->subresourceRange.layerCount == VK_REMAINING_ARRAY_LAYERS
+                                    ? img->array_layers - ci->subresourceRange.baseArrayLayer
+                                    : ci->subresourceRange.layerCount;
+        const bool count_ok = ci->viewType == VK_IMAGE_VIEW_TYPE_CUBE ? layers == 6 : layers % 6 == 0 && layers > 0;
+        if (!img->cube_compatible || !count_ok) {
+            return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                        "vkCreateImageView: %s needs an image created with VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT and "
+                        "6 layers (a multiple of 6 for VK_IMAGE_VIEW_TYPE_CUBE_ARRAY); got %s, %u layers",
+                        vk_enum_name(ci->viewType),
+                        img->cube_compatible ? "a cube-compatible image" : "an image without the flag", layers);
+        }
     }
     const FormatInfo* f = find_format(ci->format);
     if (f == nullptr || !has_image_support(*f)) {

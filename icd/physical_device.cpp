@@ -24,7 +24,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxImageDimension1D = kMaxImageDimension;
     l.maxImageDimension2D = kMaxImageDimension;
     l.maxImageDimension3D = kMaxImageDimension3D;
-    l.maxImageDimensionCube = 4096;
+    // A cube face is a 2D layer: the 2D limit. lavapipe reports 1 << PIPE_CAP_MAX_TEXTURE_CUBE_LEVELS = 32768,
+    // past its own 2D maxExtent of 16384 (lvp_device.c), which no image can reach (icd/README.md, "Limits").
+    l.maxImageDimensionCube = kMaxImageDimension;
     l.maxImageArrayLayers = kMaxArrayLayers;
     l.maxTexelBufferElements = kMaxTexelBufferElements;
     l.maxUniformBufferRange = 16384;
@@ -218,7 +220,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
         VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     if (type == VK_IMAGE_TYPE_1D && (f->layout == format::Layout::kCompressed || (usage & ~kUsage1D) != 0))
         return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    if (flags != 0) return VK_ERROR_FORMAT_NOT_SUPPORTED;                // no cube/mutable/sparse/alias images
+    // Cube-compatible 2D images are 2D arrays whose layers cube views sample (shader/texture_cube.cpp); no
+    // mutable/sparse/alias images.
+    if ((flags & ~VkImageCreateFlags(VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT)) != 0 ||
+        ((flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) && type != VK_IMAGE_TYPE_2D))
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
     VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? VkFormatFeatureFlags(f->optimal)
                                 : tiling == VK_IMAGE_TILING_LINEAR ? VkFormatFeatureFlags(f->linear)
                                                                    : 0;
@@ -252,8 +258,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     // Multisampled images can be sampled (texelFetch with a sample index, textureSamples: shader/texture.cpp), as
     // lavapipe's (lvp_formats.c: 4x for optimal 2D attachment formats whatever the usage), but not read as input
     // attachments or used as storage images: subpassInputMS and storage images with samples are refused
-    // (shaderStorageImageMultisample is off), where lavapipe offers them. 1D and 3D images have one sample.
-    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && type == VK_IMAGE_TYPE_2D &&
+    // (shaderStorageImageMultisample is off), where lavapipe offers them. 1D, 3D and cube-compatible images have one
+    // sample (lvp_formats.c; Vulkan requires it of cube-compatible ones).
+    const bool cube = (flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) != 0;
+    pProps->sampleCounts = tiling == VK_IMAGE_TILING_OPTIMAL && attachment && type == VK_IMAGE_TYPE_2D && !cube &&
                                    !(usage & (VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT))
                                ? VkSampleCountFlags(f->sample_counts) & kSampleCounts
                                : VkSampleCountFlags(VK_SAMPLE_COUNT_1_BIT);

@@ -318,6 +318,8 @@ enum SampleFlags : uint32_t {
     kSampleDref = 128,       // depth compare: the reference is the last coordinate register (b + extra - 1)
     kSampleOffset = 256,     // constant texel offset: x in bits 16..23, y in bits 24..31 (signed)
     kSampleGather = 512,     // OpImageGather / OpImageDrefGather: level 0's 2x2 footprint, component in bits 10..11
+    kSampleCube = 32768,     // cube / cube-array view: coordinates are a direction (x, y, z[, layer]), gradients
+                             // n..n+5 (dx.xyz, dy.xyz); shader/texture_cube.cpp
     kSampleMs = 4096,        // Fetch: c holds the sample index (level 0 of a multisampled view); QueryLevels: the
                              // view's sample count instead of its levels (OpImageQuerySamples)
     kSample3D = 8192,        // 3D image: coordinates (s, t, r), sizes (w, h, d); texture_3d.cpp

@@ -11,6 +11,7 @@
 
 #include "format/texel_codec.h"
 #include "shader/ir.h"
+#include "shader/texture_cube.h"
 #include "shader/texture_fixed8.h"
 #include "shader/texture_internal.h"
 
@@ -339,28 +340,6 @@ Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float
     return {value(x[0], y[1]), value(x[1], y[1]), value(x[1], y[0]), value(x[0], y[0])};
 }
 
-// The 8-bit channels of one texel in RGBA order (absent channels read 0, 0, 0, 255), for Unorm8 formats.
-// A texel as lavapipe's 8-bit path fetches it (lp_build_fetch_rgba_aos): 8-bit channels as they are, narrower
-// UNORM channels widened to 8 bits by bit replication (the 8-bit blend type's widening).
-Bytes texel_bytes(const format::FormatInfo& f, const uint8_t* p) {
-    if (f.kind == format::ChannelKind::PackedUnorm) {
-        uint32_t w[4];
-        format::load_blend_type(f, p, w);
-        return {uint8_t(w[0]), uint8_t(w[1]), uint8_t(w[2]), uint8_t(w[3])};
-    }
-    uint8_t c[4];
-    format::load_unorm8(f, p, c);
-    return {c[0], c[1], c[2], c[3]};
-}
-
-// util_format_fits_8unorm: every channel UNORM of at most 8 bits, not sRGB.
-bool fits_8unorm(const format::FormatInfo& f) {
-    if (f.kind == format::ChannelKind::Unorm8) return true;
-    if (f.kind != format::ChannelKind::PackedUnorm) return false;
-    for (int i = 0; i < f.channels; ++i)
-        if (f.channel[i].bits > 8) return false;
-    return true;
-}
 
 bool simple_wrap(AddressMode m) {
     return m == AddressMode::Repeat || m == AddressMode::ClampToEdge;
@@ -369,7 +348,7 @@ bool simple_wrap(AddressMode m) {
 // lavapipe's choice of the 8-bit fixed-point filter (lp_bld_sample_soa.c use_aos): a format that fits 8-bit UNORM
 // (8-bit UNORM, 565, 5551, 4444), no depth compare, REPEAT or CLAMP_TO_EDGE on every used axis.
 bool use_fixed8(const ImageView& img, const SamplerState& smp, bool one_d, bool dref) {
-    const bool fits = fits_8unorm(format::format_info(img.format));
+    const bool fits = fixed8::fits_8unorm(format::format_info(img.format));
     return fits && !(dref && smp.compare_enable) && simple_wrap(smp.address_u) && (one_d || simple_wrap(smp.address_v));
 }
 
@@ -403,7 +382,7 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     const uint32_t bpp = fi.bytes;
     const uint8_t* base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
     auto at = [&](int32_t x, int32_t y) {
-        return texel_bytes(fi, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
+        return fixed8::texel_bytes(fi, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
     };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
@@ -636,7 +615,8 @@ void exec_query_size(const ImageOperands& op) {
             int k = 1;
             if (!op.one_d()) vals[k++] = std::max(1u, img->height >> lv);
             if (op.three_d()) vals[k++] = std::max(1u, img->depth >> lv);
-            if (op.arrayed()) vals[k++] = img->layers;
+            // a cube array's size counts cubes (lp_build_size_query_soa)
+            if (op.arrayed()) vals[k++] = (op.in.imm & kSampleCube) ? img->layers / 6 : img->layers;
         }
         for (uint32_t c = 0; c < op.in.extra && c < 3; ++c) op.reg(op.in.d + c)[l] = vals[c];
     }
@@ -787,6 +767,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
         case Op::ImageStore:
             return exec_image_store(op);
         default:
+            if (in.imm & kSampleCube) return cube::exec_sample_cube(in, R, slots, num_slots);
             return exec_sample(op);
     }
 }
@@ -813,6 +794,15 @@ uint32_t* storage_image_word(const Descriptor* const* slots, uint32_t num_slots,
 std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer) {
     if (!image_ok(&img)) return {0, 0, 0, 0};
     return fetch_at(img, x, y, int32_t(layer), 0, false);
+}
+
+// The view rules the cube sampler shares (texture_cube.h).
+std::array<float, 4> apply_view_swizzle(const std::array<float, 4>& v, const ImageView& img) {
+    return swizzled(v, img);
+}
+
+bool view_usable(const ImageView* img) {
+    return image_ok(img);
 }
 
 }  // namespace tilevk::shader

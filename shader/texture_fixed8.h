@@ -4,11 +4,37 @@
 // lp_bld_sample_aos.c); everything else is filtered in float.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include "format/texel_codec.h"
+
 namespace tilevk::shader::fixed8 {
+
+// util_format_fits_8unorm: every channel UNORM of at most 8 bits, not sRGB (the formats of the 8-bit path).
+inline bool fits_8unorm(const format::FormatInfo& f) {
+    if (f.kind == format::ChannelKind::Unorm8) return true;
+    if (f.kind != format::ChannelKind::PackedUnorm) return false;
+    for (int i = 0; i < f.channels; ++i)
+        if (f.channel[i].bits > 8) return false;
+    return true;
+}
+
+// A texel as lavapipe's 8-bit path fetches it (lp_build_fetch_rgba_aos), its channels in RGBA order (absent
+// channels read 0, 0, 0, 255): 8-bit channels as they are, narrower UNORM channels widened to 8 bits by bit
+// replication (the 8-bit blend type's widening).
+inline std::array<int32_t, 4> texel_bytes(const format::FormatInfo& f, const uint8_t* p) {
+    if (f.kind == format::ChannelKind::PackedUnorm) {
+        uint32_t w[4];
+        format::load_blend_type(f, p, w);
+        return {uint8_t(w[0]), uint8_t(w[1]), uint8_t(w[2]), uint8_t(w[3])};
+    }
+    uint8_t c[4];
+    format::load_unorm8(f, p, c);
+    return {c[0], c[1], c[2], c[3]};
+}
 
 // Float -> int32 rounding to nearest-even, as x86 cvtps2dq: NaN and out-of-range give INT32_MIN.
 inline int32_t iround(float x) {

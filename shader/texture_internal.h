@@ -40,7 +40,7 @@ Axis linear_axis(float s, float u, int32_t n, int32_t off, AddressMode m, bool u
 fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, AddressMode m);
 // The 8-bit nearest texel index (final) of lavapipe's 8-bit filter (lp_build_sample_wrap_nearest_int).
 int32_t nearest_fixed8(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
-Bytes texel_bytes(const format::FormatInfo& f, const uint8_t* p);
+using fixed8::texel_bytes;  // texture_fixed8.h
 
 // texture_3d.cpp: one mip level of a 3D view, nearest or trilinear, through the float or the 8-bit filter.
 Vec4 sample_level_3d(const ImageView& img, const SamplerState& smp, uint32_t level, float s, float t, bool linear,

@@ -19,6 +19,11 @@ bool Translator::image_sample(const Instr& in) {
     const bool three_d = spv::Dim(it.dim) == spv::Dim::Dim3D;
     if (three_d) flags |= kSample3D;  // texture_3d.cpp
     const spv::Op o = in.op;
+    const bool cube = spv::Dim(it.dim) == spv::Dim::Cube;
+    if (cube) {
+        if (o == spv::Op::OpImageFetch) fail("OpImageFetch on a cube image");
+        flags |= kSampleCube;
+    }
     if (spv::Dim(it.dim) == spv::Dim::Buffer) {
         if (o != spv::Op::OpImageFetch) fail("texel buffers are read with texelFetch only");
         flags |= kSample1D;  // one row of `range / texel size` texels, level 0
@@ -57,12 +62,13 @@ bool Translator::image_sample(const Instr& in) {
     if (operands & uint32_t(spv::ImageOperandsMask::Grad)) {
         flags |= kSampleGrad;
         uint32_t gx = reg(in[at++]), gy = reg(in[at++]);
-        // dx then dy, two components each (3D: three); 1D's second ones are 0
-        const uint32_t nc = (flags & kSample1D) ? 1 : 2, per = three_d ? 3 : 2;
+        // dx then dy, two components each (x, y); three for 3D and for a cube's direction (texture_3d.cpp,
+        // texture_cube.cpp); 1D's second ones are 0
+        const uint32_t nc = (flags & kSample1D) ? 1 : 2, per = three_d || cube ? 3 : 2;
         grad = alloc(2 * per);
         for (uint32_t i = 0; i < per; ++i) {
-            emit(SOp::Mov, grad + i, i < nc || three_d ? gx + i : zero_);
-            emit(SOp::Mov, grad + per + i, i < nc || three_d ? gy + i : zero_);
+            emit(SOp::Mov, grad + i, i < nc || per == 3 ? gx + i : zero_);
+            emit(SOp::Mov, grad + per + i, i < nc || per == 3 ? gy + i : zero_);
         }
     }
     if (operands & uint32_t(spv::ImageOperandsMask::ConstOffset)) {
@@ -80,6 +86,7 @@ bool Translator::image_sample(const Instr& in) {
         }
         flags |= kSampleOffset | (uint32_t(uint8_t(int8_t(off[0]))) << 16) | (uint32_t(uint8_t(int8_t(off[1]))) << 24);
     }
+    if (cube && (flags & kSampleOffset)) fail(opname(o) + " with a texel offset on a cube image");
     // texelFetch(sampler2DMS[Array], p, sample): level 0 of the view, the sample's plane (texture.cpp exec_fetch)
     if (operands & uint32_t(spv::ImageOperandsMask::Sample)) {
         if (o != spv::Op::OpImageFetch || !it.ms) fail("a Sample image operand outside a multisampled texel fetch");
@@ -267,6 +274,7 @@ bool Translator::op_image(const Instr& in) {
             const Type& it = type(val(in[3]).type);
             uint32_t flags =
                 (it.arrayed ? uint32_t(kSampleArray) : 0u) |
+                (spv::Dim(it.dim) == spv::Dim::Cube ? uint32_t(kSampleCube) : 0u) |
                 (spv::Dim(it.dim) == spv::Dim::Dim1D || spv::Dim(it.dim) == spv::Dim::Buffer ? uint32_t(kSample1D)
                                                                                              : 0u) |
                 (spv::Dim(it.dim) == spv::Dim::Dim3D ? uint32_t(kSample3D) : 0u);

@@ -41,6 +41,7 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::DotProductInputAll:
         case spv::Capability::DotProductInput4x8BitPacked:
         case spv::Capability::Sampled1D:
+        case spv::Capability::SampledCubeArray:  // samplerCubeArray (shader/texture_cube.cpp)
         case spv::Capability::InputAttachment:  // subpassLoad: a texel fetch at the fragment's pixel
         case spv::Capability::SampledBuffer:    // uniform texel buffers: texelFetch / textureSize only
         case spv::Capability::ImageBuffer:      // storage texel buffers: imageLoad / imageStore / atomics / imageSize
@@ -359,12 +360,16 @@ void Translator::declare_image_type(const Instr& in, Type& t) {
         if (t.arrayed) fail("invalid arrayed texel buffer");
         return;
     }
+    if (spv::Dim(t.dim) == spv::Dim::Cube) {
+        // samplerCube[Array][Shadow]: sampled through texture_cube.cpp; storage cube images are not implemented
+        if (t.sampled == 2) fail("unsupported storage image dimension Cube (imageCube / imageCubeArray)");
+        return;
+    }
     const bool dim_3d = spv::Dim(t.dim) == spv::Dim::Dim3D;
     if (spv::Dim(t.dim) != spv::Dim::Dim2D && spv::Dim(t.dim) != spv::Dim::Dim1D && !dim_3d) {
-        const char* name = spv::Dim(t.dim) == spv::Dim::Cube   ? "Cube (samplerCube)"
-                           : spv::Dim(t.dim) == spv::Dim::Rect ? "Rect"
-                                                               : "this dimension";
-        fail(std::string("unsupported image dimension ") + name + " (only 1D, 2D and 3D, 1D and 2D arrays included)");
+        const char* name = spv::Dim(t.dim) == spv::Dim::Rect ? "Rect" : "this dimension";
+        fail(std::string("unsupported image dimension ") + name +
+             " (only 1D, 2D, 3D and Cube, 1D, 2D and Cube arrays included)");
     }
     if (dim_3d && t.arrayed) fail("invalid arrayed 3D image");
     // Storage images (imageLoad / imageStore / imageSize): 2D and 2D arrays. image3D is not implemented, and icd/

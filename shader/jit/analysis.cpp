@@ -342,8 +342,8 @@ Footprint footprint(const Inst& in) {
                 f.read(in.a), f.read(in.c);
                 if (in.b != kNoReg)
                     for (uint32_t i = 0; i < std::max<uint32_t>(in.extra, 3) && f.complete(); ++i) f.read(in.b + i);
-                if (in.op == Op::Sample && (in.imm & kSampleGrad))
-                    for (uint32_t i = 0; i < ((in.imm & kSample3D) ? 6u : 4u); ++i) f.read(in.n + i);
+                if (in.op == Op::Sample && (in.imm & kSampleGrad))  // 3D and cube: dx.xyz, dy.xyz
+                    for (uint32_t i = 0; i < ((in.imm & (kSample3D | kSampleCube)) ? 6u : 4u); ++i) f.read(in.n + i);
                 for (uint32_t i = 0; i < 4 && in.d != kNoReg; ++i) f.write(in.d + i);
                 break;
             }
