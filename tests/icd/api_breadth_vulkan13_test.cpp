@@ -507,7 +507,9 @@ void expect_required_13(VkPhysicalDevice pd, const char* who) {
     EXPECT_TRUE(f13.shaderIntegerDotProduct) << who;
     EXPECT_TRUE(f13.maintenance4) << who;
     // descriptorBindingInlineUniformBlockUpdateAfterBind: required only with descriptorIndexing
-    if (f12.descriptorIndexing) EXPECT_TRUE(f13.descriptorBindingInlineUniformBlockUpdateAfterBind) << who;
+    if (f12.descriptorIndexing) {
+        EXPECT_TRUE(f13.descriptorBindingInlineUniformBlockUpdateAfterBind) << who;
+    }
 
     VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
     VkPhysicalDeviceMaintenance4Properties m4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES, &p13};

@@ -147,7 +147,9 @@ TEST(Threads, TileWalkStartsAtTheLastHidingWholeTileCommand) {
                     << "tile " << t << ", method " << int(m) << ", " << threads << " threads";
             }
         }
-        if (m != Method::kFloat) EXPECT_GT(hidden, 50u) << int(m);  // the scene does exercise hiding
+        if (m != Method::kFloat) {
+            EXPECT_GT(hidden, 50u) << int(m);  // the scene does exercise hiding
+        }
     }
 }
 
