@@ -28,7 +28,22 @@ struct Axis {
     float w;
 };
 
+// One level (and layer) of a 1D/2D view as the float filter reads it.
+struct Level {
+    const format::FormatInfo* fi;
+    const uint8_t* base;  // layer already applied
+    uint64_t row_pitch;
+    int32_t w, h;
+    uint32_t bpp;
+    uint64_t bytes;  // readable bytes from base
+};
+
 Vec4 decode(const format::FormatInfo& f, const uint8_t* p);
+bool integer_format(const ImageView& img);
+Vec4 texel(const Level& lv, int32_t x, int32_t y);
+int32_t floor_index(float u, AddressMode m);
+bool power_of_two(int32_t n);
+Axis repeat_npot_axis(float s, int32_t n, int32_t off);
 Vec4 border_color(const SamplerState& smp);
 // The texel index after addressing; -1 means "border".
 int32_t wrap(int32_t i, int32_t size, AddressMode m);
@@ -41,6 +56,10 @@ fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, Add
 // The 8-bit nearest texel index (final) of lavapipe's 8-bit filter (lp_build_sample_wrap_nearest_int).
 int32_t nearest_fixed8(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
 using fixed8::texel_bytes;  // texture_fixed8.h
+
+// texture_gather.cpp: OpImageGather / OpImageDrefGather's four texels at level 0 of a 1D/2D view.
+Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer, uint32_t comp,
+                   const SampleArgs& args);
 
 // texture_3d.cpp: one mip level of a 3D view, nearest or trilinear, through the float or the 8-bit filter.
 Vec4 sample_level_3d(const ImageView& img, const SamplerState& smp, uint32_t level, float s, float t, bool linear,
