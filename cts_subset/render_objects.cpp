@@ -113,8 +113,8 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
 }
 
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
-                   VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth, bool one_d,
-                   uint32_t layers, VkImageCreateFlags flags) {
+                   VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth, bool one_d, uint32_t layers,
+                   VkImageCreateFlags flags) {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.flags = flags;
     ci.imageType = one_d ? VK_IMAGE_TYPE_1D : depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
