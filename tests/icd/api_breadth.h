@@ -43,6 +43,8 @@ namespace tilevk::test::breadth {
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
+#include "ab_texel_buffer_sint_frag.h"
+#include "ab_texel_buffer_uint_frag.h"
 #include "color_frag.h"
 #include "draw_vert.h"
 
