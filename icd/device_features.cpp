@@ -122,6 +122,10 @@ Features make_supported() {
     f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    // Instance-rate divisors (VkPipelineVertexInputDivisorStateCreateInfoEXT): element firstInstance + instance /
+    // divisor (rast/geometry element_index), divisor 0 as lavapipe's UINT32_MAX (every instance reads firstInstance).
+    f.vertex_attribute_divisor.vertexAttributeInstanceRateDivisor = VK_TRUE;
+    f.vertex_attribute_divisor.vertexAttributeInstanceRateZeroDivisor = VK_TRUE;
     // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
     f.core.v11.shaderDrawParameters = VK_TRUE;
     // execute.cpp runs a multiview subpass once per view into its layers, ViewIndex given to the shaders; there is
@@ -197,6 +201,7 @@ Features::Features() {
     init(depth_clip_control, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT);
     init(extended_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
+    init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -204,7 +209,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&list_restart),
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_control),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
-                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
+                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;
