@@ -224,9 +224,48 @@ void add_op(CaseList& out, const Op& op) {
     out.push_back(std::move(c));
 }
 
+// pow with a constant exponent 1, 2, 4 or 0.5 and with base 2: NIR rewrites some of these (a, a·a, (a·a)·(a·a),
+// exp2(b)) before gallivm sees them. Four results per input; the check: close to the true power where accurate,
+// exact for 2^integer.
+void add_pow_constants(CaseList& out) {
+    const std::vector<float> x = inputs(21, -8.0f, 8.0f);
+    ComputeSpec s;
+    s.shaders = {glsl_header(64) +
+                 "layout(std430, binding=0) buffer X { float x[]; };\n"
+                 "layout(std430, binding=1) buffer O { vec4 o[]; };\n"
+                 "void main() { uint i = gl_GlobalInvocationID.x; float a = x[i];\n"
+                 "  o[i] = vec4(pow(a, 1.0), pow(a, 2.0), pow(a, 4.0) + pow(a, 0.5), pow(2.0, a)); }\n"};
+    std::vector<uint32_t> xw(kCount);
+    for (uint32_t i = 0; i < kCount; ++i) xw[i] = fbits(x[i]);
+    s.buffers = {{xw, false, false}, {std::vector<uint32_t>(kCount * 4, kMarker)}};
+    s.steps = {dispatch(0, kCount / 64)};
+    auto spec = std::make_shared<ComputeSpec>(std::move(s));
+    Case c;
+    c.name = "quirks.transcendental.pow_constant";
+    c.scene = [spec] { return compute_scene(*spec); };
+    c.check = [x](const std::vector<Plane>& planes) -> std::string {
+        const std::vector<uint32_t> got = buffer_words(planes, 1);
+        if (got.size() != kCount * 4) return "buffer1 has the wrong size";
+        for (uint32_t i = 0; i < kCount; ++i) {
+            const float a = x[i];
+            const bool moderate = a >= 1e-6f && a <= 1e6f;
+            const Want w[4] = {moderate ? near(a, 1e-5) : Want{}, moderate ? near(double(a) * a, 1e-5) : Want{},
+                               moderate ? near(std::pow(double(a), 4.0) + std::sqrt(double(a)), 1e-5) : Want{},
+                               exp2_rule(a, 1.0f)};
+            for (int k = 0; k < 4; ++k) {
+                const std::string e = judge(w[k], fl(got[i * 4 + k]));
+                if (!e.empty()) return "word " + std::to_string(i * 4 + k) + " (x=" + std::to_string(a) + ") " + e;
+            }
+        }
+        return {};
+    };
+    out.push_back(std::move(c));
+}
+
 }  // namespace
 
 void add_transcendental_cases(CaseList& out) {
+    add_pow_constants(out);
     const Op ops[] = {{"pow", "pow(a, b)", pow_rule, 0, 1},    {"exp2", "exp2(a)", exp2_rule, -130, 130},
                       {"log2", "log2(a)", log2_rule, 0, 4},    {"exp", "exp(a)", exp_rule, -90, 90},
                       {"log", "log(a)", log_rule, 0, 100},     {"sin", "sin(a)", sin_rule, -20, 20},

@@ -74,7 +74,7 @@ using K = ScalarLanes<true>;
 }  // namespace portable_fused
 namespace portable_unfused {
 using K = ScalarLanes<false>;
-#include "shader/gallivm_math_impl.h"  // NOLINT(bugprone-suspicious-include)
+#include "shader/gallivm_math_impl.h"  // NOLINT(bugprone-suspicious-include,readability-duplicate-include)
 }  // namespace portable_unfused
 
 #if defined(__x86_64__)
@@ -118,7 +118,7 @@ struct Lanes {
     static V select(V m, V a, V b) { return _mm256_blendv_ps(b, a, m); }
 };
 using K = Lanes;
-#include "shader/gallivm_math_impl.h"  // NOLINT(bugprone-suspicious-include)
+#include "shader/gallivm_math_impl.h"  // NOLINT(bugprone-suspicious-include,readability-duplicate-include)
 
 template <V (*F)(V)>
 void run1(float* d, const float* a, const float*) {

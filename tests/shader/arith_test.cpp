@@ -106,6 +106,21 @@ TEST(ShaderArith, FloatOpsMatchCpp) {
     }
 }
 
+// NIR's rules for pow with a constant operand, which lavapipe applies before gallivm (translate_glsl.cpp): exact
+// products, where gallivm's exp2(log2(a)·2) would round differently and be NaN for negative a.
+TEST(ShaderArith, PowWithConstantOperandsIsRewrittenAsNir) {
+    VsRun r("gl_Position = vec4(pow(a.x, 1.0), pow(a.y, 2.0), pow(a.z, 4.0), pow(2.0, a.w));");
+    for (int l = 0; l < kLanes; ++l) r.set_a(l, lane_val(l, 0), lane_val(l, 1), lane_val(l, 2), float(l - 8));
+    r.run();
+    for (int l = 0; l < kLanes; ++l) {
+        const float ax = lane_val(l, 0), ay = lane_val(l, 1), az = lane_val(l, 2);
+        EXPECT_EQ(f(r.batch.position[0][l]), ax);
+        EXPECT_EQ(f(r.batch.position[1][l]), ay * ay);
+        EXPECT_EQ(f(r.batch.position[2][l]), (az * az) * (az * az));
+        EXPECT_EQ(f(r.batch.position[3][l]), std::ldexp(1.0f, l - 8));
+    }
+}
+
 TEST(ShaderArith, GlslStd450Functions) {
     VsRun r(
         "o0 = vec4(sqrt(abs(a.x)), inversesqrt(abs(a.y) + 1.0), floor(a.z), fract(a.w));"
