@@ -55,6 +55,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
 #define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
             TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)
 #undef TILEVK_EXEC_LIBM
+#define TILEVK_EXEC_GALLIVM(op, fn) TILEVK_EXEC_CALL(op, op_gallivm_##op)
+            TILEVK_GALLIVM_OPS(TILEVK_EXEC_GALLIVM)
+#undef TILEVK_EXEC_GALLIVM
 #undef TILEVK_EXEC_EXPR
 #undef TILEVK_EXEC_CALL
             case Op::Select: {
