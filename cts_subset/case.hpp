@@ -39,6 +39,7 @@ void add_primitive_cases(CaseList& out);
 void add_fill_rule_cases(CaseList& out);
 void add_culling_cases(CaseList& out);
 void add_interpolation_cases(CaseList& out);
+void add_interpolate_at_cases(CaseList& out);  // cases_interpolate_at.cpp
 void add_multisample_cases(CaseList& out);
 void add_depth_cases(CaseList& out);
 void add_stencil_cases(CaseList& out);

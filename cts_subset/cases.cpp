@@ -51,6 +51,7 @@ CaseList all_cases() {
     add_culling_cases(out);
     add_clipping_cases(out);
     add_interpolation_cases(out);
+    add_interpolate_at_cases(out);
     add_multisample_cases(out);
     add_depth_cases(out);
     add_stencil_cases(out);

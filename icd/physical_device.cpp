@@ -89,9 +89,10 @@ VkPhysicalDeviceLimits make_limits() {
     // OpImageGather's constant offsets (shader/texture.cpp gather_texels), lavapipe's range.
     l.minTexelGatherOffset = -32;
     l.maxTexelGatherOffset = 31;
-    l.minInterpolationOffset = -0.5f;
-    l.maxInterpolationOffset = 0.4375f;
-    l.subPixelInterpolationOffsetBits = 4;
+    // InterpolateAtOffset (shader/interpolate.cpp): lavapipe's values (lvp_device.c); the offset is used unclamped.
+    l.minInterpolationOffset = -2.0f;
+    l.maxInterpolationOffset = 2.0f;
+    l.subPixelInterpolationOffsetBits = 8;
     l.maxFramebufferWidth = kMaxImageDimension;
     l.maxFramebufferHeight = kMaxImageDimension;
     l.maxFramebufferLayers = 256;

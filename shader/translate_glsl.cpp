@@ -495,8 +495,7 @@ void Translator::glsl_op(const Instr& in) {
         case GLSLstd450InterpolateAtCentroid:
         case GLSLstd450InterpolateAtSample:
         case GLSLstd450InterpolateAtOffset:
-            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
-                 " (re-interpolation at another position is not implemented)");
+            return interpolate_at(in, e);
         case GLSLstd450PackDouble2x32:
         case GLSLstd450UnpackDouble2x32:
             fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +

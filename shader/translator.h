@@ -201,6 +201,7 @@ class Translator {
     uint32_t storage_coord(const Type& image_type, uint32_t coord);  // its (x, y[, layer]) registers  // OpImageRead /
                                                                      // OpImageWrite on a storage image
     void glsl_op(const Instr& in);               // translate_glsl.cpp: GLSL.std.450
+    void interpolate_at(const Instr& in, uint32_t e);  // its InterpolateAt* (translate_interface.cpp)
     // helpers for instructions with a result (type in[1], id in[2])
     uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result
     void alias(const Instr& in, uint32_t r);        // the result is register run r
