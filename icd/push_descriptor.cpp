@@ -50,11 +50,20 @@ DescriptorSet* new_pushed_set(CommandBuffer* cb, VkPipelineBindPoint bind_point,
 }
 
 void bind_pushed_set(CommandBuffer* cb, VkPipelineBindPoint bind_point, uint32_t set, DescriptorSet* contents) {
+    // An array of one set pointer in the arena, as vkCmdBindDescriptorSets records its sets.
+    void* mem =
+        cb->arena.allocate(sizeof(DescriptorSet*), alignof(DescriptorSet*));  // NOLINT(bugprone-sizeof-expression)
+    auto** sets = static_cast<DescriptorSet**>(mem);
+    if (sets == nullptr) {
+        cb->out_of_memory();
+        return;
+    }
+    sets[0] = contents;
     if (auto* c = cb->append<CmdBindDescriptorSets>()) {
         c->bind_point = bind_point;
         c->first_set = set;
         c->set_count = 1;
-        c->sets = cb->copy(&contents, 1);
+        c->sets = sets;
     }
 }
 
