@@ -111,8 +111,16 @@ TEST(GallivmMath, VectorBuildEqualsItsPortableTwin) {
         gallivm::force_portable_for_testing(true, true);
         for (size_t i = 0; i < a.size(); i += 8) f(&p[i], &a[i], &b[i]);
         gallivm::force_portable_for_testing(false, false);
-        for (size_t i = 0; i < a.size(); ++i)
+        // A NaN result's sign and payload are not fixed by either build: the compiler may commute an add or multiply
+        // of two NaNs (so may LLVM in lavapipe). A sanitizer build of the portable copy did so. Every other result
+        // is compared bit for bit.
+        for (size_t i = 0; i < a.size(); ++i) {
+            if (std::isnan(v[i]) || std::isnan(p[i])) {
+                ASSERT_TRUE(std::isnan(v[i]) && std::isnan(p[i])) << "input " << a[i] << ", " << b[i];
+                continue;
+            }
             ASSERT_EQ(bits(v[i]), bits(p[i])) << "input " << a[i] << ", " << b[i] << " (" << automatic << ")";
+        }
     }
 }
 
