@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "host/cpu.h"
 #include "rast/core/scene.h"
 #include "rast/core/thread_pool.h"
 #include "rast/geometry/viewport.h"
@@ -145,7 +146,7 @@ std::string oracle_coverage(const Scene& scene, OracleCoverage& out) {
                     .height = int32_t(t.height),
                     .samples = out.samples,
                     .method = rast::Method::kReference});
-    const bool fused = geo::host_has_fma();
+    const bool fused = host::has_fma();
     for (const Draw& d : scene.draws) {
         const VkViewport vkvp = d.viewport.value_or(VkViewport{0, 0, float(t.width), float(t.height), 0, 1});
         const VkRect2D sc = d.scissor.value_or(VkRect2D{{0, 0}, {t.width, t.height}});

@@ -7,6 +7,7 @@
 #include "command_buffer.h"
 #include "entrypoints.h"
 #include "execute.h"
+#include "host/cpu.h"
 #include "image.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/blit.h"
@@ -94,7 +95,7 @@ void blit_region(ExecState& st, const Image& src, const Image& dst, const VkImag
     region.src_layer = r.srcSubresource.baseArrayLayer;
     region.dst_layer = r.dstSubresource.baseArrayLayer;
     region.layers = r.srcSubresource.layerCount;
-    static const bool fused = rast::geometry::host_has_fma();
+    static const bool fused = host::has_fma();
     rast::render::blit(
         surface_of(src, r.srcSubresource.mipLevel), surface_of(dst, r.dstSubresource.mipLevel), region,
         filter == VK_FILTER_LINEAR ? rast::render::BlitFilter::kLinear : rast::render::BlitFilter::kNearest, fused,

@@ -5,6 +5,7 @@
 
 #include "buffer.h"
 #include "execute.h"
+#include "host/cpu.h"
 #include "image.h"
 #include "rast/fragment/msaa.h"
 #include "rast/geometry/viewport.h"
@@ -345,7 +346,7 @@ void resolve_rect(const Image& src, uint32_t src_level, uint32_t src_layer, VkOf
         src.format->id, src.texel(src_level, src_layer, uint32_t(src_offset.x), uint32_t(src_offset.y)),
         size_t(src.sample_pitch(src_level)), src.layout.row_pitch[src_level],
         dst.texel(dst_level, dst_layer, uint32_t(dst_offset.x), uint32_t(dst_offset.y)),
-        dst.layout.row_pitch[dst_level], int(extent.width), int(extent.height), rast::geometry::host_has_fma(), tb);
+        dst.layout.row_pitch[dst_level], int(extent.width), int(extent.height), host::has_fma(), tb);
 }
 
 // The depth/stencil resolve of a render pass (VK_KHR_depth_stencil_resolve), SAMPLE_ZERO for every aspect as lavapipe

@@ -7,12 +7,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <cpuid.h>
-#endif
+#include "host/cpu.h"
 
 namespace tilevk::shader::gallivm {
 namespace {
@@ -177,32 +174,10 @@ const Table kAvx2 = {"avx2-fma",
                      avx2::run1<avx2::cosh_v>};
 #endif
 
-// CPUID: FMA (and, for the vector build, AVX2 with the OS saving YMM state). lavapipe's LLVM targets the host
-// CPU, so FMA alone decides whether its multiply-adds are fused.
-struct Cpu {
-    bool fma = false, avx2 = false;
-};
-Cpu detect() {
-    Cpu cpu;
-#if defined(__x86_64__) || defined(__i386__)
-    unsigned a, b, c, d;
-    if (!__get_cpuid(1, &a, &b, &c, &d)) return cpu;
-    const bool osxsave = c & (1u << 27), avx = c & (1u << 28);
-    cpu.fma = c & (1u << 12);
-    if (!osxsave || !avx) return cpu;
-    unsigned xcr0_lo, xcr0_hi;
-    __asm__("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
-    if ((xcr0_lo & 0x6u) != 0x6u || !__get_cpuid_count(7, 0, &a, &b, &c, &d)) return cpu;
-    cpu.avx2 = b & (1u << 5);
-#endif
-    return cpu;
-}
-
+// The host's FMA decides whether lavapipe's multiply-adds are fused (host/cpu.h); the vector build also needs AVX2.
 const Table* automatic() {
-    const Cpu cpu = detect();
-    // TILEVK_SIMD=none asks for the portable kernels everywhere (rast/core/cpu.cpp reads it for rast/).
-    const char* e = std::getenv("TILEVK_SIMD");
-    const bool portable = e && std::strcmp(e, "none") == 0;
+    const host::CpuFeatures& cpu = host::cpu();
+    const bool portable = host::simd_request() == host::SimdRequest::kNone;
 #if defined(__x86_64__)
     if (cpu.fma && cpu.avx2 && !portable) return &kAvx2;
 #endif

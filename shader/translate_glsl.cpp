@@ -105,68 +105,277 @@ const char* glsl_std450_name(uint32_t e) {
     return e < GLSLstd450Count ? kGlslNames[e] : "(unknown)";
 }
 
-// One switch over the GLSL.std.450 instructions (over 150 lines): a case per instruction, a few lines each, sharing
-// the def/operand helpers declared at its top; a split by family would only move the cases into smaller switches.
+namespace {
+// The instructions that are one SIMD op per component (operands of one component broadcast).
+struct Componentwise {
+    uint32_t inst;
+    SOp op;
+    uint32_t operands;
+};
+constexpr Componentwise kComponentwise[] = {
+    {GLSLstd450Round, SOp::Round, 1},
+    {GLSLstd450RoundEven, SOp::RoundEven, 1},
+    {GLSLstd450Trunc, SOp::Trunc, 1},
+    {GLSLstd450FAbs, SOp::FAbs, 1},
+    {GLSLstd450SAbs, SOp::SAbs, 1},
+    {GLSLstd450FSign, SOp::FSign, 1},
+    {GLSLstd450SSign, SOp::SSign, 1},
+    {GLSLstd450Floor, SOp::Floor, 1},
+    {GLSLstd450Ceil, SOp::Ceil, 1},
+    {GLSLstd450Fract, SOp::Fract, 1},
+    {GLSLstd450Sin, SOp::Sin, 1},
+    {GLSLstd450Cos, SOp::Cos, 1},
+    {GLSLstd450Tan, SOp::Tan, 1},
+    {GLSLstd450Asin, SOp::Asin, 1},
+    {GLSLstd450Acos, SOp::Acos, 1},
+    {GLSLstd450Atan, SOp::Atan, 1},
+    {GLSLstd450Sinh, SOp::Sinh, 1},
+    {GLSLstd450Cosh, SOp::Cosh, 1},
+    {GLSLstd450Tanh, SOp::Tanh, 1},
+    {GLSLstd450Asinh, SOp::Asinh, 1},
+    {GLSLstd450Acosh, SOp::Acosh, 1},
+    {GLSLstd450Atanh, SOp::Atanh, 1},
+    {GLSLstd450Atan2, SOp::Atan2, 2},
+    {GLSLstd450Exp, SOp::Exp, 1},
+    {GLSLstd450Log, SOp::Log, 1},
+    {GLSLstd450Exp2, SOp::Exp2, 1},
+    {GLSLstd450Log2, SOp::Log2, 1},
+    {GLSLstd450Sqrt, SOp::Sqrt, 1},
+    {GLSLstd450InverseSqrt, SOp::InvSqrt, 1},
+    {GLSLstd450FMin, SOp::FMin, 2},
+    {GLSLstd450NMin, SOp::FMin, 2},
+    {GLSLstd450FMax, SOp::FMax, 2},
+    {GLSLstd450NMax, SOp::FMax, 2},
+    {GLSLstd450UMin, SOp::UMin, 2},
+    {GLSLstd450SMin, SOp::SMin, 2},
+    {GLSLstd450UMax, SOp::UMax, 2},
+    {GLSLstd450SMax, SOp::SMax, 2},
+    {GLSLstd450FClamp, SOp::FClamp, 3},
+    {GLSLstd450NClamp, SOp::FClamp, 3},
+    {GLSLstd450SmoothStep, SOp::SmoothStep, 3},
+    {GLSLstd450Ldexp, SOp::Ldexp, 2},
+    {GLSLstd450FindILsb, SOp::FindLsb, 1},
+    {GLSLstd450FindSMsb, SOp::FindSMsb, 1},
+    {GLSLstd450FindUMsb, SOp::FindUMsb, 1},
+};
+}  // namespace
+
+// GLSL.std.450, by family: the componentwise ones from the table, the others in their family's function.
 void Translator::glsl_op(const Instr& in) {
-    auto def = [&](uint32_t n = 0) {
-        uint32_t f = n ? n : std::max(1u, type(in[1]).flat);
-        uint32_t r = alloc(f);
-        vals_[in[2]] = Value{r, in[1]};
-        return r;
-    };
-    auto alias = [&](uint32_t r) { vals_[in[2]] = Value{r, in[1]}; };
-    auto flat_of = [&](uint32_t id) { return std::max(1u, type(val(id).type).flat); };
-    // dot product: ((a0*b0 + a1*b1) + a2*b2) + a3*b3  (mul then add, left to right, as NIR's fsum after fmul)
-    auto dot = [&](uint32_t a, uint32_t b, uint32_t n) {
-        uint32_t s = emit1(SOp::FMul, a, b);
-        for (uint32_t i = 1; i < n; ++i) s = emit1(SOp::FAdd, s, emit1(SOp::FMul, a + i, b + i));
-        return s;
-    };
-    // GLSL.std.450
     if (in[3] != glsl_ext_ || glsl_ext_ == 0) fail("unsupported extended instruction set call");
-    uint32_t e = in[4];
+    const uint32_t e = in[4];
+    for (const Componentwise& c : kComponentwise)
+        if (c.inst == e) return glsl_componentwise(in, c.op, c.operands);
+    switch (e) {
+        case GLSLstd450Pow:
+            return glsl_pow(in);
+        case GLSLstd450Radians:
+        case GLSLstd450Degrees:
+        case GLSLstd450UClamp:
+        case GLSLstd450SClamp:
+        case GLSLstd450FMix:
+        case GLSLstd450Step:
+        case GLSLstd450Fma:
+            return glsl_arith(in, e);
+        case GLSLstd450Length:
+        case GLSLstd450Distance:
+        case GLSLstd450Normalize:
+        case GLSLstd450Cross:
+        case GLSLstd450FaceForward:
+        case GLSLstd450Reflect:
+        case GLSLstd450Refract:
+            return glsl_geometric(in, e);
+        case GLSLstd450Determinant:
+        case GLSLstd450MatrixInverse:
+            return glsl_matrix(in, e);
+        case GLSLstd450PackHalf2x16:
+        case GLSLstd450UnpackHalf2x16:
+        case GLSLstd450PackUnorm4x8:
+        case GLSLstd450PackSnorm4x8:
+        case GLSLstd450PackUnorm2x16:
+        case GLSLstd450PackSnorm2x16:
+        case GLSLstd450UnpackUnorm4x8:
+        case GLSLstd450UnpackSnorm4x8:
+        case GLSLstd450UnpackUnorm2x16:
+        case GLSLstd450UnpackSnorm2x16:
+            return glsl_pack(in, e);
+        case GLSLstd450Modf:
+        case GLSLstd450ModfStruct:
+        case GLSLstd450Frexp:
+        case GLSLstd450FrexpStruct:
+            return glsl_two_results(in, e);
+        case GLSLstd450InterpolateAtCentroid:
+        case GLSLstd450InterpolateAtSample:
+        case GLSLstd450InterpolateAtOffset:
+            return interpolate_at(in, e);
+        case GLSLstd450PackDouble2x32:
+        case GLSLstd450UnpackDouble2x32:
+            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
+                 " (64-bit types are not supported)");
+        default:  // IMix (reserved) and anything newer
+            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e));
+    }
+}
+
+void Translator::glsl_componentwise(const Instr& in, SOp o, uint32_t operands) {
+    uint32_t r[3] = {kNoReg, kNoReg, kNoReg}, flat[3] = {1, 1, 1};
+    for (uint32_t k = 0; k < operands; ++k) {
+        r[k] = reg(in[5 + k]);
+        flat[k] = flat_of(in[5 + k]);
+    }
+    const uint32_t n = std::max(1u, type(in[1]).flat), d = def(in);
+    auto component = [&](uint32_t k, uint32_t i) { return r[k] == kNoReg ? kNoReg : r[k] + (flat[k] > 1 ? i : 0); };
+    for (uint32_t i = 0; i < n; ++i) emit(o, d + i, component(0, i), component(1, i), component(2, i));
+}
+
+// Pow with a constant operand, per component as NIR's inexact rules rewrite it for lavapipe (nir_opt_algebraic:
+// pow(a, 1) = a, pow(a, 2) = a·a, pow(a, 4) = (a·a)·(a·a), pow(2, b) = exp2(b)); any other pow is gallivm's.
+void Translator::glsl_pow(const Instr& in) {
+    const uint32_t n = std::max(1u, type(in[1]).flat);
+    const uint32_t a = reg(in[5]), b = reg(in[6]), d = def(in), fa = flat_of(in[5]), fb = flat_of(in[6]);
+    auto is = [&](uint32_t r, float f) {
+        auto it = reg_value_.find(r);
+        return it != reg_value_.end() && it->second == std::bit_cast<uint32_t>(f);
+    };
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t ai = a + (fa > 1 ? i : 0), bi = b + (fb > 1 ? i : 0);
+        if (is(bi, 1.0f)) {
+            emit(SOp::Mov, d + i, ai);
+        } else if (is(bi, 2.0f)) {
+            emit(SOp::FMul, d + i, ai, ai);
+        } else if (is(bi, 4.0f)) {
+            const uint32_t sq = emit1(SOp::FMul, ai, ai);
+            emit(SOp::FMul, d + i, sq, sq);
+        } else if (is(ai, 2.0f)) {
+            emit(SOp::Exp2, d + i, bi);
+        } else {
+            emit(SOp::Pow, d + i, ai, bi);
+        }
+    }
+}
+
+// Radians/Degrees, the integer clamps, FMix, Step and Fma: a few ops per component, as lavapipe's NIR lowers them.
+void Translator::glsl_arith(const Instr& in, uint32_t e) {
+    const uint32_t n = std::max(1u, type(in[1]).flat);
     auto arg = [&](int i) { return reg(in[5 + i]); };
     auto argn = [&](int i) { return flat_of(in[5 + i]); };
-    uint32_t n = std::max(1u, type(in[1]).flat);
-    auto map1 = [&](SOp o) {
-        uint32_t a = arg(0), d = def();
-        for (uint32_t i = 0; i < n; ++i) emit(o, d + i, a + i);
-    };
-    auto map2 = [&](SOp o) {
-        uint32_t a = arg(0), b = arg(1), d = def();
-        uint32_t fb = argn(1);
-        for (uint32_t i = 0; i < n; ++i) emit(o, d + i, a + i, b + (fb > 1 ? i : 0));
-    };
-    // Pow with a constant operand, per component as NIR's inexact rules rewrite it for lavapipe (nir_opt_algebraic:
-    // pow(a, 1) = a, pow(a, 2) = a·a, pow(a, 4) = (a·a)·(a·a), pow(2, b) = exp2(b)); any other pow is gallivm's.
-    auto pow = [&] {
-        const uint32_t a = arg(0), b = arg(1), d = def(), fa = argn(0), fb = argn(1);
-        auto is = [&](uint32_t r, float f) {
-            auto it = reg_value_.find(r);
-            return it != reg_value_.end() && it->second == std::bit_cast<uint32_t>(f);
-        };
-        for (uint32_t i = 0; i < n; ++i) {
-            const uint32_t ai = a + (fa > 1 ? i : 0), bi = b + (fb > 1 ? i : 0);
-            if (is(bi, 1.0f)) {
-                emit(SOp::Mov, d + i, ai);
-            } else if (is(bi, 2.0f)) {
-                emit(SOp::FMul, d + i, ai, ai);
-            } else if (is(bi, 4.0f)) {
-                const uint32_t sq = emit1(SOp::FMul, ai, ai);
-                emit(SOp::FMul, d + i, sq, sq);
-            } else if (is(ai, 2.0f)) {
-                emit(SOp::Exp2, d + i, bi);
-            } else {
-                emit(SOp::Pow, d + i, ai, bi);
-            }
+    switch (e) {
+        case GLSLstd450Radians:
+        case GLSLstd450Degrees: {
+            // radians(x) = x * (pi/180) with the constant rounded to float
+            float k = e == GLSLstd450Radians ? float(M_PI / 180.0) : float(180.0 / M_PI);
+            uint32_t a = arg(0), d = def(in);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FMul, d + i, a + i, konstf(k));
+            return;
         }
-    };
-    auto map3 = [&](SOp o) {
-        uint32_t a = arg(0), b = arg(1), c = arg(2), d = def();
-        uint32_t fa = argn(0), fb = argn(1), fc = argn(2);
-        for (uint32_t i = 0; i < n; ++i)
-            emit(o, d + i, a + (fa > 1 ? i : 0), b + (fb > 1 ? i : 0), c + (fc > 1 ? i : 0));
-    };
+        case GLSLstd450UClamp:
+        case GLSLstd450SClamp: {
+            bool s = e == GLSLstd450SClamp;
+            uint32_t a = arg(0), lo = arg(1), hi = arg(2), d = def(in);
+            uint32_t fl = argn(1), fh = argn(2);
+            for (uint32_t i = 0; i < n; ++i)
+                emit(s ? SOp::SMin : SOp::UMin, d + i, emit1(s ? SOp::SMax : SOp::UMax, a + i, lo + (fl > 1 ? i : 0)),
+                     hi + (fh > 1 ? i : 0));
+            return;
+        }
+        case GLSLstd450FMix: {
+            // mix(x, y, a) = x * (1 - a) + y * a  (see README: lavapipe lowers flrp; this is the exact-maths form)
+            uint32_t x = arg(0), y = arg(1), a = arg(2), d = def(in);
+            uint32_t fa = argn(2);
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t ai = a + (fa > 1 ? i : 0);
+                uint32_t l = emit1(SOp::FMul, x + i, emit1(SOp::FSub, konstf(1.0f), ai));
+                emit(SOp::FAdd, d + i, l, emit1(SOp::FMul, y + i, ai));
+            }
+            return;
+        }
+        case GLSLstd450Step: {
+            uint32_t edge = arg(0), x = arg(1), d = def(in);
+            uint32_t fe = argn(0);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Step, d + i, edge + (fe > 1 ? i : 0), x + i);
+            return;
+        }
+        default: {  // Fma: lavapipe lowers ffma to fmul + fadd (lower_ffma32): not fused
+            uint32_t a = arg(0), b = arg(1), c = arg(2), d = def(in);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FAdd, d + i, emit1(SOp::FMul, a + i, b + i), c + i);
+            return;
+        }
+    }
+}
+
+// Length, Distance, Normalize, Cross, FaceForward, Reflect, Refract: the dot products as NIR sums them.
+void Translator::glsl_geometric(const Instr& in, uint32_t e) {
+    const uint32_t n = std::max(1u, type(in[1]).flat);
+    auto arg = [&](int i) { return reg(in[5 + i]); };
+    switch (e) {
+        case GLSLstd450Length: {
+            uint32_t a = arg(0);
+            alias(in, emit1(SOp::Sqrt, dot(a, a, flat_of(in[5]))));
+            return;
+        }
+        case GLSLstd450Distance: {
+            uint32_t a = arg(0), b = arg(1), m = flat_of(in[5]);
+            uint32_t t = alloc(m);
+            for (uint32_t i = 0; i < m; ++i) emit(SOp::FSub, t + i, a + i, b + i);
+            alias(in, emit1(SOp::Sqrt, dot(t, t, m)));
+            return;
+        }
+        case GLSLstd450Normalize: {
+            // normalize(v) = v / sqrt(dot(v, v)): a division by the length, as lavapipe's SPIR-V front end
+            // writes it (each lane rounds differently from v * inversesqrt(dot(v, v)), by up to an ulp)
+            uint32_t a = arg(0);
+            uint32_t len = emit1(SOp::Sqrt, dot(a, a, n));
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FDiv, d + i, a + i, len);
+            return;
+        }
+        case GLSLstd450Cross: {
+            // cross(a, b) = a.yzx * b.zxy - a.zxy * b.yzx
+            uint32_t a = arg(0), b = arg(1), d = def(in);
+            const int y[3] = {1, 2, 0}, z[3] = {2, 0, 1};
+            for (int i = 0; i < 3; ++i)
+                emit(SOp::FSub, d + i, emit1(SOp::FMul, a + y[i], b + z[i]), emit1(SOp::FMul, a + z[i], b + y[i]));
+            return;
+        }
+        case GLSLstd450FaceForward: {
+            // faceforward(N, I, Nref) = dot(Nref, I) < 0 ? N : -N
+            uint32_t nn = arg(0), ii = arg(1), nr = arg(2);
+            uint32_t lt = emit1(SOp::FOrdLt, dot(nr, ii, n), zero_);
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::Select, d + i, nn + i, emit1(SOp::FNeg, nn + i), lt);
+            return;
+        }
+        case GLSLstd450Reflect: {
+            // reflect(I, N) = I - (2 * dot(N, I)) * N
+            uint32_t ii = arg(0), nn = arg(1);
+            uint32_t k = emit1(SOp::FMul, konstf(2.0f), dot(nn, ii, n));
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < n; ++i) emit(SOp::FSub, d + i, ii + i, emit1(SOp::FMul, k, nn + i));
+            return;
+        }
+        case GLSLstd450Refract: {
+            // k = 1 - eta^2 (1 - dot(N,I)^2); k < 0 ? 0 : eta*I - (eta*dot(N,I) + sqrt(k)) * N
+            uint32_t ii = arg(0), nn = arg(1), eta = arg(2);
+            uint32_t ni = dot(nn, ii, n);
+            uint32_t k = emit1(
+                SOp::FSub, konstf(1.0f),
+                emit1(SOp::FMul, emit1(SOp::FMul, eta, eta), emit1(SOp::FSub, konstf(1.0f), emit1(SOp::FMul, ni, ni))));
+            uint32_t neg = emit1(SOp::FOrdLt, k, zero_);
+            uint32_t s = emit1(SOp::FAdd, emit1(SOp::FMul, eta, ni), emit1(SOp::Sqrt, k));
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t r = emit1(SOp::FSub, emit1(SOp::FMul, eta, ii + i), emit1(SOp::FMul, s, nn + i));
+                emit(SOp::Select, d + i, zero_, r, neg);
+            }
+            return;
+        }
+        default:
+            fail(std::string("not a geometric GLSL.std.450 instruction: ") + glsl_std450_name(e));
+    }
+}
+
+// Determinant and MatrixInverse, with lavapipe's expansion (vtn build_det / matrix_inverse).
+void Translator::glsl_matrix(const Instr& in, uint32_t e) {
     // Matrices as columns of row registers, for lavapipe's determinant (vtn build_det): expand along column 0,
     // prod_i = m[0][i] * subdet(without row i, column 0), det = (prod_0 - prod_1) + (prod_2 - prod_3).
     using Mat = std::vector<std::vector<uint32_t>>;
@@ -206,9 +415,72 @@ void Translator::glsl_op(const Instr& in) {
         }
         return result;
     };
+    if (e == GLSLstd450Determinant) {
+        alias(in, det(columns(in[5])));
+        return;
+    }
+    // lavapipe (vtn matrix_inverse): adjugate from the same sub-determinants, times 1/det (a division)
+    Mat m = columns(in[5]);
+    uint32_t size = uint32_t(m.size());
+    uint32_t inv = emit1(SOp::FDiv, konstf(1.0f), det(m));
+    uint32_t d = def(in);
+    for (uint32_t c = 0; c < size; ++c)
+        for (uint32_t r = 0; r < size; ++r) {
+            // adj[c][r] = (-1)^(r+c) * subdet(without row c, column r)
+            uint32_t a = subdet(m, c, r);
+            if ((r + c) % 2) a = emit1(SOp::FNeg, a);
+            emit(SOp::FMul, d + c * size + r, a, inv);
+        }
+}
+
+// The pack and unpack instructions of 2x16 and 4x8 values.
+void Translator::glsl_pack(const Instr& in, uint32_t e) {
+    auto arg = [&](int i) { return reg(in[5 + i]); };
+    switch (e) {
+        case GLSLstd450PackHalf2x16:
+            emit(SOp::PackHalf2x16, def(in), arg(0), arg(0) + 1);
+            return;
+        case GLSLstd450UnpackHalf2x16: {
+            uint32_t d = def(in);
+            emit(SOp::UnpackHalf2x16Lo, d, arg(0));
+            emit(SOp::UnpackHalf2x16Hi, d + 1, arg(0));
+            return;
+        }
+        case GLSLstd450PackUnorm4x8:
+        case GLSLstd450PackSnorm4x8:
+            emit(e == GLSLstd450PackUnorm4x8 ? SOp::PackUnorm4x8 : SOp::PackSnorm4x8, def(in), arg(0));
+            return;
+        case GLSLstd450PackUnorm2x16:
+        case GLSLstd450PackSnorm2x16:
+            emit(e == GLSLstd450PackUnorm2x16 ? SOp::PackUnorm2x16 : SOp::PackSnorm2x16, def(in), arg(0));
+            return;
+        case GLSLstd450UnpackUnorm4x8:
+        case GLSLstd450UnpackSnorm4x8: {
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < 4; ++i)
+                emit(e == GLSLstd450UnpackUnorm4x8 ? SOp::UnpackUnorm4x8 : SOp::UnpackSnorm4x8, d + i, arg(0), kNoReg,
+                     kNoReg, i);
+            return;
+        }
+        case GLSLstd450UnpackUnorm2x16:
+        case GLSLstd450UnpackSnorm2x16: {
+            uint32_t d = def(in);
+            for (uint32_t i = 0; i < 2; ++i)
+                emit(e == GLSLstd450UnpackUnorm2x16 ? SOp::UnpackUnorm2x16 : SOp::UnpackSnorm2x16, d + i, arg(0),
+                     kNoReg, kNoReg, i);
+            return;
+        }
+        default:
+            fail(std::string("not a pack GLSL.std.450 instruction: ") + glsl_std450_name(e));
+    }
+}
+
+// Modf and Frexp: two results, the second through a pointer operand or, in the *Struct forms, as the second member.
+void Translator::glsl_two_results(const Instr& in, uint32_t e) {
+    auto arg = [&](int i) { return reg(in[5 + i]); };
     // Modf/Frexp return the second part through a pointer operand; the *Struct forms return {first, second}.
     auto store_pair = [&](bool through_pointer, uint32_t first, uint32_t second, uint32_t m) {
-        uint32_t d = def();
+        uint32_t d = def(in);
         for (uint32_t i = 0; i < m; ++i) emit(SOp::Mov, d + i, first + i);
         if (!through_pointer) {
             for (uint32_t i = 0; i < m; ++i) emit(SOp::Mov, d + m + i, second + i);
@@ -220,254 +492,12 @@ void Translator::glsl_op(const Instr& in) {
         store(p, p.type, second, 0);
     };
     switch (e) {
-        case GLSLstd450Round:
-            return map1(SOp::Round);
-        case GLSLstd450RoundEven:
-            return map1(SOp::RoundEven);
-        case GLSLstd450Trunc:
-            return map1(SOp::Trunc);
-        case GLSLstd450FAbs:
-            return map1(SOp::FAbs);
-        case GLSLstd450SAbs:
-            return map1(SOp::SAbs);
-        case GLSLstd450FSign:
-            return map1(SOp::FSign);
-        case GLSLstd450SSign:
-            return map1(SOp::SSign);
-        case GLSLstd450Floor:
-            return map1(SOp::Floor);
-        case GLSLstd450Ceil:
-            return map1(SOp::Ceil);
-        case GLSLstd450Fract:
-            return map1(SOp::Fract);
-        case GLSLstd450Radians:
-        case GLSLstd450Degrees: {
-            // radians(x) = x * (pi/180) with the constant rounded to float
-            float k = e == GLSLstd450Radians ? float(M_PI / 180.0) : float(180.0 / M_PI);
-            uint32_t a = arg(0), d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::FMul, d + i, a + i, konstf(k));
-            return;
-        }
-        case GLSLstd450Sin:
-            return map1(SOp::Sin);
-        case GLSLstd450Cos:
-            return map1(SOp::Cos);
-        case GLSLstd450Tan:
-            return map1(SOp::Tan);
-        case GLSLstd450Asin:
-            return map1(SOp::Asin);
-        case GLSLstd450Acos:
-            return map1(SOp::Acos);
-        case GLSLstd450Atan:
-            return map1(SOp::Atan);
-        case GLSLstd450Sinh:
-            return map1(SOp::Sinh);
-        case GLSLstd450Cosh:
-            return map1(SOp::Cosh);
-        case GLSLstd450Tanh:
-            return map1(SOp::Tanh);
-        case GLSLstd450Asinh:
-            return map1(SOp::Asinh);
-        case GLSLstd450Acosh:
-            return map1(SOp::Acosh);
-        case GLSLstd450Atanh:
-            return map1(SOp::Atanh);
-        case GLSLstd450Atan2:
-            return map2(SOp::Atan2);
-        case GLSLstd450Pow:
-            return pow();
-        case GLSLstd450Exp:
-            return map1(SOp::Exp);
-        case GLSLstd450Log:
-            return map1(SOp::Log);
-        case GLSLstd450Exp2:
-            return map1(SOp::Exp2);
-        case GLSLstd450Log2:
-            return map1(SOp::Log2);
-        case GLSLstd450Sqrt:
-            return map1(SOp::Sqrt);
-        case GLSLstd450InverseSqrt:
-            return map1(SOp::InvSqrt);
-        case GLSLstd450FMin:
-        case GLSLstd450NMin:
-            return map2(SOp::FMin);
-        case GLSLstd450FMax:
-        case GLSLstd450NMax:
-            return map2(SOp::FMax);
-        case GLSLstd450UMin:
-            return map2(SOp::UMin);
-        case GLSLstd450SMin:
-            return map2(SOp::SMin);
-        case GLSLstd450UMax:
-            return map2(SOp::UMax);
-        case GLSLstd450SMax:
-            return map2(SOp::SMax);
-        case GLSLstd450FClamp:
-        case GLSLstd450NClamp:
-            return map3(SOp::FClamp);
-        case GLSLstd450UClamp:
-        case GLSLstd450SClamp: {
-            bool s = e == GLSLstd450SClamp;
-            uint32_t a = arg(0), lo = arg(1), hi = arg(2), d = def();
-            uint32_t fl = argn(1), fh = argn(2);
-            for (uint32_t i = 0; i < n; ++i)
-                emit(s ? SOp::SMin : SOp::UMin, d + i, emit1(s ? SOp::SMax : SOp::UMax, a + i, lo + (fl > 1 ? i : 0)),
-                     hi + (fh > 1 ? i : 0));
-            return;
-        }
-        case GLSLstd450FMix: {
-            // mix(x, y, a) = x * (1 - a) + y * a  (see README: lavapipe lowers flrp; this is the exact-maths form)
-            uint32_t x = arg(0), y = arg(1), a = arg(2), d = def();
-            uint32_t fa = argn(2);
-            for (uint32_t i = 0; i < n; ++i) {
-                uint32_t ai = a + (fa > 1 ? i : 0);
-                uint32_t l = emit1(SOp::FMul, x + i, emit1(SOp::FSub, konstf(1.0f), ai));
-                emit(SOp::FAdd, d + i, l, emit1(SOp::FMul, y + i, ai));
-            }
-            return;
-        }
-        case GLSLstd450Step: {
-            uint32_t edge = arg(0), x = arg(1), d = def();
-            uint32_t fe = argn(0);
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::Step, d + i, edge + (fe > 1 ? i : 0), x + i);
-            return;
-        }
-        case GLSLstd450SmoothStep:
-            return map3(SOp::SmoothStep);
-        case GLSLstd450Fma: {
-            // lavapipe lowers ffma to fmul + fadd (lower_ffma32): not fused
-            uint32_t a = arg(0), b = arg(1), c = arg(2), d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::FAdd, d + i, emit1(SOp::FMul, a + i, b + i), c + i);
-            return;
-        }
-        case GLSLstd450Ldexp:
-            return map2(SOp::Ldexp);
-        case GLSLstd450PackHalf2x16:
-            emit(SOp::PackHalf2x16, def(), arg(0), arg(0) + 1);
-            return;
-        case GLSLstd450UnpackHalf2x16: {
-            uint32_t d = def();
-            emit(SOp::UnpackHalf2x16Lo, d, arg(0));
-            emit(SOp::UnpackHalf2x16Hi, d + 1, arg(0));
-            return;
-        }
-        case GLSLstd450PackUnorm4x8:
-        case GLSLstd450PackSnorm4x8:
-            emit(e == GLSLstd450PackUnorm4x8 ? SOp::PackUnorm4x8 : SOp::PackSnorm4x8, def(), arg(0));
-            return;
-        case GLSLstd450PackUnorm2x16:
-        case GLSLstd450PackSnorm2x16:
-            emit(e == GLSLstd450PackUnorm2x16 ? SOp::PackUnorm2x16 : SOp::PackSnorm2x16, def(), arg(0));
-            return;
-        case GLSLstd450UnpackUnorm4x8:
-        case GLSLstd450UnpackSnorm4x8: {
-            uint32_t d = def();
-            for (uint32_t i = 0; i < 4; ++i)
-                emit(e == GLSLstd450UnpackUnorm4x8 ? SOp::UnpackUnorm4x8 : SOp::UnpackSnorm4x8, d + i, arg(0), kNoReg,
-                     kNoReg, i);
-            return;
-        }
-        case GLSLstd450UnpackUnorm2x16:
-        case GLSLstd450UnpackSnorm2x16: {
-            uint32_t d = def();
-            for (uint32_t i = 0; i < 2; ++i)
-                emit(e == GLSLstd450UnpackUnorm2x16 ? SOp::UnpackUnorm2x16 : SOp::UnpackSnorm2x16, d + i, arg(0),
-                     kNoReg, kNoReg, i);
-            return;
-        }
-        case GLSLstd450Length: {
-            uint32_t a = arg(0);
-            alias(emit1(SOp::Sqrt, dot(a, a, argn(0))));
-            return;
-        }
-        case GLSLstd450Distance: {
-            uint32_t a = arg(0), b = arg(1), m = argn(0);
-            uint32_t t = alloc(m);
-            for (uint32_t i = 0; i < m; ++i) emit(SOp::FSub, t + i, a + i, b + i);
-            alias(emit1(SOp::Sqrt, dot(t, t, m)));
-            return;
-        }
-        case GLSLstd450Normalize: {
-            // normalize(v) = v / sqrt(dot(v, v)): a division by the length, as lavapipe's SPIR-V front end
-            // writes it (each lane rounds differently from v * inversesqrt(dot(v, v)), by up to an ulp)
-            uint32_t a = arg(0);
-            uint32_t len = emit1(SOp::Sqrt, dot(a, a, n));
-            uint32_t d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::FDiv, d + i, a + i, len);
-            return;
-        }
-        case GLSLstd450Cross: {
-            // cross(a, b) = a.yzx * b.zxy - a.zxy * b.yzx
-            uint32_t a = arg(0), b = arg(1), d = def();
-            const int y[3] = {1, 2, 0}, z[3] = {2, 0, 1};
-            for (int i = 0; i < 3; ++i)
-                emit(SOp::FSub, d + i, emit1(SOp::FMul, a + y[i], b + z[i]), emit1(SOp::FMul, a + z[i], b + y[i]));
-            return;
-        }
-        case GLSLstd450FaceForward: {
-            // faceforward(N, I, Nref) = dot(Nref, I) < 0 ? N : -N
-            uint32_t nn = arg(0), ii = arg(1), nr = arg(2);
-            uint32_t lt = emit1(SOp::FOrdLt, dot(nr, ii, n), zero_);
-            uint32_t d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::Select, d + i, nn + i, emit1(SOp::FNeg, nn + i), lt);
-            return;
-        }
-        case GLSLstd450Reflect: {
-            // reflect(I, N) = I - (2 * dot(N, I)) * N
-            uint32_t ii = arg(0), nn = arg(1);
-            uint32_t k = emit1(SOp::FMul, konstf(2.0f), dot(nn, ii, n));
-            uint32_t d = def();
-            for (uint32_t i = 0; i < n; ++i) emit(SOp::FSub, d + i, ii + i, emit1(SOp::FMul, k, nn + i));
-            return;
-        }
-        case GLSLstd450Refract: {
-            // k = 1 - eta^2 (1 - dot(N,I)^2); k < 0 ? 0 : eta*I - (eta*dot(N,I) + sqrt(k)) * N
-            uint32_t ii = arg(0), nn = arg(1), eta = arg(2);
-            uint32_t ni = dot(nn, ii, n);
-            uint32_t k = emit1(
-                SOp::FSub, konstf(1.0f),
-                emit1(SOp::FMul, emit1(SOp::FMul, eta, eta), emit1(SOp::FSub, konstf(1.0f), emit1(SOp::FMul, ni, ni))));
-            uint32_t neg = emit1(SOp::FOrdLt, k, zero_);
-            uint32_t s = emit1(SOp::FAdd, emit1(SOp::FMul, eta, ni), emit1(SOp::Sqrt, k));
-            uint32_t d = def();
-            for (uint32_t i = 0; i < n; ++i) {
-                uint32_t r = emit1(SOp::FSub, emit1(SOp::FMul, eta, ii + i), emit1(SOp::FMul, s, nn + i));
-                emit(SOp::Select, d + i, zero_, r, neg);
-            }
-            return;
-        }
-        case GLSLstd450FindILsb:
-            return map1(SOp::FindLsb);
-        case GLSLstd450FindSMsb:
-            return map1(SOp::FindSMsb);
-        case GLSLstd450FindUMsb:
-            return map1(SOp::FindUMsb);
-        case GLSLstd450Determinant: {
-            Mat m = columns(in[5]);
-            alias(det(m));
-            return;
-        }
-        case GLSLstd450MatrixInverse: {
-            // lavapipe (vtn matrix_inverse): adjugate from the same sub-determinants, times 1/det (a division)
-            Mat m = columns(in[5]);
-            uint32_t size = uint32_t(m.size());
-            uint32_t inv = emit1(SOp::FDiv, konstf(1.0f), det(m));
-            uint32_t d = def();
-            for (uint32_t c = 0; c < size; ++c)
-                for (uint32_t r = 0; r < size; ++r) {
-                    // adj[c][r] = (-1)^(r+c) * subdet(without row c, column r)
-                    uint32_t a = subdet(m, c, r);
-                    if ((r + c) % 2) a = emit1(SOp::FNeg, a);
-                    emit(SOp::FMul, d + c * size + r, a, inv);
-                }
-            return;
-        }
         case GLSLstd450Modf:
         case GLSLstd450ModfStruct: {
             // lavapipe (vtn): sign = sign(x), a = |x|; fract = |x| == inf ? (x & sign bit) : sign * fract(a);
             // whole = sign * floor(a)
             uint32_t x = arg(0);
-            uint32_t m = argn(0);
+            uint32_t m = flat_of(in[5]);
             uint32_t fr = alloc(m), wh = alloc(m);
             for (uint32_t i = 0; i < m; ++i) {
                 uint32_t sg = emit1(SOp::FSign, x + i), a = emit1(SOp::FAbs, x + i);
@@ -483,7 +513,7 @@ void Translator::glsl_op(const Instr& in) {
         case GLSLstd450FrexpStruct: {
             // nir_lower_frexp: significand in [0.5, 1) with x's sign, exponent such that x = sig * 2^exp
             uint32_t x = arg(0);
-            uint32_t m = argn(0);
+            uint32_t m = flat_of(in[5]);
             uint32_t sig = alloc(m), ex = alloc(m);
             for (uint32_t i = 0; i < m; ++i) {
                 emit(SOp::FrexpSig, sig + i, x + i);
@@ -492,16 +522,8 @@ void Translator::glsl_op(const Instr& in) {
             store_pair(e == GLSLstd450Frexp, sig, ex, m);
             return;
         }
-        case GLSLstd450InterpolateAtCentroid:
-        case GLSLstd450InterpolateAtSample:
-        case GLSLstd450InterpolateAtOffset:
-            return interpolate_at(in, e);
-        case GLSLstd450PackDouble2x32:
-        case GLSLstd450UnpackDouble2x32:
-            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
-                 " (64-bit types are not supported)");
-        default:  // IMix (reserved) and anything newer
-            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e));
+        default:
+            fail(std::string("not a two-result GLSL.std.450 instruction: ") + glsl_std450_name(e));
     }
 }
 

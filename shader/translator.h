@@ -200,7 +200,15 @@ class Translator {
     void image_texel_pointer(const Instr& in);                       // OpImageTexelPointer (translate_image.cpp)
     uint32_t storage_coord(const Type& image_type, uint32_t coord);  // its (x, y[, layer]) registers  // OpImageRead /
                                                                      // OpImageWrite on a storage image
-    void glsl_op(const Instr& in);               // translate_glsl.cpp: GLSL.std.450
+    // translate_glsl.cpp: GLSL.std.450, by family
+    void glsl_op(const Instr& in);
+    void glsl_componentwise(const Instr& in, Op o, uint32_t operands);  // o per component, scalars broadcast
+    void glsl_pow(const Instr& in);
+    void glsl_arith(const Instr& in, uint32_t e);        // Radians/Degrees, U/SClamp, FMix, Step, Fma
+    void glsl_geometric(const Instr& in, uint32_t e);    // Length ... Refract
+    void glsl_matrix(const Instr& in, uint32_t e);       // Determinant, MatrixInverse
+    void glsl_pack(const Instr& in, uint32_t e);         // Pack/Unpack of 2x16 and 4x8
+    void glsl_two_results(const Instr& in, uint32_t e);  // Modf, Frexp and their *Struct forms
     void interpolate_at(const Instr& in, uint32_t e);  // its InterpolateAt* (translate_interface.cpp)
     // helpers for instructions with a result (type in[1], id in[2])
     uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result

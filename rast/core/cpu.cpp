@@ -2,54 +2,27 @@
 
 #include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <cpuid.h>
-#endif
+#include "host/cpu.h"
 
 namespace tilevk::rast {
 namespace {
 
-bool detect_avx2_kernels() {
-#if defined(__x86_64__) || defined(__i386__)
-    unsigned a, b, c, d;
-    if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
-    const bool fma = c & (1u << 12), osxsave = c & (1u << 27), avx = c & (1u << 28);
-    if (!fma || !osxsave || !avx) return false;
-    // The OS saves XMM and YMM state (XCR0 bits 1 and 2).
-    unsigned xcr0_lo, xcr0_hi;
-    __asm__("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
-    if ((xcr0_lo & 0x6u) != 0x6u) return false;
-    if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return false;
-    const bool bmi1 = b & (1u << 3), avx2 = b & (1u << 5), bmi2 = b & (1u << 8);
-    if (!__get_cpuid(0x80000001u, &a, &b, &c, &d)) return false;
-    const bool lzcnt = c & (1u << 5);
-    return avx2 && bmi1 && bmi2 && lzcnt;
-#else
-    return false;
-#endif
-}
-
 Isa choose() {
-    const char* e = std::getenv("TILEVK_SIMD");
-    if (e && *e && std::strcmp(e, "auto") != 0) {
-        if (std::strcmp(e, "none") == 0) return Isa::kPortable;
-        if (std::strcmp(e, "avx2") != 0)
-            std::fprintf(stderr, "tilevk: ignoring TILEVK_SIMD=%s (want none, avx2 or auto)\n", e);
-        else if (!avx2_kernels_built() || !cpu_has_avx2_kernels())
-            std::fprintf(stderr, "tilevk: TILEVK_SIMD=avx2: %s; running the portable kernels\n",
-                         avx2_kernels_built() ? "this CPU lacks AVX2/FMA/BMI2/LZCNT" : "not built with AVX2 kernels");
-    }
-    return avx2_kernels_built() && cpu_has_avx2_kernels() ? Isa::kAvx2 : Isa::kPortable;
+    const host::SimdRequest request = host::simd_request();
+    if (request == host::SimdRequest::kNone) return Isa::kPortable;
+    const bool runnable = avx2_kernels_built() && cpu_has_avx2_kernels();
+    if (request == host::SimdRequest::kAvx2 && !runnable)
+        std::fprintf(stderr, "tilevk: TILEVK_SIMD=avx2: %s; running the portable kernels\n",
+                     avx2_kernels_built() ? "this CPU lacks AVX2/FMA/BMI2/LZCNT" : "not built with AVX2 kernels");
+    return runnable ? Isa::kAvx2 : Isa::kPortable;
 }
 
 }  // namespace
 
 bool cpu_has_avx2_kernels() {
-    static const bool value = detect_avx2_kernels();
-    return value;
+    const host::CpuFeatures& f = host::cpu();
+    return f.fma && f.avx2 && f.bmi1 && f.bmi2 && f.lzcnt;
 }
 
 bool avx2_kernels_built() {

@@ -1,5 +1,5 @@
 // Which instruction-set build of the SIMD kernels this process runs (isa.h): the AVX2/FMA one when it was built
-// and the CPU has AVX2, FMA, BMI1, BMI2 and LZCNT (CPUID, with the OS saving YMM state), unless TILEVK_SIMD=none
+// and the CPU has AVX2, FMA, BMI1, BMI2 and LZCNT (host/cpu.h), unless TILEVK_SIMD=none
 // asks for the portable one. Decided once, at the first call. Both builds give the same bytes (every SIMD kernel
 // has a scalar twin and a test that they agree; tests/rast/fragment/stage_test.cpp renders with both builds).
 #pragma once

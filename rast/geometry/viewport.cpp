@@ -63,14 +63,6 @@ PixelRect viewport_pixel_rect(const Viewport& vp) {
     return r;
 }
 
-bool host_has_fma() {
-#if defined(__x86_64__) || defined(__i386__)
-    return __builtin_cpu_supports("fma");
-#else
-    return false;
-#endif
-}
-
 void viewport_transform(const ViewportConfig& cfg, const float clip[4], float win[4]) {
     if (cfg.bypass) {
         for (int i = 0; i < 4; ++i) win[i] = clip[i];

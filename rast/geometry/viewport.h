@@ -37,9 +37,6 @@ struct PixelRect {
 };
 PixelRect viewport_pixel_rect(const Viewport& vp);
 
-// The JIT's FMA decision: lavapipe's LLVM fuses fmuladd when the host CPU has FMA. Default: this host's answer.
-bool host_has_fma();
-
 struct ViewportConfig {
     Viewport vp;
     bool fused = true;    // fmuladd fused (host FMA) or mul+add

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string_view>
 
+#include "host/cpu.h"
 #include "rast/fragment/blend.h"
 #include "rast/fragment/block.h"
 #include "rast/fragment/interp.h"
@@ -304,7 +305,7 @@ void FragmentStage::resolve_tile(const TileInfo& tile) const {
         const size_t bytes = fragment::format_info(t.format).bytes;
         fragment::resolve_rect(t.format, t.data + size_t(y0) * t.row_pitch + size_t(x0) * bytes, t.sample_stride,
                                t.row_pitch, r.dst + size_t(y0) * r.dst_pitch + size_t(x0) * bytes, r.dst_pitch, x1 - x0,
-                               y1 - y0, geometry::host_has_fma(), bytes);
+                               y1 - y0, host::has_fma(), bytes);
     }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "host/cpu.h"
 #include "rast/core/fixed_point.h"
 #include "rast/fragment/msaa.h"
 #include "rast/geometry/clip.h"
@@ -84,7 +85,7 @@ bool vertex_writes_memory(const shader::Program* vs) {
 }  // namespace
 
 bool Renderer::fused() {
-    static const bool value = geometry::host_has_fma();
+    static const bool value = host::has_fma();
     return value;
 }
 

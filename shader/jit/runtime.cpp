@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "host/cpu.h"
 #include "shader/exec_libm.h"
 #include "shader/jit/helpers.h"
 #include "shader/jit/jit.h"
@@ -41,9 +42,7 @@ bool enabled() {
 
 bool host_supported() {
 #if defined(__x86_64__)
-    // libgcc checks the OS saves the YMM state (XGETBV) before it reports AVX2
-    static const bool ok = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    return ok;
+    return host::cpu().avx2 && host::cpu().fma;
 #else
     return false;
 #endif

@@ -452,6 +452,18 @@ class Kit {
     VkPipelineLayout empty_layout_ = VK_NULL_HANDLE;
 };
 
+// A device-level command by name; the test fails, naming it, when the device does not offer it.
+template <class F>
+F device_proc(VkDevice d, const char* name) {
+    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(d, name));
+    EXPECT_NE(f, nullptr) << name;
+    return f;
+}
+template <class F>
+F device_proc(Kit& k, const char* name) {
+    return device_proc<F>(k.d, name);
+}
+
 inline void begin_pass(VkCommandBuffer c, VkRenderPass rp, VkFramebuffer fb, uint32_t w, uint32_t h,
                        const std::vector<VkClearValue>& clears,
                        VkSubpassContents contents = VK_SUBPASS_CONTENTS_INLINE) {

@@ -15,13 +15,6 @@ namespace {
 const std::vector<const char*> kExtensions = {VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME};
 constexpr VkFormat kC = VK_FORMAT_R8G8B8A8_UNORM;
 
-template <class F>
-F device_proc(Kit& k, const char* name) {
-    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(k.d, name));
-    EXPECT_NE(f, nullptr) << name;
-    return f;
-}
-
 // One attachment of a scene: its view and format, samples, load op and clear value, and where it resolves (or null).
 struct Att {
     VkImageView view = VK_NULL_HANDLE;

@@ -20,13 +20,6 @@ class ApiExtensions : public ApiBreadth {
     }
 };
 
-template <class F>
-F device_proc(Kit& k, const char* name) {
-    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(k.d, name));
-    EXPECT_NE(f, nullptr) << name;
-    return f;
-}
-
 // The descriptor sets of DescriptorSetsDynamicOffsetsSeparateSamplers (without the dynamic buffer), written either
 // with vkUpdateDescriptorSets or through one update template per set whose data is a packed, strided struct.
 Bytes descriptor_scene(Kit& k, bool with_template) {

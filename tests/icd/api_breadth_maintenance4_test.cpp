@@ -15,13 +15,6 @@ namespace {
 
 const std::vector<const char*> kExtensions = {VK_KHR_MAINTENANCE_4_EXTENSION_NAME};
 
-template <class F>
-F device_proc(VkDevice d, const char* name) {
-    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(d, name));
-    EXPECT_NE(f, nullptr) << name;
-    return f;
-}
-
 class ApiMaintenance4 : public ApiBreadth {
   protected:
     std::unique_ptr<DevicePair> devices() {

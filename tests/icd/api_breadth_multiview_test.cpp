@@ -30,13 +30,6 @@ struct Scene {
     bool rp2 = false;
 };
 
-template <class F>
-F device_proc(Kit& k, const char* name) {
-    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(k.d, name));
-    EXPECT_NE(f, nullptr) << name;
-    return f;
-}
-
 // The pass of multiview_pass in its VK_KHR_create_renderpass2 form.
 VkRenderPass multiview_pass2(Kit& k, const std::vector<VkAttachmentDescription>& atts, const VkSubpassDescription& sub,
                              const VkSubpassDependency& dep, uint32_t mask) {

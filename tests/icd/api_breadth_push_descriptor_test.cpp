@@ -10,13 +10,6 @@ namespace {
 
 enum class Set1 { kAllocated, kPushed, kPushedWithTemplate };
 
-template <class F>
-F device_proc(Kit& k, const char* name) {
-    auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(k.d, name));
-    EXPECT_NE(f, nullptr) << name;
-    return f;
-}
-
 VkDescriptorSetLayout push_layout(Kit& k, const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
     VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     ci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "host/cpu.h"
 #include "lavapipe_harness.h"
 #include "xcheck_model.h"
 
@@ -18,7 +19,7 @@ TEST(LavapipeCrossCheck, ClippedPerspectiveTrianglesMatchPixelForPixel) {
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     const auto scenes = make_scenes();
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int compared = 0, clipped_scenes = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
         for (int mode : {0, 1, 2, 4, 5, 6}) {
@@ -53,8 +54,8 @@ TEST(LavapipeCrossCheck, WrongRulesAreDetected) {
     for (const auto& sc : scenes) {
         for (int mode : {4, 5}) {
             const auto got = lvp.render(sc, mode);
-            const auto wrong_fma = model(sc, mode, !host_has_fma());
-            const auto wrong_div = model(sc, mode, host_has_fma(), true);
+            const auto wrong_fma = model(sc, mode, !tilevk::host::has_fma());
+            const auto wrong_div = model(sc, mode, tilevk::host::has_fma(), true);
             for (size_t i = 0; i < got.size(); ++i) {
                 diff_fma += got[i] != wrong_fma[i];
                 diff_div += got[i] != wrong_div[i];
@@ -71,7 +72,7 @@ TEST(LavapipeCrossCheck, LinesIncludingClippedAndWide) {
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(77);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0;
     for (int s = 0; s < 16; ++s) {
         std::vector<InVertex> sc;
@@ -103,7 +104,7 @@ TEST(LavapipeCrossCheck, PointsIncludingOffscreenCentres) {
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0;
     for (int s = 0; s < 16; ++s) {
         std::vector<InVertex> sc;
@@ -133,7 +134,7 @@ TEST(LavapipeCrossCheck, BresenhamLines) {
     if (!lvp.has_line_ext()) GTEST_SKIP() << "no VK_EXT_line_rasterization";
     std::mt19937 rng(78);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0, differs_from_rect = 0;
     for (int s = 0; s < 16; ++s) {
         std::vector<InVertex> sc;
@@ -188,7 +189,7 @@ TEST(LavapipeCrossCheck, VertexFormatConversions) {
         {VK_FORMAT_R32_SFLOAT, VertexFormat::R32_SFLOAT},
     };
     std::mt19937 rng(404);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0;
     for (const auto& f : formats) {
         std::vector<InVertex> sc;
@@ -233,7 +234,7 @@ TEST(LavapipeCrossCheck, DepthPlaneAndDepthBias) {
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     const auto scenes = make_scenes();
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     DepthBias cases[4];
     cases[0] = DepthBias{};
     cases[1].constant_factor = 3.0f;
@@ -283,7 +284,7 @@ TEST(LavapipeCrossCheck, DepthClampNegativeWAndCulling) {
         }
         scenes.push_back(sc);
     }
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0;
     for (int variant = 0; variant < 4; ++variant) {
         Extra x;
@@ -320,7 +321,7 @@ TEST(LavapipeCrossCheck, StripsFansAndRestartOrders) {
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(1717);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     int lit = 0, wrong_diff = 0;
     for (int s = 0; s < 12; ++s) {
         std::vector<InVertex> verts;
@@ -377,7 +378,7 @@ TEST(LavapipeCrossCheck, FractionalViewportLimitsEveryPrimitive) {
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(4242);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     const float vps[3][4] = {{10.25f, 5.75f, 40.5f, 30.25f}, {3.6f, 50.4f, 52.3f, -41.7f}, {0.5f, 0.5f, 62, 62}};
     int lit = 0;
     for (const auto& vpv : vps) {
@@ -480,7 +481,7 @@ TEST(LavapipeCrossCheck, Msaa4xClippedTrianglesAfterResolve) {
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     const auto scenes = make_scenes();
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     Extra x;
     x.samples = 4;
     ModelExtra mx;
@@ -513,7 +514,7 @@ TEST(LavapipeCrossCheck, Msaa4xLinesAndPoints) {
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
     std::mt19937 rng(8080);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     Extra x;
     x.samples = 4;
     ModelExtra mx;
@@ -552,7 +553,7 @@ TEST(LavapipeCrossCheck, FloatCullOnlyOnDrawsPipelinePath) {
     // unrelated clipped triangle in the same draw.
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     // window = (ndc + 1) * 32; we want window v0 (10.5, 10.5), v1 (30.5, 10.5017), v2 (50.5, 10.503)
     auto ndc = [](float wx) { return wx / 32.0f - 1.0f; };
     const std::vector<InVertex> sliver = {iv(ndc(10.5f), ndc(10.5f), 0.5f, 1, 1, 0, 0),
@@ -596,7 +597,7 @@ TEST(LavapipeCrossCheck, IdentityViewportBypassesTheDivide) {
     // divide by w. Its pixel rectangle is just pixel (0, 0): (int)(-1 + 0.499) = 0 .. (int)(2 - 1 - 0.501) = 0.
     Lavapipe lvp;
     if (!lvp.init()) GTEST_SKIP() << "lavapipe not available";
-    const bool fma = host_has_fma();
+    const bool fma = tilevk::host::has_fma();
     Extra x;
     ModelExtra mx;
     const float vp[4] = {-1, -1, 2, 2};

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "host/cpu.h"
 #include "lavapipe_harness.h"
 #include "rast/geometry/clip.h"
 #include "rast/geometry/lavapipe_quirks.h"
@@ -354,7 +355,7 @@ inline std::vector<std::vector<InVertex>> make_scenes() {
 
 // The library's quirk predicate fed from the model's vertex pipeline.
 inline NineVertexQuirk quirk_for(const std::vector<InVertex>& v, bool indexed = false, bool flat = false) {
-    ModelState st(host_has_fma(), ModelExtra{});
+    ModelState st(tilevk::host::has_fma(), ModelExtra{});
     TriangleListBatch b;
     b.vertex_count = static_cast<uint32_t>(v.size());
     b.indexed = indexed;
