@@ -186,6 +186,36 @@ void add_index_cases(CaseList& out) {
                                                  VK_INDEX_TYPE_UINT8_EXT, false));
                    },
                    nullptr, ""});
+    // Restart off: the all-ones index is an ordinary index, far past the vertex buffer (robustBufferAccess: the
+    // vertex reads zeros). A strip through it keeps going.
+    for (VkIndexType t : {VK_INDEX_TYPE_UINT32, VK_INDEX_TYPE_UINT16}) {
+        const uint32_t ones = t == VK_INDEX_TYPE_UINT16 ? 0xFFFF : ~0u;
+        const char* tn = t == VK_INDEX_TYPE_UINT16 ? "uint16" : "uint32";
+        out.push_back({std::string("feature.index_no_restart.strip_") + tn,
+                       [=] {
+                           return one_draw(grid_draw(VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP,
+                                                     {0, 4, 1, 5, 2, 6, ones, 5, 9, 6, 10, 7, 11}, t, false));
+                       },
+                       nullptr, ""});
+        out.push_back({std::string("feature.index_no_restart.list_") + tn,
+                       [=] {
+                           return one_draw(grid_draw(VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                                                     {0, 1, 4, 5, ones, 1, 2, 5, 6, 7, 10, 11}, t, false));
+                       },
+                       nullptr, ""});
+        out.push_back(
+            {std::string("feature.index_no_restart.line_strip_") + tn,
+             [=] {
+                 return one_draw(grid_draw(VK_PRIMITIVE_TOPOLOGY_LINE_STRIP, {0, 5, 2, ones, 7, 11, 6, 8}, t, false));
+             },
+             nullptr, ""});
+        out.push_back(
+            {std::string("feature.index_no_restart.points_") + tn,
+             [=] {
+                 return one_draw(grid_draw(VK_PRIMITIVE_TOPOLOGY_POINT_LIST, {0, 5, 2, ones, 7, 11, 6, 8}, t, false));
+             },
+             nullptr, ""});
+    }
     // Restart on list topologies: the list starts again after each restart index; an incomplete primitive before
     // it is dropped.
     const struct {
