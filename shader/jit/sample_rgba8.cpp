@@ -33,16 +33,20 @@ bool table_current(const ImageView& img) {
            std::bit_cast<uint32_t>(t.swizzle) == std::bit_cast<uint32_t>(img.swizzle);
 }
 
-// table[lv] per lane, lv in [0, levels - 1]: one permute for views of at most 8 levels (lv < 8), two beyond
+// table[lv] per lane, lv in [0, levels - 1] (at most kMaxMipLevels - 1 = 15): one permute for views of at most 8
+// levels (lv < 8), two beyond, the second's entries taken where lv's bit 3 is set (lv >= 8), moved to the sign
+// bit that vblendvps reads (a compare against 7 cost GCC a broadcast, vpcmpgtd, vpcmpgtb and vpblendvb).
+static_assert(kMaxMipLevels <= 16);
 TVK_AVX2 __m256i lookup(const int32_t* table, uint32_t levels, __m256i lv) {
     const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
     if (levels <= 8) return lo;
     const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
-    return _mm256_blendv_epi8(lo, hi, _mm256_cmpgt_epi32(lv, _mm256_set1_epi32(7)));
+    const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(lv, 28));
+    return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo), _mm256_castsi256_ps(hi), upper));
 }
 
 struct Axis {
-    __m256i i0, i1, w;
+    __m256i i0, i1, w128;  // w128: the 8-bit weight times 128 (lerp16's form)
 };
 
 // axis_fixed8 with no offset: c = iround(s * float(n * 256)) - 128; CLAMP: both indices clamped, REPEAT pot:
@@ -53,7 +57,7 @@ TVK_AVX2 Axis axis(__m256 s, __m256i n, bool clamp) {
     const __m256i i = _mm256_srai_epi32(c, 8), one = _mm256_set1_epi32(1);
     const __m256i last = _mm256_sub_epi32(n, one);
     Axis a;
-    a.w = _mm256_and_si256(c, _mm256_set1_epi32(255));
+    a.w128 = _mm256_and_si256(_mm256_slli_epi32(c, 7), _mm256_set1_epi32(255 << 7));
     if (clamp) {
         a.i0 = _mm256_min_epi32(_mm256_max_epi32(i, _mm256_setzero_si256()), last);
         // i >= 0 && i < n - 1 ? i0 + 1 : i0
@@ -78,7 +82,8 @@ TVK_AVX2 Wide widen(__m256i texels) {
     return {_mm256_unpacklo_epi8(texels, z), _mm256_unpackhi_epi8(texels, z)};
 }
 
-// A per-lane 8-bit weight repeated over the lane's four 16-bit channels, in widen()'s layout.
+// A per-lane 16-bit weight (the low half of each 32-bit lane) repeated over the lane's four 16-bit channels, in
+// widen()'s layout.
 TVK_AVX2 Wide spread(__m256i w) {
     const __m256i lo = _mm256_setr_epi8(0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4, 5, 4, 5, 4, 5, 0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4,
                                         5, 4, 5, 4, 5);
@@ -87,10 +92,12 @@ TVK_AVX2 Wide spread(__m256i w) {
     return {_mm256_shuffle_epi8(w, lo), _mm256_shuffle_epi8(w, hi)};
 }
 
-// fixed8::lerp on 16-bit channels: a + ((w * (b - a) + 128) >> 8) = a + pmulhrsw(w, (b - a) << 7), exactly (the
-// product and its rounding constant are 128 times the formula's, pmulhrsw shifts by 15)
-TVK_AVX2 __m256i lerp16(__m256i w, __m256i a, __m256i b) {
-    return _mm256_add_epi16(a, _mm256_mulhrs_epi16(w, _mm256_slli_epi16(_mm256_sub_epi16(b, a), 7)));
+// fixed8::lerp on 16-bit channels: a + ((w * (b - a) + 128) >> 8) = a + pmulhrsw(w * 128, b - a), exactly (the
+// product and its rounding constant are 128 times the formula's, pmulhrsw shifts by 15; w * 128 <= 32640 and
+// |b - a| <= 255 fit its 16-bit operands). The factor 128 rides on the weight, made once per axis, instead of on
+// every difference.
+TVK_AVX2 __m256i lerp16(__m256i w128, __m256i a, __m256i b) {
+    return _mm256_add_epi16(a, _mm256_mulhrs_epi16(w128, _mm256_sub_epi16(b, a)));
 }
 TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
     return {lerp16(w.lo, a.lo, b.lo), lerp16(w.hi, a.hi, b.hi)};
@@ -145,7 +152,7 @@ TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageVi
         p01 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x0), 1);
         p11 = _mm256_i32gather_epi32(base, _mm256_add_epi32(row1, x1), 1);
     }
-    const Wide wx = spread(x.w), wy = spread(y.w);
+    const Wide wx = spread(x.w128), wy = spread(y.w128);
     return lerp(wy, lerp(wx, widen(p00), widen(p10)), lerp(wx, widen(p01), widen(p11)));
 }
 
@@ -200,8 +207,9 @@ struct Levels {
 };
 
 // From lambda before the sampler's bias: bias, NaN -> 0, clamps, then exec_image's level selection (magnified
-// lanes read level 0 only).
-TVK_AVX2 Levels select_levels(__m256 lambda, const ImageView& img, const SamplerState& smp) {
+// lanes read level 0 only). Inlined: as a call it returned its three vectors through memory.
+TVK_AVX2 __attribute__((always_inline)) inline Levels select_levels(__m256 lambda, const ImageView& img,
+                                                                    const SamplerState& smp) {
     lambda = _mm256_add_ps(lambda, _mm256_set1_ps(smp.mip_lod_bias));
     lambda = _mm256_and_ps(lambda, _mm256_cmp_ps(lambda, lambda, _CMP_ORD_Q));  // NaN -> 0
     lambda = min_std(max_std(lambda, _mm256_set1_ps(smp.min_lod)), _mm256_set1_ps(smp.max_lod));
@@ -252,23 +260,24 @@ constexpr PickTable make_pick_table() {
 }
 constexpr PickTable kPick = make_pick_table();
 
-// Eight lanes (half h) filtered at their levels L, as floats per channel in RGBA order.
-// Inlined: a call per half would pass its results through memory.
-TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, const uint32_t* R, const ImageView& img,
+// Eight lanes (half h) filtered at their levels L, written as floats per channel in RGBA order to the lanes of half
+// h of the destination registers. Inlined: a call per half would pass its results through memory.
+TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, uint32_t* R, const ImageView& img,
                                                                 const SamplerState& smp, const ViewLevelTable& levels,
-                                                                int h, const Levels& L, __m256 out[4]) {
+                                                                int h, const Levels& L) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     const bool clamp_u = smp.address_u == AddressMode::ClampToEdge, clamp_v = smp.address_v == AddressMode::ClampToEdge;
     Wide a = level_bilinear(img, levels, L.lv, s, t, clamp_u, clamp_v);
     if (!_mm256_testz_si256(L.mw, L.mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
-        a = lerp(spread(L.mw), a, level_bilinear(img, levels, L.hi, s, t, clamp_u, clamp_v));
+        a = lerp(spread(_mm256_slli_epi32(L.mw, 7)), a, level_bilinear(img, levels, L.hi, s, t, clamp_u, clamp_v));
     // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
     const auto& pick = kPick.bytes[levels.bgra ? 1 : 0];
     for (int c = 0; c < 4; ++c) {
         const __m256i ch = _mm256_shuffle_epi8(words, _mm256_load_si256(reinterpret_cast<const __m256i*>(pick[c])));
-        out[c] = _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k);
+        _mm256_storeu_ps(reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes + 8 * h),
+                         _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k));
     }
 }
 
@@ -280,8 +289,10 @@ namespace {
 TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, const SamplerState& smp,
                           const ViewLevelTable& levels) {
     if (!levels.rgba8 || !sampler_fits(smp, levels)) return false;
-    // everything computed before any write: a NaN in the implicit LOD sends the whole instruction to exec_image,
-    // which must see the registers unchanged (the destination may be a source)
+    // the levels of both halves before any write: a NaN in the implicit LOD sends the whole instruction to
+    // exec_image, which must see the registers unchanged (the destination may be a source). After that, half 0's
+    // results go straight to their lanes: half 1 reads only lanes 8-15 of its sources (the levels are known), so
+    // a destination that is also a source is still intact where it is read.
     Levels L[2];
     if (in.imm & kSampleExplicitLod) {
         for (int h = 0; h < 2; ++h) L[h] = select_levels(load_half(R, in.c, h), img, smp);
@@ -300,13 +311,7 @@ TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, con
             for (int h = 0; h < 2; ++h) L[h] = {quad_spread(q.lv, h), quad_spread(q.hi, h), quad_spread(q.mw, h)};
         }
     }
-    __m256 out[2][4];
-    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, levels, h, L[h], out[h]);
-    for (int c = 0; c < 4; ++c) {
-        float* d = reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes);
-        _mm256_storeu_ps(d, out[0][c]);
-        _mm256_storeu_ps(d + 8, out[1][c]);
-    }
+    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, levels, h, L[h]);
     return true;
 }
 
