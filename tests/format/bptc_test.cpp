@@ -68,6 +68,19 @@ TEST(BptcDecode, Bc7Mode6PBitsAndFourBitIndices) {
     EXPECT_EQ(f[3], 138.0f * float(1.0 / 255.0));  // alpha stays linear
 }
 
+// The interpolation's rounding: e0 = 0, e1 = 32 (mode 6: 7-bit 16, p-bit 0), index 5 of 16 (w = 21):
+// 21 * 32 = 672 = 10.5 * 64, and + 32 rounds the half up: 11.
+TEST(BptcDecode, Bc7InterpolationRoundsHalvesUp) {
+    BitWriter w;
+    w.put(1u << 6, 7);
+    for (int c = 0; c < 4; ++c) w.put(0, 7), w.put(16, 7);
+    w.put(0, 2);
+    w.put(5, 3);
+    for (int t = 1; t < 16; ++t) w.put(5, 4);
+    ASSERT_EQ(w.at, 128);
+    for (int t : {0, 9}) expect_rgba8(bc7(Format::BC7_UNORM_BLOCK, w.block, t), {11, 11, 11, 11}, t);
+}
+
 // Mode 4: rotation 1 (R <-> A), index selector 1 (colour from the 3-bit indices, alpha from the 2-bit ones).
 // Endpoints r 0 -> 31, g 31 -> 0, b 16 -> 16 (5 bits: 0, 255, 132), a 0 -> 63 (6 bits: 0, 255). Every 2-bit index
 // 1 (w = 21), every 3-bit index 2 (w = 18): r = (18 * 255 + 32) >> 6 = 72, g = (46 * 255 + 32) >> 6 = 183, b = 132,
