@@ -2,7 +2,8 @@
 // start of level 0 for the modes random bytes rarely hit (equal endpoints, the extremes, BC1's three-colour mode with
 // its transparent colour, BC3/BC4/BC5's six-value mode with its 0 and 255 / -127 and 127 codes), uploaded through
 // block-granular buffer copies: a padded bufferRowLength, level 0 in two regions (the second at a block offset, its
-// extent ending in a partial block).
+// extent ending in a partial block). BC6H and BC7 blocks keep their random bits but have their mode bits set from the
+// block's index in the upload, so that every mode (the reserved ones too) appears at every level.
 #include <algorithm>
 #include <cstring>
 
@@ -73,6 +74,20 @@ void hand_made_block(VkFormat f, int k, uint8_t* p) {
     }
 }
 
+// The mode bits of the n-th BPTC block: BC7 modes 0..7 (mode m: m zero bits, then a one) and the reserved byte-0-zero
+// block; BC6H's 14 modes (2 or 5 bits) and its 4 reserved 5-bit codes.
+void set_bptc_mode(VkFormat f, uint32_t n, uint8_t* p) {
+    if (f == VK_FORMAT_BC7_UNORM_BLOCK || f == VK_FORMAT_BC7_SRGB_BLOCK) {
+        const uint32_t m = n % 9;
+        p[0] = m == 8 ? 0 : uint8_t((p[0] & ~((2u << m) - 1)) | (1u << m));
+        return;
+    }
+    static const uint8_t kBc6Modes[18] = {0x00, 0x01, 0x02, 0x06, 0x0a, 0x0e, 0x12, 0x16, 0x1a,
+                                          0x1e, 0x03, 0x07, 0x0b, 0x0f, 0x13, 0x17, 0x1b, 0x1f};
+    const uint8_t mode = kBc6Modes[n % 18];
+    p[0] = uint8_t((p[0] & (mode < 2 ? ~3u : ~31u)) | mode);
+}
+
 }  // namespace
 
 Texture make_bc_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
@@ -91,11 +106,13 @@ Texture make_bc_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& 
     auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
     Rng rng(uint32_t(t.format) * 7919u + t.width * 31u + t.height);
     for (VkDeviceSize i = 0; i < total; ++i) bytes[i] = uint8_t(rng.next() >> 24);
+    if (t.format >= VK_FORMAT_BC6H_UFLOAT_BLOCK && t.format <= VK_FORMAT_BC7_SRGB_BLOCK)
+        for (VkDeviceSize i = 0; i < total / bb; ++i) set_bptc_mode(t.format, uint32_t(i), bytes + i * bb);
     VkDeviceSize offset = 0;
     for (uint32_t l = 0; l < t.mip_levels; ++l) {
         const uint32_t w = half(t.width, l), h = half(t.height, l);
         const uint32_t row_blocks = (w + 3) / 4 + 1;
-        if (l == 0)
+        if (l == 0 && t.format < VK_FORMAT_BC6H_UFLOAT_BLOCK)
             for (int k = 0; k < 4 && uint32_t(k) < row_blocks - 1; ++k) hand_made_block(t.format, k, bytes + k * bb);
         VkBufferImageCopy r{};
         r.bufferOffset = offset;

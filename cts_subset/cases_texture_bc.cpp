@@ -1,6 +1,6 @@
-// texture.bc.*: BC1-BC5 compressed textures (seeded random blocks plus hand-made ones for every mode: bc_texture.cpp)
+// texture.bc.*: BC1-BC7 compressed textures (seeded random blocks plus hand-made ones for every mode: bc_texture.cpp)
 // sampled nearest and linear, magnified (lavapipe's 8-bit filter for the UNORM formats under REPEAT /
-// CLAMP_TO_EDGE, its float filter under CLAMP_TO_BORDER, and always for sRGB and SNORM), minified through a mip
+// CLAMP_TO_EDGE, its float filter under CLAMP_TO_BORDER, and always for sRGB, SNORM and BC6H), minified through a mip
 // chain whose levels are not multiples of the block (22x14 down to 1x1), and every texel of every level fetched
 // with texelFetch. The targets are RGBA32F, so every float of the decode and the filter shows. The textures are
 // uploaded by block-granular vkCmdCopyBufferToImage (a padded bufferRowLength, a region at a block offset ending in
@@ -21,6 +21,8 @@ const BcFormat kFormats[] = {
     {"bc3_unorm", VK_FORMAT_BC3_UNORM_BLOCK},           {"bc3_srgb", VK_FORMAT_BC3_SRGB_BLOCK},
     {"bc4_unorm", VK_FORMAT_BC4_UNORM_BLOCK},           {"bc4_snorm", VK_FORMAT_BC4_SNORM_BLOCK},
     {"bc5_unorm", VK_FORMAT_BC5_UNORM_BLOCK},           {"bc5_snorm", VK_FORMAT_BC5_SNORM_BLOCK},
+    {"bc6h_ufloat", VK_FORMAT_BC6H_UFLOAT_BLOCK},       {"bc6h_sfloat", VK_FORMAT_BC6H_SFLOAT_BLOCK},
+    {"bc7_unorm", VK_FORMAT_BC7_UNORM_BLOCK},           {"bc7_srgb", VK_FORMAT_BC7_SRGB_BLOCK},
 };
 
 // A full-target quad with v_uv from u0 to u1; `body` computes `o_color` from `tex` and `uv`.

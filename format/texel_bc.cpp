@@ -90,7 +90,12 @@ uint8_t decode_alpha(const uint8_t* p, int texel, bool is_signed) {
 }  // namespace
 
 bool is_bc_decoded(const FormatInfo& f) {
-    return f.id >= Format::BC1_RGB_UNORM_BLOCK && f.id <= Format::BC5_SNORM_BLOCK;
+    return f.id >= Format::BC1_RGB_UNORM_BLOCK && f.id <= Format::BC7_SRGB_BLOCK;
+}
+
+bool bc_fits_8unorm(const FormatInfo& f) {
+    return is_bc_decoded(f) && !is_bc_signed(f) && !is_bc_srgb(f) && f.id != Format::BC6H_UFLOAT_BLOCK &&
+           f.id != Format::BC6H_SFLOAT_BLOCK;
 }
 
 bool is_bc_signed(const FormatInfo& f) {
@@ -99,13 +104,15 @@ bool is_bc_signed(const FormatInfo& f) {
 
 bool is_bc_srgb(const FormatInfo& f) {
     return f.id == Format::BC1_RGB_SRGB_BLOCK || f.id == Format::BC1_RGBA_SRGB_BLOCK ||
-           f.id == Format::BC2_SRGB_BLOCK || f.id == Format::BC3_SRGB_BLOCK;
+           f.id == Format::BC2_SRGB_BLOCK || f.id == Format::BC3_SRGB_BLOCK || f.id == Format::BC7_SRGB_BLOCK;
 }
 
 uint8_t bc_stored_channels(const FormatInfo& f) {
     switch (f.id) {
         case Format::BC1_RGB_UNORM_BLOCK:
         case Format::BC1_RGB_SRGB_BLOCK:
+        case Format::BC6H_UFLOAT_BLOCK:
+        case Format::BC6H_SFLOAT_BLOCK:
             return 0x7;
         case Format::BC4_UNORM_BLOCK:
         case Format::BC4_SNORM_BLOCK:
@@ -153,12 +160,20 @@ void decode_bc_rgba8(const FormatInfo& f, const uint8_t* block, int i, int j, ui
             rgba[3] = sgn ? 127 : 255;
             break;
         }
+        case Format::BC7_UNORM_BLOCK:
+        case Format::BC7_SRGB_BLOCK:
+            decode_bc7_rgba8(block, i, j, rgba);
+            break;
         default:
             break;
     }
 }
 
 void decode_bc_color(const FormatInfo& f, const uint8_t* block, int i, int j, float rgba[4], bool fused) {
+    if (is_bptc(f)) {
+        decode_bptc_color(f, block, i, j, rgba);
+        return;
+    }
     uint8_t bytes[4];
     decode_bc_rgba8(f, block, i, j, bytes);
     if (!is_bc_decoded(f)) {

@@ -1,5 +1,5 @@
-// BC (S3TC / RGTC) block decoding as lavapipe 22.3.6 samples it: llvmpipe decodes a block to 8-bit RGBA with its
-// own integer arithmetic (gallivm/lp_bld_format_s3tc.c, the uncached path: lavapipe builds without
+// BC (S3TC / RGTC / BPTC) block decoding as lavapipe 22.3.6 samples it. BC1-BC5: llvmpipe decodes a block to 8-bit RGBA
+// with its own integer arithmetic (gallivm/lp_bld_format_s3tc.c, the uncached path: lavapipe builds without
 // LP_USE_TEXTURE_CACHE), then reads the bytes as an R8G8B8A8 UNORM, sRGB or SNORM texel
 // (lp_bld_format_soa.c lp_build_fetch_rgba_soa, the "compressed" branch). The arithmetic, per 8-bit channel:
 //
@@ -19,6 +19,19 @@
 // sRGB formats decode their colour through srgb8_to_linear (texel_codec.h); UNORM c * fl(1/255); SNORM
 // max(c * fl(1/127), -1). UNORM BC1-5 also take lavapipe's 8-bit filter (util_format_fits_8unorm: S3TC and RGTC
 // UNORM, not sRGB, not SNORM), which reads decode_bc_rgba8's bytes.
+//
+// BC6H and BC7 (texel_bptc.cpp): llvmpipe has no decoder of its own for them; its sampler calls Mesa's C fetch per
+// texel (lp_bld_format_aos.c lp_build_fetch_rgba_aos, the fetch_rgba fallback: util_format_bptc_*_fetch_rgba, whose
+// decoder is src/mesa/main/texcompress_bptc_tmp.h) and gets floats:
+//   BC7 UNORM    the decoder's bytes (spec interpolation, ((64 - w) * e0 + w * e1 + 32) >> 6) as c * fl(1/255).
+//                util_format_fits_8unorm holds, so it also takes the 8-bit filter, whose fetch converts those
+//                floats back to the same bytes (lp_build_conv, round to nearest)
+//   BC7 SRGB     colour through util_format_srgb_8unorm_to_linear_float (a table of the exact curve printed with 8
+//                significant digits, not the polynomial of the S3TC sRGB formats), alpha c * fl(1/255); float filter
+//   BC6H         the spec's unquantization, interpolation and 31/64 (UFLOAT) or 31/32 with the sign bit (SFLOAT)
+//                scaling to a half, converted to float exactly (an SFLOAT endpoint of -32768 in the 16-bit mode
+//                gives -infinity); alpha 1; float filter
+//   reserved     BC7 byte 0 == 0 (no mode bit): (0, 0, 0, 0); BC6H modes 10011, 10111, 11011, 11111: (0, 0, 0, 1)
 #pragma once
 
 #include <cstdint>
@@ -27,23 +40,33 @@
 
 namespace tilevk::format {
 
-// True for the BC formats decoded here (BC1-BC5, every variant).
+// True for the BC formats decoded here (BC1-BC7, every variant).
 bool is_bc_decoded(const FormatInfo& f);
+// True for BC6H and BC7 (texel_bptc.cpp).
+bool is_bptc(const FormatInfo& f);
+// util_format_fits_8unorm of a BC format: BC1-BC5 UNORM (not sRGB, not SNORM) and BC7 UNORM. These take lavapipe's
+// 8-bit filter, reading decode_bc_rgba8's bytes.
+bool bc_fits_8unorm(const FormatInfo& f);
 // True for the BC formats whose texels are signed bytes (BC4_SNORM, BC5_SNORM).
 bool is_bc_signed(const FormatInfo& f);
-// True for the sRGB BC formats (BC1, BC2, BC3 _SRGB).
+// True for the sRGB BC formats (BC1, BC2, BC3, BC7 _SRGB).
 bool is_bc_srgb(const FormatInfo& f);
 
 // The channels the format stores, bit c for channel c: BC1_RGB 0x7, BC4 0x1, BC5 0x3, else 0xf. Where the sampler
 // reads the border colour, lavapipe replaces only these channels (lp_bld_sample_soa.c lp_build_sample_texel_soa: the
-// others keep the format's constants, 0 for colour, 1 for alpha).
+// others keep the format's constants, 0 for colour, 1 for alpha). BC6H 0x7, BC7 0xf.
 uint8_t bc_stored_channels(const FormatInfo& f);
 
 // Texel (i, j) (0..3 each) of the block at `block`, as llvmpipe's decoder leaves it: R, G, B, A bytes (signed
-// bytes for the SNORM formats). Formats not decoded here give (0, 0, 0, 0).
+// bytes for the SNORM formats; BC7 as Mesa's decoder leaves it). BC6H and formats not decoded here give (0, 0, 0, 0).
 void decode_bc_rgba8(const FormatInfo& f, const uint8_t* block, int i, int j, uint8_t rgba[4]);
 
 // The same texel converted as lavapipe's sampler converts it (see above); `fused`: sRGB decode with fmuladd.
 void decode_bc_color(const FormatInfo& f, const uint8_t* block, int i, int j, float rgba[4], bool fused);
+
+// texel_bptc.cpp: texel (i, j) of a BC7 block as Mesa's decoder's bytes, and of any BPTC block as lavapipe's sampler
+// sees it (above).
+void decode_bc7_rgba8(const uint8_t* block, int i, int j, uint8_t rgba[4]);
+void decode_bptc_color(const FormatInfo& f, const uint8_t* block, int i, int j, float rgba[4]);
 
 }  // namespace tilevk::format

@@ -73,6 +73,9 @@ Features make_supported() {
     c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)
+    // BC1-BC7 sampled (format/texel_bc.h, texel_bptc.cpp) and copied in blocks, every format the feature requires
+    // (tests/icd/transfer_bc_test.cpp FormatQueries checks them against the spec's list and lavapipe).
+    c.textureCompressionBC = VK_TRUE;
     // The SRC1 factors on attachment 0 blend with the fragment output of Location 0, Index 1 (shader/
     // kSecondColorOutput), converted as the first source; such draws take the reference fragment pipeline
     // (feature.dual_src_blend.*).

@@ -29,20 +29,17 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBlitImage(VkCommandBuffer commandBuffer, VkIma
     }
 }
 
-bool blit_supported(const FormatInfo& f) {
-    const uint32_t blit = format::kBlitSrc | format::kBlitDst;
-    return (image_features(f) & blit) == blit;
-}
-
-bool blit_linear_supported(const FormatInfo& f) {
-    return blit_supported(f) && (image_features(f) & format::kSampledImageFilterLinear);
+bool blit_supported(const FormatInfo& f, bool source) {
+    // the BC formats are blit sources only (the sampler decodes them), as lavapipe's
+    return (image_features(f) & (source ? format::kBlitSrc : format::kBlitDst)) != 0;
 }
 
 namespace {
 
 // Checks a blit region's box against its subresource (invalid usage must not crash): offsets inside the level,
 // layers inside the image, memory bound.
-bool region_ok(const Image* img, const VkImageSubresourceLayers& sub, const VkOffset3D (&o)[2], const char* which) {
+bool region_ok(const Image* img, const VkImageSubresourceLayers& sub, const VkOffset3D (&o)[2], bool source) {
+    const char* which = source ? "source" : "destination";
     // lavapipe blits 3D boxes (lvp_execute.c handle_blit_image); rast/'s blitter filters 2D layers only.
     if (img != nullptr && img->type == VK_IMAGE_TYPE_3D) {
         log_error("vkCmdBlitImage: %s is a VK_IMAGE_TYPE_3D image; 3D blits are not implemented, region skipped",
@@ -52,7 +49,7 @@ bool region_ok(const Image* img, const VkImageSubresourceLayers& sub, const VkOf
     bool ok = img != nullptr && img->memory != nullptr && sub.mipLevel < img->mip_levels &&
               sub.baseArrayLayer < img->array_layers && sub.layerCount >= 1 &&
               sub.layerCount <= img->array_layers - sub.baseArrayLayer && img->samples == 1 &&
-              blit_supported(*img->format) && img->memory_offset <= img->memory->size &&
+              blit_supported(*img->format, source) && img->memory_offset <= img->memory->size &&
               img->layout.size <= img->memory->size - img->memory_offset;
     if (ok) {
         const int64_t w = img->level_width(sub.mipLevel), h = img->level_height(sub.mipLevel);
@@ -79,8 +76,8 @@ rast::render::BlitSurface surface_of(const Image& img, uint32_t level) {
 }
 
 void blit_region(ExecState& st, const Image& src, const Image& dst, const VkImageBlit& r, VkFilter filter) {
-    if (!region_ok(&src, r.srcSubresource, r.srcOffsets, "source") ||
-        !region_ok(&dst, r.dstSubresource, r.dstOffsets, "destination")) {
+    if (!region_ok(&src, r.srcSubresource, r.srcOffsets, true) ||
+        !region_ok(&dst, r.dstSubresource, r.dstOffsets, false)) {
         return;
     }
     if (r.srcSubresource.layerCount != r.dstSubresource.layerCount) {

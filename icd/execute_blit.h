@@ -11,8 +11,7 @@ struct ExecState;
 // hands it to rast::render::blit on the queue's worker threads.
 void exec_blit_image(ExecState& st, const CmdBlitImage& c);
 
-// True if the format can be a blit source and destination (BLIT_SRC|BLIT_DST); `linear` for FILTER_LINEAR.
-bool blit_supported(const FormatInfo& f);
-bool blit_linear_supported(const FormatInfo& f);
+// True if the format can be a blit source (`source`: BLIT_SRC) or destination (BLIT_DST).
+bool blit_supported(const FormatInfo& f, bool source);
 
 }  // namespace tilevk::icd
