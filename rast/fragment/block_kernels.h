@@ -273,6 +273,7 @@ template <bool kD16, CompareOp kOp>
 TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
                                            uint8_t* origin, size_t pitch, bool write) {
     __m256i stored[2];
+#pragma GCC unroll 2  // both halves in registers: rolled, GCC kept stored/src/pass_v on the stack
     for (int h = 0; h < 2; ++h) {
         const uint8_t* row0 = origin + size_t(2 * h) * pitch;
         if constexpr (kD16) {
@@ -292,6 +293,7 @@ TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBl
     const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
     __m256i src[2], pass_v[2];
     uint32_t pass = 0;
+#pragma GCC unroll 2  // both halves in registers: rolled, GCC kept stored/src/pass_v on the stack
     for (int h = 0; h < 2; ++h) {
         __m256 v = _mm256_loadu_ps(z + 8 * h);
         // clamp_depth: DAZ, then max(min(z, 1), 0), then max(min(z, max_depth), min_depth) (SSE NaN rules)
@@ -314,6 +316,7 @@ TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBl
         pass |= uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass_v[h]))) << (8 * h);
     }
     if (write && d.write && pass) {
+#pragma GCC unroll 2
         for (int h = 0; h < 2; ++h) {
             const __m256i v = _mm256_blendv_epi8(stored[h], src[h], pass_v[h]);
             const __m128i lo = _mm256_castsi256_si128(v), hi = _mm256_extracti128_si256(v, 1);

@@ -38,10 +38,13 @@ void copy_lanes(void* dst, const void* src) {
 #endif
 }
 
-// What one block carries from step to step.
+// What one block carries from step to step, for a framebuffer of kSamples samples (1 or 4): with the count a
+// constant every per-sample loop of the steps below is unrolled (at 1x: straight-line code), which took a fifth of
+// the block's instructions when it was read from the framebuffer.
+template <int kSamples>
 struct Block {
+    static constexpr int samples = kSamples;
     int32_t x = 0, y = 0;
-    int samples = 1;
     bool inside = true;      // the whole block lies in the framebuffer
     uint16_t cover[4] = {};  // per sample, lane order
     uint16_t pass[4] = {};   // survivors of the early test (cover without one)
@@ -65,7 +68,8 @@ struct Block {
 // Returns the lanes any sample covers (0: nothing to do). pass starts as cover, sample by sample: the mask arrays
 // are written and read in 16-bit units only (a copy of all four at once becomes one 64-bit load of four fresh
 // 16-bit stores, which the CPU cannot forward: a stall on every block).
-uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) {
+template <class B>
+uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], B& k) {
     uint16_t any = 0;
     for (int s = 0; s < k.samples; ++s) {
         const uint16_t lanes = fragment::raster_to_lanes(raster_masks[s]);
@@ -78,7 +82,8 @@ uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) 
 }
 
 // z per sample: 1x at the pixel centre, 4x at each sample position, plus the depth offset (eval_depth's plain add).
-void depth_values(const BlockArgs& a, Block& k) {
+template <class B>
+void depth_values(const BlockArgs& a, B& k) {
     const fragment::Plane zplane = plane_of(a.planes, 2);
     const float depth_offset = a.planes[kPlaneFloats];
     for (int s = 0; s < k.samples; ++s) {
@@ -93,7 +98,8 @@ void depth_values(const BlockArgs& a, Block& k) {
     }
 }
 
-uint8_t* depth_origin(const BlockArgs& a, const Block& k, int s) {
+template <class B>
+uint8_t* depth_origin(const BlockArgs& a, const B& k, int s) {
     const DepthStencilTarget& dst = a.fb->depth_stencil;
     return dst.depth + size_t(s) * dst.depth_sample_stride + size_t(k.y) * dst.depth_row_pitch +
            size_t(k.x) * depth_bytes(dst.format);
@@ -101,7 +107,8 @@ uint8_t* depth_origin(const BlockArgs& a, const Block& k, int s) {
 
 // The early test when the depth mode has one (its write too when allowed); otherwise the depth/stencil values
 // the late test will need. Returns the lanes that go on to the shader.
-uint16_t early_depth(const BlockArgs& a, Block& k) {
+template <class B>
+uint16_t early_depth(const BlockArgs& a, B& k) {
     const DrawRecord& draw = *a.draw;
     const DrawPlan& plan = *a.plan;
     const DepthStencilTarget& dst = a.fb->depth_stencil;
@@ -155,7 +162,8 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
 
 // A direct run (DrawPlan::direct): run_shader's interpolation, written into the program's local words of the inputs
 // it reads, and the run on them. Returns the live lanes; k.local holds the colour outputs after it.
-uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+template <class B>
+uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, B& k, uint16_t lanes) {
     const DrawPlan& plan = *a.plan;
     const shader::Program* fs = a.draw->pipe->fragment;
     shader::FragmentBlock& b = w.block;  // its scalars only
@@ -189,7 +197,8 @@ uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
 
 // The shader's inputs for `lanes` (built-ins it reads, then the planned components: a * fl(1/w) for perspective
 // ones, the reciprocal once per block), then its run (or the copy of a copied input). Returns the live lanes.
-uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+template <class B>
+uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, B& k, uint16_t lanes) {
     const DrawPlan& plan = *a.plan;
     const shader::Program* fs = a.draw->pipe->fragment;
     shader::FragmentBlock& b = w.block;
@@ -249,7 +258,8 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
 }
 
 // The late test (lanes that failed the early test re-run it so their stencil fail ops apply).
-void late_depth(const BlockArgs& a, Block& k) {
+template <class B>
+void late_depth(const BlockArgs& a, B& k) {
     const DrawRecord& draw = *a.draw;
     const DepthStencilTarget& dst = a.fb->depth_stencil;
     const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
@@ -293,7 +303,8 @@ void opaque_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, c
 // array first costs more than the kernel's conversion: GCC expands it as 16-byte moves, and each of the kernel's
 // 32-byte loads then spans two stores the CPU cannot forward (a stall per load, seen with perf in blend16).
 // Returns false where the reference route (copy, then any kernel) is taken.
-bool write_color_in_place(FragmentWorker& w, const BlockArgs& a, const Block& k, uint32_t c,
+template <class B>
+bool write_color_in_place(FragmentWorker& w, const BlockArgs& a, const B& k, uint32_t c,
                           const float src[4][kBlockLanes], const fragment::BlendOptions& opt) {
 #if TILEVK_SIMD_AVX2
     const ColorTarget& t = a.fb->color[c];
@@ -320,7 +331,8 @@ bool write_color_in_place(FragmentWorker& w, const BlockArgs& a, const Block& k,
 #endif
 }
 
-void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
+template <class B>
+void write_colors(FragmentWorker& w, const BlockArgs& a, const B& k) {
     const Framebuffer& fb = *a.fb;
     const DrawPlan& plan = *a.plan;
     const PipelineState& pipe = *a.draw->pipe;
@@ -351,13 +363,11 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     }
 }
 
-}  // namespace
-
-void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
-    Block k;
+template <int kSamples>
+void shade_block_n(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    Block<kSamples> k;
     k.x = x;
     k.y = y;
-    k.samples = a.fb->samples;
     const uint16_t covered = coverage(a, raster_masks, k);  // pass = cover until the early test
     if (!covered) return;
     const bool depth_active = a.draw->depth_mode != 0;
@@ -379,6 +389,16 @@ void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t 
     if (depth_active) late_depth(a, k);
     if (a.draw->samples_passed) count_passed(w, a.prim->draw, k.final_mask, k.samples);  // only inside a query
     if (fs) write_colors(w, a, k);
+}
+
+}  // namespace
+
+// Framebuffers have 1 or 4 samples (pipeline.cpp refuses other rasterizationSamples, rast/core's Scene clamps).
+void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    if (a.fb->samples == 4)
+        shade_block_n<4>(w, a, x, y, raster_masks);
+    else
+        shade_block_n<1>(w, a, x, y, raster_masks);
 }
 
 }  // namespace tilevk::rast::render::TILEVK_ISA
