@@ -267,28 +267,33 @@ TILEVK_KERNEL __m256i compare_epi32(CompareOp op, __m256i a, __m256i b) {
 }  // namespace detail
 
 // All 16 texels of the block must exist (the caller checks the framebuffer edge): whole rows are read and, when
-// a lane passes with writes on, written back (unchanged texels keep their bytes).
-TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
-                                        size_t pitch, bool write) {
-    const bool d16 = d.format == DepthFormat::D16;
+// a lane passes with writes on, written back (unchanged texels keep their bytes). Specialised on the format and the
+// compare op (depth_block_avx2 dispatches), so that a block is one straight sequence of vector operations.
+template <bool kD16, CompareOp kOp>
+TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
+                                           uint8_t* origin, size_t pitch, bool write) {
     __m256i stored[2];
-    if (d16) {
-        // rows of 4 x u16; unpacklo_epi32(row0, row1) = lanes 0..7 in u16
-        for (int h = 0; h < 2; ++h) {
-            const __m128i r0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(origin + size_t(2 * h) * pitch));
-            const __m128i r1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(origin + size_t(2 * h + 1) * pitch));
+#pragma GCC unroll 2  // both halves in registers: rolled, GCC kept stored/src/pass_v on the stack
+    for (int h = 0; h < 2; ++h) {
+        const uint8_t* row0 = origin + size_t(2 * h) * pitch;
+        if constexpr (kD16) {
+            // rows of 4 x u16; unpacklo_epi32(row0, row1) = lanes 0..7 in u16
+            const __m128i r0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(row0));
+            const __m128i r1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(row0 + pitch));
             stored[h] = _mm256_cvtepu16_epi32(_mm_unpacklo_epi32(r0, r1));
-        }
-    } else {
-        for (int h = 0; h < 2; ++h) {
-            const __m128i r0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(origin + size_t(2 * h) * pitch));
-            const __m128i r1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(origin + size_t(2 * h + 1) * pitch));
+        } else {
+            const __m128i r0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0));
+            const __m128i r1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0 + pitch));
             stored[h] = _mm256_set_m128i(_mm_unpackhi_epi64(r0, r1), _mm_unpacklo_epi64(r0, r1));
         }
     }
+    // After the DAZ and the [0, 1] clamp (max(min(z, 1), 0) turns NaN into 1) z is no denormal, so the compare's own
+    // DAZ of it is needed only where no clamp ran, or where depthClamp's bounds (viewport floats) might be denormal.
+    const bool daz_z = !d.restrict01 || d.clamp;
     const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
     __m256i src[2], pass_v[2];
     uint32_t pass = 0;
+#pragma GCC unroll 2  // both halves in registers: rolled, GCC kept stored/src/pass_v on the stack
     for (int h = 0; h < 2; ++h) {
         __m256 v = _mm256_loadu_ps(z + 8 * h);
         // clamp_depth: DAZ, then max(min(z, 1), 0), then max(min(z, max_depth), min_depth) (SSE NaN rules)
@@ -296,27 +301,28 @@ TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlock
         if (d.restrict01) v = _mm256_max_ps(_mm256_min_ps(v, one), zero);
         if (d.clamp) v = _mm256_max_ps(_mm256_min_ps(v, _mm256_set1_ps(d.max_depth)), _mm256_set1_ps(d.min_depth));
         __m256i ok;
-        if (d16) {
+        if constexpr (kD16) {
             // t = fl(z * (65535/65536)); bits(fl(t + 128)) & 0xffff
             const __m256 t = _mm256_mul_ps(v, _mm256_set1_ps(65535.0f / 65536.0f));
             src[h] = _mm256_and_si256(_mm256_castps_si256(_mm256_add_ps(t, _mm256_set1_ps(128.0f))),
                                       _mm256_set1_epi32(0xffff));
-            ok = detail::compare_epi32(d.op, src[h], stored[h]);
+            ok = detail::compare_epi32(kOp, src[h], stored[h]);
         } else {
             src[h] = _mm256_castps_si256(v);
             ok = _mm256_castps_si256(
-                detail::compare_ps(d.op, detail::daz(v), detail::daz(_mm256_castsi256_ps(stored[h]))));
+                detail::compare_ps(kOp, daz_z ? detail::daz(v) : v, detail::daz(_mm256_castsi256_ps(stored[h]))));
         }
         pass_v[h] = _mm256_and_si256(ok, detail::lane_mask8((mask >> (8 * h)) & 0xffu));
         pass |= uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass_v[h]))) << (8 * h);
     }
     if (write && d.write && pass) {
+#pragma GCC unroll 2
         for (int h = 0; h < 2; ++h) {
             const __m256i v = _mm256_blendv_epi8(stored[h], src[h], pass_v[h]);
             const __m128i lo = _mm256_castsi256_si128(v), hi = _mm256_extracti128_si256(v, 1);
             uint8_t* row0 = origin + size_t(2 * h) * pitch;
             uint8_t* row1 = row0 + pitch;
-            if (d16) {
+            if constexpr (kD16) {
                 // back to u16 (values < 2^16), lanes {0,1,4,5} -> row 0, {2,3,6,7} -> row 1
                 const __m128i p = _mm_packus_epi32(lo, hi);  // lanes 0..7 as u16
                 const __m128i rows = _mm_shuffle_epi32(p, _MM_SHUFFLE(3, 1, 2, 0));
@@ -329,6 +335,36 @@ TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlock
         }
     }
     return uint16_t(pass);
+}
+
+template <bool kD16>
+TILEVK_KERNEL uint16_t depth_block_avx2_format(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
+                                               uint8_t* origin, size_t pitch, bool write) {
+    switch (d.op) {
+        case CompareOp::Never:
+            return depth_block_avx2_op<kD16, CompareOp::Never>(d, z, mask, origin, pitch, write);
+        case CompareOp::Less:
+            return depth_block_avx2_op<kD16, CompareOp::Less>(d, z, mask, origin, pitch, write);
+        case CompareOp::Equal:
+            return depth_block_avx2_op<kD16, CompareOp::Equal>(d, z, mask, origin, pitch, write);
+        case CompareOp::LessOrEqual:
+            return depth_block_avx2_op<kD16, CompareOp::LessOrEqual>(d, z, mask, origin, pitch, write);
+        case CompareOp::Greater:
+            return depth_block_avx2_op<kD16, CompareOp::Greater>(d, z, mask, origin, pitch, write);
+        case CompareOp::NotEqual:
+            return depth_block_avx2_op<kD16, CompareOp::NotEqual>(d, z, mask, origin, pitch, write);
+        case CompareOp::GreaterOrEqual:
+            return depth_block_avx2_op<kD16, CompareOp::GreaterOrEqual>(d, z, mask, origin, pitch, write);
+        case CompareOp::Always:
+            break;
+    }
+    return depth_block_avx2_op<kD16, CompareOp::Always>(d, z, mask, origin, pitch, write);
+}
+
+TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
+                                        size_t pitch, bool write) {
+    return d.format == DepthFormat::D16 ? depth_block_avx2_format<true>(d, z, mask, origin, pitch, write)
+                                        : depth_block_avx2_format<false>(d, z, mask, origin, pitch, write);
 }
 #endif
 
@@ -391,10 +427,10 @@ TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], _
 // shader's output lane words (rast/render/fragment_block.cpp). `inside`: all 16 pixels exist, so a partly covered row
 // is read, merged and written back whole (VPMASKMOVD stores are microcoded and slow on some CPUs); otherwise masked
 // stores touch only `mask` pixels.
-TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
-                                    size_t pitch, bool inside) {
-    __m128i rows[4];
-    detail::pack_rgba8_rows(bgra, src, rows);
+// store_rgba8_rows_avx2 writes rows already packed by detail::pack_rgba8_rows: at 4x the samples of a block share
+// one shader output, so the conversion runs once per block and the store once per sample.
+TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
+                                         bool inside) {
     const uint32_t raster = lanes_to_raster(mask);
     for (int r = 0; r < 4; ++r) {
         const uint32_t row_bits = (raster >> (4 * r)) & 0xfu;
@@ -413,6 +449,13 @@ TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], 
             _mm_maskstore_epi32(reinterpret_cast<int*>(dst), m4, rows[r]);
         }
     }
+}
+
+TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
+                                    size_t pitch, bool inside) {
+    __m128i rows[4];
+    detail::pack_rgba8_rows(bgra, src, rows);
+    store_rgba8_rows_avx2(rows, mask, origin, pitch, inside);
 }
 #endif
 

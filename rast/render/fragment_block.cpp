@@ -38,15 +38,28 @@ void copy_lanes(void* dst, const void* src) {
 #endif
 }
 
-// What one block carries from step to step.
+// What one block carries from step to step, for a framebuffer of kSamples samples (1 or 4): with the count a
+// constant every per-sample loop of the steps below is unrolled (at 1x: straight-line code), which took a fifth of
+// the block's instructions when it was read from the framebuffer.
+template <int kSamples>
 struct Block {
+    static constexpr int samples = kSamples;
     int32_t x = 0, y = 0;
-    int samples = 1;
     bool inside = true;      // the whole block lies in the framebuffer
     uint16_t cover[4] = {};  // per sample, lane order
     uint16_t pass[4] = {};   // survivors of the early test (cover without one)
     uint16_t final_mask[4] = {};
-    fragment::LaneCoords centre;  // lane coordinates at the pixel centres (1x: also the depth sample positions)
+    // Lane coordinates at the pixel centres (1x: also the depth sample positions), formed on first use (centre()):
+    // a uniform shader at 4x never reads them.
+    bool centre_ready = false;
+    fragment::LaneCoords centre_coords;
+    const fragment::LaneCoords& centre() {
+        if (!centre_ready) {
+            fragment::make_lane_coords(x, y, fragment::plane_offset(samples, -1), centre_coords);
+            centre_ready = true;
+        }
+        return centre_coords;
+    }
     alignas(32) float z[4][kBlockLanes];
     fragment::DepthStencilBlock zs[4];
     const uint32_t* local = nullptr;  // a direct run's local memory (DrawPlan::direct): the colours are there
@@ -55,7 +68,8 @@ struct Block {
 // Returns the lanes any sample covers (0: nothing to do). pass starts as cover, sample by sample: the mask arrays
 // are written and read in 16-bit units only (a copy of all four at once becomes one 64-bit load of four fresh
 // 16-bit stores, which the CPU cannot forward: a stall on every block).
-uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) {
+template <class B>
+uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], B& k) {
     uint16_t any = 0;
     for (int s = 0; s < k.samples; ++s) {
         const uint16_t lanes = fragment::raster_to_lanes(raster_masks[s]);
@@ -64,12 +78,12 @@ uint16_t coverage(const BlockArgs& a, const uint16_t raster_masks[4], Block& k) 
     }
     if (!any) return 0;
     k.inside = k.x + 4 <= a.fb->width && k.y + 4 <= a.fb->height;
-    fragment::make_lane_coords(k.x, k.y, fragment::plane_offset(k.samples, -1), k.centre);
     return any;
 }
 
 // z per sample: 1x at the pixel centre, 4x at each sample position, plus the depth offset (eval_depth's plain add).
-void depth_values(const BlockArgs& a, Block& k) {
+template <class B>
+void depth_values(const BlockArgs& a, B& k) {
     const fragment::Plane zplane = plane_of(a.planes, 2);
     const float depth_offset = a.planes[kPlaneFloats];
     for (int s = 0; s < k.samples; ++s) {
@@ -78,13 +92,14 @@ void depth_values(const BlockArgs& a, Block& k) {
             fragment::make_lane_coords(k.x, k.y, fragment::plane_offset(k.samples, s), at);
             fragment::eval_plane_fast(zplane, at, a.fused, k.z[s]);
         } else {
-            fragment::eval_plane_fast(zplane, k.centre, a.fused, k.z[s]);
+            fragment::eval_plane_fast(zplane, k.centre(), a.fused, k.z[s]);
         }
         for (int l = 0; l < kBlockLanes; ++l) k.z[s][l] = k.z[s][l] + depth_offset;
     }
 }
 
-uint8_t* depth_origin(const BlockArgs& a, const Block& k, int s) {
+template <class B>
+uint8_t* depth_origin(const BlockArgs& a, const B& k, int s) {
     const DepthStencilTarget& dst = a.fb->depth_stencil;
     return dst.depth + size_t(s) * dst.depth_sample_stride + size_t(k.y) * dst.depth_row_pitch +
            size_t(k.x) * depth_bytes(dst.format);
@@ -92,7 +107,8 @@ uint8_t* depth_origin(const BlockArgs& a, const Block& k, int s) {
 
 // The early test when the depth mode has one (its write too when allowed); otherwise the depth/stencil values
 // the late test will need. Returns the lanes that go on to the shader.
-uint16_t early_depth(const BlockArgs& a, Block& k) {
+template <class B>
+uint16_t early_depth(const BlockArgs& a, B& k) {
     const DrawRecord& draw = *a.draw;
     const DrawPlan& plan = *a.plan;
     const DepthStencilTarget& dst = a.fb->depth_stencil;
@@ -123,6 +139,7 @@ uint16_t early_depth(const BlockArgs& a, Block& k) {
 // block.outputs stays valid for every block of the primitive, since every lane sees the same flat inputs.
 void run_uniform(FragmentWorker& w, const BlockArgs& a) {
     if (w.uniform_prim == a.planes && w.uniform_front == a.front_facing) return;
+    w.uniform_rows_valid = 0;
     shader::FragmentBlock& b = w.block;
     b.cover_mask = shader::kAllLanes;
     b.front_facing = a.front_facing ? 1u : 0u;
@@ -145,14 +162,16 @@ void run_uniform(FragmentWorker& w, const BlockArgs& a) {
 
 // A direct run (DrawPlan::direct): run_shader's interpolation, written into the program's local words of the inputs
 // it reads, and the run on them. Returns the live lanes; k.local holds the colour outputs after it.
-uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+template <class B>
+uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, B& k, uint16_t lanes) {
     const DrawPlan& plan = *a.plan;
     const shader::Program* fs = a.draw->pipe->fragment;
     shader::FragmentBlock& b = w.block;  // its scalars only
     uint32_t* local = fs->bind_fragment(a.draw->bindings, plan.bindings_key, w.scratch);
+    const fragment::LaneCoords& centre = k.centre();
     alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
     if (plan.perspective) {
-        fragment::eval_plane_fast(plane_of(a.planes, 3), k.centre, a.fused, wlanes);
+        fragment::eval_plane_fast(plane_of(a.planes, 3), centre, a.fused, wlanes);
         fragment::reciprocal_fast(wlanes, oow);
     }
     const float* attribs = a.planes + kPrimHeaderFloats;
@@ -164,7 +183,7 @@ uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
             for (int l = 0; l < kBlockLanes; ++l) dst[l] = bits_of(p[in.comp]);
             continue;
         }
-        fragment::interpolate_input(plane_of(p, int(in.comp)), k.centre, a.fused,
+        fragment::interpolate_input(plane_of(p, int(in.comp)), centre, a.fused,
                                     in.interp == geometry::Interp::kPerspective ? oow : nullptr, dst);
     }
     b.cover_mask = lanes;
@@ -178,7 +197,8 @@ uint16_t run_direct(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
 
 // The shader's inputs for `lanes` (built-ins it reads, then the planned components: a * fl(1/w) for perspective
 // ones, the reciprocal once per block), then its run (or the copy of a copied input). Returns the live lanes.
-uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t lanes) {
+template <class B>
+uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, B& k, uint16_t lanes) {
     const DrawPlan& plan = *a.plan;
     const shader::Program* fs = a.draw->pipe->fragment;
     shader::FragmentBlock& b = w.block;
@@ -191,8 +211,9 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
     b.view_index = a.fb->view_index;
     const shader::ProgramInterface& iface = fs->interface();
     const bool frag_coord = iface.builtins_read & shader::bit(shader::BuiltIn::FragCoord);
+    const fragment::LaneCoords& centre = k.centre();
     alignas(32) float wlanes[kBlockLanes], oow[kBlockLanes] = {};
-    if (plan.perspective || frag_coord) fragment::eval_plane_fast(plane_of(a.planes, 3), k.centre, a.fused, wlanes);
+    if (plan.perspective || frag_coord) fragment::eval_plane_fast(plane_of(a.planes, 3), centre, a.fused, wlanes);
     if (frag_coord) {
         const fragment::EvalOffset off = fragment::plane_offset(k.samples, -1);
         float fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];
@@ -220,7 +241,7 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
             for (int l = 0; l < kBlockLanes; ++l) dst[l] = bits_of(p[in.comp]);
             continue;
         }
-        fragment::interpolate_input(plane_of(p, int(in.comp)), k.centre, a.fused,
+        fragment::interpolate_input(plane_of(p, int(in.comp)), centre, a.fused,
                                     in.interp == geometry::Interp::kPerspective ? oow : nullptr, input_lanes(b, in));
     }
     uint16_t live = lanes;
@@ -237,7 +258,8 @@ uint16_t run_shader(FragmentWorker& w, const BlockArgs& a, Block& k, uint16_t la
 }
 
 // The late test (lanes that failed the early test re-run it so their stencil fail ops apply).
-void late_depth(const BlockArgs& a, Block& k) {
+template <class B>
+void late_depth(const BlockArgs& a, B& k) {
     const DrawRecord& draw = *a.draw;
     const DepthStencilTarget& dst = a.fb->depth_stencil;
     const bool early = draw.depth_mode & fragment::kEarlyDepthTest;
@@ -258,13 +280,32 @@ void late_depth(const BlockArgs& a, Block& k) {
     }
 }
 
+#if TILEVK_SIMD_AVX2
+// The opaque store's rows of target c: packed from src, or for a uniform shader from the worker's rows of the
+// primitive's run (packed by its first block; the same conversion of the same outputs).
+void opaque_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, const float src[4][kBlockLanes],
+                 __m128i rows[4]) {
+    auto* cached = reinterpret_cast<__m128i*>(w.uniform_rows[c]);
+    if (!a.plan->uniform_shader) {
+        fragment::detail::pack_rgba8_rows(bgra, src, rows);
+    } else if (w.uniform_rows_valid & (1u << c)) {
+        for (int r = 0; r < 4; ++r) rows[r] = _mm_load_si128(cached + r);
+    } else {
+        fragment::detail::pack_rgba8_rows(bgra, src, rows);
+        for (int r = 0; r < 4; ++r) _mm_store_si128(cached + r, rows[r]);
+        w.uniform_rows_valid |= 1u << c;
+    }
+}
+#endif
+
 // The AVX2 kernels for 16 inside pixels (blend_rgba8_block, store_rgba8_avx2) read the colour only through
 // may_alias vector loads, so in the AVX2 build they take the shader's output words in place. A copy into a float
 // array first costs more than the kernel's conversion: GCC expands it as 16-byte moves, and each of the kernel's
 // 32-byte loads then spans two stores the CPU cannot forward (a stall per load, seen with perf in blend16).
 // Returns false where the reference route (copy, then any kernel) is taken.
-bool write_color_in_place(const BlockArgs& a, const Block& k, uint32_t c, const float src[4][kBlockLanes],
-                          const fragment::BlendOptions& opt) {
+template <class B>
+bool write_color_in_place(FragmentWorker& w, const BlockArgs& a, const B& k, uint32_t c,
+                          const float src[4][kBlockLanes], const fragment::BlendOptions& opt) {
 #if TILEVK_SIMD_AVX2
     const ColorTarget& t = a.fb->color[c];
     const ColorPath path = a.plan->color[c];
@@ -273,23 +314,25 @@ bool write_color_in_place(const BlockArgs& a, const Block& k, uint32_t c, const 
         (path == ColorPath::kRgba8 && !a.plan->rgba8[c].ok) || (opaque && opt.unorm_path != fragment::UnormPath::Avx8))
         return false;
     const size_t bytes = a.plan->color_bytes[c];
+    __m128i rows[4];  // opaque: every sample stores the same converted pixels, packed once
+    if (opaque) opaque_rows(w, a, c, path == ColorPath::kOpaqueBgra8, src, rows);
     for (int s = 0; s < k.samples; ++s) {
         if (!k.final_mask[s]) continue;
         uint8_t* origin = t.data + size_t(s) * t.sample_stride + size_t(k.y) * t.row_pitch + size_t(k.x) * bytes;
         if (opaque)
-            fragment::store_rgba8_avx2(path == ColorPath::kOpaqueBgra8, src, k.final_mask[s], origin, t.row_pitch,
-                                       true);
+            fragment::store_rgba8_rows_avx2(rows, k.final_mask[s], origin, t.row_pitch, true);
         else
             fragment::blend_rgba8_block(a.plan->rgba8[c], src, k.final_mask[s], origin, t.row_pitch);
     }
     return true;
 #else
-    (void)a, (void)k, (void)c, (void)src, (void)opt;
+    (void)w, (void)a, (void)k, (void)c, (void)src, (void)opt;
     return false;
 #endif
 }
 
-void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
+template <class B>
+void write_colors(FragmentWorker& w, const BlockArgs& a, const B& k) {
     const Framebuffer& fb = *a.fb;
     const DrawPlan& plan = *a.plan;
     const PipelineState& pipe = *a.draw->pipe;
@@ -300,7 +343,7 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
         const ColorTarget& t = fb.color[c];
         if (!t.data || plan.color[c] == ColorPath::kNone) continue;
         const uint32_t* words = k.local ? k.local + size_t(plan.output_word[c]) * kBlockLanes : w.block.outputs[c][0];
-        if (write_color_in_place(a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(words), opt)) continue;
+        if (write_color_in_place(w, a, k, c, reinterpret_cast<const float(*)[kBlockLanes]>(words), opt)) continue;
         std::memcpy(src, words, sizeof src);
         if (pipe.alpha_to_one) std::fill(src[3], src[3] + kBlockLanes, 1.0f);
         const size_t bytes = plan.color_bytes[c];
@@ -320,13 +363,11 @@ void write_colors(FragmentWorker& w, const BlockArgs& a, const Block& k) {
     }
 }
 
-}  // namespace
-
-void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
-    Block k;
+template <int kSamples>
+void shade_block_n(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    Block<kSamples> k;
     k.x = x;
     k.y = y;
-    k.samples = a.fb->samples;
     const uint16_t covered = coverage(a, raster_masks, k);  // pass = cover until the early test
     if (!covered) return;
     const bool depth_active = a.draw->depth_mode != 0;
@@ -348,6 +389,16 @@ void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t 
     if (depth_active) late_depth(a, k);
     if (a.draw->samples_passed) count_passed(w, a.prim->draw, k.final_mask, k.samples);  // only inside a query
     if (fs) write_colors(w, a, k);
+}
+
+}  // namespace
+
+// Framebuffers have 1 or 4 samples (pipeline.cpp refuses other rasterizationSamples, rast/core's Scene clamps).
+void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    if (a.fb->samples == 4)
+        shade_block_n<4>(w, a, x, y, raster_masks);
+    else
+        shade_block_n<1>(w, a, x, y, raster_masks);
 }
 
 }  // namespace tilevk::rast::render::TILEVK_ISA

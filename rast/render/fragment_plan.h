@@ -86,6 +86,11 @@ struct FragmentWorker {
     // (DrawPlan::uniform_shader), or null.
     const float* uniform_prim = nullptr;
     bool uniform_front = false;
+    // The uniform run's colours converted for the opaque RGBA8/BGRA8 store (fragment_block.cpp), as the four rows
+    // of a block: bit c of uniform_rows_valid says target c's rows hold block.outputs[c] of the current uniform run
+    // (cleared whenever that run is redone), so a flat primitive converts its colour once, not once per block.
+    alignas(16) uint8_t uniform_rows[kMaxColorTargets][4][16] = {};
+    uint32_t uniform_rows_valid = 0;
     std::vector<uint64_t> samples_passed;  // per draw record of the current scene
     // Stage timing (stage_timer.h), when on: the current tile's start (CPU time), and its fragment-stage and shading
     // ticks.
