@@ -91,24 +91,25 @@ void main() {
 }
 )";
 
-// A small right triangle at the lower left with corner (x, y) (NDC, y down), white with alpha `a`.
-void add_corner(Draw& d, float x, float y, float a) {
+// A right triangle with legs `size` and corner (x, y) (NDC, y down), white with alpha `a`.
+void add_corner(Draw& d, float x, float y, float size, float a) {
     const std::array<float, 4> c = {1, 1, 1, a};
     d.vertices.push_back(vtx(x, y, 0, 1, c));
-    d.vertices.push_back(vtx(x + 0.4f, y, 0, 1, c));
-    d.vertices.push_back(vtx(x, y + 0.4f, 0, 1, c));
+    d.vertices.push_back(vtx(x + size, y, 0, 1, c));
+    d.vertices.push_back(vtx(x, y + size, 0, 1, c));
 }
 
 // Three entries of one triangle each (vertices 0-2, 3-5, 6-8 at the same corner), drawn `instances` times.
 // Opaque: entry i lands 0.5 above entry i-1, so each pixel has one writer (checked at the triangles' corners).
-// Blended (alpha 0.5 over a grey clear): instances overlap the next entry's, so the order of lavapipe's instance
-// loop (outside the entry loop, draw_pt.c) decides the bytes.
+// Blended (alpha 0.5 over a grey clear, legs 1.0): instance 1 of entry 0 overlaps instance 0 of entry 1, so the
+// order of lavapipe's instance loop (outside the entry loop, draw_pt.c) decides the bytes.
 Draw multi_draw(uint32_t instances, bool blended, bool indexed, std::optional<int32_t> vertex_offset) {
     Draw d;
     d.vertex_glsl = kMultiDrawVertex;
     d.instances = instances;
     const float step = blended ? 0.25f : 0.0f;  // blended entries overlap partly
-    for (int e = 0; e < 3; ++e) add_corner(d, -0.9f, 0.3f + step * float(e), blended ? 0.5f : 1.0f);
+    for (int e = 0; e < 3; ++e)
+        add_corner(d, -0.9f, 0.3f + step * float(e), blended ? 1.0f : 0.4f, blended ? 0.5f : 1.0f);
     if (blended)
         d.blend = {VK_TRUE,
                    VK_BLEND_FACTOR_SRC_ALPHA,

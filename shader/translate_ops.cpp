@@ -63,9 +63,7 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpMemoryBarrier:
             return;
         case spv::Op::OpExtInst:
-            // Any other set is a NonSemantic.* one (declare() refuses the rest): no semantics, nothing to run
-            // (SPV_KHR_non_semantic_info; only other non-semantic instructions may use its results).
-            if (in.n > 3 && in[3] != glsl_ext_) return;
+            if (in.n > 3 && in[3] != glsl_ext_) return;  // NonSemantic.*: no effect (collect_blocks)
             if (op_narrow(in) || (in.n > 4 && in[3] == glsl_ext_ && glsl_wide(in))) return;
             return glsl_op(in);
         case spv::Op::OpFunctionCall:
