@@ -8,6 +8,7 @@ void add_linear_cases(CaseList& out);   // cases_linear.cpp
 void add_random_cases(CaseList& out);   // cases_random.cpp
 void add_random_compute_cases(CaseList& out);  // cases_random_compute.cpp
 void add_feature_cases(CaseList& out);  // cases_features.cpp
+void add_pipeline_ext_cases(CaseList& out);  // cases_pipeline_ext.cpp
 void add_extreme_cases(CaseList& out);  // cases_extreme.cpp
 void add_format_cases(CaseList& out);   // cases_formats.cpp
 void add_compute_cases(CaseList& out);  // cases_compute.cpp
@@ -69,6 +70,7 @@ CaseList all_cases() {
     add_blit_cases(out);
     add_query_cases(out);
     add_feature_cases(out);
+    add_pipeline_ext_cases(out);
     add_format_cases(out);
     add_compute_cases(out);
     add_types_cases(out);

@@ -281,6 +281,23 @@ void record_dynamic_state(const DeviceContext& c, VkCommandBuffer cb, const Scen
     if (f.logic_op) f.logic_op(cb, d.logic_op.value_or(VK_LOGIC_OP_COPY));
 }
 
+// Draw::multi: the entries `kMultiStride` bytes apart (a word of padding after each: the stride is honoured).
+void record_multi_draw(const DeviceContext& c, VkCommandBuffer cb, const Draw& d) {
+    constexpr uint32_t kMultiStride = 16;
+    std::vector<int32_t> words(d.multi.size() * kMultiStride / 4, -1);
+    for (size_t e = 0; e < d.multi.size(); ++e)
+        for (size_t w = 0; w < 3; ++w) words[e * kMultiStride / 4 + w] = d.multi[e][w];
+    const uint32_t n = uint32_t(d.multi.size());
+    if (!d.indices.empty()) {
+        const int32_t* offset = d.multi_vertex_offset ? &*d.multi_vertex_offset : nullptr;
+        c.cmd.draw_multi_indexed(cb, n, reinterpret_cast<const VkMultiDrawIndexedInfoEXT*>(words.data()), d.instances,
+                                 0, kMultiStride, offset);
+    } else {
+        c.cmd.draw_multi(cb, n, reinterpret_cast<const VkMultiDrawInfoEXT*>(words.data()), d.instances, 0,
+                         kMultiStride);
+    }
+}
+
 // The render pass with every draw, each wrapped in its occlusion query with QueryMode::kPerDraw.
 void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkRenderPass rp, const Attachments& at,
                  const DrawResources& r, const Buffer& vb, VkQueryPool qpool, VkQueryControlFlags qflags) {
@@ -323,9 +340,12 @@ void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkR
         if (!d.push_constants.empty())
             vkCmdPushConstants(cb, r.layout, r.push_stages, 0, uint32_t(d.push_constants.size() * 4),
                                d.push_constants.data());
+        if (d.color_write_enable && d.color_write_dynamic) c.cmd.color_write_enable(cb, 1, &*d.color_write_enable);
         if (s.queries == QueryMode::kPerDraw) vkCmdBeginQuery(cb, qpool, uint32_t(i), qflags);
-        if (r.index_buffers[i]) {
-            vkCmdBindIndexBuffer(cb, r.index_buffers[i], 0, d.index_type);
+        if (r.index_buffers[i]) vkCmdBindIndexBuffer(cb, r.index_buffers[i], 0, d.index_type);
+        if (!d.multi.empty()) {
+            record_multi_draw(c, cb, d);
+        } else if (r.index_buffers[i]) {
             vkCmdDrawIndexed(cb, uint32_t(d.indices.size()), d.instances, 0, 0, 0);
         } else if (!d.vertices.empty()) {
             vkCmdDraw(cb, uint32_t(d.vertices.size()), d.instances, 0, 0);

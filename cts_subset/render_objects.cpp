@@ -475,9 +475,21 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     cb.logicOpEnable = d.logic_op.has_value();
     cb.logicOp = d.logic_op.value_or(VK_LOGIC_OP_COPY);
     if (d.dynamic && d.logic_op) cb.logicOp = VkLogicOp((*d.logic_op + 7) % 16);
+    VkPipelineColorWriteCreateInfoEXT color_write{VK_STRUCTURE_TYPE_PIPELINE_COLOR_WRITE_CREATE_INFO_EXT};
+    VkBool32 write_enable = VK_TRUE;
+    std::vector<VkDynamicState> dynamic_states;
+    if (d.dynamic)
+        dynamic_states.assign(kDynamicStates, kDynamicStates + std::size(kDynamicStates) - (c.cmd.logic_op ? 0 : 1));
+    if (d.color_write_enable) {
+        write_enable = d.color_write_dynamic ? !*d.color_write_enable : *d.color_write_enable;
+        color_write.attachmentCount = cb.attachmentCount;
+        color_write.pColorWriteEnables = &write_enable;
+        cb.pNext = &color_write;
+        if (d.color_write_dynamic) dynamic_states.push_back(VK_DYNAMIC_STATE_COLOR_WRITE_ENABLE_EXT);
+    }
     VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dyn.dynamicStateCount = uint32_t(std::size(kDynamicStates)) - (c.cmd.logic_op ? 0 : 1);
-    dyn.pDynamicStates = kDynamicStates;
+    dyn.dynamicStateCount = uint32_t(dynamic_states.size());
+    dyn.pDynamicStates = dynamic_states.data();
     std::memcpy(cb.blendConstants, d.blend_constants, sizeof cb.blendConstants);
 
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
@@ -492,7 +504,7 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     ci.pColorBlendState = &cb;
     ci.layout = layout;
     ci.renderPass = rp;
-    if (d.dynamic) ci.pDynamicState = &dyn;
+    if (!dynamic_states.empty()) ci.pDynamicState = &dyn;
     VkPipeline p;
     auto t0 = Clock::now();
     vk_check(vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p), "vkCreateGraphicsPipelines");

@@ -4,6 +4,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -123,6 +124,15 @@ struct Draw {
     // Format of the colour attribute (location 1): R32G32B32A32_SFLOAT reads Vertex::color in place; any other
     // float/normalized format reads a second vertex binding packed from Vertex::color (render.cpp).
     VkFormat color_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    // VK_EXT_color_write_enable: when set, attachment 0's enable; static (VkPipelineColorWriteCreateInfoEXT), or with
+    // color_write_dynamic set by vkCmdSetColorWriteEnableEXT on a pipeline whose struct says the opposite.
+    std::optional<VkBool32> color_write_enable;
+    bool color_write_dynamic = false;
+    // VK_EXT_multi_draw: when non-empty, one vkCmdDrawMultiEXT (or vkCmdDrawMultiIndexedEXT with `indices`) of
+    // these entries {firstVertex or firstIndex, count, vertexOffset}, `instances` instances, the entries `stride`
+    // bytes apart (render.cpp pads them); multi_vertex_offset: pVertexOffset.
+    std::vector<std::array<int32_t, 3>> multi;
+    std::optional<int32_t> multi_vertex_offset;
 };
 
 struct Target {

@@ -28,7 +28,10 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_KHR_STORAGE_BUFFER_STORAGE_CLASS_EXTENSION_NAME,
                                          VK_KHR_16BIT_STORAGE_EXTENSION_NAME,
                                          VK_KHR_8BIT_STORAGE_EXTENSION_NAME,
-                                         VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME};
+                                         VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME,
+                                         VK_EXT_COLOR_WRITE_ENABLE_EXTENSION_NAME,
+                                         VK_EXT_MULTI_DRAW_EXTENSION_NAME,
+                                         VK_KHR_SHADER_DRAW_PARAMETERS_EXTENSION_NAME};
 
 }  // namespace
 
@@ -57,6 +60,11 @@ static void load_dynamic_state_commands(DeviceContext& c) {
         get(d.primitive_restart, "vkCmdSetPrimitiveRestartEnableEXT");
     }
     if (c.extended_dynamic_state2.extendedDynamicState2LogicOp) get(d.logic_op, "vkCmdSetLogicOpEXT");
+    if (c.color_write_enable.colorWriteEnable) get(d.color_write_enable, "vkCmdSetColorWriteEnableEXT");
+    if (c.multi_draw.multiDraw) {
+        get(d.draw_multi, "vkCmdDrawMultiEXT");
+        get(d.draw_multi_indexed, "vkCmdDrawMultiIndexedEXT");
+    }
 }
 
 bool DeviceContext::has_extension(const char* n) const {
@@ -214,6 +222,8 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.depth_clip_control, VK_EXT_DEPTH_CLIP_CONTROL_EXTENSION_NAME);
         link(out.extended_dynamic_state, VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME);
         link(out.extended_dynamic_state2, VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME);
+        link(out.color_write_enable, VK_EXT_COLOR_WRITE_ENABLE_EXTENSION_NAME);
+        link(out.multi_draw, VK_EXT_MULTI_DRAW_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -242,6 +252,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             vk_check(vkCreateDevice(p, &dci, nullptr, &out.device), ("vkCreateDevice on '" + name + "'").c_str());
             out.index_type_uint8.pNext = out.list_restart.pNext = out.depth_clip_control.pNext = nullptr;
             out.extended_dynamic_state.pNext = out.extended_dynamic_state2.pNext = nullptr;
+            out.color_write_enable.pNext = out.multi_draw.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

@@ -41,6 +41,9 @@ struct DeviceContext {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT};
     VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT};
+    VkPhysicalDeviceColorWriteEnableFeaturesEXT color_write_enable{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COLOR_WRITE_ENABLE_FEATURES_EXT};
+    VkPhysicalDeviceMultiDrawFeaturesEXT multi_draw{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTI_DRAW_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {
@@ -60,6 +63,9 @@ struct DeviceContext {
         PFN_vkCmdSetDepthBiasEnableEXT depth_bias = nullptr;
         PFN_vkCmdSetPrimitiveRestartEnableEXT primitive_restart = nullptr;
         PFN_vkCmdSetLogicOpEXT logic_op = nullptr;
+        PFN_vkCmdSetColorWriteEnableEXT color_write_enable = nullptr;
+        PFN_vkCmdDrawMultiEXT draw_multi = nullptr;
+        PFN_vkCmdDrawMultiIndexedEXT draw_multi_indexed = nullptr;
     } cmd;
 
     // The index of a memory type allowed by `bits` that has all of `flags`; throws if there is none.

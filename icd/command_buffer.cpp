@@ -2,7 +2,9 @@
 #include "command_buffer.h"
 
 #include <atomic>
+#include <cstring>
 #include <type_traits>
+#include <vector>
 
 #include "buffer.h"
 #include "descriptor_pool.h"
@@ -431,6 +433,51 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawIndexedIndirectCount(VkCommandBuffer comma
         c->count_buffer = from_handle<Buffer>(countBuffer);
         c->count_offset = countBufferOffset;
     }
+}
+
+// VK_EXT_multi_draw: the entries are read at `stride` now (the caller's array need not outlive the call). An
+// entry's vertexOffset is replaced by *pVertexOffset when given (lavapipe: index_bias_varies false).
+namespace {
+void record_multi(VkCommandBuffer commandBuffer, bool indexed, uint32_t drawCount, const void* info,
+                  uint32_t instanceCount, uint32_t firstInstance, uint32_t stride, const int32_t* vertex_offset) {
+    CommandBuffer* cb = cb_of(commandBuffer);
+    std::vector<VkMultiDrawIndexedInfoEXT> entries(info != nullptr ? drawCount : 0);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const auto* at = static_cast<const uint8_t*>(info) + i * size_t(stride);
+        VkMultiDrawIndexedInfoEXT& e = entries[i];
+        if (indexed) {
+            std::memcpy(&e, at, sizeof e);
+            if (vertex_offset != nullptr) e.vertexOffset = *vertex_offset;
+        } else {
+            VkMultiDrawInfoEXT d;
+            std::memcpy(&d, at, sizeof d);
+            e = {d.firstVertex, d.vertexCount, 0};
+        }
+    }
+    if (entries.empty()) return;  // no draws: nothing to record
+    const VkMultiDrawIndexedInfoEXT* draws = cb->copy(entries.data(), entries.size());
+    if (draws == nullptr) return;
+    if (auto* c = cb->append<CmdDrawMulti>()) {
+        c->indexed = indexed;
+        c->draw_count = uint32_t(entries.size());
+        c->instance_count = instanceCount;
+        c->first_instance = firstInstance;
+        c->draws = draws;
+    }
+}
+}  // namespace
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawMultiEXT(VkCommandBuffer commandBuffer, uint32_t drawCount,
+                                               const VkMultiDrawInfoEXT* pVertexInfo, uint32_t instanceCount,
+                                               uint32_t firstInstance, uint32_t stride) {
+    record_multi(commandBuffer, false, drawCount, pVertexInfo, instanceCount, firstInstance, stride, nullptr);
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdDrawMultiIndexedEXT(VkCommandBuffer commandBuffer, uint32_t drawCount,
+                                                      const VkMultiDrawIndexedInfoEXT* pIndexInfo,
+                                                      uint32_t instanceCount, uint32_t firstInstance, uint32_t stride,
+                                                      const int32_t* pVertexOffset) {
+    record_multi(commandBuffer, true, drawCount, pIndexInfo, instanceCount, firstInstance, stride, pVertexOffset);
 }
 
 // ---- queries (executed in execute_query.cpp) -----------------------------------------------------------------

@@ -94,6 +94,16 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLogicOpEXT(VkCommandBuffer commandBuffer, V
     set(commandBuffer, DynamicState::kLogicOp, uint32_t(logicOp));
 }
 
+// VK_EXT_color_write_enable: one bit per attachment (at most maxColorAttachments, 8); a value other than VK_TRUE
+// disables, as lavapipe's handle_set_color_write_enable reads it.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteEnableEXT(VkCommandBuffer commandBuffer, uint32_t attachmentCount,
+                                                         const VkBool32* pColorWriteEnables) {
+    uint32_t enables = ~0u;
+    for (uint32_t i = 0; i < attachmentCount && i < 32; ++i)
+        if (pColorWriteEnables[i] != VK_TRUE) enables &= ~(1u << i);
+    set(commandBuffer, DynamicState::kColorWriteEnable, enables);
+}
+
 // extendedDynamicState2PatchControlPoints is VK_FALSE (no tessellation): calling this is invalid usage, and there
 // is no patch to control.
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPatchControlPointsEXT(VkCommandBuffer, uint32_t) {

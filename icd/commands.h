@@ -65,6 +65,7 @@ struct QueryPool;
     X(DrawIndexed) \
     X(DrawIndirect) \
     X(DrawIndexedIndirect) \
+    X(DrawMulti) \
     X(Dispatch) \
     X(DispatchIndirect) \
     X(ExecuteCommands) \
@@ -287,6 +288,14 @@ struct CmdDrawIndexedIndirect : CmdOf<CmdType::kDrawIndexedIndirect> {
     uint32_t draw_count, stride;
     Buffer* count_buffer = nullptr;
     VkDeviceSize count_offset = 0;
+};
+// vkCmdDrawMultiEXT / vkCmdDrawMultiIndexedEXT (VK_EXT_multi_draw): the entries packed (the caller's stride
+// applied at record time) as {firstVertex, vertexCount, 0} or {firstIndex, indexCount, vertexOffset}; with
+// pVertexOffset every indexed entry takes that one offset.
+struct CmdDrawMulti : CmdOf<CmdType::kDrawMulti> {
+    bool indexed;
+    uint32_t draw_count, instance_count, first_instance;
+    const VkMultiDrawIndexedInfoEXT* draws;
 };
 // vkCmdDispatch (base 0): group_count workgroups from base. vkCmdDispatchIndirect: the counts are the
 // VkDispatchIndirectCommand in buffer at offset when the command executes.

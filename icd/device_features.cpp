@@ -53,6 +53,11 @@ void add_extension_features(Features& f) {
     // divisor (rast/geometry element_index), divisor 0 as lavapipe's UINT32_MAX (every instance reads firstInstance).
     f.vertex_attribute_divisor.vertexAttributeInstanceRateDivisor = VK_TRUE;
     f.vertex_attribute_divisor.vertexAttributeInstanceRateZeroDivisor = VK_TRUE;
+    // Disabled attachments get write mask 0, static (VkPipelineColorWriteCreateInfoEXT) or per draw
+    // (vkCmdSetColorWriteEnableEXT), as lavapipe's color_write_disables (dynamic_state.cpp disable_color_writes).
+    f.color_write_enable.colorWriteEnable = VK_TRUE;
+    // vkCmdDrawMulti[Indexed]EXT: entries as separate draws, instance-major as lavapipe (execute_draw.cpp).
+    f.multi_draw.multiDraw = VK_TRUE;
 }
 
 Features make_supported() {
@@ -210,6 +215,8 @@ Features::Features() {
     init(extended_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
     init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
+    init(color_write_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COLOR_WRITE_ENABLE_FEATURES_EXT);
+    init(multi_draw, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTI_DRAW_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -218,7 +225,9 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_control),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
-                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor),
+                                 reinterpret_cast<VkBaseOutStructure*>(&color_write_enable),
+                                 reinterpret_cast<VkBaseOutStructure*>(&multi_draw)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

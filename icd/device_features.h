@@ -19,6 +19,8 @@ struct Features {
     VkPhysicalDeviceExtendedDynamicStateFeaturesEXT extended_dynamic_state{};
     VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{};
     VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
+    VkPhysicalDeviceColorWriteEnableFeaturesEXT color_write_enable{};
+    VkPhysicalDeviceMultiDrawFeaturesEXT multi_draw{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

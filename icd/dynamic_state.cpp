@@ -85,6 +85,9 @@ bool dynamic_state_of(VkDynamicState v, DynamicState* out) {
         case VK_DYNAMIC_STATE_LOGIC_OP_EXT:
             *out = DynamicState::kLogicOp;
             return true;
+        case VK_DYNAMIC_STATE_COLOR_WRITE_ENABLE_EXT:
+            *out = DynamicState::kColorWriteEnable;
+            return true;
         default:
             return false;
     }
@@ -181,6 +184,14 @@ void apply_dynamic_state(DynamicMask mask, const StaticValues& statics, const Dy
     if (dyn(DynamicState::kPrimitiveRestartEnable)) s.primitive_restart = v.primitive_restart;
     if (dyn(DynamicState::kLogicOp))
         for (rast::fragment::BlendAttachment& b : s.blend) b.logic_op = rast::fragment::LogicOp(v.logic_op);
+    if (dyn(DynamicState::kColorWriteEnable)) disable_color_writes(v.color_write_enables, s);
+}
+
+void disable_color_writes(uint32_t enables, rast::render::PipelineState& s) {
+    // lavapipe's emit_state zeroes the colour mask of every disabled attachment (lvp_execute.c
+    // color_write_disables); the blend state stays, and depth, stencil and queries are untouched.
+    for (size_t i = 0; i < std::size(s.blend); ++i)
+        if ((enables >> i & 1u) == 0) s.blend[i].write_mask = 0;
 }
 
 bool discards(DynamicMask mask, const StaticValues& statics, const DynamicValues& values) {

@@ -45,6 +45,8 @@ enum class DynamicState : uint8_t {
     kDepthBiasEnable,
     kPrimitiveRestartEnable,
     kLogicOp,
+    // VK_EXT_color_write_enable
+    kColorWriteEnable,
 };
 using DynamicMask = uint32_t;
 inline constexpr DynamicMask dynamic_bit(DynamicState s) {
@@ -75,6 +77,8 @@ struct DynamicValues {
     VkStencilOpState stencil_ops[2] = {};  // failOp, passOp, depthFailOp, compareOp of front / back
     bool rasterizer_discard = false, depth_bias_enable = false, primitive_restart = false;
     VkLogicOp logic_op = VK_LOGIC_OP_COPY;
+    // Bit i: attachment i writes (vkCmdSetColorWriteEnableEXT); all enabled until set, as lavapipe starts.
+    uint32_t color_write_enables = ~0u;
 };
 
 // What the pipeline keeps of its static state beyond rast::render::PipelineState, for dynamic states that combine
@@ -87,6 +91,9 @@ struct StaticValues {
 // `s` (a copy of the pipeline's state) with every dynamic state of `mask` taken from `values`.
 void apply_dynamic_state(DynamicMask mask, const StaticValues& statics, const DynamicValues& values,
                          rast::render::PipelineState& s);
+
+// VK_EXT_color_write_enable: the write mask of every attachment whose bit of `enables` is clear becomes 0.
+void disable_color_writes(uint32_t enables, rast::render::PipelineState& s);
 
 // Whether a draw with this pipeline produces nothing (rasterizerDiscardEnable, static or dynamic).
 bool discards(DynamicMask mask, const StaticValues& statics, const DynamicValues& values);

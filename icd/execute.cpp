@@ -363,6 +363,7 @@ struct CommandRunner {
     void operator()(const CmdDrawIndexed& c) { exec_draw(st, c); }
     void operator()(const CmdDrawIndirect& c) { exec_draw(st, c); }
     void operator()(const CmdDrawIndexedIndirect& c) { exec_draw(st, c); }
+    void operator()(const CmdDrawMulti& c) { exec_draw(st, c); }
     void operator()(const CmdDispatch& c) { exec_dispatch(st, c); }
     void operator()(const CmdDispatchIndirect& c) { exec_dispatch(st, c); }
 

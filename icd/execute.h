@@ -149,6 +149,7 @@ void exec_draw(ExecState& st, const CmdDraw& c);
 void exec_draw(ExecState& st, const CmdDrawIndexed& c);
 void exec_draw(ExecState& st, const CmdDrawIndirect& c);
 void exec_draw(ExecState& st, const CmdDrawIndexedIndirect& c);
+void exec_draw(ExecState& st, const CmdDrawMulti& c);
 // Ends the renderer's pass if one is running: renders what is binned and writes the targets back. `resolves`: the
 // subpass's colour resolves, done tile by tile as its last scene renders (rast/render/targets.h TileResolve); returns
 // true if they were (else the caller resolves).

@@ -606,6 +606,9 @@ void exec_state(ExecState& st, const CmdSetDynamic& c) {
         case DynamicState::kLogicOp:
             v.logic_op = VkLogicOp(c.value);
             break;
+        case DynamicState::kColorWriteEnable:
+            v.color_write_enables = c.value;
+            break;
         default:
             break;  // the other states have commands of their own
     }
@@ -689,6 +692,29 @@ void exec_draw(ExecState& st, const CmdDrawIndirect& c) {
 
 void exec_draw(ExecState& st, const CmdDrawIndexedIndirect& c) {
     draw_indirect<VkDrawIndexedIndirectCommand>(st, c.buffer, c.offset, indirect_draw_count(c), c.stride);
+}
+
+// VK_EXT_multi_draw as lavapipe runs it: one draw_vbo whose instance loop is outside its loop over the entries
+// (draw_pt.c draw_instances), DrawIndex the entry's number. With one instance or one entry that is the entries in
+// order, all instances each; otherwise each entry is drawn once per instance, instance by instance.
+void exec_draw(ExecState& st, const CmdDrawMulti& c) {
+    const bool per_instance = c.instance_count > 1 && c.draw_count > 1;
+    const uint32_t rounds = per_instance ? c.instance_count : 1;
+    for (uint32_t inst = 0; inst < rounds; ++inst) {
+        for (uint32_t i = 0; i < c.draw_count; ++i) {
+            const VkMultiDrawIndexedInfoEXT& d = c.draws[i];
+            rr::DrawCall call;
+            call.indexed = c.indexed;
+            call.count = d.indexCount;
+            call.first = d.firstIndex;
+            call.vertex_offset = d.vertexOffset;
+            call.first_instance = c.first_instance;
+            call.instance_count = per_instance ? 1 : c.instance_count;
+            call.instance_begin = per_instance ? inst : 0;
+            call.draw_index = i;
+            run_draw(st, call);
+        }
+    }
 }
 
 }  // namespace tilevk::icd

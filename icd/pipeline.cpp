@@ -274,7 +274,7 @@ std::string translate_multisample_depth(const VkGraphicsPipelineCreateInfo& ci, 
 }
 
 // Per-attachment blend state, the logic op and the blend constants.
-std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
+std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, bool dynamic_color_write, PipelineState& s) {
     const VkPipelineColorBlendStateCreateInfo* cb = ci.pColorBlendState;
     if (!cb) return {};
     if (cb->logicOpEnable && cb->logicOp > VK_LOGIC_OP_SET)
@@ -310,6 +310,16 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, PipelineStat
                    "] uses a dual-source blend factor (VK_BLEND_FACTOR_SRC1_*): maxFragmentDualSrcAttachments is 1";
     }
     std::memcpy(s.blend_constants, cb->blendConstants, sizeof s.blend_constants);
+    // VK_EXT_color_write_enable, static: attachments whose enable is not VK_TRUE write nothing (with the state
+    // dynamic the struct is ignored and apply_dynamic_state does the same at each draw).
+    const auto* cw = find_in_chain<VkPipelineColorWriteCreateInfoEXT>(
+        cb->pNext, VK_STRUCTURE_TYPE_PIPELINE_COLOR_WRITE_CREATE_INFO_EXT);
+    if (cw != nullptr && !dynamic_color_write) {
+        uint32_t enables = ~0u;
+        for (uint32_t i = 0; i < cw->attachmentCount && i < 32; ++i)
+            if (cw->pColorWriteEnables[i] != VK_TRUE) enables &= ~(1u << i);
+        disable_color_writes(enables, s);
+    }
     return {};
 }
 
@@ -329,7 +339,7 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
     if (discard && !is_dynamic(p, DynamicState::kRasterizerDiscardEnable)) return {};
     if (std::string why = translate_rasterization(ci, p); !why.empty()) return why;
     if (std::string why = translate_multisample_depth(ci, p); !why.empty()) return why;
-    return translate_blend(ci, p.state);
+    return translate_blend(ci, is_dynamic(p, DynamicState::kColorWriteEnable), p.state);
 }
 
 // VK_EXT_pipeline_creation_feedback: the pipeline's creation time. Per-stage feedback is left invalid (flags 0):

@@ -43,6 +43,11 @@ void Translator::collect_blocks(size_t fn_begin) {
             if (local_words_ > (1u << 20)) fail("too much variable memory");
             pointers_.push_back(p);
             vals_[in[2]] = Value{kNoReg, in[1], int(pointers_.size() - 1)};
+        } else if (in.op == spv::Op::OpExtInst && in.n > 3 && in[3] != glsl_ext_) {
+            // Any set but GLSL.std.450 is a NonSemantic.* one (declare() refuses the others): its instructions have
+            // no effect, as in lavapipe's spirv_to_nir, and may even follow a block's terminator (DebugNoScope after
+            // OpReturn), so they are never part of a block (SPV_KHR_non_semantic_info).
+            continue;
         } else if (!blocks_.empty()) {
             Block& b = blocks_.back();
             b.end = k + 1;

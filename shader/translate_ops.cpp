@@ -63,6 +63,7 @@ void Translator::op(const Instr& in) {
         case spv::Op::OpMemoryBarrier:
             return;
         case spv::Op::OpExtInst:
+            if (in.n > 3 && in[3] != glsl_ext_) return;  // NonSemantic.*: no effect (collect_blocks)
             if (op_narrow(in) || (in.n > 4 && in[3] == glsl_ext_ && glsl_wide(in))) return;
             return glsl_op(in);
         case spv::Op::OpFunctionCall:

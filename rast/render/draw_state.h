@@ -93,6 +93,9 @@ struct DrawCall {
     // DrawIndex (SPIR-V): the draw's position within its vkCmdDraw*Indirect* call, 0 for direct draws; lavapipe
     // runs an indirect call as one draw per record with that number (drawid).
     uint32_t draw_index = 0;
+    // The first instance's number within the API draw (InstanceIndex - firstInstance): 0, except when a multi-draw
+    // runs its entries instance by instance (icd/execute_draw.cpp, VK_EXT_multi_draw).
+    uint32_t instance_begin = 0;
     const uint8_t* index_data = nullptr;                                 // from the bind offset
     uint32_t index_bytes = 0;                                            // bytes available from index_data
     uint32_t index_size = 4;                                             // 1, 2 or 4

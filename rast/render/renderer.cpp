@@ -333,8 +333,9 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
     DrawPlan plan;
     if (!plan_draw(plan, pipe, call, rec, src)) return {};
 
-    for (uint32_t inst = 0; inst < call.instance_count; ++inst) {
-        if (inst > 0 && prims_.count() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
+    for (uint32_t n = 0; n < call.instance_count; ++n) {
+        const uint32_t inst = call.instance_begin + n;
+        if (n > 0 && prims_.count() >= kMaxScenePrimsBetweenInstances) flush_within_draw(&draw_index, rec);
         plan.vcfg.instance = inst;
         uint64_t hits_before = 0;
         for (const auto& w : vertex_workers_) hits_before += w->scratch.loop_limit_hits();

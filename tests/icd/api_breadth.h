@@ -94,6 +94,7 @@ struct Pipe {
     bool rasterizer_discard = false;
     const void* pnext = nullptr;               // VkGraphicsPipelineCreateInfo::pNext
     const void* vertex_input_pnext = nullptr;  // VkPipelineVertexInputStateCreateInfo::pNext
+    const void* color_blend_pnext = nullptr;   // VkPipelineColorBlendStateCreateInfo::pNext
     VkPipelineCache cache = VK_NULL_HANDLE;
     VkPipelineCreateFlags flags = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // rasterizationSamples
@@ -367,6 +368,7 @@ class Kit {
         std::vector<VkPipelineColorBlendAttachmentState> blend = p.blend;
         if (blend.empty()) blend.assign(p.color_count, opaque());
         VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        cb.pNext = p.color_blend_pnext;
         cb.attachmentCount = uint32_t(blend.size());
         cb.pAttachments = blend.data();
         std::memcpy(cb.blendConstants, p.blend_constants, sizeof cb.blendConstants);
