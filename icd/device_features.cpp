@@ -53,6 +53,9 @@ void add_extension_features(Features& f) {
     // divisor (rast/geometry element_index), divisor 0 as lavapipe's UINT32_MAX (every instance reads firstInstance).
     f.vertex_attribute_divisor.vertexAttributeInstanceRateDivisor = VK_TRUE;
     f.vertex_attribute_divisor.vertexAttributeInstanceRateZeroDivisor = VK_TRUE;
+    // PipelineState::flatshade_first: the last vertex orders decomposition, clipping and setup as in lavapipe. No
+    // transform feedback in tilevk, so nothing to preserve (lavapipe, which has it, says VK_TRUE).
+    f.provoking_vertex.provokingVertexLast = VK_TRUE;
 }
 
 Features make_supported() {
@@ -207,6 +210,7 @@ Features::Features() {
     init(extended_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
     init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
+    init(provoking_vertex, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -215,7 +219,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_control),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
-                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor),
+                                 reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

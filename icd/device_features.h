@@ -19,6 +19,7 @@ struct Features {
     VkPhysicalDeviceExtendedDynamicStateFeaturesEXT extended_dynamic_state{};
     VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{};
     VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
+    VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -138,6 +138,13 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             reinterpret_cast<VkPhysicalDeviceVertexAttributeDivisorPropertiesEXT*>(s)->maxVertexAttribDivisor =
                 UINT32_MAX;
             return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_PROPERTIES_EXT: {
+            // The mode is pipeline state (PipelineState::flatshade_first); no transform feedback to preserve it in.
+            auto* pv = reinterpret_cast<VkPhysicalDeviceProvokingVertexPropertiesEXT*>(s);
+            pv->provokingVertexModePerPipeline = VK_TRUE;
+            pv->transformFeedbackPreservesTriangleFanProvokingVertex = VK_FALSE;
+            return;
+        }
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR:
             // A pushed set is an ordinary set (push_descriptor.cpp); 32 is lavapipe's MAX_PUSH_DESCRIPTORS.
             reinterpret_cast<VkPhysicalDevicePushDescriptorPropertiesKHR*>(s)->maxPushDescriptors = 32;

@@ -197,6 +197,15 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     s.cull = rast::CullMode(rs.cullMode & 3);
     s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
     s.depth_clamp = rs.depthClampEnable;
+    s.depth_clip = !rs.depthClampEnable;  // lavapipe's depth_clip_near/far without VK_EXT_depth_clip_enable
+    // VK_EXT_provoking_vertex: lavapipe's flatshade_first is FIRST_VERTEX, the default.
+    if (const auto* pv = find_in_chain<VkPipelineRasterizationProvokingVertexStateCreateInfoEXT>(
+            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT)) {
+        if (pv->provokingVertexMode > VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT)
+            return "provokingVertexMode " + std::to_string(uint32_t(pv->provokingVertexMode)) +
+                   " is not a VkProvokingVertexModeEXT";
+        s.flatshade_first = pv->provokingVertexMode == VK_PROVOKING_VERTEX_MODE_FIRST_VERTEX_EXT;
+    }
     s.depth_bias_enable = rs.depthBiasEnable;
     s.depth_bias.constant_factor = rs.depthBiasConstantFactor;
     s.depth_bias.slope_factor = rs.depthBiasSlopeFactor;

@@ -1,0 +1,102 @@
+// The rasterization extensions (suite RasterExtensions): VK_EXT_provoking_vertex, enabled on tilevk and lavapipe with
+// the validation layer on, drawn and compared byte for byte and against the colours the rule gives; what tilevk
+// reports for it; and, on a device without the validation layer, the pipeline states tilevk refuses by name.
+// (Every feature member is also requested exactly when reported by honest_reports_test.cpp.)
+#include "api_breadth.h"
+// after api_breadth.h, which includes <cstdint> for the generated arrays
+#include "ab_flat_frag.h"
+#include "ab_flat_vert.h"
+#include "stderr_capture.h"
+
+namespace tilevk::test::breadth {
+namespace {
+
+class RasterExtensions : public ApiBreadth {};
+
+uint32_t pixel(const Bytes& img, uint32_t x, uint32_t y, uint32_t w = 32) {
+    uint32_t p;
+    std::memcpy(&p, img.data() + (size_t(y) * w + x) * 4, 4);
+    return p;
+}
+constexpr uint32_t kRed = 0xff0000ffu, kGreen = 0xff00ff00u, kBlue = 0xffff0000u, kWhite = 0xffffffffu;
+
+// One draw of `verts` as `topology` with ab_flat's flat colour into a 32x32 RGBA8 target cleared to black.
+Bytes flat_draw(Kit& k, VkPrimitiveTopology topology, const std::vector<Vertex>& verts, const void* rs_chain,
+                float line_width = 1.0f) {
+    Target t = target(k);
+    Pipe p;
+    p.vs = SPV(ab_flat_vert);
+    p.fs = SPV(ab_flat_frag);
+    p.rp = t.rp;
+    p.topology = topology;
+    p.rasterization_pnext = rs_chain;
+    p.line_width = line_width;
+    VkPipeline pipe = k.pipeline(p);
+    Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        VkDeviceSize off = 0;
+        vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &off);
+        vkCmdDraw(c, uint32_t(verts.size()), 1, 0, 0);
+        vkCmdEndRenderPass(c);
+    }),
+              VK_SUCCESS);
+    return k.read(t.image.image, 32, 32, 4);
+}
+
+// A strip of four corners coloured red, green, blue, white (pixel (4, 16) in its first triangle, (27, 16) in its
+// second), a 5-vertex fan around the centre, and a line strip: the provoking vertex decides every colour.
+TEST_F(RasterExtensions, ProvokingVertexLastOnStripsFansAndLines) {
+    VkPhysicalDeviceProvokingVertexFeaturesEXT feature{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
+    feature.provokingVertexLast = VK_TRUE;
+    auto dev = device_pair({VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME}, &feature);
+    ASSERT_TRUE(dev->ok());
+    const std::vector<Vertex> strip = {v(-1, -1, 0, 1, 0, 0), v(-1, 1, 0, 0, 1, 0), v(1, -1, 0, 0, 0, 1),
+                                       v(1, 1, 0, 1, 1, 1)};
+    // Fan: centre white, then red, green, blue corners: triangles (c, r, g) and (c, g, b).
+    const std::vector<Vertex> fan = {v(0, 0, 0, 1, 1, 1), v(-1, -1, 0, 1, 0, 0), v(1, -1, 0, 0, 1, 0),
+                                     v(1, 1, 0, 0, 0, 1)};
+    // Line strip along row 8 then down column 24: red -> green -> blue.
+    const std::vector<Vertex> lines = {v(-0.75f, -0.46875f, 0, 1, 0, 0), v(0.5f, -0.46875f, 0, 0, 1, 0),
+                                       v(0.53125f, 0.75f, 0, 0, 0, 1)};
+    for (VkProvokingVertexModeEXT mode :
+         {VK_PROVOKING_VERTEX_MODE_FIRST_VERTEX_EXT, VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT}) {
+        VkPipelineRasterizationProvokingVertexStateCreateInfoEXT pv{
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT};
+        pv.provokingVertexMode = mode;
+        const bool last = mode == VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
+        const Bytes s = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, strip, &pv);
+        });
+        EXPECT_EQ(pixel(s, 4, 16), last ? kBlue : kRed) << mode;
+        EXPECT_EQ(pixel(s, 27, 16), last ? kWhite : kGreen) << mode;
+        const Bytes f = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN, fan, &pv);
+        });
+        EXPECT_EQ(pixel(f, 16, 4), last ? kGreen : kRed) << mode;   // (c, r, g): first is r (the fan's order)
+        EXPECT_EQ(pixel(f, 27, 16), last ? kBlue : kGreen) << mode;  // (c, g, b)
+        const Bytes l = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_LINE_STRIP, lines, &pv);
+        });
+        EXPECT_EQ(pixel(l, 10, 8), last ? kGreen : kRed) << mode;
+        EXPECT_EQ(pixel(l, 24, 20), last ? kBlue : kGreen) << mode;
+    }
+}
+
+// What tilevk reports: the last vertex may provoke, per pipeline; no transform feedback to preserve it in.
+TEST_F(RasterExtensions, ProvokingVertexReports) {
+    VkPhysicalDeviceProvokingVertexFeaturesEXT f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f};
+    vkGetPhysicalDeviceFeatures2(tilevk_->physical(), &f2);
+    EXPECT_EQ(f.provokingVertexLast, VK_TRUE);
+    EXPECT_EQ(f.transformFeedbackPreservesProvokingVertex, VK_FALSE);
+    VkPhysicalDeviceProvokingVertexPropertiesEXT p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p};
+    vkGetPhysicalDeviceProperties2(tilevk_->physical(), &p2);
+    EXPECT_EQ(p.provokingVertexModePerPipeline, VK_TRUE);
+    EXPECT_EQ(p.transformFeedbackPreservesTriangleFanProvokingVertex, VK_FALSE);
+}
+
+}  // namespace
+}  // namespace tilevk::test::breadth
