@@ -56,6 +56,8 @@ void add_extension_features(Features& f) {
     // PipelineState::flatshade_first: the last vertex orders decomposition, clipping and setup as in lavapipe. No
     // transform feedback in tilevk, so nothing to preserve (lavapipe, which has it, says VK_TRUE).
     f.provoking_vertex.provokingVertexLast = VK_TRUE;
+    // PipelineState::depth_clip: z clipping on or off whatever depthClampEnable says (clip_z of the clip mask).
+    f.depth_clip_enable.depthClipEnable = VK_TRUE;
 }
 
 Features make_supported() {
@@ -211,6 +213,7 @@ Features::Features() {
     init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
     init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
     init(provoking_vertex, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT);
+    init(depth_clip_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -220,7 +223,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor),
-                                 reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex),
+                                 reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -20,6 +20,7 @@ struct Features {
     VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{};
     VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
+    VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -197,7 +197,12 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     s.cull = rast::CullMode(rs.cullMode & 3);
     s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
     s.depth_clamp = rs.depthClampEnable;
-    s.depth_clip = !rs.depthClampEnable;  // lavapipe's depth_clip_near/far without VK_EXT_depth_clip_enable
+    // lavapipe's depth_clip_near/far: VK_EXT_depth_clip_enable's depthClipEnable when given, else
+    // !depthClampEnable. depthClampEnable still clamps each fragment's z to the viewport's depth range either way.
+    s.depth_clip = !rs.depthClampEnable;
+    if (const auto* dc = find_in_chain<VkPipelineRasterizationDepthClipStateCreateInfoEXT>(
+            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT))
+        s.depth_clip = dc->depthClipEnable;
     // VK_EXT_provoking_vertex: lavapipe's flatshade_first is FIRST_VERTEX, the default.
     if (const auto* pv = find_in_chain<VkPipelineRasterizationProvokingVertexStateCreateInfoEXT>(
             rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT)) {

@@ -1,4 +1,4 @@
-// The rasterization extensions (suite RasterExtensions): VK_EXT_provoking_vertex, enabled on tilevk and lavapipe with
+// The rasterization extensions (suite RasterExtensions): VK_EXT_provoking_vertex, VK_EXT_depth_clip_enable, enabled on tilevk and lavapipe with
 // the validation layer on, drawn and compared byte for byte and against the colours the rule gives; what tilevk
 // reports for it; and, on a device without the validation layer, the pipeline states tilevk refuses by name.
 // (Every feature member is also requested exactly when reported by honest_reports_test.cpp.)
@@ -96,6 +96,56 @@ TEST_F(RasterExtensions, ProvokingVertexReports) {
     vkGetPhysicalDeviceProperties2(tilevk_->physical(), &p2);
     EXPECT_EQ(p.provokingVertexModePerPipeline, VK_TRUE);
     EXPECT_EQ(p.transformFeedbackPreservesTriangleFanProvokingVertex, VK_FALSE);
+}
+
+// VK_EXT_depth_clip_enable: a quad beyond the far plane (z = 1.5) over the left half, one before the near plane
+// (z = -0.5) over the right half. depthClipEnable decides alone whether they are clipped, with or without
+// depthClampEnable (lavapipe's depth_clip_near/far); without the struct, depthClampEnable does.
+TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
+    VkPhysicalDeviceDepthClipEnableFeaturesEXT feature{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT};
+    feature.depthClipEnable = VK_TRUE;
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &feature};
+    f2.features.depthClamp = VK_TRUE;
+    auto dev = device_pair({VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME}, &f2);
+    ASSERT_TRUE(dev->ok());
+    std::vector<Vertex> quads;
+    for (float x0 : {-1.0f, 0.0f}) {
+        const float z = x0 < 0 ? 1.5f : -0.5f;
+        const float g = x0 < 0 ? 0.0f : 1.0f;
+        for (auto [x, y] : {std::pair{x0, -1.0f}, {x0 + 1, -1.0f}, {x0, 1.0f}, {x0 + 1, -1.0f}, {x0 + 1, 1.0f},
+                            {x0, 1.0f}})
+            quads.push_back(v(x, y, z, 1 - g, g, 0));
+    }
+    for (int with_struct = 0; with_struct < 2; ++with_struct)
+        for (bool clip : {false, true})
+            for (bool clamp : {false, true}) {
+                if (!with_struct && clip) continue;  // without the struct only depthClampEnable matters
+                VkPipelineRasterizationDepthClipStateCreateInfoEXT dc{
+                    VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT};
+                dc.depthClipEnable = clip;
+                const Bytes img = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
+                    Target t = target(k);
+                    Pipe p;
+                    p.rp = t.rp;
+                    p.rasterization_pnext = with_struct ? &dc : nullptr;
+                    p.depth_clamp = clamp;
+                    VkPipeline pipe = k.pipeline(p);
+                    Device::Buffer vb = k.buffer_of(quads, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
+                        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                        VkDeviceSize off = 0;
+                        vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &off);
+                        vkCmdDraw(c, uint32_t(quads.size()), 1, 0, 0);
+                        vkCmdEndRenderPass(c);
+                    }),
+                              VK_SUCCESS);
+                    return k.read(t.image.image, 32, 32, 4);
+                });
+                const bool clipped = with_struct ? clip : !clamp;
+                EXPECT_EQ(pixel(img, 8, 16), clipped ? 0xff000000u : kRed) << with_struct << clip << clamp;
+                EXPECT_EQ(pixel(img, 24, 16), clipped ? 0xff000000u : kGreen) << with_struct << clip << clamp;
+            }
 }
 
 }  // namespace
