@@ -21,6 +21,7 @@ struct Features {
     VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
+    VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

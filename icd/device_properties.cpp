@@ -145,6 +145,10 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             pv->transformFeedbackPreservesTriangleFanProvokingVertex = VK_FALSE;
             return;
         }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_PROPERTIES_EXT:
+            // Line ends snapped to 1/256 pixel (rast/geometry subpixel_snap), lavapipe's 8 bits.
+            reinterpret_cast<VkPhysicalDeviceLineRasterizationPropertiesEXT*>(s)->lineSubPixelPrecisionBits = 8;
+            return;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR:
             // A pushed set is an ordinary set (push_descriptor.cpp); 32 is lavapipe's MAX_PUSH_DESCRIPTORS.
             reinterpret_cast<VkPhysicalDevicePushDescriptorPropertiesKHR*>(s)->maxPushDescriptors = 32;

@@ -1,7 +1,10 @@
-// The rasterization extensions (suite RasterExtensions): VK_EXT_provoking_vertex, VK_EXT_depth_clip_enable, enabled on tilevk and lavapipe with
+// The rasterization extensions (suite RasterExtensions): VK_EXT_provoking_vertex, VK_EXT_depth_clip_enable and
+// VK_EXT_line_rasterization (rectangular and Bresenham lines), enabled on tilevk and lavapipe with
 // the validation layer on, drawn and compared byte for byte and against the colours the rule gives; what tilevk
 // reports for it; and, on a device without the validation layer, the pipeline states tilevk refuses by name.
 // (Every feature member is also requested exactly when reported by honest_reports_test.cpp.)
+#include <optional>
+
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated arrays
 #include "ab_flat_frag.h"
@@ -146,6 +149,132 @@ TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
                 EXPECT_EQ(pixel(img, 8, 16), clipped ? 0xff000000u : kRed) << with_struct << clip << clamp;
                 EXPECT_EQ(pixel(img, 24, 16), clipped ? 0xff000000u : kGreen) << with_struct << clip << clamp;
             }
+}
+
+// A line strip in `mode` (nullopt: no VkPipelineRasterizationLineStateCreateInfoEXT) with draw.vert's smooth
+// colours, `width` wide, into a 32x32 RGBA8 target cleared to black.
+Bytes line_draw(Kit& k, std::optional<VkLineRasterizationModeEXT> mode, float width,
+                const std::vector<Vertex>& verts) {
+    VkPipelineRasterizationLineStateCreateInfoEXT ls{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+    ls.lineRasterizationMode = mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
+    Target t = target(k);
+    Pipe p;
+    p.rp = t.rp;
+    p.topology = VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
+    p.rasterization_pnext = mode ? &ls : nullptr;
+    p.line_width = width;
+    VkPipeline pipe = k.pipeline(p);
+    Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        VkDeviceSize off = 0;
+        vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &off);
+        vkCmdDraw(c, uint32_t(verts.size()), 1, 0, 0);
+        vkCmdEndRenderPass(c);
+    }),
+              VK_SUCCESS);
+    return k.read(t.image.image, 32, 32, 4);
+}
+
+// VK_EXT_line_rasterization: DEFAULT, RECTANGULAR and BRESENHAM line strips, 1 and 3 pixels wide, against lavapipe.
+// The rules checked here: DEFAULT is RECTANGULAR; a 1-pixel Bresenham x-major line lights exactly one pixel in
+// each column strictly between its ends (a rectangular one of the same slope lights two in some).
+TEST_F(RasterExtensions, LineRasterizationModes) {
+    VkPhysicalDeviceLineRasterizationFeaturesEXT feature{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+    feature.rectangularLines = feature.bresenhamLines = VK_TRUE;
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &feature};
+    f2.features.wideLines = VK_TRUE;
+    auto dev = device_pair({VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME}, &f2);
+    ASSERT_TRUE(dev->ok());
+    // x-major from pixel (2.5, 4.5) to (29.5, 20.5), then back along a steeper y-major segment.
+    auto ndc = [](float px) { return px / 16.0f - 1.0f; };
+    const std::vector<Vertex> strip = {v(ndc(2.5f), ndc(4.5f), 0, 1, 0, 0), v(ndc(29.5f), ndc(20.5f), 0, 0, 1, 0)};
+    const std::vector<Vertex> both_axes = {v(ndc(2.5f), ndc(4.5f), 0, 1, 0, 0), v(ndc(29.5f), ndc(20.5f), 0, 0, 1, 0),
+                                           v(ndc(20.25f), ndc(30.75f), 0, 0, 0, 1)};
+    auto lit_in_column = [](const Bytes& img, uint32_t x) {
+        int n = 0;
+        for (uint32_t y = 0; y < 32; ++y) n += (pixel(img, x, y) & 0xffffffu) != 0;
+        return n;
+    };
+    for (float width : {1.0f, 3.0f}) {
+        Bytes by_mode[3];
+        int m = 0;
+        for (VkLineRasterizationModeEXT mode : {VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT,
+                                                VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT,
+                                                VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT}) {
+            by_mode[m++] =
+                both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) { return line_draw(k, mode, width, both_axes); });
+        }
+        EXPECT_EQ(by_mode[0], by_mode[1]) << width;
+        EXPECT_NE(by_mode[1], by_mode[2]) << width;
+        Kit k(dev->tilevk);
+        EXPECT_EQ(line_draw(k, std::nullopt, width, both_axes), by_mode[0]) << "no struct vs DEFAULT";
+    }
+    Kit k(dev->tilevk);
+    const Bytes bres = line_draw(k, VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT, 1.0f, strip);
+    const Bytes rect = line_draw(k, VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT, 1.0f, strip);
+    int rect_doubles = 0;
+    for (uint32_t x = 3; x <= 28; ++x) {
+        EXPECT_EQ(lit_in_column(bres, x), 1) << "Bresenham column " << x;
+        rect_doubles += lit_in_column(rect, x) > 1;
+    }
+    EXPECT_GT(rect_doubles, 0);
+}
+
+// Pipeline states tilevk refuses by name (VK_ERROR_INITIALIZATION_FAILED and one stderr line), on a device without
+// the validation layer since they need features tilevk does not report: smooth and stippled lines, the line
+// stipple dynamic state, and Bresenham lines in a multisampled pass.
+TEST_F(RasterExtensions, UnsupportedLineStatesAreRefusedByName) {
+    Harness h(false);
+    VkPhysicalDeviceLineRasterizationFeaturesEXT feature{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+    feature.rectangularLines = feature.bresenhamLines = VK_TRUE;
+    Device dev(h.find_device("tilevk"), nullptr, {VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME}, &feature);
+    ASSERT_TRUE(dev.ok());
+    Kit k(dev);
+    Target t = target(k);
+    struct Row {
+        VkLineRasterizationModeEXT mode;
+        bool stipple;
+        VkSampleCountFlagBits samples;
+        bool dynamic_stipple;
+        const char* named;
+    };
+    const Row rows[] = {
+        {VK_LINE_RASTERIZATION_MODE_RECTANGULAR_SMOOTH_EXT, false, VK_SAMPLE_COUNT_1_BIT, false,
+         "VK_LINE_RASTERIZATION_MODE_RECTANGULAR_SMOOTH_EXT"},
+        {VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT, true, VK_SAMPLE_COUNT_1_BIT, false, "stippledLineEnable"},
+        {VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT, false, VK_SAMPLE_COUNT_4_BIT, false, "VK_SAMPLE_COUNT_4_BIT"},
+        {VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT, false, VK_SAMPLE_COUNT_1_BIT, true,
+         "VK_DYNAMIC_STATE_LINE_STIPPLE_EXT"},
+    };
+    for (const Row& r : rows) {
+        VkPipelineRasterizationLineStateCreateInfoEXT ls{
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+        ls.lineRasterizationMode = r.mode;
+        ls.stippledLineEnable = r.stipple;
+        ls.lineStippleFactor = 1;
+        ls.lineStipplePattern = 0xf0f0;
+        Pipe p;
+        p.rp = t.rp;
+        p.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+        p.rasterization_pnext = &ls;
+        p.samples = r.samples;
+        if (r.dynamic_stipple) p.dynamic = {VK_DYNAMIC_STATE_LINE_STIPPLE_EXT};
+        VkResult result = VK_SUCCESS;
+        StderrCapture capture;
+        EXPECT_EQ(k.pipeline(p, &result), VkPipeline(VK_NULL_HANDLE)) << r.named;
+        EXPECT_EQ(result, VK_ERROR_INITIALIZATION_FAILED) << r.named;
+        EXPECT_NE(capture.text().find(r.named), std::string::npos) << capture.text();
+    }
+    // The same pipeline without what is refused is made.
+    Pipe ok;
+    ok.rp = t.rp;
+    ok.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    EXPECT_NE(k.pipeline(ok), VkPipeline(VK_NULL_HANDLE));
 }
 
 }  // namespace
