@@ -14,8 +14,7 @@
 namespace tilevk::cts {
 namespace {
 
-constexpr std::array<float, 4> kRed = {1, 0, 0, 1}, kGreen = {0, 1, 0, 1}, kBlue = {0, 0, 1, 1},
-                               kWhite = {1, 1, 1, 1};
+constexpr std::array<float, 4> kRed = {1, 0, 0, 1}, kGreen = {0, 1, 0, 1}, kBlue = {0, 0, 1, 1}, kWhite = {1, 1, 1, 1};
 
 // Random primitives of `topo` with a random colour per vertex.
 Draw random_draw(VkPrimitiveTopology topo, uint32_t count, uint32_t seed, float line_width) {
@@ -38,8 +37,8 @@ Scene analytic_list(bool last) {
     Draw d;
     d.interp = Interp::kFlat;
     d.provoking_last = last;
-    d.vertices = {vtxc(-0.9f, 0.9f, kRed),  vtxc(-0.1f, 0.9f, kGreen), vtxc(-0.5f, -0.5f, kBlue),
-                  vtxc(0.1f, 0.9f, kRed),   vtxc(0.9f, 0.9f, kGreen),  vtxc(0.5f, -0.5f, kBlue)};
+    d.vertices = {vtxc(-0.9f, 0.9f, kRed), vtxc(-0.1f, 0.9f, kGreen), vtxc(-0.5f, -0.5f, kBlue),
+                  vtxc(0.1f, 0.9f, kRed),  vtxc(0.9f, 0.9f, kGreen),  vtxc(0.5f, -0.5f, kBlue)};
     return one_draw(d);
 }
 
@@ -106,8 +105,13 @@ void add_provoking_cases(CaseList& out) {
                                    d.interp = interp;
                                    d.polygon_mode = r.polygon;
                                    d.provoking_last = last;
-                                   d.cull = r.polygon == VK_POLYGON_MODE_FILL ? VK_CULL_MODE_NONE
-                                                                              : VK_CULL_MODE_BACK_BIT;
+                                   d.cull =
+                                       r.polygon == VK_POLYGON_MODE_FILL ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+                                   // Corners inside the viewport: which corners the clipper makes lavapipe draws
+                                   // as points is not fully known (rast/geometry/README.md, polygonMode POINT).
+                                   if (r.polygon == VK_POLYGON_MODE_POINT)
+                                       for (Vertex& v : d.vertices)
+                                           for (int c = 0; c < 2; ++c) v.pos[c] *= 0.7f;
                                    return one_draw(d, 96, 80);
                                },
                                nullptr, ""});

@@ -204,8 +204,9 @@ std::string translate_line_state(const VkGraphicsPipelineCreateInfo& ci, Pipelin
         case VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT: {
             const VkPipelineMultisampleStateCreateInfo* ms = ci.pMultisampleState;
             if (ms != nullptr && ms->rasterizationSamples != VK_SAMPLE_COUNT_1_BIT)
-                return std::string("lineRasterizationMode VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT with "
-                                   "rasterizationSamples ") +
+                return std::string(
+                           "lineRasterizationMode VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT with "
+                           "rasterizationSamples ") +
                        vk_flags_name<VkSampleCountFlagBits>(ms->rasterizationSamples) +
                        " is not supported (lavapipe draws such lines single-sampled)";
             s.line_mode = rast::geometry::LineMode::kBresenham;

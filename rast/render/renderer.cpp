@@ -377,7 +377,8 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.pipe = &pipe;
     plan.indexed = call.indexed;
     assembled_.resize(geometry::assembled_index_capacity(pipe.topology, call.count));
-    plan.num_prims = geometry::assemble_primitives(src, pipe.topology, pipe.flatshade_first, assembled_.data(), assembled_.size());
+    plan.num_prims =
+        geometry::assemble_primitives(src, pipe.topology, pipe.flatshade_first, assembled_.data(), assembled_.size());
     plan.verts_per_prim = geometry::vertices_per_primitive(pipe.topology);
     // The vertices to shade (each used index once, ascending), and assembled_ rewritten from indices to their slots
     // in that list: the primitive loop reads shaded records by slot.

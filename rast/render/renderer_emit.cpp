@@ -372,9 +372,15 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
         tri.common.payload = payload;
         bool ccw = true;
         if (scene_->setup_triangle_at(scene_first + k, tri, &ccw) != SetupStatus::kAccepted) return;
-        // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
+        // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1) with
+        // the first vertex provoking, (v1, v0, v2) with the last (the provoking vertex keeps its place).
         geometry::TrianglePlanes tp;
-        geometry::setup_triangle_planes(pcfg, a, ccw ? b : c, ccw ? c : b, &tp, attribs);
+        if (ccw)
+            geometry::setup_triangle_planes(pcfg, a, b, c, &tp, attribs);
+        else if (pcfg.flatshade_first)
+            geometry::setup_triangle_planes(pcfg, a, c, b, &tp, attribs);
+        else
+            geometry::setup_triangle_planes(pcfg, b, a, c, &tp, attribs);
         prims_.set_header(payload, tp.pos, tp.depth_offset, draw, PrimKind::kTriangle, 0);
         if (pcfg.layout.num_attribs != 0)
             std::memcpy(prims_.record(payload) + kPrimHeaderFloats, attribs,
@@ -425,30 +431,29 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     tri.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
     tri.common.payload = prims_.next_payload();
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
+    // cw triangles become (v0, v2, v1) with the first vertex provoking, (v1, v0, v2) with the last
     int core_order[3];
-    triangle_vertex_order(tri, fb_.samples, core_order);  // flatshade_first: cw triangles become (v0, v2, v1)
-    const bool ccw = core_order[1] == 1;
+    triangle_vertex_order(tri, fb_.samples, core_order);
     if (fb_.linear_mode) {
         // llvmpipe's binning of this triangle: tiles where it leaves a partial command are not linear bins
         const float off = triangle_snap_offset(fb_.samples);
         int32_t x[3], y[3];
         bool ok = true;
-        const int order[3] = {0, ccw ? 1 : 2, ccw ? 2 : 1};
         for (int i = 0; i < 3; ++i)
-            ok = ok && snap_triangle_coord(w[order[i]][0], off, &x[i]) &&
-                 snap_triangle_coord(w[order[i]][1], off, &y[i]);
+            ok = ok && snap_triangle_coord(w[core_order[i]][0], off, &x[i]) &&
+                 snap_triangle_coord(w[core_order[i]][1], off, &y[i]);
         if (ok)
             mark_partial_triangle_bins(x, y, tri.common.clip, (fb_.width + 63) / 64, &tile_linear_);
         else
             mark_not_linear(0, 0, fb_.width, fb_.height, tri.common.clip);
     }
 
-    // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
-    const float* o1 = ccw ? v1 : v2;
-    const float* o2 = ccw ? v2 : v1;
+    // Planes from the vertices in the order rast/core rasterizes them.
+    const float* v[3] = {v0, v1, v2};
     const geometry::PlaneSetupConfig pcfg = plane_setup_config(rec);
     geometry::TrianglePlanes tp;
-    geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
+    geometry::setup_triangle_planes(pcfg, v[core_order[0]], v[core_order[1]], v[core_order[2]], &tp,
+                                    attrib_planes_.data());
 
     push_prim(draw, PrimKind::kTriangle, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
 }

@@ -69,19 +69,16 @@ TEST_F(RasterExtensions, ProvokingVertexLastOnStripsFansAndLines) {
             VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT};
         pv.provokingVertexMode = mode;
         const bool last = mode == VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
-        const Bytes s = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
-            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, strip, &pv);
-        });
+        const Bytes s = both_on(dev->tilevk, dev->lavapipe,
+                                [&](Kit& k) { return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, strip, &pv); });
         EXPECT_EQ(pixel(s, 4, 16), last ? kBlue : kRed) << mode;
         EXPECT_EQ(pixel(s, 27, 16), last ? kWhite : kGreen) << mode;
-        const Bytes f = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
-            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN, fan, &pv);
-        });
-        EXPECT_EQ(pixel(f, 16, 4), last ? kGreen : kRed) << mode;   // (c, r, g): first is r (the fan's order)
+        const Bytes f = both_on(dev->tilevk, dev->lavapipe,
+                                [&](Kit& k) { return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN, fan, &pv); });
+        EXPECT_EQ(pixel(f, 16, 4), last ? kGreen : kRed) << mode;    // (c, r, g): first is r (the fan's order)
         EXPECT_EQ(pixel(f, 27, 16), last ? kBlue : kGreen) << mode;  // (c, g, b)
-        const Bytes l = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
-            return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_LINE_STRIP, lines, &pv);
-        });
+        const Bytes l = both_on(dev->tilevk, dev->lavapipe,
+                                [&](Kit& k) { return flat_draw(k, VK_PRIMITIVE_TOPOLOGY_LINE_STRIP, lines, &pv); });
         EXPECT_EQ(pixel(l, 10, 8), last ? kGreen : kRed) << mode;
         EXPECT_EQ(pixel(l, 24, 20), last ? kBlue : kGreen) << mode;
     }
@@ -105,7 +102,8 @@ TEST_F(RasterExtensions, ProvokingVertexReports) {
 // (z = -0.5) over the right half. depthClipEnable decides alone whether they are clipped, with or without
 // depthClampEnable (lavapipe's depth_clip_near/far); without the struct, depthClampEnable does.
 TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
-    VkPhysicalDeviceDepthClipEnableFeaturesEXT feature{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT};
+    VkPhysicalDeviceDepthClipEnableFeaturesEXT feature{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT};
     feature.depthClipEnable = VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &feature};
     f2.features.depthClamp = VK_TRUE;
@@ -115,8 +113,8 @@ TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
     for (float x0 : {-1.0f, 0.0f}) {
         const float z = x0 < 0 ? 1.5f : -0.5f;
         const float g = x0 < 0 ? 0.0f : 1.0f;
-        for (auto [x, y] : {std::pair{x0, -1.0f}, {x0 + 1, -1.0f}, {x0, 1.0f}, {x0 + 1, -1.0f}, {x0 + 1, 1.0f},
-                            {x0, 1.0f}})
+        for (auto [x, y] :
+             {std::pair{x0, -1.0f}, {x0 + 1, -1.0f}, {x0, 1.0f}, {x0 + 1, -1.0f}, {x0 + 1, 1.0f}, {x0, 1.0f}})
             quads.push_back(v(x, y, z, 1 - g, g, 0));
     }
     for (int with_struct = 0; with_struct < 2; ++with_struct)
@@ -153,8 +151,7 @@ TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
 
 // A line strip in `mode` (nullopt: no VkPipelineRasterizationLineStateCreateInfoEXT) with draw.vert's smooth
 // colours, `width` wide, into a 32x32 RGBA8 target cleared to black.
-Bytes line_draw(Kit& k, std::optional<VkLineRasterizationModeEXT> mode, float width,
-                const std::vector<Vertex>& verts) {
+Bytes line_draw(Kit& k, std::optional<VkLineRasterizationModeEXT> mode, float width, const std::vector<Vertex>& verts) {
     VkPipelineRasterizationLineStateCreateInfoEXT ls{
         VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
     ls.lineRasterizationMode = mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
@@ -202,9 +199,9 @@ TEST_F(RasterExtensions, LineRasterizationModes) {
     for (float width : {1.0f, 3.0f}) {
         Bytes by_mode[3];
         int m = 0;
-        for (VkLineRasterizationModeEXT mode : {VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT,
-                                                VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT,
-                                                VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT}) {
+        for (VkLineRasterizationModeEXT mode :
+             {VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT, VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT,
+              VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT}) {
             by_mode[m++] =
                 both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) { return line_draw(k, mode, width, both_axes); });
         }
