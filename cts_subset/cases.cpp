@@ -51,6 +51,7 @@ CaseList all_cases() {
     add_fill_rule_cases(out);
     add_culling_cases(out);
     add_clipping_cases(out);
+    add_raster_ext_cases(out);
     add_interpolation_cases(out);
     add_interpolate_at_cases(out);
     add_multisample_cases(out);

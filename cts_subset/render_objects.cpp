@@ -434,6 +434,22 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     rs.depthBiasSlopeFactor = d.bias_slope;
     rs.depthBiasClamp = d.bias_clamp;
     rs.lineWidth = d.line_width;
+    VkPipelineRasterizationProvokingVertexStateCreateInfoEXT provoking{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT};
+    provoking.provokingVertexMode = VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
+    VkPipelineRasterizationDepthClipStateCreateInfoEXT depth_clip{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT};
+    depth_clip.depthClipEnable = d.depth_clip_enable.value_or(false);
+    VkPipelineRasterizationLineStateCreateInfoEXT line{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+    line.lineRasterizationMode = d.line_mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
+    auto chain_rs = [&rs](auto& ext) {
+        ext.pNext = rs.pNext;
+        rs.pNext = &ext;
+    };
+    if (d.provoking_last) chain_rs(provoking);
+    if (d.depth_clip_enable) chain_rs(depth_clip);
+    if (d.line_mode) chain_rs(line);
     if (d.dynamic) {
         rs.cullMode =
             d.cull == VK_CULL_MODE_NONE ? VkCullModeFlags{VK_CULL_MODE_FRONT_AND_BACK} : VkCullModeFlags(~d.cull & 3);

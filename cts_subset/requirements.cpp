@@ -28,6 +28,22 @@ std::string check_format(const DeviceContext& c, VkFormat f, VkFormatFeatureFlag
 
 }  // namespace
 
+// VK_EXT_line_rasterization: the feature of the draw's lineRasterizationMode (DEFAULT: rectangularLines too, as
+// the case asks for the struct).
+std::string line_mode_unsupported(const DeviceContext& c, const Draw& d) {
+    if (!d.line_mode) return {};
+    const VkPhysicalDeviceLineRasterizationFeaturesEXT& l = c.line_rasterization;
+    switch (*d.line_mode) {
+        case VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT:
+        case VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT:
+            return l.rectangularLines ? "" : "VK_EXT_line_rasterization rectangularLines";
+        case VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT:
+            return l.bresenhamLines ? "" : "VK_EXT_line_rasterization bresenhamLines";
+        default:
+            return l.smoothLines ? "" : "VK_EXT_line_rasterization smoothLines";
+    }
+}
+
 std::string unsupported(const DeviceContext& c, const Scene& s) {
     if (s.unsupported) {
         if (std::string why = s.unsupported(c); !why.empty()) return why;
@@ -87,6 +103,11 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         if (d.viewport && d.viewport->height < 0 && !c.has_extension(VK_KHR_MAINTENANCE_1_EXTENSION_NAME))
             return "VK_KHR_maintenance1 (negative viewport height)";
         if (d.depth_clamp && !f.depthClamp) return "feature depthClamp";
+        if (d.provoking_last && !c.provoking_vertex.provokingVertexLast)
+            return "VK_EXT_provoking_vertex provokingVertexLast";
+        if (d.depth_clip_enable && !c.depth_clip_enable.depthClipEnable)
+            return "VK_EXT_depth_clip_enable depthClipEnable";
+        if (std::string why = line_mode_unsupported(c, d); !why.empty()) return why;
         if (d.push_constants.size() * 4 > lim.maxPushConstantsSize) return "maxPushConstantsSize";
         if (d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT) {
             VkFormatProperties fp;

@@ -100,6 +100,12 @@ struct Draw {
     // (VK_EXT_depth_clip_control); viewport_count > 1 repeats the viewport and scissor (feature multiViewport;
     // every primitive still uses viewport 0).
     bool negative_one_to_one = false;
+    // Rasterization extensions (cases_raster_ext.cpp), each chained to the rasterization state when set:
+    // VK_EXT_provoking_vertex (LAST_VERTEX), VK_EXT_depth_clip_enable (depthClipEnable) and
+    // VK_EXT_line_rasterization (lineRasterizationMode, stippledLineEnable off).
+    bool provoking_last = false;
+    std::optional<bool> depth_clip_enable;
+    std::optional<VkLineRasterizationModeEXT> line_mode;
     uint32_t viewport_count = 1;
     // Everything extended dynamic state 1 and 2 can set is set with vkCmdSet* before the draw instead, on a
     // pipeline created with other values (render.cpp dynamic_pipeline_state): the frame must not change.

@@ -31,7 +31,10 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME,
                                          VK_EXT_COLOR_WRITE_ENABLE_EXTENSION_NAME,
                                          VK_EXT_MULTI_DRAW_EXTENSION_NAME,
-                                         VK_KHR_SHADER_DRAW_PARAMETERS_EXTENSION_NAME};
+                                         VK_KHR_SHADER_DRAW_PARAMETERS_EXTENSION_NAME,
+                                         VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME,
+                                         VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME,
+                                         VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME};
 
 }  // namespace
 
@@ -224,6 +227,9 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.extended_dynamic_state2, VK_EXT_EXTENDED_DYNAMIC_STATE_2_EXTENSION_NAME);
         link(out.color_write_enable, VK_EXT_COLOR_WRITE_ENABLE_EXTENSION_NAME);
         link(out.multi_draw, VK_EXT_MULTI_DRAW_EXTENSION_NAME);
+        link(out.provoking_vertex, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
+        link(out.depth_clip_enable, VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME);
+        link(out.line_rasterization, VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -244,6 +250,8 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
             f2.pNext = chain;
             if (features2) features2(p, &f2);  // every reported feature is then enabled as reported
+            // ... except the one that needs VK_EXT_transform_feedback, which the subset never enables
+            out.provoking_vertex.transformFeedbackPreservesProvokingVertex = VK_FALSE;
         }
         dci.pNext = chain;
         dci.enabledExtensionCount = uint32_t(enable.size());
@@ -253,6 +261,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.index_type_uint8.pNext = out.list_restart.pNext = out.depth_clip_control.pNext = nullptr;
             out.extended_dynamic_state.pNext = out.extended_dynamic_state2.pNext = nullptr;
             out.color_write_enable.pNext = out.multi_draw.pNext = nullptr;
+            out.provoking_vertex.pNext = out.depth_clip_enable.pNext = out.line_rasterization.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

@@ -44,6 +44,12 @@ struct DeviceContext {
     VkPhysicalDeviceColorWriteEnableFeaturesEXT color_write_enable{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COLOR_WRITE_ENABLE_FEATURES_EXT};
     VkPhysicalDeviceMultiDrawFeaturesEXT multi_draw{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTI_DRAW_FEATURES_EXT};
+    VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
+    VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT};
+    VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {

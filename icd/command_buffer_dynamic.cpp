@@ -103,6 +103,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteEnableEXT(VkCommandBuffer command
         if (pColorWriteEnables[i] != VK_TRUE) enables &= ~(1u << i);
     set(commandBuffer, DynamicState::kColorWriteEnable, enables);
 }
+// VK_EXT_line_rasterization: no tilevk pipeline stipples its lines (stippledLineEnable and the dynamic state
+// VK_DYNAMIC_STATE_LINE_STIPPLE_EXT are refused at pipeline creation), so the factor and pattern are never read.
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineStippleEXT(VkCommandBuffer, uint32_t, uint16_t) {}
 
 // extendedDynamicState2PatchControlPoints is VK_FALSE (no tessellation): calling this is invalid usage, and there
 // is no patch to control.

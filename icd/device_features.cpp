@@ -58,6 +58,15 @@ void add_extension_features(Features& f) {
     f.color_write_enable.colorWriteEnable = VK_TRUE;
     // vkCmdDrawMulti[Indexed]EXT: entries as separate draws, instance-major as lavapipe (execute_draw.cpp).
     f.multi_draw.multiDraw = VK_TRUE;
+    // PipelineState::flatshade_first: the last vertex orders decomposition, clipping and setup as in lavapipe. No
+    // transform feedback in tilevk, so nothing to preserve (lavapipe, which has it, says VK_TRUE).
+    f.provoking_vertex.provokingVertexLast = VK_TRUE;
+    // PipelineState::depth_clip: z clipping on or off whatever depthClampEnable says (clip_z of the clip mask).
+    f.depth_clip_enable.depthClipEnable = VK_TRUE;
+    // rast/geometry setup_line's rectangular and Bresenham (diamond-exit) lines, as lp_setup_line.c; smooth and
+    // stippled lines are refused at pipeline creation (pipeline.cpp translate_line_state).
+    f.line_rasterization.rectangularLines = VK_TRUE;
+    f.line_rasterization.bresenhamLines = VK_TRUE;
 }
 
 Features make_supported() {
@@ -217,6 +226,9 @@ Features::Features() {
     init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
     init(color_write_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COLOR_WRITE_ENABLE_FEATURES_EXT);
     init(multi_draw, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTI_DRAW_FEATURES_EXT);
+    init(provoking_vertex, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT);
+    init(depth_clip_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT);
+    init(line_rasterization, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -227,7 +239,10 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor),
                                  reinterpret_cast<VkBaseOutStructure*>(&color_write_enable),
-                                 reinterpret_cast<VkBaseOutStructure*>(&multi_draw)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&multi_draw),
+                                 reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex),
+                                 reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable),
+                                 reinterpret_cast<VkBaseOutStructure*>(&line_rasterization)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -21,6 +21,9 @@ struct Features {
     VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
     VkPhysicalDeviceColorWriteEnableFeaturesEXT color_write_enable{};
     VkPhysicalDeviceMultiDrawFeaturesEXT multi_draw{};
+    VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
+    VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
+    VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -142,6 +142,17 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             // lavapipe's 2048; the entries are copied into the command buffer's arena, any number would do.
             reinterpret_cast<VkPhysicalDeviceMultiDrawPropertiesEXT*>(s)->maxMultiDrawCount = 2048;
             return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_PROPERTIES_EXT: {
+            // The mode is pipeline state (PipelineState::flatshade_first); no transform feedback to preserve it in.
+            auto* pv = reinterpret_cast<VkPhysicalDeviceProvokingVertexPropertiesEXT*>(s);
+            pv->provokingVertexModePerPipeline = VK_TRUE;
+            pv->transformFeedbackPreservesTriangleFanProvokingVertex = VK_FALSE;
+            return;
+        }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_PROPERTIES_EXT:
+            // Line ends snapped to 1/256 pixel (rast/geometry subpixel_snap), lavapipe's 8 bits.
+            reinterpret_cast<VkPhysicalDeviceLineRasterizationPropertiesEXT*>(s)->lineSubPixelPrecisionBits = 8;
+            return;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR:
             // A pushed set is an ordinary set (push_descriptor.cpp); 32 is lavapipe's MAX_PUSH_DESCRIPTORS.
             reinterpret_cast<VkPhysicalDevicePushDescriptorPropertiesKHR*>(s)->maxPushDescriptors = 32;

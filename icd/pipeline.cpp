@@ -185,6 +185,39 @@ std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, Pipel
     return {};
 }
 
+// VK_EXT_line_rasterization: lavapipe's line_rectangular is every mode but BRESENHAM (DEFAULT and RECTANGULAR are
+// one). Its smooth lines (draw's aaline stage rewrites the fragment shader) and stippled lines (draw's stipple
+// stage) are not reproduced, and it rasterizes Bresenham lines single-sampled in a multisampled pass
+// (lvp_pipeline.c disable_multisample), which tilevk does not model: refused by name.
+std::string translate_line_state(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
+    const auto* ls = find_in_chain<VkPipelineRasterizationLineStateCreateInfoEXT>(
+        ci.pRasterizationState->pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT);
+    if (ls == nullptr) return {};
+    if (ls->stippledLineEnable)
+        return "stippledLineEnable is not supported (features stippledRectangularLines, stippledBresenhamLines, "
+               "stippledSmoothLines)";
+    switch (ls->lineRasterizationMode) {
+        case VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT:
+        case VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT:
+            s.line_mode = rast::geometry::LineMode::kRectangular;
+            return {};
+        case VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT: {
+            const VkPipelineMultisampleStateCreateInfo* ms = ci.pMultisampleState;
+            if (ms != nullptr && ms->rasterizationSamples != VK_SAMPLE_COUNT_1_BIT)
+                return std::string(
+                           "lineRasterizationMode VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT with "
+                           "rasterizationSamples ") +
+                       vk_flags_name<VkSampleCountFlagBits>(ms->rasterizationSamples) +
+                       " is not supported (lavapipe draws such lines single-sampled)";
+            s.line_mode = rast::geometry::LineMode::kBresenham;
+            return {};
+        }
+        default:
+            return std::string("lineRasterizationMode ") + vk_enum_name(ls->lineRasterizationMode) +
+                   " is not supported (feature smoothLines)";
+    }
+}
+
 // Rasterization state, the fixed viewport/scissor and depth clip control.
 std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     PipelineState& s = p.state;
@@ -197,11 +230,26 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     s.cull = rast::CullMode(rs.cullMode & 3);
     s.front_ccw = rs.frontFace == VK_FRONT_FACE_COUNTER_CLOCKWISE;
     s.depth_clamp = rs.depthClampEnable;
+    // lavapipe's depth_clip_near/far: VK_EXT_depth_clip_enable's depthClipEnable when given, else
+    // !depthClampEnable. depthClampEnable still clamps each fragment's z to the viewport's depth range either way.
+    s.depth_clip = !rs.depthClampEnable;
+    if (const auto* dc = find_in_chain<VkPipelineRasterizationDepthClipStateCreateInfoEXT>(
+            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT))
+        s.depth_clip = dc->depthClipEnable;
+    // VK_EXT_provoking_vertex: lavapipe's flatshade_first is FIRST_VERTEX, the default.
+    if (const auto* pv = find_in_chain<VkPipelineRasterizationProvokingVertexStateCreateInfoEXT>(
+            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT)) {
+        if (pv->provokingVertexMode > VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT)
+            return "provokingVertexMode " + std::to_string(uint32_t(pv->provokingVertexMode)) +
+                   " is not a VkProvokingVertexModeEXT";
+        s.flatshade_first = pv->provokingVertexMode == VK_PROVOKING_VERTEX_MODE_FIRST_VERTEX_EXT;
+    }
     s.depth_bias_enable = rs.depthBiasEnable;
     s.depth_bias.constant_factor = rs.depthBiasConstantFactor;
     s.depth_bias.slope_factor = rs.depthBiasSlopeFactor;
     s.depth_bias.clamp = rs.depthBiasClamp;
     s.line_width = rs.lineWidth;
+    if (std::string why = translate_line_state(ci, s); !why.empty()) return why;
     if (const VkPipelineViewportStateCreateInfo* vp = ci.pViewportState) {
         // multiViewport: up to maxViewports are accepted; without a viewport-index output (no geometry stage,
         // no shaderOutputViewportIndex) every primitive uses viewport and scissor 0, as in lavapipe.

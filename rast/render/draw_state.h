@@ -9,6 +9,7 @@
 #include "rast/core/static_vector.h"
 #include "rast/fragment/blend.h"
 #include "rast/fragment/depth_stencil.h"
+#include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/planes.h"
 #include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
@@ -43,6 +44,9 @@ struct PipelineState {
 
     geometry::Topology topology = geometry::Topology::kTriangleList;
     bool primitive_restart = false;
+    // The provoking vertex (VK_EXT_provoking_vertex): the first (lavapipe's flatshade_first) or the last vertex of
+    // each primitive; it orders strip and fan decomposition, the CW fix-up and the clipper's fans as in lavapipe.
+    bool flatshade_first = true;
 
     // Rasterization.
     CullMode cull = CullMode::kNone;
@@ -50,9 +54,14 @@ struct PipelineState {
     bool depth_clamp = false;
     // Clip-space depth range: [0, w] (Vulkan) or [-w, w] (VK_EXT_depth_clip_control negativeOneToOne).
     bool clip_halfz = true;
+    // Clipping against z (lavapipe's depth_clip_near/far): !depthClampEnable unless VK_EXT_depth_clip_enable says.
+    bool depth_clip = true;
     bool depth_bias_enable = false;
     geometry::DepthBias depth_bias;  // factors; format fields are filled by the renderer from the target
     float line_width = 1.0f;
+    // Rectangular (Vulkan's default) or Bresenham lines (VK_EXT_line_rasterization; lavapipe-rules §6), for line
+    // topologies and polygonMode LINE edges alike.
+    geometry::LineMode line_mode = geometry::LineMode::kRectangular;
     PolygonMode polygon_mode = PolygonMode::kFill;
 
     // Multisample.

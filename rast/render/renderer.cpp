@@ -379,7 +379,8 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.pipe = &pipe;
     plan.indexed = call.indexed;
     assembled_.resize(geometry::assembled_index_capacity(pipe.topology, call.count));
-    plan.num_prims = geometry::assemble_primitives(src, pipe.topology, true, assembled_.data(), assembled_.size());
+    plan.num_prims =
+        geometry::assemble_primitives(src, pipe.topology, pipe.flatshade_first, assembled_.data(), assembled_.size());
     plan.verts_per_prim = geometry::vertices_per_primitive(pipe.topology);
     // The vertices to shade (each used index once, ascending), and assembled_ rewritten from indices to their slots
     // in that list: the primitive loop reads shaded records by slot.
@@ -408,7 +409,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     vcfg.viewport.vp = geometry::make_viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth, pipe.clip_halfz);
     vcfg.viewport.fused = fused();
     vcfg.viewport.bypass = geometry::is_identity_viewport(vcfg.viewport.vp);
-    vcfg.clip.clip_z = !pipe.depth_clamp;
+    vcfg.clip.clip_z = pipe.depth_clip;
     vcfg.clip.clip_halfz = pipe.clip_halfz;
     vcfg.first_instance = call.first_instance;
     vcfg.base_vertex = call.indexed ? static_cast<uint32_t>(call.vertex_offset) : call.first;
@@ -420,6 +421,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.ccfg.layout = layout;
     plan.ccfg.vp = vcfg.viewport.vp;
     plan.ccfg.clip_halfz = pipe.clip_halfz;
+    plan.ccfg.flatshade_first = pipe.flatshade_first;
     plan.ccfg.guard_band_xy = fb_.linear_mode;
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
@@ -440,6 +442,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     if (plan.discard && !vertex_writes_memory(pipe.vertex)) return false;
 
     plan.ucfg.layout = layout;
+    plan.ucfg.flatshade_first = pipe.flatshade_first;
     plan.ucfg.bias_enable = pipe.depth_bias_enable;
     plan.ucfg.bias = depth_bias_for_target(pipe);
     unfilled_scratch_.resize(size_t(3) * geometry::vertex_floats(layout));

@@ -23,7 +23,7 @@ geometry::PlaneSetupConfig Renderer::plane_setup_config(const DrawRecord& rec) c
     geometry::PlaneSetupConfig pcfg;
     pcfg.layout = rec.varyings.layout();
     pcfg.multisample = fb_.samples > 1;
-    pcfg.flatshade_first = true;
+    pcfg.flatshade_first = pipe.flatshade_first;
     pcfg.bias = pipe.depth_bias_enable ? depth_bias_for_target(pipe) : geometry::DepthBias{};
     return pcfg;
 }
@@ -51,9 +51,9 @@ bool Renderer::emit_direct_pairs(uint32_t draw_index, const DrawRecord& rec, geo
         }
         return true;
     }
-    if (rect_pairs_ && !indexed && topology == geometry::Topology::kTriangleStrip) {
+    if (rect_pairs_ && !indexed && topology == geometry::Topology::kTriangleStrip && rec.pipe->flatshade_first) {
         // draw_arrays, strip with flatshade_first: setup->rect on each pair of consecutive triangles;
-        // when it declines, the first is drawn and the pairing moves on by one
+        // when it declines, the first is drawn and the pairing moves on by one (last-vertex strips: triangles)
         uint32_t p = first_prim;
         for (; p + 1 < end_prim;) {
             triangle_records(p, t0);
@@ -72,13 +72,15 @@ bool Renderer::emit_direct_pairs(uint32_t draw_index, const DrawRecord& rec, geo
         return true;
     }
     if (!indexed && topology == geometry::Topology::kTriangleFan && end_prim - first_prim == 2) {
-        // draw_arrays, 4-vertex fan (any mode): rect(v0, v1, v2, v0, v2, v3), i.e. outside linear mode
-        // the triangles (v0, v1, v2), (v0, v2, v3) instead of the fan's (v1, v2, v0), (v2, v3, v0)
+        // draw_arrays, 4-vertex fan (any mode, either provoking vertex): rect(v0, v1, v2, v0, v2, v3), i.e.
+        // outside linear mode the triangles (v0, v1, v2), (v0, v2, v3) instead of the fan's (v1, v2, v0),
+        // (v2, v3, v0) — with the last vertex provoking the fan's own order
         const float* a[3];
         const float* b[3];
         triangle_records(first_prim, a);
         triangle_records(first_prim + 1, b);
-        const float* q[4] = {a[2], a[0], a[1], b[1]};
+        const bool first = rec.pipe->flatshade_first;  // assembled (v1, v2, v0), (v2, v3, v0) else (v0, v1, v2), ...
+        const float* q[4] = {first ? a[2] : a[0], first ? a[0] : a[1], first ? a[1] : a[2], first ? b[1] : b[2]};
         const float* u0[3] = {q[0], q[1], q[2]};
         const float* u1[3] = {q[0], q[2], q[3]};
         rect_or_triangles(draw_index, rec, u0, u1);
@@ -255,11 +257,10 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
     const PipelineState& pipe = *rec.pipe;
     geometry::LineSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
-    cfg.mode =
-        geometry::LineMode::kRectangular;  // Vulkan's default mode: lavapipe's rectangular lines (lavapipe-rules §6)
+    cfg.mode = pipe.line_mode;
     cfg.width = pipe.line_width;
     cfg.multisample = fb_.samples > 1;
-    cfg.flatshade_first = true;
+    cfg.flatshade_first = pipe.flatshade_first;
     geometry::LineSetup ls;
     if (geometry::setup_line(cfg, v0, v1, &ls, attrib_planes_.data()) != geometry::PrimSetupStatus::kOk) return;
     ConvexInput in;
@@ -314,7 +315,7 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
     TriangleInput proto;
     proto.cull = pipe.cull;
     proto.front_ccw = pipe.front_ccw;
-    proto.flatshade_first = true;
+    proto.flatshade_first = pipe.flatshade_first;
     proto.common.clip = prim_clip(pipe);
     proto.common.sample_mask = fb_.samples > 1 ? static_cast<uint16_t>(pipe.sample_mask & 0xF) : 1;
     const geometry::PlaneSetupConfig pcfg = plane_setup_config(rec);
@@ -371,9 +372,15 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
         tri.common.payload = payload;
         bool ccw = true;
         if (scene_->setup_triangle_at(scene_first + k, tri, &ccw) != SetupStatus::kAccepted) return;
-        // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
+        // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1) with
+        // the first vertex provoking, (v1, v0, v2) with the last (the provoking vertex keeps its place).
         geometry::TrianglePlanes tp;
-        geometry::setup_triangle_planes(pcfg, a, ccw ? b : c, ccw ? c : b, &tp, attribs);
+        if (ccw)
+            geometry::setup_triangle_planes(pcfg, a, b, c, &tp, attribs);
+        else if (pcfg.flatshade_first)
+            geometry::setup_triangle_planes(pcfg, a, c, b, &tp, attribs);
+        else
+            geometry::setup_triangle_planes(pcfg, b, a, c, &tp, attribs);
         prims_.set_header(payload, tp.pos, tp.depth_offset, draw, PrimKind::kTriangle, 0);
         if (pcfg.layout.num_attribs != 0)
             std::memcpy(prims_.record(payload) + kPrimHeaderFloats, attribs,
@@ -419,35 +426,34 @@ void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v
     }
     tri.cull = pipe.cull;
     tri.front_ccw = pipe.front_ccw;
-    tri.flatshade_first = true;
+    tri.flatshade_first = pipe.flatshade_first;
     tri.common.clip = prim_clip(pipe);
     tri.common.sample_mask = fragment::coverage_sample_mask(pipe.sample_mask, fb_.samples);
     tri.common.payload = prims_.next_payload();
     if (scene_->add_triangle(tri) != SetupStatus::kAccepted) return;
+    // cw triangles become (v0, v2, v1) with the first vertex provoking, (v1, v0, v2) with the last
     int core_order[3];
-    triangle_vertex_order(tri, fb_.samples, core_order);  // flatshade_first: cw triangles become (v0, v2, v1)
-    const bool ccw = core_order[1] == 1;
+    triangle_vertex_order(tri, fb_.samples, core_order);
     if (fb_.linear_mode) {
         // llvmpipe's binning of this triangle: tiles where it leaves a partial command are not linear bins
         const float off = triangle_snap_offset(fb_.samples);
         int32_t x[3], y[3];
         bool ok = true;
-        const int order[3] = {0, ccw ? 1 : 2, ccw ? 2 : 1};
         for (int i = 0; i < 3; ++i)
-            ok = ok && snap_triangle_coord(w[order[i]][0], off, &x[i]) &&
-                 snap_triangle_coord(w[order[i]][1], off, &y[i]);
+            ok = ok && snap_triangle_coord(w[core_order[i]][0], off, &x[i]) &&
+                 snap_triangle_coord(w[core_order[i]][1], off, &y[i]);
         if (ok)
             mark_partial_triangle_bins(x, y, tri.common.clip, (fb_.width + 63) / 64, &tile_linear_);
         else
             mark_not_linear(0, 0, fb_.width, fb_.height, tri.common.clip);
     }
 
-    // Planes from the vertices in the order rast/core rasterizes them: cw triangles become (v0, v2, v1).
-    const float* o1 = ccw ? v1 : v2;
-    const float* o2 = ccw ? v2 : v1;
+    // Planes from the vertices in the order rast/core rasterizes them.
+    const float* v[3] = {v0, v1, v2};
     const geometry::PlaneSetupConfig pcfg = plane_setup_config(rec);
     geometry::TrianglePlanes tp;
-    geometry::setup_triangle_planes(pcfg, v0, o1, o2, &tp, attrib_planes_.data());
+    geometry::setup_triangle_planes(pcfg, v[core_order[0]], v[core_order[1]], v[core_order[2]], &tp,
+                                    attrib_planes_.data());
 
     push_prim(draw, PrimKind::kTriangle, tp.pos, tp.depth_offset, pcfg.layout.num_attribs);
 }

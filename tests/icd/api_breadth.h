@@ -95,6 +95,8 @@ struct Pipe {
     const void* pnext = nullptr;               // VkGraphicsPipelineCreateInfo::pNext
     const void* vertex_input_pnext = nullptr;  // VkPipelineVertexInputStateCreateInfo::pNext
     const void* color_blend_pnext = nullptr;   // VkPipelineColorBlendStateCreateInfo::pNext
+    const void* rasterization_pnext = nullptr;  // VkPipelineRasterizationStateCreateInfo::pNext
+    bool depth_clamp = false;                   // depthClampEnable
     VkPipelineCache cache = VK_NULL_HANDLE;
     VkPipelineCreateFlags flags = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // rasterizationSamples
@@ -362,6 +364,8 @@ class Kit {
         rs.cullMode = VK_CULL_MODE_NONE;
         rs.lineWidth = p.line_width;
         rs.depthBiasEnable = p.depth_bias;
+        rs.pNext = p.rasterization_pnext;
+        rs.depthClampEnable = p.depth_clamp;
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         ms.rasterizationSamples = p.samples;
         ms.pSampleMask = p.sample_mask;
