@@ -64,6 +64,7 @@ CaseList all_cases() {
     add_quirk_cases(out);
     add_blit_cases(out);
     add_query_cases(out);
+    add_statistics_cases(out);
     add_feature_cases(out);
     add_format_cases(out);
     add_compute_cases(out);

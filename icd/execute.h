@@ -2,8 +2,10 @@
 #pragma once
 #include "command_buffer.h"
 #include "formats.h"
+#include "query_pool.h"
 #include "rast/render/targets.h"
 
+#include <array>
 #include <atomic>
 #include <optional>
 #include <utility>
@@ -13,6 +15,10 @@ namespace tilevk::shader {
 class Program;
 class Bindings;
 }  // namespace tilevk::shader
+namespace tilevk::rast::render {
+struct DrawCall;
+struct PipelineState;
+}  // namespace tilevk::rast::render
 
 namespace tilevk::icd {
 
@@ -86,6 +92,11 @@ struct ExecState {
     // Queries ended inside a render pass: their last draws may still be binned; they become available when the
     // renderer's pass ends (finish_rendering).
     std::vector<std::pair<QueryPool*, uint32_t>> ended_in_pass;
+    // Pipeline statistics, kept as llvmpipe keeps them: running totals (zeroed when a query begins while none is
+    // active) and, per active query, its totals at begin (QueryPool::Slot::stats); a query's counts are the
+    // difference at its end.
+    StatisticCounters statistics_totals{};
+    std::vector<std::pair<QueryPool*, uint32_t>> statistics_queries;  // the active ones
     // A query command inside the render pass before the renderer's next scene began: that scene is not linear
     // (note_query_command_in_pass).
     bool query_command_pending = false;
@@ -174,6 +185,15 @@ void publish_ended_queries(ExecState& st);
 void finish_queries(ExecState& st);
 // The sample counter of the active occlusion query, or null.
 uint64_t* active_occlusion_counter(const ExecState& st);
+
+// ---- pipeline statistics (execute_statistics.cpp) ----
+// A draw that lavapipe's draw module would run (render pass, pipeline, index buffer when indexed), while a
+// pipeline-statistics query is active: adds its vertex-side counts to st.statistics_totals. `s`: the draw's state;
+// `rasterizer_discard`: rasterizerDiscardEnable (the draw is not rendered, but draw still runs its vertices).
+void count_draw_statistics(ExecState& st, const rast::render::DrawCall& call, const rast::render::PipelineState& s,
+                           bool rasterizer_discard);
+// A dispatch of `workgroups` groups of `local_size` invocations each.
+void count_dispatch_statistics(ExecState& st, uint64_t workgroups, const std::array<uint32_t, 3>& local_size);
 
 // ---- transfer operations (execute_transfer.cpp) ----
 void exec_copy_buffer(const CmdCopyBuffer& c);

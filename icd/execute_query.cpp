@@ -1,4 +1,5 @@
-// Query commands at vkQueueSubmit: begin/end (occlusion), reset, timestamps, copies of results into a buffer.
+// Query commands at vkQueueSubmit: begin/end (occlusion, pipeline statistics), reset, timestamps, copies of results
+// into a buffer.
 // Occlusion counts come from rast/render: each draw recorded while a query is active carries a pointer to the
 // query's value (DrawCall::samples_passed), to which the renderer adds the draw's passing samples once its tiles
 // are rendered.
@@ -16,12 +17,42 @@ uint64_t* active_occlusion_counter(const ExecState& st) {
     return &st.occlusion_pool->slots[st.occlusion_query].value;
 }
 
+namespace {
+// llvmpipe_begin_query: the running totals restart from 0 when no statistics query is active.
+void begin_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
+    if (st.statistics_queries.empty()) st.statistics_totals = {};
+    pool.begin_statistics(query, st.statistics_totals);
+    st.statistics_queries.emplace_back(&pool, query);
+}
+
+bool end_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
+    auto& active = st.statistics_queries;
+    for (auto it = active.begin(); it != active.end(); ++it) {
+        if (it->first != &pool || it->second != query) continue;
+        active.erase(it);
+        // Every counter is final when the command runs: the vertex-side ones are counted as draws are recorded
+        // for the renderer, not as it renders them.
+        pool.end_statistics(query, st.statistics_totals);
+        return true;
+    }
+    return false;
+}
+}  // namespace
+
 void publish_ended_queries(ExecState& st) {
     for (auto [pool, query] : st.ended_in_pass) pool->make_available(query);
     st.ended_in_pass.clear();
 }
 
 void finish_queries(ExecState& st) {
+    while (!st.statistics_queries.empty()) {
+        auto [pool, query] = st.statistics_queries.back();
+        log_error(
+            "vkQueueSubmit: pipeline-statistics query %u was begun and never ended in its command buffer; "
+            "ended now",
+            query);
+        end_statistics(st, *pool, query);
+    }
     if (st.occlusion_pool != nullptr) {
         log_error("vkQueueSubmit: occlusion query %u was begun and never ended in its command buffer; ended now",
                   st.occlusion_query);
@@ -42,7 +73,12 @@ uint32_t view_query(const ExecState& st, uint32_t query) {
 
 void exec_query(ExecState& st, const CmdBeginQuery& c) {
     const uint32_t query = view_query(st, c.query);
-    if (c.pool->type != VK_QUERY_TYPE_OCCLUSION) {
+    if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS && query < c.pool->count) {
+        end_statistics(st, *c.pool, query);  // begun twice (invalid usage): restarted
+        begin_statistics(st, *c.pool, query);
+        return;
+    }
+    if (c.pool->type != VK_QUERY_TYPE_OCCLUSION && c.pool->type != VK_QUERY_TYPE_PIPELINE_STATISTICS) {
         log_error("vkCmdBeginQuery: a %s pool cannot be begun; ignored", vk_enum_name(c.pool->type));
         return;
     }
@@ -58,6 +94,11 @@ void exec_query(ExecState& st, const CmdBeginQuery& c) {
 
 void exec_query(ExecState& st, const CmdEndQuery& c) {
     const uint32_t query = view_query(st, c.query);
+    if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS) {
+        if (!end_statistics(st, *c.pool, query))
+            log_error("vkCmdEndQuery: pipeline-statistics query %u is not active; ignored", query);
+        return;
+    }
     if (c.pool != st.occlusion_pool || query != st.occlusion_query) {
         log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", query);
         return;
