@@ -44,7 +44,7 @@ struct Counts {
 };
 
 // Every query available with exactly these counts, for the counters of `mask` in bit order.
-Check stats_are(VkQueryPipelineStatisticFlags mask, std::vector<Counts> expected) {
+Check stats_are(VkQueryPipelineStatisticFlags mask, const std::vector<Counts>& expected) {
     return [mask, expected](const std::vector<Plane>& planes) -> std::string {
         const size_t values = size_t(__builtin_popcount(mask));
         for (const Plane& p : planes) {
