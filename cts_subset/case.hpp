@@ -39,6 +39,7 @@ void add_primitive_cases(CaseList& out);
 void add_fill_rule_cases(CaseList& out);
 void add_culling_cases(CaseList& out);
 void add_interpolation_cases(CaseList& out);
+void add_interpolate_at_cases(CaseList& out);  // cases_interpolate_at.cpp
 void add_multisample_cases(CaseList& out);
 void add_depth_cases(CaseList& out);
 void add_stencil_cases(CaseList& out);
@@ -49,6 +50,7 @@ void add_texture_cases(CaseList& out);
 void add_texture_3d_cases(CaseList& out);  // cases_texture_3d.cpp
 void add_texture_1d_cases(CaseList& out);  // cases_texture_1d.cpp
 void add_texture_cube_cases(CaseList& out);
+void add_texture_bc_cases(CaseList& out);  // cases_texture_bc.cpp
 void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);

@@ -3,6 +3,7 @@
 namespace tilevk::cts {
 
 void add_quirk_cases(CaseList& out);    // cases_quirks.cpp
+void add_transcendental_cases(CaseList& out);  // cases_transcendental.cpp
 void add_linear_cases(CaseList& out);   // cases_linear.cpp
 void add_random_cases(CaseList& out);   // cases_random.cpp
 void add_random_compute_cases(CaseList& out);  // cases_random_compute.cpp
@@ -50,6 +51,7 @@ CaseList all_cases() {
     add_culling_cases(out);
     add_clipping_cases(out);
     add_interpolation_cases(out);
+    add_interpolate_at_cases(out);
     add_multisample_cases(out);
     add_depth_cases(out);
     add_stencil_cases(out);
@@ -60,8 +62,10 @@ CaseList all_cases() {
     add_texture_3d_cases(out);
     add_texture_1d_cases(out);
     add_texture_cube_cases(out);
+    add_texture_bc_cases(out);
     add_mesh_cases(out);
     add_quirk_cases(out);
+    add_transcendental_cases(out);
     add_blit_cases(out);
     add_query_cases(out);
     add_statistics_cases(out);

@@ -109,12 +109,8 @@ Case make_case(const ShadingCase& sc) {
     s.draw.min_sample_shading = sc.min_sample_shading;
     s.draw.alpha_to_coverage = sc.alpha_to_coverage;
     s.steps = {draw(), dispatch(0, 1)};
-    auto spec = std::make_shared<ComputeSpec>(std::move(s));
-    Case c;
-    c.name = std::string("multisample.sample_shading.") + sc.name;
-    c.scene = [spec] { return compute_scene(*spec); };
-    if (sc.check) c.check = per_sample_check(sc.check);
-    return c;
+    return compute_case(std::string("multisample.sample_shading.") + sc.name, std::move(s),
+                        sc.check ? per_sample_check(sc.check) : Check{});
 }
 
 }  // namespace

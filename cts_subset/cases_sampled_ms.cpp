@@ -119,12 +119,8 @@ void add_sampled_ms_cases(CaseList& out) {
         s.draw.fragment_glsl = fragment_glsl(f);
         s.draw.vertex_count = 9;
         s.steps = {draw(), dispatch(0, 1)};
-        auto spec = std::make_shared<ComputeSpec>(std::move(s));
-        Case c;
-        c.name = std::string("multisample.sampled_ms.fetch_every_sample_") + f.name;
-        c.scene = [spec] { return compute_scene(*spec); };
-        c.check = sampled_ms_check();
-        out.push_back(std::move(c));
+        out.push_back(compute_case(std::string("multisample.sampled_ms.fetch_every_sample_") + f.name, std::move(s),
+                                   sampled_ms_check()));
     }
 }
 

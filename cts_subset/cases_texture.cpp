@@ -1,25 +1,14 @@
 // texture.*: magnification and minification filters, mip selection and blending, and the wrap modes.
 #include <limits>
 
-#include "case.hpp"
+#include "texture_case.hpp"
 
 namespace tilevk::cts {
 namespace {
 
 // A quad showing the texture with coordinates [u0,u1] x [v0,v1], optionally with a perspective tilt.
 Scene textured(TextureSpec t, float u0, float u1, float x_scale = 1.0f, bool projected = false, uint32_t size = 64) {
-    Draw d;
-    d.frag = Frag::kTexture;
-    d.texture = t;
-    float s = x_scale;
-    float wl = 1.0f, wr = projected ? 3.0f : 1.0f;
-    Vertex a = vtx(-s, -s, 0, wl), b = vtx(s, -s, 0, wr), c = vtx(s, s, 0, wr), e = vtx(-s, s, 0, wl);
-    a.uv[0] = u0, a.uv[1] = u0;
-    b.uv[0] = u1, b.uv[1] = u0;
-    c.uv[0] = u1, c.uv[1] = u1;
-    e.uv[0] = u0, e.uv[1] = u1;
-    d.vertices = {a, b, c, a, c, e};
-    return one_draw(d, size, size);
+    return one_draw(textured_quad(t, {u0, u1, x_scale, projected}), size, size);
 }
 
 }  // namespace

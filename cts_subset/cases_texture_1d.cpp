@@ -2,48 +2,18 @@
 // linear filters, every address mode, mip selection from 1D derivatives (lavapipe squares rho for 1D too),
 // projection, LOD bias and explicit LOD, offsets, texelFetch inside and outside, textureSize and
 // textureQueryLevels. The texels encode x, layer and level (render_objects.cpp); the targets are RGBA32F.
-#include "case.hpp"
+#include "texture_case.hpp"
 
 namespace tilevk::cts {
 namespace {
 
-// A quad over the target with v_uv from u0 to u1 in both directions; `body` computes `o_color` from `tex`.
-Scene textured_1d(const TextureSpec& t, const std::string& body, float u0 = 0.0f, float u1 = 1.0f, float x_scale = 1.0f,
-                  bool projected = false) {
-    Draw d;
-    d.frag = Frag::kTexture;
-    d.texture = t;
-    const float wl = 1.0f, wr = projected ? 3.0f : 1.0f;
-    Vertex a = vtx(-x_scale, -x_scale, 0, wl), b = vtx(x_scale, -x_scale, 0, wr), c = vtx(x_scale, x_scale, 0, wr),
-           e = vtx(-x_scale, x_scale, 0, wl);
-    a.uv[0] = u0, a.uv[1] = u0;
-    b.uv[0] = u1, b.uv[1] = u0;
-    c.uv[0] = u1, c.uv[1] = u1;
-    e.uv[0] = u0, e.uv[1] = u1;
-    d.vertices = {a, b, c, a, c, e};
-    d.fragment_glsl = std::string(
-                          "#version 450\n"
-                          "layout(location=0) in vec4 v_color;\n"
-                          "layout(location=1) in vec2 v_uv;\n"
-                          "layout(location=0) out vec4 o_color;\n"
-                          "layout(set=0, binding=0) uniform ") +
-                      (t.layers > 1 ? "sampler1DArray" : "sampler1D") + " tex;\nvoid main() {\n" + body + "}\n";
-    Scene s = one_draw(d, 64, 64);
-    s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
-    return s;
+// The quad over the target; `body` computes `o_color` from `tex`.
+Scene textured_1d(const TextureSpec& t, const std::string& body, const QuadUv& q) {
+    return textured_nd(textured_quad(t, q), t.layers > 1 ? "sampler1DArray" : "sampler1D", body);
 }
 
-struct Wrap {
-    const char* name;
-    VkSamplerAddressMode mode;
-};
-const Wrap kWraps[] = {{"repeat", VK_SAMPLER_ADDRESS_MODE_REPEAT},
-                       {"mirrored_repeat", VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT},
-                       {"clamp_to_edge", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE},
-                       {"clamp_to_border", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER}};
-
 void add_filter_cases(CaseList& out) {
-    for (const Wrap& w : kWraps)
+    for (const WrapMode& w : kWrapModes)
         for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
             const std::string fname = f == VK_FILTER_NEAREST ? "_nearest" : "_linear";
             TextureSpec t;
@@ -52,18 +22,13 @@ void add_filter_cases(CaseList& out) {
             t.wrap = w.mode;
             t.mag = t.min = f;
             t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
-            out.push_back(
-                {std::string("texture.1d.wrap.") + w.name + fname,
-                 [=] { return textured_1d(t, "    o_color = texture(tex, v_uv.x * 1.3 - v_uv.y);\n", -1.25f, 2.5f); },
-                 nullptr, ""});
+            out.push_back(textured_case(std::string("texture.1d.wrap.") + w.name + fname, textured_1d, t,
+                                        "    o_color = texture(tex, v_uv.x * 1.3 - v_uv.y);\n", {-1.25f, 2.5f}));
             TextureSpec a = t;
             a.width = 7, a.layers = 4;  // not a power of two; the layer rounds to nearest even and clamps
-            out.push_back({std::string("texture.1d.array.") + w.name + fname,
-                           [=] {
-                               return textured_1d(a, "    o_color = texture(tex, vec2(v_uv.x, v_uv.y * 5.0 - 0.75));\n",
-                                                  -1.25f, 2.5f);
-                           },
-                           nullptr, ""});
+            out.push_back(textured_case(std::string("texture.1d.array.") + w.name + fname, textured_1d, a,
+                                        "    o_color = texture(tex, vec2(v_uv.x, v_uv.y * 5.0 - 0.75));\n",
+                                        {-1.25f, 2.5f}));
         }
 }
 
@@ -79,34 +44,22 @@ void add_mip_cases(CaseList& out) {
             const std::string name = std::string("texture.1d.mipmap.min_") +
                                      (f == VK_FILTER_NEAREST ? "nearest" : "linear") + "_mip_" +
                                      (m == VK_SAMPLER_MIPMAP_MODE_NEAREST ? "nearest" : "linear");
-            out.push_back({name,
-                           [=] {
-                               return textured_1d(t, "    o_color = texture(tex, v_uv.x * (1.0 + 5.0 * v_uv.y));\n",
-                                                  0.0f, 1.0f, 0.4f);
-                           },
-                           nullptr, ""});
-            out.push_back({name + "_projected",
-                           [=] {
-                               return textured_1d(t, "    o_color = textureProj(tex, vec2(v_uv.x * 2.0, 2.0));\n", 0.0f,
-                                                  4.0f, 1.0f, true);
-                           },
-                           nullptr, ""});
+            out.push_back(textured_case(name, textured_1d, t,
+                                        "    o_color = texture(tex, v_uv.x * (1.0 + 5.0 * v_uv.y));\n",
+                                        {0.0f, 1.0f, 0.4f}));
+            out.push_back(textured_case(name + "_projected", textured_1d, t,
+                                        "    o_color = textureProj(tex, vec2(v_uv.x * 2.0, 2.0));\n",
+                                        {0.0f, 4.0f, 1.0f, true}));
             if (m == VK_SAMPLER_MIPMAP_MODE_LINEAR)  // shader bias with mip NEAREST: see texture.3d
-                out.push_back({name + "_bias",
-                               [=] {
-                                   return textured_1d(t, "    o_color = texture(tex, v_uv.x, v_uv.y * 3.0 - 1.2);\n",
-                                                      0.0f, 1.0f, 0.6f);
-                               },
-                               nullptr, ""});
+                out.push_back(textured_case(name + "_bias", textured_1d, t,
+                                            "    o_color = texture(tex, v_uv.x, v_uv.y * 3.0 - 1.2);\n",
+                                            {0.0f, 1.0f, 0.6f}));
             TextureSpec a = t;
             a.layers = 3;
             a.wrap = VK_SAMPLER_ADDRESS_MODE_REPEAT;  // the 8-bit filter
-            out.push_back({name + "_array",
-                           [=] {
-                               return textured_1d(a, "    o_color = texture(tex, vec2(v_uv.x * 3.0, v_uv.y * 3.0));\n",
-                                                  0.0f, 1.0f, 0.4f);
-                           },
-                           nullptr, ""});
+            out.push_back(textured_case(name + "_array", textured_1d, a,
+                                        "    o_color = texture(tex, vec2(v_uv.x * 3.0, v_uv.y * 3.0));\n",
+                                        {0.0f, 1.0f, 0.4f}));
         }
 }
 
@@ -117,36 +70,18 @@ void add_explicit_cases(CaseList& out) {
     t.min = t.mag = VK_FILTER_LINEAR;
     t.mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     t.wrap = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    out.push_back({"texture.1d.array.lod_offset",
-                   [=] {
-                       return textured_1d(
-                           t,
-                           "    o_color = textureLodOffset(tex, vec2(v_uv.x, v_uv.y * 3.0), v_uv.x * 6.0 - 1.0, -2);\n",
-                           -0.3f, 1.4f);
-                   },
-                   nullptr, ""});
-    out.push_back({"texture.1d.array.grad",
-                   [=] {
-                       return textured_1d(
-                           t, "    o_color = textureGrad(tex, vec2(v_uv.x, v_uv.y * 3.0), v_uv.y * 0.3, 0.02);\n");
-                   },
-                   nullptr, ""});
-    out.push_back({"texture.1d.array.texel_fetch",
-                   [=] {
-                       return textured_1d(
-                           t,
-                           "    ivec2 f = ivec2(gl_FragCoord.xy);\n"
-                           "    o_color = texelFetch(tex, ivec2(f.x % 36 - 2, f.y % 5 - 1), f.y / 16);\n");
-                   },
-                   nullptr, ""});
+    out.push_back(textured_case(
+        "texture.1d.array.lod_offset", textured_1d, t,
+        "    o_color = textureLodOffset(tex, vec2(v_uv.x, v_uv.y * 3.0), v_uv.x * 6.0 - 1.0, -2);\n", {-0.3f, 1.4f}));
+    out.push_back(textured_case("texture.1d.array.grad", textured_1d, t,
+                                "    o_color = textureGrad(tex, vec2(v_uv.x, v_uv.y * 3.0), v_uv.y * 0.3, 0.02);\n"));
+    out.push_back(textured_case("texture.1d.array.texel_fetch", textured_1d, t,
+                                "    ivec2 f = ivec2(gl_FragCoord.xy);\n"
+                                "    o_color = texelFetch(tex, ivec2(f.x % 36 - 2, f.y % 5 - 1), f.y / 16);\n"));
     // textureSize with constant LODs (see texture.3d.size_and_levels)
-    out.push_back({"texture.1d.array.size_and_levels",
-                   [=] {
-                       return textured_1d(t,
-                                          "    o_color = vec4(textureSize(tex, 2), textureQueryLevels(tex), 0.0) +"
-                                          " vec4(textureSize(tex, 5), 0.0, 0.0) * 100.0;\n");
-                   },
-                   nullptr, ""});
+    out.push_back(textured_case("texture.1d.array.size_and_levels", textured_1d, t,
+                                "    o_color = vec4(textureSize(tex, 2), textureQueryLevels(tex), 0.0) +"
+                                " vec4(textureSize(tex, 5), 0.0, 0.0) * 100.0;\n"));
     TextureSpec one = t;
     one.layers = 1;
     // MIRRORED_REPEAT nearest exactly on texel edges (s = k/8 on 8 texels): gallivm mirrors the normalized
@@ -155,20 +90,12 @@ void add_explicit_cases(CaseList& out) {
     edges.one_d = true;
     edges.width = 8;
     edges.wrap = VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-    out.push_back({"texture.1d.mirrored_repeat_nearest_texel_edges",
-                   [=] {
-                       return textured_1d(edges,
-                                          "    o_color = textureLod(tex, float(int(gl_FragCoord.x) - 32) * 0.125 +"
-                                          " float(int(gl_FragCoord.y) / 16) * 0.0625, 0.0);\n");
-                   },
-                   nullptr, ""});
-    out.push_back({"texture.1d.texel_fetch_and_size",
-                   [=] {
-                       return textured_1d(one,
-                                          "    int x = int(gl_FragCoord.x) - 3, l = int(gl_FragCoord.y) / 12;\n"
-                                          "    o_color = texelFetch(tex, x, l) + vec4(textureSize(tex, 3));\n");
-                   },
-                   nullptr, ""});
+    out.push_back(textured_case("texture.1d.mirrored_repeat_nearest_texel_edges", textured_1d, edges,
+                                "    o_color = textureLod(tex, float(int(gl_FragCoord.x) - 32) * 0.125 +"
+                                " float(int(gl_FragCoord.y) / 16) * 0.0625, 0.0);\n"));
+    out.push_back(textured_case("texture.1d.texel_fetch_and_size", textured_1d, one,
+                                "    int x = int(gl_FragCoord.x) - 3, l = int(gl_FragCoord.y) / 12;\n"
+                                "    o_color = texelFetch(tex, x, l) + vec4(textureSize(tex, 3));\n"));
 }
 
 }  // namespace

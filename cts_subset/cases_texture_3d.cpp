@@ -3,54 +3,21 @@
 // LOD bias, textureLod, textureGrad, texelFetch inside and outside the levels, textureSize and textureQueryLevels
 // (textureOffset on 3D is refused: shader/README.md "3D images"). The 3D texel encodes its coordinates and level
 // (render_objects.cpp texel_3d); the targets are RGBA32F, so every float of the filter shows.
-#include "case.hpp"
+#include "texture_case.hpp"
 
 namespace tilevk::cts {
 namespace {
 
-// A quad over the target with v_uv from u0 to u1 in both directions and v_color.x across them; `body` computes vec4
+// The quad over the target with r = v_color.x across it, another plane than s's and t's; `body` computes vec4
 // `o_color` from `tex` (sampler3D) and `p` = (v_uv, v_color.x).
-Scene textured_3d(const TextureSpec& t, const std::string& body, float u0 = 0.0f, float u1 = 1.0f, float x_scale = 1.0f,
-                  bool projected = false) {
-    Draw d;
-    d.frag = Frag::kTexture;
-    d.texture = t;
-    const float wl = 1.0f, wr = projected ? 3.0f : 1.0f;
-    Vertex a = vtx(-x_scale, -x_scale, 0, wl), b = vtx(x_scale, -x_scale, 0, wr), c = vtx(x_scale, x_scale, 0, wr),
-           e = vtx(-x_scale, x_scale, 0, wl);
-    a.uv[0] = u0, a.uv[1] = u0;
-    b.uv[0] = u1, b.uv[1] = u0;
-    c.uv[0] = u1, c.uv[1] = u1;
-    e.uv[0] = u0, e.uv[1] = u1;
-    // r comes straight from an interpolated input (v_color.x), another plane than s's and t's
-    a.color[0] = 0.1f * (u1 - u0) + u0, b.color[0] = 0.8f * (u1 - u0) + u0;
-    c.color[0] = -0.35f * (u1 - u0) + u0, e.color[0] = 0.45f * (u1 - u0) + u0;
-    d.vertices = {a, b, c, a, c, e};
-    d.fragment_glsl =
-        "#version 450\n"
-        "layout(location=0) in vec4 v_color;\n"
-        "layout(location=1) in vec2 v_uv;\n"
-        "layout(location=0) out vec4 o_color;\n"
-        "layout(set=0, binding=0) uniform sampler3D tex;\n"
-        "void main() {\n"
-        "    vec3 p = vec3(v_uv, v_color.x);\n" +
-        body + "}\n";
-    Scene s = one_draw(d, 64, 64);
-    s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
-    return s;
+Scene textured_3d(const TextureSpec& t, const std::string& body, const QuadUv& q) {
+    const float du = q.u1 - q.u0, u0 = q.u0;
+    const Draw d = textured_quad(t, q, {0.1f * du + u0, 0.8f * du + u0, -0.35f * du + u0, 0.45f * du + u0});
+    return textured_nd(d, "sampler3D", "    vec3 p = vec3(v_uv, v_color.x);\n" + body);
 }
 
-struct Wrap {
-    const char* name;
-    VkSamplerAddressMode mode;
-};
-const Wrap kWraps[] = {{"repeat", VK_SAMPLER_ADDRESS_MODE_REPEAT},
-                       {"mirrored_repeat", VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT},
-                       {"clamp_to_edge", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE},
-                       {"clamp_to_border", VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER}};
-
 void add_wrap_cases(CaseList& out) {
-    for (const Wrap& w : kWraps)
+    for (const WrapMode& w : kWrapModes)
         for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
             const std::string fname = f == VK_FILTER_NEAREST ? "_nearest" : "_linear";
             TextureSpec t;
@@ -58,9 +25,8 @@ void add_wrap_cases(CaseList& out) {
             t.wrap = w.mode;
             t.mag = t.min = f;
             t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
-            out.push_back({std::string("texture.3d.wrap.") + w.name + fname,
-                           [=] { return textured_3d(t, "    o_color = texture(tex, p);\n", -1.25f, 2.5f); }, nullptr,
-                           ""});
+            out.push_back(textured_case(std::string("texture.3d.wrap.") + w.name + fname, textured_3d, t,
+                                        "    o_color = texture(tex, p);\n", {-1.25f, 2.5f}));
             // the r axis alone in this mode, s and t in another (the 8-bit filter needs every axis REPEAT or
             // CLAMP_TO_EDGE); a size that is not a power of two on every axis
             TextureSpec m = t;
@@ -68,9 +34,8 @@ void add_wrap_cases(CaseList& out) {
             m.wrap = w.mode == VK_SAMPLER_ADDRESS_MODE_REPEAT ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
                                                               : VK_SAMPLER_ADDRESS_MODE_REPEAT;
             m.wrap_w = w.mode;
-            out.push_back({std::string("texture.3d.wrap_r.") + w.name + fname + "_npot",
-                           [=] { return textured_3d(m, "    o_color = texture(tex, p * 1.7 - 0.4);\n", -1.25f, 2.5f); },
-                           nullptr, ""});
+            out.push_back(textured_case(std::string("texture.3d.wrap_r.") + w.name + fname + "_npot", textured_3d, m,
+                                        "    o_color = texture(tex, p * 1.7 - 0.4);\n", {-1.25f, 2.5f}));
         }
 }
 
@@ -90,27 +55,17 @@ void add_mip_cases(CaseList& out) {
                                          (m == VK_SAMPLER_MIPMAP_MODE_NEAREST ? "nearest" : "linear") +
                                          (wrap == VK_SAMPLER_ADDRESS_MODE_REPEAT ? "" : "_mirrored");
                 // r changing faster than s and t: the depth term decides the LOD in part of the quad
-                out.push_back({name,
-                               [=] {
-                                   return textured_3d(t, "    o_color = texture(tex, vec3(p.xy, p.z * 9.0));\n", 0.0f,
-                                                      1.0f, 0.4f);
-                               },
-                               nullptr, ""});
-                out.push_back({name + "_projected",
-                               [=] {
-                                   return textured_3d(t, "    o_color = textureProj(tex, vec4(p * 2.0, 2.0));\n", 0.0f,
-                                                      4.0f, 1.0f, true);
-                               },
-                               nullptr, ""});
+                out.push_back(textured_case(
+                    name, textured_3d, t, "    o_color = texture(tex, vec3(p.xy, p.z * 9.0));\n", {0.0f, 1.0f, 0.4f}));
+                out.push_back(textured_case(name + "_projected", textured_3d, t,
+                                            "    o_color = textureProj(tex, vec4(p * 2.0, 2.0));\n",
+                                            {0.0f, 4.0f, 1.0f, true}));
                 // a shader LOD bias; with mip NEAREST lavapipe then takes fast_log2 where tilevk takes log2 (a known
                 // difference of every dimension, shader/README.md), so LINEAR only
                 if (m == VK_SAMPLER_MIPMAP_MODE_LINEAR)
-                    out.push_back({name + "_bias",
-                                   [=] {
-                                       return textured_3d(t, "    o_color = texture(tex, p, v_uv.x * 3.0 - 1.2);\n",
-                                                          0.0f, 1.0f, 0.6f);
-                                   },
-                                   nullptr, ""});
+                    out.push_back(textured_case(name + "_bias", textured_3d, t,
+                                                "    o_color = texture(tex, p, v_uv.x * 3.0 - 1.2);\n",
+                                                {0.0f, 1.0f, 0.6f}));
             }
 }
 
@@ -122,34 +77,21 @@ void add_explicit_cases(CaseList& out) {
     t.mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     t.wrap = VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
     t.wrap_w = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    out.push_back({"texture.3d.lod",
-                   [=] { return textured_3d(t, "    o_color = textureLod(tex, p, v_uv.x * 5.0 - 0.5);\n"); }, nullptr,
-                   ""});
-    out.push_back({"texture.3d.grad",
-                   [=] {
-                       return textured_3d(t,
-                                          "    o_color = textureGrad(tex, p, vec3(v_uv.x * 0.2, 0.01, v_uv.y * 0.3),"
-                                          " vec3(0.02, v_uv.y * 0.1, 0.05));\n");
-                   },
-                   nullptr, ""});
+    out.push_back(
+        textured_case("texture.3d.lod", textured_3d, t, "    o_color = textureLod(tex, p, v_uv.x * 5.0 - 0.5);\n"));
+    out.push_back(textured_case("texture.3d.grad", textured_3d, t,
+                                "    o_color = textureGrad(tex, p, vec3(v_uv.x * 0.2, 0.01, v_uv.y * 0.3),"
+                                " vec3(0.02, v_uv.y * 0.1, 0.05));\n"));
     // texelFetch: levels 0..2 across the target, coordinates running past every edge of each level (outside: 0)
-    out.push_back({"texture.3d.texel_fetch",
-                   [=] {
-                       return textured_3d(t,
-                                          "    ivec2 f = ivec2(gl_FragCoord.xy);\n"
-                                          "    ivec3 c = ivec3(f.x % 20 - 2, f.y % 12 - 2, (f.x + 3 * f.y) % 36 - 2);\n"
-                                          "    o_color = texelFetch(tex, c, f.x / 24);\n");
-                   },
-                   nullptr, ""});
+    out.push_back(textured_case("texture.3d.texel_fetch", textured_3d, t,
+                                "    ivec2 f = ivec2(gl_FragCoord.xy);\n"
+                                "    ivec3 c = ivec3(f.x % 20 - 2, f.y % 12 - 2, (f.x + 3 * f.y) % 36 - 2);\n"
+                                "    o_color = texelFetch(tex, c, f.x / 24);\n"));
     // textureSize with a constant LOD: lavapipe answers a whole vector from its first lane's LOD
     // (lp_build_size_query_soa, "FIXME: this needs to honor per-element lod")
-    out.push_back({"texture.3d.size_and_levels",
-                   [=] {
-                       return textured_3d(t,
-                                          "    o_color = vec4(textureSize(tex, 1), textureQueryLevels(tex)) * 100.0 +"
-                                          " vec4(textureSize(tex, 4), 0.0);\n");
-                   },
-                   nullptr, ""});
+    out.push_back(textured_case("texture.3d.size_and_levels", textured_3d, t,
+                                "    o_color = vec4(textureSize(tex, 1), textureQueryLevels(tex)) * 100.0 +"
+                                " vec4(textureSize(tex, 4), 0.0);\n"));
 }
 
 }  // namespace

@@ -13,15 +13,6 @@
 namespace tilevk::cts {
 namespace {
 
-void add_types_case(CaseList& out, const std::string& name, ComputeSpec s, Check check = {}) {
-    auto spec = std::make_shared<ComputeSpec>(std::move(s));
-    Case c;
-    c.name = "types." + name;
-    c.scene = [spec] { return compute_scene(*spec); };
-    c.check = std::move(check);
-    out.push_back(std::move(c));
-}
-
 void push64(std::vector<uint32_t>& w, uint64_t v) {
     w.push_back(uint32_t(v));
     w.push_back(uint32_t(v >> 32));

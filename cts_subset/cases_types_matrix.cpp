@@ -10,15 +10,6 @@
 namespace tilevk::cts {
 namespace {
 
-void add_case(CaseList& out, const std::string& name, ComputeSpec s, Check check = {}) {
-    auto spec = std::make_shared<ComputeSpec>(std::move(s));
-    Case c;
-    c.name = "types." + name;
-    c.scene = [spec] { return compute_scene(*spec); };
-    c.check = std::move(check);
-    out.push_back(std::move(c));
-}
-
 std::vector<uint32_t> random_doubles(uint32_t seed, size_t n) {
     Rng r(seed);
     std::vector<uint32_t> w;
@@ -79,7 +70,7 @@ void add_matrix_cases(CaseList& out) {
         const uint64_t scale = std::bit_cast<uint64_t>(1.25), bias = uint64_t(-3000000000ll);
         s.push = {uint32_t(scale), uint32_t(scale >> 32), uint32_t(bias), uint32_t(bias >> 32)};
         s.steps = {dispatch(0, 4)};
-        add_case(out, "layout.matrices_seed" + std::to_string(seed), std::move(s));
+        add_types_case(out, "layout.matrices_seed" + std::to_string(seed), std::move(s));
     }
 }
 
@@ -111,7 +102,7 @@ void add_fragment_case(CaseList& out) {
         "}\n",
         3, -1};
     s.steps = {draw()};
-    add_case(out, "fragment.float64_int64", std::move(s));
+    add_types_case(out, "fragment.float64_int64", std::move(s));
 }
 
 }  // namespace

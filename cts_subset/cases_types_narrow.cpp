@@ -14,15 +14,6 @@
 namespace tilevk::cts {
 namespace {
 
-void add_case(CaseList& out, const std::string& name, ComputeSpec s, Check check = {}) {
-    auto spec = std::make_shared<ComputeSpec>(std::move(s));
-    Case c;
-    c.name = "types." + name;
-    c.scene = [spec] { return compute_scene(*spec); };
-    c.check = std::move(check);
-    out.push_back(std::move(c));
-}
-
 constexpr uint32_t kLanes = 64;  // invocations per case: 4 workgroups of 16
 constexpr uint32_t kResults = 28, kWords = 9;
 
@@ -220,7 +211,7 @@ void add_narrow_cases(CaseList& out, uint32_t w) {
             }
             return msg;
         };
-        add_case(out, "int" + std::to_string(w) + ".arith_seed" + std::to_string(seed), std::move(s), check);
+        add_types_case(out, "int" + std::to_string(w) + ".arith_seed" + std::to_string(seed), std::move(s), check);
     }
 }
 

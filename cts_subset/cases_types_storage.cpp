@@ -14,15 +14,6 @@
 namespace tilevk::cts {
 namespace {
 
-void add_case(CaseList& out, const std::string& name, ComputeSpec s, Check check = {}) {
-    auto spec = std::make_shared<ComputeSpec>(std::move(s));
-    Case c;
-    c.name = "types." + name;
-    c.scene = [spec] { return compute_scene(*spec); };
-    c.check = std::move(check);
-    out.push_back(std::move(c));
-}
-
 uint8_t byte_at(const std::vector<uint32_t>& w, size_t b) {
     return b / 4 < w.size() ? uint8_t(w[b / 4] >> (b % 4 * 8)) : 0;
 }
@@ -176,8 +167,8 @@ void add_layout_case(CaseList& out) {
                  {std::vector<uint32_t>(48, kMarker)}};
     s.push = push;
     s.steps = {dispatch(0, 4)};
-    add_case(out, "storage.layouts_and_halves", std::move(s),
-             [uni, push, fin](const std::vector<Plane>& planes) { return check_layout(planes, uni, push, fin); });
+    add_types_case(out, "storage.layouts_and_halves", std::move(s),
+                   [uni, push, fin](const std::vector<Plane>& planes) { return check_layout(planes, uni, push, fin); });
 }
 
 // A fragment shader with 16- and 8-bit arithmetic: each pixel stores halves and bytes at its own index (sharing
@@ -213,7 +204,7 @@ void add_fragment_case(CaseList& out) {
         "}\n",
         3, -1};
     s.steps = {draw()};
-    add_case(out, "fragment.int16_int8", std::move(s));
+    add_types_case(out, "fragment.int16_int8", std::move(s));
 }
 
 // float -> uint outside [0, 2^32) and NaN.
@@ -252,7 +243,7 @@ void add_f2u_case(CaseList& out) {
         }
         return msg;
     };
-    add_case(out, "convert.f2u", std::move(s), check);
+    add_types_case(out, "convert.f2u", std::move(s), check);
 }
 
 }  // namespace

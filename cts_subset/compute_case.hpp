@@ -1,4 +1,5 @@
-// Helpers shared by the compute case tables (cases_compute*.cpp): adding a case, GLSL headers, word checks.
+// Helpers shared by the compute-spec case tables (cases_compute*.cpp, cases_types*.cpp, ...): adding a case, GLSL
+// headers, word checks.
 #pragma once
 
 #include <cstring>
@@ -13,13 +14,24 @@ namespace tilevk::cts {
 
 constexpr uint32_t kMarker = 0xDEADBEEFu;  // a word a shader must not write
 
-inline void add_compute_case(CaseList& out, const std::string& name, ComputeSpec s, Check check) {
+// A case that runs `s` on both drivers under the full name `name`; the spec is shared by the scene lambda so that
+// the case list stays cheap to copy.
+inline Case compute_case(std::string name, ComputeSpec s, Check check = {}) {
     auto spec = std::make_shared<ComputeSpec>(std::move(s));
     Case c;
-    c.name = "compute." + name;
+    c.name = std::move(name);
     c.scene = [spec] { return compute_scene(*spec); };
     c.check = std::move(check);
-    out.push_back(std::move(c));
+    return c;
+}
+
+inline void add_compute_case(CaseList& out, const std::string& name, ComputeSpec s, Check check) {
+    out.push_back(compute_case("compute." + name, std::move(s), std::move(check)));
+}
+
+// types.* (cases_types*.cpp): 64-, 16- and 8-bit types in compute and fragment shaders.
+inline void add_types_case(CaseList& out, const std::string& name, ComputeSpec s, Check check = {}) {
+    out.push_back(compute_case("types." + name, std::move(s), std::move(check)));
 }
 
 inline std::string glsl_header(uint32_t x, uint32_t y = 1, uint32_t z = 1) {

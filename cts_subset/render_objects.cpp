@@ -259,6 +259,7 @@ static Texture make_cube_texture(const DeviceContext& c, Cleanup& gc, const Text
 
 Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) {
     if (t.cube_layers != 0) return make_cube_texture(c, gc, t);
+    if (is_bc_format(t.format)) return make_bc_texture(c, gc, t);
     Texture tex;
     tex.mips = t.mip_levels;
     VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;

@@ -64,6 +64,10 @@ struct Texture {
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
 };
 Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t);
+// bc_texture.cpp: a BC-compressed texture (TextureSpec::format BC1-BC7) of seeded random and hand-made blocks.
+bool is_bc_format(VkFormat f);
+uint32_t bc_block_bytes(VkFormat f);
+Texture make_bc_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t);
 
 // The draw's pipeline (its GLSL compiled here); the creation time is added to pipeline_ms.
 VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,

@@ -6,6 +6,7 @@
 
 #include "arena.h"
 #include "commands.h"
+#include "descriptor_pool.h"
 #include "framebuffer.h"
 #include "object.h"
 #include "render_pass.h"
@@ -47,6 +48,14 @@ struct CommandBuffer : DispatchableObject {
     Cmd* last = nullptr;
     // The render passes of its vkCmdBeginRendering commands, kept until the next reset.
     std::vector<std::unique_ptr<RenderingInstance>> rendering;
+    // The descriptor sets its vkCmdPushDescriptorSetKHR commands made (push_descriptor.cpp), kept until the next
+    // reset: each push is a new set, bound as vkCmdBindDescriptorSets binds one.
+    struct PushedSet {
+        VkPipelineBindPoint bind_point;
+        uint32_t set;
+        std::unique_ptr<DescriptorSet> contents;
+    };
+    std::vector<PushedSet> pushed_sets;
 
     // Appends a zeroed command of type T, or returns nullptr (and remembers the failure) when out of memory.
     template <class T>

@@ -20,6 +20,7 @@ void CommandBuffer::reset(bool release_memory) {
         arena.rewind();
     first = last = nullptr;
     rendering.clear();
+    pushed_sets.clear();
     record_result = VK_SUCCESS;
     state = State::kInitial;
 }

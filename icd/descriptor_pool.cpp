@@ -97,6 +97,15 @@ VKAPI_ATTR void VKAPI_CALL tvk_DestroyDescriptorPool(VkDevice device, VkDescript
     destroy_object(pool);
 }
 
+void init_descriptor_set(DescriptorSet& set, const std::shared_ptr<const SetLayout>& layout) {
+    set.layout = layout;
+    set.slots.assign(layout->slot_count, Descriptor{});
+    set.inline_data.assign(layout->inline_bytes, 0);
+    for (const LayoutBinding& b : layout->bindings) {
+        for (uint32_t j = 0; j < b.slots(); ++j) set.slots[b.first_slot + j].type = b.type;
+    }
+}
+
 VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const VkDescriptorSetAllocateInfo* ai,
                                                           VkDescriptorSet* pDescriptorSets) {
     DescriptorPool* pool = from_handle<DescriptorPool>(ai->descriptorPool);
@@ -107,10 +116,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
         bool ok = set != nullptr;
         if (ok) {
             set->pool = pool;
-            set->layout = layout;
             try {
-                set->slots.resize(layout->slot_count);
-                set->inline_data.assign(layout->inline_bytes, 0);
+                init_descriptor_set(*set, layout);
                 pool->sets.push_back(set);
             } catch (const std::bad_alloc&) {
                 destroy_object(set);
@@ -128,9 +135,6 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateDescriptorSets(VkDevice device, const
                 pDescriptorSets[j] = VK_NULL_HANDLE;
             }
             return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateDescriptorSets: out of host memory");
-        }
-        for (const LayoutBinding& b : layout->bindings) {
-            for (uint32_t j = 0; j < b.slots(); ++j) set->slots[b.first_slot + j].type = b.type;
         }
         pDescriptorSets[i] = to_handle(set);
     }

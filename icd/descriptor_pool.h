@@ -33,6 +33,9 @@ struct DescriptorSet : NonDispatchableObject {
     std::vector<uint8_t> inline_data;         // layout->inline_bytes: the contents of its inline uniform blocks
 };
 
+// A set's descriptors as its layout makes them (each slot typed, nothing written yet); throws std::bad_alloc.
+void init_descriptor_set(DescriptorSet& set, const std::shared_ptr<const SetLayout>& layout);
+
 struct DescriptorPool : NonDispatchableObject {
     using Handle = VkDescriptorPool;
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_DESCRIPTOR_POOL;

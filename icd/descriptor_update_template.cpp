@@ -25,14 +25,15 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorUpdateTemplate(VkDevice devic
                                                                   const VkAllocationCallbacks* pAllocator,
                                                                   VkDescriptorUpdateTemplate* pTemplate) {
     Device* dev = from_handle<Device>(device);
-    if (ci->templateType != VK_DESCRIPTOR_UPDATE_TEMPLATE_TYPE_DESCRIPTOR_SET) {
-        // Push-descriptor templates belong to VK_KHR_push_descriptor, which tilevk does not offer.
+    const bool push = ci->templateType == VK_DESCRIPTOR_UPDATE_TEMPLATE_TYPE_PUSH_DESCRIPTORS_KHR;
+    if (!push && ci->templateType != VK_DESCRIPTOR_UPDATE_TEMPLATE_TYPE_DESCRIPTOR_SET) {
         return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDescriptorUpdateTemplate: %s is not supported",
                     vk_enum_name(ci->templateType));
     }
     auto* t = create_object<DescriptorUpdateTemplate>(pick_allocator(pAllocator, &dev->allocator),
                                                       VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (t == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateDescriptorUpdateTemplate: out of host memory");
+    if (push) t->bind_point = ci->pipelineBindPoint;
     try {
         t->entries.assign(ci->pDescriptorUpdateEntries, ci->pDescriptorUpdateEntries + ci->descriptorUpdateEntryCount);
     } catch (const std::bad_alloc&) {

@@ -1,5 +1,6 @@
 // VkDescriptorUpdateTemplate (VK_KHR_descriptor_update_template, core in Vulkan 1.1): the template's entries;
-// vkUpdateDescriptorSetWithTemplate turns them into the VkWriteDescriptorSets vkUpdateDescriptorSets applies.
+// vkUpdateDescriptorSetWithTemplate (and vkCmdPushDescriptorSetWithTemplateKHR) turn them into the
+// VkWriteDescriptorSets vkUpdateDescriptorSets applies.
 #pragma once
 #include <vector>
 
@@ -12,6 +13,9 @@ struct DescriptorUpdateTemplate : NonDispatchableObject {
     static constexpr VkObjectType kType = VK_OBJECT_TYPE_DESCRIPTOR_UPDATE_TEMPLATE;
     DescriptorUpdateTemplate() : NonDispatchableObject(kType) {}
     std::vector<VkDescriptorUpdateTemplateEntry> entries;
+    // Push-descriptor templates (VK_KHR_push_descriptor): the bind point vkCmdPushDescriptorSetWithTemplateKHR binds
+    // at.
+    VkPipelineBindPoint bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
 };
 
 }  // namespace tilevk::icd

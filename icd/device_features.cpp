@@ -39,6 +39,22 @@ auto* core_struct(Core& core, VkStructureType t) {
     }
 }
 
+// The feature structs of extensions that no core version took in (Features' own members).
+void add_extension_features(Features& f) {
+    f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
+    // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.
+    f.list_restart.primitiveTopologyListRestart = VK_TRUE;
+    f.depth_clip_control.depthClipControl = VK_TRUE;  // rast/geometry clip_halfz = false: [-w, w], scale (f-n)/2
+    // Extended dynamic state 1 and 2 (dynamic_state.cpp); no patch control points (no tessellation).
+    f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
+    f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
+    f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    // Instance-rate divisors (VkPipelineVertexInputDivisorStateCreateInfoEXT): element firstInstance + instance /
+    // divisor (rast/geometry element_index), divisor 0 as lavapipe's UINT32_MAX (every instance reads firstInstance).
+    f.vertex_attribute_divisor.vertexAttributeInstanceRateDivisor = VK_TRUE;
+    f.vertex_attribute_divisor.vertexAttributeInstanceRateZeroDivisor = VK_TRUE;
+}
+
 Features make_supported() {
     Features f;
     VkPhysicalDeviceFeatures& c = f.core10;
@@ -115,14 +131,7 @@ Features make_supported() {
     f.core.v12.storagePushConstant8 = VK_TRUE;
     f.core.v12.shaderInt8 = VK_TRUE;
 
-    f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
-    // Restart on list topologies splits the draw into runs, as lavapipe's prim_restart_loop does for any topology.
-    f.list_restart.primitiveTopologyListRestart = VK_TRUE;
-    f.depth_clip_control.depthClipControl = VK_TRUE;  // rast/geometry clip_halfz = false: [-w, w], scale (f-n)/2
-    // Extended dynamic state 1 and 2 (dynamic_state.cpp); no patch control points (no tessellation).
-    f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
-    f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
-    f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    add_extension_features(f);
     // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
     f.core.v11.shaderDrawParameters = VK_TRUE;
     // execute.cpp runs a multiview subpass once per view into its layers, ViewIndex given to the shaders; there is
@@ -198,6 +207,7 @@ Features::Features() {
     init(depth_clip_control, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT);
     init(extended_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_2_FEATURES_EXT);
+    init(vertex_attribute_divisor, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -205,7 +215,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&list_restart),
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_control),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state),
-                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state2),
+                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_attribute_divisor)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

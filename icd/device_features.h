@@ -18,6 +18,7 @@ struct Features {
     VkPhysicalDeviceDepthClipControlFeaturesEXT depth_clip_control{};
     VkPhysicalDeviceExtendedDynamicStateFeaturesEXT extended_dynamic_state{};
     VkPhysicalDeviceExtendedDynamicState2FeaturesEXT extended_dynamic_state2{};
+    VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT vertex_attribute_divisor{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -133,6 +133,15 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES:
             copy_body(&core.v13, sizeof core.v13);
             return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_PROPERTIES_EXT:
+            // Any divisor: element_index divides in 32 bits (lavapipe: UINT32_MAX).
+            reinterpret_cast<VkPhysicalDeviceVertexAttributeDivisorPropertiesEXT*>(s)->maxVertexAttribDivisor =
+                UINT32_MAX;
+            return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR:
+            // A pushed set is an ordinary set (push_descriptor.cpp); 32 is lavapipe's MAX_PUSH_DESCRIPTORS.
+            reinterpret_cast<VkPhysicalDevicePushDescriptorPropertiesKHR*>(s)->maxPushDescriptors = 32;
+            return;
         default:
             read_core_properties(core, s);  // the promoted structs; anything else is left untouched
             return;

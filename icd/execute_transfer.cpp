@@ -50,6 +50,24 @@ bool buffer_ok(const Buffer* b, VkDeviceSize offset, VkDeviceSize size, const ch
     return ok;
 }
 
+// A copy region's texel rectangle in blocks (texels for uncompressed formats): the offset must start a block, the
+// extent may end in a partial last block (the spec's "or reaches the edge of the subresource", checked by image_ok).
+struct BlockRect {
+    int32_t x, y;
+    uint32_t w, h;
+};
+bool to_blocks(const FormatInfo& f, int32_t x, int32_t y, uint32_t w, uint32_t h, BlockRect& out, const char* what) {
+    const int32_t bw = f.block_width, bh = f.block_height;
+    if (x % bw != 0 || y % bh != 0) {
+        log_error("%s: offset (%d, %d) of a %s region is not a multiple of its %dx%d blocks; skipped", what, x, y,
+                  f.name, bw, bh);
+        return false;
+    }
+    out = {x / bw, y / bh, uint32_t((uint64_t(w) + bw - 1) / bw), uint32_t((uint64_t(h) + bh - 1) / bh)};
+    return true;
+}
+
+// `x`, `y`, `w`, `h` in blocks (image.h: texels for uncompressed formats).
 bool image_ok(const Image* img, uint32_t level, uint32_t base_layer, uint32_t layers, int32_t x, int32_t y, uint32_t w,
               uint32_t h, const char* what) {
     bool ok = img != nullptr && img->memory != nullptr && level < img->mip_levels &&
@@ -57,7 +75,7 @@ bool image_ok(const Image* img, uint32_t level, uint32_t base_layer, uint32_t la
               y >= 0 && img->memory_offset <= img->memory->size &&
               img->layout.size <= img->memory->size - img->memory_offset;
     if (ok) {
-        ok = uint64_t(x) + w <= img->level_width(level) && uint64_t(y) + h <= img->level_height(level);
+        ok = uint64_t(x) + w <= img->level_blocks_w(level) && uint64_t(y) + h <= img->level_blocks_h(level);
     }
     if (!ok)
         log_error("%s: image region (level %u, layers %u+%u, %d,%d %ux%u) is outside the image; skipped", what, level,
@@ -105,26 +123,30 @@ void copy_row(const Image& img, VkImageAspectFlags aspect, uint8_t* image_row, u
 
 void copy_buffer_image(Buffer& buf, const Image& img, const VkBufferImageCopy& r, bool to_image) {
     const VkImageSubresourceLayers& s = r.imageSubresource;
-    const uint32_t bytes = buffer_texel_bytes(*img.format, s.aspectMask);
-    const uint64_t row_len = r.bufferRowLength ? r.bufferRowLength : r.imageExtent.width;
-    const uint64_t img_height = r.bufferImageHeight ? r.bufferImageHeight : r.imageExtent.height;
+    const FormatInfo& f = *img.format;
+    const uint32_t bytes = buffer_texel_bytes(f, s.aspectMask);
+    // bufferRowLength and bufferImageHeight count texels; a compressed format's buffer holds whole blocks
+    const uint64_t row_len =
+        ((r.bufferRowLength ? r.bufferRowLength : r.imageExtent.width) + f.block_width - 1) / f.block_width;
+    const uint64_t img_height =
+        ((r.bufferImageHeight ? r.bufferImageHeight : r.imageExtent.height) + f.block_height - 1) / f.block_height;
     const auto [first, layers] = region_layers(img, s, r.imageOffset.z, r.imageExtent.depth);
     const char* what = to_image ? "vkCmdCopyBufferToImage" : "vkCmdCopyImageToBuffer";
     if (r.imageExtent.width == 0 || r.imageExtent.height == 0 || layers == 0) return;
-    if (!image_ok(&img, s.mipLevel, first, layers, r.imageOffset.x, r.imageOffset.y, r.imageExtent.width,
-                  r.imageExtent.height, what)) {
+    BlockRect b{};
+    if (!to_blocks(f, r.imageOffset.x, r.imageOffset.y, r.imageExtent.width, r.imageExtent.height, b, what) ||
+        !image_ok(&img, s.mipLevel, first, layers, b.x, b.y, b.w, b.h, what)) {
         return;
     }
-    // the last texel read or written: ((layers-1)*imageHeight + height-1)*rowLength + width texels past bufferOffset
-    const uint64_t span =
-        ((uint64_t(layers - 1) * img_height + (r.imageExtent.height - 1)) * row_len + r.imageExtent.width) * bytes;
+    // the last block read or written: ((layers-1)*imageHeight + height-1)*rowLength + width blocks past bufferOffset
+    const uint64_t span = ((uint64_t(layers - 1) * img_height + (b.h - 1)) * row_len + b.w) * bytes;
     if (!buffer_ok(&buf, r.bufferOffset, span, what)) return;
     for (uint32_t l = 0; l < layers; ++l) {
-        for (uint32_t y = 0; y < r.imageExtent.height; ++y) {
-            // texel (x, y, layer or slice l) is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
+        for (uint32_t y = 0; y < b.h; ++y) {
+            // block (x, y, layer or slice l) is at bufferOffset + ((l*imageHeight + y)*rowLength + x)*bytes
             uint8_t* brow = buf.data() + r.bufferOffset + ((l * img_height + y) * row_len) * bytes;
-            uint8_t* irow = img.texel(s.mipLevel, first + l, uint32_t(r.imageOffset.x), uint32_t(r.imageOffset.y) + y);
-            copy_row(img, s.aspectMask, irow, brow, r.imageExtent.width, to_image);
+            uint8_t* irow = img.texel(s.mipLevel, first + l, uint32_t(b.x), uint32_t(b.y) + y);
+            copy_row(img, s.aspectMask, irow, brow, b.w, to_image);
         }
     }
 }
@@ -153,10 +175,13 @@ void exec_copy_image(const CmdCopyImage& c) {
         const LayerSpan dst = region_layers(*c.dst, r.dstSubresource, r.dstOffset.z, r.extent.depth);
         const uint32_t layers = std::min(src.count, dst.count);
         const FormatInfo& f = *c.src->format;
-        if (!image_ok(c.src, r.srcSubresource.mipLevel, src.first, layers, r.srcOffset.x, r.srcOffset.y, r.extent.width,
-                      r.extent.height, "vkCmdCopyImage") ||
-            !image_ok(c.dst, r.dstSubresource.mipLevel, dst.first, layers, r.dstOffset.x, r.dstOffset.y, r.extent.width,
-                      r.extent.height, "vkCmdCopyImage") ||
+        // The extent counts the source's texels; between a compressed and an uncompressed format (size-compatible:
+        // one block is one texel of the same size) the same number of blocks is copied on both sides.
+        BlockRect sb{}, db{};
+        if (!to_blocks(f, r.srcOffset.x, r.srcOffset.y, r.extent.width, r.extent.height, sb, "vkCmdCopyImage") ||
+            !to_blocks(*c.dst->format, r.dstOffset.x, r.dstOffset.y, 1, 1, db, "vkCmdCopyImage") ||
+            !image_ok(c.src, r.srcSubresource.mipLevel, src.first, layers, sb.x, sb.y, sb.w, sb.h, "vkCmdCopyImage") ||
+            !image_ok(c.dst, r.dstSubresource.mipLevel, dst.first, layers, db.x, db.y, sb.w, sb.h, "vkCmdCopyImage") ||
             c.dst->samples != c.src->samples || c.dst->format->bytes != f.bytes) {
             continue;
         }
@@ -166,14 +191,14 @@ void exec_copy_image(const CmdCopyImage& c) {
         const VkDeviceSize dst_sample = c.dst->sample_pitch(r.dstSubresource.mipLevel);
         for (uint32_t l = 0; l < layers * c.src->samples; ++l) {  // every sample plane of every layer
             const uint32_t layer = l / c.src->samples, sample = l % c.src->samples;
-            for (uint32_t y = 0; y < r.extent.height; ++y) {
-                const uint8_t* s = c.src->texel(r.srcSubresource.mipLevel, src.first + layer, uint32_t(r.srcOffset.x),
-                                                uint32_t(r.srcOffset.y) + y) +
-                                   sample * src_sample;
-                uint8_t* d = c.dst->texel(r.dstSubresource.mipLevel, dst.first + layer, uint32_t(r.dstOffset.x),
-                                          uint32_t(r.dstOffset.y) + y) +
-                             sample * dst_sample;
-                const size_t texels = r.extent.width;
+            for (uint32_t y = 0; y < sb.h; ++y) {
+                const uint8_t* s =
+                    c.src->texel(r.srcSubresource.mipLevel, src.first + layer, uint32_t(sb.x), uint32_t(sb.y) + y) +
+                    sample * src_sample;
+                uint8_t* d =
+                    c.dst->texel(r.dstSubresource.mipLevel, dst.first + layer, uint32_t(db.x), uint32_t(db.y) + y) +
+                    sample * dst_sample;
+                const size_t texels = sb.w;
                 if (whole_texel) {
                     std::memmove(d, s, texels * f.bytes);  // formats are size-compatible: a raw copy
                 } else {
@@ -241,6 +266,11 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
 
 void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
                       const VkClearColorValue& color) {
+    if (img.format->layout == format::Layout::kCompressed) {
+        // VUID-vkCmdClearColorImage-image-00007: never a compressed image (its blocks have no clear packing)
+        log_error("clear: %s is a compressed format; skipped", img.format->name);
+        return;
+    }
     uint8_t texel[16] = {};
     rast::fragment::pack_clear_color(*img.format, color.float32, texel);
     for (uint32_t l = 0; l < layer_count; ++l) fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->bytes);

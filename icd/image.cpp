@@ -25,8 +25,10 @@ ImageLayout compute_image_layout(const FormatInfo& f, VkExtent3D extent, uint32_
     ImageLayout l;
     VkDeviceSize offset = 0;
     for (uint32_t level = 0; level < levels; ++level) {
-        VkDeviceSize w = extent.width >> level ? extent.width >> level : 1;
-        VkDeviceSize h = extent.height >> level ? extent.height >> level : 1;
+        // block-compressed levels are stored as rows of whole blocks (a partial last block included)
+        const VkDeviceSize tw = extent.width >> level ? extent.width >> level : 1;
+        const VkDeviceSize th = extent.height >> level ? extent.height >> level : 1;
+        const VkDeviceSize w = (tw + f.block_width - 1) / f.block_width, h = (th + f.block_height - 1) / f.block_height;
         VkDeviceSize d = extent.depth >> level ? extent.depth >> level : 1;  // 3D: slices stored as layers (image.h)
         offset = (offset + kLevelAlignment - 1) & ~(kLevelAlignment - 1);
         l.level_offset[level] = offset;

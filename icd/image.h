@@ -4,6 +4,8 @@
 //   (sample 0 first, `sample_pitch` bytes each); inside a plane, rows of `row_pitch` bytes; inside a row, pixels.
 //   Texel (x, y, layer, level, sample) is at  level_offset[level] + layer*layer_pitch[level]
 //                                              + sample*sample_pitch[level] + y*row_pitch[level] + x*texel_bytes.
+// Block-compressed formats (BC) store whole 4x4 blocks in place of texels: rows of ceil(width/4) blocks, ceil(height/4)
+// rows, a partial last block included; `texel` then takes block coordinates and `texel_bytes` is the block size.
 // Levels start on 64-byte boundaries; rows are packed (no row padding). Sample planes are the renderer's own target
 // layout (rast/render/targets.h), so a multisampled attachment is rendered in place, with no staging copy in or out
 // (and no second copy of its memory); single-sampled images have one plane, the plain row layout. No API call shows
@@ -46,7 +48,14 @@ struct Image : NonDispatchableObject {
     uint32_t level_depth(uint32_t level) const { return extent.depth >> level ? extent.depth >> level : 1; }
     // The layers of a level as they are stored: a 3D image's depth slices, else its array layers.
     uint32_t level_layers(uint32_t level) const { return type == VK_IMAGE_TYPE_3D ? level_depth(level) : array_layers; }
-    // Address of sample 0 of texel (x, y) of a subresource.
+    // A level's size in blocks (in texels for uncompressed formats, whose blocks are one texel).
+    uint32_t level_blocks_w(uint32_t level) const {
+        return (level_width(level) + format->block_width - 1) / format->block_width;
+    }
+    uint32_t level_blocks_h(uint32_t level) const {
+        return (level_height(level) + format->block_height - 1) / format->block_height;
+    }
+    // Address of sample 0 of texel (x, y) of a subresource (block (x, y) of a compressed format).
     uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
         return memory->data + memory_offset + layout.level_offset[level] + layer * layout.layer_pitch[level] +
                y * layout.row_pitch[level] + VkDeviceSize(x) * format->bytes;

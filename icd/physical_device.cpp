@@ -89,9 +89,10 @@ VkPhysicalDeviceLimits make_limits() {
     // OpImageGather's constant offsets (shader/texture.cpp gather_texels), lavapipe's range.
     l.minTexelGatherOffset = -32;
     l.maxTexelGatherOffset = 31;
-    l.minInterpolationOffset = -0.5f;
-    l.maxInterpolationOffset = 0.4375f;
-    l.subPixelInterpolationOffsetBits = 4;
+    // InterpolateAtOffset (shader/interpolate.cpp): lavapipe's values (lvp_device.c); the offset is used unclamped.
+    l.minInterpolationOffset = -2.0f;
+    l.maxInterpolationOffset = 2.0f;
+    l.subPixelInterpolationOffsetBits = 8;
     l.maxFramebufferWidth = kMaxImageDimension;
     l.maxFramebufferHeight = kMaxImageDimension;
     l.maxFramebufferLayers = 256;
@@ -247,6 +248,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     // 3D images are sampled (sampler3D: shader/texture_3d.cpp), copied and cleared; image3D is not implemented
     // (shader/translate_module.cpp refuses it), so no STORAGE usage, where lavapipe offers it.
     if (is_3d && (usage & VK_IMAGE_USAGE_STORAGE_BIT)) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // BC blocks are sampled and copied in 2D images and arrays only (format/support.txt); lavapipe also has 3D and
+    // cube-compatible ones, which tilevk has not tested.
+    if (f->layout == format::Layout::kCompressed && (is_3d || (flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT)))
+        return VK_ERROR_FORMAT_NOT_SUPPORTED;
     // 3D as lavapipe (frontends/lavapipe/lvp_formats.c lvp_get_image_format_properties): the 2D width, height and
     // level count, depth up to maxImageDimension3D, one array layer, one sample.
     pProps->maxExtent = {kMaxImageDimension, type == VK_IMAGE_TYPE_1D ? 1 : kMaxImageDimension,

@@ -156,6 +156,14 @@ std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, Pipel
         s.bindings[b.binding].rate = b.inputRate == VK_VERTEX_INPUT_RATE_INSTANCE ? rast::geometry::InputRate::kInstance
                                                                                   : rast::geometry::InputRate::kVertex;
     }
+    // VK_EXT_vertex_attribute_divisor: divisors of instance-rate bindings (1 unless given).
+    const auto* divisors = vi ? find_in_chain<VkPipelineVertexInputDivisorStateCreateInfoEXT>(
+                                    vi->pNext, VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_DIVISOR_STATE_CREATE_INFO_EXT)
+                              : nullptr;
+    for (uint32_t i = 0; divisors && i < divisors->vertexBindingDivisorCount; ++i) {
+        const VkVertexInputBindingDivisorDescriptionEXT& d = divisors->pVertexBindingDivisors[i];
+        if (d.binding < s.bindings.size()) s.bindings[d.binding].divisor = d.divisor;
+    }
     for (uint32_t i = 0; vi && i < vi->vertexAttributeDescriptionCount; ++i) {
         const VkVertexInputAttributeDescription& a = vi->pVertexAttributeDescriptions[i];
         rast::geometry::VertexAttribDesc d;

@@ -55,6 +55,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
 #define TILEVK_EXEC_LIBM(op, expr) TILEVK_EXEC_CALL(op, op_libm_##op)
             TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM, TILEVK_EXEC_LIBM)
 #undef TILEVK_EXEC_LIBM
+#define TILEVK_EXEC_GALLIVM(op, fn) TILEVK_EXEC_CALL(op, op_gallivm_##op)
+            TILEVK_GALLIVM_OPS(TILEVK_EXEC_GALLIVM)
+#undef TILEVK_EXEC_GALLIVM
 #undef TILEVK_EXEC_EXPR
 #undef TILEVK_EXEC_CALL
             case Op::Select: {
@@ -83,6 +86,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc) {
             case Op::ImageLoad:
             case Op::ImageStore:
                 exec_image(in, mc.R, mc.slots, mc.num_slots);
+                break;
+            case Op::InterpolateAt:
+                exec_interpolate_at(in, mc.R, s.input_planes);
                 break;
             case Op::Jump:
                 pc = in.imm;
@@ -452,7 +458,9 @@ void Program::run_fragment(const Bindings& bindings, FragmentBlock& fb, Scratch&
         for (uint32_t k = 0; k < r.count; ++k)
             std::memcpy(w + size_t(k) * kLanes, block + r.bytes + size_t(k) * sizeof(Lanes), sizeof(Lanes));
     }
+    s.input_planes = fb.input_planes;
     fb.live_mask = run_fragment_lanes(p, s, fb.cover_mask);
+    s.input_planes = nullptr;
     auto* out = reinterpret_cast<std::byte*>(&fb);
     for (const IoRun& r : p.frag_out)
         for (uint32_t k = 0; k < r.count; ++k)

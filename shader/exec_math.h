@@ -130,6 +130,19 @@ namespace {
 TILEVK_LIBM_OPS(TILEVK_EXEC_LIBM1, TILEVK_EXEC_LIBM2)
 #undef TILEVK_EXEC_LIBM1
 #undef TILEVK_EXEC_LIBM2
+// op_gallivm_<Op>: the eight-lane function of exec_libm.h's gallivm list on each half (a one-operand op reads its
+// first operand as the second, which it ignores: in.b names no register then).
+#define TILEVK_EXEC_GALLIVM(op, fn)                                                   \
+    [[gnu::always_inline]] inline void op_gallivm_##op(const Inst& in, Machine& mc) { \
+        static_assert(kLanes == 16);                                                  \
+        float* d = reinterpret_cast<float*>(D);                                       \
+        const float* a = reinterpret_cast<const float*>(A);                           \
+        const float* b = in.b == kNoReg ? a : reinterpret_cast<const float*>(B);      \
+        fn(d, a, b);                                                                  \
+        fn(d + 8, a + 8, b + 8);                                                      \
+    }
+TILEVK_GALLIVM_OPS(TILEVK_EXEC_GALLIVM)
+#undef TILEVK_EXEC_GALLIVM
 // clang-format on
 
 #define TILEVK_EXEC_MATH_OPS(X)   \

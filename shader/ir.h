@@ -210,7 +210,13 @@ enum class Op : uint16_t {
     StoreBufN,
     HalfToFloat,  // d = float(the IEEE half in a's low 16 bits), exact (F16C's VCVTPH2PS, LLVM's fpext)
     FloatToHalf,  // d = the IEEE half nearest to a, ties to even; NaN: 0x7E00 with a's sign (exec_narrow.h)
+    // GLSL.std.450 InterpolateAt* (fragment; shader/interpolate.cpp): d = input component imm (location * 4 +
+    // component) re-evaluated from Scratch::Impl::input_planes at pad: InterpAt; Offset: a, b = the x, y offsets;
+    // Sample: a = the sample index. The compiled tier runs it as the interpreter's code (a Helper op).
+    InterpolateAt,
 };
+
+enum class InterpAt : uint16_t { Centroid, Sample, Offset };
 
 // Inst::pad of Op::Wide (translate_wide.cpp, exec_wide.h). Shapes: see wide_shape.
 enum class WideOp : uint16_t {
@@ -430,6 +436,7 @@ struct Scratch::Impl {
     Descriptor bound_push;
     uint64_t loop_limit_hits = 0;
     const std::atomic<bool>* stop = nullptr;  // Scratch::set_stop_flag
+    const InputPlanes* input_planes = nullptr;  // run_fragment: the block's (Op::InterpolateAt), else null
     uint64_t back_edges = 0;                  // loop watchdog: back edges taken in this run (all its phases)
     // Compute: the workgroup's shared memory (Program::run_workgroup) and, for programs with barriers, one frame
     // (registers, local memory, where it stopped) per batch of the workgroup beyond this one.
@@ -454,6 +461,9 @@ size_t execute_code(const Inst* code, Scratch::Impl& s, size_t pc = 0);
 // Translate optimized, valid SPIR-V into `out`. Returns an empty string or an error message.
 std::string translate(const std::vector<uint32_t>& spirv, Stage stage, std::string_view entry, ProgramImpl& out,
                       ProgramInterface& iface);
+
+// Run one Op::InterpolateAt (interpolate.cpp). regs = register file base; planes may be null (the result is 0.0).
+void exec_interpolate_at(const Inst& in, uint32_t* regs, const InputPlanes* planes);
 
 // Run one image instruction (texture.cpp). regs = register file base (register r = regs + r * kLanes).
 void exec_image(const Inst& in, uint32_t* regs, const Descriptor* const* slots, uint32_t num_slots);

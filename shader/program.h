@@ -159,6 +159,8 @@ struct ProgramInterface {
     bool early_fragment_tests = false;  // ExecutionMode EarlyFragmentTests
     bool depth_replacing = false;
     bool origin_upper_left = true;
+    // InterpolateAtCentroid / AtSample / AtOffset: the run reads FragmentBlock::input_planes (the renderer fills it)
+    bool interpolates_at = false;
     // Compute: the workgroup size, from LocalSize / LocalSizeId or the WorkgroupSize built-in constant (which wins),
     // specialization constants applied.
     std::array<uint32_t, 3> local_size{1, 1, 1};
@@ -340,6 +342,22 @@ struct alignas(64) VertexBatch {
     alignas(64) Lanes cull_distance[kMaxClipDistances]{};
 };
 
+// What InterpolateAtCentroid / AtSample / AtOffset re-evaluate (ProgramInterface::interpolates_at): each input's
+// attribute planes a(x, y) = a0 + dadx*x + dady*y in the setup's frame (origin: pixel (0, 0)'s centre at 1x, its
+// corner at 4x) and where the block and its samples are. shader/interpolate.cpp evaluates them as lavapipe does
+// (lp_bld_interp.c lp_build_interp_soa).
+struct InputPlanes {
+    enum class Kind : uint8_t { None, Perspective, NoPerspective, Flat };  // None: the location has no plane (0.0)
+    Kind kind[kMaxLocations]{};
+    float a0[kMaxLocations][4]{}, dadx[kMaxLocations][4]{}, dady[kMaxLocations][4]{};
+    float w[kLanes]{};         // the 1/w plane at the pixel centre: perspective inputs are multiplied by fl(1 / w)
+    int32_t x = 0, y = 0;      // the block's top-left pixel
+    int samples = 1;           // 1 or 4
+    float sample_pos[4][2]{};  // the standard sample positions from the pixel corner (4x)
+    uint16_t masks[4]{};       // per-sample lane masks when the run started (centroid at 4x)
+    bool fused = false;        // fmuladd is one FMA (lavapipe on an FMA CPU), else mul then add
+};
+
 // One 4x4 pixel block (see the lane layout above). The rasterizer interpolates the inputs per lane.
 struct alignas(64) FragmentBlock {
     uint32_t cover_mask = kAllLanes;               // in: covered lanes; the other lanes of the block are helper lanes
@@ -349,6 +367,7 @@ struct alignas(64) FragmentBlock {
     // in: SamplePosition x, y (float bits): the run's sample position within the pixel; (0.5, 0.5) at 1x
     uint32_t sample_position[2] = {0x3f000000u, 0x3f000000u};
     uint32_t view_index = 0;                       // in: ViewIndex, the multiview view (same for the whole block)
+    const InputPlanes* input_planes = nullptr;     // in: for InterpolateAt* (interpolates_at); null reads 0.0
     alignas(64) Lanes frag_coord[4]{};             // in: x, y (pixel centre, e.g. 10.5), z, 1/w (float bits)
     alignas(64) Lanes sample_mask_in{};            // in: gl_SampleMaskIn[0]
     alignas(64) Lanes point_coord[2]{};            // in: gl_PointCoord

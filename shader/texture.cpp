@@ -46,6 +46,17 @@ bool integer_format(const ImageView& img) {
     return format::is_integer(format::format_info(img.format));
 }
 
+// The border colour as the float filter substitutes it for a texel of format f: lavapipe replaces only the channels
+// a BC format stores (texel_bc.h bc_stored_channels); the others keep the format's 0 (colour) or 1 (alpha).
+Vec4 format_border(const format::FormatInfo& f, const SamplerState& smp) {
+    Vec4 b = border_color(smp);
+    if (f.layout != format::Layout::kCompressed) return b;
+    const uint8_t keep = format::bc_stored_channels(f);
+    for (int c = 0; c < 4; ++c)
+        if (!(keep & (1u << c))) b[size_t(c)] = c == 3 ? 1.0f : 0.0f;
+    return b;
+}
+
 // Texel index after addressing; -1 means "border".
 int32_t wrap(int32_t i, int32_t size, AddressMode m) {
     switch (m) {
@@ -83,9 +94,30 @@ int32_t floor_index(float u, AddressMode m) {
     return (m == AddressMode::ClampToBorder && !(u == u)) ? kNanBorderIndex : safe_floor(u);
 }
 
+// Block-compressed planes (icd/image.h) hold rows of 4x4 blocks: texel (x, y) is texel (x % 4, y % 4) of block
+// (x / 4, y / 4), decoded by format/texel_bc.h.
+Vec4 plane_texel(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y) {
+    if (f.layout == format::Layout::kCompressed) {
+        Vec4 r;
+        const uint8_t* block = plane + uint64_t(y / f.block_height) * pitch + uint64_t(x / f.block_width) * f.bytes;
+        format::decode_bc_color(f, block, x % f.block_width, y % f.block_height, r.data(), true);
+        return r;
+    }
+    return decode(f, plane + uint64_t(y) * pitch + uint64_t(x) * f.bytes);
+}
+
+Bytes plane_bytes(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y) {
+    if (f.layout == format::Layout::kCompressed) {
+        uint8_t c[4];
+        const uint8_t* block = plane + uint64_t(y / f.block_height) * pitch + uint64_t(x / f.block_width) * f.bytes;
+        format::decode_bc_rgba8(f, block, x % f.block_width, y % f.block_height, c);
+        return {c[0], c[1], c[2], c[3]};
+    }
+    return fixed8::texel_bytes(f, plane + uint64_t(y) * pitch + uint64_t(x) * f.bytes);
+}
+
 Vec4 texel(const Level& lv, int32_t x, int32_t y) {
-    uint64_t off = uint64_t(y) * lv.row_pitch + uint64_t(x) * lv.bpp;
-    return decode(*lv.fi, lv.base + off);
+    return plane_texel(*lv.fi, lv.base, lv.row_pitch, x, y);
 }
 
 // MIRRORED_REPEAT in lavapipe's float filter (lp_bld_sample_soa.c lp_build_sample_wrap_linear): mirror the
@@ -203,7 +235,7 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     lv.bpp = lv.fi->bytes;
     lv.row_pitch = il.row_pitch;
     lv.base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
-    Vec4 border = border_color(smp);
+    Vec4 border = format_border(*lv.fi, smp);
     // unnormalized: coordinates are already in texels
     float u = smp.unnormalized ? s : s * float(lv.w);
     float v = smp.unnormalized ? t : t * float(lv.h);
@@ -282,11 +314,8 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     int32_t w = int32_t(std::max(1u, img.width >> level));
     int32_t h = one_d ? 1 : int32_t(std::max(1u, img.height >> level));
     const format::FormatInfo& fi = format::format_info(img.format);
-    const uint32_t bpp = fi.bytes;
     const uint8_t* base = img.base + il.offset + uint64_t(layer) * il.layer_pitch;
-    auto at = [&](int32_t x, int32_t y) {
-        return fixed8::texel_bytes(fi, base + uint64_t(y) * il.row_pitch + uint64_t(x) * bpp);
-    };
+    auto at = [&](int32_t x, int32_t y) { return plane_bytes(fi, base, il.row_pitch, x, y); };
     if (!linear) {
         float u = smp.unnormalized ? s : s * float(w), v = smp.unnormalized ? t : t * float(h);
         int32_t x = nearest_fixed8(s, u, w, args.off_x, smp.address_u, smp.unnormalized);
@@ -323,8 +352,9 @@ Vec4 swizzled(const Vec4& r, const ImageView& img) {
 }
 
 bool image_ok(const ImageView* img) {
-    return img && img->base && format::can_decode_color(format::format_info(img->format)) && img->width &&
-           img->height && img->levels && img->levels <= kMaxMipLevels && img->layers;
+    const format::FormatInfo& f = format::format_info(img ? img->format : Format::UNDEFINED);
+    return img && img->base && (format::can_decode_color(f) || format::is_bc_decoded(f)) && img->width && img->height &&
+           img->levels && img->levels <= kMaxMipLevels && img->layers;
 }
 
 // The texel at (x, y, layer) of level lv, swizzled. Outside the level or the view's layers (robustBufferAccess for
@@ -350,8 +380,8 @@ Vec4 fetch_at(const ImageView& img, int32_t x, int32_t y, int32_t layer, uint32_
     if (sample < 0 || uint32_t(sample) >= img.samples) return outside();
     const ImageLevel& il = img.level[lv];
     const Vec4 r =
-        decode(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(sample) * img.sample_pitch +
-                       uint64_t(y) * il.row_pitch + uint64_t(x) * fi.bytes);
+        plane_texel(fi, img.base + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(sample) * img.sample_pitch,
+                    il.row_pitch, x, y);
     return swizzled(r, img);
 }
 

@@ -9,12 +9,16 @@
 #include <cmath>
 #include <cstdint>
 
+#include "format/texel_bc.h"
 #include "format/texel_codec.h"
 
 namespace tilevk::shader::fixed8 {
 
-// util_format_fits_8unorm: every channel UNORM of at most 8 bits, not sRGB (the formats of the 8-bit path).
+// util_format_fits_8unorm: every channel UNORM of at most 8 bits, not sRGB (the formats of the 8-bit path); of the
+// compressed formats, BC1-BC5 UNORM (S3TC and RGTC, not sRGB, not SNORM; texel_bc.h).
 inline bool fits_8unorm(const format::FormatInfo& f) {
+    if (f.layout == format::Layout::kCompressed)
+        return format::is_bc_decoded(f) && !format::is_bc_signed(f) && !format::is_bc_srgb(f);
     if (f.kind == format::ChannelKind::Unorm8) return true;
     if (f.kind != format::ChannelKind::PackedUnorm) return false;
     for (int i = 0; i < f.channels; ++i)

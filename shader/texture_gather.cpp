@@ -87,7 +87,7 @@ Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float
     bool x_final, y_final;
     gather_axis(s, u, lv.w, args.off_x, smp.address_u, &x[0], &x[1], &x_final);
     gather_axis(t, v, lv.h, args.off_y, smp.address_v, &y[0], &y[1], &y_final);
-    const Vec4 border = border_color(smp);
+    const Vec4 border = format_border(*lv.fi, smp);
     auto value = [&](int32_t i, int32_t j) {
         const int32_t wx = x_final ? i : wrap(i + args.off_x, lv.w, smp.address_u);
         const int32_t wy = y_final ? j : wrap(j + args.off_y, lv.h, smp.address_v);

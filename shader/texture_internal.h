@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 
+#include "format/texel_bc.h"
 #include "format/texel_codec.h"
 #include "shader/program.h"
 #include "shader/texture_fixed8.h"
@@ -41,10 +42,15 @@ struct Level {
 Vec4 decode(const format::FormatInfo& f, const uint8_t* p);
 bool integer_format(const ImageView& img);
 Vec4 texel(const Level& lv, int32_t x, int32_t y);
+// Texel (x, y) of one layer of a level (`pitch` bytes per row of texels, or of blocks for compressed formats):
+// decoded for the float filter, or as the 8-bit filter's bytes.
+Vec4 plane_texel(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y);
+Bytes plane_bytes(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y);
 int32_t floor_index(float u, AddressMode m);
 bool power_of_two(int32_t n);
 Axis repeat_npot_axis(float s, int32_t n, int32_t off);
 Vec4 border_color(const SamplerState& smp);
+Vec4 format_border(const format::FormatInfo& f, const SamplerState& smp);
 // The texel index after addressing; -1 means "border".
 int32_t wrap(int32_t i, int32_t size, AddressMode m);
 // One axis of a nearest lookup: the texel index before the wrap, offset included; `s` normalized, `u` in texels.

@@ -137,6 +137,30 @@ void Translator::glsl_op(const Instr& in) {
         uint32_t fb = argn(1);
         for (uint32_t i = 0; i < n; ++i) emit(o, d + i, a + i, b + (fb > 1 ? i : 0));
     };
+    // Pow with a constant operand, per component as NIR's inexact rules rewrite it for lavapipe (nir_opt_algebraic:
+    // pow(a, 1) = a, pow(a, 2) = a·a, pow(a, 4) = (a·a)·(a·a), pow(2, b) = exp2(b)); any other pow is gallivm's.
+    auto pow = [&] {
+        const uint32_t a = arg(0), b = arg(1), d = def(), fa = argn(0), fb = argn(1);
+        auto is = [&](uint32_t r, float f) {
+            auto it = reg_value_.find(r);
+            return it != reg_value_.end() && it->second == std::bit_cast<uint32_t>(f);
+        };
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t ai = a + (fa > 1 ? i : 0), bi = b + (fb > 1 ? i : 0);
+            if (is(bi, 1.0f)) {
+                emit(SOp::Mov, d + i, ai);
+            } else if (is(bi, 2.0f)) {
+                emit(SOp::FMul, d + i, ai, ai);
+            } else if (is(bi, 4.0f)) {
+                const uint32_t sq = emit1(SOp::FMul, ai, ai);
+                emit(SOp::FMul, d + i, sq, sq);
+            } else if (is(ai, 2.0f)) {
+                emit(SOp::Exp2, d + i, bi);
+            } else {
+                emit(SOp::Pow, d + i, ai, bi);
+            }
+        }
+    };
     auto map3 = [&](SOp o) {
         uint32_t a = arg(0), b = arg(1), c = arg(2), d = def();
         uint32_t fa = argn(0), fb = argn(1), fc = argn(2);
@@ -251,7 +275,7 @@ void Translator::glsl_op(const Instr& in) {
         case GLSLstd450Atan2:
             return map2(SOp::Atan2);
         case GLSLstd450Pow:
-            return map2(SOp::Pow);
+            return pow();
         case GLSLstd450Exp:
             return map1(SOp::Exp);
         case GLSLstd450Log:
@@ -471,8 +495,7 @@ void Translator::glsl_op(const Instr& in) {
         case GLSLstd450InterpolateAtCentroid:
         case GLSLstd450InterpolateAtSample:
         case GLSLstd450InterpolateAtOffset:
-            fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +
-                 " (re-interpolation at another position is not implemented)");
+            return interpolate_at(in, e);
         case GLSLstd450PackDouble2x32:
         case GLSLstd450UnpackDouble2x32:
             fail(std::string("unsupported GLSL.std.450 instruction ") + glsl_std450_name(e) +

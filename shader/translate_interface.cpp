@@ -2,8 +2,12 @@
 // around a run), private variables, push constants and descriptor-backed resources.
 #include <algorithm>
 
+#include <spirv/unified1/GLSL.std.450.h>
+
 #include "shader/spirv_names.h"
 #include "shader/translator.h"
+
+using SOp = tilevk::shader::Op;
 
 namespace tilevk::shader {
 
@@ -305,6 +309,40 @@ void Translator::declare_resource(spv::StorageClass sc, const Decorations& d, Po
     next_slot_ += count;
     if (next_slot_ > (1u << 15)) fail("too many descriptors");
     iface_.descriptors.push_back(use);
+}
+
+// GLSL.std.450 InterpolateAtCentroid / AtSample / AtOffset (in[5] the interpolant, in[6] the sample or offset): one
+// Op::InterpolateAt per component of the input the pointer names, re-evaluated from the block's attribute planes
+// (shader/interpolate.cpp). The pointer must name whole components of Input locations at constant words.
+void Translator::interpolate_at(const Instr& in, uint32_t e) {
+    const std::string what = std::string("GLSL.std.450 ") + glsl_std450_name(e);
+    if (stage_ != Stage::Fragment) fail(what + " outside a fragment shader");
+    const Value& pv = val(in[5]);
+    if (pv.ptr < 0) fail(what + ": the interpolant is not a pointer");
+    const Pointer& p = pointers_[size_t(pv.ptr)];
+    if (p.space != Space::Local) fail(what + ": the interpolant is not an Input variable");
+    if (p.dyn != kNoReg) fail(what + " on a dynamically indexed input (not implemented)");
+    const uint32_t n = std::max(1u, type(in[1]).flat);
+    uint32_t x = kNoReg, y = kNoReg;
+    auto mode = InterpAt::Centroid;
+    if (e == GLSLstd450InterpolateAtSample) {
+        mode = InterpAt::Sample;
+        x = reg(in[6]);
+    } else if (e == GLSLstd450InterpolateAtOffset) {
+        mode = InterpAt::Offset;
+        x = reg(in[6]);
+        y = x + 1;
+    }
+    const uint32_t d = alloc(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t word = p.base + p.offset + i;
+        const auto it = std::find_if(p_.io_in.begin(), p_.io_in.end(),
+                                     [&](const IoCopy& c) { return c.slot == IoSlot::Input && c.word == word; });
+        if (it == p_.io_in.end()) fail(what + ": the interpolant is not a user Input variable");
+        emit(SOp::InterpolateAt, d + i, x, y, kNoReg, it->index).pad = uint16_t(mode);
+    }
+    vals_[in[2]] = Value{d, in[1]};
+    iface_.interpolates_at = true;
 }
 
 }  // namespace tilevk::shader

@@ -8,6 +8,31 @@ namespace tilevk::shader {
 
 using SOp = tilevk::shader::Op;
 
+uint32_t Translator::enter_member(Pointer& p, uint32_t struct_type, uint32_t m) {
+    auto it = member_deco_.find({struct_type, m});
+    if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
+    p.matrix_stride = uint32_t(it->second.matrix_stride);
+    p.row_major = it->second.row_major;
+    p.vec_stride = 0;
+    return uint32_t(it->second.offset);
+}
+
+uint32_t Translator::buffer_array_stride(uint32_t array_type) {
+    const uint32_t stride = uint32_t(deco_[array_type].array_stride);
+    if (stride == 0) fail("buffer array without ArrayStride");
+    return stride;
+}
+
+uint32_t Translator::vector_stride(const Pointer& p, uint32_t vector_type) const {
+    return p.vec_stride ? p.vec_stride : scalar_bytes(type(vector_type).elem);
+}
+
+// Column-major: a column is a vector at MatrixStride steps; row-major: a row is (Vulkan's RowMajor decoration).
+Translator::MatrixSteps Translator::matrix_steps(const Pointer& p, uint32_t matrix_type) const {
+    const uint32_t size = scalar_bytes(type(type(matrix_type).elem).elem);
+    return p.row_major ? MatrixSteps{size, p.matrix_stride} : MatrixSteps{p.matrix_stride, size};
+}
+
 Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_t n) {
     Pointer p = base;
     for (size_t i = 0; i < n; ++i) {
@@ -49,16 +74,10 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
         // Buffer layout (std140/std430 as decorated).
         if (t.kind == Type::Struct) {
             if (!is_const || cv >= t.members.size()) fail("invalid struct index");
-            auto it = member_deco_.find({p.type, cv});
-            if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
-            p.offset += uint32_t(it->second.offset);
-            p.matrix_stride = uint32_t(it->second.matrix_stride);
-            p.row_major = it->second.row_major;
-            p.vec_stride = 0;
+            p.offset += enter_member(p, p.type, cv);
             p.type = t.members[cv];
         } else if (t.kind == Type::Array || t.kind == Type::RuntimeArray) {
-            uint32_t stride = uint32_t(deco_[p.type].array_stride);
-            if (stride == 0) fail("buffer array without ArrayStride");
+            const uint32_t stride = buffer_array_stride(p.type);
             // a huge constant index stays in bounds of uint32 arithmetic; the executor rejects it
             if (is_const)
                 p.offset = uint32_t(std::min<uint64_t>(p.offset + uint64_t(cv) * stride, 0x7fffffffu));
@@ -66,15 +85,15 @@ Pointer Translator::access_chain(const Pointer& base, const uint32_t* idx, size_
                 add_dyn(stride);
             p.type = t.elem;
         } else if (t.kind == Type::Matrix) {
-            uint32_t col_stride = p.row_major ? scalar_bytes(type(t.elem).elem) : p.matrix_stride;
+            const MatrixSteps steps = matrix_steps(p, p.type);
             if (is_const)
-                p.offset += std::min(cv, t.count) * col_stride;
+                p.offset += std::min(cv, t.count) * steps.column;
             else
-                add_dyn(col_stride);
-            p.vec_stride = p.row_major ? p.matrix_stride : 0;
+                add_dyn(steps.column);
+            p.vec_stride = p.row_major ? steps.row : 0;
             p.type = t.elem;
         } else if (t.kind == Type::Vector) {
-            const uint32_t stride = p.vec_stride ? p.vec_stride : scalar_bytes(t.elem);
+            const uint32_t stride = vector_stride(p, p.type);
             if (is_const)
                 p.offset += std::min(cv, t.count) * stride;
             else
@@ -99,25 +118,25 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
             if (t.flat == 2) scalar(reg + 1, off + 4, ty);
             break;
         case Type::Vector: {  // (64-bit components: two registers and two words each)
-            const uint32_t words = type(t.elem).flat, stride = p.vec_stride ? p.vec_stride : scalar_bytes(t.elem);
+            const uint32_t words = type(t.elem).flat, stride = vector_stride(p, ty);
             for (uint32_t i = 0; i < t.count; ++i)
                 for (uint32_t w = 0; w < words; ++w) scalar(reg + i * words + w, off + i * stride + w * 4, t.elem);
             break;
         }
         case Type::Matrix: {
             const Type& col = type(t.elem);
-            const uint32_t words = type(col.elem).flat, size = scalar_bytes(col.elem);
+            const uint32_t words = type(col.elem).flat;
+            const MatrixSteps steps = matrix_steps(p, ty);
             for (uint32_t c = 0; c < t.count; ++c)
                 for (uint32_t r = 0; r < col.count; ++r) {
-                    uint32_t o = p.row_major ? c * size + r * p.matrix_stride : c * p.matrix_stride + r * size;
+                    const uint32_t o = c * steps.column + r * steps.row;
                     for (uint32_t w = 0; w < words; ++w)
                         scalar(reg + (c * col.count + r) * words + w, off + o + w * 4, col.elem);
                 }
             break;
         }
         case Type::Array: {
-            uint32_t stride = uint32_t(deco_[ty].array_stride);
-            if (!stride) fail("buffer array without ArrayStride");
+            const uint32_t stride = buffer_array_stride(ty);
             Pointer q = p;
             q.vec_stride = 0;
             for (uint32_t i = 0; i < t.count; ++i)
@@ -127,13 +146,9 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
         case Type::Struct: {
             uint32_t at = 0;
             for (uint32_t m = 0; m < t.members.size(); ++m) {
-                auto it = member_deco_.find({ty, m});
-                if (it == member_deco_.end() || it->second.offset < 0) fail("buffer struct member without Offset");
                 Pointer q = p;
-                q.matrix_stride = uint32_t(it->second.matrix_stride);
-                q.row_major = it->second.row_major;
-                q.vec_stride = 0;
-                walk_buffer_layout(q, t.members[m], reg + at, off + uint32_t(it->second.offset), scalar);
+                const uint32_t member_off = enter_member(q, ty, m);
+                walk_buffer_layout(q, t.members[m], reg + at, off + member_off, scalar);
                 at += type(t.members[m]).flat;
             }
             break;
@@ -141,6 +156,14 @@ void Translator::walk_buffer_layout(const Pointer& p, uint32_t ty, uint32_t reg,
         default:
             fail("unsupported buffer load or store type");
     }
+}
+
+// Marks the clip / cull distance outputs as written when a local access of `words` words at `off` may reach them
+// (a dynamic offset may land anywhere in the variable). Loads count too, as they always have: conservative.
+void Translator::touch_distance_words(const Pointer& p, uint32_t off, uint32_t words) {
+    const uint32_t first = p.dyn == kNoReg ? p.base + p.offset + off : p.base;
+    const uint32_t end = p.dyn == kNoReg ? first + words : p.limit;
+    for (int k = 0; k < 2; ++k) distance_written_[k] |= first < distance_words_[k][1] && distance_words_[k][0] < end;
 }
 
 void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off) {
@@ -157,11 +180,7 @@ void Translator::load(const Pointer& p, uint32_t ty, uint32_t dst, uint32_t off)
         return;
     }
     if (p.space == Space::Local) {
-        // the words this store may reach: a dynamic offset may land anywhere in the variable
-        const uint32_t first = p.dyn == kNoReg ? p.base + p.offset + off : p.base;
-        const uint32_t end = p.dyn == kNoReg ? first + t.flat : p.limit;
-        for (int k = 0; k < 2; ++k)
-            distance_written_[k] |= first < distance_words_[k][1] && distance_words_[k][0] < end;
+        touch_distance_words(p, off, t.flat);
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
             if (p.dyn == kNoReg && w < p.limit)
@@ -225,11 +244,7 @@ void Translator::store(const Pointer& p, uint32_t ty, uint32_t src, uint32_t off
         return;
     }
     if (p.space == Space::Local) {
-        // the words this store may reach: a dynamic offset may land anywhere in the variable
-        const uint32_t first = p.dyn == kNoReg ? p.base + p.offset + off : p.base;
-        const uint32_t end = p.dyn == kNoReg ? first + t.flat : p.limit;
-        for (int k = 0; k < 2; ++k)
-            distance_written_[k] |= first < distance_words_[k][1] && distance_words_[k][0] < end;
+        touch_distance_words(p, off, t.flat);
         for (uint32_t i = 0; i < t.flat; ++i) {
             uint32_t w = p.base + p.offset + off + i;
             if (p.dyn == kNoReg && w < p.limit)

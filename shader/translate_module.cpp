@@ -50,7 +50,7 @@ bool capability_supported(spv::Capability c) {
         // the conversion anyway (the image type's format is not read), as in llvmpipe, whose only formatted-access
         // cap is PIPE_CAP_IMAGE_STORE_FORMATTED; reads without a format stay refused as there.
         case spv::Capability::StorageImageWriteWithoutFormat:
-        case spv::Capability::InterpolationFunction:  // its three instructions fail by name in translate_glsl
+        case spv::Capability::InterpolationFunction:  // InterpolateAt*: translate_interface.cpp interpolate_at
         case spv::Capability::ShaderNonUniform:
         case spv::Capability::SampledImageArrayDynamicIndexing:
         case spv::Capability::UniformBufferArrayDynamicIndexing:

@@ -201,6 +201,7 @@ class Translator {
     uint32_t storage_coord(const Type& image_type, uint32_t coord);  // its (x, y[, layer]) registers  // OpImageRead /
                                                                      // OpImageWrite on a storage image
     void glsl_op(const Instr& in);               // translate_glsl.cpp: GLSL.std.450
+    void interpolate_at(const Instr& in, uint32_t e);  // its InterpolateAt* (translate_interface.cpp)
     // helpers for instructions with a result (type in[1], id in[2])
     uint32_t def(const Instr& in, uint32_t n = 0);  // n registers (default: the result type's) for the result
     void alias(const Instr& in, uint32_t r);        // the result is register run r
@@ -249,6 +250,17 @@ class Translator {
     template <typename Scalar>
     void walk_buffer_layout(const Pointer& p, uint32_t type, uint32_t reg, uint32_t off, const Scalar& scalar);
     Pointer access_chain(const Pointer& base, const uint32_t* idx, size_t n);
+    // The buffer layout rules both walk_buffer_layout and access_chain follow (translate_memory.cpp): a struct
+    // member's Offset (failing without one), after which `p` has the member's MatrixStride and RowMajor; an array's
+    // ArrayStride (failing without one); the bytes between a vector's components; a matrix's column and row steps.
+    uint32_t enter_member(Pointer& p, uint32_t struct_type, uint32_t m);
+    void touch_distance_words(const Pointer& p, uint32_t off, uint32_t words);  // a Local access
+    uint32_t buffer_array_stride(uint32_t array_type);
+    uint32_t vector_stride(const Pointer& p, uint32_t vector_type) const;
+    struct MatrixSteps {
+        uint32_t column, row;
+    };
+    MatrixSteps matrix_steps(const Pointer& p, uint32_t matrix_type) const;
 
     Stage stage_;
     ProgramImpl& p_;

@@ -134,6 +134,7 @@ def build_rows(root, support):
         for c in comps:
             numeric_of.setdefault(c.get('name'), c.get('numericFormat'))
         r.channels = []
+        r.xml_alpha = 'A' in numeric_of  # compressed rows list no channels: their alpha comes from the components
         if f.get('compressed'):
             r.layout = 'kCompressed'
         elif f.find('plane') is not None:
@@ -272,7 +273,7 @@ def write_format(rows, bits, out_h, out_cpp):
             chans = ', '.join(f'{{Component::{COMPONENT[ch]}, Numeric::{NUMERIC[n]}, {b}, {sh}}}'
                               for ch, n, b, sh in r.channels)
             color = [ch for ch, _, _, _ in r.channels if ch in 'RGBA']
-            has_alpha = 'true' if 'A' in color else 'false'
+            has_alpha = 'true' if 'A' in color or (r.layout == 'kCompressed' and r.xml_alpha) else 'false'
             bgra = 'true' if r.kind in ('Unorm8', 'Srgb8') and color[:1] == ['B'] else 'false'
             c.write(f'    {{.id = Format::{r.short},\n')
             c.write(f'     .name = "{r.short}",\n')

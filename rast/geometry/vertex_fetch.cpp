@@ -14,7 +14,7 @@ FetchedAttrib convert_element(VertexFormat f, const uint8_t* src) {
 ElementIndex element_index(const VertexBufferView& vb, uint32_t vertex_index, uint32_t instance_id,
                            uint32_t first_instance) {
     if (vb.rate == InputRate::kVertex) return {vertex_index, true};
-    const uint32_t div = vb.divisor == 0 ? 1 : vb.divisor;
+    const uint32_t div = vb.divisor == 0 ? UINT32_MAX : vb.divisor;
     const uint64_t idx = static_cast<uint64_t>(first_instance) + instance_id / div;
     return {static_cast<uint32_t>(idx), idx <= 0xFFFFFFFFull};
 }

@@ -23,7 +23,9 @@ struct VertexBufferView {
     uint32_t offset = 0;
     uint32_t stride = 0;  // 0 is legal: every vertex reads the same element
     InputRate rate = InputRate::kVertex;
-    uint32_t divisor = 1;  // instance divisor (0 treated as 1; lavapipe only advertises divisor 1 without the ext)
+    // Instance rate: the element is firstInstance + instance / divisor; 0 reads firstInstance's element for every
+    // instance (lavapipe turns divisor 0 into UINT32_MAX, lvp_execute.c).
+    uint32_t divisor = 1;
 };
 
 struct VertexAttribDesc {

@@ -37,6 +37,7 @@ struct PipelineState {
     struct Binding {
         uint32_t stride = 0;
         geometry::InputRate rate = geometry::InputRate::kVertex;
+        uint32_t divisor = 1;  // instance rate: geometry::VertexBufferView::divisor
     };
     StaticVector<Binding, kMaxVertexInputs> bindings;  // indexed by binding number
 

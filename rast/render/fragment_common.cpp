@@ -125,6 +125,38 @@ void set_builtin_inputs(shader::FragmentBlock& b, const shader::ProgramInterface
         }
 }
 
+// The planes of every input location, where the block is and its sample masks, for InterpolateAt*
+// (shader/interpolate.cpp evaluates them; lp_bld_interp.c lp_build_interp_soa).
+void set_input_planes(shader::InputPlanes& ip, const DrawRecord& draw, const float* attribs, int32_t x, int32_t y,
+                      const RunSite& site, const float wl[kBlockLanes], bool fused) {
+    std::fill(std::begin(ip.kind), std::end(ip.kind), shader::InputPlanes::Kind::None);
+    for (size_t slot = 0; slot < draw.varyings.slot_location.size(); ++slot) {
+        const uint32_t loc = draw.varyings.slot_location[slot];
+        if (loc >= uint32_t(shader::kMaxLocations)) continue;
+        const geometry::Interp interp = draw.varyings.slot_interp[slot];
+        ip.kind[loc] = interp == geometry::Interp::kFlat          ? shader::InputPlanes::Kind::Flat
+                       : interp == geometry::Interp::kPerspective ? shader::InputPlanes::Kind::Perspective
+                                                                  : shader::InputPlanes::Kind::NoPerspective;
+        const float* p = attribs + slot * kPlaneFloats;
+        for (int c = 0; c < 4; ++c) {
+            const fragment::Plane pl = plane_of(p, c);
+            ip.a0[loc][c] = pl.a0;
+            ip.dadx[loc][c] = pl.dadx;
+            ip.dady[loc][c] = pl.dady;
+        }
+    }
+    std::copy(wl, wl + kBlockLanes, ip.w);
+    ip.x = x;
+    ip.y = y;
+    ip.samples = site.samples;
+    ip.fused = fused;
+    for (int s = 0; s < fragment::kMaxSamples; ++s) {
+        ip.sample_pos[s][0] = fragment::kSamplePos4x[s][0];
+        ip.sample_pos[s][1] = fragment::kSamplePos4x[s][1];
+        ip.masks[s] = site.masks && s < site.samples ? site.masks[s] : 0;
+    }
+}
+
 }  // namespace
 
 void set_fragment_inputs(shader::FragmentBlock& b, const DrawRecord& draw, const float* planes, int32_t x, int32_t y,
@@ -134,6 +166,11 @@ void set_fragment_inputs(shader::FragmentBlock& b, const DrawRecord& draw, const
     float wl[kBlockLanes], tmp[kBlockLanes], out[kBlockLanes];
     fragment::eval_plane(plane_of(planes, 3), x, y, centre, fused, wl);
     set_builtin_inputs(b, iface, planes, x, y, site, wl, fused);
+    b.input_planes = nullptr;
+    if (iface.interpolates_at && site.input_planes) {
+        set_input_planes(*site.input_planes, draw, planes + kPrimHeaderFloats, x, y, site, wl, fused);
+        b.input_planes = site.input_planes;
+    }
     float cx[kBlockLanes], cy[kBlockLanes];
     bool have_centroid = false;
     const float* attribs = planes + kPrimHeaderFloats;

@@ -81,6 +81,7 @@ struct DrawPlan {
 struct FragmentWorker {
     shader::Scratch scratch;
     shader::FragmentBlock block;
+    shader::InputPlanes input_planes;  // RunSite::input_planes of the reference pipeline's runs
     // The record (PrimRecord::planes) of the primitive whose uniform shader result block.outputs holds
     // (DrawPlan::uniform_shader), or null.
     const float* uniform_prim = nullptr;
@@ -163,6 +164,9 @@ struct RunSite {
     int sample = -1;
     const uint16_t* masks = nullptr;
     const uint16_t* cover = nullptr;
+    // Storage for the planes InterpolateAt* re-evaluates (shader::InputPlanes; filled only when the program has
+    // ProgramInterface::interpolates_at), or null.
+    shader::InputPlanes* input_planes = nullptr;
 };
 
 // Fills the block's shader inputs for one run of draw's fragment shader over the block at (x, y): FragCoord,

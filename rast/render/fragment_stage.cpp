@@ -152,6 +152,8 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
         for (const shader::IoVariable& v : pipe.fragment->interface().inputs)
             if (v.centroid || v.sample) return;
     }
+    // InterpolateAt* re-evaluates planes the reference pipeline hands the program (set_fragment_inputs).
+    if (pipe.fragment && pipe.fragment->interface().interpolates_at) return;
     // Dual-source blending takes the reference pipeline, the only one that reads the second colour output.
     plan.fast = !fragment::uses_second_source(pipe.blend[0]);
 
@@ -423,7 +425,7 @@ void FragmentStage::shade_samples(FragmentWorker& w, const DrawRecord& draw, con
         b.cover_mask = run_mask;
         b.front_facing = front_facing ? 1u : 0u;
         b.view_index = fb_.view_index;
-        set_fragment_inputs(b, draw, prim.planes, x, y, RunSite{samples, s, store, cover}, fused_);
+        set_fragment_inputs(b, draw, prim.planes, x, y, RunSite{samples, s, store, cover, &w.input_planes}, fused_);
         fs->run_fragment(draw.bindings, b, w.scratch);
         if (pipe.alpha_to_coverage) {
             float alpha[kBlockLanes];
@@ -500,7 +502,7 @@ void FragmentStage::shade_block(FragmentWorker& w, const DrawRecord& draw, const
             b.cover_mask = shade_lanes;
             b.front_facing = front_facing ? 1u : 0u;
             b.view_index = fb_.view_index;
-            set_fragment_inputs(b, draw, planes, x, y, RunSite{samples, -1, pass, cover}, fused_);
+            set_fragment_inputs(b, draw, planes, x, y, RunSite{samples, -1, pass, cover, &w.input_planes}, fused_);
             fs->run_fragment(draw.bindings, b, w.scratch);
             live = static_cast<uint16_t>(b.live_mask & shade_lanes);
             if (fs->interface().writes_frag_depth && depth_active)

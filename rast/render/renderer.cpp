@@ -390,6 +390,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
         geometry::VertexBufferView& vb = plan.input.buffers[b];
         vb.stride = pipe.bindings[b].stride;
         vb.rate = pipe.bindings[b].rate;
+        vb.divisor = pipe.bindings[b].divisor;
         if (b < call.vertex_buffers.size()) {
             vb.data = call.vertex_buffers[b].data;
             vb.size = call.vertex_buffers[b].size;

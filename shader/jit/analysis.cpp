@@ -8,7 +8,7 @@ namespace tilevk::shader::jit {
 
 namespace {
 
-constexpr Lowering N = Lowering::Native, H = Lowering::Helper;
+constexpr Lowering N = Lowering::Native, H = Lowering::Helper, U = Lowering::Unknown;
 
 struct OpEntry {
     Op op;
@@ -178,6 +178,18 @@ constexpr OpEntry kOps[] = {
     {Op::ImageLoad, "ImageLoad", H},
     {Op::ImageStore, "ImageStore", H},
     {Op::AtomicImage, "AtomicImage", H},
+    // Pointers, 64-bit and narrow types: not compiled (a program with them stays in the interpreter; op_name in
+    // compile.cpp names them).
+    {Op::LoadPtr, nullptr, U},
+    {Op::StorePtr, nullptr, U},
+    {Op::AtomicPtr, nullptr, U},
+    {Op::Wide, nullptr, U},
+    {Op::LoadBufN, nullptr, U},
+    {Op::StoreBufN, nullptr, U},
+    {Op::HalfToFloat, nullptr, U},
+    {Op::FloatToHalf, nullptr, U},
+    // InterpolateAt* reads the block's planes through the scratch: the interpreter's code (interpolate.cpp).
+    {Op::InterpolateAt, "InterpolateAt", H},
 };
 
 constexpr bool table_in_enum_order() {

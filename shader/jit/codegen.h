@@ -10,6 +10,7 @@
 #include <asmjit/x86.h>
 
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -86,6 +87,12 @@ class LaneEmitter {
     void def(uint32_t r, const Ymm& y) { def(reg_key(r), y); }
     void end_instruction();
     bool op(const Inst& in);
+    // op() by family (lanes.cpp): nullopt when in.op is not of the family, else op()'s answer
+    std::optional<bool> float_op(const Inst& in);
+    std::optional<bool> compare_op(const Inst& in);
+    std::optional<bool> int_op(const Inst& in);
+    std::optional<bool> convert_op(const Inst& in);
+    std::optional<bool> memory_op(const Inst& in);
 
     // lowerings used by several ops
     template <typename F>

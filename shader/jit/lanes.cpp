@@ -3,6 +3,7 @@
 // reassociation), the same NaN operand order, the same bitwise selects, under the same MXCSR (FTZ + DAZ).
 #include <bit>
 #include <cstddef>
+#include <optional>
 #include <utility>
 
 #include "shader/jit/codegen.h"
@@ -460,23 +461,12 @@ void LaneEmitter::lane_call(const Inst& in, const void* fn) {
     a_.call(rax);
 }
 
-// One switch over the interpreter's ops (over 150 lines): a case per op with its few x86 instructions, next to the
-// register helpers above; the case list mirrors shader/exec_kernels.h op for op, which a split would hide.
-bool LaneEmitter::op(const Inst& in) {
-    if (const LaneFn f = lane_function(in.op)) {  // libm, as the interpreter calls it
-        lane_call(in, reinterpret_cast<const void*>(f));
-        return true;
-    }
+// The op families below mirror shader/exec_kernels.h; each answers nullopt for an op not of its family, else
+// whether the op was emitted (false: refused, e.g. a fixed local word out of range).
+
+// Float arithmetic, rounding and the GLSL.std.450 float functions emitted inline.
+std::optional<bool> LaneEmitter::float_op(const Inst& in) {
     switch (in.op) {
-        case Op::Mov:
-            def(in.d, take(reg_key(in.a)));
-            return true;
-        case Op::Select:
-            def(in.d, select(use(in.c), use(in.a), use(in.b)));
-            return true;
-        case Op::MaskedMov:
-            def(in.d, select(use(in.c), use(in.a), use(in.d)));
-            return true;
         case Op::FAdd:
         case Op::FMul:
             add_mul(in);
@@ -515,6 +505,65 @@ bool LaneEmitter::op(const Inst& in) {
             def(in.d, d);
             return true;
         }
+        case Op::Floor:
+            def(in.d, round(use(in.a), kFloor));
+            return true;
+        case Op::Ceil:
+            def(in.d, round(use(in.a), kCeil));
+            return true;
+        case Op::Trunc:
+            def(in.d, round(use(in.a), kTrunc));
+            return true;
+        case Op::Round:
+        case Op::RoundEven:
+            def(in.d, round(use(in.a), kNearby));
+            return true;
+        case Op::Fract:  // x - floor(x)
+            unary(in, [&](Ymm d, Ymm a) {
+                a_.vroundps(d, a, kFloor);
+                a_.vsubps(d, a, d);
+            });
+            return true;
+        case Op::FSign:
+            fsign(in);
+            return true;
+        case Op::Sqrt:
+            unary(in, [&](Ymm d, Ymm a) { a_.vsqrtps(d, a); });
+            return true;
+        case Op::InvSqrt:  // 1 / sqrt(x), both exact IEEE
+            unary(in, [&](Ymm d, Ymm a) {
+                Ymm one = temp();
+                a_.vsqrtps(d, a);
+                a_.vmovups(one, pool_.splat(fbits(1.0f)));
+                a_.vdivps(d, one, d);
+            });
+            return true;
+        case Op::FClamp:  // min(max(x, lo), hi)
+            def(in.d, fmin(fmax(use(in.a), use(in.b)), use(in.c)));
+            return true;
+        case Op::Step:  // step(edge a, x b) = b < a ? 0 : 1
+            binary(in, [&](Ymm d, Ymm a, Ymm b) {
+                a_.vcmpps(d, b, a, kLtOQ);
+                a_.vandnps(d, d, pool_.splat(fbits(1.0f)));
+            });
+            return true;
+        case Op::SmoothStep:
+            smooth_step(in);
+            return true;
+        default:
+            return std::nullopt;
+    }
+}
+
+// Compares (float ordered/unordered, integer), the NaN/Inf tests and the selects.
+std::optional<bool> LaneEmitter::compare_op(const Inst& in) {
+    switch (in.op) {
+        case Op::Select:
+            def(in.d, select(use(in.c), use(in.a), use(in.b)));
+            return true;
+        case Op::MaskedMov:
+            def(in.d, select(use(in.c), use(in.a), use(in.d)));
+            return true;
         case Op::FOrdEq:
             fcmp(in, kEqOQ);
             return true;
@@ -563,6 +612,33 @@ bool LaneEmitter::op(const Inst& in) {
                 a_.vpcmpeqd(d, d, pool_.splat(0x7f800000u));
             });
             return true;
+        case Op::IEq:
+            binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vpcmpeqd(d, a, b); });
+            return true;
+        case Op::INe:
+            binary(in, [&](Ymm d, Ymm a, Ymm b) {
+                a_.vpcmpeqd(d, a, b);
+                a_.vpxor(d, d, pool_.splat(~0u));
+            });
+            return true;
+        case Op::SGt:
+        case Op::SLt:
+        case Op::SLe:
+        case Op::SGe:
+        case Op::UGt:
+        case Op::ULt:
+        case Op::ULe:
+        case Op::UGe:
+            int_compare(in);
+            return true;
+        default:
+            return std::nullopt;
+    }
+}
+
+// Integer arithmetic, bitwise ops, shifts (count mod 32) and integer min/max/abs.
+std::optional<bool> LaneEmitter::int_op(const Inst& in) {
+    switch (in.op) {
         case Op::IAdd:
             binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vpaddd(d, a, b); });
             return true;
@@ -605,25 +681,6 @@ bool LaneEmitter::op(const Inst& in) {
             });
             return true;
         }
-        case Op::IEq:
-            binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vpcmpeqd(d, a, b); });
-            return true;
-        case Op::INe:
-            binary(in, [&](Ymm d, Ymm a, Ymm b) {
-                a_.vpcmpeqd(d, a, b);
-                a_.vpxor(d, d, pool_.splat(~0u));
-            });
-            return true;
-        case Op::SGt:
-        case Op::SLt:
-        case Op::SLe:
-        case Op::SGe:
-        case Op::UGt:
-        case Op::ULt:
-        case Op::ULe:
-        case Op::UGe:
-            int_compare(in);
-            return true;
         case Op::SMin:
             binary(in, [&](Ymm d, Ymm a, Ymm b) { a_.vpminsd(d, a, b); });
             return true;
@@ -639,6 +696,14 @@ bool LaneEmitter::op(const Inst& in) {
         case Op::SAbs:
             unary(in, [&](Ymm d, Ymm a) { a_.vpabsd(d, a); });
             return true;
+        default:
+            return std::nullopt;
+    }
+}
+
+// Float <-> integer conversions and the quad derivatives.
+std::optional<bool> LaneEmitter::convert_op(const Inst& in) {
+    switch (in.op) {
         case Op::F2S:  // out of range and NaN give INT32_MIN, which is what cvttps2dq gives
             unary(in, [&](Ymm d, Ymm a) { a_.vcvttps2dq(d, a); });
             return true;
@@ -651,51 +716,6 @@ bool LaneEmitter::op(const Inst& in) {
         case Op::U2F:
             u2f(in);
             return true;
-        case Op::Floor:
-            def(in.d, round(use(in.a), kFloor));
-            return true;
-        case Op::Ceil:
-            def(in.d, round(use(in.a), kCeil));
-            return true;
-        case Op::Trunc:
-            def(in.d, round(use(in.a), kTrunc));
-            return true;
-        case Op::Round:
-        case Op::RoundEven:
-            def(in.d, round(use(in.a), kNearby));
-            return true;
-        case Op::Fract:  // x - floor(x)
-            unary(in, [&](Ymm d, Ymm a) {
-                a_.vroundps(d, a, kFloor);
-                a_.vsubps(d, a, d);
-            });
-            return true;
-        case Op::FSign:
-            fsign(in);
-            return true;
-        case Op::Sqrt:
-            unary(in, [&](Ymm d, Ymm a) { a_.vsqrtps(d, a); });
-            return true;
-        case Op::InvSqrt:  // 1 / sqrt(x), both exact IEEE
-            unary(in, [&](Ymm d, Ymm a) {
-                Ymm one = temp();
-                a_.vsqrtps(d, a);
-                a_.vmovups(one, pool_.splat(fbits(1.0f)));
-                a_.vdivps(d, one, d);
-            });
-            return true;
-        case Op::FClamp:  // min(max(x, lo), hi)
-            def(in.d, fmin(fmax(use(in.a), use(in.b)), use(in.c)));
-            return true;
-        case Op::Step:  // step(edge a, x b) = b < a ? 0 : 1
-            binary(in, [&](Ymm d, Ymm a, Ymm b) {
-                a_.vcmpps(d, b, a, kLtOQ);
-                a_.vandnps(d, d, pool_.splat(fbits(1.0f)));
-            });
-            return true;
-        case Op::SmoothStep:
-            smooth_step(in);
-            return true;
         case Op::DdxFine:  // right - left of the lane's row: lanes {1,1,3,3} - {0,0,2,2} of each quad
             derivative(in, 0xF5, 0xA0);
             return true;
@@ -707,6 +727,17 @@ bool LaneEmitter::op(const Inst& in) {
             return true;
         case Op::DdyCoarse:  // the quad's left column: {2,2,2,2} - {0,0,0,0}
             derivative(in, 0xAA, 0x00);
+            return true;
+        default:
+            return std::nullopt;
+    }
+}
+
+// Moves, local memory, buffer loads and the live mask.
+std::optional<bool> LaneEmitter::memory_op(const Inst& in) {
+    switch (in.op) {
+        case Op::Mov:
+            def(in.d, take(reg_key(in.a)));
             return true;
         case Op::LoadLocal:
             return load_local(in);
@@ -731,8 +762,19 @@ bool LaneEmitter::op(const Inst& in) {
             return true;
         }
         default:
-            return false;
+            return std::nullopt;
     }
+}
+
+bool LaneEmitter::op(const Inst& in) {
+    if (const LaneFn f = lane_function(in.op)) {  // libm, as the interpreter calls it
+        lane_call(in, reinterpret_cast<const void*>(f));
+        return true;
+    }
+    for (auto family : {&LaneEmitter::float_op, &LaneEmitter::compare_op, &LaneEmitter::int_op,
+                        &LaneEmitter::convert_op, &LaneEmitter::memory_op})
+        if (const std::optional<bool> emitted = (this->*family)(in)) return *emitted;
+    return false;
 }
 
 }  // namespace tilevk::shader::jit

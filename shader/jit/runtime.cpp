@@ -86,6 +86,11 @@ LaneFn lane_function(Op op) {
         TILEVK_LIBM_OPS(TILEVK_JIT_LIBM1, TILEVK_JIT_LIBM2)
 #undef TILEVK_JIT_LIBM1
 #undef TILEVK_JIT_LIBM2
+#define TILEVK_JIT_GALLIVM(op, fn) \
+    case Op::op:                   \
+        return fn;
+        TILEVK_GALLIVM_OPS(TILEVK_JIT_GALLIVM)
+#undef TILEVK_JIT_GALLIVM
 #if !TILEVK_SIMD_AVX2
         // Without SSE4.1 the interpreter's rounding is libm's too (floorf, ceilf, truncf, nearbyintf), whose NaN
         // results are not vroundps's (a signalling NaN comes back unquieted from ceilf): the same calls here.

@@ -43,6 +43,8 @@ namespace tilevk::test::breadth {
 #include "ab_subpass_load_frag.h"
 #include "ab_tex_array_frag.h"
 #include "ab_texel_buffer_frag.h"
+#include "ab_texel_buffer_sint_frag.h"
+#include "ab_texel_buffer_uint_frag.h"
 #include "color_frag.h"
 #include "draw_vert.h"
 
@@ -90,7 +92,8 @@ struct Pipe {
     const VkSpecializationInfo* fs_spec = nullptr;  // fragment stage specialization
     bool no_fragment_stage = false;                 // vertex stage only (depth-only passes)
     bool rasterizer_discard = false;
-    const void* pnext = nullptr;  // VkGraphicsPipelineCreateInfo::pNext
+    const void* pnext = nullptr;               // VkGraphicsPipelineCreateInfo::pNext
+    const void* vertex_input_pnext = nullptr;  // VkPipelineVertexInputStateCreateInfo::pNext
     VkPipelineCache cache = VK_NULL_HANDLE;
     VkPipelineCreateFlags flags = 0;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // rasterizationSamples
@@ -338,6 +341,7 @@ class Kit {
         stages[1].pName = "main";
         stages[1].pSpecializationInfo = p.fs_spec;
         VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        vi.pNext = p.vertex_input_pnext;
         vi.vertexBindingDescriptionCount = uint32_t(p.bindings.size());
         vi.pVertexBindingDescriptions = p.bindings.data();
         vi.vertexAttributeDescriptionCount = uint32_t(p.attrs.size());

@@ -401,7 +401,13 @@ TEST_F(ApiBreadth, ImageViewComponentSwizzle) {
             SCOPED_TRACE("format " + std::to_string(f) + " mapping " + std::to_string(m.r) + std::to_string(m.g) +
                          std::to_string(m.b) + std::to_string(m.a));
             const Bytes b = both([&](Kit& k) {
-                Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+                // Integer views are read raw through usamplerBuffer / isamplerBuffer into an integer target.
+                const bool uint_view = is_uint_format(f), sint_view = is_sint_format(f);
+                Target tg = target(k,
+                                   uint_view   ? VK_FORMAT_R32G32B32A32_UINT
+                                   : sint_view ? VK_FORMAT_R32G32B32A32_SINT
+                                               : VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   4, 4);
                 Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
                 Device::Buffer src = k.buffer_of(texel_data(f, 16, 99), 0);
                 upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
@@ -962,7 +968,13 @@ TEST_F(ApiBreadth, UniformTexelBuffers) {
         ++tested;
         SCOPED_TRACE("texel buffer format " + std::to_string(fi));
         both([f](Kit& k) {
-            Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+            // Integer views are read raw through usamplerBuffer / isamplerBuffer into an integer target.
+            const bool uint_view = is_uint_format(f), sint_view = is_sint_format(f);
+            Target tg = target(k,
+                               uint_view   ? VK_FORMAT_R32G32B32A32_UINT
+                               : sint_view ? VK_FORMAT_R32G32B32A32_SINT
+                                           : VK_FORMAT_R32G32B32A32_SFLOAT,
+                               4, 4);
             VkPhysicalDeviceProperties props;
             vkGetPhysicalDeviceProperties(k.dev().physical(), &props);
             const VkDeviceSize offset = std::max<VkDeviceSize>(props.limits.minTexelBufferOffsetAlignment, 16);
@@ -988,13 +1000,22 @@ TEST_F(ApiBreadth, UniformTexelBuffers) {
             w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
             w.pTexelBufferView = &view;
             vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
-            const Pipe p = fullscreen_pipe(SPV(ab_texel_buffer_frag), tg, layout);
+            const Pipe p = fullscreen_pipe(uint_view   ? SPV(ab_texel_buffer_uint_frag)
+                                           : sint_view ? SPV(ab_texel_buffer_sint_frag)
+                                                       : SPV(ab_texel_buffer_frag),
+                                           tg, layout);
             VkPipeline pipe = k.pipeline(p);
             EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
             Bytes out = k.read(tg.image.image, 4, 4, 16);
-            float size;
-            std::memcpy(&size, out.data() + 12, 4);
-            EXPECT_EQ(size, 18.0f);  // textureSize = range / texel size
+            if (uint_view || sint_view) {
+                uint32_t size;
+                std::memcpy(&size, out.data() + 12, 4);
+                EXPECT_EQ(size, 18u);  // textureSize = range / texel size
+            } else {
+                float size;
+                std::memcpy(&size, out.data() + 12, 4);
+                EXPECT_EQ(size, 18.0f);
+            }
             vkDestroyBufferView(k.d, view, nullptr);
             return out;
         });

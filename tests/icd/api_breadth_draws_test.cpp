@@ -148,6 +148,69 @@ TEST_F(ApiBreadth, InstancedIndexedDrawsWithOffsetsAndRestart) {
     });
 }
 
+// VK_EXT_vertex_attribute_divisor: ab_instanced.vert's instance binding with divisor 3, then 0, drawn with
+// firstInstance 1 on tilevk and lavapipe (feature enabled, validation layer on), compared byte for byte. Checked
+// against the rule too: 6 instances with divisor 3 read elements 1, 1, 1, 2, 2, 2 — the image of instances 1 and 2
+// without a divisor (opaque quads drawn again in place); divisor 0 reads element 1 for every instance.
+TEST_F(ApiBreadth, VertexAttributeDivisors) {
+    VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT feature{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT};
+    feature.vertexAttributeInstanceRateDivisor = VK_TRUE;
+    feature.vertexAttributeInstanceRateZeroDivisor = VK_TRUE;
+    auto dev = device_pair({VK_EXT_VERTEX_ATTRIBUTE_DIVISOR_EXTENSION_NAME}, &feature);
+    ASSERT_TRUE(dev->ok());
+    // divisor: 1 means no VkPipelineVertexInputDivisorStateCreateInfoEXT at all.
+    auto scene = [](Kit& k, uint32_t divisor, uint32_t instances) {
+        Target t = target(k);
+        VkVertexInputBindingDivisorDescriptionEXT d{1, divisor};
+        VkPipelineVertexInputDivisorStateCreateInfoEXT dci{
+            VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_DIVISOR_STATE_CREATE_INFO_EXT};
+        dci.vertexBindingDivisorCount = 1;
+        dci.pVertexBindingDivisors = &d;
+        Pipe p;
+        p.vs = SPV(ab_instanced_vert);
+        p.rp = t.rp;
+        p.vertex_input_pnext = divisor == 1 ? nullptr : &dci;
+        p.bindings = {{0, 8, VK_VERTEX_INPUT_RATE_VERTEX},
+                      {1, 32, VK_VERTEX_INPUT_RATE_INSTANCE},
+                      {2, 0, VK_VERTEX_INPUT_RATE_VERTEX}};
+        p.attrs = {{0, 0, VK_FORMAT_R32G32_SFLOAT, 0},
+                   {1, 1, VK_FORMAT_R32G32_SFLOAT, 0},
+                   {2, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+                   {3, 2, VK_FORMAT_R8G8B8A8_UNORM, 0}};
+        p.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        VkPipeline pipe = k.pipeline(p);
+        const std::vector<float> pos = {-0.9f, -0.9f, -0.5f, -0.9f, -0.9f, -0.5f, -0.5f, -0.5f};
+        std::vector<float> inst;
+        for (int i = 0; i < 4; ++i) {
+            const float row[8] = {0.45f * float(i), 0.3f * float(i),        0,    0,
+                                  float(i) / 3.0f,  1.0f - float(i) / 4.0f, 0.5f, 1.0f};
+            inst.insert(inst.end(), row, row + 8);
+        }
+        const std::vector<uint8_t> tint = {255, 255, 255, 255};
+        Device::Buffer vb0 = k.buffer_of(pos, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        Device::Buffer vb1 = k.buffer_of(inst, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        Device::Buffer vb2 = k.buffer_of(tint, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            VkBuffer bufs[3] = {vb0.buffer, vb1.buffer, vb2.buffer};
+            VkDeviceSize offs[3] = {0, 0, 0};
+            vkCmdBindVertexBuffers(c, 0, 3, bufs, offs);
+            vkCmdDraw(c, 4, instances, 0, 1);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        return k.read(t.image.image, 32, 32, 4);
+    };
+    const Bytes by3 = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) { return scene(k, 3, 6); });
+    const Bytes by0 = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) { return scene(k, 0, 5); });
+    Kit k(dev->tilevk);
+    expect_same(by3, scene(k, 1, 2), "divisor 3, 6 instances vs instances 1 and 2");
+    expect_same(by0, scene(k, 1, 1), "divisor 0, 5 instances vs instance 1");
+    EXPECT_NE(by3, by0);
+}
+
 // vkCmdDrawIndirect / vkCmdDrawIndexedIndirect at offsets and strides (drawCount > 1 only where the driver
 // reports multiDrawIndirect; otherwise one call per record).
 TEST_F(ApiBreadth, IndirectDrawsWithStride) {

@@ -134,9 +134,9 @@ TEST(ShaderRobust, UnsupportedFeaturesNamed) {
          "subpassInputMS"},
         {Stage::Fragment, R"(#version 450
             layout(location=0) out vec4 c;
-            layout(location=0) in vec4 v;
-            void main() { c = vec4(interpolateAtCentroid(v).x); })",
-         "InterpolateAtCentroid"},
+            layout(location=0) in vec4 v[2];
+            void main() { c = vec4(interpolateAtCentroid(v[int(gl_FragCoord.x) & 1]).x); })",
+         "InterpolateAtCentroid on a dynamically indexed input"},
     };
     for (const Case& c : cases) {
         auto spirv = compile_glsl(c.stage, c.src);
