@@ -406,6 +406,7 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
     bindings.clear();
     build_bindings(st, bindings);
     call.samples_passed = active_occlusion_counter(st);
+    call.statistics = active_raster_statistics(st);
     const std::string err = ctx.renderer.draw(draw_state(st), call, bindings);
     if (!err.empty() && !ctx.warned) {
         log_error("vkQueueSubmit: a draw was not rendered: %s", err.c_str());

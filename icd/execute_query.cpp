@@ -17,36 +17,16 @@ uint64_t* active_occlusion_counter(const ExecState& st) {
     return &st.occlusion_pool->slots[st.occlusion_query].value;
 }
 
-namespace {
-// llvmpipe_begin_query: the running totals restart from 0 when no statistics query is active.
-void begin_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
-    if (st.statistics_queries.empty()) st.statistics_totals = {};
-    pool.begin_statistics(query, st.statistics_totals);
-    st.statistics_queries.emplace_back(&pool, query);
-}
-
-bool end_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
-    auto& active = st.statistics_queries;
-    for (auto it = active.begin(); it != active.end(); ++it) {
-        if (it->first != &pool || it->second != query) continue;
-        active.erase(it);
-        // Every counter is final when the command runs: the vertex-side ones are counted as draws are recorded
-        // for the renderer, not as it renders them.
-        pool.end_statistics(query, st.statistics_totals);
-        return true;
-    }
-    return false;
-}
-}  // namespace
-
 void publish_ended_queries(ExecState& st) {
+    publish_statistics(st);
     for (auto [pool, query] : st.ended_in_pass) pool->make_available(query);
     st.ended_in_pass.clear();
 }
 
 void finish_queries(ExecState& st) {
     while (!st.statistics_queries.empty()) {
-        auto [pool, query] = st.statistics_queries.back();
+        QueryPool* pool = st.statistics_queries.back().pool;
+        const uint32_t query = st.statistics_queries.back().query;
         log_error(
             "vkQueueSubmit: pipeline-statistics query %u was begun and never ended in its command buffer; "
             "ended now",
@@ -76,6 +56,7 @@ void exec_query(ExecState& st, const CmdBeginQuery& c) {
     if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS && query < c.pool->count) {
         end_statistics(st, *c.pool, query);  // begun twice (invalid usage): restarted
         begin_statistics(st, *c.pool, query);
+        note_query_command_in_pass(st);  // lavapipe bins it into every tile (lp_setup_begin_query)
         return;
     }
     if (c.pool->type != VK_QUERY_TYPE_OCCLUSION && c.pool->type != VK_QUERY_TYPE_PIPELINE_STATISTICS) {
@@ -97,6 +78,7 @@ void exec_query(ExecState& st, const CmdEndQuery& c) {
     if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS) {
         if (!end_statistics(st, *c.pool, query))
             log_error("vkCmdEndQuery: pipeline-statistics query %u is not active; ignored", query);
+        note_query_command_in_pass(st);
         return;
     }
     if (c.pool != st.occlusion_pool || query != st.occlusion_query) {

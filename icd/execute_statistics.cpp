@@ -2,11 +2,17 @@
 // Vertex side (draw module, per instance, restart run and vsplit segment): rast/geometry/draw_statistics.h.
 // Clipping invocations: draw counts every primitive it hands on (draw_stats_clipper_primitives), but llvmpipe's
 // lp_setup_pipeline_statistics, which adds a draw's counts to the context, sets the context's running total to 0
-// instead at a draw whose rasterization is discarded (setup->rasterizer_discard: rasterizerDiscardEnable, a sample
-// mask of 0, or no fragment shader with depth and stencil testing off; lp_state_derived.c). Compute: llvmpipe adds
+// instead at a draw whose rasterization is discarded (setup->rasterizer_discard: rasterizerDiscardEnable or a sample
+// mask of 0; lp_state_derived.c's third case, a null fragment shader with depth and stencil testing off, never
+// applies to lavapipe, whose pipelines without one get a dummy NIR shader that nir_tgsi_scan_shader reports as 2
+// instructions, so llvmpipe rasterizes them and counts their fragment blocks too). Compute: llvmpipe adds
 // workgroups x local size per dispatch (lp_state_cs.c). Geometry and tessellation counters stay 0: tilevk has no
-// such stages, and lavapipe's are 0 without them.
+// such stages, and lavapipe's are 0 without them. Clipping primitives and fragment shader invocations are counted
+// by the renderer for each draw (rast/render RasterStatistics: primitives reaching llvmpipe's setup, calls of its
+// 4x4-block fragment function); lavapipe bins its query begin/end commands between draws, so a query gets the
+// counts of exactly the draws recorded while it was active (ExecState::raster_epochs).
 #include "execute.h"
+#include "query_pool.h"
 #include "rast/geometry/draw_statistics.h"
 #include "rast/render/draw_state.h"
 
@@ -17,11 +23,9 @@ constexpr uint32_t stat_index(VkQueryPipelineStatisticFlagBits bit) {
     return uint32_t(__builtin_ctz(uint32_t(bit)));
 }
 
-// llvmpipe's setup->rasterizer_discard for this draw.
+// llvmpipe's setup->rasterizer_discard for this draw (see above: never for a missing fragment shader).
 bool setup_discards(const rast::render::PipelineState& s, bool rasterizer_discard) {
-    const bool null_fs = s.fragment == nullptr;
-    return rasterizer_discard || s.sample_mask == 0 ||
-           (null_fs && !s.depth_stencil.depth_test && !s.depth_stencil.stencil_test);
+    return rasterizer_discard || s.sample_mask == 0;
 }
 
 }  // namespace
@@ -49,6 +53,55 @@ void count_draw_statistics(ExecState& st, const rast::render::DrawCall& call, co
     t[stat_index(VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT)] += n * one.vs_invocations;
     uint64_t& clip = t[stat_index(VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT)];
     clip = setup_discards(s, rasterizer_discard) ? 0 : clip + n * one.ia_primitives;
+}
+
+rast::render::RasterStatistics* active_raster_statistics(ExecState& st) {
+    return st.statistics_queries.empty() ? nullptr : &st.raster_epochs.back();
+}
+
+namespace {
+// The set of active queries changed: later draws count into a new epoch.
+void next_epoch(ExecState& st) {
+    if (!st.statistics_queries.empty()) st.raster_epochs.emplace_back();
+}
+}  // namespace
+
+// llvmpipe_begin_query: the running totals restart from 0 when no statistics query is active.
+void begin_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
+    if (st.statistics_queries.empty()) st.statistics_totals = {};
+    pool.begin_statistics(query, st.statistics_totals);
+    st.statistics_queries.push_back({&pool, query, st.raster_epochs.size()});
+    next_epoch(st);
+}
+
+bool end_statistics(ExecState& st, QueryPool& pool, uint32_t query) {
+    auto& active = st.statistics_queries;
+    for (auto it = active.begin(); it != active.end(); ++it) {
+        if (it->pool != &pool || it->query != query) continue;
+        // The vertex-side counters and the compute ones are final now (counted as draws are recorded for the
+        // renderer); the renderer's counts are once the draws are rendered.
+        st.statistics_ended.push_back({&pool, query, it->first_epoch, st.raster_epochs.size(), st.statistics_totals});
+        active.erase(it);
+        next_epoch(st);
+        if (st.render_pass == nullptr) publish_statistics(st);  // no draw of it is still binned
+        return true;
+    }
+    return false;
+}
+
+void publish_statistics(ExecState& st) {
+    for (const ExecState::EndedStatistics& e : st.statistics_ended) {
+        StatisticCounters raster{};
+        for (size_t k = e.first_epoch; k < e.end_epoch; ++k) {
+            const rast::render::RasterStatistics& r = st.raster_epochs[k];
+            raster[stat_index(VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT)] += r.clipping_primitives;
+            // lp_query.c: the 4x4-block function's calls times LP_RASTER_BLOCK_SIZE squared.
+            raster[stat_index(VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT)] += 16 * r.fragment_blocks;
+        }
+        e.pool->end_statistics(e.query, e.totals, raster);
+    }
+    st.statistics_ended.clear();
+    if (st.statistics_queries.empty()) st.raster_epochs.clear();  // no draw points at them any more
 }
 
 void count_dispatch_statistics(ExecState& st, uint64_t workgroups, const std::array<uint32_t, 3>& local_size) {

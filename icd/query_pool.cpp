@@ -46,14 +46,14 @@ void QueryPool::begin_statistics(uint32_t query, const StatisticCounters& totals
     slots[query] = Slot{0, State::kPending, totals};
 }
 
-void QueryPool::end_statistics(uint32_t query, const StatisticCounters& totals) {
+void QueryPool::end_statistics(uint32_t query, const StatisticCounters& totals, const StatisticCounters& raster) {
     if (query >= count) return;
     {
         std::lock_guard lock(mutex);
         Slot& s = slots[query];
         // Unsigned differences, as llvmpipe_end_query takes them: a total that went down (lavapipe zeroes the
         // clipping invocations at a draw that discards rasterization) wraps.
-        for (uint32_t i = 0; i < kStatisticCount; ++i) s.stats[i] = totals[i] - s.stats[i];
+        for (uint32_t i = 0; i < kStatisticCount; ++i) s.stats[i] = totals[i] - s.stats[i] + raster[i];
         s.state = State::kAvailable;
     }
     available_cv.notify_all();

@@ -31,6 +31,7 @@ inline constexpr VkQueryPipelineStatisticFlags kSupportedStatistics =
     VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
     VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_INVOCATIONS_BIT |
     VK_QUERY_PIPELINE_STATISTIC_GEOMETRY_SHADER_PRIMITIVES_BIT | VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |
+    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT | VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT |
     VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
     VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |
     VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;
@@ -64,7 +65,9 @@ struct QueryPool : NonDispatchableObject {
     void write_timestamp(uint32_t query, uint64_t ns);
     // Pipeline statistics: begin records the totals so far, end stores totals - start and makes it available.
     void begin_statistics(uint32_t query, const StatisticCounters& totals);
-    void end_statistics(uint32_t query, const StatisticCounters& totals);
+    // `raster`: the renderer's counts of its draws (CLIPPING_PRIMITIVES, FRAGMENT_SHADER_INVOCATIONS), added as they
+    // are.
+    void end_statistics(uint32_t query, const StatisticCounters& totals, const StatisticCounters& raster);
 };
 
 // Writes results of queries [first, first + n) in the layout of vkGetQueryPoolResults (`stride` apart, 32- or
