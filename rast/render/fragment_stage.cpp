@@ -58,7 +58,8 @@ namespace {
 // partial blocks with a non-zero mask (lp_rast_tri_tmp.h, lp_rast_rect.c) and every block of a fully covered 16x16
 // block or 64x64 tile (lp_rast_shade_tile, up to the framebuffer's edge, which full squares never cross). Once per
 // block also under sample shading (the sample loop is inside the function) and at any sample count. Linear bins
-// (lp_rast_linear.c) never call it.
+// (lp_rast_linear.c) call it only where the linear shader declines (lp_rast_linear_fallback.c: every block of the
+// box), which is where primitive() goes on to the general path.
 uint64_t shader_calls(const PrimCoverage& cov) {
     uint64_t n = cov.num_blocks;
     for (size_t i = 0; i < cov.num_blocks16; ++i)
