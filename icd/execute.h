@@ -8,7 +8,7 @@
 
 #include <array>
 #include <atomic>
-#include <deque>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -107,8 +107,9 @@ struct ExecState {
     // The renderer's counts (CLIPPING_PRIMITIVES, fragment-shader blocks) come per draw, the fragment blocks only
     // once its tiles are rendered; lavapipe bins begin/end commands so a query counts exactly the draws between
     // them. Each change of the active set starts an epoch (draws point at raster_epochs.back()), so a query's
-    // counts are the sum of the epochs it was active in, read when its draws are rendered.
-    std::deque<rast::render::RasterStatistics> raster_epochs;
+    // counts are the sum of the epochs it was active in, read when its draws are rendered. (Boxed, so that draws keep
+    // their address; not a std::deque, whose construction allocates in every submission.)
+    std::vector<std::unique_ptr<rast::render::RasterStatistics>> raster_epochs;
     struct EndedStatistics {
         QueryPool* pool;
         uint32_t query;

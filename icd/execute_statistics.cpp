@@ -56,13 +56,13 @@ void count_draw_statistics(ExecState& st, const rast::render::DrawCall& call, co
 }
 
 rast::render::RasterStatistics* active_raster_statistics(ExecState& st) {
-    return st.statistics_queries.empty() ? nullptr : &st.raster_epochs.back();
+    return st.statistics_queries.empty() ? nullptr : st.raster_epochs.back().get();
 }
 
 namespace {
 // The set of active queries changed: later draws count into a new epoch.
 void next_epoch(ExecState& st) {
-    if (!st.statistics_queries.empty()) st.raster_epochs.emplace_back();
+    if (!st.statistics_queries.empty()) st.raster_epochs.push_back(std::make_unique<rast::render::RasterStatistics>());
 }
 }  // namespace
 
@@ -93,7 +93,7 @@ void publish_statistics(ExecState& st) {
     for (const ExecState::EndedStatistics& e : st.statistics_ended) {
         StatisticCounters raster{};
         for (size_t k = e.first_epoch; k < e.end_epoch; ++k) {
-            const rast::render::RasterStatistics& r = st.raster_epochs[k];
+            const rast::render::RasterStatistics& r = *st.raster_epochs[k];
             raster[stat_index(VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT)] += r.clipping_primitives;
             // lp_query.c: the 4x4-block function's calls times LP_RASTER_BLOCK_SIZE squared.
             raster[stat_index(VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT)] += 16 * r.fragment_blocks;
