@@ -55,6 +55,7 @@ void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);
 void add_raster_ext_cases(CaseList& out);  // cases_raster_ext.cpp
+void add_statistics_cases(CaseList& out);
 CaseList all_cases();
 // The fuzzers' cases for one seed (tilevk-cts --fuzz): random.seed_N and extreme.random.seed_N, built from the
 // minimisation knobs in the environment at the time of the call (TILEVK_CTS_RANDOM_DRAWS, TILEVK_CTS_EXTREME_KEEP),

@@ -70,6 +70,7 @@ CaseList all_cases() {
     add_transcendental_cases(out);
     add_blit_cases(out);
     add_query_cases(out);
+    add_statistics_cases(out);
     add_feature_cases(out);
     add_pipeline_ext_cases(out);
     add_format_cases(out);

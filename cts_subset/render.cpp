@@ -387,8 +387,9 @@ struct Frame::Impl {
     VkCommandBuffer cb = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
     std::vector<Readback> reads;
-    Buffer query_results{};  // QueryMode != kNone: 16 bytes per query (64-bit value, 64-bit availability)
+    Buffer query_results{};  // QueryMode != kNone: 64-bit values, then 64-bit availability, per query
     uint32_t num_queries = 0;
+    uint32_t query_stride = 16;
     double pipeline_ms = 0;
     std::function<std::vector<Plane>(const DeviceContext&)> run;  // a scene that runs its own commands
     std::vector<Plane> run_planes;
@@ -409,12 +410,15 @@ VkQueryPool Frame::Impl::make_queries(const Scene& s, VkCommandBuffer cb) {
     if (!nqueries) return VK_NULL_HANDLE;
     VkDevice dev = c->device;
     VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qci.queryType = VK_QUERY_TYPE_OCCLUSION;
+    qci.queryType = s.statistics ? VK_QUERY_TYPE_PIPELINE_STATISTICS : VK_QUERY_TYPE_OCCLUSION;
+    qci.pipelineStatistics = s.statistics;
     qci.queryCount = nqueries;
+    const uint32_t values = s.statistics ? uint32_t(__builtin_popcount(s.statistics)) : 1;  // occlusion: one
+    query_stride = 8 * (values + 1);
     VkQueryPool qpool;
     vk_check(vkCreateQueryPool(dev, &qci, nullptr, &qpool), "vkCreateQueryPool");
     gc.add([dev, qpool] { vkDestroyQueryPool(dev, qpool, nullptr); });
-    query_results = make_buffer(*c, gc, VkDeviceSize(16) * nqueries, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    query_results = make_buffer(*c, gc, VkDeviceSize(query_stride) * nqueries, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     num_queries = nqueries;
     vkCmdResetQueryPool(cb, qpool, 0, nqueries);
     return qpool;
@@ -428,8 +432,9 @@ void Frame::Impl::record_query_results(VkCommandBuffer cb, VkQueryPool qpool) {
                          VK_ACCESS_TRANSFER_WRITE_BIT};
     vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &fill, 0, nullptr,
                          0, nullptr);
-    vkCmdCopyQueryPoolResults(cb, qpool, 0, num_queries, query_results.buffer, 0, 16,
-                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+    vkCmdCopyQueryPoolResults(
+        cb, qpool, 0, num_queries, query_results.buffer, 0, query_stride,
+        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
 }
 
 Frame::~Frame() = default;
@@ -468,7 +473,8 @@ Frame::Frame(const DeviceContext& c, const Scene& s, bool selftest_bad_command) 
     record_texture_uploads(cb, r.textures);
     VkQueryPool qpool = f.make_queries(s, cb);
     // PRECISE asks for exact counts; both drivers report occlusionQueryPrecise (requirements.cpp checks it).
-    const VkQueryControlFlags qflags = VK_QUERY_CONTROL_PRECISE_BIT;
+    // (PRECISE is for occlusion queries only.)
+    const VkQueryControlFlags qflags = s.statistics ? 0 : VK_QUERY_CONTROL_PRECISE_BIT;
     if (s.queries == QueryMode::kAcrossPass) vkCmdBeginQuery(cb, qpool, 0, qflags);
     record_pass(c, cb, s, rp, at, r, vb, qpool, qflags);
     if (s.queries == QueryMode::kAcrossPass) vkCmdEndQuery(cb, qpool, 0);
@@ -513,8 +519,8 @@ std::vector<Plane> Frame::planes() const {
         out.push_back(std::move(p));
     }
     if (impl_->num_queries) {
-        Plane p{"queries", VK_FORMAT_UNDEFINED, impl_->num_queries, 1, 16, {}};
-        p.data.resize(size_t(16) * impl_->num_queries);
+        Plane p{"queries", VK_FORMAT_UNDEFINED, impl_->num_queries, 1, impl_->query_stride, {}};
+        p.data.resize(size_t(impl_->query_stride) * impl_->num_queries);
         std::memcpy(p.data.data(), impl_->query_results.mapped, p.data.size());
         out.push_back(std::move(p));
     }

@@ -66,7 +66,9 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, t.samples, "depth/stencil");
         if (!e.empty()) return e;
     }
-    if (s.queries != QueryMode::kNone && !f.occlusionQueryPrecise) return "feature occlusionQueryPrecise";
+    if (s.statistics != 0 && !f.pipelineStatisticsQuery) return "feature pipelineStatisticsQuery";
+    if (s.queries != QueryMode::kNone && s.statistics == 0 && !f.occlusionQueryPrecise)
+        return "feature occlusionQueryPrecise";
     for (const Draw& d : s.draws) {
         if (d.line_width != 1.0f && !f.wideLines) return "feature wideLines";
         if (d.line_width < lim.lineWidthRange[0] || d.line_width > lim.lineWidthRange[1])

@@ -158,6 +158,9 @@ struct Scene {
     Target target;
     std::vector<Draw> draws;
     QueryMode queries = QueryMode::kNone;
+    // Non-zero: the queries are pipeline-statistics queries counting these (cases_statistics.cpp), each result
+    // one 64-bit value per bit in bit order, then the availability word.
+    VkQueryPipelineStatisticFlags statistics = 0;
     // A case without draws (transfer commands, e.g. cases_blit.cpp) runs its own commands instead: `run` records,
     // submits and reads back on one device; `unsupported` names what the device lacks (empty: supported).
     std::function<std::vector<Plane>(const DeviceContext&)> run;

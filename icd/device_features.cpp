@@ -84,6 +84,7 @@ Features make_supported() {
     c.largePoints = VK_TRUE;            // rast/geometry setup_point: sizes up to 255
     c.wideLines = VK_TRUE;              // rast/geometry setup_line: rectangular lines of any width
     c.occlusionQueryPrecise = VK_TRUE;  // exact sample counts (fragment_stage.cpp), as lavapipe's
+    c.pipelineStatisticsQuery = VK_TRUE;  // all eleven counters as lavapipe counts them (execute_statistics.cpp)
     c.fillModeNonSolid = VK_TRUE;       // rast/render: draw's unfilled stage (edges / corners after culling)
     c.logicOp = VK_TRUE;                // rast/fragment logic_op8 on UNORM8 targets, as lavapipe's lp_build_logicop
     c.alphaToOne = VK_TRUE;             // rast/render: alpha 1.0 after alpha to coverage (lp_state_fs.c)

@@ -2,9 +2,13 @@
 #pragma once
 #include "command_buffer.h"
 #include "formats.h"
+#include "query_pool.h"
+#include "rast/render/raster_statistics.h"
 #include "rast/render/targets.h"
 
+#include <array>
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -13,6 +17,10 @@ namespace tilevk::shader {
 class Program;
 class Bindings;
 }  // namespace tilevk::shader
+namespace tilevk::rast::render {
+struct DrawCall;
+struct PipelineState;
+}  // namespace tilevk::rast::render
 
 namespace tilevk::icd {
 
@@ -86,6 +94,29 @@ struct ExecState {
     // Queries ended inside a render pass: their last draws may still be binned; they become available when the
     // renderer's pass ends (finish_rendering).
     std::vector<std::pair<QueryPool*, uint32_t>> ended_in_pass;
+    // Pipeline statistics, kept as llvmpipe keeps them: running totals (zeroed when a query begins while none is
+    // active) and, per active query, its totals at begin (QueryPool::Slot::stats); a query's counts are the
+    // difference at its end.
+    StatisticCounters statistics_totals{};
+    struct ActiveStatistics {
+        QueryPool* pool;
+        uint32_t query;
+        size_t first_epoch;  // its first raster_epochs entry
+    };
+    std::vector<ActiveStatistics> statistics_queries;  // the active ones
+    // The renderer's counts (CLIPPING_PRIMITIVES, fragment-shader blocks) come per draw, the fragment blocks only
+    // once its tiles are rendered; lavapipe bins begin/end commands so a query counts exactly the draws between
+    // them. Each change of the active set starts an epoch (draws point at raster_epochs.back()), so a query's
+    // counts are the sum of the epochs it was active in, read when its draws are rendered. (Boxed, so that draws keep
+    // their address; not a std::deque, whose construction allocates in every submission.)
+    std::vector<std::unique_ptr<rast::render::RasterStatistics>> raster_epochs;
+    struct EndedStatistics {
+        QueryPool* pool;
+        uint32_t query;
+        size_t first_epoch, end_epoch;
+        StatisticCounters totals;  // statistics_totals at its end
+    };
+    std::vector<EndedStatistics> statistics_ended;  // ended, made available once their draws are rendered
     // A query command inside the render pass before the renderer's next scene began: that scene is not linear
     // (note_query_command_in_pass).
     bool query_command_pending = false;
@@ -175,6 +206,23 @@ void publish_ended_queries(ExecState& st);
 void finish_queries(ExecState& st);
 // The sample counter of the active occlusion query, or null.
 uint64_t* active_occlusion_counter(const ExecState& st);
+
+// ---- pipeline statistics (execute_statistics.cpp) ----
+// A draw that lavapipe's draw module would run (render pass, pipeline, index buffer when indexed), while a
+// pipeline-statistics query is active: adds its vertex-side counts to st.statistics_totals. `s`: the draw's state;
+// `rasterizer_discard`: rasterizerDiscardEnable (the draw is not rendered, but draw still runs its vertices).
+void count_draw_statistics(ExecState& st, const rast::render::DrawCall& call, const rast::render::PipelineState& s,
+                           bool rasterizer_discard);
+// Where the renderer counts a draw's CLIPPING_PRIMITIVES and fragment-shader blocks (DrawCall::statistics):
+// the current epoch while a statistics query is active, else null.
+rast::render::RasterStatistics* active_raster_statistics(ExecState& st);
+// Statistics queries: begin (totals so far, a new epoch) and end (false if it was not active). An ended query is
+// made available by publish_statistics once its draws are rendered (at once outside a render pass).
+void begin_statistics(ExecState& st, QueryPool& pool, uint32_t query);
+bool end_statistics(ExecState& st, QueryPool& pool, uint32_t query);
+void publish_statistics(ExecState& st);
+// A dispatch of `workgroups` groups of `local_size` invocations each.
+void count_dispatch_statistics(ExecState& st, uint64_t workgroups, const std::array<uint32_t, 3>& local_size);
 
 // ---- transfer operations (execute_transfer.cpp) ----
 void exec_copy_buffer(const CmdCopyBuffer& c);

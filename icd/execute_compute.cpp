@@ -75,6 +75,7 @@ void run_dispatch(ExecState& st, const uint32_t base[3], const uint32_t count[3]
     layout_batches(program.interface().local_size, batches);
 
     const uint64_t groups = uint64_t(count[0]) * count[1] * count[2];
+    count_dispatch_statistics(st, groups, program.interface().local_size);
     rast::ThreadPool& pool = worker_pool(st);
     const uint64_t tasks = std::min<uint64_t>(groups, uint64_t(pool.num_workers()) * kTasksPerWorker);
     const std::atomic<bool>* stop = st.stop;

@@ -376,12 +376,22 @@ const rr::PipelineState& draw_state(ExecState& st) {
 void run_draw(ExecState& st, rr::DrawCall& call) {
     const Pipeline* p = st.bound.pipeline;
     const uint32_t draw_number = st.draw_number++;
-    if (st.render_pass == nullptr || p == nullptr || discards(p->dynamic, p->statics, st.bound.dyn)) return;
+    if (st.render_pass == nullptr || p == nullptr) return;
+    const BoundState& bs = st.bound;
+    if (call.indexed) {
+        const Buffer* b = bs.index_buffer;
+        if (b == nullptr || b->memory == nullptr || bs.index_offset > b->size) return;
+        call.index_data = b->data() + bs.index_offset;
+        call.index_bytes = uint32_t(std::min<VkDeviceSize>(b->size - bs.index_offset, UINT32_MAX));
+        call.index_size = bs.index_type == VK_INDEX_TYPE_UINT8_EXT ? 1 : bs.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
+    }
+    const bool discarded = discards(p->dynamic, p->statics, bs.dyn);
+    if (!st.statistics_queries.empty()) count_draw_statistics(st, call, draw_state(st), discarded);
+    if (discarded) return;
     DrawContext& ctx = *st.draw;
     call.id = uint32_t(ctx.origins.size());
     ctx.origins.push_back({to_handle(const_cast<Pipeline*>(p)), st.submit_index, st.command_buffer_index, draw_number});
     if (!ctx.active) begin_rendering(st, p->state.samples);
-    const BoundState& bs = st.bound;
     for (uint32_t i = 0; i < BoundState::kMaxVertexBuffers; ++i) {
         rr::VertexBufferBinding vb;
         if (const Buffer* b = bs.vertex_buffers[i]; b && b->memory && bs.vertex_offsets[i] <= b->size) {
@@ -392,17 +402,11 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
         }
         call.vertex_buffers.push_back(vb);
     }
-    if (call.indexed) {
-        const Buffer* b = bs.index_buffer;
-        if (b == nullptr || b->memory == nullptr || bs.index_offset > b->size) return;
-        call.index_data = b->data() + bs.index_offset;
-        call.index_bytes = uint32_t(std::min<VkDeviceSize>(b->size - bs.index_offset, UINT32_MAX));
-        call.index_size = bs.index_type == VK_INDEX_TYPE_UINT8_EXT ? 1 : bs.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
-    }
     shader::Bindings& bindings = ctx.bindings;
     bindings.clear();
     build_bindings(st, bindings);
     call.samples_passed = active_occlusion_counter(st);
+    call.statistics = active_raster_statistics(st);
     const std::string err = ctx.renderer.draw(draw_state(st), call, bindings);
     if (!err.empty() && !ctx.warned) {
         log_error("vkQueueSubmit: a draw was not rendered: %s", err.c_str());

@@ -1,4 +1,5 @@
-// Query commands at vkQueueSubmit: begin/end (occlusion), reset, timestamps, copies of results into a buffer.
+// Query commands at vkQueueSubmit: begin/end (occlusion, pipeline statistics), reset, timestamps, copies of results
+// into a buffer.
 // Occlusion counts come from rast/render: each draw recorded while a query is active carries a pointer to the
 // query's value (DrawCall::samples_passed), to which the renderer adds the draw's passing samples once its tiles
 // are rendered.
@@ -17,11 +18,21 @@ uint64_t* active_occlusion_counter(const ExecState& st) {
 }
 
 void publish_ended_queries(ExecState& st) {
+    publish_statistics(st);
     for (auto [pool, query] : st.ended_in_pass) pool->make_available(query);
     st.ended_in_pass.clear();
 }
 
 void finish_queries(ExecState& st) {
+    while (!st.statistics_queries.empty()) {
+        QueryPool* pool = st.statistics_queries.back().pool;
+        const uint32_t query = st.statistics_queries.back().query;
+        log_error(
+            "vkQueueSubmit: pipeline-statistics query %u was begun and never ended in its command buffer; "
+            "ended now",
+            query);
+        end_statistics(st, *pool, query);
+    }
     if (st.occlusion_pool != nullptr) {
         log_error("vkQueueSubmit: occlusion query %u was begun and never ended in its command buffer; ended now",
                   st.occlusion_query);
@@ -42,7 +53,13 @@ uint32_t view_query(const ExecState& st, uint32_t query) {
 
 void exec_query(ExecState& st, const CmdBeginQuery& c) {
     const uint32_t query = view_query(st, c.query);
-    if (c.pool->type != VK_QUERY_TYPE_OCCLUSION) {
+    if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS && query < c.pool->count) {
+        end_statistics(st, *c.pool, query);  // begun twice (invalid usage): restarted
+        begin_statistics(st, *c.pool, query);
+        note_query_command_in_pass(st);  // lavapipe bins it into every tile (lp_setup_begin_query)
+        return;
+    }
+    if (c.pool->type != VK_QUERY_TYPE_OCCLUSION && c.pool->type != VK_QUERY_TYPE_PIPELINE_STATISTICS) {
         log_error("vkCmdBeginQuery: a %s pool cannot be begun; ignored", vk_enum_name(c.pool->type));
         return;
     }
@@ -58,6 +75,12 @@ void exec_query(ExecState& st, const CmdBeginQuery& c) {
 
 void exec_query(ExecState& st, const CmdEndQuery& c) {
     const uint32_t query = view_query(st, c.query);
+    if (c.pool->type == VK_QUERY_TYPE_PIPELINE_STATISTICS) {
+        if (!end_statistics(st, *c.pool, query))
+            log_error("vkCmdEndQuery: pipeline-statistics query %u is not active; ignored", query);
+        note_query_command_in_pass(st);
+        return;
+    }
     if (c.pool != st.occlusion_pool || query != st.occlusion_query) {
         log_error("vkCmdEndQuery: query %u is not the active occlusion query; ignored", query);
         return;

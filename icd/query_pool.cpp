@@ -40,6 +40,25 @@ void QueryPool::write_timestamp(uint32_t query, uint64_t ns) {
     available_cv.notify_all();
 }
 
+void QueryPool::begin_statistics(uint32_t query, const StatisticCounters& totals) {
+    if (query >= count) return;
+    std::lock_guard lock(mutex);
+    slots[query] = Slot{0, State::kPending, totals};
+}
+
+void QueryPool::end_statistics(uint32_t query, const StatisticCounters& totals, const StatisticCounters& raster) {
+    if (query >= count) return;
+    {
+        std::lock_guard lock(mutex);
+        Slot& s = slots[query];
+        // Unsigned differences, as llvmpipe_end_query takes them: a total that went down (lavapipe zeroes the
+        // clipping invocations at a draw that discards rasterization) wraps.
+        for (uint32_t i = 0; i < kStatisticCount; ++i) s.stats[i] = totals[i] - s.stats[i] + raster[i];
+        s.state = State::kAvailable;
+    }
+    available_cv.notify_all();
+}
+
 uint64_t timestamp_now_ns() {
     // steady_clock is CLOCK_MONOTONIC on Linux, the clock lavapipe's os_time_get_nano reads.
     return uint64_t(
@@ -48,12 +67,14 @@ uint64_t timestamp_now_ns() {
 }
 
 VkResult write_query_results(QueryPool& pool, uint32_t first, uint32_t n, uint8_t* dst, size_t dst_size,
-                             VkDeviceSize stride, VkQueryResultFlags flags, bool may_wait) {
+                             VkDeviceSize stride, VkQueryResultFlags flags, bool host) {
     const bool wide = flags & VK_QUERY_RESULT_64_BIT;
     const bool with_availability = flags & VK_QUERY_RESULT_WITH_AVAILABILITY_BIT;
     const bool partial = flags & VK_QUERY_RESULT_PARTIAL_BIT;
     const size_t word = wide ? 8 : 4;
-    const size_t entry = word * (with_availability ? 2 : 1);
+    const bool statistics = pool.type == VK_QUERY_TYPE_PIPELINE_STATISTICS;
+    const size_t values = statistics ? size_t(__builtin_popcount(pool.statistics)) : 1;
+    const size_t entry = word * (values + (with_availability ? 1 : 0));
     if (first >= pool.count || n > pool.count - first) {
         log_error("query results: queries [%u, %u) lie outside the pool of %u; only those inside are written", first,
                   first + n, pool.count);
@@ -77,13 +98,23 @@ VkResult write_query_results(QueryPool& pool, uint32_t first, uint32_t n, uint8_
             break;
         }
         QueryPool::Slot& slot = pool.slots[first + i];
-        if ((flags & VK_QUERY_RESULT_WAIT_BIT) && may_wait)
+        if ((flags & VK_QUERY_RESULT_WAIT_BIT) && host)
             pool.available_cv.wait(lock, [&] { return slot.state != QueryPool::State::kPending; });
         const bool ready = slot.state == QueryPool::State::kAvailable;
         if (!ready && !partial) result = VK_NOT_READY;
         uint8_t* at = dst + offset;
-        if (ready || partial) put(at, slot.value);
-        if (with_availability) put(at + word, ready ? 1 : 0);
+        if ((ready || partial) && statistics) {
+            size_t k = 0;
+            for (uint32_t bit = 0; bit < kStatisticCount; ++bit)
+                if (pool.statistics & (1u << bit)) put(at + word * k++, slot.stats[bit]);
+        } else if (ready || partial) {
+            put(at, slot.value);
+        }
+        // lavapipe's vkGetQueryPoolResults steps over one value, not all of them, when it writes none (an
+        // unavailable statistics query without PARTIAL: lvp_query.c), so its availability word lands after the
+        // first value's slot. Matched on the host; vkCmdCopyQueryPoolResults places it correctly.
+        const size_t skipped = statistics && host && !ready && !partial ? 1 : values;
+        if (with_availability) put(at + word * skipped, ready ? 1 : 0);
     }
     return result;
 }
@@ -91,17 +122,23 @@ VkResult write_query_results(QueryPool& pool, uint32_t first, uint32_t n, uint8_
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateQueryPool(VkDevice device, const VkQueryPoolCreateInfo* pCreateInfo,
                                                    const VkAllocationCallbacks* pAllocator, VkQueryPool* pQueryPool) {
     Device* dev = from_handle<Device>(device);
-    if (pCreateInfo->queryType == VK_QUERY_TYPE_PIPELINE_STATISTICS)
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT,
-                    "vkCreateQueryPool: pipeline statistics queries are not supported (pipelineStatisticsQuery is "
-                    "not reported)");
-    if (pCreateInfo->queryType != VK_QUERY_TYPE_OCCLUSION && pCreateInfo->queryType != VK_QUERY_TYPE_TIMESTAMP)
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: %s is not supported",
-                    vk_enum_name(pCreateInfo->queryType));
+    const VkQueryType type = pCreateInfo->queryType;
+    if (type != VK_QUERY_TYPE_OCCLUSION && type != VK_QUERY_TYPE_TIMESTAMP && type != VK_QUERY_TYPE_PIPELINE_STATISTICS)
+        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: %s is not supported", vk_enum_name(type));
+    if (type == VK_QUERY_TYPE_PIPELINE_STATISTICS) {
+        if (!dev->enabled_features.core10.pipelineStatisticsQuery)
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT,
+                        "vkCreateQueryPool: VK_QUERY_TYPE_PIPELINE_STATISTICS needs the pipelineStatisticsQuery "
+                        "feature, which the device was created without");
+        if (const VkQueryPipelineStatisticFlags missing = pCreateInfo->pipelineStatistics & ~kSupportedStatistics)
+            return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateQueryPool: tilevk does not count %s",
+                        vk_flags_name<VkQueryPipelineStatisticFlagBits>(missing).c_str());
+    }
     QueryPool* pool =
         create_object<QueryPool>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (pool == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateQueryPool: out of host memory");
-    pool->type = pCreateInfo->queryType;
+    pool->type = type;
+    if (type == VK_QUERY_TYPE_PIPELINE_STATISTICS) pool->statistics = pCreateInfo->pipelineStatistics;
     pool->count = pCreateInfo->queryCount;
     pool->slots.reset(new (std::nothrow) QueryPool::Slot[std::max(pool->count, 1u)]);
     if (!pool->slots) {

@@ -13,6 +13,7 @@
 #include "rast/geometry/planes.h"
 #include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
+#include "rast/render/raster_statistics.h"
 #include "rast/render/targets.h"
 #include "rast/render/vertex_stage.h"
 #include "shader/program.h"
@@ -113,6 +114,9 @@ struct DrawCall {
     // per-sample masks after the late depth/stencil test, as lavapipe counts them) is added here when the draw's
     // tiles are rendered (Renderer::end or a mid-pass flush). Must stay valid until then.
     uint64_t* samples_passed = nullptr;
+    // Pipeline-statistics query: when set, the draw's counts are added here (the fragment blocks when its tiles are
+    // rendered). Must stay valid until then. Null: nothing is counted (no cost to the draw).
+    RasterStatistics* statistics = nullptr;
     // The caller's number for this draw, reported by Renderer::interrupted_draw when the stop flag cut it short.
     uint32_t id = 0;
 };

@@ -237,7 +237,7 @@ bool scene_may_hide(const Framebuffer& fb, const DrawRecords& draws) {
     bool any = false;
     for (size_t k = 0; k < draws.size(); ++k) {
         const DrawRecord& d = draws[k];
-        if (d.samples_passed || !d.pipe) return false;
+        if (d.samples_passed || d.statistics || !d.pipe) return false;  // llvmpipe: no bin reset in a query's scene
         if (const shader::Program* fs = d.pipe->fragment) {
             const shader::ProgramInterface& i = fs->interface();
             if (i.writes_device_addresses) return false;

@@ -92,6 +92,7 @@ struct FragmentWorker {
     alignas(16) uint8_t uniform_rows[kMaxColorTargets][4][16] = {};
     uint32_t uniform_rows_valid = 0;
     std::vector<uint64_t> samples_passed;  // per draw record of the current scene
+    std::vector<uint64_t> shader_blocks;   // per draw record: FragmentStage::shader_blocks (pipeline statistics)
     // Stage timing (stage_timer.h), when on: the current tile's start (CPU time), and its fragment-stage and shading
     // ticks.
     uint64_t tile_cpu_start = 0, tile_consumer = 0, tile_shade = 0;

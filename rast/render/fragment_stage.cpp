@@ -44,6 +44,32 @@ uint64_t FragmentStage::samples_passed(uint32_t draw) const {
     return n;
 }
 
+uint64_t FragmentStage::shader_blocks(uint32_t draw) const {
+    uint64_t n = 0;
+    for (const auto& w : workers_)
+        if (draw < w->shader_blocks.size()) n += w->shader_blocks[draw];
+    return n;
+}
+
+namespace {
+// FRAGMENT_SHADER_INVOCATIONS / 16 of one primitive in one tile. llvmpipe's generated 4x4-block fragment function
+// adds 1 to its thread's counter on every call, before any test and whatever its mask (lp_state_fs.c; lavapipe's
+// NIR shaders, its dummy one included, always pass the `num_instructions > 1` guard: nir_tgsi_scan_shader sets 2),
+// and lp_query.c multiplies the sum by 16. Its rasterizer calls the function once per 4x4 block with coverage:
+// partial blocks with a non-zero mask (lp_rast_tri_tmp.h, lp_rast_rect.c) and every block of a fully covered 16x16
+// block or 64x64 tile (lp_rast_shade_tile, up to the framebuffer's edge, which full squares never cross). Once per
+// block also under sample shading (the sample loop is inside the function) and at any sample count. Linear bins
+// (lp_rast_linear.c) call it only where the linear shader declines (lp_rast_linear_fallback.c: every block of the
+// box), which is where primitive() goes on to the general path.
+uint64_t shader_calls(const PrimCoverage& cov) {
+    uint64_t n = cov.num_blocks;
+    for (size_t i = 0; i < cov.num_blocks16; ++i)
+        for (const uint16_t m : cov.blocks16[i].mask) n += m != 0;
+    for (size_t i = 0; i < cov.num_full; ++i) n += uint64_t(cov.full[i].size / 4) * uint64_t(cov.full[i].size / 4);
+    return n;
+}
+}  // namespace
+
 uint64_t FragmentStage::loop_limit_hits() const {
     uint64_t hits = 0;
     for (const auto& w : workers_) hits += w->scratch.loop_limit_hits();
@@ -239,6 +265,7 @@ void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, con
         w->hits_seen = w->scratch.loop_limit_hits();
         w->uniform_prim = nullptr;  // prim records are rebuilt for every scene
         w->samples_passed.assign(draws.size(), 0);
+        w->shader_blocks.assign(draws.size(), 0);
     }
     // Which worker runs which fragment program depends on timing: every worker's scratch is grown for all of them
     // now, so that rendering allocates nothing.
@@ -369,6 +396,7 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
         }
     }
     FragmentWorker& w = *workers_[worker];
+    if (draw.statistics) w.shader_blocks[prim.draw] += shader_calls(cov);  // only inside a statistics query
     const DrawPlan* plan = fast_ && plans_[prim.draw].fast ? &plans_[prim.draw] : nullptr;
     const BlockFn fast = block_fn_;  // the fast pipeline for this CPU (fragment_plan.h)
     const BlockArgs args{&fb_, &draw, plan, &prim, prim.planes, cov.front_facing, fused_};

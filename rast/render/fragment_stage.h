@@ -57,6 +57,9 @@ class FragmentStage final : public CoverageConsumer {
     // popcount(final mask) per sample plane over all blocks. Counted per (draw, worker), so no two threads share a
     // counter and the sum does not depend on the thread count or on which worker rendered which tile.
     uint64_t samples_passed(uint32_t draw) const;
+    // Pipeline statistics (only for draws with DrawRecord::statistics): the calls llvmpipe makes to its 4x4-block
+    // fragment function for draw record `draw` in the scene last rasterized, counted as samples_passed is.
+    uint64_t shader_blocks(uint32_t draw) const;
 
     // Fragment-shader runs the loop watchdog cut short so far (shader::Scratch::loop_limit_hits of every worker).
     uint64_t loop_limit_hits() const;

@@ -156,8 +156,10 @@ bool Renderer::render_scene(const TileResolves* resolves) {
         scene_->rasterize(*fragment_, pool_, resolves != nullptr);
         fragment_->set_tile_resolves(nullptr);
         resolved = resolves != nullptr;
-        for (uint32_t d = 0; d < draws_.size(); ++d)
+        for (uint32_t d = 0; d < draws_.size(); ++d) {
             if (uint64_t* sink = draws_[d].samples_passed) *sink += fragment_->samples_passed(d);
+            if (RasterStatistics* sink = draws_[d].statistics) sink->fragment_blocks += fragment_->shader_blocks(d);
+        }
     }
     scene_->reset();
     prims_.clear();
@@ -209,6 +211,7 @@ void Renderer::record_draw(DrawRecord& rec, const PipelineState& pipe, const Dra
     rec.pipe = &pipe;
     rec.id = call.id;
     rec.samples_passed = call.samples_passed;
+    rec.statistics = call.statistics;
     rec.bindings = bindings;
     rec.push_constants.assign(bindings.push_constants.begin(), bindings.push_constants.end());
     rec.bindings.push_constants = rec.push_constants;

@@ -2,6 +2,7 @@
 // lines and triangles (one by one or set up on the workers), llvmpipe's rectangles and the draw module's triangle
 // pairing and vbuf stage that feed them (lp_setup_vbuf.c, lp_setup_rect.c, lp_setup_analysis.c).
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <optional>
 
@@ -16,6 +17,15 @@
 #include "rast/render/renderer.h"
 
 namespace tilevk::rast::render {
+
+namespace {
+// CLIPPING_PRIMITIVES (pipeline statistics) of n triangles reaching llvmpipe's setup: lp_setup_tri.c triangle_cw,
+// triangle_ccw and triangle_both count on entry, whatever the triangle's winding, area or position; cull
+// FRONT_AND_BACK installs triangle_noop, which counts nothing. Rectangles (lp_setup_rect.c) are not counted.
+void count_setup_triangles(const DrawRecord& rec, uint64_t n) {
+    if (rec.pipe->cull != CullMode::kBoth) rec.statistics->clipping_primitives += n;
+}
+}  // namespace
 
 // The plane setup of every triangle and rectangle of the draw: lavapipe's flatshade_first, the target's bias.
 geometry::PlaneSetupConfig Renderer::plane_setup_config(const DrawRecord& rec) const {
@@ -255,6 +265,7 @@ uint32_t Renderer::push_prim(uint32_t draw, PrimKind kind, const geometry::Attri
 
 void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
+    if (rec.statistics) ++rec.statistics->clipping_primitives;  // try_setup_line counts on entry
     geometry::LineSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
     cfg.mode = pipe.line_mode;
@@ -284,6 +295,8 @@ void Renderer::add_line(uint32_t draw, const DrawRecord& rec, const float* v0, c
 
 void Renderer::add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing) {
     const PipelineState& pipe = *rec.pipe;
+    // try_setup_point counts once it has the point's box, before any test on it
+    if (rec.statistics) ++rec.statistics->clipping_primitives;
     geometry::PointSetupConfig cfg;
     cfg.layout = rec.varyings.layout();
     cfg.multisample = fb_.samples > 1;
@@ -386,16 +399,19 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
             std::memcpy(prims_.record(payload) + kPrimHeaderFloats, attribs,
                         sizeof(float) * kPlaneFloats * pcfg.layout.num_attribs);
     };
+    std::atomic<uint64_t> reached_setup{0};  // triangles handed to llvmpipe's setup (pipeline statistics only)
     pool_.run(chunks, [&](unsigned w, size_t chunk) {
         geometry::ScopedFlushDenormals flush_denormals;  // setup and planes as on the drawing thread
         geometry::AttribPlane attribs[shader::kMaxLocations + 2];
         const uint32_t end = std::min<uint32_t>(n, uint32_t(chunk) * kChunk + kChunk);
+        uint64_t reached = 0;
         for (uint32_t i = uint32_t(chunk) * kChunk; i < end; ++i) {
             const float* v[3];
             uint32_t m[3];
             const bool clipped = triangle(i, v, m);
             if (!tp_cfg.pipeline[i]) {
                 set_up(piece_first_[i], v[0], v[1], v[2], attribs);
+                ++reached;
                 continue;
             }
             geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
@@ -410,14 +426,18 @@ void Renderer::add_triangles_parallel(uint32_t draw, const DrawRecord& rec, cons
                                                                   geometry::win_pos(b), geometry::win_pos(c)))
                     continue;
                 set_up(piece_first_[i] + t, a, b, c, attribs);
+                ++reached;
             }
         }
+        if (rec.statistics) reached_setup.fetch_add(reached, std::memory_order_relaxed);
     });
+    if (rec.statistics) count_setup_triangles(rec, reached_setup.load(std::memory_order_relaxed));
     scene_->bin_reserved(scene_first, total, pool_);
 }
 
 void Renderer::add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2) {
     const PipelineState& pipe = *rec.pipe;
+    if (rec.statistics) count_setup_triangles(rec, 1);
     TriangleInput tri;
     const float* w[3] = {geometry::win_pos(v0), geometry::win_pos(v1), geometry::win_pos(v2)};
     for (int i = 0; i < 3; ++i) {

@@ -30,6 +30,7 @@ struct DrawRecord {
     fragment::DepthStencilState depth_stencil;  // with the viewport depth range applied
     uint8_t depth_mode = 0;                     // fragment::DepthModeBits
     uint64_t* samples_passed = nullptr;         // DrawCall::samples_passed
+    RasterStatistics* statistics = nullptr;     // DrawCall::statistics
     // llvmpipe's linear shading for this draw's rectangles (fragment/linear.h): the varying slot the shader copies
     // to colour 0, or -1 when tilevk does not shade this draw linearly (shader class, blending, write mask, ...).
     bool linear = false;
@@ -53,6 +54,7 @@ struct DrawRecord {
         depth_stencil = {};
         depth_mode = 0;
         samples_passed = nullptr;
+        statistics = nullptr;
         linear = false;
         linear_slot = -1;
         linear_perspective = true;

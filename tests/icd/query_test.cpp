@@ -713,7 +713,8 @@ TEST(QueriesInvalid, BufferViewsDispatchSparseStatistics) {
     VkQueue queue = VK_NULL_HANDLE;
     vkGetDeviceQueue(d, 0, 0, &queue);
     EXPECT_EQ(vkQueueBindSparse(queue, 0, nullptr, VK_NULL_HANDLE), VK_ERROR_FEATURE_NOT_PRESENT);
-    // Pipeline statistics: refused at pool creation.
+    // Pipeline statistics: refused at pool creation, this device was made without pipelineStatisticsQuery
+    // (pipeline_statistics_test.cpp tests the pools).
     VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
     qci.queryCount = 4;

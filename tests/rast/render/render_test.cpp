@@ -126,6 +126,64 @@ TEST_F(RenderTest, FlatTriangleCoverageMatchesTopLeftRule) {
     EXPECT_EQ(mismatches, 0);
 }
 
+// Pipeline statistics (DrawCall::statistics, docs/lavapipe-rules.md §13): every triangle reaching setup is one
+// clipping primitive, and llvmpipe calls its fragment function once per 4x4 block in which the triangle covers a
+// pixel (whole 64x64 tiles and 16x16 blocks included), counted here from the top-left rule; cull FRONT_AND_BACK
+// counts nothing. The same for any thread count and method, and nothing without a statistics sink.
+TEST_F(RenderTest, StatisticsCountSetupTrianglesAndCoveredBlocks) {
+    const int w = 141, h = 99;  // a whole tile at (0, 0), partial tiles and blocks at the edges
+    const std::vector<Vertex> v = {{{-1, -1, 0.5f, 1}, {1, 0, 0, 1}},      {{1, -1, 0.5f, 1}, {1, 0, 0, 1}},
+                                   {{-1, 1, 0.5f, 1}, {1, 0, 0, 1}},       {{-0.9f, -0.8f, 0.5f, 1}, {0, 1, 0, 1}},
+                                   {{0.8f, -0.3f, 0.5f, 1}, {0, 1, 0, 1}}, {{-0.2f, 0.95f, 0.5f, 1}, {0, 1, 0, 1}},
+                                   {{0.31f, 0.3f, 0.5f, 1}, {0, 0, 1, 1}}, {{0.37f, 0.33f, 0.5f, 1}, {0, 0, 1, 1}},
+                                   {{0.32f, 0.41f, 0.5f, 1}, {0, 0, 1, 1}}};
+    uint64_t blocks = 0, pixels = 0;
+    for (size_t t = 0; t < v.size(); t += 3) {
+        float wx[3], wy[3];
+        for (int i = 0; i < 3; ++i) {
+            const float sx = 0.5f * w, sy = 0.5f * h;
+            wx[i] = Renderer::fused() ? std::fma(v[t + i].pos[0], sx, sx) : v[t + i].pos[0] * sx + sx;
+            wy[i] = Renderer::fused() ? std::fma(v[t + i].pos[1], sy, sy) : v[t + i].pos[1] * sy + sy;
+        }
+        for (int by = 0; by < h; by += 4)
+            for (int bx = 0; bx < w; bx += 4) {
+                int n = 0;
+                for (int py = by; py < std::min(by + 4, h); ++py)
+                    for (int px = bx; px < std::min(bx + 4, w); ++px) n += covered(wx, wy, px, py);
+                blocks += n != 0;
+                pixels += uint64_t(n);
+            }
+    }
+    EXPECT_GT(blocks, 64u * 64u / 16u);  // more than the whole tile
+    EXPECT_NE(blocks * 16, pixels);      // a count per pixel would differ
+    for (const unsigned threads : {1u, 2u})
+        for (const Method m : {Method::kHier, Method::kReference}) {
+            Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 0), {}};
+            ThreadPool pool(threads);
+            Renderer r(pool, m);
+            PipelineState p = make_pipeline(vs.get(), fs.get(), w, h);
+            PipelineState culled = p;
+            culled.cull = CullMode::kBoth;
+            RasterStatistics counted, none;
+            r.begin(make_fb(img, false));
+            for (const auto& [pipe, sink] : {std::pair{&p, &counted}, std::pair{&culled, &none},
+                                             std::pair<PipelineState*, RasterStatistics*>{&p, nullptr}}) {
+                DrawCall call;
+                call.count = uint32_t(v.size());
+                call.vertex_buffers = {
+                    {reinterpret_cast<const uint8_t*>(v.data()), uint32_t(v.size() * sizeof(Vertex))}};
+                call.statistics = sink;
+                shader::Bindings bindings;
+                ASSERT_EQ(r.draw(*pipe, call, bindings), "");
+            }
+            r.end();
+            EXPECT_EQ(counted.clipping_primitives, 3u) << threads << " threads";
+            EXPECT_EQ(counted.fragment_blocks, blocks) << threads << " threads";
+            EXPECT_EQ(none.clipping_primitives, 0u);
+            EXPECT_EQ(none.fragment_blocks, 0u);
+        }
+}
+
 TEST_F(RenderTest, DepthTestKeepsNearerTriangleAndIsThreadCountIndependent) {
     const int w = 130, h = 70;
     auto render = [&](unsigned threads) {
