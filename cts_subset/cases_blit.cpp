@@ -28,11 +28,13 @@ uint32_t texel_bytes(VkFormat f) {
         case VK_FORMAT_R8G8_UNORM:
         case VK_FORMAT_D16_UNORM:
         case VK_FORMAT_R16_UNORM:
+        case VK_FORMAT_R16_UINT:
         case VK_FORMAT_R5G6B5_UNORM_PACK16:
         case VK_FORMAT_A1R5G5B5_UNORM_PACK16:
             return 2;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R16G16B16A16_SNORM:
+        case VK_FORMAT_R16G16B16A16_SINT:
         case VK_FORMAT_R32G32_SFLOAT:
             return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT:
@@ -345,6 +347,9 @@ void add_blit_cases(CaseList& out) {
     add(out, "a1r5g5b5_from_rgba8", whole(kRgba8, 32, 32, VK_FORMAT_A1R5G5B5_UNORM_PACK16, 40, 40, kNearest));
     add(out, "a2b10g10r10_linear_scale",
         whole(VK_FORMAT_A2B10G10R10_UNORM_PACK32, 32, 24, VK_FORMAT_A2B10G10R10_UNORM_PACK32, 19, 41, kLinear));
+    add(out, "r16_uint_nearest_scale", whole(VK_FORMAT_R16_UINT, 32, 32, VK_FORMAT_R16_UINT, 45, 21, kNearest));
+    add(out, "rgba16_sint_to_rgba8_sint",
+        whole(VK_FORMAT_R16G16B16A16_SINT, 30, 30, VK_FORMAT_R8G8B8A8_SINT, 17, 43, kNearest));
     {
         BlitSpec s{kRgba8, kRgba8, 64, 64, 64, 64, kLinear, {region(0, 0, 32, 32, 0, 0, 16, 16, kC, 1, 2)}};
         s.src_levels = s.dst_levels = 3;
