@@ -23,11 +23,18 @@ struct BlitSpec {
 uint32_t texel_bytes(VkFormat f) {
     switch (f) {
         case VK_FORMAT_R8_UNORM:
+        case VK_FORMAT_R8_SNORM:
             return 1;
         case VK_FORMAT_R8G8_UNORM:
         case VK_FORMAT_D16_UNORM:
+        case VK_FORMAT_R16_UNORM:
+        case VK_FORMAT_R16_UINT:
+        case VK_FORMAT_R5G6B5_UNORM_PACK16:
+        case VK_FORMAT_A1R5G5B5_UNORM_PACK16:
             return 2;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R16G16B16A16_SNORM:
+        case VK_FORMAT_R16G16B16A16_SINT:
         case VK_FORMAT_R32G32_SFLOAT:
             return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT:
@@ -331,6 +338,18 @@ void add_blit_cases(CaseList& out) {
     add(out, "r32f_linear_scale", whole(VK_FORMAT_R32_SFLOAT, 32, 32, VK_FORMAT_R32_SFLOAT, 45, 21, kLinear));
     add(out, "rg8_linear_scale", whole(VK_FORMAT_R8G8_UNORM, 32, 16, VK_FORMAT_R8G8_UNORM, 50, 9, kLinear));
     add(out, "bgra_src_linear_scale", whole(kBgra8, 32, 32, kRgba8, 47, 13, kLinear));
+    // a sample of the further formats (tests/icd/blit_test.cpp Formats/* blits each of them)
+    add(out, "r16_unorm_linear_scale", whole(VK_FORMAT_R16_UNORM, 32, 32, VK_FORMAT_R16_UNORM, 45, 21, kLinear));
+    add(out, "r8_snorm_linear_scale", whole(VK_FORMAT_R8_SNORM, 32, 32, VK_FORMAT_R8_SNORM, 19, 41, kLinear));
+    add(out, "rgba16_snorm_to_float", whole(VK_FORMAT_R16G16B16A16_SNORM, 30, 30, kRgba32f, 17, 43, kLinear));
+    add(out, "r5g6b5_linear_scale",
+        whole(VK_FORMAT_R5G6B5_UNORM_PACK16, 32, 32, VK_FORMAT_R5G6B5_UNORM_PACK16, 45, 21, kLinear));
+    add(out, "a1r5g5b5_from_rgba8", whole(kRgba8, 32, 32, VK_FORMAT_A1R5G5B5_UNORM_PACK16, 40, 40, kNearest));
+    add(out, "a2b10g10r10_linear_scale",
+        whole(VK_FORMAT_A2B10G10R10_UNORM_PACK32, 32, 24, VK_FORMAT_A2B10G10R10_UNORM_PACK32, 19, 41, kLinear));
+    add(out, "r16_uint_nearest_scale", whole(VK_FORMAT_R16_UINT, 32, 32, VK_FORMAT_R16_UINT, 45, 21, kNearest));
+    add(out, "rgba16_sint_to_rgba8_sint",
+        whole(VK_FORMAT_R16G16B16A16_SINT, 30, 30, VK_FORMAT_R8G8B8A8_SINT, 17, 43, kNearest));
     {
         BlitSpec s{kRgba8, kRgba8, 64, 64, 64, 64, kLinear, {region(0, 0, 32, 32, 0, 0, 16, 16, kC, 1, 2)}};
         s.src_levels = s.dst_levels = 3;
