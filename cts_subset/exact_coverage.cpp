@@ -109,6 +109,7 @@ std::vector<ExactCover> exact_triangle_coverage(const float v0[4], const float v
     constexpr int64_t kInvMargin = 128;
     const int64_t W = width, H = height;
     std::vector<Int> grad2;
+    grad2.reserve(forms.size());
     for (const Vec3& f : forms) grad2.push_back(4 * (f.x * f.x * Int(H * H) + f.y * f.y * Int(W * W)));
     for (uint32_t py = 0; py < height; ++py) {
         const Int Y((2 * int64_t(py) + 1 - H) * W);
