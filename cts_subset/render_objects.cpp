@@ -370,6 +370,52 @@ static VkStencilOpState other_ops(const VkStencilOpState& s) {
     return o;
 }
 
+namespace {
+
+// The rasterization state of a draw with its extension structs (provoking vertex, depth clip, line mode) chained
+// in; a dynamic draw bakes the opposite of what its dynamic state will set.
+struct RasterizationChain {
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    VkPipelineRasterizationProvokingVertexStateCreateInfoEXT provoking{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT};
+    VkPipelineRasterizationDepthClipStateCreateInfoEXT depth_clip{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT};
+    VkPipelineRasterizationLineStateCreateInfoEXT line{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
+};
+
+void fill_rasterization(const Draw& d, RasterizationChain& r) {
+    r.rs.depthClampEnable = d.depth_clamp;
+    r.rs.polygonMode = d.polygon_mode;
+    r.rs.cullMode = d.cull;
+    r.rs.frontFace = d.front_face;
+    r.rs.depthBiasEnable = d.depth_bias;
+    r.rs.depthBiasConstantFactor = d.bias_constant;
+    r.rs.depthBiasSlopeFactor = d.bias_slope;
+    r.rs.depthBiasClamp = d.bias_clamp;
+    r.rs.lineWidth = d.line_width;
+    r.provoking.provokingVertexMode = VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
+    r.depth_clip.depthClipEnable = d.depth_clip_enable.value_or(false);
+    r.line.lineRasterizationMode = d.line_mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
+    auto chain_rs = [&r](auto& ext) {
+        ext.pNext = r.rs.pNext;
+        r.rs.pNext = &ext;
+    };
+    if (d.provoking_last) chain_rs(r.provoking);
+    if (d.depth_clip_enable) chain_rs(r.depth_clip);
+    if (d.line_mode) chain_rs(r.line);
+    if (d.dynamic) {
+        r.rs.cullMode =
+            d.cull == VK_CULL_MODE_NONE ? VkCullModeFlags{VK_CULL_MODE_FRONT_AND_BACK} : VkCullModeFlags(~d.cull & 3);
+        r.rs.frontFace =
+            d.front_face == VK_FRONT_FACE_CLOCKWISE ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
+        r.rs.depthBiasEnable = !d.depth_bias;
+        r.rs.rasterizerDiscardEnable = VK_TRUE;
+    }
+}
+
+}  // namespace
+
 VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,
                          VkPipelineLayout layout, double& pipeline_ms) {
     VkShaderModule vs =
@@ -424,40 +470,9 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     vps.scissorCount = d.dynamic ? 0 : d.viewport_count;
     vps.pScissors = d.dynamic ? nullptr : scs_all.data();
 
-    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    rs.depthClampEnable = d.depth_clamp;
-    rs.polygonMode = d.polygon_mode;
-    rs.cullMode = d.cull;
-    rs.frontFace = d.front_face;
-    rs.depthBiasEnable = d.depth_bias;
-    rs.depthBiasConstantFactor = d.bias_constant;
-    rs.depthBiasSlopeFactor = d.bias_slope;
-    rs.depthBiasClamp = d.bias_clamp;
-    rs.lineWidth = d.line_width;
-    VkPipelineRasterizationProvokingVertexStateCreateInfoEXT provoking{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT};
-    provoking.provokingVertexMode = VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
-    VkPipelineRasterizationDepthClipStateCreateInfoEXT depth_clip{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT};
-    depth_clip.depthClipEnable = d.depth_clip_enable.value_or(false);
-    VkPipelineRasterizationLineStateCreateInfoEXT line{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
-    line.lineRasterizationMode = d.line_mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
-    auto chain_rs = [&rs](auto& ext) {
-        ext.pNext = rs.pNext;
-        rs.pNext = &ext;
-    };
-    if (d.provoking_last) chain_rs(provoking);
-    if (d.depth_clip_enable) chain_rs(depth_clip);
-    if (d.line_mode) chain_rs(line);
-    if (d.dynamic) {
-        rs.cullMode =
-            d.cull == VK_CULL_MODE_NONE ? VkCullModeFlags{VK_CULL_MODE_FRONT_AND_BACK} : VkCullModeFlags(~d.cull & 3);
-        rs.frontFace =
-            d.front_face == VK_FRONT_FACE_CLOCKWISE ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
-        rs.depthBiasEnable = !d.depth_bias;
-        rs.rasterizerDiscardEnable = VK_TRUE;
-    }
+    RasterizationChain raster;
+    fill_rasterization(d, raster);
+    const VkPipelineRasterizationStateCreateInfo& rs = raster.rs;
 
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = t.samples;
