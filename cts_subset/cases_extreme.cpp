@@ -231,6 +231,18 @@ const Regression kRegressions[] = {
 
 Scene regression_scene(const Regression& g);
 
+// `count` small ordinary triangles (ids from `first`), inside the viewport.
+std::vector<Vertex> small_triangles(int first, int count) {
+    std::vector<Vertex> small;
+    for (int i = first; i < first + count; ++i) {
+        const float x = -0.95f + 0.009f * float(i % 100), y = -0.95f + 0.015f * float(i / 100 % 20);
+        small.push_back(raw(x, y, 0.5f, 1.0f, kRed));
+        small.push_back(raw(x + 0.02f, y, 0.5f, 1.0f, kGreen));
+        small.push_back(raw(x, y + 0.03f, 0.5f, 1.0f, kBlue));
+    }
+    return small;
+}
+
 // The same triangle with `count` small ordinary ones after it (extreme_last: before it), all in one draw. After it,
 // in the same batch (so through draw's pipeline), they fill draw's vbuf: the extreme triangle reaches setup inside
 // draw_vbo, with denormals flushed. Before it, in a draw large enough for tilevk's parallel triangle path, it is
@@ -238,14 +250,25 @@ Scene regression_scene(const Regression& g);
 Scene with_small_triangles(const Regression& g, int count, bool extreme_last) {
     Scene s = regression_scene(g);
     std::vector<Vertex>& v = s.draws[0].vertices;
-    std::vector<Vertex> small;
-    for (int i = 0; i < count; ++i) {
-        const float x = -0.95f + 0.009f * float(i % 100), y = -0.95f + 0.015f * float(i / 100 % 20);
-        small.push_back(raw(x, y, 0.5f, 1.0f, kRed));
-        small.push_back(raw(x + 0.02f, y, 0.5f, 1.0f, kGreen));
-        small.push_back(raw(x, y + 0.03f, 0.5f, 1.0f, kBlue));
-    }
+    const std::vector<Vertex> small = small_triangles(0, count);
     v.insert(extreme_last ? v.begin() : v.end(), small.begin(), small.end());
+    return s;
+}
+
+// The same triangle twice in a large draw: mirrored in x in the middle (`before` small ones, it, `after` small ones;
+// mirrored so that both stay visible under the depth test) and as it is last. The middle one's batch goes through
+// draw's pipeline and is flushed by the next direct batch, inside draw_vbo (denormals flushed); the last one waits
+// in the vbuf until after draw_vbo (denormals kept). tilevk sets the draw up to its last direct batch on the
+// parallel path and the rest in order.
+Scene mid_and_end_of_large_draw(const Regression& g, int before, int after) {
+    Scene s = regression_scene(g);
+    std::vector<Vertex>& v = s.draws[0].vertices;
+    const std::vector<Vertex> extreme = v;
+    for (Vertex& m : v) m.pos[0] = -m.pos[0];
+    const std::vector<Vertex> head = small_triangles(0, before), tail = small_triangles(before, after);
+    v.insert(v.begin(), head.begin(), head.end());
+    v.insert(v.end(), tail.begin(), tail.end());
+    v.insert(v.end(), extreme.begin(), extreme.end());
     return s;
 }
 
@@ -288,6 +311,8 @@ void add_extreme_cases(CaseList& out) {
                                [&late_setup] { return with_small_triangles(late_setup, 200, false); }));
     out.push_back(extreme_case("extreme.regression.w_1e37_setup_after_large_draw",
                                [&late_setup] { return with_small_triangles(late_setup, 2100, true); }));
+    out.push_back(extreme_case("extreme.regression.w_1e37_setup_mid_and_end_of_large_draw",
+                               [&late_setup] { return mid_and_end_of_large_draw(late_setup, 1000, 1100); }));
     for (const HandCase& h : kHandCases)
         out.push_back(
             extreme_case(std::string("extreme.class.") + h.name, [h] { return one_extreme(h.x, h.y, h.z, h.w); }));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <iterator>
 
 #include "device.h"
 #include "entrypoints.h"
@@ -166,6 +167,43 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetQueryPoolResults(VkDevice device, VkQueryP
 VKAPI_ATTR void VKAPI_CALL tvk_ResetQueryPool(VkDevice, VkQueryPool queryPool, uint32_t firstQuery,
                                               uint32_t queryCount) {
     from_handle<QueryPool>(queryPool)->reset(firstQuery, queryCount);
+}
+
+// VK_EXT_calibrated_timestamps: the device's timestamps are CLOCK_MONOTONIC nanoseconds (timestamp_now_ns), so the
+// two domains lavapipe offers are one clock read once; the deviation is that clock's 1 ns resolution.
+namespace {
+constexpr VkTimeDomainEXT kTimeDomains[] = {VK_TIME_DOMAIN_DEVICE_EXT, VK_TIME_DOMAIN_CLOCK_MONOTONIC_EXT};
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceCalibrateableTimeDomainsEXT(VkPhysicalDevice,
+                                                                                uint32_t* pTimeDomainCount,
+                                                                                VkTimeDomainEXT* pTimeDomains) {
+    constexpr uint32_t kCount = uint32_t(std::size(kTimeDomains));
+    if (pTimeDomains == nullptr) {
+        *pTimeDomainCount = kCount;
+        return VK_SUCCESS;
+    }
+    const uint32_t n = std::min(*pTimeDomainCount, kCount);
+    std::copy_n(kTimeDomains, n, pTimeDomains);
+    *pTimeDomainCount = n;
+    return n < kCount ? VK_INCOMPLETE : VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_GetCalibratedTimestampsEXT(VkDevice, uint32_t timestampCount,
+                                                              const VkCalibratedTimestampInfoEXT* pTimestampInfos,
+                                                              uint64_t* pTimestamps, uint64_t* pMaxDeviation) {
+    const uint64_t now = timestamp_now_ns();
+    for (uint32_t i = 0; i < timestampCount; ++i) {
+        const VkTimeDomainEXT d = pTimestampInfos[i].timeDomain;
+        if (std::find(std::begin(kTimeDomains), std::end(kTimeDomains), d) == std::end(kTimeDomains))
+            return fail(VK_ERROR_UNKNOWN,
+                        "vkGetCalibratedTimestampsEXT: pTimestampInfos[%u].timeDomain %s is not one "
+                        "of vkGetPhysicalDeviceCalibrateableTimeDomainsEXT's",
+                        i, vk_enum_name(d));
+        pTimestamps[i] = now;
+    }
+    *pMaxDeviation = 1;
+    return VK_SUCCESS;
 }
 
 }  // namespace tilevk::icd

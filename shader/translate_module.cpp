@@ -83,7 +83,9 @@ bool extension_supported(const std::string& e) {
            e == "SPV_EXT_descriptor_indexing" || e == "SPV_KHR_non_semantic_info" ||
            e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product" ||
            e == "SPV_KHR_vulkan_memory_model" || e == "SPV_KHR_physical_storage_buffer" ||
-           e == "SPV_EXT_physical_storage_buffer" || e == "SPV_KHR_16bit_storage" || e == "SPV_KHR_8bit_storage";
+           e == "SPV_EXT_physical_storage_buffer" || e == "SPV_KHR_16bit_storage" || e == "SPV_KHR_8bit_storage" ||
+           // OpDecorateString / OpDecorateId with UserSemantic, HlslCounterBufferGOOGLE: reflection only, ignored
+           e == "SPV_GOOGLE_decorate_string" || e == "SPV_GOOGLE_hlsl_functionality1";
 }
 
 }  // namespace

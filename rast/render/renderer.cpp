@@ -356,16 +356,19 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         if (plan.discard) continue;
         const bool any_clipped =
             std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
-        if (plan.parallel_triangles && !last_batch_pending(plan, any_clipped)) {
-            vbuf_flush(draw_index, rec);  // its batches are direct, or end with a direct one that flushes draw's vbuf
-            draw_triangles_parallel(plan, draw_index, rec, any_clipped);
-            continue;
+        // The parallel path takes the batches up to the last direct one (which flushes draw's vbuf); the batches
+        // after it, all through draw's pipeline, leave their triangles in the vbuf and take the batch loop.
+        const uint32_t parallel_prims = plan.parallel_triangles ? parallel_prefix(plan, any_clipped) : 0;
+        if (parallel_prims > 0) {
+            vbuf_flush(draw_index, rec);
+            draw_triangles_parallel(plan, draw_index, rec, any_clipped, parallel_prims);
+            if (parallel_prims == plan.num_prims) continue;
         }
         uint32_t first_prim = 0;
         for (const uint32_t batch_prims : batches_) {
             if (stopped()) break;  // the instance loop notes it
             const uint32_t end_prim = std::min(plan.num_prims, first_prim + batch_prims);
-            emit_batch(plan, draw_index, rec, first_prim, end_prim, any_clipped);
+            if (first_prim >= parallel_prims) emit_batch(plan, draw_index, rec, first_prim, end_prim, any_clipped);
             first_prim = end_prim;
         }
     }
@@ -500,36 +503,46 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     return true;
 }
 
-// One instance of a parallel triangle draw: which batches go through draw's pipeline, then the workers.
+// The first `num_prims` triangles of one instance of a parallel triangle draw: which batches go through draw's
+// pipeline, then the workers.
 void Renderer::draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
-                                       bool any_clipped) {
+                                       bool any_clipped, uint32_t num_prims) {
     // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through draw's
     // pipeline (clipper, float cull), as in emit_batch.
-    tri_pipeline_.assign(plan.num_prims, 0);
+    tri_pipeline_.assign(num_prims, 0);
     uint32_t first = 0;
     for (const uint32_t batch_prims : batches_) {
-        const uint32_t end = std::min(plan.num_prims, first + batch_prims);
-        bool pipeline_path = false;
-        for (size_t k = size_t(first) * 3; k < size_t(end) * 3 && any_clipped && !pipeline_path; ++k)
-            pipeline_path = shaded_.clipmask[assembled_[k]] != 0;
-        if (pipeline_path) std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + end, uint8_t(1));
+        if (first >= num_prims) break;
+        const uint32_t end = std::min(num_prims, first + batch_prims);
+        if (batch_takes_pipeline(first, end, any_clipped))
+            std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + end, uint8_t(1));
         first = end;
     }
-    add_triangles_parallel(draw_index, rec, assembled_.data(), plan.num_prims,
+    add_triangles_parallel(draw_index, rec, assembled_.data(), num_prims,
                            {tri_pipeline_.data(), &plan.ccfg, &plan.fcull, plan.any_cull});
 }
 
-// Whether the instance's last batch takes draw's pipeline, leaving its triangles in draw's vbuf for a later flush
-// (one that may come after draw_vbo, with denormals kept): the parallel path sets every triangle up at once, with
-// denormals flushed, so such an instance takes the batch loop and its vbuf.
-bool Renderer::last_batch_pending(const DrawPlan& plan, bool any_clipped) const {
-    if (!any_clipped || batches_.empty()) return false;
-    uint32_t first = 0;
-    for (size_t b = 0; b + 1 < batches_.size(); ++b) first = std::min(plan.num_prims, first + batches_[b]);
-    const uint32_t end = std::min(plan.num_prims, first + batches_.back());
+// Whether triangles [first, end) of a filled triangle draw's batch take draw's pipeline: one of their vertices has
+// a clip-mask bit (draw_pt_fetch_shade_pipeline_llvm.c).
+bool Renderer::batch_takes_pipeline(uint32_t first, uint32_t end, bool any_clipped) const {
+    if (!any_clipped) return false;
     for (size_t k = size_t(first) * 3; k < size_t(end) * 3; ++k)
         if (shaded_.clipmask[assembled_[k]] != 0) return true;
     return false;
+}
+
+// How many leading triangles of the instance the parallel path sets up: those up to the end of its last direct
+// batch. A batch through draw's pipeline leaves its triangles in draw's vbuf until the next direct batch flushes it
+// inside draw_vbo, with denormals flushed, as the parallel path sets everything up; the batches after the last
+// direct one are flushed later (maybe after draw_vbo, with denormals kept), so they take the batch loop and its vbuf.
+uint32_t Renderer::parallel_prefix(const DrawPlan& plan, bool any_clipped) const {
+    uint32_t first = 0, prefix = 0;
+    for (const uint32_t batch_prims : batches_) {
+        const uint32_t end = std::min(plan.num_prims, first + batch_prims);
+        if (!batch_takes_pipeline(first, end, any_clipped)) prefix = end;
+        first = end;
+    }
+    return prefix;
 }
 
 // One of draw's batches, primitives [first_prim, end_prim): straight to setup, or through draw's pipeline.

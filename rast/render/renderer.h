@@ -75,7 +75,8 @@ class Renderer {
     struct DrawPlan;
     bool plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCall& call, DrawRecord& rec,
                    const geometry::IndexSource& src);
-    void draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, bool any_clipped);
+    void draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, bool any_clipped,
+                                 uint32_t num_prims);
     void emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim,
                     bool any_clipped);
     void emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
@@ -116,7 +117,8 @@ class Renderer {
     // denormal flushing, so setup keeps denormals.
     void vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]);
     void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
-    bool last_batch_pending(const DrawPlan& plan, bool any_clipped) const;
+    bool batch_takes_pipeline(uint32_t first, uint32_t end, bool any_clipped) const;
+    uint32_t parallel_prefix(const DrawPlan& plan, bool any_clipped) const;
     ClipRect prim_clip(const PipelineState& pipe) const;
     // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
     void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);

@@ -1,5 +1,6 @@
 // Pipeline extensions lavapipe offers (suite ApiPipelineExtensions): VK_EXT_color_write_enable, VK_EXT_multi_draw,
-// and VK_KHR_shader_non_semantic_info (core in Vulkan 1.3, which lavapipe 22.3 is). Each runs on
+// VK_KHR_shader_non_semantic_info (core in Vulkan 1.3, which lavapipe 22.3 is), VK_GOOGLE_decorate_string and
+// VK_GOOGLE_hlsl_functionality1. Each runs on
 // tilevk and lavapipe with the extension and its feature enabled and the validation layer on; the images are
 // compared byte for byte and checked against what the extension says must be written.
 #include <cstring>
@@ -7,6 +8,7 @@
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
 #include "ab_draw_params_vert.h"
+#include "ab_hlsl_semantics_frag.h"
 #include "ab_non_semantic_debug_frag.h"
 #include "ab_non_semantic_frag.h"
 
@@ -232,6 +234,45 @@ TEST_F(ApiPipelineExtensions, ShaderNonSemanticInfo) {
         EXPECT_EQ(wrong, 0u);
     }
     EXPECT_EQ(h13.message_count(), 0) << h13.message_report();
+}
+
+// VK_GOOGLE_hlsl_functionality1 and VK_GOOGLE_decorate_string: ab_hlsl_semantics.hlsl, compiled by glslang with
+// -fhlsl_functionality1, carries its semantics as OpDecorateString UserSemantic, which change nothing: pixel (x, y)
+// is (frac((x + 0.5) / 8), frac((y + 0.5) / 8), 0.75, 1), on both drivers alike.
+TEST_F(ApiPipelineExtensions, HlslSemanticDecorations) {
+    constexpr uint32_t kOpDecorateString = 5632;
+    size_t decorate_strings = 0;
+    for (size_t i = 5; i < sizeof ab_hlsl_semantics_frag / 4;) {
+        const uint32_t words = ab_hlsl_semantics_frag[i] >> 16;
+        decorate_strings += (ab_hlsl_semantics_frag[i] & 0xFFFF) == kOpDecorateString;
+        i += words == 0 ? 1 : words;
+    }
+    ASSERT_GT(decorate_strings, 0u) << "glslang no longer emits OpDecorateString: the test tests nothing";
+    auto d = device_pair({VK_GOOGLE_DECORATE_STRING_EXTENSION_NAME, VK_GOOGLE_HLSL_FUNCTIONALITY_1_EXTENSION_NAME});
+    ASSERT_TRUE(d->ok());
+    const Bytes b = both_on(d->tilevk, d->lavapipe, [&](Kit& k) {
+        Target t = target(k);
+        VkPipeline pipe = k.pipeline(fullscreen_pipe(SPV(ab_hlsl_semantics_frag), t, VK_NULL_HANDLE));
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
+            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+            vkCmdDraw(c, 3, 1, 0, 0);
+            vkCmdEndRenderPass(c);
+        }),
+                  VK_SUCCESS);
+        return k.read(t.image.image, 32, 32, 4);
+    });
+    ASSERT_EQ(b.size(), 32u * 32 * 4);
+    const auto unorm = [](float v) { return int(v * 255.0f + 0.5f); };
+    size_t wrong = 0;
+    for (uint32_t y = 0; y < 32; ++y)
+        for (uint32_t x = 0; x < 32; ++x) {
+            const uint8_t* p = &b[(y * 32 + x) * 4];
+            wrong += p[0] != unorm(float(x % 8) / 8.0f + 0.0625f) || p[1] != unorm(float(y % 8) / 8.0f + 0.0625f) ||
+                     p[2] != unorm(0.75f) || p[3] != 255;
+        }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(harness_->message_count(), 0) << harness_->message_report();
 }
 
 // The feature and maxMultiDrawCount are lavapipe's.
