@@ -360,6 +360,8 @@ void add_blit_3d_cases(CaseList& out) {
         box3d(VK_FORMAT_R16G16B16A16_UNORM, {10, 10, 7}, kRgba16f, {13, 9, 10}, kLinear));
     add(out, "3d.r16_uint_nearest_scale",
         box3d(VK_FORMAT_R16_UINT, {12, 10, 6}, VK_FORMAT_R16_UINT, {7, 13, 10}, kNearest));
+    // a 3D B8G8R8A8_UNORM destination (a PIPE_TEXTURE_3D target: not llvmpipe's linear mode)
+    add(out, "3d.bgra_dst_nearest_scale", box3d(kRgba8, {32, 32, 2}, kBgra8, {45, 21, 3}, kNearest));
     add(out, "3d.srgb_linear_scale", box3d(kSrgb8, {12, 10, 6}, kSrgb8, {17, 7, 4}, kLinear));
     {
         BlitSpec f = box3d(kRgba8, {12, 10, 8}, kRgba8, {12, 10, 8}, kNearest);
