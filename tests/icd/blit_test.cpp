@@ -506,6 +506,31 @@ std::vector<Spec> int_specs() {
     return v;
 }
 
+// The formats that are blit sources only (BLIT_SRC without BLIT_DST, as lavapipe reports them): sampled by the
+// blitter into formats that hold their values, scaled both ways, unscaled (texel fetch) and mirrored.
+std::vector<Spec> source_format_specs() {
+    std::vector<Spec> v;
+    const std::pair<const char*, VkFormat> formats[] = {{"b10g11r11_ufloat", VK_FORMAT_B10G11R11_UFLOAT_PACK32},
+                                                        {"e5b9g9r9_ufloat", VK_FORMAT_E5B9G9R9_UFLOAT_PACK32}};
+    for (const auto& [name, f] : formats) {
+        const std::string n = name;
+        v.push_back(whole(n + "_nearest_scale", f, 32, 32, kRgba32f, 45, 21, kNearest));
+        v.push_back(whole(n + "_linear_scale", f, 32, 24, kRgba32f, 19, 41, kLinear));
+        v.push_back(whole(n + "_unscaled", f, 16, 16, kRgba32f, 16, 16, kLinear));
+        v.push_back(whole(n + "_to_half_linear", f, 30, 30, kRgba16f, 17, 43, kLinear));
+        v.push_back({n + "_mirror_linear_to_rgba8",
+                     f,
+                     kRgba8,
+                     24,
+                     20,
+                     50,
+                     33,
+                     kLinear,
+                     {region(2, 1, 22, 19, 47, 3, 1, 30, kC)}});
+    }
+    return v;
+}
+
 class BlitVsLavapipe : public Blit, public ::testing::WithParamInterface<Spec> {};
 
 TEST_P(BlitVsLavapipe, BytesEqual) {
@@ -713,6 +738,8 @@ TEST(BlitRefusals, IntegerAgainstNonIntegerAnd2DIntoLaterSlices) {
 INSTANTIATE_TEST_SUITE_P(Cases, BlitVsLavapipe, ::testing::ValuesIn(specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
 INSTANTIATE_TEST_SUITE_P(Formats, BlitVsLavapipe, ::testing::ValuesIn(format_specs()),
+                         [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
+INSTANTIATE_TEST_SUITE_P(SourceFormats, BlitVsLavapipe, ::testing::ValuesIn(source_format_specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
 INSTANTIATE_TEST_SUITE_P(IntFormats, BlitVsLavapipe, ::testing::ValuesIn(int_specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
