@@ -91,10 +91,10 @@ VkImageBlit region(int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1
 
 // A region of 3D boxes: corners (x, y, z) in either order (the order flips); a 2D side gives z 0 and 1.
 VkImageBlit region3d(std::array<int, 3> s0, std::array<int, 3> s1, std::array<int, 3> d0, std::array<int, 3> d1,
-                     uint32_t src_level = 0) {
+                     uint32_t src_level = 0, VkImageAspectFlags a = VK_IMAGE_ASPECT_COLOR_BIT) {
     VkImageBlit r{};
-    r.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, src_level, 0, 1};
-    r.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    r.srcSubresource = {a, src_level, 0, 1};
+    r.dstSubresource = {a, 0, 0, 1};
     r.srcOffsets[0] = {s0[0], s0[1], s0[2]};
     r.srcOffsets[1] = {s1[0], s1[1], s1[2]};
     r.dstOffsets[0] = {d0[0], d0[1], d0[2]};
@@ -334,11 +334,8 @@ BlitSpec whole(VkFormat sf, uint32_t sw, uint32_t sh, VkFormat df, uint32_t dw, 
 // blit.3d.*: VK_IMAGE_TYPE_3D sources (u_blitter.c do_blits: one quad per destination slice, the source z
 // centred and normalized by the depth, LINEAR through the 3D sampler; docs/lavapipe-rules.md §11).
 BlitSpec box3d(VkFormat sf, std::array<uint32_t, 3> s, VkFormat df, std::array<uint32_t, 3> d, VkFilter f) {
-    BlitSpec b{
-        sf,   df,
-        s[0], s[1],
-        d[0], d[1],
-        f,    {region3d({0, 0, 0}, {int(s[0]), int(s[1]), int(s[2])}, {0, 0, 0}, {int(d[0]), int(d[1]), int(d[2])})}};
+    const std::array<int, 3> s1{int(s[0]), int(s[1]), int(s[2])}, d1{int(d[0]), int(d[1]), int(d[2])};
+    BlitSpec b{sf, df, s[0], s[1], d[0], d[1], f, {region3d({0, 0, 0}, s1, {0, 0, 0}, d1, 0, aspect_of(sf))}};
     b.sd = s[2], b.dd = d[2];
     return b;
 }
@@ -362,6 +359,13 @@ void add_blit_3d_cases(CaseList& out) {
         box3d(VK_FORMAT_R16_UINT, {12, 10, 6}, VK_FORMAT_R16_UINT, {7, 13, 10}, kNearest));
     // a 3D B8G8R8A8_UNORM destination (a PIPE_TEXTURE_3D target: not llvmpipe's linear mode)
     add(out, "3d.bgra_dst_nearest_scale", box3d(kRgba8, {32, 32, 2}, kBgra8, {45, 21, 3}, kNearest));
+    add(out, "3d.depth_d16_nearest_scale",
+        box3d(VK_FORMAT_D16_UNORM, {12, 10, 6}, VK_FORMAT_D16_UNORM, {17, 7, 9}, kNearest));
+    {
+        BlitSpec d = box3d(VK_FORMAT_D32_SFLOAT, {12, 10, 6}, VK_FORMAT_D32_SFLOAT, {12, 10, 6}, kNearest);
+        d.regions = {region3d({0, 0, 6}, {12, 10, 0}, {0, 0, 0}, {12, 10, 6}, 0, kD)};
+        add(out, "3d.depth_d32_flip_z", d);
+    }
     add(out, "3d.srgb_linear_scale", box3d(kSrgb8, {12, 10, 6}, kSrgb8, {17, 7, 4}, kLinear));
     {
         BlitSpec f = box3d(kRgba8, {12, 10, 8}, kRgba8, {12, 10, 8}, kNearest);
