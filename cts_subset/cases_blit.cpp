@@ -1,6 +1,7 @@
 // blit.*: vkCmdBlitImage cases. Each fills a source image (every level and layer) with deterministic texels, clears
 // nothing but uploads another pattern into the destination, blits, and reads every destination level back as one
 // plane ("color" / "depth" for level 0, "<name>.levelN" after it); judged byte for byte against the reference.
+#include <array>
 #include <cstring>
 #include <memory>
 
@@ -18,6 +19,7 @@ struct BlitSpec {
     std::vector<VkImageBlit> regions;
     uint32_t layers = 1, src_levels = 1, dst_levels = 1;
     bool mip_chain = false;  // blit level i-1 -> i of the source itself, LINEAR (glGenerateMipmap style)
+    uint32_t sd = 0, dd = 0;  // the depth of a VK_IMAGE_TYPE_3D source / destination; 0: a 2D image
 };
 
 uint32_t texel_bytes(VkFormat f) {
@@ -34,6 +36,7 @@ uint32_t texel_bytes(VkFormat f) {
             return 2;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R16G16B16A16_SNORM:
+        case VK_FORMAT_R16G16B16A16_UNORM:
         case VK_FORMAT_R16G16B16A16_SINT:
         case VK_FORMAT_R32G32_SFLOAT:
             return 8;
@@ -86,6 +89,19 @@ VkImageBlit region(int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1
     return r;
 }
 
+// A region of 3D boxes: corners (x, y, z) in either order (the order flips); a 2D side gives z 0 and 1.
+VkImageBlit region3d(std::array<int, 3> s0, std::array<int, 3> s1, std::array<int, 3> d0, std::array<int, 3> d1,
+                     uint32_t src_level = 0, VkImageAspectFlags a = VK_IMAGE_ASPECT_COLOR_BIT) {
+    VkImageBlit r{};
+    r.srcSubresource = {a, src_level, 0, 1};
+    r.dstSubresource = {a, 0, 0, 1};
+    r.srcOffsets[0] = {s0[0], s0[1], s0[2]};
+    r.srcOffsets[1] = {s1[0], s1[1], s1[2]};
+    r.dstOffsets[0] = {d0[0], d0[1], d0[2]};
+    r.dstOffsets[1] = {d1[0], d1[1], d1[2]};
+    return r;
+}
+
 // Objects destroyed in reverse order of creation, after the queue is idle.
 struct Objects {
     const DeviceContext& c;
@@ -94,11 +110,11 @@ struct Objects {
         vkQueueWaitIdle(c.queue);
         for (auto it = undo.rbegin(); it != undo.rend(); ++it) (*it)();
     }
-    VkImage image(VkFormat f, uint32_t w, uint32_t h, uint32_t levels, uint32_t layers) {
+    VkImage image(VkFormat f, uint32_t w, uint32_t h, uint32_t levels, uint32_t layers, uint32_t depth) {
         VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-        ci.imageType = VK_IMAGE_TYPE_2D;
+        ci.imageType = depth ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
         ci.format = f;
-        ci.extent = {w, h, 1};
+        ci.extent = {w, h, depth ? depth : 1};
         ci.mipLevels = levels;
         ci.arrayLayers = layers;
         ci.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -157,17 +173,18 @@ void barrier(VkCommandBuffer cb, VkImage image, VkImageAspectFlags a, VkImageLay
                          1, &b);
 }
 
-// Copies of levels [first, levels) of a w x h image (all layers) packed one after another in a buffer.
+// Copies of levels [first, levels) of a w x h image (all layers; a 3D image's slices when depth > 0) packed one
+// after another in a buffer.
 std::vector<VkBufferImageCopy> level_copies(VkImageAspectFlags a, uint32_t w, uint32_t h, uint32_t layers,
-                                            uint32_t first, uint32_t levels, uint32_t texel) {
+                                            uint32_t first, uint32_t levels, uint32_t texel, uint32_t depth) {
     std::vector<VkBufferImageCopy> cs;
     VkDeviceSize off = 0;
     for (uint32_t l = 0; l < levels; ++l) {
         VkBufferImageCopy c{};
         c.bufferOffset = off;
         c.imageSubresource = {a, l, 0, layers};
-        c.imageExtent = {minify(w, l), minify(h, l), 1};
-        off += VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * layers * texel;
+        c.imageExtent = {minify(w, l), minify(h, l), depth ? minify(depth, l) : 1};
+        off += VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * c.imageExtent.depth * layers * texel;
         if (l >= first) cs.push_back(c);
     }
     return cs;
@@ -182,16 +199,17 @@ std::vector<Plane> run_blit(const DeviceContext& c, const BlitSpec& s) {
     const uint32_t src_up_levels = s.mip_chain ? 1 : s.src_levels;
     const VkImageAspectFlags sa = aspect_of(s.src_format), da = aspect_of(df);
     Objects o{c, {}};
-    VkImage src = o.image(s.src_format, s.sw, s.sh, s.src_levels, s.layers);
-    VkImage dst = s.mip_chain ? src : o.image(df, s.dw, s.dh, s.dst_levels, s.layers);
-    auto up_copies = level_copies(sa, s.sw, s.sh, s.layers, 0, src_up_levels, sb);
-    auto all_dst = level_copies(da, dw, dh, s.layers, 0, dst_levels, db);
-    auto init_copies = level_copies(da, dw, dh, s.layers, s.mip_chain ? 1 : 0, dst_levels, db);
-    const VkDeviceSize src_bytes = up_copies.back().bufferOffset + VkDeviceSize(up_copies.back().imageExtent.width) *
-                                                                       up_copies.back().imageExtent.height * s.layers *
-                                                                       sb;
-    const VkDeviceSize dst_bytes = all_dst.back().bufferOffset + VkDeviceSize(all_dst.back().imageExtent.width) *
-                                                                     all_dst.back().imageExtent.height * s.layers * db;
+    const uint32_t dd = s.mip_chain ? s.sd : s.dd;
+    VkImage src = o.image(s.src_format, s.sw, s.sh, s.src_levels, s.layers, s.sd);
+    VkImage dst = s.mip_chain ? src : o.image(df, s.dw, s.dh, s.dst_levels, s.layers, s.dd);
+    auto up_copies = level_copies(sa, s.sw, s.sh, s.layers, 0, src_up_levels, sb, s.sd);
+    auto all_dst = level_copies(da, dw, dh, s.layers, 0, dst_levels, db, dd);
+    auto init_copies = level_copies(da, dw, dh, s.layers, s.mip_chain ? 1 : 0, dst_levels, db, dd);
+    auto end_of = [&s](const VkBufferImageCopy& c, uint32_t texel) {
+        return c.bufferOffset +
+               VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * c.imageExtent.depth * s.layers * texel;
+    };
+    const VkDeviceSize src_bytes = end_of(up_copies.back(), sb), dst_bytes = end_of(all_dst.back(), db);
     void *up_map, *init_map, *down_map;
     VkBuffer up = o.buffer(src_bytes, &up_map), init = o.buffer(dst_bytes, &init_map),
              down = o.buffer(dst_bytes, &down_map);
@@ -250,7 +268,7 @@ std::vector<Plane> run_blit(const DeviceContext& c, const BlitSpec& s) {
         pl.name = std::string(is_depth(df) ? "depth" : "color") + (l ? ".level" + std::to_string(l) : "");
         pl.format = df;
         pl.width = r.imageExtent.width;
-        pl.height = r.imageExtent.height * s.layers;  // layers stacked vertically
+        pl.height = r.imageExtent.height * s.layers * r.imageExtent.depth;  // layers (slices) stacked vertically
         pl.texel_bytes = db;
         pl.data.assign(bytes + r.bufferOffset, bytes + r.bufferOffset + size_t(pl.width) * pl.height * db);
         planes.push_back(std::move(pl));
@@ -272,6 +290,16 @@ std::string blit_unsupported(const DeviceContext& c, const BlitSpec& s) {
         (s.filter == VK_FILTER_LINEAR ? VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT : 0);
     if (s.mip_chain) src_bits |= VK_FORMAT_FEATURE_BLIT_DST_BIT;
     if (auto e = need(s.src_format, src_bits); !e.empty()) return e;
+    auto need_3d = [&](VkFormat f, uint32_t depth) -> std::string {
+        VkImageFormatProperties p;
+        if (depth && vkGetPhysicalDeviceImageFormatProperties(
+                         c.physical, f, VK_IMAGE_TYPE_3D, VK_IMAGE_TILING_OPTIMAL,
+                         VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 0, &p) != VK_SUCCESS)
+            return std::string("format ") + format_name(f) + " has no VK_IMAGE_TYPE_3D images";
+        return {};
+    };
+    if (auto e = need_3d(s.src_format, s.sd); !e.empty()) return e;
+    if (auto e = need_3d(s.dst_format, s.dd); !e.empty()) return e;
     if (!s.mip_chain) {
         if (auto e = need(s.dst_format, VK_FORMAT_FEATURE_BLIT_DST_BIT); !e.empty()) return e;
     }
@@ -301,6 +329,69 @@ constexpr VkImageAspectFlags kC = VK_IMAGE_ASPECT_COLOR_BIT, kD = VK_IMAGE_ASPEC
 BlitSpec whole(VkFormat sf, uint32_t sw, uint32_t sh, VkFormat df, uint32_t dw, uint32_t dh, VkFilter f) {
     const VkImageAspectFlags a = is_depth(sf) ? kD : kC;
     return {sf, df, sw, sh, dw, dh, f, {region(0, 0, int(sw), int(sh), 0, 0, int(dw), int(dh), a)}};
+}
+
+// blit.3d.*: VK_IMAGE_TYPE_3D sources (u_blitter.c do_blits: one quad per destination slice, the source z
+// centred and normalized by the depth, LINEAR through the 3D sampler; docs/lavapipe-rules.md §11).
+BlitSpec box3d(VkFormat sf, std::array<uint32_t, 3> s, VkFormat df, std::array<uint32_t, 3> d, VkFilter f) {
+    const std::array<int, 3> s1{int(s[0]), int(s[1]), int(s[2])}, d1{int(d[0]), int(d[1]), int(d[2])};
+    BlitSpec b{sf, df, s[0], s[1], d[0], d[1], f, {region3d({0, 0, 0}, s1, {0, 0, 0}, d1, 0, aspect_of(sf))}};
+    b.sd = s[2], b.dd = d[2];
+    return b;
+}
+
+void add_blit_3d_cases(CaseList& out) {
+    add(out, "3d.nearest_copy", box3d(kRgba8, {16, 16, 8}, kRgba8, {16, 16, 8}, kNearest));
+    add(out, "3d.nearest_unscaled_to_float", box3d(kRgba8, {16, 12, 6}, kRgba32f, {16, 12, 6}, kNearest));
+    add(out, "3d.linear_unscaled", box3d(kRgba8, {16, 12, 6}, kRgba8, {16, 12, 6}, kLinear));
+    add(out, "3d.nearest_scale_z_up", box3d(kRgba8, {8, 8, 4}, kRgba8, {8, 8, 11}, kNearest));
+    add(out, "3d.nearest_scale_z_down", box3d(kRgba8, {16, 16, 12}, kRgba8, {16, 16, 5}, kNearest));
+    add(out, "3d.linear_scale_z_up", box3d(kRgba8, {8, 8, 4}, kRgba8, {8, 8, 11}, kLinear));
+    add(out, "3d.linear_scale_up", box3d(kRgba8, {8, 8, 4}, kRgba8, {19, 13, 9}, kLinear));
+    add(out, "3d.linear_scale_down", box3d(kRgba8, {16, 12, 10}, kRgba8, {7, 9, 3}, kLinear));
+    add(out, "3d.nearest_scale_xyz", box3d(kRgba8, {13, 7, 5}, kRgba8, {21, 17, 9}, kNearest));
+    add(out, "3d.half_linear_scale", box3d(kRgba16f, {12, 10, 6}, kRgba16f, {17, 7, 13}, kLinear));
+    add(out, "3d.r32f_linear_scale_down",
+        box3d(VK_FORMAT_R32_SFLOAT, {12, 10, 9}, VK_FORMAT_R32_SFLOAT, {7, 13, 4}, kLinear));
+    add(out, "3d.rgba16_unorm_linear_to_half",
+        box3d(VK_FORMAT_R16G16B16A16_UNORM, {10, 10, 7}, kRgba16f, {13, 9, 10}, kLinear));
+    add(out, "3d.r16_uint_nearest_scale",
+        box3d(VK_FORMAT_R16_UINT, {12, 10, 6}, VK_FORMAT_R16_UINT, {7, 13, 10}, kNearest));
+    // a 3D B8G8R8A8_UNORM destination (a PIPE_TEXTURE_3D target: not llvmpipe's linear mode)
+    add(out, "3d.bgra_dst_nearest_scale", box3d(kRgba8, {32, 32, 2}, kBgra8, {45, 21, 3}, kNearest));
+    add(out, "3d.depth_d16_nearest_scale",
+        box3d(VK_FORMAT_D16_UNORM, {12, 10, 6}, VK_FORMAT_D16_UNORM, {17, 7, 9}, kNearest));
+    {
+        BlitSpec d = box3d(VK_FORMAT_D32_SFLOAT, {12, 10, 6}, VK_FORMAT_D32_SFLOAT, {12, 10, 6}, kNearest);
+        d.regions = {region3d({0, 0, 6}, {12, 10, 0}, {0, 0, 0}, {12, 10, 6}, 0, kD)};
+        add(out, "3d.depth_d32_flip_z", d);
+    }
+    add(out, "3d.srgb_linear_scale", box3d(kSrgb8, {12, 10, 6}, kSrgb8, {17, 7, 4}, kLinear));
+    {
+        BlitSpec f = box3d(kRgba8, {12, 10, 8}, kRgba8, {12, 10, 8}, kNearest);
+        f.regions = {region3d({0, 0, 8}, {12, 10, 0}, {0, 0, 0}, {12, 10, 8})};
+        add(out, "3d.flip_z_nearest", f);
+        BlitSpec g = box3d(kRgba8, {12, 10, 8}, kRgba8, {15, 11, 11}, kLinear);
+        g.regions = {region3d({1, 0, 7}, {11, 10, 1}, {15, 0, 1}, {0, 11, 10})};
+        add(out, "3d.flip_xz_linear_scaled", g);
+        BlitSpec h = box3d(kRgba16f, {12, 10, 8}, kRgba16f, {12, 10, 8}, kNearest);
+        h.regions = {region3d({0, 0, 0}, {12, 10, 8}, {0, 0, 7}, {12, 10, 1})};
+        add(out, "3d.flip_z_scaled_half", h);
+        BlitSpec m = box3d(kRgba8, {16, 16, 8}, kRgba8, {20, 20, 9}, kLinear);
+        m.src_levels = 2;
+        m.regions = {region3d({1, 1, 1}, {7, 8, 4}, {3, 2, 2}, {18, 19, 8}, 1),
+                     region3d({0, 0, 0}, {16, 16, 8}, {0, 0, 0}, {2, 2, 1})};
+        add(out, "3d.mip_level_sub_boxes", m);
+        BlitSpec t = box3d(kRgba8, {12, 10, 8}, kRgba8, {15, 13, 0}, kLinear);
+        t.regions = {region3d({0, 0, 2}, {12, 10, 7}, {0, 0, 0}, {15, 13, 1})};
+        add(out, "3d.to_2d_linear", t);
+        BlitSpec u = box3d(kRgba8, {12, 10, 8}, kRgba32f, {12, 10, 0}, kNearest);
+        u.regions = {region3d({0, 0, 5}, {12, 10, 6}, {0, 0, 0}, {12, 10, 1})};
+        add(out, "3d.slice_to_2d_nearest", u);
+        BlitSpec v = box3d(kRgba8, {12, 10, 0}, kRgba8, {15, 13, 4}, kLinear);
+        v.regions = {region3d({0, 0, 0}, {12, 10, 1}, {0, 0, 0}, {15, 13, 1})};
+        add(out, "3d.from_2d_to_slice_0", v);
+    }
 }
 
 BlitSpec chain(VkFormat f, uint32_t w, uint32_t h, uint32_t levels) {
@@ -370,6 +461,7 @@ void add_blit_cases(CaseList& out) {
           region(0, 0, 1, 1, 40, 40, 50, 50, kC)}});
     add(out, "depth_d16_nearest_scale", whole(VK_FORMAT_D16_UNORM, 32, 32, VK_FORMAT_D16_UNORM, 45, 21, kNearest));
     add(out, "depth_d32_nearest_scale", whole(VK_FORMAT_D32_SFLOAT, 32, 32, VK_FORMAT_D32_SFLOAT, 45, 21, kNearest));
+    add_blit_3d_cases(out);
     add(out, "mip_chain", chain(kRgba8, 64, 64, 7));
     add(out, "mip_chain_npot", chain(kRgba8, 75, 37, 7));
     add(out, "mip_chain_srgb", chain(kSrgb8, 48, 40, 6));

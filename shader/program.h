@@ -295,6 +295,10 @@ struct SamplerState {
 // (0, 0, 0, 0).
 std::array<float, 4> sample_2d(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer);
 std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32_t layer);
+// The same on a 3D view (its `depth` slices at level[0]): textureLod(img, vec3(s, t, r), 0.0) and
+// texelFetch(img, ivec3(x, y, z), 0) of a sampler3D.
+std::array<float, 4> sample_3d(const ImageView& img, const SamplerState& smp, float s, float t, float r);
+std::array<float, 4> fetch_3d(const ImageView& img, int32_t x, int32_t y, int32_t z);
 
 // What one (set, binding, array element) holds. Unused members stay null.
 struct Descriptor {

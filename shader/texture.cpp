@@ -729,6 +729,19 @@ std::array<float, 4> fetch_2d(const ImageView& img, int32_t x, int32_t y, uint32
     return fetch_at(img, x, y, int32_t(layer), 0, false);
 }
 
+std::array<float, 4> sample_3d(const ImageView& img, const SamplerState& smp, float s, float t, float r) {
+    if (!image_ok(&img)) return {0, 0, 0, 0};
+    SampleArgs args;
+    args.three_d = true;
+    args.r = r;
+    return sample_lambda(img, smp, final_lambda(smp, 0.0f), s, t, 0.0f, false, false, args);
+}
+
+std::array<float, 4> fetch_3d(const ImageView& img, int32_t x, int32_t y, int32_t z) {
+    if (!image_ok(&img)) return {0, 0, 0, 0};
+    return fetch_at(img, x, y, z, 0, false, 0, true);
+}
+
 // The view rules the cube sampler shares (texture_cube.h).
 std::array<float, 4> apply_view_swizzle(const std::array<float, 4>& v, const ImageView& img) {
     return swizzled(v, img);

@@ -99,12 +99,12 @@ uint8_t* texel(const BlitSurface& s, uint32_t layer, int32_t x, int32_t y) {
 }
 
 // util_try_blit_via_copy_region's case: rows copied as they are.
-void copy_region(const BlitSurface& src, const BlitSurface& dst, const BlitRegion& r, const Span& sx, const Span& sy) {
+void copy_region(const BlitSurface& src, const BlitSurface& dst, const Span& sx, const Span& sy, const Span& sz) {
     const size_t row = size_t(sx.dst_len) * format::format_info(src.format).bytes;
-    for (uint32_t l = 0; l < r.layers; ++l)
+    for (int32_t l = 0; l < sz.dst_len; ++l)
         for (int32_t y = 0; y < sy.dst_len; ++y)
-            std::memmove(texel(dst, r.dst_layer + l, sx.dst, sy.dst + y),
-                         texel(src, r.src_layer + l, sx.src, sy.src + y), row);
+            std::memmove(texel(dst, uint32_t(sz.dst + l), sx.dst, sy.dst + y),
+                         texel(src, uint32_t(sz.src + l), sx.src, sy.src + y), row);
 }
 
 // cvttps2dq of floor(x) (the blitter's FLR, F2I): NaN and out-of-range values give INT32_MIN.
@@ -167,16 +167,27 @@ void rasterize_blit_quad(const BlitQuad& q, ThreadPool& pool, const PixelFn& fn)
     scene.rasterize(consumer, pool);
 }
 
+float blit_source_z(int32_t src_z, int32_t src_depth, int32_t dst_depth, int32_t dst_z, bool three_d_source) {
+    const int32_t n = std::abs(src_depth);
+    float step = float(n) / float(dst_depth);
+    // "centered" z for 3D sources (do_blits): C's double arithmetic, stored to a float
+    float offset = three_d_source ? float(0.5 / double(dst_depth) * double(n)) : 0.0f;
+    if (src_depth < 0) step = -step, offset = -offset;
+    return float(src_z) + (float(dst_z) * step + offset);
+}
+
 void blit(const BlitSurface& src, const BlitSurface& dst, const BlitRegion& r, BlitFilter filter, bool fused,
           ThreadPool& pool) {
     const Span sx = span(r.src[0][0], r.src[1][0], r.dst[0][0], r.dst[1][0]);
     const Span sy = span(r.src[0][1], r.src[1][1], r.dst[0][1], r.dst[1][1]);
-    if (sx.dst_len == 0 || sy.dst_len == 0) return;
-    const bool scaled = sx.dst_len != std::abs(sx.src_len) || sy.dst_len != std::abs(sy.src_len);
+    const Span sz = span(r.src[0][2], r.src[1][2], r.dst[0][2], r.dst[1][2]);
+    if (sx.dst_len == 0 || sy.dst_len == 0 || sz.dst_len == 0) return;
+    const bool scaled =
+        sx.dst_len != std::abs(sx.src_len) || sy.dst_len != std::abs(sy.src_len) || sz.dst_len != std::abs(sz.src_len);
     // util_try_blit_via_copy_region: same format, NEAREST, no scaling or flipping
     if (src.format == dst.format && filter == BlitFilter::kNearest && sx.src_len == sx.dst_len &&
-        sy.src_len == sy.dst_len) {
-        copy_region(src, dst, r, sx, sy);
+        sy.src_len == sy.dst_len && sz.src_len == sz.dst_len) {
+        copy_region(src, dst, sx, sy, sz);
         return;
     }
     // util_blitter_blit_generic: unscaled blits filter NEAREST and fetch texels (TXF) at unnormalized coordinates;
@@ -189,13 +200,17 @@ void blit(const BlitSurface& src, const BlitSurface& dst, const BlitRegion& r, B
     q.s1 = coord(sx.src, src.width), q.s2 = coord(sx.src + sx.src_len, src.width);
     q.t1 = coord(sy.src, src.height), q.t2 = coord(sy.src + sy.src_len, src.height);
     q.fused = fused;
-    // llvmpipe's linear mode: a single-layer, single-sample B8G8R8A8_UNORM colour target without depth
-    q.rect = dst.format == format::Format::B8G8R8A8_UNORM && dst.layers == 1;
-    // The blitter's sampler view: the one source level; its sampler: CLAMP_TO_EDGE, the blit's filter.
+    // llvmpipe's linear mode: a single-layer, single-sample B8G8R8A8_UNORM PIPE_TEXTURE_2D colour target without
+    // depth (lp_state_derived.c check_linear_rasterizer)
+    q.rect = dst.format == format::Format::B8G8R8A8_UNORM && dst.layers == 1 && !dst.three_d;
+    // The blitter's sampler view: the one source level (a 3D view of its slices); its sampler: CLAMP_TO_EDGE on
+    // every axis, the blit's filter.
     shader::ImageView view;
     view.base = src.base;
     view.format = src.format;
-    view.width = src.width, view.height = src.height, view.layers = src.layers;
+    view.width = src.width, view.height = src.height;
+    view.layers = src.three_d ? 1 : src.layers;
+    view.depth = src.three_d ? src.layers : 1;
     view.level[0] = {0, src.row_pitch, src.layer_pitch};
     shader::SamplerState smp;
     smp.mag_filter = smp.min_filter =
@@ -203,12 +218,20 @@ void blit(const BlitSurface& src, const BlitSurface& dst, const BlitRegion& r, B
     smp.address_u = smp.address_v = smp.address_w = shader::AddressMode::ClampToEdge;
     smp.max_lod = 0.0f;
     const format::FormatInfo& out = format::format_info(dst.format);
-    for (uint32_t l = 0; l < r.layers; ++l) {
-        // the layer coordinate: srcbox.z + dst_z * (src depth / dst depth), an integer here (equal counts)
-        const uint32_t src_layer = r.src_layer + l, dst_layer = r.dst_layer + l;
+    for (int32_t z = 0; z < sz.dst_len; ++z) {
+        const float layer = blit_source_z(sz.src, sz.src_len, sz.dst_len, z, src.three_d);
+        const uint32_t dst_layer = uint32_t(sz.dst + z);
+        // a 2D source's layer is an integer here (layer counts are equal): the array index as it is
+        const uint32_t src_layer = uint32_t(layer);
+        const float r = layer / float(src.layers);  // get_texcoords: TEX on a 3D view normalizes z by the depth
         rasterize_blit_quad(q, pool, [&](int32_t px, int32_t py, float s, float t) {
-            const std::array<float, 4> c = use_txf ? shader::fetch_2d(view, floor_to_int(s), floor_to_int(t), src_layer)
-                                                   : shader::sample_2d(view, smp, s, t, src_layer);
+            std::array<float, 4> c;
+            if (src.three_d)
+                c = use_txf ? shader::fetch_3d(view, floor_to_int(s), floor_to_int(t), floor_to_int(layer))
+                            : shader::sample_3d(view, smp, s, t, r);
+            else
+                c = use_txf ? shader::fetch_2d(view, floor_to_int(s), floor_to_int(t), src_layer)
+                            : shader::sample_2d(view, smp, s, t, src_layer);
             format::encode_color(out, c.data(), texel(dst, dst_layer, px, py), fused);
         });
     }

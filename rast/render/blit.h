@@ -1,8 +1,10 @@
 // vkCmdBlitImage as lavapipe 22.3 computes it (lvp_execute.c handle_blit_image -> llvmpipe lp_blit ->
 // util_blitter_blit_generic), on rast/'s own pieces (docs/lavapipe-rules.md, "Blits"):
 //   boxes      the destination box is made positive (x = the smaller offset); a mirror becomes a negative source
-//              width (mirroring both boxes cancels); array layers are the box's z
+//              width (mirroring both boxes cancels); array layers, or a 3D source's slices, are the box's z
 //   copy       same format, NEAREST, same size, not mirrored: a plain copy (util_try_blit_via_copy_region)
+//   slices     one quad per destination layer or slice (u_blitter.c do_blits); a 3D source is read at the slice
+//              coordinate of blit_source_z, through the 3D sampler (shader::sample_3d: LINEAR lerps across slices)
 //   draw       otherwise the blitter's quad over the destination box: vertices in NDC computed in C, draw's
 //              viewport transform (geometry/viewport.h), two triangles of a fan set up by rast/core with the
 //              blitter's bottom-left fill rule (or, in llvmpipe's linear mode, one rectangle: geometry/rect_detect.h),
@@ -23,22 +25,32 @@ class ThreadPool;
 
 namespace tilevk::rast::render {
 
-// One mip level of an image as the blit reads or writes it: single-sample texels, layers one after another.
+// One mip level of an image as the blit reads or writes it: single-sample texels, layers (or slices) one after
+// another.
 struct BlitSurface {
     uint8_t* base = nullptr;  // texel (0, 0) of layer 0 of the level
     format::Format format = format::Format::UNDEFINED;
     uint32_t width = 0, height = 0;
-    uint32_t layers = 1;  // layers of the level present at `base` (the image's array layers)
+    uint32_t layers = 1;   // layers of the level present at `base`: the array layers, or a 3D level's depth
+    bool three_d = false;  // a 3D image (gallium's PIPE_TEXTURE_3D): `layers` are depth slices
     uint64_t row_pitch = 0, layer_pitch = 0;
 };
 
-// A VkImageBlit region in plain numbers: each box's two corners in either order (the order mirrors), and the layers.
+// A VkImageBlit region in plain numbers: each box's two corners in either order (the order mirrors). The third axis
+// is the box's z as lavapipe passes it (lvp_execute.c handle_blit_image): for a 3D source both boxes' z offsets
+// (their order flips too), else [baseArrayLayer, baseArrayLayer + layerCount) of each subresource.
 struct BlitRegion {
-    int32_t src[2][2] = {}, dst[2][2] = {};  // [corner][x, y]
-    uint32_t src_layer = 0, dst_layer = 0, layers = 1;
+    int32_t src[2][3] = {}, dst[2][3] = {};  // [corner][x, y, z]
 };
 
 enum class BlitFilter : uint8_t { kNearest, kLinear };
+
+// The source z coordinate of destination layer or slice `dst_z` of a box `dst_depth` deep reading `src_depth` source
+// layers or slices from `src_z` on (src_depth < 0: flipped), as u_blitter.c do_blits computes it in float:
+// src_z + (dst_z * step + offset), step = |src_depth| / dst_depth, offset = 0.5 / dst_depth * |src_depth| (in double,
+// for a 3D source only; both negated when flipped). Texel fetches floor it; a 3D source samples it divided by the
+// level's depth.
+float blit_source_z(int32_t src_z, int32_t src_depth, int32_t dst_depth, int32_t dst_z, bool three_d_source);
 
 // Blits one region (the caller has checked it against both surfaces). `fused`: the host fuses lavapipe's fmuladd.
 // The destination's tiles are drawn in parallel on `pool`; the result does not depend on its size.

@@ -506,6 +506,31 @@ std::vector<Spec> int_specs() {
     return v;
 }
 
+// The formats that are blit sources only (BLIT_SRC without BLIT_DST, as lavapipe reports them): sampled by the
+// blitter into formats that hold their values, scaled both ways, unscaled (texel fetch) and mirrored.
+std::vector<Spec> source_format_specs() {
+    std::vector<Spec> v;
+    const std::pair<const char*, VkFormat> formats[] = {{"b10g11r11_ufloat", VK_FORMAT_B10G11R11_UFLOAT_PACK32},
+                                                        {"e5b9g9r9_ufloat", VK_FORMAT_E5B9G9R9_UFLOAT_PACK32}};
+    for (const auto& [name, f] : formats) {
+        const std::string n = name;
+        v.push_back(whole(n + "_nearest_scale", f, 32, 32, kRgba32f, 45, 21, kNearest));
+        v.push_back(whole(n + "_linear_scale", f, 32, 24, kRgba32f, 19, 41, kLinear));
+        v.push_back(whole(n + "_unscaled", f, 16, 16, kRgba32f, 16, 16, kLinear));
+        v.push_back(whole(n + "_to_half_linear", f, 30, 30, kRgba16f, 17, 43, kLinear));
+        v.push_back({n + "_mirror_linear_to_rgba8",
+                     f,
+                     kRgba8,
+                     24,
+                     20,
+                     50,
+                     33,
+                     kLinear,
+                     {region(2, 1, 22, 19, 47, 3, 1, 30, kC)}});
+    }
+    return v;
+}
+
 class BlitVsLavapipe : public Blit, public ::testing::WithParamInterface<Spec> {};
 
 TEST_P(BlitVsLavapipe, BytesEqual) {
@@ -605,9 +630,116 @@ TEST_F(Blit, WritesOnlyTheDestinationBox) {
         }
 }
 
+// ---- 3D images (tilevk alone; the bytes against lavapipe: cts blit.3d.*) -------------------------------------------
+// One blit of `r` from a w x h x sd image to a w x h x dd one (depth 0: a 2D image), RGBA8 formats of one texel
+// size; the source holds pattern 12345, the destination pattern 777 before. Returns every destination slice.
+Bytes run_3d(Device& d, VkFormat sf, VkFormat df, uint32_t w, uint32_t h, uint32_t sd, uint32_t dd,
+             const VkImageBlit& r, VkFilter filter) {
+    constexpr VkImageLayout kDstL = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kSrcL = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    auto info = [&](VkFormat f, uint32_t depth) {
+        VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ci.imageType = depth ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+        ci.format = f;
+        ci.extent = {w, h, std::max(depth, 1u)};
+        ci.mipLevels = ci.arrayLayers = 1;
+        ci.samples = VK_SAMPLE_COUNT_1_BIT;
+        ci.usage = kXfer;
+        return ci;
+    };
+    Device::Image src = d.make_image(info(sf, sd)), dst = d.make_image(info(df, dd));
+    if (src.image == VK_NULL_HANDLE || dst.image == VK_NULL_HANDLE) return {};
+    const size_t sn = size_t(w) * h * std::max(sd, 1u), dn = size_t(w) * h * std::max(dd, 1u);
+    Device::Buffer up = d.make_buffer(sn * 4), down = d.make_buffer(dn * 4), init = d.make_buffer(dn * 4);
+    const Bytes p = pattern(sf, sn, 12345), q = pattern(df, dn, 777);
+    std::memcpy(up.map, p.data(), p.size());
+    std::memcpy(init.map, q.data(), q.size());
+    d.run([&](VkCommandBuffer cb) {
+        barrier(cb, src.image, kC, VK_IMAGE_LAYOUT_UNDEFINED, kDstL, 0, 1);
+        barrier(cb, dst.image, kC, VK_IMAGE_LAYOUT_UNDEFINED, kDstL, 0, 1);
+        VkBufferImageCopy c{};
+        c.imageSubresource = {kC, 0, 0, 1};
+        c.imageExtent = {w, h, std::max(sd, 1u)};
+        vkCmdCopyBufferToImage(cb, up.buffer, src.image, kDstL, 1, &c);
+        c.imageExtent.depth = std::max(dd, 1u);
+        vkCmdCopyBufferToImage(cb, init.buffer, dst.image, kDstL, 1, &c);
+        barrier(cb, src.image, kC, kDstL, kSrcL, 0, 1);
+        barrier(cb, dst.image, kC, kDstL, kDstL, 0, 1);
+        vkCmdBlitImage(cb, src.image, kSrcL, dst.image, kDstL, 1, &r, filter);
+        barrier(cb, dst.image, kC, kDstL, kSrcL, 0, 1);
+        vkCmdCopyImageToBuffer(cb, dst.image, kSrcL, down.buffer, 1, &c);
+    });
+    Bytes out(static_cast<uint8_t*>(down.map), static_cast<uint8_t*>(down.map) + dn * 4);
+    for (Device::Buffer* b : {&up, &down, &init}) d.destroy(*b);
+    d.destroy(src);
+    d.destroy(dst);
+    return out;
+}
+
+VkImageBlit region_z(uint32_t w, uint32_t h, int sz0, int sz1, int dz0, int dz1) {
+    VkImageBlit r = region(0, 0, int(w), int(h), 0, 0, int(w), int(h), kC);
+    r.srcOffsets[0].z = sz0, r.srcOffsets[1].z = sz1, r.dstOffsets[0].z = dz0, r.dstOffsets[1].z = dz1;
+    return r;
+}
+
+// The spec's NEAREST rule on the z axis (x and y unscaled): destination slice z reads source slice
+// floor(z0 + (z + 0.5) * (z1 - z0) / depth). The depths are chosen so that no sample lands within 1/(2 depth) of a
+// slice boundary: (2z + 1) * S / (2 D) is never an integer for S = 2 mod 4 and D even.
+TEST_F(Blit, NearestSliceOfAScaledOrFlippedZIsTheSpecsFloor) {
+    const uint32_t w = 5, h = 3;
+    struct Z {
+        int s, d;
+        bool flip;
+    };
+    for (const Z z : {Z{6, 16, false}, Z{10, 4, false}, Z{14, 6, true}, Z{6, 10, true}, Z{2, 8, true}}) {
+        const int z0 = z.flip ? z.s : 0, z1 = z.flip ? 0 : z.s;
+        const Bytes src = pattern(kRgba8, size_t(w) * h * z.s, 12345);
+        const Bytes out = run_3d(*tilevk_, kRgba8, kRgba8, w, h, z.s, z.d, region_z(w, h, z0, z1, 0, z.d), kNearest);
+        ASSERT_EQ(out.size(), size_t(w) * h * z.d * 4);
+        for (int dz = 0; dz < z.d; ++dz) {
+            const int want = int(std::floor(z0 + (dz + 0.5) * (z1 - z0) / z.d));
+            for (uint32_t i = 0; i < w * h; ++i)
+                ASSERT_EQ(texel32(out, w, i % w, dz * h + i / w), texel32(src, w, i % w, want * h + i / w))
+                    << z.s << " -> " << z.d << (z.flip ? " flipped" : "") << ", slice " << dz << ", texel " << i;
+        }
+    }
+}
+
+// Invalid usage and the case lavapipe gets wrong: logged with the VUID or the reason, the region skipped (the
+// destination keeps its texels). No validation layer: these blits are refused on purpose.
+TEST(BlitRefusals, IntegerAgainstNonIntegerAnd2DIntoLaterSlices) {
+    Harness h(/*validation=*/false);
+    ASSERT_TRUE(h.ok());
+    VkPhysicalDevice pd = h.find_device("tilevk");
+    ASSERT_NE(pd, VK_NULL_HANDLE);
+    Device d(pd);
+    ASSERT_TRUE(d.ok());
+    struct Refusal {
+        VkFormat sf, df;
+        uint32_t sd, dd;
+        VkImageBlit r;
+        const char* says;
+    };
+    const Refusal cases[] = {
+        {VK_FORMAT_R8G8B8A8_UINT, kRgba8, 0, 0, region_z(4, 4, 0, 1, 0, 1), "VUID-vkCmdBlitImage-srcImage-00230"},
+        {kRgba8, VK_FORMAT_R8G8B8A8_UINT, 0, 0, region_z(4, 4, 0, 1, 0, 1), "VUID-vkCmdBlitImage-srcImage-00230"},
+        {VK_FORMAT_R8G8B8A8_SINT, kRgba8, 0, 0, region_z(4, 4, 0, 1, 0, 1), "VUID-vkCmdBlitImage-srcImage-00229"},
+        {VK_FORMAT_R8G8B8A8_SINT, VK_FORMAT_R8G8B8A8_UINT, 0, 0, region_z(4, 4, 0, 1, 0, 1),
+         "VUID-vkCmdBlitImage-srcImage-00229"},
+        {kRgba8, kRgba8, 0, 4, region_z(4, 4, 0, 1, 2, 3), "writes slice 0 instead"},
+    };
+    for (const Refusal& c : cases) {
+        testing::internal::CaptureStderr();
+        const Bytes out = run_3d(d, c.sf, c.df, 4, 4, c.sd, c.dd, c.r, kNearest);
+        EXPECT_NE(testing::internal::GetCapturedStderr().find(c.says), std::string::npos) << c.says;
+        EXPECT_EQ(out, pattern(c.df, size_t(16) * std::max(c.dd, 1u), 777)) << c.says;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, BlitVsLavapipe, ::testing::ValuesIn(specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
 INSTANTIATE_TEST_SUITE_P(Formats, BlitVsLavapipe, ::testing::ValuesIn(format_specs()),
+                         [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
+INSTANTIATE_TEST_SUITE_P(SourceFormats, BlitVsLavapipe, ::testing::ValuesIn(source_format_specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });
 INSTANTIATE_TEST_SUITE_P(IntFormats, BlitVsLavapipe, ::testing::ValuesIn(int_specs()),
                          [](const ::testing::TestParamInfo<Spec>& i) { return i.param.name; });

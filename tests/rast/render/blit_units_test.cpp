@@ -146,5 +146,18 @@ TEST(BlitTexels, ConversionsRoundTrip) {
     }
 }
 
+// The source z of each destination slice (u_blitter's per-slice coordinate): a 3D source is read at slice centres
+// spread over its box, `z0 + (z + 0.5) * S / D` (exact here: every term is a small dyadic), flipped from the box's
+// far end; array layers are read one for one without the half-slice offset.
+TEST(BlitUnits, SourceZOfEachDestinationSlice) {
+    for (int32_t z = 0; z < 4; ++z) {
+        EXPECT_EQ(blit_source_z(0, 8, 4, z, true), float(2 * z + 1)) << z;  // 8 slices into 4: centres 1, 3, ..
+        EXPECT_EQ(blit_source_z(2, 2, 8, z, true), 2.0f + 0.25f * z + 0.125f) << z;  // 2 into 8
+        EXPECT_EQ(blit_source_z(8, -8, 4, z, true), float(7 - 2 * z)) << z;          // flipped: 7, 5, 3, 1
+        EXPECT_EQ(blit_source_z(3, 4, 4, z, true), 3.5f + float(z)) << z;            // unscaled: the slice centre
+        EXPECT_EQ(blit_source_z(3, 4, 4, z, false), 3.0f + float(z)) << z;           // array layers: the layer itself
+    }
+}
+
 }  // namespace
 }  // namespace tilevk::rast::render
