@@ -21,6 +21,11 @@ std::string header(uint32_t x, uint32_t y = 1) {
            "#extension GL_KHR_memory_scope_semantics : require\n" + h.substr(eol);
 }
 
+// A compute shader of kLocal invocations: the declarations, then main's body with i = gl_GlobalInvocationID.x.
+std::string shader(const std::string& decls, const std::string& body) {
+    return header(kLocal) + decls + "void main() { uint i = gl_GlobalInvocationID.x;\n" + body + "}\n";
+}
+
 ComputeSpec spec() {
     ComputeSpec s;
     s.atomic_float = true;
@@ -155,20 +160,17 @@ void add_shared(CaseList& out) {
 // image is also copied into buffer 1 at the end; buffer 0 holds the returns.
 void add_image(CaseList& out) {
     ComputeSpec s = spec();
-    s.shaders = {header(kLocal) +
-                 "layout(binding=3, r32f) uniform image2D img;\n"
-                 "layout(std430, binding=0) buffer R { float r[]; };\n" +
-                 awkward_decl(2) +
-                 "void main() { uint i = gl_GlobalInvocationID.x;\n"
-                 "  imageAtomicAdd(img, ivec2(i % 4u, i / 4u % 4u), " +
-                 kQuarterGlsl +
-                 ");\n"
-                 "  if (i < 192u) { ivec2 p = ivec2(i % 16u, 4u + i / 16u);\n"
-                 "    r[3u * i] = imageAtomicExchange(img, p, float(i) * -0.75);\n"
-                 "    r[3u * i + 1u] = imageAtomicAdd(img, p, " +
-                 kAwkwardGlsl +
-                 ");\n"
-                 "    r[3u * i + 2u] = imageAtomicLoad(img, p, gl_ScopeDevice, 0, 0); }\n}\n"};
+    const std::string decls =
+        "layout(binding=3, r32f) uniform image2D img;\n"
+        "layout(std430, binding=0) buffer R { float r[]; };\n" +
+        awkward_decl(2);
+    s.shaders = {shader(decls, std::string("  imageAtomicAdd(img, ivec2(i % 4u, i / 4u % 4u), ") + kQuarterGlsl +
+                                   ");\n  if (i < 192u) { ivec2 p = ivec2(i % 16u, 4u + i / 16u);\n"
+                                   "    r[3u * i] = imageAtomicExchange(img, p, float(i) * -0.75);\n"
+                                   "    r[3u * i + 1u] = imageAtomicAdd(img, p, " +
+                                   kAwkwardGlsl +
+                                   ");\n"
+                                   "    r[3u * i + 2u] = imageAtomicLoad(img, p, gl_ScopeDevice, 0, 0); }\n")};
     std::vector<float> img(256), r(3 * 192);
     for (uint32_t t = 0; t < 256; ++t) img[t] = float(t) * 0.0625f - 3.0f;
     std::vector<uint8_t> init(256 * 4);
@@ -195,16 +197,13 @@ void add_image(CaseList& out) {
 // An R32_SFLOAT storage texel buffer: 8 words take contended quarters, 128 one-writer adds return the old value.
 void add_texel_buffer(CaseList& out) {
     ComputeSpec s = spec();
-    s.shaders = {header(kLocal) +
-                 "layout(binding=0, r32f) uniform imageBuffer t;\n"
-                 "layout(std430, binding=1) buffer R { float r[]; };\n" +
-                 awkward_decl(2) +
-                 "void main() { uint i = gl_GlobalInvocationID.x;\n"
-                 "  imageAtomicAdd(t, int(i % 8u), " +
-                 kQuarterGlsl +
-                 ");\n"
-                 "  if (i < 128u) r[i] = imageAtomicAdd(t, int(8u + i), " +
-                 kAwkwardGlsl + ");\n}\n"};
+    const std::string decls =
+        "layout(binding=0, r32f) uniform imageBuffer t;\n"
+        "layout(std430, binding=1) buffer R { float r[]; };\n" +
+        awkward_decl(2);
+    s.shaders = {shader(decls, std::string("  imageAtomicAdd(t, int(i % 8u), ") + kQuarterGlsl +
+                                   ");\n  if (i < 128u) r[i] = imageAtomicAdd(t, int(8u + i), " + kAwkwardGlsl +
+                                   ");\n")};
     std::vector<float> t(136), r(128);
     for (uint32_t k = 0; k < t.size(); ++k) t[k] = float(k) * 1.25f + 0.01f;
     ComputeBuffer tb{bits(t)};
