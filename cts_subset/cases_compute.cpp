@@ -173,6 +173,7 @@ void add_basic_cases(CaseList& out) {
 
 void add_compute_shared_cases(CaseList& out);  // cases_compute_shared.cpp
 void add_compute_atomic_cases(CaseList& out);  // cases_compute_atomic.cpp
+void add_compute_atomic_float_cases(CaseList& out);  // cases_compute_atomic_float.cpp
 void add_compute_image_cases(CaseList& out);   // cases_compute_image.cpp
 void add_compute_store_cases(CaseList& out);   // cases_compute_stores.cpp
 
@@ -180,6 +181,7 @@ void add_compute_cases(CaseList& out) {
     add_basic_cases(out);
     add_compute_shared_cases(out);
     add_compute_atomic_cases(out);
+    add_compute_atomic_float_cases(out);
     add_compute_image_cases(out);
     add_compute_store_cases(out);
 }

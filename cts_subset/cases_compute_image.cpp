@@ -114,8 +114,8 @@ std::vector<uint8_t> texels(const StorageFormat& f, uint32_t n, uint32_t seed) {
 
 // imageLoad from image 0, imageStore mirrored in x into image 1, imageSize into buffer 0. A load and store of the
 // same format gives back the texel's bytes, except SNORM -2^(n-1), which reads as -1.0 and is written back as
-// -(2^(n-1) - 1).
-void add_copy_case(CaseList& out, const StorageFormat& f) {
+// -(2^(n-1) - 1). `linear`: both images have VK_IMAGE_TILING_LINEAR (image.linear.*).
+void add_copy_case(CaseList& out, const StorageFormat& f, bool linear) {
     constexpr uint32_t kW = 19, kH = 11;  // not a multiple of the 4x4 blocks, partly covered workgroups
     const std::string type = std::string(f.prefix) + "image2D";
     ComputeSpec s;
@@ -133,6 +133,7 @@ void add_copy_case(CaseList& out, const StorageFormat& f) {
     const std::vector<uint8_t> in = texels(f, kW * kH, uint32_t(f.format));
     s.buffers = {{{kMarker, kMarker}}};
     s.images = {{f.format, kW, kH, in}, {f.format, kW, kH, {}}};
+    for (ComputeImage& im : s.images) im.linear = linear;
     s.steps = {dispatch(0, (kW + 7) / 8, (kH + 3) / 4)};
     std::vector<uint8_t> want(in.size());
     for (uint32_t y = 0; y < kH; ++y)
@@ -152,7 +153,7 @@ void add_copy_case(CaseList& out, const StorageFormat& f) {
         }
         return "no plane image1";
     };
-    add_compute_case(out, std::string("image.load_store.") + f.name, std::move(s),
+    add_compute_case(out, std::string(linear ? "image.linear.load_store." : "image.load_store.") + f.name, std::move(s),
                      all_of({words_are(0, {kW, kH}), check}));
 }
 
@@ -321,7 +322,8 @@ void add_sync_cases(CaseList& out) {
 }  // namespace
 
 void add_compute_image_cases(CaseList& out) {
-    for (const StorageFormat& f : kFormats) add_copy_case(out, f);
+    for (const StorageFormat& f : kFormats) add_copy_case(out, f, false);
+    for (const StorageFormat& f : kFormats) add_copy_case(out, f, true);
     for (const StorageFormat& f : kFormats) add_store_case(out, f, true);
     for (const StorageFormat& f : kFormats) add_store_case(out, f, false);
     for (const StorageFormat& f : kFormats) add_texel_buffer_copy_case(out, f);

@@ -4,8 +4,9 @@
 // division by non-zero values, min/max/clamp, bitCount/findLSB/findMSB/bitfieldReverse, float + - * min max abs
 // floor with conversions, branches and short loops, optionally shared memory (written, barrier, read from another
 // invocation) and buffer atomics whose results do not depend on order (add, min, max, and, or, xor into 16 slots;
-// returned values unused; each statement has slots of its own). Every invocation writes its variables out. Judged by
-// the byte comparison only.
+// returned values unused; each statement has slots of its own) and float atomicAdd (VK_EXT_shader_atomic_float) of
+// quarters into 8 float slots, whose sums are exact in any order. Every invocation writes its variables out. Judged
+// by the byte comparison only.
 //
 // Left out on purpose: float literals combined with computed values (NIR's inexact algebraic rules, see
 // cases_random.cpp), NaN and infinity (every float result is clamped to +-1e6, so none arises), transcendental
@@ -116,6 +117,16 @@ ComputeSpec random_compute_spec(uint32_t seed) {
                 g += std::string("  ") + r.pick(uops) + "(islot" + at + "int(" + uvar(r) + "));\n";
         }
     }
+    // Float atomics from a generator of their own: every seed keeps the rest of the shader and the data it had.
+    Rng fr(seed * 104729u + 3u);
+    const bool float_atomics = fr.chance(0.3f);
+    if (float_atomics) {
+        g.insert(g.find('\n') + 1, "#extension GL_EXT_shader_atomic_float : require\n");
+        g += "  float fq = float(" + uvar(fr) + " & 15u) * 0.25 - 1.5;\n";
+        for (uint32_t k = 0, m = 1 + fr.below(3); k < m; ++k) g += "  atomicAdd(fslot[" + uvar(fr) + " & 7u], fq);\n";
+        const size_t main_at = g.find("void main()");
+        g.insert(main_at, "layout(std430, binding=3) buffer FSlots { float fslot[8]; };\n");
+    }
     g += "  o[flat_id] = uvec4(u0 ^ u2, u1 + u3, floatBitsToUint(f0) ^ floatBitsToUint(f1), uint(i0));\n}\n";
 
     ComputeSpec s;
@@ -127,6 +138,12 @@ ComputeSpec random_compute_spec(uint32_t seed) {
         slots[16 + k] = int32_t(r.next()) >> r.below(32);
     }
     s.buffers = {{in, false, false}, {std::vector<uint32_t>(size_t(total) * 4, kMarker)}, {slots}};
+    if (float_atomics) {
+        std::vector<uint32_t> fslots(8);
+        for (uint32_t k = 0; k < 8; ++k) fslots[k] = fbits(float(fr.below(64)) * 0.5f - 16.0f);
+        s.buffers.push_back({fslots});
+        s.atomic_float = true;
+    }
     s.steps = {dispatch(0, gx, gy, gz)};
     if (std::getenv("TILEVK_CTS_RANDOM_DUMP"))
         std::fprintf(stderr, "random.compute.seed_%u: local %ux%ux%u, groups %ux%ux%u\n%s", seed, lx, ly, lz, gx, gy,

@@ -264,7 +264,10 @@ void Objects::make_resources(const ComputeSpec& s) {
             attachment = int(j);
         }
         Img img;
-        img.image = frame::make_image(c, gc, im.format, im.width, im.height, 1, im.samples, u);
+        if (im.linear && (ms || im.attachment))
+            throw std::runtime_error("harness: a linear image is single-sample and not the attachment");
+        img.image = frame::make_image(c, gc, im.format, im.width, im.height, 1, im.samples, u, 1, false, 1, 0,
+                                      im.linear ? VK_IMAGE_TILING_LINEAR : VK_IMAGE_TILING_OPTIMAL);
         img.view = frame::make_view(c, gc, img.image, im.format, VK_IMAGE_ASPECT_COLOR_BIT, 1);
         if (ms) {
             img.bytes = 0;
@@ -632,6 +635,13 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
         !c.has_extension(VK_KHR_DEVICE_GROUP_EXTENSION_NAME))
         return "vkCmdDispatchBaseKHR needs VK_KHR_device_group";
     if (s.draw.min_sample_shading >= 0.0f && !c.features.sampleRateShading) return "feature sampleRateShading";
+    if (s.atomic_float) {
+        const VkPhysicalDeviceShaderAtomicFloatFeaturesEXT& f = c.atomic_float;
+        if (!c.has_extension(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME)) return "VK_EXT_shader_atomic_float";
+        if (!f.shaderBufferFloat32Atomics || !f.shaderBufferFloat32AtomicAdd || !f.shaderSharedFloat32Atomics ||
+            !f.shaderSharedFloat32AtomicAdd || !f.shaderImageFloat32Atomics || !f.shaderImageFloat32AtomicAdd)
+            return "a 32-bit member of VkPhysicalDeviceShaderAtomicFloatFeaturesEXT";
+    }
     for (const ComputeBuffer& b : s.buffers) {
         if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
         VkFormatProperties fp;
@@ -646,9 +656,10 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
         const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
         VkFormatFeatureFlags need = ms ? VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT : VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
         if (im.attachment) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
-        if ((fp.optimalTilingFeatures & need) != need)
-            return std::string("format ") + format_name(im.format) + " lacks " +
-                   format_features_name(need & ~fp.optimalTilingFeatures);
+        const VkFormatFeatureFlags have = im.linear ? fp.linearTilingFeatures : fp.optimalTilingFeatures;
+        if ((have & need) != need)
+            return std::string("format ") + format_name(im.format) + " lacks " + format_features_name(need & ~have) +
+                   (im.linear ? " (linear tiling)" : "");
         VkImageFormatProperties ip{};
         if (ms && (vkGetPhysicalDeviceImageFormatProperties(
                        c.physical, im.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,

@@ -36,6 +36,7 @@ struct ComputeImage {
     // image sampler (sampler2DMS, nearest) instead of a storage image; the draw's render pass clears it to zero;
     // it is neither uploaded nor read back (a dispatch copies its samples into a buffer).
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    bool linear = false;  // VK_IMAGE_TILING_LINEAR (single-sample, not an attachment) instead of OPTIMAL
 };
 
 struct ComputeStep {
@@ -85,6 +86,8 @@ struct ComputeSpec {
     std::vector<ComputeImage> images;
     std::vector<ComputeStep> steps;  // empty: dispatch(0, 1)
     ComputeDraw draw;
+    // The shaders use 32-bit float atomics (VK_EXT_shader_atomic_float: buffer, shared and image features, add too).
+    bool atomic_float = false;
 };
 
 // Records the steps on one device, submits, waits and reads back every plane.

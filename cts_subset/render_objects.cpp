@@ -114,7 +114,7 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
 
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
                    VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth, bool one_d, uint32_t layers,
-                   VkImageCreateFlags flags) {
+                   VkImageCreateFlags flags, VkImageTiling tiling) {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.flags = flags;
     ci.imageType = one_d ? VK_IMAGE_TYPE_1D : depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
@@ -123,7 +123,7 @@ VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_
     ci.mipLevels = mips;
     ci.arrayLayers = layers;
     ci.samples = samples;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.tiling = tiling;
     ci.usage = usage;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage img;

@@ -46,7 +46,7 @@ Buffer make_buffer(const DeviceContext& c, Cleanup& gc, VkDeviceSize size, VkBuf
 // and `flags` (VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) for cube textures.
 VkImage make_image(const DeviceContext& c, Cleanup& gc, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
                    VkSampleCountFlagBits samples, VkImageUsageFlags usage, uint32_t depth = 1, bool one_d = false,
-                   uint32_t layers = 1, VkImageCreateFlags flags = 0);
+                   uint32_t layers = 1, VkImageCreateFlags flags = 0, VkImageTiling tiling = VK_IMAGE_TILING_OPTIMAL);
 VkImageView make_view(const DeviceContext& c, Cleanup& gc, VkImage img, VkFormat f, VkImageAspectFlags aspect,
                       uint32_t mips, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D, uint32_t layers = 1);
 void barrier(VkCommandBuffer cb, VkImage img, VkImageAspectFlags aspect, uint32_t mips, VkImageLayout from,

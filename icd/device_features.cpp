@@ -67,6 +67,15 @@ void add_extension_features(Features& f) {
     // stippled lines are refused at pipeline creation (pipeline.cpp translate_line_state).
     f.line_rasterization.rectangularLines = VK_TRUE;
     f.line_rasterization.bresenhamLines = VK_TRUE;
+    // 32-bit float Load / Store / Exchange / OpAtomicFAddEXT on storage buffers, Workgroup memory and R32_SFLOAT
+    // storage images and texel buffers (shader/translate_atomic.cpp, exec_atomic.h), exactly lavapipe's answer
+    // (lvp_device.c): no 64-bit float atomics, no sparse images.
+    f.atomic_float.shaderBufferFloat32Atomics = VK_TRUE;
+    f.atomic_float.shaderBufferFloat32AtomicAdd = VK_TRUE;
+    f.atomic_float.shaderSharedFloat32Atomics = VK_TRUE;
+    f.atomic_float.shaderSharedFloat32AtomicAdd = VK_TRUE;
+    f.atomic_float.shaderImageFloat32Atomics = VK_TRUE;
+    f.atomic_float.shaderImageFloat32AtomicAdd = VK_TRUE;
 }
 
 Features make_supported() {
@@ -230,6 +239,7 @@ Features::Features() {
     init(provoking_vertex, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT);
     init(depth_clip_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT);
     init(line_rasterization, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT);
+    init(atomic_float, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -243,7 +253,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&multi_draw),
                                  reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex),
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable),
-                                 reinterpret_cast<VkBaseOutStructure*>(&line_rasterization)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&line_rasterization),
+                                 reinterpret_cast<VkBaseOutStructure*>(&atomic_float)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

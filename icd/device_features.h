@@ -24,6 +24,7 @@ struct Features {
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
+    VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

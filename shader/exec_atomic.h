@@ -1,4 +1,5 @@
-// Interpreter kernels: compute's Workgroup (shared) memory and the 32-bit OpAtomic* family.
+// Interpreter kernels: compute's Workgroup (shared) memory and the 32-bit OpAtomic* family (integers, and floats:
+// Load, Store, Exchange and OpAtomicFAddEXT).
 //
 // Shared memory is one flat block per workgroup (not SoA: every lane of every batch sees the same word). A workgroup
 // runs wholly on one thread, so its shared words need no atomic instructions; storage buffers are shared by all the
@@ -7,6 +8,9 @@
 #pragma once
 
 #include <atomic>
+#include <bit>
+
+#include <xmmintrin.h>
 
 #include "shader/exec_kernels.h"
 
@@ -40,6 +44,11 @@ inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cm
             return old | v;
         case AtomicOp::Xor:
             return old ^ v;
+        case AtomicOp::FAdd: {  // LLVM's atomicrmw fadd: old + v under the run's MXCSR, retried by compare-exchange
+            // ADDSS with old first, as the compiled tier's (memory_ops.cpp), whichever NaN the compiler would pick
+            const __m128 sum = _mm_add_ss(_mm_set_ss(std::bit_cast<float>(old)), _mm_set_ss(std::bit_cast<float>(v)));
+            return std::bit_cast<uint32_t>(_mm_cvtss_f32(sum));
+        }
     }
     return old;
 }
@@ -68,7 +77,7 @@ inline uint32_t atomic_on_word(AtomicOp op, uint32_t* word, uint32_t v, uint32_t
             return ref.fetch_or(v);
         case AtomicOp::Xor:
             return ref.fetch_xor(v);
-        default: {  // min / max: no fetch_min in C++20
+        default: {  // min / max: no fetch_min in C++20; float add: no fetch_add on a float's bits
             uint32_t old = ref.load();
             while (!ref.compare_exchange_weak(old, atomic_result(op, old, v, cmp))) {
             }

@@ -190,9 +190,9 @@ enum class Op : uint16_t {
     // nothing.
     ImageLoad,   // d..d+3 = the texel decoded (format/texel_codec.h decode_color)
     ImageStore,  // texel = c..c+3 encoded (store_image_texel) under mask d, lanes in order
-    // d = atomic pad:AtomicOp on the 32-bit texel of an R32_UINT / R32_SINT view at the coordinates b, value c,
-    // comparator d, lanes in order (std::atomic_ref); a lane whose handle a is kNoReg (inactive), a coordinate
-    // outside the view or another format: nothing done, d = 0 (storage_image_word)
+    // d = atomic pad:AtomicOp on the 32-bit texel of an R32_UINT / R32_SINT / R32_SFLOAT view at the coordinates b,
+    // value c, comparator d, lanes in order (std::atomic_ref); a lane whose handle a is kNoReg (inactive), a
+    // coordinate outside the view or another format: nothing done, d = 0 (storage_image_word)
     AtomicImage,
     // PhysicalStorageBuffer pointers (buffer device addresses, any stage; exec_pointer.h): a = the address's low
     // word, b = its high word, extra = a constant byte offset. A word outside the memory the driver registered
@@ -311,7 +311,22 @@ constexpr uint32_t wide_shape(WideOp o) {
 }
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
-enum class AtomicOp : uint16_t { Load, Store, Exchange, CompareExchange, IAdd, SMin, SMax, UMin, UMax, And, Or, Xor };
+// FAdd is OpAtomicFAddEXT (VK_EXT_shader_atomic_float): the word read as a float plus the operand, old value first.
+enum class AtomicOp : uint16_t {
+    Load,
+    Store,
+    Exchange,
+    CompareExchange,
+    IAdd,
+    SMin,
+    SMax,
+    UMin,
+    UMax,
+    And,
+    Or,
+    Xor,
+    FAdd
+};
 
 enum SampleFlags : uint32_t {
     kSampleImplicitLod = 1,  // derivative-based LOD (fragment only)

@@ -715,7 +715,10 @@ uint32_t* storage_image_word(const Descriptor* const* slots, uint32_t num_slots,
     const uint32_t s = handle & 0xFFFF;
     if (s >= num_slots || slots[s] == nullptr || slots[s]->image_writable == nullptr) return nullptr;
     const ImageView* img = slots[s]->image;
-    if (!image_ok(img) || (img->format != Format::R32_UINT && img->format != Format::R32_SINT)) return nullptr;
+    // the formats with STORAGE_IMAGE_ATOMIC (format/support.txt); R32_SFLOAT takes the float atomics
+    if (!image_ok(img) ||
+        (img->format != Format::R32_UINT && img->format != Format::R32_SINT && img->format != Format::R32_SFLOAT))
+        return nullptr;
     if (x >= img->width || y >= img->height || layer >= img->layers) return nullptr;  // unsigned: negative is out
     const ImageLevel& il = img->level[0];
     uint8_t* p = slots[s]->image_writable + il.offset + uint64_t(layer) * il.layer_pitch + uint64_t(y) * il.row_pitch +

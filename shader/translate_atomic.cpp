@@ -1,5 +1,6 @@
-// Compute's synchronisation and atomics: OpControlBarrier and the 32-bit OpAtomic* family on storage buffers and
-// Workgroup memory (the kernels: exec_atomic.h).
+// Compute's synchronisation and atomics: OpControlBarrier and the 32-bit OpAtomic* family (integers; floats: Load,
+// Store, Exchange, OpAtomicFAddEXT) on storage buffers, storage images and Workgroup memory (the kernels:
+// exec_atomic.h).
 #include "shader/translator.h"
 
 namespace tilevk::shader {
@@ -50,9 +51,33 @@ bool atomic_kind(spv::Op op, AtomicOp& out) {
         case spv::Op::OpAtomicXor:
             out = AtomicOp::Xor;
             return true;
+        case spv::Op::OpAtomicFAddEXT:
+            out = AtomicOp::FAdd;
+            return true;
         default:
-            return false;  // OpAtomicFlag*, OpAtomicCompareExchangeWeak (Kernel), float atomics: refused by name
+            return false;  // OpAtomicFlag*, OpAtomicCompareExchangeWeak (Kernel), OpAtomicFMin/FMaxEXT: refused by name
     }
+}
+
+// The message refusing atomic `kind` on type t, or empty. 32-bit integers take every atomic; 32-bit floats
+// (VK_EXT_shader_atomic_float's shader*Float32Atomics and *Float32AtomicAdd, as lavapipe reports them) take Load,
+// Store, Exchange and OpAtomicFAddEXT. The 64-bit float features are VK_FALSE in lavapipe and tilevk.
+std::string atomic_type_error(spv::Op op, AtomicOp kind, const Type& t) {
+    const bool float_op =
+        kind == AtomicOp::Load || kind == AtomicOp::Store || kind == AtomicOp::Exchange || kind == AtomicOp::FAdd;
+    const std::string what = "unsupported " + opname(op);
+    if (t.kind == Type::Int && (t.wide || t.bits != 32))
+        return what + " on a " + (t.wide ? "64" : std::to_string(t.bits)) +
+               "-bit integer (shaderBufferInt64Atomics and shaderSharedInt64Atomics are VK_FALSE)";
+    if (t.kind == Type::Int && kind != AtomicOp::FAdd) return {};
+    if (t.kind != Type::Float) return what + " on a non-integer, non-float type";
+    if (t.wide)
+        return what +
+               " on a 64-bit float (VkPhysicalDeviceShaderAtomicFloatFeaturesEXT::shaderBufferFloat64Atomics and "
+               "shaderSharedFloat64Atomics are VK_FALSE)";
+    if (t.bits != 32) return what + " on a 16-bit float (VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT is not offered)";
+    if (!float_op) return what + " on a float (32-bit floats: OpAtomicLoad, Store, Exchange and OpAtomicFAddEXT)";
+    return {};
 }
 
 }  // namespace
@@ -81,8 +106,7 @@ bool Translator::op_atomic(const Instr& in) {
     const bool phys = pv.type != 0 && is_phys_pointer(pv.type);
     if (pv.ptr < 0 && !phys) fail(opname(in.op) + " on a non-pointer");
     const Pointer p = phys ? phys_pointer(ptr_id) : pointers_[size_t(pv.ptr)];
-    const Type& t = type(p.type);
-    if (t.kind != Type::Int) fail("unsupported " + opname(in.op) + " on a non-integer (only 32-bit integer atomics)");
+    if (std::string why = atomic_type_error(in.op, kind, type(p.type)); !why.empty()) fail(why);
     uint32_t value = zero_;
     switch (in.op) {
         case spv::Op::OpAtomicStore:

@@ -178,6 +178,9 @@ void Translator::wide_each(const Instr& in, WideOp o, std::initializer_list<uint
 
 // One instruction with a 64-bit operand or result; false for any other (and for the moves, which need nothing).
 bool Translator::op_wide(const Instr& in) {
+    // 64-bit atomics are refused by translate_atomic.cpp, with the Vulkan features that would allow them
+    if ((in.op >= spv::Op::OpAtomicLoad && in.op <= spv::Op::OpAtomicXor) || in.op == spv::Op::OpAtomicFAddEXT)
+        return false;
     const bool result = in.n > 2 && is_wide_type(in[1]);
     bool any = result;
     const size_t end = in.op == spv::Op::OpVectorShuffle ? 5 : in.n;

@@ -129,7 +129,8 @@ class LaneEmitter {
 };
 
 // The memory sync ops as the interpreter's lane loops (memory_ops.cpp), at a sync point (every value in its home,
-// rax, rcx, rdx, rsi, rdi, r8, r9 and r10 free). False when the instruction's operands are out of range.
+// rax, rcx, rdx, rsi, rdi, r8, r9, r10 and the vector registers free: YMM caches end at sync points). False when
+// the instruction's operands are out of range.
 bool emit_store_shared(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);
 bool emit_atomic_shared(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);
 bool emit_store_buf(asmjit::x86::Assembler& a, const ProgramImpl& p, const Inst& in);  // in.n == 1 only

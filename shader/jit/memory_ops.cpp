@@ -85,6 +85,12 @@ bool atomic_result(x86::Assembler& a, const Inst& in, int lane) {
         case AtomicOp::Xor:
             a.xor_(r9d, r8d);
             return true;
+        case AtomicOp::FAdd:  // float(old) + float(v), old first, under the run's MXCSR (xmm0/xmm1 are free here)
+            a.vmovd(xmm0, ecx);
+            a.vmovd(xmm1, r8d);
+            a.vaddss(xmm0, xmm0, xmm1);
+            a.vmovd(r9d, xmm0);
+            return true;
     }
     return false;
 }

@@ -27,8 +27,8 @@ namespace {
 #include "cp_broadcast_dynamic_comp.h"
 #include "cp_counters_comp.h"
 #include "cp_dispatch_base_comp.h"
+#include "cp_double_atomic_comp.h"
 #include "cp_ids_comp.h"
-#include "cp_image_atomic_comp.h"
 #include "cp_reduce_comp.h"
 #include "cp_saxpy_comp.h"
 #include "cp_shared_comp.h"
@@ -410,7 +410,7 @@ TEST_F(ApiCompute, BadInputIsRefusedByName) {
     refused(
         SPV(cp_shared_size_comp), &big, "main",
         "Workgroup variables need 32772 bytes, more than VkPhysicalDeviceLimits::maxComputeSharedMemorySize = 32768");
-    refused(SPV(cp_image_atomic_comp), nullptr, "main", "only 32-bit integer atomics");  // a float image atomic
+    refused(SPV(cp_double_atomic_comp), nullptr, "main", "OpAtomicExchange on a 64-bit float");
     compute_pipeline(k, SPV(cp_shared_size_comp), s.layout);  // 8192 words: exactly the limit
 
     VkPipeline p = compute_pipeline(k, SPV(cp_ids_comp), s.layout);  // (1, 1, 2)

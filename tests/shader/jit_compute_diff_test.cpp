@@ -1,8 +1,9 @@
 // Differential test of the two tiers on compute programs (shader/jit/README.md, "Compute"): Workgroup memory,
 // barriers (the compiled code returns at a Barrier and the next phase resumes it there), shared and buffer atomics
-// (return values in lane order), subgroups and out-of-range shared indices. Each program is created twice, compiled
-// and interpreted, and runs the same workgroups on the same random buffers; every buffer byte and the watchdog count
-// must match, and the programs together must reach every compute op the tier knows but the storage-image ones.
+// (return values in lane order; float ones too), subgroups and out-of-range shared indices. Each program is created
+// twice, compiled and interpreted, and runs the same workgroups on the same random buffers; every buffer byte and the
+// watchdog count must match, and the programs together must reach every compute op the tier knows but the storage-image
+// ones.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -83,6 +84,32 @@ void main() {
     uint q7 = atomicCompSwap(h[61u + v % 2u], v % 5u, i);
     int q8 = atomicAdd(s[v % 8u], -1);
     h[64u + (gl_GlobalInvocationID.x % 56u)] = q0 ^ q1 ^ q2 ^ q3 ^ q4 ^ q5 ^ q6 ^ q7 ^ uint(q8);
+})";
+
+// Float atomics (VK_EXT_shader_atomic_float) on shared and buffer words from random bits (NaNs, infinities,
+// denormals among them): colliding and one-writer adds and exchanges with their returns kept.
+const char* const kFloatAtomics = R"(#version 450
+#extension GL_EXT_shader_atomic_float : require
+layout(local_size_x_id = 0) in;
+layout(std430, set = 0, binding = 0) buffer X { float x[]; };
+layout(std430, set = 0, binding = 1) buffer Y { float y[]; };
+layout(std430, set = 0, binding = 2) buffer H { float h[]; };
+shared float s[16];
+void main() {
+    uint i = gl_LocalInvocationIndex, g = gl_GlobalInvocationID.x;
+    float v = x[g % 128u];
+    uint k = floatBitsToUint(v);
+    if (i < 16u) s[i] = x[i + 200u];
+    barrier();
+    float r0 = atomicAdd(s[k % 16u], v);
+    float r1 = atomicExchange(s[(k >> 4) % 16u], x[(g + 7u) % 128u]);
+    float r2 = atomicAdd(s[i % 16u], x[300u + i % 64u]);
+    float r3 = atomicAdd(h[k % 32u], v);
+    float r4 = atomicExchange(h[32u + (k >> 5) % 8u], v);
+    barrier();
+    uint base = (g % 64u) * 6u;
+    y[base] = r0, y[base + 1u] = r1, y[base + 2u] = r2, y[base + 3u] = r3, y[base + 4u] = r4;
+    y[base + 5u] = s[i % 16u];
 })";
 
 // A reduction whose barriers sit in a loop and in divergent-looking code, reads of other batches' words after the
@@ -238,6 +265,7 @@ TEST_F(JitComputeDiff, ProgramsMatchInterpreterBitForBit) {
     const Case cases[] = {
         {"matmul", kMatmul, {0}, false},
         {"atomics", kAtomics, {64, 24, 16, 1, 40}, false},
+        {"float_atomics", kFloatAtomics, {64, 24, 16, 1}, false},
         {"reduce_clamp", kReduceClamp, {64, 24, 17, 1}, false},
         {"subgroups", kSubgroups, {64, 24, 8}, true},
     };

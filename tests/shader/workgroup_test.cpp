@@ -1,12 +1,13 @@
 // Compute workgroups in both tiers (the compiled one unless TILEVK_JIT=0): Workgroup (shared) memory, OpControlBarrier
-// run as lock-step phases of a workgroup's 16-lane batches, and the 32-bit atomics on storage buffers and shared
-// memory. The answers are computed here; every case would fail if batches ran to the end one after the other (reads of
-// a later batch's writes see zeros) or if atomics lost updates.
+// run as lock-step phases of a workgroup's 16-lane batches, and the 32-bit atomics (integer and float) on storage
+// buffers and shared memory. The answers are computed here; every case would fail if batches ran to the end one after
+// the other (reads of a later batch's writes see zeros) or if atomics lost updates.
 #include <gtest/gtest.h>
 
 #include <spirv-tools/libspirv.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <thread>
@@ -205,6 +206,79 @@ TEST(ShaderWorkgroup, SharedAtomicsReturnValuesInLaneOrder) {
         EXPECT_EQ(y[i * 4 + 2], 39u * 3);
         EXPECT_EQ(y[i * 4 + 3], i == 0 ? 0u : 100u) << i;  // lane 0 of batch 0 swapped first
     }
+}
+
+// Float atomics (VK_EXT_shader_atomic_float): a shared float accumulates x[i] in LocalInvocationIndex order, so each
+// invocation gets the rounded sum of the values before its own (computed here in the same order, IEEE without
+// FTZ/DAZ as compute runs); buffer words take one-writer adds and exchanges. OpAtomicExchange on a 64-bit float and
+// atomicMin on a float (VK_EXT_shader_atomic_float2's capability, not offered) are refused by name.
+TEST(ShaderWorkgroup, FloatAtomicsAddInLaneOrder) {
+    auto p = compute(R"(#version 450
+        #extension GL_EXT_shader_atomic_float : require
+        layout(local_size_x = 40) in;
+        layout(std430, set = 0, binding = 0) buffer X { float x[40]; float w[40]; float e[40]; };
+        layout(std430, set = 0, binding = 1) buffer Y { float y[]; };
+        shared float sum;
+        void main() {
+            uint i = gl_LocalInvocationIndex;
+            if (i == 0u) sum = 0.5;
+            barrier();
+            float before = atomicAdd(sum, x[i]);
+            float old_w = atomicAdd(w[i], x[39u - i]);
+            float old_e = atomicExchange(e[i], -x[i]);
+            barrier();
+            y[i * 4u] = before;
+            y[i * 4u + 1u] = sum;
+            y[i * 4u + 2u] = old_w;
+            y[i * 4u + 3u] = old_e;
+        })");
+    ASSERT_TRUE(p);
+    std::vector<float> xf(120);
+    for (uint32_t i = 0; i < 40; ++i) {
+        xf[i] = float(i) * 0.1f + 1.0f / float(i + 3);  // long mantissas: the sums round
+        xf[40 + i] = float(i) * -7.3f + 1e-3f;
+        xf[80 + i] = float(i) + 0.25f;
+    }
+    std::vector<uint32_t> x(120), y(160, 0xDEAD);
+    std::memcpy(x.data(), xf.data(), 480);
+    Bindings b;
+    b.set(0, 0, 0, storage(x));
+    b.set(0, 1, 0, storage(y));
+    Scratch s;
+    dispatch(*p, b, 0, 1, 1, s);
+    std::vector<float> got(160), after(120);
+    std::memcpy(got.data(), y.data(), 640);
+    std::memcpy(after.data(), x.data(), 480);
+    float sum = 0.5f;
+    std::vector<float> befores(40);
+    for (uint32_t i = 0; i < 40; ++i) {
+        befores[i] = sum;
+        sum += xf[i];
+    }
+    for (uint32_t i = 0; i < 40; ++i) {
+        EXPECT_EQ(got[i * 4], befores[i]) << i;
+        EXPECT_EQ(got[i * 4 + 1], sum) << i;
+        EXPECT_EQ(got[i * 4 + 2], xf[40 + i]) << i;
+        EXPECT_EQ(got[i * 4 + 3], xf[80 + i]) << i;
+        EXPECT_EQ(after[40 + i], xf[40 + i] + xf[39 - i]) << i;
+        EXPECT_EQ(after[80 + i], -xf[i]) << i;
+    }
+    const std::string min_src = R"(#version 450
+        #extension GL_EXT_shader_atomic_float2 : require
+        layout(local_size_x = 4) in;
+        layout(std430, set = 0, binding = 0) buffer X { float x[]; };
+        void main() { atomicMin(x[0], 1.0); })";
+    Result r = Program::create(compile_glsl(Stage::Compute, min_src), Stage::Compute, "main", {});
+    EXPECT_FALSE(r);
+    EXPECT_NE(r.error.find("AtomicFloat32MinMaxEXT"), std::string::npos) << r.error;
+    const std::string add64_src = R"(#version 450
+        #extension GL_EXT_shader_atomic_float : require
+        layout(local_size_x = 4) in;
+        layout(std430, set = 0, binding = 0) buffer X { double x[]; };
+        void main() { atomicExchange(x[0], 1.0lf); })";
+    r = Program::create(compile_glsl(Stage::Compute, add64_src), Stage::Compute, "main", {});
+    EXPECT_FALSE(r);
+    EXPECT_NE(r.error.find("OpAtomicExchange on a 64-bit float"), std::string::npos) << r.error;
 }
 
 // Atomics in a loop with a lane-dependent trip count: every lane keeps the value it got while it was active.
