@@ -152,6 +152,14 @@ TILEVK_KERNEL uint32_t mask4x4_scalar(const TilePlane* const* planes, int n, int
     return m;
 }
 
+// 4x: the four samples' masks of one 4x4 block at tile-relative (ox, oy) in one call, packed with sample s in bits
+// 16s..16s+15: mask4x4 for s = 0..3 (each plane's origin value and step table are read once for all four samples).
+TILEVK_KERNEL uint64_t mask4x4_samples4_scalar(const TilePlane* const* planes, int n, int32_t ox, int32_t oy) {
+    uint64_t m = 0;
+    for (int s = 0; s < 4; ++s) m |= uint64_t{mask4x4_scalar(planes, n, s, ox, oy)} << (16 * s);
+    return m;
+}
+
 // 1x, one 16x16-px block at once (the 16->4 level at one sample per pixel). base[k] = value of plane k at the
 // block's top-left pixel. mask[lane] = coverage of the lane's 4x4 block (bit y*4+x set iff every plane is > 0 at
 // that pixel); full / empty = the lanes whose mask is 0xFFFF / 0. Both versions do a fixed amount of work per
@@ -268,6 +276,48 @@ TILEVK_KERNEL uint32_t mask4x4_avx2(const TilePlane* const* planes, int n, int s
     }
     return m;
 }
+// mask4x4_samples4 with the planes combined by OR of (value - 1) per lane (the sign bit is set iff some plane is
+// <= 0: every value is in (-2^30, 2^30], so no subtraction wraps), so the sign extractions run once per block
+// instead of once per plane and sample. A plane's four sample values sit in both 128-bit halves (one in-lane
+// shuffle broadcasts sample s). kN = plane count known at compile time (0: use n); n = 0 leaves every lane
+// covered, as mask4x4 does. The lanes are taken in the order {0-3, 8-11} and {4-7, 12-15} so that two signed
+// packs and one 64-bit permute put two samples' sixteen sign bytes in pixel order for one movemask.
+template <int kN>
+[[gnu::always_inline]] TILEVK_KERNEL uint64_t mask4x4_samples4_avx2(const TilePlane* const* planes, int n, int32_t ox,
+                                                                    int32_t oy) {
+    if constexpr (kN != 0) n = kN;
+    __m256i acc[8];  // sample s: lanes {0-3, 8-11} in acc[2s], {4-7, 12-15} in acc[2s + 1]
+    for (int i = 0; i < 8; ++i) acc[i] = _mm256_setzero_si256();
+#pragma GCC unroll 8
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        const __m128i c = _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.c)),
+                                        _mm_set1_epi32(p.a * ox + p.b * oy - 1));
+        const __m256i cc = _mm256_broadcastsi128_si256(c);
+        const __m256i s0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step));
+        const __m256i s1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8));
+        const __m256i t0 = _mm256_permute2x128_si256(s0, s1, 0x20), t1 = _mm256_permute2x128_si256(s0, s1, 0x31);
+        const __m256i c0 = _mm256_shuffle_epi32(cc, 0x00), c1 = _mm256_shuffle_epi32(cc, 0x55);
+        const __m256i c2 = _mm256_shuffle_epi32(cc, 0xAA), c3 = _mm256_shuffle_epi32(cc, 0xFF);
+        acc[0] = _mm256_or_si256(acc[0], _mm256_add_epi32(c0, t0));
+        acc[1] = _mm256_or_si256(acc[1], _mm256_add_epi32(c0, t1));
+        acc[2] = _mm256_or_si256(acc[2], _mm256_add_epi32(c1, t0));
+        acc[3] = _mm256_or_si256(acc[3], _mm256_add_epi32(c1, t1));
+        acc[4] = _mm256_or_si256(acc[4], _mm256_add_epi32(c2, t0));
+        acc[5] = _mm256_or_si256(acc[5], _mm256_add_epi32(c2, t1));
+        acc[6] = _mm256_or_si256(acc[6], _mm256_add_epi32(c3, t0));
+        acc[7] = _mm256_or_si256(acc[7], _mm256_add_epi32(c3, t1));
+    }
+    // packs_epi32 per 128-bit half: [A0-3 B0-3 | A4-7 B4-7] = lanes [0-7 | 8-15] of one sample; packs_epi16 of two
+    // samples: 64-bit chunks [s lanes 0-7, s' lanes 0-7, s lanes 8-15, s' lanes 8-15]; permute 0xD8 orders them.
+    const auto two = [&](int s) {
+        const __m256i w = _mm256_packs_epi16(_mm256_packs_epi32(acc[2 * s], acc[2 * s + 1]),
+                                             _mm256_packs_epi32(acc[2 * s + 2], acc[2 * s + 3]));
+        return uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(w, 0xD8)))};
+    };
+    return ~(two(0) | (two(2) << 32));
+}
+
 // The 256 pixels as 32 row segments of 8 px per plane (row y, x in [0,8) or [8,16)): segment = base - 1 + a*x + b*y,
 // one add each (incremental down the rows, + 8a for the right half); planes combine by OR of the values (sign bit =
 // some plane <= 0). Four rows of one half are packed 32 -> 16 -> 8 bits with signed saturation (signs kept) and one
@@ -419,6 +469,16 @@ TILEVK_KERNEL uint32_t mask4x4(const TilePlane* const* planes, int n, int s, int
     return mask4x4_avx2(planes, n, s, ox, oy);
 #else
     return mask4x4_scalar(planes, n, s, ox, oy);
+#endif
+}
+
+template <int kN>
+[[gnu::always_inline]] TILEVK_KERNEL uint64_t mask4x4_samples4(const TilePlane* const* planes, int n, int32_t ox,
+                                                               int32_t oy) {
+#if TILEVK_SIMD_AVX2
+    return mask4x4_samples4_avx2<kN>(planes, n, ox, oy);
+#else
+    return mask4x4_samples4_scalar(planes, n, ox, oy);
 #endif
 }
 

@@ -64,6 +64,11 @@ static_assert(sizeof(Block4) == 16 && offsetof(Block4, mask) == 8 && sizeof(Full
     std::memcpy(static_cast<void*>(b), &xy, 8);  // Block4 is trivially copyable; the cast says the bytes are meant
     std::memcpy(reinterpret_cast<char*>(b) + 8, &masks, 8);
 }
+// The primitive's sample mask as a 4x lane mask over packed sample masks (sample s in bits 16s..16s+15).
+inline uint64_t sample_keep(uint16_t sample_mask) {
+    return (sample_mask & 1u ? 0xFFFFull : 0) | (sample_mask & 2u ? 0xFFFFull << 16 : 0) |
+           (sample_mask & 4u ? 0xFFFFull << 32 : 0) | (sample_mask & 8u ? 0xFFFFull << 48 : 0);
+}
 [[gnu::always_inline]] inline void store_full(FullBlock* f, uint64_t xy, int32_t size) {
     std::memcpy(static_cast<void*>(f), &xy, 8);
     f->size = size;
@@ -195,31 +200,20 @@ void hier_block16_n(const Prim& prim, const TileGeom& t, PlaneList planes, int n
                     uint32_t valid, TileScratch* out) {
     if constexpr (kN != 0) n = kN;
     uint32_t rej_any = 0, acc_all = valid;
-    int32_t base[Prim::kMaxPlanes];
     for (int k = 0; k < n; ++k) {
-        const TilePlane& p = *planes[k];
         uint32_t rej, acc;
-        classify16(p, ox, oy, 2, &rej, &acc);
+        classify16(*planes[k], ox, oy, 2, &rej, &acc);
         rej_any |= rej, acc_all &= acc;
-        base[k] = p.a * ox + p.b * oy;  // plane offset of the block origin; + c[s] per sample below
     }
     const uint32_t live = valid & ~rej_any, full = live & acc_all;
     // Positions as packed (x | y << 32) words: one add per lane gives both (x, y >= 0, so no carry crosses).
     const uint64_t xy0 = pack_xy(t.x0 + ox, t.y0 + oy);
     size_t nb = out->num_blocks, nf = out->num_full;
-    const uint64_t keep = (prim.sample_mask & 1u ? 0xFFFFull : 0) | (prim.sample_mask & 2u ? 0xFFFFull << 16 : 0) |
-                          (prim.sample_mask & 4u ? 0xFFFFull << 32 : 0) | (prim.sample_mask & 8u ? 0xFFFFull << 48 : 0);
+    const uint64_t keep = sample_keep(prim.sample_mask);
     for (uint32_t m = full; m; m &= m - 1) store_full(&out->full[nf++], xy0 + kLaneXY4[std::countr_zero(m)], 4);
     for (uint32_t m = live & ~full; m; m &= m - 1) {
         const int lane = std::countr_zero(m);
-        uint64_t masks = keep;
-        for (int k = 0; k < n; ++k) {
-            const TilePlane& p = *planes[k];
-            const int32_t corner = base[k] + p.step4[lane];
-            uint64_t pm = 0;  // this plane's four sample masks, packed
-            for (int s = 0; s < 4; ++s) pm |= uint64_t{plane_mask4x4(p, corner + p.c[s])} << (16 * s);
-            masks &= pm;
-        }
+        const uint64_t masks = keep & mask4x4_samples4<kN>(planes, n, ox + 4 * (lane & 3), oy + 4 * (lane >> 2));
         store_block(&out->blocks[nb], xy0 + kLaneXY4[lane], masks);
         nb += masks != 0;
     }
@@ -256,10 +250,38 @@ RelBox rel_box(const Prim& prim, const TileGeom& t) {
 
 // Every 4x4 block of the box, masked directly (no classification).
 // Kept out of line: inlined into raster_prim_in_tile, GCC 12 compiles its loop nest less well (+10% instructions).
+// 4x: one kernel call gives a block's four sample masks (the small-triangle scenes' hot loop at 4x). kN = plane
+// count known at compile time (0: use n).
+template <int kN>
+void scan_blocks_4x(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r, TileScratch* out) {
+    const uint64_t keep = sample_keep(prim.sample_mask);
+    size_t nb = out->num_blocks;
+    for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
+        for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) {
+            const uint64_t masks = keep & mask4x4_samples4<kN>(planes, n, bx, by);
+            store_block(&out->blocks[nb], pack_xy(t.x0 + bx, t.y0 + by), masks);
+            nb += masks != 0;  // the slot is reused when empty
+        }
+    out->num_blocks = nb;
+}
+
 [[gnu::noinline]] void scan_blocks(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r,
                                    TileScratch* out) {
-    for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
-        for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
+    if (t.samples == 1) {
+        for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
+            for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) hier_block4(prim, t, planes, n, bx, by, out);
+        return;
+    }
+    switch (n) {
+        case 1:
+            return scan_blocks_4x<1>(prim, t, planes, n, r, out);
+        case 2:
+            return scan_blocks_4x<2>(prim, t, planes, n, r, out);
+        case 3:
+            return scan_blocks_4x<3>(prim, t, planes, n, r, out);
+        default:
+            return scan_blocks_4x<0>(prim, t, planes, n, r, out);
+    }
 }
 
 // planes: Prim::kMaxPlanes slots pointing into the TilePlane array `tp`, the first n of them the live planes (the 1x

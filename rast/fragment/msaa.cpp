@@ -96,13 +96,50 @@ void resolve_unorm8_row(const uint8_t* src, size_t sample_stride, size_t src_ste
 #if defined(__x86_64__) || defined(__i386__)
 // resolve_unorm8_row<4> with a texel's four bytes in SSE2 lanes, each lane doing what the scalar row does:
 // cvtdq2ps (exact on bytes) * fl(1/255), addps in sample order from 0, * 0.25, min.ps(1.0, x), * 255, cvtps2dq,
-// then packssdw + packuswb = pack_sat_u8.
+// then packssdw + packuswb = pack_sat_u8. With the samples in planes (src_step 4, the renderer's layout) four
+// pixels go together: one 16-byte load per sample, unpacked to one float vector per pixel.
+//
+// Four equal samples resolve to the sample itself: for every byte u, fl(fl(fl(v + v) + v) + v) * 0.25 * 255 with
+// v = fl(u * fl(1/255)) rounds back to u (checked for all 256 values by msaa_test's ResolveOfEqualSamplesIsTheSample),
+// so four pixels whose samples are all equal (untouched or cleared parts of the image) are copied.
 template <>
 void resolve_unorm8_row<4>(const uint8_t* src, size_t sample_stride, size_t src_step, uint8_t* dst, int w) {
     const __m128 k = _mm_set1_ps(float(1.0 / 255.0)), quarter = _mm_set1_ps(0.25f), one = _mm_set1_ps(1.0f),
                  scale = _mm_set1_ps(255.0f);
     const __m128i zero = _mm_setzero_si128();
-    for (int x = 0; x < w; ++x) {
+    const auto finish = [&](__m128 sum) {  // one pixel's four channel sums -> its four unorm8 values as int32
+        const __m128 a = _mm_min_ps(one, _mm_mul_ps(sum, quarter));  // minps(1, x): 1 < x ? 1 : x
+        return _mm_cvtps_epi32(_mm_mul_ps(a, scale));
+    };
+    int x = 0;
+    if (src_step == 4) {
+        for (; x + 4 <= w; x += 4) {
+            const uint8_t* p = src + size_t(x) * 4;
+            __m128i v[kMaxSamples];  // the loops unrolled keep the arrays in registers (GCC does not at -O2)
+#pragma GCC unroll 4
+            for (int s = 0; s < kMaxSamples; ++s)
+                v[s] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + s * sample_stride));
+            const __m128i eq = _mm_and_si128(_mm_cmpeq_epi32(v[0], v[1]),
+                                             _mm_and_si128(_mm_cmpeq_epi32(v[0], v[2]), _mm_cmpeq_epi32(v[0], v[3])));
+            if (_mm_movemask_epi8(eq) == 0xFFFF) {
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + size_t(x) * 4), v[0]);
+                continue;
+            }
+            __m128 sum[4] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};  // per pixel
+#pragma GCC unroll 4
+            for (int s = 0; s < kMaxSamples; ++s) {
+                const __m128i lo = _mm_unpacklo_epi8(v[s], zero), hi = _mm_unpackhi_epi8(v[s], zero);
+                const __m128i px[4] = {_mm_unpacklo_epi16(lo, zero), _mm_unpackhi_epi16(lo, zero),
+                                       _mm_unpacklo_epi16(hi, zero), _mm_unpackhi_epi16(hi, zero)};
+#pragma GCC unroll 4
+                for (int i = 0; i < 4; ++i) sum[i] = _mm_add_ps(sum[i], _mm_mul_ps(_mm_cvtepi32_ps(px[i]), k));
+            }
+            const __m128i out = _mm_packus_epi16(_mm_packs_epi32(finish(sum[0]), finish(sum[1])),
+                                                 _mm_packs_epi32(finish(sum[2]), finish(sum[3])));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + size_t(x) * 4), out);
+        }
+    }
+    for (; x < w; ++x) {
         const uint8_t* p = src + size_t(x) * src_step;
         __m128 sum = _mm_setzero_ps();
         for (int s = 0; s < kMaxSamples; ++s) {
@@ -111,8 +148,7 @@ void resolve_unorm8_row<4>(const uint8_t* src, size_t sample_stride, size_t src_
             const __m128i bytes = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(word), zero), zero);
             sum = _mm_add_ps(sum, _mm_mul_ps(_mm_cvtepi32_ps(bytes), k));
         }
-        const __m128 a = _mm_min_ps(one, _mm_mul_ps(sum, quarter));  // minps(1, x): 1 < x ? 1 : x
-        const __m128i q = _mm_cvtps_epi32(_mm_mul_ps(a, scale));
+        const __m128i q = finish(sum);
         const int32_t out = _mm_cvtsi128_si32(_mm_packus_epi16(_mm_packs_epi32(q, q), zero));
         std::memcpy(dst + size_t(x) * 4, &out, 4);
     }

@@ -96,6 +96,14 @@ TEST(Kernels, ScalarAndAvx2Agree) {
             ASSERT_EQ(m1, m2) << iter;
             nonzero += m1 != 0 && m1 != 0xFFFF;
         }
+        // The four samples at once (4x small-primitive scan and 16->4 partial lanes); no plane: all covered.
+        const uint64_t q = mask4x4_samples4_scalar(list, n, bx, by);
+        ASSERT_EQ(q, mask4x4_samples4_avx2<0>(list, n, bx, by)) << iter;
+        if (n == 3) {
+            ASSERT_EQ(q, mask4x4_samples4_avx2<3>(list, n, bx, by)) << iter;
+        }
+        for (int s = 0; s < 4; ++s) ASSERT_EQ((q >> (16 * s)) & 0xFFFF, mask4x4_scalar(list, n, s, bx, by)) << iter;
+        ASSERT_EQ(mask4x4_samples4_avx2<0>(list, 0, bx, by), ~uint64_t{0});
     }
     EXPECT_GT(nonzero, 1000u);  // the random planes do cut blocks
     EXPECT_GT(partial, 1000u);

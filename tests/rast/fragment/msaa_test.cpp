@@ -1,6 +1,7 @@
 // Alpha to coverage, sample mask, resolve and clear packing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -84,6 +85,27 @@ TEST(FragmentMsaa, ResolveUnorm8SumsInSampleOrder) {
     }
 }
 
+// resolve_rect copies a UNORM8 pixel whose four samples are equal (msaa.cpp): that is only right because the
+// resolve of four equal bytes u, computed as lavapipe does, is u for every u.
+TEST(FragmentMsaa, ResolveOfEqualSamplesIsTheSample) {
+    const float k = float(1.0 / 255.0);
+    for (int u = 0; u < 256; ++u) {
+        volatile float sum = 0.0f;
+        for (int s = 0; s < 4; ++s) {
+            volatile float t = float(u) * k;
+            sum = sum + t;
+        }
+        volatile float avg = std::min(1.0f, sum * 0.25f);
+        volatile float sc = avg * 255.0f;
+        ASSERT_EQ(int(std::nearbyint(sc)), u);
+        const uint8_t px[4] = {uint8_t(u), uint8_t(u), uint8_t(u), uint8_t(u)};
+        const uint8_t* p[4] = {px, px, px, px};
+        uint8_t out[4];
+        ASSERT_TRUE(resolve_pixel(ColorFormat::R8G8B8A8_UNORM, p, out, true));
+        ASSERT_EQ(out[0], u);
+    }
+}
+
 // resolve_rect's row path for formats made of UNORM8 bytes is a twin of resolve_pixel: equal on every pixel, in
 // the icd/ layout (a pixel's samples adjacent) and in sample planes, with padding between rows.
 TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
@@ -103,6 +125,14 @@ TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
             for (uint8_t& b : src) b = uint8_t(rng() % 4 == 0 ? 255 * (rng() & 1) : rng());
             if (f == ColorFormat::R16G16B16A16_SFLOAT)  // finite halves only: keep NaN payloads out of the compare
                 for (size_t i = 1; i < src.size(); i += 2) src[i] &= 0x7b;
+            // Pixels whose four samples are equal (the copy shortcut), in whole runs of four (one compare), mixed
+            // with pixels where only samples 0..m (m = 0..3) are equal.
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const int m = (x / 4 + y) % 3 != 0 ? 3 : int(rng() % 4);
+                    uint8_t* s0 = src.data() + y * pitch + x * (adjacent ? pixel_stride : bpp);
+                    for (int s = 1; s <= m; ++s) std::memcpy(s0 + s * sample_stride, s0, bpp);
+                }
             const size_t dst_pitch = w * bpp + 7;
             std::vector<uint8_t> got(size_t(h) * dst_pitch, 0xcd), want(got);
             resolve_rect(f, src.data(), sample_stride, pitch, got.data(), dst_pitch, w, h, true, pixel_stride);
