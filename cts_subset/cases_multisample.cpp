@@ -4,6 +4,18 @@
 namespace tilevk::cts {
 namespace {
 
+// "Over" blending: colour SRC_ALPHA, ONE_MINUS_SRC_ALPHA; alpha ONE, ZERO.
+VkPipelineColorBlendAttachmentState alpha_over() {
+    return {VK_TRUE,
+            VK_BLEND_FACTOR_SRC_ALPHA,
+            VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+            VK_BLEND_OP_ADD,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ZERO,
+            VK_BLEND_OP_ADD,
+            0xF};
+}
+
 Scene ms_scene(Draw d) {
     Scene s = one_draw(std::move(d));
     s.target.samples = VK_SAMPLE_COUNT_4_BIT;
@@ -112,14 +124,7 @@ void add_multisample_cases(CaseList& out) {
     out.push_back({g + "resolve_blend",
                    [] {
                        Draw a = random_triangles(21), b = random_triangles(22);
-                       b.blend = {VK_TRUE,
-                                  VK_BLEND_FACTOR_SRC_ALPHA,
-                                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-                                  VK_BLEND_OP_ADD,
-                                  VK_BLEND_FACTOR_ONE,
-                                  VK_BLEND_FACTOR_ZERO,
-                                  VK_BLEND_OP_ADD,
-                                  0xF};
+                       b.blend = alpha_over();
                        Scene s = ms_scene(a);
                        s.draws.push_back(b);
                        return s;
@@ -136,15 +141,7 @@ void add_multisample_cases(CaseList& out) {
                                Lcg rng{77};
                                for (Vertex& v : d->vertices) v.pos[2] = rng.next();
                            }
-                           if (min_sample_shading >= 0)
-                               b.blend = {VK_TRUE,
-                                          VK_BLEND_FACTOR_SRC_ALPHA,
-                                          VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-                                          VK_BLEND_OP_ADD,
-                                          VK_BLEND_FACTOR_ONE,
-                                          VK_BLEND_FACTOR_ZERO,
-                                          VK_BLEND_OP_ADD,
-                                          0xF};
+                           if (min_sample_shading >= 0) b.blend = alpha_over();
                            Scene s = ms_scene(a);
                            s.draws.push_back(b);
                            s.target.depth = VK_FORMAT_D32_SFLOAT;

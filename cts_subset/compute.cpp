@@ -16,6 +16,17 @@ using frame::Buffer;
 using frame::Cleanup;
 using Kind = ComputeStep::Kind;
 
+namespace {
+// A copy between two of the program's buffers or images (its indices).
+ComputeStep transfer(Kind kind, uint32_t src, uint32_t dst) {
+    ComputeStep s;
+    s.kind = kind;
+    s.src = src;
+    s.dst = dst;
+    return s;
+}
+}  // namespace
+
 ComputeStep dispatch(uint32_t shader, uint32_t x, uint32_t y, uint32_t z) {
     ComputeStep s;
     s.shader = shader;
@@ -46,25 +57,13 @@ ComputeStep fill(uint32_t buffer, uint32_t value) {
     return s;
 }
 ComputeStep copy_buffer(uint32_t src, uint32_t dst) {
-    ComputeStep s;
-    s.kind = Kind::kCopyBuffer;
-    s.src = src;
-    s.dst = dst;
-    return s;
+    return transfer(Kind::kCopyBuffer, src, dst);
 }
 ComputeStep copy_buffer_to_image(uint32_t buffer, uint32_t image) {
-    ComputeStep s;
-    s.kind = Kind::kCopyBufferToImage;
-    s.src = buffer;
-    s.dst = image;
-    return s;
+    return transfer(Kind::kCopyBufferToImage, buffer, image);
 }
 ComputeStep copy_image_to_buffer(uint32_t image, uint32_t buffer) {
-    ComputeStep s;
-    s.kind = Kind::kCopyImageToBuffer;
-    s.src = image;
-    s.dst = buffer;
-    return s;
+    return transfer(Kind::kCopyImageToBuffer, image, buffer);
 }
 ComputeStep draw() {
     ComputeStep s;

@@ -341,28 +341,30 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBounds(VkCommandBuffer commandBuffer, 
     }
 }
 
+// vkCmdSetStencilCompareMask, WriteMask and Reference: three command types (commands.h) of one layout.
+namespace {
+template <class Cmd>
+void record_stencil_state(VkCommandBuffer commandBuffer, VkStencilFaceFlags faces, uint32_t value) {
+    if (auto* c = cb_of(commandBuffer)->append<Cmd>()) {
+        c->faces = faces;
+        c->value = value;
+    }
+}
+}  // namespace
+
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilCompareMask(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
                                                         uint32_t compareMask) {
-    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilCompareMask>()) {
-        c->faces = faceMask;
-        c->value = compareMask;
-    }
+    record_stencil_state<CmdSetStencilCompareMask>(commandBuffer, faceMask, compareMask);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilWriteMask(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
                                                       uint32_t writeMask) {
-    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilWriteMask>()) {
-        c->faces = faceMask;
-        c->value = writeMask;
-    }
+    record_stencil_state<CmdSetStencilWriteMask>(commandBuffer, faceMask, writeMask);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilReference(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
                                                       uint32_t reference) {
-    if (auto* c = cb_of(commandBuffer)->append<CmdSetStencilReference>()) {
-        c->faces = faceMask;
-        c->value = reference;
-    }
+    record_stencil_state<CmdSetStencilReference>(commandBuffer, faceMask, reference);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdDraw(VkCommandBuffer commandBuffer, uint32_t vertexCount, uint32_t instanceCount,

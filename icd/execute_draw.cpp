@@ -21,6 +21,7 @@
 #include "pipeline.h"
 #include "rast/core/recycled_list.h"
 #include "rast/core/thread_pool.h"
+#include "rast/render/linear_mode.h"
 #include "rast/render/renderer.h"
 #include "rast/render/stage_timer.h"
 #include "render_pass.h"
@@ -174,17 +175,20 @@ PlaneRef plane_of(DrawContext& ctx, const ImageView& v, uint32_t layer_offset, u
     return {s.plane.data(), size_t(w) * elem, size_t(w) * h * elem};
 }
 
-// llvmpipe's linear mode (lp_state_derived.c check_linear_rasterizer, lavapipe-rules §0.3): lavapipe binds the
-// subpass's colour attachments as cbufs (VK_ATTACHMENT_UNUSED ones as NULL) and its depth/stencil attachment as zsbuf;
-// the mode needs exactly one cbuf, non-null, of format B8G8R8A8_UNORM (the view's format; B8G8R8X8_UNORM has no Vulkan
-// format lavapipe maps to it), single-sampled, whose resource is PIPE_TEXTURE_2D (lvp_image.c: a 2D image with one
-// array layer), no zsbuf, and no shader writing a viewport index (tilevk exposes no such output).
-bool lavapipe_linear_mode(const Subpass& sp, const ExecState& st) {
-    if (sp.colors.size() != 1 || sp.depth_stencil.attachment != VK_ATTACHMENT_UNUSED) return false;
-    const ImageView* view = attachment_view(st, sp.colors[0].attachment);
-    if (view == nullptr) return false;
-    const ImageView& v = *view;
-    return v.format->id == format::Format::B8G8R8A8_UNORM && v.image->samples == 1 && v.image->array_layers == 1;
+// The framebuffer lavapipe binds for the subpass, in the terms of llvmpipe's linear-mode decision
+// (rast/render/linear_mode.h).
+rr::BoundFramebuffer bound_framebuffer(const Subpass& sp, const ExecState& st) {
+    rr::BoundFramebuffer b;
+    b.color_buffers = uint32_t(sp.colors.size());
+    b.depth_stencil_bound = sp.depth_stencil.attachment != VK_ATTACHMENT_UNUSED;
+    if (sp.colors.empty()) return b;
+    if (const ImageView* view = attachment_view(st, sp.colors[0].attachment)) {
+        b.color0_bound = true;
+        b.color0_format = view->format->id;
+        b.color0_samples = view->image->samples;
+        b.color0_array_layers = view->image->array_layers;
+    }
+    return b;
 }
 
 // Starts the renderer on the current subpass's attachments.
@@ -235,7 +239,7 @@ void begin_rendering(ExecState& st, int pipeline_samples) {
             t.stencil_sample_stride = p.sample_stride;
         }
     }
-    fb.linear_mode = lavapipe_linear_mode(sp, st);
+    fb.linear_mode = rr::lavapipe_linear_mode(bound_framebuffer(sp, st));
     ctx.renderer.begin(fb);
     if (st.query_command_pending) {
         ctx.renderer.mark_scene_not_linear();

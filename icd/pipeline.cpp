@@ -403,52 +403,64 @@ void write_creation_feedback(const void* chain, uint64_t nanoseconds) {
     }
 }
 
-}  // namespace
-
-VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPipelineCache, uint32_t count,
-                                                           const VkGraphicsPipelineCreateInfo* pCreateInfos,
-                                                           const VkAllocationCallbacks* pAllocator,
-                                                           VkPipeline* pPipelines) {
-    Device* dev = from_handle<Device>(device);
+// What vkCreateGraphicsPipelines and vkCreateComputePipelines share: each create info in turn through `build` (the
+// kind's own work; a message when the pipeline is refused), creation feedback, and `log` (the kind's
+// TILEVK_LOG_PIPELINES line).
+template <class CreateInfo, class Build, class Log>
+VkResult create_pipelines(Device* dev, const char* entry, uint32_t count, const CreateInfo* pCreateInfos,
+                          const VkAllocationCallbacks* pAllocator, VkPipeline* pPipelines, Build build, Log log) {
     VkResult result = VK_SUCCESS;
     for (uint32_t i = 0; i < count; ++i) pPipelines[i] = VK_NULL_HANDLE;
     for (uint32_t i = 0; i < count; ++i) {
-        const VkGraphicsPipelineCreateInfo& ci = pCreateInfos[i];
+        const CreateInfo& ci = pCreateInfos[i];
+        const bool early_return = (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) != 0;
         // Pipeline creation cache control: every tilevk pipeline is built when created (the program cache is the
         // device's own, not the application's VkPipelineCache), so a pipeline that must not compile fails, as
         // lavapipe's does.
         if (ci.flags & VK_PIPELINE_CREATE_FAIL_ON_PIPELINE_COMPILE_REQUIRED_BIT) {
             result = VK_PIPELINE_COMPILE_REQUIRED;
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            if (early_return) break;
             continue;
         }
         const auto t0 = std::chrono::steady_clock::now();
         auto* p =
             create_object<Pipeline>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
         if (p == nullptr) {
-            result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateGraphicsPipelines: out of host memory");
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "%s: out of host memory", entry);
+            if (early_return) break;
             continue;
         }
-        const std::string why = build_pipeline(*dev, ci, *p);
+        const std::string why = build(*dev, ci, *p);
         if (!why.empty()) {
             destroy_object(p);
             // Vulkan 1.0 has no "unsupported" code for pipelines: the message says what is going on.
-            result = fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateGraphicsPipelines: %s", why.c_str());
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
+            result = fail(VK_ERROR_INITIALIZATION_FAILED, "%s: %s", entry, why.c_str());
+            if (early_return) break;
             continue;
         }
         const auto elapsed = std::chrono::steady_clock::now() - t0;
         p->create_ms = std::chrono::duration<double, std::milli>(elapsed).count();
         write_creation_feedback(ci.pNext,
                                 uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()));
-        if (std::getenv("TILEVK_LOG_PIPELINES"))
-            std::fprintf(stderr,
-                         "tilevk: graphics pipeline created in %.3f ms (%u shader programs built, %u from the cache)\n",
-                         p->create_ms, p->programs_built, p->programs_cached);
+        if (std::getenv("TILEVK_LOG_PIPELINES")) log(*p);
         pPipelines[i] = to_handle(p);
     }
     return result;
+}
+
+}  // namespace
+
+VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateGraphicsPipelines(VkDevice device, VkPipelineCache, uint32_t count,
+                                                           const VkGraphicsPipelineCreateInfo* pCreateInfos,
+                                                           const VkAllocationCallbacks* pAllocator,
+                                                           VkPipeline* pPipelines) {
+    return create_pipelines(from_handle<Device>(device), "vkCreateGraphicsPipelines", count, pCreateInfos, pAllocator,
+                            pPipelines, build_pipeline, [](const Pipeline& p) {
+                                std::fprintf(stderr,
+                                             "tilevk: graphics pipeline created in %.3f ms (%u shader programs built, "
+                                             "%u from the cache)\n",
+                                             p.create_ms, p.programs_built, p.programs_cached);
+                            });
 }
 
 namespace {
@@ -513,41 +525,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateComputePipelines(VkDevice device, VkPip
                                                           const VkComputePipelineCreateInfo* pCreateInfos,
                                                           const VkAllocationCallbacks* pAllocator,
                                                           VkPipeline* pPipelines) {
-    Device* dev = from_handle<Device>(device);
-    VkResult result = VK_SUCCESS;
-    for (uint32_t i = 0; i < count; ++i) pPipelines[i] = VK_NULL_HANDLE;
-    for (uint32_t i = 0; i < count; ++i) {
-        const VkComputePipelineCreateInfo& ci = pCreateInfos[i];
-        if (ci.flags & VK_PIPELINE_CREATE_FAIL_ON_PIPELINE_COMPILE_REQUIRED_BIT) {  // as for graphics pipelines
-            result = VK_PIPELINE_COMPILE_REQUIRED;
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
-            continue;
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        auto* p =
-            create_object<Pipeline>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
-        if (p == nullptr) {
-            result = fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateComputePipelines: out of host memory");
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
-            continue;
-        }
-        const std::string why = build_compute_pipeline(*dev, ci, *p);
-        if (!why.empty()) {
-            destroy_object(p);
-            result = fail(VK_ERROR_INITIALIZATION_FAILED, "vkCreateComputePipelines: %s", why.c_str());
-            if (ci.flags & VK_PIPELINE_CREATE_EARLY_RETURN_ON_FAILURE_BIT) break;
-            continue;
-        }
-        const auto elapsed = std::chrono::steady_clock::now() - t0;
-        p->create_ms = std::chrono::duration<double, std::milli>(elapsed).count();
-        write_creation_feedback(ci.pNext,
-                                uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count()));
-        if (std::getenv("TILEVK_LOG_PIPELINES"))
-            std::fprintf(stderr, "tilevk: compute pipeline created in %.3f ms (%s)\n", p->create_ms,
-                         p->programs_built != 0 ? "program built" : "program from the cache");
-        pPipelines[i] = to_handle(p);
-    }
-    return result;
+    return create_pipelines(from_handle<Device>(device), "vkCreateComputePipelines", count, pCreateInfos, pAllocator,
+                            pPipelines, build_compute_pipeline, [](const Pipeline& p) {
+                                std::fprintf(stderr, "tilevk: compute pipeline created in %.3f ms (%s)\n", p.create_ms,
+                                             p.programs_built != 0 ? "program built" : "program from the cache");
+                            });
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_DestroyPipeline(VkDevice, VkPipeline pipeline, const VkAllocationCallbacks*) {

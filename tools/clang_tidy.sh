@@ -35,39 +35,14 @@ print("\n".join(sorted(files)))
 PY
 )
 
-change_base() {
-    if [[ -n "${TILEVK_TIDY_BASE:-}" ]]; then
-        git rev-parse --verify -q "$TILEVK_TIDY_BASE^{commit}" || return 1
-        return 0
-    fi
-    local main_ref
-    for main_ref in main origin/main; do
-        if git rev-parse --verify -q "$main_ref^{commit}" >/dev/null; then
-            local mb
-            mb=$(git merge-base HEAD "$main_ref") || return 1
-            if [[ "$mb" != "$(git rev-parse HEAD)" ]]; then
-                echo "$mb"
-                return 0
-            fi
-            break
-        fi
-    done
-    if git rev-parse --verify -q HEAD^ >/dev/null; then
-        git rev-parse HEAD^
-        return 0
-    fi
-    if [[ "$(git rev-parse --is-shallow-repository)" == "true" ]]; then
-        echo "clang-tidy: a shallow clone has no parent commit to compare with; set TILEVK_TIDY_BASE" >&2
-        return 1
-    fi
-    echo "root"
-}
+# shellcheck source=tools/change_base.sh
+source tools/change_base.sh
 
 if [[ "${2:-}" == "--all" ]]; then
     files=("${compiled[@]}")
     echo "clang-tidy: every compiled file"
 else
-    base=$(change_base) || exit 2
+    base=$(change_base clang-tidy) || exit 2
     if [[ "$base" == "root" ]]; then
         files=("${compiled[@]}")
         echo "clang-tidy: root commit, every compiled file"

@@ -80,142 +80,130 @@ struct DiamondLine {
 // x-major Bresenham line: ends moved along x by the diamond-exit rule, util_iround(width) tall. Sets info_dx/dy
 // (lp_line_info's gradient inputs) and the corners; false when a snap is out of range.
 bool bresenham_x_major(DiamondLine l, float* info_dx, float* info_dy, int32_t x[4], int32_t y[4]) {
-    const float* w1 = l.w1;
-    const float* w2 = l.w2;
-    const float dx = l.dx, dy = l.dy;
-    float x1diff = l.x1diff, y1diff = l.y1diff, x2diff = l.x2diff, y2diff = l.y2diff;
-    const int32_t fixed_width = l.fixed_width;
-    const float po = l.po;
     float x_off = 0, y_off = 0, x_off_end = 0, y_off_end = 0;
     bool draw_start, draw_end;
     bool ok = true;
-    const float* p1 = w1;
-    const float* p2 = w2;
-    const float dydx = dy / dx;
-    if (y2diff == -0.5f && dy < 0) y2diff = 0.5f;
-    if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
+    const float* p1 = l.w1;
+    const float* p2 = l.w2;
+    const float dydx = l.dy / l.dx;
+    if (l.y2diff == -0.5f && l.dy < 0) l.y2diff = 0.5f;
+    if (std::fabs(l.x1diff) + std::fabs(l.y1diff) < 0.5f) {
         draw_start = true;
-    } else if (sign(x1diff) == sign(-dx)) {
+    } else if (sign(l.x1diff) == sign(-l.dx)) {
         draw_start = false;
-    } else if (sign(-y1diff) != sign(dy)) {
+    } else if (sign(-l.y1diff) != sign(l.dy)) {
         draw_start = true;
     } else {
-        const float yi = fracf(w1[1]) + x1diff * dydx;
+        const float yi = fracf(l.w1[1]) + l.x1diff * dydx;
         draw_start = yi < 1.0f && yi > 0.0f;
     }
-    if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
+    if (std::fabs(l.x2diff) + std::fabs(l.y2diff) < 0.5f) {
         draw_end = false;
-    } else if (sign(x2diff) != sign(-dx)) {
+    } else if (sign(l.x2diff) != sign(-l.dx)) {
         draw_end = false;
-    } else if (sign(-y2diff) == sign(dy)) {
+    } else if (sign(-l.y2diff) == sign(l.dy)) {
         draw_end = true;
     } else {
-        const float yi = fracf(w2[1]) + x2diff * dydx;
+        const float yi = fracf(l.w2[1]) + l.x2diff * dydx;
         draw_end = yi < 1.0f && yi > 0.0f;
     }
-    const bool will_start = sign(-x1diff) != sign(dx);
-    const bool will_end = (sign(x2diff) == sign(-dx)) || x2diff == 0;
+    const bool will_start = sign(-l.x1diff) != sign(l.dx);
+    const bool will_end = (sign(l.x2diff) == sign(-l.dx)) || l.x2diff == 0;
     *info_dx = *info_dx * (1 + dydx * dydx);
     *info_dy = 0;
     // the offsets are C doubles (0.5 literal) stored to float
-    if (dx < 0) {
-        p1 = w2, p2 = w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
+    if (l.dx < 0) {
+        p1 = l.w2, p2 = l.w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
         if (will_start != draw_start) {
-            x_off_end = static_cast<float>(static_cast<double>(-x1diff) - 0.5);
+            x_off_end = static_cast<float>(static_cast<double>(-l.x1diff) - 0.5);
             y_off_end = x_off_end * dydx;
         }
         if (will_end != draw_end) {
-            x_off = static_cast<float>(static_cast<double>(-x2diff) - 0.5);
+            x_off = static_cast<float>(static_cast<double>(-l.x2diff) - 0.5);
             y_off = x_off * dydx;
         }
     } else {
         if (will_start != draw_start) {
-            x_off = static_cast<float>(static_cast<double>(-x1diff) + 0.5);
+            x_off = static_cast<float>(static_cast<double>(-l.x1diff) + 0.5);
             y_off = x_off * dydx;
         }
         if (will_end != draw_end) {
-            x_off_end = static_cast<float>(static_cast<double>(-x2diff) + 0.5);
+            x_off_end = static_cast<float>(static_cast<double>(-l.x2diff) + 0.5);
             y_off_end = x_off_end * dydx;
         }
     }
-    const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
-    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
-    const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
-    const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
+    const int32_t ax = subpixel_snap((p1[0] + x_off) - l.po, &ok);
+    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - l.po, &ok);
+    const int32_t ay = subpixel_snap((p1[1] + y_off) - l.po, &ok);
+    const int32_t by = subpixel_snap((p2[1] + y_off_end) - l.po, &ok);
     if (!ok) return false;
     x[0] = ax, x[1] = bx, x[2] = bx, x[3] = ax;
-    y[0] = ay - fixed_width / 2, y[1] = by - fixed_width / 2;
-    y[2] = by + fixed_width / 2, y[3] = ay + fixed_width / 2;
+    y[0] = ay - l.fixed_width / 2, y[1] = by - l.fixed_width / 2;
+    y[2] = by + l.fixed_width / 2, y[3] = ay + l.fixed_width / 2;
     return true;
 }
 
 // y-major Bresenham line: the same rule with the axes exchanged. A deliberate twin of bresenham_x_major, line for
 // line as lp_setup_line.c writes its two branches, so that each can be checked against its Mesa branch.
 bool bresenham_y_major(DiamondLine l, float* info_dx, float* info_dy, int32_t x[4], int32_t y[4]) {
-    const float* w1 = l.w1;
-    const float* w2 = l.w2;
-    const float dx = l.dx, dy = l.dy;
-    float x1diff = l.x1diff, y1diff = l.y1diff, x2diff = l.x2diff, y2diff = l.y2diff;
-    const int32_t fixed_width = l.fixed_width;
-    const float po = l.po;
     float x_off = 0, y_off = 0, x_off_end = 0, y_off_end = 0;
     bool draw_start, draw_end;
     bool ok = true;
-    const float* p1 = w1;
-    const float* p2 = w2;
-    const float dxdy = dx / dy;
-    if (x2diff == -0.5f && dx < 0) x2diff = 0.5f;
-    if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) {
+    const float* p1 = l.w1;
+    const float* p2 = l.w2;
+    const float dxdy = l.dx / l.dy;
+    if (l.x2diff == -0.5f && l.dx < 0) l.x2diff = 0.5f;
+    if (std::fabs(l.x1diff) + std::fabs(l.y1diff) < 0.5f) {
         draw_start = true;
-    } else if (sign(-y1diff) == sign(dy)) {
+    } else if (sign(-l.y1diff) == sign(l.dy)) {
         draw_start = false;
-    } else if (sign(x1diff) != sign(-dx)) {
+    } else if (sign(l.x1diff) != sign(-l.dx)) {
         draw_start = true;
     } else {
-        const float xi = fracf(w1[0]) + y1diff * dxdy;
+        const float xi = fracf(l.w1[0]) + l.y1diff * dxdy;
         draw_start = xi < 1.0f && xi > 0.0f;
     }
-    if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) {
+    if (std::fabs(l.x2diff) + std::fabs(l.y2diff) < 0.5f) {
         draw_end = false;
-    } else if (sign(-y2diff) != sign(dy)) {
+    } else if (sign(-l.y2diff) != sign(l.dy)) {
         draw_end = false;
-    } else if (sign(x2diff) == sign(-dx)) {
+    } else if (sign(l.x2diff) == sign(-l.dx)) {
         draw_end = true;
     } else {
-        const float xi = fracf(w2[0]) + y2diff * dxdy;
+        const float xi = fracf(l.w2[0]) + l.y2diff * dxdy;
         draw_end = xi < 1.0f && xi >= 0.0f;
     }
-    const bool will_start = sign(y1diff) == sign(dy);
-    const bool will_end = (sign(-y2diff) == sign(dy)) || y2diff == 0;
+    const bool will_start = sign(l.y1diff) == sign(l.dy);
+    const bool will_end = (sign(-l.y2diff) == sign(l.dy)) || l.y2diff == 0;
     *info_dx = 0;
     *info_dy = *info_dy * (1 + dxdy * dxdy);
-    if (dy > 0) {
-        p1 = w2, p2 = w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
+    if (l.dy > 0) {
+        p1 = l.w2, p2 = l.w1;  // lavapipe also negates dx and dy here; nothing reads them afterwards
         if (will_start != draw_start) {
-            y_off_end = static_cast<float>(static_cast<double>(-y1diff) + 0.5);
+            y_off_end = static_cast<float>(static_cast<double>(-l.y1diff) + 0.5);
             x_off_end = y_off_end * dxdy;
         }
         if (will_end != draw_end) {
-            y_off = static_cast<float>(static_cast<double>(-y2diff) + 0.5);
+            y_off = static_cast<float>(static_cast<double>(-l.y2diff) + 0.5);
             x_off = y_off * dxdy;
         }
     } else {
         if (will_start != draw_start) {
-            y_off = static_cast<float>(static_cast<double>(-y1diff) - 0.5);
+            y_off = static_cast<float>(static_cast<double>(-l.y1diff) - 0.5);
             x_off = y_off * dxdy;
         }
         if (will_end != draw_end) {
-            y_off_end = static_cast<float>(static_cast<double>(-y2diff) - 0.5);
+            y_off_end = static_cast<float>(static_cast<double>(-l.y2diff) - 0.5);
             x_off_end = y_off_end * dxdy;
         }
     }
-    const int32_t ax = subpixel_snap((p1[0] + x_off) - po, &ok);
-    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - po, &ok);
-    const int32_t ay = subpixel_snap((p1[1] + y_off) - po, &ok);
-    const int32_t by = subpixel_snap((p2[1] + y_off_end) - po, &ok);
+    const int32_t ax = subpixel_snap((p1[0] + x_off) - l.po, &ok);
+    const int32_t bx = subpixel_snap((p2[0] + x_off_end) - l.po, &ok);
+    const int32_t ay = subpixel_snap((p1[1] + y_off) - l.po, &ok);
+    const int32_t by = subpixel_snap((p2[1] + y_off_end) - l.po, &ok);
     if (!ok) return false;
-    x[0] = ax - fixed_width / 2, x[1] = bx - fixed_width / 2;
-    x[2] = bx + fixed_width / 2, x[3] = ax + fixed_width / 2;
+    x[0] = ax - l.fixed_width / 2, x[1] = bx - l.fixed_width / 2;
+    x[2] = bx + l.fixed_width / 2, x[3] = ax + l.fixed_width / 2;
     y[0] = ay, y[1] = by, y[2] = by, y[3] = ay;
     return true;
 }

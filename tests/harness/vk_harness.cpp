@@ -4,6 +4,8 @@
 #include <cstring>
 #include <iterator>
 
+#include "vk_pipeline.h"
+
 namespace tilevk::test {
 namespace {
 
@@ -229,6 +231,97 @@ VkResult Device::run(const std::function<void(VkCommandBuffer)>& record) {
     vkDestroyFence(device_, fence, nullptr);
     vkFreeCommandBuffers(device_, pool_, 1, &cb);
     return result;
+}
+
+VkPipelineShaderStageCreateInfo shader_stage(VkShaderStageFlagBits stage, VkShaderModule module) {
+    VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    s.stage = stage;
+    s.module = module;
+    s.pName = "main";
+    return s;
+}
+
+PipelineStates::PipelineStates(uint32_t width, uint32_t height) {
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    viewport = {0, 0, float(width), float(height), 0, 1};
+    scissor = {{0, 0}, {width, height}};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.lineWidth = 1.0f;
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    blend.colorWriteMask = 0xF;
+    color_blend.attachmentCount = 1;
+}
+
+VkResult PipelineStates::create(VkDevice device, VkRenderPass pass, VkPipelineLayout layout,
+                                const VkPipelineShaderStageCreateInfo* stages, uint32_t stage_count, VkPipeline* out) {
+    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vps.viewportCount = 1;
+    vps.pViewports = &viewport;
+    vps.scissorCount = 1;
+    vps.pScissors = &scissor;
+    color_blend.pAttachments = &blend;
+    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    ci.stageCount = stage_count;
+    ci.pStages = stages;
+    ci.pVertexInputState = &vertex_input;
+    ci.pInputAssemblyState = &assembly;
+    ci.pViewportState = &vps;
+    ci.pRasterizationState = &raster;
+    ci.pMultisampleState = &multisample;
+    ci.pDepthStencilState = depth_stencil_enabled ? &depth_stencil : nullptr;
+    ci.pColorBlendState = &color_blend;
+    ci.layout = layout;
+    ci.renderPass = pass;
+    *out = VK_NULL_HANDLE;
+    return vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, out);
+}
+
+SingleAttachmentPass::SingleAttachmentPass(VkDevice device, VkImage image, const VkAttachmentDescription& attachment,
+                                           VkImageAspectFlags aspect, uint32_t width, uint32_t height,
+                                           const std::vector<VkSubpassDependency>& dependencies) {
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = attachment.format;
+    vci.subresourceRange = {aspect, 0, 1, 0, 1};
+    EXPECT_EQ(vkCreateImageView(device, &vci, nullptr, &view), VK_SUCCESS);
+    const bool depth_stencil = (aspect & (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)) != 0;
+    const VkAttachmentReference ref{
+        0, depth_stencil ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    if (depth_stencil) {
+        sub.pDepthStencilAttachment = &ref;
+    } else {
+        sub.colorAttachmentCount = 1;
+        sub.pColorAttachments = &ref;
+    }
+    VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rpci.attachmentCount = 1;
+    rpci.pAttachments = &attachment;
+    rpci.subpassCount = 1;
+    rpci.pSubpasses = &sub;
+    rpci.dependencyCount = uint32_t(dependencies.size());
+    rpci.pDependencies = dependencies.data();
+    EXPECT_EQ(vkCreateRenderPass(device, &rpci, nullptr, &pass), VK_SUCCESS);
+    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fci.renderPass = pass;
+    fci.attachmentCount = 1;
+    fci.pAttachments = &view;
+    fci.width = width;
+    fci.height = height;
+    fci.layers = 1;
+    EXPECT_EQ(vkCreateFramebuffer(device, &fci, nullptr, &framebuffer), VK_SUCCESS);
+}
+
+void SingleAttachmentPass::destroy(VkDevice device) {
+    vkDestroyFramebuffer(device, framebuffer, nullptr);
+    vkDestroyRenderPass(device, pass, nullptr);
+    vkDestroyImageView(device, view, nullptr);
+    framebuffer = VK_NULL_HANDLE;
+    pass = VK_NULL_HANDLE;
+    view = VK_NULL_HANDLE;
 }
 
 std::unique_ptr<Harness> TwoDriverSuite::harness_;

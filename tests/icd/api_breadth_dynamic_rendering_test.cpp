@@ -565,8 +565,8 @@ TEST_F(ApiDynamicRendering, ClearAndBlendedDraw) {
     check([](Kit& k, bool dynamic) { return colour_scene(k, dynamic, kC); });
 }
 
-// One B8G8R8A8_UNORM attachment and no depth: lavapipe's linear rasterizer (execute_draw.cpp lavapipe_linear_mode
-// decides it from the translated subpass as for a render pass).
+// One B8G8R8A8_UNORM attachment and no depth: lavapipe's linear rasterizer (rast/render/linear_mode.h
+// lavapipe_linear_mode decides it from the translated subpass as for a render pass).
 TEST_F(ApiDynamicRendering, ClearAndBlendedDrawBgra8LinearMode) {
     check([](Kit& k, bool dynamic) { return colour_scene(k, dynamic, VK_FORMAT_B8G8R8A8_UNORM); });
 }

@@ -23,17 +23,10 @@ uint32_t pixel(const Bytes& img, uint32_t x, uint32_t y, uint32_t w = 32) {
 }
 constexpr uint32_t kRed = 0xff0000ffu, kGreen = 0xff00ff00u, kBlue = 0xffff0000u, kWhite = 0xffffffffu;
 
-// One draw of `verts` as `topology` with ab_flat's flat colour into a 32x32 RGBA8 target cleared to black.
-Bytes flat_draw(Kit& k, VkPrimitiveTopology topology, const std::vector<Vertex>& verts, const void* rs_chain,
-                float line_width = 1.0f) {
+// One draw of `verts` with pipeline `p` (its render pass set here) into a 32x32 RGBA8 target cleared to black.
+Bytes draw_into_target(Kit& k, Pipe p, const std::vector<Vertex>& verts) {
     Target t = target(k);
-    Pipe p;
-    p.vs = SPV(ab_flat_vert);
-    p.fs = SPV(ab_flat_frag);
     p.rp = t.rp;
-    p.topology = topology;
-    p.rasterization_pnext = rs_chain;
-    p.line_width = line_width;
     VkPipeline pipe = k.pipeline(p);
     Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     EXPECT_EQ(k.run([&](VkCommandBuffer c) {
@@ -46,6 +39,18 @@ Bytes flat_draw(Kit& k, VkPrimitiveTopology topology, const std::vector<Vertex>&
     }),
               VK_SUCCESS);
     return k.read(t.image.image, 32, 32, 4);
+}
+
+// One draw of `verts` as `topology` with ab_flat's flat colour into a 32x32 RGBA8 target cleared to black.
+Bytes flat_draw(Kit& k, VkPrimitiveTopology topology, const std::vector<Vertex>& verts, const void* rs_chain,
+                float line_width = 1.0f) {
+    Pipe p;
+    p.vs = SPV(ab_flat_vert);
+    p.fs = SPV(ab_flat_frag);
+    p.topology = topology;
+    p.rasterization_pnext = rs_chain;
+    p.line_width = line_width;
+    return draw_into_target(k, p, verts);
 }
 
 // A strip of four corners coloured red, green, blue, white (pixel (4, 16) in its first triangle, (27, 16) in its
@@ -125,23 +130,10 @@ TEST_F(RasterExtensions, DepthClipEnableWithAndWithoutClamp) {
                     VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT};
                 dc.depthClipEnable = clip;
                 const Bytes img = both_on(dev->tilevk, dev->lavapipe, [&](Kit& k) {
-                    Target t = target(k);
                     Pipe p;
-                    p.rp = t.rp;
                     p.rasterization_pnext = with_struct ? &dc : nullptr;
                     p.depth_clamp = clamp;
-                    VkPipeline pipe = k.pipeline(p);
-                    Device::Buffer vb = k.buffer_of(quads, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-                    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
-                        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                        VkDeviceSize off = 0;
-                        vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &off);
-                        vkCmdDraw(c, uint32_t(quads.size()), 1, 0, 0);
-                        vkCmdEndRenderPass(c);
-                    }),
-                              VK_SUCCESS);
-                    return k.read(t.image.image, 32, 32, 4);
+                    return draw_into_target(k, p, quads);
                 });
                 const bool clipped = with_struct ? clip : !clamp;
                 EXPECT_EQ(pixel(img, 8, 16), clipped ? 0xff000000u : kRed) << with_struct << clip << clamp;
@@ -155,24 +147,11 @@ Bytes line_draw(Kit& k, std::optional<VkLineRasterizationModeEXT> mode, float wi
     VkPipelineRasterizationLineStateCreateInfoEXT ls{
         VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
     ls.lineRasterizationMode = mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT);
-    Target t = target(k);
     Pipe p;
-    p.rp = t.rp;
     p.topology = VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
     p.rasterization_pnext = mode ? &ls : nullptr;
     p.line_width = width;
-    VkPipeline pipe = k.pipeline(p);
-    Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 1)});
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-        VkDeviceSize off = 0;
-        vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &off);
-        vkCmdDraw(c, uint32_t(verts.size()), 1, 0, 0);
-        vkCmdEndRenderPass(c);
-    }),
-              VK_SUCCESS);
-    return k.read(t.image.image, 32, 32, 4);
+    return draw_into_target(k, p, verts);
 }
 
 // VK_EXT_line_rasterization: DEFAULT, RECTANGULAR and BRESENHAM line strips, 1 and 3 pixels wide, against lavapipe.

@@ -412,6 +412,16 @@ constexpr FormatCase kFormatCases[] = {
     {"a2b10g10r10_unorm", VK_FORMAT_A2B10G10R10_UNORM_PACK32, VK_FORMAT_R16G16B16A16_UNORM},
 };
 
+// Two specs both format tables add: a mirrored region (`mirror`) and a blit from level 1 of two layers (`layers`).
+void add_mirror_and_level_layers(std::vector<Spec>& v, const std::string& mirror, const std::string& layers, VkFormat f,
+                                 VkFilter filter) {
+    v.push_back({mirror, f, f, 24, 20, 50, 33, filter, {region(2, 1, 22, 19, 47, 3, 1, 30, kC)}});
+    Spec m{layers, f, f, 40, 40, 40, 40, filter, {region(0, 0, 20, 20, 3, 2, 37, 31, kC, 1, 0, 2)}};
+    m.src_levels = 2;
+    m.layers = 2;
+    v.push_back(m);
+}
+
 std::vector<Spec> format_specs() {
     std::vector<Spec> v;
     for (const FormatCase& c : kFormatCases) {
@@ -420,27 +430,7 @@ std::vector<Spec> format_specs() {
         v.push_back(whole(n + "_linear_scale", c.format, 32, 24, c.format, 19, 41, kLinear));
         v.push_back(whole(n + "_to_partner_linear", c.format, 30, 30, c.partner, 17, 43, kLinear));
         v.push_back(whole(n + "_from_partner_nearest", c.partner, 32, 32, c.format, 32, 32, kNearest));
-        v.push_back({n + "_mirror_linear",
-                     c.format,
-                     c.format,
-                     24,
-                     20,
-                     50,
-                     33,
-                     kLinear,
-                     {region(2, 1, 22, 19, 47, 3, 1, 30, kC)}});
-        Spec m{n + "_level_layers",
-               c.format,
-               c.format,
-               40,
-               40,
-               40,
-               40,
-               kLinear,
-               {region(0, 0, 20, 20, 3, 2, 37, 31, kC, 1, 0, 2)}};
-        m.src_levels = 2;
-        m.layers = 2;
-        v.push_back(m);
+        add_mirror_and_level_layers(v, n + "_mirror_linear", n + "_level_layers", c.format, kLinear);
     }
     return v;
 }
@@ -481,27 +471,7 @@ std::vector<Spec> int_specs() {
         v.push_back(whole(n + "_nearest_scale", c.format, 32, 32, c.format, 45, 21, kNearest));
         v.push_back(whole(n + "_to_partner_nearest", c.format, 30, 30, c.partner, 17, 43, kNearest));
         v.push_back(whole(n + "_from_partner_nearest", c.partner, 32, 32, c.format, 32, 32, kNearest));
-        v.push_back({n + "_mirror_nearest",
-                     c.format,
-                     c.format,
-                     24,
-                     20,
-                     50,
-                     33,
-                     kNearest,
-                     {region(2, 1, 22, 19, 47, 3, 1, 30, kC)}});
-        Spec m{n + "_level_layers",
-               c.format,
-               c.format,
-               40,
-               40,
-               40,
-               40,
-               kNearest,
-               {region(0, 0, 20, 20, 3, 2, 37, 31, kC, 1, 0, 2)}};
-        m.src_levels = 2;
-        m.layers = 2;
-        v.push_back(m);
+        add_mirror_and_level_layers(v, n + "_mirror_nearest", n + "_level_layers", c.format, kNearest);
     }
     return v;
 }

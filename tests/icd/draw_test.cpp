@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 namespace {
 
@@ -17,6 +18,8 @@ namespace {
 
 using tilevk::test::Device;
 using tilevk::test::Harness;
+using tilevk::test::PipelineStates;
+using tilevk::test::shader_stage;
 using tilevk::test::transition;
 using tilevk::test::TwoDriverSuite;
 using Bytes = std::vector<uint8_t>;
@@ -180,42 +183,23 @@ Bytes render(Device& dev, const Scene& s) {
         s.endless_vertex_loop ? module(d, endless_vert, sizeof endless_vert) : module(d, draw_vert, sizeof draw_vert);
     VkShaderModule fs =
         s.texture ? module(d, texture_frag, sizeof texture_frag) : module(d, color_frag, sizeof color_frag);
-    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vs;
-    stages[0].pName = "main";
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = fs;
-    stages[1].pName = "main";
+    const VkPipelineShaderStageCreateInfo stages[2] = {shader_stage(VK_SHADER_STAGE_VERTEX_BIT, vs),
+                                                       shader_stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs)};
     VkVertexInputBindingDescription vb{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
     VkVertexInputAttributeDescription va[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                                                {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
-    VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vi.vertexBindingDescriptionCount = 1;
-    vi.pVertexBindingDescriptions = &vb;
-    vi.vertexAttributeDescriptionCount = 2;
-    vi.pVertexAttributeDescriptions = va;
-    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    ia.topology = s.topology;
-    ia.primitiveRestartEnable = s.restart;
-    VkViewport vp{0, 0, float(kSize), float(kSize), 0, 1};
-    VkRect2D sc{{0, 0}, {kSize, kSize}};
-    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    vps.viewportCount = 1;
-    vps.pViewports = &vp;
-    vps.scissorCount = 1;
-    vps.pScissors = &sc;
-    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
-    rs.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo ms_state{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms_state.rasterizationSamples = s.samples;
-    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    ds.depthTestEnable = ds.depthWriteEnable = s.depth;
-    ds.depthCompareOp = VK_COMPARE_OP_LESS;
-    VkPipelineColorBlendAttachmentState cba{};
+    PipelineStates states(kSize, kSize);
+    states.vertex_input.vertexBindingDescriptionCount = 1;
+    states.vertex_input.pVertexBindingDescriptions = &vb;
+    states.vertex_input.vertexAttributeDescriptionCount = 2;
+    states.vertex_input.pVertexAttributeDescriptions = va;
+    states.assembly.topology = s.topology;
+    states.assembly.primitiveRestartEnable = s.restart;
+    states.multisample.rasterizationSamples = s.samples;
+    states.depth_stencil_enabled = s.depth;
+    states.depth_stencil.depthTestEnable = states.depth_stencil.depthWriteEnable = s.depth;
+    states.depth_stencil.depthCompareOp = VK_COMPARE_OP_LESS;
+    VkPipelineColorBlendAttachmentState& cba = states.blend;
     cba.blendEnable = s.blend;
     cba.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
     cba.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
@@ -223,24 +207,8 @@ Bytes render(Device& dev, const Scene& s) {
     cba.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
     cba.dstAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
     cba.alphaBlendOp = VK_BLEND_OP_ADD;
-    cba.colorWriteMask = 0xf;
-    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = 1;
-    cb.pAttachments = &cba;
-    VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    gci.stageCount = 2;
-    gci.pStages = stages;
-    gci.pVertexInputState = &vi;
-    gci.pInputAssemblyState = &ia;
-    gci.pViewportState = &vps;
-    gci.pRasterizationState = &rs;
-    gci.pMultisampleState = &ms_state;
-    gci.pDepthStencilState = s.depth ? &ds : nullptr;
-    gci.pColorBlendState = &cb;
-    gci.layout = layout;
-    gci.renderPass = rp;
     VkPipeline pipe = VK_NULL_HANDLE;
-    EXPECT_EQ(vkCreateGraphicsPipelines(d, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe), VK_SUCCESS);
+    EXPECT_EQ(states.create(d, rp, layout, stages, 2, &pipe), VK_SUCCESS);
 
     Device::Buffer vbuf = dev.make_buffer(sizeof(Vertex) * s.vertices.size(), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     std::memcpy(vbuf.map, s.vertices.data(), vbuf.size);
@@ -280,7 +248,7 @@ Bytes render(Device& dev, const Scene& s) {
         VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
         bi.renderPass = rp;
         bi.framebuffer = fb;
-        bi.renderArea = sc;
+        bi.renderArea = states.scissor;
         bi.clearValueCount = uint32_t(att.size());
         bi.pClearValues = clears;
         vkCmdBeginRenderPass(c, &bi, VK_SUBPASS_CONTENTS_INLINE);

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 namespace {
 
@@ -21,6 +22,9 @@ namespace {
 
 using tilevk::test::Device;
 using tilevk::test::Harness;
+using tilevk::test::PipelineStates;
+using tilevk::test::shader_stage;
+using tilevk::test::SingleAttachmentPass;
 
 constexpr uint32_t kW = 32, kH = 32, kVertices = 64;
 constexpr VkQueryPipelineStatisticFlags kAll = 0x7FF;
@@ -55,12 +59,6 @@ class Rig {
         VkDevice d = dev.device();
         color_ = dev.make_image(VK_FORMAT_R8G8B8A8_UNORM, kW, kH, 1, 1, VK_SAMPLE_COUNT_1_BIT,
                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-        VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        vci.image = color_.image;
-        vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        vci.format = VK_FORMAT_R8G8B8A8_UNORM;
-        vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        EXPECT_EQ(vkCreateImageView(d, &vci, nullptr, &view_), VK_SUCCESS);
         VkAttachmentDescription att{};
         att.format = VK_FORMAT_R8G8B8A8_UNORM;
         att.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -69,34 +67,14 @@ class Rig {
         att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
         att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         att.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sub{};
-        sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sub.colorAttachmentCount = 1;
-        sub.pColorAttachments = &ref;
-        VkSubpassDependency dep{VK_SUBPASS_EXTERNAL,
-                                0,
-                                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                                VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                                VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                                0};
-        VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-        rpci.attachmentCount = 1;
-        rpci.pAttachments = &att;
-        rpci.subpassCount = 1;
-        rpci.pSubpasses = &sub;
-        rpci.dependencyCount = 1;
-        rpci.pDependencies = &dep;
-        EXPECT_EQ(vkCreateRenderPass(d, &rpci, nullptr, &rp_), VK_SUCCESS);
-        VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fci.renderPass = rp_;
-        fci.attachmentCount = 1;
-        fci.pAttachments = &view_;
-        fci.width = kW;
-        fci.height = kH;
-        fci.layers = 1;
-        EXPECT_EQ(vkCreateFramebuffer(d, &fci, nullptr, &fb_), VK_SUCCESS);
+        const VkSubpassDependency dep{VK_SUBPASS_EXTERNAL,
+                                      0,
+                                      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                      0};
+        target_ = SingleAttachmentPass(d, color_.image, att, VK_IMAGE_ASPECT_COLOR_BIT, kW, kH, {dep});
         VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
         VkDescriptorSetLayoutCreateInfo dslci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         dslci.bindingCount = 1;
@@ -131,9 +109,7 @@ class Rig {
         vkDestroyPipelineLayout(d, layout_, nullptr);
         vkDestroyPipelineLayout(d, compute_layout_, nullptr);
         vkDestroyDescriptorSetLayout(d, dsl_, nullptr);
-        vkDestroyFramebuffer(d, fb_, nullptr);
-        vkDestroyRenderPass(d, rp_, nullptr);
-        vkDestroyImageView(d, view_, nullptr);
+        target_.destroy(d);
         for (Device::Buffer* b : {&vbuf_, &ibuf_, &counter_}) dev_.destroy(*b);
         dev_.destroy(color_);
     }
@@ -142,62 +118,29 @@ class Rig {
 
     // Creates its pipeline now (before recording) and returns it.
     VkPipeline pipeline(VkPrimitiveTopology t, bool discard = false, bool restart = false, bool with_fs = true) {
-        VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-        st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-        st[0].module = vs_;
-        st[0].pName = "main";
-        st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-        st[1].module = fs_;
-        st[1].pName = "main";
+        const VkPipelineShaderStageCreateInfo st[2] = {shader_stage(VK_SHADER_STAGE_VERTEX_BIT, vs_),
+                                                       shader_stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs_)};
         VkVertexInputBindingDescription vb{0, 32, VK_VERTEX_INPUT_RATE_VERTEX};
         VkVertexInputAttributeDescription va[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                                                    {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
-        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vi.vertexBindingDescriptionCount = 1;
-        vi.pVertexBindingDescriptions = &vb;
-        vi.vertexAttributeDescriptionCount = 2;
-        vi.pVertexAttributeDescriptions = va;
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = t;
-        ia.primitiveRestartEnable = restart;
-        VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
-        VkRect2D sc{{0, 0}, {kW, kH}};
-        VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vps.viewportCount = vps.scissorCount = 1;
-        vps.pViewports = &vp;
-        vps.pScissors = &sc;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.rasterizerDiscardEnable = discard;
-        rs.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineColorBlendAttachmentState cba{};
-        cba.colorWriteMask = 0xf;
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = 1;
-        cb.pAttachments = &cba;
-        VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gci.stageCount = with_fs ? 2 : 1;
-        gci.pStages = st;
-        gci.pVertexInputState = &vi;
-        gci.pInputAssemblyState = &ia;
-        gci.pViewportState = &vps;
-        gci.pRasterizationState = &rs;
-        gci.pMultisampleState = &ms;
-        gci.pColorBlendState = &cb;
-        gci.layout = layout_;
-        gci.renderPass = rp_;
+        PipelineStates states(kW, kH);
+        states.vertex_input.vertexBindingDescriptionCount = 1;
+        states.vertex_input.pVertexBindingDescriptions = &vb;
+        states.vertex_input.vertexAttributeDescriptionCount = 2;
+        states.vertex_input.pVertexAttributeDescriptions = va;
+        states.assembly.topology = t;
+        states.assembly.primitiveRestartEnable = restart;
+        states.raster.rasterizerDiscardEnable = discard;
         VkPipeline p = VK_NULL_HANDLE;
-        EXPECT_EQ(vkCreateGraphicsPipelines(dev_.device(), VK_NULL_HANDLE, 1, &gci, nullptr, &p), VK_SUCCESS);
+        EXPECT_EQ(states.create(dev_.device(), target_.pass, layout_, st, with_fs ? 2 : 1, &p), VK_SUCCESS);
         pipes_.push_back(p);
         return p;
     }
     void begin_pass(VkCommandBuffer cb) const {
         VkClearValue clear{};
         VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-        bi.renderPass = rp_;
-        bi.framebuffer = fb_;
+        bi.renderPass = target_.pass;
+        bi.framebuffer = target_.framebuffer;
         bi.renderArea = {{0, 0}, {kW, kH}};
         bi.clearValueCount = 1;
         bi.pClearValues = &clear;
@@ -244,9 +187,7 @@ class Rig {
 
     Device& dev_;
     Device::Image color_{};
-    VkImageView view_ = VK_NULL_HANDLE;
-    VkRenderPass rp_ = VK_NULL_HANDLE;
-    VkFramebuffer fb_ = VK_NULL_HANDLE;
+    SingleAttachmentPass target_;
     VkDescriptorSetLayout dsl_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE, compute_layout_ = VK_NULL_HANDLE;
     VkShaderModule vs_ = VK_NULL_HANDLE, fs_ = VK_NULL_HANDLE, cs_ = VK_NULL_HANDLE;

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 namespace {
 
@@ -18,6 +19,8 @@ namespace {
 
 using tilevk::test::Device;
 using tilevk::test::Harness;
+using tilevk::test::PipelineStates;
+using tilevk::test::shader_stage;
 using tilevk::test::TwoDriverSuite;
 
 constexpr uint32_t kW = 40, kH = 24;
@@ -175,37 +178,21 @@ class Rig {
         return v;
     }
     VkPipeline pipeline(const Rect& r) {
-        VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                                     {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-        stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-        stages[0].module = vs_;
-        stages[0].pName = "main";
-        stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-        stages[1].module = r.discard ? discard_fs_ : fs_;
-        stages[1].pName = "main";
+        const VkPipelineShaderStageCreateInfo stages[2] = {
+            shader_stage(VK_SHADER_STAGE_VERTEX_BIT, vs_),
+            shader_stage(VK_SHADER_STAGE_FRAGMENT_BIT, r.discard ? discard_fs_ : fs_)};
         VkVertexInputBindingDescription vb{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
         VkVertexInputAttributeDescription va[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
                                                    {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 16}};
-        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vi.vertexBindingDescriptionCount = 1;
-        vi.pVertexBindingDescriptions = &vb;
-        vi.vertexAttributeDescriptionCount = 2;
-        vi.pVertexAttributeDescriptions = va;
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
-        VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vps.viewportCount = 1;
-        vps.pViewports = &vp;
-        vps.scissorCount = 1;
-        vps.pScissors = &r.scissor;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.polygonMode = VK_POLYGON_MODE_FILL;
-        rs.cullMode = VK_CULL_MODE_NONE;
-        rs.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = samples_;
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        PipelineStates states(kW, kH);
+        states.vertex_input.vertexBindingDescriptionCount = 1;
+        states.vertex_input.pVertexBindingDescriptions = &vb;
+        states.vertex_input.vertexAttributeDescriptionCount = 2;
+        states.vertex_input.pVertexAttributeDescriptions = va;
+        states.scissor = r.scissor;
+        states.multisample.rasterizationSamples = samples_;
+        states.depth_stencil_enabled = with_depth_;
+        VkPipelineDepthStencilStateCreateInfo& ds = states.depth_stencil;
         ds.depthTestEnable = ds.depthWriteEnable = r.depth;
         ds.depthCompareOp = VK_COMPARE_OP_LESS;
         ds.stencilTestEnable = r.stencil != Rect::kNone;
@@ -214,25 +201,8 @@ class Rig {
         const VkStencilOpState equal{
             VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL, 0xff, 0xff, 1};
         ds.front = ds.back = r.stencil == Rect::kMark ? mark : equal;
-        VkPipelineColorBlendAttachmentState cba{};
-        cba.colorWriteMask = 0xf;
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = 1;
-        cb.pAttachments = &cba;
-        VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gci.stageCount = 2;
-        gci.pStages = stages;
-        gci.pVertexInputState = &vi;
-        gci.pInputAssemblyState = &ia;
-        gci.pViewportState = &vps;
-        gci.pRasterizationState = &rs;
-        gci.pMultisampleState = &ms;
-        gci.pDepthStencilState = with_depth_ ? &ds : nullptr;
-        gci.pColorBlendState = &cb;
-        gci.layout = layout_;
-        gci.renderPass = rp_;
         VkPipeline p = VK_NULL_HANDLE;
-        EXPECT_EQ(vkCreateGraphicsPipelines(dev_.device(), VK_NULL_HANDLE, 1, &gci, nullptr, &p), VK_SUCCESS);
+        EXPECT_EQ(states.create(dev_.device(), rp_, layout_, stages, 2, &p), VK_SUCCESS);
         return p;
     }
 

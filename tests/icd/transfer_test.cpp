@@ -9,11 +9,13 @@
 #include <memory>
 
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 namespace {
 
 using tilevk::test::Device;
 using tilevk::test::Harness;
+using tilevk::test::SingleAttachmentPass;
 using tilevk::test::transition;
 using tilevk::test::TwoDriverSuite;
 using Bytes = std::vector<uint8_t>;
@@ -441,41 +443,12 @@ TEST_F(Transfer, RenderAreaClearAndClearAttachments) {
             att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
             att.initialLayout = kDst;
             att.finalLayout = kSrc;
-            VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-            VkSubpassDescription sp{};
-            sp.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-            sp.colorAttachmentCount = 1;
-            sp.pColorAttachments = &cref;
-            VkSubpassDependency deps[2] = {
+            const std::vector<VkSubpassDependency> deps = {
                 {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
                 {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
-            VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-            rpci.attachmentCount = 1;
-            rpci.pAttachments = &att;
-            rpci.subpassCount = 1;
-            rpci.pSubpasses = &sp;
-            rpci.dependencyCount = 2;
-            rpci.pDependencies = deps;
-            VkRenderPass rp;
-            EXPECT_EQ(vkCreateRenderPass(dev, &rpci, nullptr, &rp), VK_SUCCESS);
-            VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-            vci.image = img.image;
-            vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-            vci.format = VK_FORMAT_R8G8B8A8_UNORM;
-            vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            VkImageView view;
-            EXPECT_EQ(vkCreateImageView(dev, &vci, nullptr, &view), VK_SUCCESS);
-            VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-            fci.renderPass = rp;
-            fci.attachmentCount = 1;
-            fci.pAttachments = &view;
-            fci.width = w;
-            fci.height = h;
-            fci.layers = 1;
-            VkFramebuffer fb;
-            EXPECT_EQ(vkCreateFramebuffer(dev, &fci, nullptr, &fb), VK_SUCCESS);
+            SingleAttachmentPass pass(dev, img.image, att, VK_IMAGE_ASPECT_COLOR_BIT, w, h, deps);
             d.run([&](VkCommandBuffer cb) {
                 transition(cb, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
                 VkClearColorValue cv0;
@@ -485,8 +458,8 @@ TEST_F(Transfer, RenderAreaClearAndClearAttachments) {
                 VkClearValue cv1;
                 std::memcpy(cv1.color.float32, c1, sizeof c1);
                 VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-                bi.renderPass = rp;
-                bi.framebuffer = fb;
+                bi.renderPass = pass.pass;
+                bi.framebuffer = pass.framebuffer;
                 bi.renderArea = area;
                 bi.clearValueCount = 1;
                 bi.pClearValues = &cv1;
@@ -500,9 +473,7 @@ TEST_F(Transfer, RenderAreaClearAndClearAttachments) {
                 vkCmdCopyImageToBuffer(cb, img.image, kSrc, buf.buffer, 1, &down);
             });
             Bytes out = read(buf);
-            vkDestroyFramebuffer(dev, fb, nullptr);
-            vkDestroyImageView(dev, view, nullptr);
-            vkDestroyRenderPass(dev, rp, nullptr);
+            pass.destroy(dev);
             d.destroy(img);
             d.destroy(buf);
             return out;
@@ -544,41 +515,14 @@ TEST_F(Transfer, DepthStencilRenderAreaClearAndStencilCopy) {
         att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE;
         att.initialLayout = kDst;
         att.finalLayout = kSrc;
-        VkAttachmentReference dref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription sp{};
-        sp.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        sp.pDepthStencilAttachment = &dref;
         const VkPipelineStageFlags frag =
             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-        VkSubpassDependency deps[2] = {{VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, frag,
-                                        VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
-                                       {0, VK_SUBPASS_EXTERNAL, frag, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}};
-        VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-        rpci.attachmentCount = 1;
-        rpci.pAttachments = &att;
-        rpci.subpassCount = 1;
-        rpci.pSubpasses = &sp;
-        rpci.dependencyCount = 2;
-        rpci.pDependencies = deps;
-        VkRenderPass rp;
-        EXPECT_EQ(vkCreateRenderPass(dev, &rpci, nullptr, &rp), VK_SUCCESS);
-        VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        vci.image = img.image;
-        vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        vci.format = fmt;
-        vci.subresourceRange = {ds, 0, 1, 0, 1};
-        VkImageView view;
-        EXPECT_EQ(vkCreateImageView(dev, &vci, nullptr, &view), VK_SUCCESS);
-        VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fci.renderPass = rp;
-        fci.attachmentCount = 1;
-        fci.pAttachments = &view;
-        fci.width = w;
-        fci.height = h;
-        fci.layers = 1;
-        VkFramebuffer fb;
-        EXPECT_EQ(vkCreateFramebuffer(dev, &fci, nullptr, &fb), VK_SUCCESS);
+        const std::vector<VkSubpassDependency> deps = {
+            {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, frag, VK_ACCESS_TRANSFER_WRITE_BIT,
+             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
+            {0, VK_SUBPASS_EXTERNAL, frag, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+             VK_ACCESS_TRANSFER_READ_BIT, 0}};
+        SingleAttachmentPass pass(dev, img.image, att, ds, w, h, deps);
         d.run([&](VkCommandBuffer cb) {
             transition(cb, img.image, ds, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
             transition(cb, other.image, ds, VK_IMAGE_LAYOUT_UNDEFINED, kDst);
@@ -589,8 +533,8 @@ TEST_F(Transfer, DepthStencilRenderAreaClearAndStencilCopy) {
             VkClearValue cv;
             cv.depthStencil = {z1, s1};
             VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-            bi.renderPass = rp;
-            bi.framebuffer = fb;
+            bi.renderPass = pass.pass;
+            bi.framebuffer = pass.framebuffer;
             bi.renderArea = area;
             bi.clearValueCount = 1;
             bi.pClearValues = &cv;
@@ -612,9 +556,7 @@ TEST_F(Transfer, DepthStencilRenderAreaClearAndStencilCopy) {
             vkCmdCopyImageToBuffer(cb, other.image, kSrc, buf.buffer, 1, &os);
         });
         Bytes out = read(buf);
-        vkDestroyFramebuffer(dev, fb, nullptr);
-        vkDestroyImageView(dev, view, nullptr);
-        vkDestroyRenderPass(dev, rp, nullptr);
+        pass.destroy(dev);
         d.destroy(img);
         d.destroy(other);
         d.destroy(buf);

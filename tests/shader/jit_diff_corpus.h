@@ -5,6 +5,8 @@
 // indexed out of range, uniform/storage buffers and push constants, every kind of image access.
 #pragma once
 
+#include "bench/frame/lit_shader.h"
+
 namespace tilevk::shader::test::jit_corpus {
 
 struct GlslCase {
@@ -60,22 +62,8 @@ void main() {
     o0 = vec4(p, q, r, t.w + v.y);
     o1 = s * p + t * q + v * r;
 })"},
-    // the frame benchmark's meshes_lit fragment shader (bench/frame/frame_scenes.cpp): normalize, pow, texture
-    {"meshes_lit_fs", false, R"(#version 450
-layout(set = 0, binding = 0) uniform sampler2D u_tex;
-layout(push_constant) uniform Push { vec4 offset; vec4 tint; } pc;
-layout(location = 0) in vec3 v_normal;
-layout(location = 1) in vec2 v_uv;
-layout(location = 0) out vec4 o_color;
-void main() {
-    vec3 n = normalize(v_normal);
-    vec3 l = normalize(vec3(0.4, -0.6, -0.7));
-    float diffuse = max(dot(n, -l), 0.0);
-    vec3 h = normalize(-l + vec3(0.0, 0.0, -1.0));
-    float spec = pow(max(dot(n, h), 0.0), 16.0);
-    vec4 t = texture(u_tex, v_uv);
-    o_color = vec4(t.rgb * (0.2 + 0.8 * diffuse) * pc.tint.rgb + vec3(0.3 * spec), 1.0);
-})"},
+    // the frame benchmark's meshes_lit fragment shader (bench/frame/lit_shader.h): normalize, pow, texture
+    {"meshes_lit_fs", false, tilevk::bench::kLitFs},
     {"float_compare", false, TVK_FS_HEAD R"(
 layout(location=0) out vec4 o0; layout(location=1) out vec4 o1; layout(location=2) out uvec4 o2;
 void main() {

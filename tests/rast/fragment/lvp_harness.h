@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -24,6 +25,7 @@
 #include "rast/fragment/msaa.h"
 #include "sample_color_frag.h"
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 using namespace tilevk::rast::fragment;
 
@@ -123,37 +125,199 @@ VkShaderModule make_shader(const Lvp& v, const uint32_t* code, size_t bytes) {
     return m;
 }
 
+struct Img {
+    VkImage img = VK_NULL_HANDLE;
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+};
+
+Img make_image(const Lvp& v, VkFormat f, VkSampleCountFlagBits samples, VkImageUsageFlags usage,
+               VkImageAspectFlags aspect) {
+    Img r;
+    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ii.imageType = VK_IMAGE_TYPE_2D;
+    ii.format = f;
+    ii.extent = {kW, kH, 1};
+    ii.mipLevels = ii.arrayLayers = 1;
+    ii.samples = samples;
+    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ii.usage = usage;
+    VKC(vkCreateImage(v.dev, &ii, nullptr, &r.img));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(v.dev, r.img, &req);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = v.mem_type(req.memoryTypeBits, 0);
+    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &r.mem));
+    VKC(vkBindImageMemory(v.dev, r.img, r.mem, 0));
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = r.img;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = f;
+    vi.subresourceRange = {aspect, 0, 1, 0, 1};
+    VKC(vkCreateImageView(v.dev, &vi, nullptr, &r.view));
+    return r;
+}
+void free_image(const Lvp& v, Img& i) {
+    vkDestroyImageView(v.dev, i.view, nullptr);
+    vkDestroyImage(v.dev, i.img, nullptr);
+    vkFreeMemory(v.dev, i.mem, nullptr);
+}
+
+// A one-subpass render pass over `atts` (the subpass as `sub` describes it) and its kW x kH framebuffer.
+struct Pass {
+    const Lvp& v;
+    VkRenderPass rp = VK_NULL_HANDLE;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    Pass(const Lvp& lvp, const VkAttachmentDescription* atts, uint32_t count, const VkSubpassDescription& sub,
+         const VkImageView* views)
+        : v(lvp) {
+        VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+        rpi.attachmentCount = count;
+        rpi.pAttachments = atts;
+        rpi.subpassCount = 1;
+        rpi.pSubpasses = &sub;
+        VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
+        VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+        fbi.renderPass = rp;
+        fbi.attachmentCount = count;
+        fbi.pAttachments = views;
+        fbi.width = kW;
+        fbi.height = kH;
+        fbi.layers = 1;
+        VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+    }
+    ~Pass() {
+        vkDestroyFramebuffer(v.dev, fb, nullptr);
+        vkDestroyRenderPass(v.dev, rp, nullptr);
+    }
+    Pass(const Pass&) = delete;
+    Pass& operator=(const Pass&) = delete;
+};
+
+// What the passes below share: a storage buffer holding `data` at binding 0 of set 0 (visible to `stages`), the
+// fragment stage's 4-byte push constant (the target width), and a pipeline of `states` with the vertex and fragment
+// shaders `vert` and `frag` in `pass`; record() draws the full-screen triangle in one instance of the pass.
+struct BufferDraw {
+    const Lvp& v;
+    VkDescriptorSetLayout dsl = VK_NULL_HANDLE;
+    VkPipelineLayout pl = VK_NULL_HANDLE;
+    VkDescriptorPool dp = VK_NULL_HANDLE;
+    VkDescriptorSet ds = VK_NULL_HANDLE;
+    VkPipeline pipe = VK_NULL_HANDLE;
+    Buffer ssbo;
+
+    BufferDraw(const Lvp& lvp, VkShaderStageFlags stages, const void* data, size_t bytes, const Pass& pass,
+               const uint32_t* vert, size_t vert_bytes, const uint32_t* frag, size_t frag_bytes,
+               tilevk::test::PipelineStates& states)
+        : v(lvp) {
+        VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
+        VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        dli.bindingCount = 1;
+        dli.pBindings = &b0;
+        VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
+        VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
+        VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        pli.setLayoutCount = 1;
+        pli.pSetLayouts = &dsl;
+        pli.pushConstantRangeCount = 1;
+        pli.pPushConstantRanges = &pcr;
+        VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
+        VkShaderModule vs = make_shader(v, vert, vert_bytes);
+        VkShaderModule fs = make_shader(v, frag, frag_bytes);
+        const VkPipelineShaderStageCreateInfo st[2] = {tilevk::test::shader_stage(VK_SHADER_STAGE_VERTEX_BIT, vs),
+                                                       tilevk::test::shader_stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs)};
+        const VkResult made = states.create(v.dev, pass.rp, pl, st, 2, &pipe);
+        vkDestroyShaderModule(v.dev, vs, nullptr);
+        vkDestroyShaderModule(v.dev, fs, nullptr);
+        VKC(made);
+
+        VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+        VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        dpi.maxSets = 1;
+        dpi.poolSizeCount = 1;
+        dpi.pPoolSizes = &ps;
+        VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
+        VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        dai.descriptorPool = dp;
+        dai.descriptorSetCount = 1;
+        dai.pSetLayouts = &dsl;
+        VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+        ssbo = make_buffer(v, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        std::memcpy(ssbo.map, data, bytes);
+        VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = ds;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &dbi;
+        vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
+    }
+    ~BufferDraw() {
+        free_buffer(v, ssbo);
+        vkDestroyDescriptorPool(v.dev, dp, nullptr);
+        vkDestroyPipeline(v.dev, pipe, nullptr);
+        vkDestroyPipelineLayout(v.dev, pl, nullptr);
+        vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
+    }
+    BufferDraw(const BufferDraw&) = delete;
+    BufferDraw& operator=(const BufferDraw&) = delete;
+
+    // One instance of `pass` over the whole target (`clear`: its first attachment's clear value, or null), the
+    // full-screen triangle drawn unless `draw` is false.
+    void record(VkCommandBuffer cmd, const Pass& pass, const VkClearValue* clear, bool draw = true) const {
+        VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        rbi.renderPass = pass.rp;
+        rbi.framebuffer = pass.fb;
+        rbi.renderArea = {{0, 0}, {kW, kH}};
+        rbi.clearValueCount = clear != nullptr ? 1 : 0;
+        rbi.pClearValues = clear;
+        vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
+        const uint32_t width = kW;
+        vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
+        if (draw) vkCmdDraw(cmd, 3, 1, 0, 0);
+        vkCmdEndRenderPass(cmd);
+    }
+};
+
+// Uploads the bytes at `xfer` (regions `bic`) into `img`, taking it from UNDEFINED through TRANSFER_DST to
+// `attachment_layout` for the pass (reached at `stage` with `access`).
+void upload(VkCommandBuffer cmd, VkImage img, VkImageAspectFlags aspects, const Buffer& xfer,
+            const VkBufferImageCopy* bic, uint32_t regions, VkImageLayout attachment_layout, VkPipelineStageFlags stage,
+            VkAccessFlags access) {
+    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    bar.image = img;
+    bar.subresourceRange = {aspects, 0, 1, 0, 1};
+    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &bar);
+    vkCmdCopyBufferToImage(cmd, xfer.buf, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, regions, bic);
+    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    bar.newLayout = attachment_layout;
+    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    bar.dstAccessMask = access;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, stage, 0, 0, nullptr, 0, nullptr, 1, &bar);
+}
+
+// Records with `record` on lavapipe and waits for it (the shared harness's one-shot command buffer).
+void run(const Lvp& v, const std::function<void(VkCommandBuffer)>& record) {
+    VKC(v.device->run(record));
+}
+
 // Renders src colours over dst bytes with the blend state; returns the image bytes.
 std::vector<uint8_t> render(const Lvp& v, ColorFormat f, const BlendAttachment& a, const float consts[4],
                             const std::vector<float>& src, const std::vector<uint8_t>& dst) {
     const uint32_t bpp = format_info(f).bytes;
     const VkFormat vf = to_vk(f);
-    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ii.imageType = VK_IMAGE_TYPE_2D;
-    ii.format = vf;
-    ii.extent = {kW, kH, 1};
-    ii.mipLevels = ii.arrayLayers = 1;
-    ii.samples = VK_SAMPLE_COUNT_1_BIT;
-    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    VkImage img;
-    VKC(vkCreateImage(v.dev, &ii, nullptr, &img));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(v.dev, img, &req);
-    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex = v.mem_type(req.memoryTypeBits, 0);
-    VkDeviceMemory imem;
-    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &imem));
-    VKC(vkBindImageMemory(v.dev, img, imem, 0));
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = img;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = vf;
-    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view;
-    VKC(vkCreateImageView(v.dev, &vi, nullptr, &view));
-
+    Img img = make_image(
+        v, vf, VK_SAMPLE_COUNT_1_BIT,
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        VK_IMAGE_ASPECT_COLOR_BIT);
     VkAttachmentDescription att{};
     att.format = vf;
     att.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -168,65 +332,10 @@ std::vector<uint8_t> render(const Lvp& v, ColorFormat f, const BlendAttachment& 
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     sub.colorAttachmentCount = 1;
     sub.pColorAttachments = &ref;
-    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rpi.attachmentCount = 1;
-    rpi.pAttachments = &att;
-    rpi.subpassCount = 1;
-    rpi.pSubpasses = &sub;
-    VkRenderPass rp;
-    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
-    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fbi.renderPass = rp;
-    fbi.attachmentCount = 1;
-    fbi.pAttachments = &view;
-    fbi.width = kW;
-    fbi.height = kH;
-    fbi.layers = 1;
-    VkFramebuffer fb;
-    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+    const Pass pass(v, &att, 1, sub, &img.view);
 
-    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    dli.bindingCount = 1;
-    dli.pBindings = &b0;
-    VkDescriptorSetLayout dsl;
-    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
-    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
-    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &dsl;
-    pli.pushConstantRangeCount = 1;
-    pli.pPushConstantRanges = &pcr;
-    VkPipelineLayout pl;
-    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
-
-    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
-    VkShaderModule fs = make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag);
-    VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                             {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-    st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    st[0].module = vs;
-    st[0].pName = "main";
-    st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    st[1].module = fs;
-    st[1].pName = "main";
-    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
-    VkRect2D sc{{0, 0}, {kW, kH}};
-    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    vps.viewportCount = 1;
-    vps.pViewports = &vp;
-    vps.scissorCount = 1;
-    vps.pScissors = &sc;
-    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
-    rs.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineColorBlendAttachmentState cba{};
+    tilevk::test::PipelineStates states(kW, kH);
+    VkPipelineColorBlendAttachmentState& cba = states.blend;
     cba.blendEnable = a.blend_enable;
     cba.srcColorBlendFactor = VkBlendFactor(a.src_color);
     cba.dstColorBlendFactor = VkBlendFactor(a.dst_color);
@@ -235,113 +344,27 @@ std::vector<uint8_t> render(const Lvp& v, ColorFormat f, const BlendAttachment& 
     cba.dstAlphaBlendFactor = VkBlendFactor(a.dst_alpha);
     cba.alphaBlendOp = VkBlendOp(a.alpha_op);
     cba.colorWriteMask = a.write_mask;
-    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = 1;
-    cb.pAttachments = &cba;
-    std::memcpy(cb.blendConstants, consts, 16);
-    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    gpi.stageCount = 2;
-    gpi.pStages = st;
-    gpi.pVertexInputState = &vin;
-    gpi.pInputAssemblyState = &ia;
-    gpi.pViewportState = &vps;
-    gpi.pRasterizationState = &rs;
-    gpi.pMultisampleState = &ms;
-    gpi.pColorBlendState = &cb;
-    gpi.layout = pl;
-    gpi.renderPass = rp;
-    VkPipeline pipe;
-    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+    std::memcpy(states.color_blend.blendConstants, consts, 16);
+    const BufferDraw draw(v, VK_SHADER_STAGE_FRAGMENT_BIT, src.data(), src.size() * 4, pass, kFullscreenVert,
+                          sizeof kFullscreenVert, kBufferColorFrag, sizeof kBufferColorFrag, states);
 
-    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpi.maxSets = 1;
-    dpi.poolSizeCount = 1;
-    dpi.pPoolSizes = &ps;
-    VkDescriptorPool dp;
-    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
-    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    dai.descriptorPool = dp;
-    dai.descriptorSetCount = 1;
-    dai.pSetLayouts = &dsl;
-    VkDescriptorSet ds;
-    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
-
-    Buffer colors = make_buffer(v, src.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memcpy(colors.map, src.data(), src.size() * 4);
     Buffer xfer = make_buffer(v, VkDeviceSize(kW) * kH * bpp,
                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     std::memcpy(xfer.map, dst.data(), dst.size());
-    VkDescriptorBufferInfo dbi{colors.buf, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = ds;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &dbi;
-    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
-
-    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    cai.commandPool = v.pool;
-    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    cai.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
-    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    VKC(vkBeginCommandBuffer(cmd, &cbi));
-    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    bar.image = img;
-    bar.subresourceRange = vi.subresourceRange;
-    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &bar);
     VkBufferImageCopy bic{};
     bic.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     bic.imageExtent = {kW, kH, 1};
-    vkCmdCopyBufferToImage(cmd, xfer.buf, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &bic);
-    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    bar.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    bar.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
-                         nullptr, 0, nullptr, 1, &bar);
-    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    rbi.renderPass = rp;
-    rbi.framebuffer = fb;
-    rbi.renderArea = sc;
-    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
-    const uint32_t width = kW;
-    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRenderPass(cmd);
-    vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1, &bic);
-    VKC(vkEndCommandBuffer(cmd));
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
-    VKC(vkQueueWaitIdle(v.queue));
+    run(v, [&](VkCommandBuffer cmd) {
+        upload(cmd, img.img, VK_IMAGE_ASPECT_COLOR_BIT, xfer, &bic, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+        draw.record(cmd, pass, nullptr);
+        vkCmdCopyImageToBuffer(cmd, img.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1, &bic);
+    });
     std::vector<uint8_t> out(size_t(kW) * kH * bpp);
     std::memcpy(out.data(), xfer.map, out.size());
-
-    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
-    free_buffer(v, colors);
     free_buffer(v, xfer);
-    vkDestroyDescriptorPool(v.dev, dp, nullptr);
-    vkDestroyPipeline(v.dev, pipe, nullptr);
-    vkDestroyShaderModule(v.dev, vs, nullptr);
-    vkDestroyShaderModule(v.dev, fs, nullptr);
-    vkDestroyPipelineLayout(v.dev, pl, nullptr);
-    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
-    vkDestroyFramebuffer(v.dev, fb, nullptr);
-    vkDestroyRenderPass(v.dev, rp, nullptr);
-    vkDestroyImageView(v.dev, view, nullptr);
-    vkDestroyImage(v.dev, img, nullptr);
-    vkFreeMemory(v.dev, imem, nullptr);
+    free_image(v, img);
     return out;
 }
 
@@ -391,49 +414,6 @@ BlendAttachment ba(BlendFactor sc, BlendFactor dc, BlendOp co, BlendFactor sa, B
     a.alpha_op = ao;
     a.write_mask = mask;
     return a;
-}
-
-}  // namespace
-
-namespace {
-
-struct Img {
-    VkImage img = VK_NULL_HANDLE;
-    VkDeviceMemory mem = VK_NULL_HANDLE;
-    VkImageView view = VK_NULL_HANDLE;
-};
-
-Img make_image(const Lvp& v, VkFormat f, VkSampleCountFlagBits samples, VkImageUsageFlags usage,
-               VkImageAspectFlags aspect) {
-    Img r;
-    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ii.imageType = VK_IMAGE_TYPE_2D;
-    ii.format = f;
-    ii.extent = {kW, kH, 1};
-    ii.mipLevels = ii.arrayLayers = 1;
-    ii.samples = samples;
-    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ii.usage = usage;
-    VKC(vkCreateImage(v.dev, &ii, nullptr, &r.img));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(v.dev, r.img, &req);
-    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex = v.mem_type(req.memoryTypeBits, 0);
-    VKC(vkAllocateMemory(v.dev, &mai, nullptr, &r.mem));
-    VKC(vkBindImageMemory(v.dev, r.img, r.mem, 0));
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = r.img;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = f;
-    vi.subresourceRange = {aspect, 0, 1, 0, 1};
-    VKC(vkCreateImageView(v.dev, &vi, nullptr, &r.view));
-    return r;
-}
-void free_image(const Lvp& v, Img& i) {
-    vkDestroyImageView(v.dev, i.view, nullptr);
-    vkDestroyImage(v.dev, i.img, nullptr);
-    vkFreeMemory(v.dev, i.mem, nullptr);
 }
 
 struct PassSpec {
@@ -489,171 +469,52 @@ std::vector<uint8_t> run_pass(const Lvp& v, const PassSpec& spec, const std::vec
         sub.pColorAttachments = &r0;
         if (resolve) sub.pResolveAttachments = &r1;
     }
-    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rpi.attachmentCount = resolve ? 2 : 1;
-    rpi.pAttachments = att;
-    rpi.subpassCount = 1;
-    rpi.pSubpasses = &sub;
-    VkRenderPass rp;
-    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
-    VkImageView views[2] = {target.view, resolved.view};
-    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fbi.renderPass = rp;
-    fbi.attachmentCount = rpi.attachmentCount;
-    fbi.pAttachments = views;
-    fbi.width = kW;
-    fbi.height = kH;
-    fbi.layers = 1;
-    VkFramebuffer fb;
-    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
+    const VkImageView views[2] = {target.view, resolved.view};
+    const Pass pass(v, att, resolve ? 2 : 1, sub, views);
 
-    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                                    VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    dli.bindingCount = 1;
-    dli.pBindings = &b0;
-    VkDescriptorSetLayout dsl;
-    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
-    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
-    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &dsl;
-    pli.pushConstantRangeCount = 1;
-    pli.pPushConstantRanges = &pcr;
-    VkPipelineLayout pl;
-    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
-    VkShaderModule vs = spec.interp ? make_shader(v, kInterpVert, sizeof kInterpVert)
-                                    : make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
-    VkShaderModule fs = spec.interp            ? make_shader(v, kInterpFrag, sizeof kInterpFrag)
-                        : spec.depth           ? make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag)
-                        : spec.per_pixel_color ? make_shader(v, kBufferColorFrag, sizeof kBufferColorFrag)
-                                               : make_shader(v, kSampleColorFrag, sizeof kSampleColorFrag);
-    VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                             {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-    st[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    st[0].module = vs;
-    st[0].pName = "main";
-    st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    st[1].module = fs;
-    st[1].pName = "main";
-    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkViewport vp{0, 0, float(kW), float(kH), spec.min_depth, spec.max_depth};
-    VkRect2D sc{{0, 0}, {kW, kH}};
-    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    vps.viewportCount = 1;
-    vps.pViewports = &vp;
-    vps.scissorCount = 1;
-    vps.pScissors = &sc;
-    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
-    rs.lineWidth = 1.0f;
-    rs.depthClampEnable = spec.depth_clamp;
-    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    tilevk::test::PipelineStates states(kW, kH);
+    states.viewport.minDepth = spec.min_depth;
+    states.viewport.maxDepth = spec.max_depth;
+    states.raster.depthClampEnable = spec.depth_clamp;
+    VkPipelineMultisampleStateCreateInfo& ms = states.multisample;
     ms.rasterizationSamples = samples;
     ms.sampleShadingEnable = !spec.depth && !spec.per_pixel_color && !spec.interp;
     ms.minSampleShading = 1.0f;
     const VkSampleMask smask = spec.sample_mask;
     ms.pSampleMask = &smask;
     ms.alphaToCoverageEnable = spec.alpha_to_coverage;
-    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    dss.depthTestEnable = VK_TRUE;
-    dss.depthWriteEnable = VK_TRUE;
-    dss.depthCompareOp = VK_COMPARE_OP_ALWAYS;
-    VkPipelineColorBlendAttachmentState cba{};
-    cba.colorWriteMask = 0xf;
-    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = spec.depth ? 0 : 1;
-    cb.pAttachments = &cba;
-    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    gpi.stageCount = 2;
-    gpi.pStages = st;
-    gpi.pVertexInputState = &vin;
-    gpi.pInputAssemblyState = &ia;
-    gpi.pViewportState = &vps;
-    gpi.pRasterizationState = &rs;
-    gpi.pMultisampleState = &ms;
-    gpi.pDepthStencilState = spec.depth ? &dss : nullptr;
-    gpi.pColorBlendState = &cb;
-    gpi.layout = pl;
-    gpi.renderPass = rp;
-    VkPipeline pipe;
-    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
+    states.depth_stencil_enabled = spec.depth;
+    states.depth_stencil.depthTestEnable = VK_TRUE;
+    states.depth_stencil.depthWriteEnable = VK_TRUE;
+    states.depth_stencil.depthCompareOp = VK_COMPARE_OP_ALWAYS;
+    states.color_blend.attachmentCount = spec.depth ? 0 : 1;
+    const uint32_t* vert = spec.interp ? kInterpVert : kFullscreenVert;
+    const size_t vert_bytes = spec.interp ? sizeof kInterpVert : sizeof kFullscreenVert;
+    const uint32_t* frag = spec.interp            ? kInterpFrag
+                           : spec.depth           ? kBufferDepthFrag
+                           : spec.per_pixel_color ? kBufferColorFrag
+                                                  : kSampleColorFrag;
+    const size_t frag_bytes = spec.interp            ? sizeof kInterpFrag
+                              : spec.depth           ? sizeof kBufferDepthFrag
+                              : spec.per_pixel_color ? sizeof kBufferColorFrag
+                                                     : sizeof kSampleColorFrag;
+    const BufferDraw draw(v, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, data.data(), data.size() * 4,
+                          pass, vert, vert_bytes, frag, frag_bytes, states);
 
-    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpi.maxSets = 1;
-    dpi.poolSizeCount = 1;
-    dpi.pPoolSizes = &ps;
-    VkDescriptorPool dp;
-    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
-    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    dai.descriptorPool = dp;
-    dai.descriptorSetCount = 1;
-    dai.pSetLayouts = &dsl;
-    VkDescriptorSet ds;
-    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
-    Buffer ssbo = make_buffer(v, data.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memcpy(ssbo.map, data.data(), data.size() * 4);
     Buffer xfer = make_buffer(v, VkDeviceSize(kW) * kH * bpp, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = ds;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &dbi;
-    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
-
-    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    cai.commandPool = v.pool;
-    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    cai.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
-    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    VKC(vkBeginCommandBuffer(cmd, &cbi));
-    VkClearValue clear{};
-    std::memcpy(clear.color.float32, spec.clear, 16);
-    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    rbi.renderPass = rp;
-    rbi.framebuffer = fb;
-    rbi.renderArea = sc;
-    rbi.clearValueCount = 1;
-    rbi.pClearValues = &clear;
-    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
-    const uint32_t width = kW;
-    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
-    if (!spec.no_draw) vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRenderPass(cmd);
-    VkBufferImageCopy bic{};
-    bic.imageSubresource = {aspect, 0, 0, 1};
-    bic.imageExtent = {kW, kH, 1};
-    vkCmdCopyImageToBuffer(cmd, resolve ? resolved.img : target.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 1,
-                           &bic);
-    VKC(vkEndCommandBuffer(cmd));
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
-    VKC(vkQueueWaitIdle(v.queue));
+    run(v, [&](VkCommandBuffer cmd) {
+        VkClearValue clear{};
+        std::memcpy(clear.color.float32, spec.clear, 16);
+        draw.record(cmd, pass, &clear, !spec.no_draw);
+        VkBufferImageCopy bic{};
+        bic.imageSubresource = {aspect, 0, 0, 1};
+        bic.imageExtent = {kW, kH, 1};
+        vkCmdCopyImageToBuffer(cmd, resolve ? resolved.img : target.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf,
+                               1, &bic);
+    });
     std::vector<uint8_t> out(size_t(kW) * kH * bpp);
     std::memcpy(out.data(), xfer.map, out.size());
-
-    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
-    free_buffer(v, ssbo);
     free_buffer(v, xfer);
-    vkDestroyDescriptorPool(v.dev, dp, nullptr);
-    vkDestroyPipeline(v.dev, pipe, nullptr);
-    vkDestroyShaderModule(v.dev, vs, nullptr);
-    vkDestroyShaderModule(v.dev, fs, nullptr);
-    vkDestroyPipelineLayout(v.dev, pl, nullptr);
-    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
-    vkDestroyFramebuffer(v.dev, fb, nullptr);
-    vkDestroyRenderPass(v.dev, rp, nullptr);
     free_image(v, target);
     if (resolve) free_image(v, resolved);
     return out;
@@ -702,177 +563,45 @@ void run_stencil_pass(const Lvp& v, const DepthStencilState& st, bool front, con
     VkSubpassDescription sub{};
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     sub.pDepthStencilAttachment = &r0;
-    VkRenderPassCreateInfo rpi{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rpi.attachmentCount = 1;
-    rpi.pAttachments = &att;
-    rpi.subpassCount = 1;
-    rpi.pSubpasses = &sub;
-    VkRenderPass rp;
-    VKC(vkCreateRenderPass(v.dev, &rpi, nullptr, &rp));
-    VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fbi.renderPass = rp;
-    fbi.attachmentCount = 1;
-    fbi.pAttachments = &img.view;
-    fbi.width = kW;
-    fbi.height = kH;
-    fbi.layers = 1;
-    VkFramebuffer fb;
-    VKC(vkCreateFramebuffer(v.dev, &fbi, nullptr, &fb));
-    VkDescriptorSetLayoutBinding b0{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo dli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    dli.bindingCount = 1;
-    dli.pBindings = &b0;
-    VkDescriptorSetLayout dsl;
-    VKC(vkCreateDescriptorSetLayout(v.dev, &dli, nullptr, &dsl));
-    VkPushConstantRange pcr{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};
-    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &dsl;
-    pli.pushConstantRangeCount = 1;
-    pli.pPushConstantRanges = &pcr;
-    VkPipelineLayout pl;
-    VKC(vkCreatePipelineLayout(v.dev, &pli, nullptr, &pl));
-    VkShaderModule vs = make_shader(v, kFullscreenVert, sizeof kFullscreenVert);
-    VkShaderModule fs = make_shader(v, kBufferDepthFrag, sizeof kBufferDepthFrag);
-    VkPipelineShaderStageCreateInfo stg[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                              {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-    stg[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stg[0].module = vs;
-    stg[0].pName = "main";
-    stg[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stg[1].module = fs;
-    stg[1].pName = "main";
-    VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkViewport vp{0, 0, float(kW), float(kH), 0, 1};
-    VkRect2D sc{{0, 0}, {kW, kH}};
-    VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    vps.viewportCount = 1;
-    vps.pViewports = &vp;
-    vps.scissorCount = 1;
-    vps.pScissors = &sc;
-    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
+    const Pass pass(v, &att, 1, sub, &img.view);
+
+    tilevk::test::PipelineStates states(kW, kH);
     // The full-screen triangle has negative Vulkan area: it is front-facing with CLOCKWISE.
-    rs.frontFace = front ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    rs.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    states.raster.frontFace = front ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    states.depth_stencil_enabled = true;
+    VkPipelineDepthStencilStateCreateInfo& dss = states.depth_stencil;
     dss.depthTestEnable = st.depth_test;
     dss.depthWriteEnable = st.depth_write;
     dss.depthCompareOp = VkCompareOp(st.depth_compare);
     dss.stencilTestEnable = st.stencil_test;
     dss.front = to_vk(st.front);
     dss.back = to_vk(st.back);
-    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    gpi.stageCount = 2;
-    gpi.pStages = stg;
-    gpi.pVertexInputState = &vin;
-    gpi.pInputAssemblyState = &ia;
-    gpi.pViewportState = &vps;
-    gpi.pRasterizationState = &rs;
-    gpi.pMultisampleState = &ms;
-    gpi.pDepthStencilState = &dss;
-    gpi.pColorBlendState = &cb;
-    gpi.layout = pl;
-    gpi.renderPass = rp;
-    VkPipeline pipe;
-    VKC(vkCreateGraphicsPipelines(v.dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &pipe));
-    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-    VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpi.maxSets = 1;
-    dpi.poolSizeCount = 1;
-    dpi.pPoolSizes = &ps;
-    VkDescriptorPool dp;
-    VKC(vkCreateDescriptorPool(v.dev, &dpi, nullptr, &dp));
-    VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    dai.descriptorPool = dp;
-    dai.descriptorSetCount = 1;
-    dai.pSetLayouts = &dsl;
-    VkDescriptorSet ds;
-    VKC(vkAllocateDescriptorSets(v.dev, &dai, &ds));
+    states.color_blend.attachmentCount = 0;
     const size_t n = size_t(kW) * kH;
-    Buffer ssbo = make_buffer(v, n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memcpy(ssbo.map, z.data(), n * 4);
+    const BufferDraw draw(v, VK_SHADER_STAGE_FRAGMENT_BIT, z.data(), n * 4, pass, kFullscreenVert,
+                          sizeof kFullscreenVert, kBufferDepthFrag, sizeof kBufferDepthFrag, states);
+
     Buffer xfer = make_buffer(v, n * 5, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     std::memcpy(xfer.map, d0.data(), n * 4);
     std::memcpy(static_cast<uint8_t*>(xfer.map) + n * 4, s0.data(), n);
-    VkDescriptorBufferInfo dbi{ssbo.buf, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = ds;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &dbi;
-    vkUpdateDescriptorSets(v.dev, 1, &w, 0, nullptr);
-
-    VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    cai.commandPool = v.pool;
-    cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    cai.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    VKC(vkAllocateCommandBuffers(v.dev, &cai, &cmd));
-    VkCommandBufferBeginInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    VKC(vkBeginCommandBuffer(cmd, &cbi));
-    VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    bar.image = img.img;
-    bar.subresourceRange = {both, 0, 1, 0, 1};
-    bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    bar.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &bar);
     VkBufferImageCopy bic[2]{};
     bic[0].imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
     bic[0].imageExtent = {kW, kH, 1};
     bic[1] = bic[0];
     bic[1].imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
     bic[1].bufferOffset = n * 4;
-    vkCmdCopyBufferToImage(cmd, xfer.buf, img.img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 2, bic);
-    bar.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    bar.newLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    bar.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    bar.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 0, nullptr,
-                         0, nullptr, 1, &bar);
-    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    rbi.renderPass = rp;
-    rbi.framebuffer = fb;
-    rbi.renderArea = sc;
-    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pl, 0, 1, &ds, 0, nullptr);
-    const uint32_t width = kW;
-    vkCmdPushConstants(cmd, pl, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4, &width);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRenderPass(cmd);
-    vkCmdCopyImageToBuffer(cmd, img.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 2, bic);
-    VKC(vkEndCommandBuffer(cmd));
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    VKC(vkQueueSubmit(v.queue, 1, &si, VK_NULL_HANDLE));
-    VKC(vkQueueWaitIdle(v.queue));
+    run(v, [&](VkCommandBuffer cmd) {
+        upload(cmd, img.img, both, xfer, bic, 2, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+        draw.record(cmd, pass, nullptr);
+        vkCmdCopyImageToBuffer(cmd, img.img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, xfer.buf, 2, bic);
+    });
     d1.resize(n);
     s1.resize(n);
     std::memcpy(d1.data(), xfer.map, n * 4);
     std::memcpy(s1.data(), static_cast<uint8_t*>(xfer.map) + n * 4, n);
-
-    vkFreeCommandBuffers(v.dev, v.pool, 1, &cmd);
-    free_buffer(v, ssbo);
     free_buffer(v, xfer);
-    vkDestroyDescriptorPool(v.dev, dp, nullptr);
-    vkDestroyPipeline(v.dev, pipe, nullptr);
-    vkDestroyShaderModule(v.dev, vs, nullptr);
-    vkDestroyShaderModule(v.dev, fs, nullptr);
-    vkDestroyPipelineLayout(v.dev, pl, nullptr);
-    vkDestroyDescriptorSetLayout(v.dev, dsl, nullptr);
-    vkDestroyFramebuffer(v.dev, fb, nullptr);
-    vkDestroyRenderPass(v.dev, rp, nullptr);
     free_image(v, img);
 }
 

@@ -15,6 +15,7 @@
 #include "kXcheck_vert.spv.h"
 #include "rast/geometry/planes.h"
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 namespace xcheck {
 
@@ -173,28 +174,20 @@ class Lavapipe {
                 p.x.front == x.front && p.x.restart == x.restart && std::memcmp(p.x.vp, x.vp, sizeof(x.vp)) == 0 &&
                 p.x.no_flat == x.no_flat)
                 return p.pipe;
-        VkPipelineShaderStageCreateInfo st[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-        st[0].stage = VK_SHADER_STAGE_VERTEX_BIT, st[0].module = vs_, st[0].pName = "main";
-        st[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT, st[1].module = x.no_flat ? fs_noflat_ : fs_, st[1].pName = "main";
+        const VkPipelineShaderStageCreateInfo st[2] = {
+            tilevk::test::shader_stage(VK_SHADER_STAGE_VERTEX_BIT, vs_),
+            tilevk::test::shader_stage(VK_SHADER_STAGE_FRAGMENT_BIT, x.no_flat ? fs_noflat_ : fs_)};
         VkVertexInputBindingDescription bind{0, sizeof(InVertex), VK_VERTEX_INPUT_RATE_VERTEX};
         VkVertexInputAttributeDescription attrs[2] = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0}, {1, 0, col_format, 16}};
-        VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vin.vertexBindingDescriptionCount = 1;
-        vin.pVertexBindingDescriptions = &bind;
-        vin.vertexAttributeDescriptionCount = 2;
-        vin.pVertexAttributeDescriptions = attrs;
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = topo;
-        ia.primitiveRestartEnable = x.restart;
-        VkViewport vp{x.vp[0], x.vp[1], x.vp[2], x.vp[3], 0, 1};
-        VkRect2D sc{{0, 0}, {kSize, kSize}};
-        VkPipelineViewportStateCreateInfo vps{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vps.viewportCount = vps.scissorCount = 1;
-        vps.pViewports = &vp;
-        vps.pScissors = &sc;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.polygonMode = VK_POLYGON_MODE_FILL;
+        tilevk::test::PipelineStates states(kSize, kSize);
+        states.vertex_input.vertexBindingDescriptionCount = 1;
+        states.vertex_input.pVertexBindingDescriptions = &bind;
+        states.vertex_input.vertexAttributeDescriptionCount = 2;
+        states.vertex_input.pVertexAttributeDescriptions = attrs;
+        states.assembly.topology = topo;
+        states.assembly.primitiveRestartEnable = x.restart;
+        states.viewport = {x.vp[0], x.vp[1], x.vp[2], x.vp[3], 0, 1};
+        VkPipelineRasterizationStateCreateInfo& rs = states.raster;
         rs.cullMode = x.cull;
         rs.frontFace = x.front;
         rs.depthClampEnable = x.depth_clamp;
@@ -207,26 +200,9 @@ class Lavapipe {
             VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
         ls.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
         if (bresenham) rs.pNext = &ls;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = x.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineColorBlendAttachmentState cba{};
-        cba.colorWriteMask = 0xF;
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = 1;
-        cb.pAttachments = &cba;
-        VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gi.stageCount = 2;
-        gi.pStages = st;
-        gi.pVertexInputState = &vin;
-        gi.pInputAssemblyState = &ia;
-        gi.pViewportState = &vps;
-        gi.pRasterizationState = &rs;
-        gi.pMultisampleState = &ms;
-        gi.pColorBlendState = &cb;
-        gi.layout = layout_;
-        gi.renderPass = x.samples == 4 ? pass_ms_ : pass_;
+        states.multisample.rasterizationSamples = x.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
         VkPipeline pipe = VK_NULL_HANDLE;
-        if (vkCreateGraphicsPipelines(dev_, VK_NULL_HANDLE, 1, &gi, nullptr, &pipe) != VK_SUCCESS) return pipe;
+        if (states.create(dev_, x.samples == 4 ? pass_ms_ : pass_, layout_, st, 2, &pipe) != VK_SUCCESS) return pipe;
         pipes_.push_back({topo, line_width, bresenham, col_format, b, x, pipe});
         return pipe;
     }
