@@ -24,6 +24,7 @@ struct Features {
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{};
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
+    VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.
