@@ -68,7 +68,7 @@ void add_extension_features(Features& f) {
     f.line_rasterization.rectangularLines = VK_TRUE;
     f.line_rasterization.bresenhamLines = VK_TRUE;
     // VK_BORDER_COLOR_*_CUSTOM_EXT: the colour's bits, clamped to the view's format and put in the channels it
-    // stores as gallivm does (shader/texture.cpp format_border), so the sampler's format member is never needed.
+    // stores as gallivm does (shader/texture_border.cpp format_border), so the sampler's format member is never needed.
     f.custom_border_color.customBorderColors = VK_TRUE;
     f.custom_border_color.customBorderColorWithoutFormat = VK_TRUE;
 }
