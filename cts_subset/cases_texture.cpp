@@ -11,6 +11,78 @@ Scene textured(TextureSpec t, float u0, float u1, float x_scale = 1.0f, bool pro
     return one_draw(textured_quad(t, {u0, u1, x_scale, projected}), size, size);
 }
 
+// VK_EXT_custom_border_color: RGBA8 and R8 textures under CLAMP_TO_BORDER with colours outside [0, 1] (gallivm
+// clamps them to the format and, on R8, replaces red only), magnified and minified through mip levels, into a float
+// target so that every bit of the border shows.
+void add_custom_border_cases(CaseList& out) {
+    struct Colour {
+        const char* name;
+        VkClearColorValue v;
+    };
+    const Colour colours[] = {{"out_of_range", {{0.25f, -0.5f, 2.0f, 0.75f}}},
+                              {"in_range", {{0.9f, 0.1f, 0.6f, 0.3f}}}};
+    for (VkFormat fmt : {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8_UNORM})
+        for (const Colour& col : colours)
+            for (VkFilter f : {VK_FILTER_NEAREST, VK_FILTER_LINEAR}) {
+                TextureSpec t;
+                t.format = fmt;
+                t.pattern = TexPattern::kGradient;
+                t.width = t.height = 32;
+                t.mip_levels = 6;
+                t.mag = t.min = f;
+                t.mip_mode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+                t.wrap = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+                t.border = VK_BORDER_COLOR_FLOAT_CUSTOM_EXT;
+                t.custom_border = col.v;
+                const std::string name = std::string("texture.custom_border.") +
+                                         (fmt == VK_FORMAT_R8_UNORM ? "r8_" : "rgba8_") + col.name +
+                                         (f == VK_FILTER_NEAREST ? "_nearest" : "_linear");
+                out.push_back({name + "_magnified",
+                               [=] {
+                                   Scene s = textured(t, -0.3f, 1.4f);
+                                   s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                                   return s;
+                               },
+                               nullptr, ""});
+                out.push_back({name + "_minified_projected",
+                               [=] {
+                                   Scene s = textured(t, -1.5f, 2.5f, 1.0f, true);
+                                   s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                                   return s;
+                               },
+                               nullptr, ""});
+            }
+}
+
+// samplerFilterMinmax: an R8_UNORM checker (the one-channel format lavapipe reports FILTER_MINMAX for) reduced with
+// MIN and MAX, minified across mip levels with a perspective tilt: CLAMP_TO_EDGE takes lavapipe's 8-bit filter
+// (which also reduces between levels), MIRRORED_REPEAT its float filter (which lerps between levels).
+void add_minmax_cases(CaseList& out) {
+    for (VkSamplerReductionMode m : {VK_SAMPLER_REDUCTION_MODE_MIN, VK_SAMPLER_REDUCTION_MODE_MAX})
+        for (VkSamplerAddressMode w : {VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT})
+            for (VkSamplerMipmapMode mip : {VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_MIPMAP_MODE_LINEAR}) {
+                TextureSpec t;
+                t.format = VK_FORMAT_R8_UNORM;
+                t.width = t.height = 64;
+                t.mip_levels = 7;
+                t.mag = t.min = VK_FILTER_LINEAR;
+                t.mip_mode = mip;
+                t.wrap = w;
+                t.reduction = m;
+                const std::string name = std::string("texture.minmax.") +
+                                         (m == VK_SAMPLER_REDUCTION_MODE_MIN ? "min" : "max") +
+                                         (w == VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE ? "_clamp_to_edge" : "_mirrored") +
+                                         (mip == VK_SAMPLER_MIPMAP_MODE_NEAREST ? "_mip_nearest" : "_mip_linear");
+                out.push_back({name,
+                               [=] {
+                                   Scene s = textured(t, -0.2f, 3.0f, 1.0f, true);
+                                   s.target.color = VK_FORMAT_R32G32B32A32_SFLOAT;
+                                   return s;
+                               },
+                               nullptr, ""});
+            }
+}
+
 }  // namespace
 
 void add_texture_cases(CaseList& out) {
@@ -113,6 +185,8 @@ void add_texture_cases(CaseList& out) {
                            return s;
                        },
                        nullptr, ""});
+    add_custom_border_cases(out);
+    add_minmax_cases(out);
     // A NaN coordinate (here every vertex's) with CLAMP_TO_BORDER: gallivm's float-to-int conversion gives INT_MIN,
     // so lavapipe reads the border (nearest) or the border lerped with a NaN weight (linear: NaN); tilevk read
     // texel 0 (found by the random scene fuzzer, seed 720, where a clipped noperspective triangle had NaN

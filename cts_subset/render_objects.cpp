@@ -262,7 +262,9 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
     if (is_bc_format(t.format)) return make_bc_texture(c, gc, t);
     Texture tex;
     tex.mips = t.mip_levels;
-    VkFormat f = VK_FORMAT_R8G8B8A8_UNORM;
+    // RGBA8, or R8_UNORM (the pattern's red) for the cases that need a single-channel format
+    const VkFormat f = t.format == VK_FORMAT_R8_UNORM ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM;
+    const uint32_t bpp = f == VK_FORMAT_R8_UNORM ? 1 : 4;
     tex.image = make_image(c, gc, f, t.width, t.height, t.mip_levels, VK_SAMPLE_COUNT_1_BIT,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, t.depth, t.one_d, t.layers);
     const VkImageViewType view_type = t.one_d ? (t.layers > 1 ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D)
@@ -274,7 +276,7 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
     // a 1D image's layers take the place of its rows
     const uint32_t rows = t.one_d ? t.layers : t.height;
     for (uint32_t l = 0; l < t.mip_levels; ++l)
-        total += VkDeviceSize(half(t.width, l)) * (t.one_d ? rows : half(rows, l)) * half(t.depth, l) * 4;
+        total += VkDeviceSize(half(t.width, l)) * (t.one_d ? rows : half(rows, l)) * half(t.depth, l) * bpp;
     tex.staging = make_buffer(c, gc, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     auto* bytes = static_cast<uint8_t*>(tex.staging.mapped);
     VkDeviceSize offset = 0;
@@ -283,7 +285,7 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
         for (uint32_t z = 0; z < d; ++z)
             for (uint32_t y = 0; y < h; ++y)
                 for (uint32_t x = 0; x < w; ++x) {
-                    uint8_t* p = bytes + offset + ((VkDeviceSize(z) * h + y) * w + x) * 4;
+                    uint8_t p[4];
                     if (t.one_d) {
                         texel_3d(l, x, y, 0, w, 5, 1, p);  // green: the layer, by 255 / 4
                     } else if (t.depth > 1) {
@@ -291,15 +293,28 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
                     } else {
                         texel(t, l, x, y, w, h, p);
                     }
+                    std::memcpy(bytes + offset + ((VkDeviceSize(z) * h + y) * w + x) * bpp, p, bpp);
                 }
         VkBufferImageCopy r{};
         r.bufferOffset = offset;
         r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, t.one_d ? t.layers : 1};
         r.imageExtent = {w, t.one_d ? 1 : h, d};
         tex.copies.push_back(r);
-        offset += VkDeviceSize(w) * h * d * 4;
+        offset += VkDeviceSize(w) * h * d * bpp;
     }
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    VkSamplerCustomBorderColorCreateInfoEXT cb{VK_STRUCTURE_TYPE_SAMPLER_CUSTOM_BORDER_COLOR_CREATE_INFO_EXT};
+    VkSamplerReductionModeCreateInfo rm{VK_STRUCTURE_TYPE_SAMPLER_REDUCTION_MODE_CREATE_INFO};
+    if (t.custom_border) {
+        cb.customBorderColor = *t.custom_border;
+        cb.format = f;
+        si.pNext = &cb;
+    }
+    if (t.reduction != VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE) {
+        rm.reductionMode = t.reduction;
+        rm.pNext = si.pNext;
+        si.pNext = &rm;
+    }
     si.magFilter = t.mag;
     si.minFilter = t.min;
     si.mipmapMode = t.mip_mode;

@@ -128,8 +128,15 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
             if (d.texture->mag == VK_FILTER_LINEAR || d.texture->min == VK_FILTER_LINEAR ||
                 d.texture->mip_mode == VK_SAMPLER_MIPMAP_MODE_LINEAR)
                 need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-            auto e = check_format(c, VK_FORMAT_R8G8B8A8_UNORM, need, VK_IMAGE_USAGE_SAMPLED_BIT, VK_SAMPLE_COUNT_1_BIT,
-                                  "texture");
+            if (d.texture->reduction != VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE) {
+                if (!c.has_extension(VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME))
+                    return "VK_EXT_sampler_filter_minmax";
+                need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT;
+            }
+            if (d.texture->custom_border && !c.custom_border_color.customBorderColors)
+                return "VK_EXT_custom_border_color customBorderColors";
+            const VkFormat tf = d.texture->format == VK_FORMAT_R8_UNORM ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM;
+            auto e = check_format(c, tf, need, VK_IMAGE_USAGE_SAMPLED_BIT, VK_SAMPLE_COUNT_1_BIT, "texture");
             if (!e.empty()) return e;
             if (d.texture->wrap == VK_SAMPLER_ADDRESS_MODE_MIRROR_CLAMP_TO_EDGE &&
                 !c.has_extension(VK_KHR_SAMPLER_MIRROR_CLAMP_TO_EDGE_EXTENSION_NAME))

@@ -56,6 +56,10 @@ struct TextureSpec {
     // LOD bias and depth comparison.
     uint32_t cube_layers = 0;
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+    // VK_EXT_custom_border_color: `border` must be VK_BORDER_COLOR_{FLOAT,INT}_CUSTOM_EXT (texture.custom_border.*)
+    std::optional<VkClearColorValue> custom_border;
+    // samplerFilterMinmax (VK_EXT_sampler_filter_minmax; texture.minmax.*, on an R8_UNORM `format`)
+    VkSamplerReductionMode reduction = VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE;
     float lod_bias = 0.0f;
     bool compare = false;
     VkCompareOp compare_op = VK_COMPARE_OP_LESS;

@@ -36,7 +36,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateDescriptorSetLayout(VkDevice device, co
                 for (uint32_t j = 0; j < b.descriptorCount; ++j) {
                     const Sampler* s = from_handle<Sampler>(b.pImmutableSamplers[j]);
                     lb.immutable_samplers.push_back(s != nullptr ? s->info : VkSamplerCreateInfo{});
-                    lb.immutable_states.push_back(sampler_state_of(lb.immutable_samplers.back()));
+                    // the sampler's own state: its create info no longer holds the pNext chain (custom border)
+                    lb.immutable_states.push_back(s != nullptr ? s->state : sampler_state_of(VkSamplerCreateInfo{}));
                 }
             }
             shared->bindings.push_back(std::move(lb));

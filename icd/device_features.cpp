@@ -76,6 +76,10 @@ void add_extension_features(Features& f) {
     f.atomic_float.shaderSharedFloat32AtomicAdd = VK_TRUE;
     f.atomic_float.shaderImageFloat32Atomics = VK_TRUE;
     f.atomic_float.shaderImageFloat32AtomicAdd = VK_TRUE;
+    // VK_BORDER_COLOR_*_CUSTOM_EXT: the colour's bits, clamped to the view's format and put in the channels it
+    // stores as gallivm does (shader/texture_border.cpp format_border), so the sampler's format member is never needed.
+    f.custom_border_color.customBorderColors = VK_TRUE;
+    f.custom_border_color.customBorderColorWithoutFormat = VK_TRUE;
 }
 
 Features make_supported() {
@@ -168,6 +172,9 @@ Features make_supported() {
     // CLAMP_TO_EDGE), nearest, linear and gathers (cts texture.wrap.mirror_clamp_to_edge_*,
     // texture.float_target.mip_linear_mirror_clamp_to_edge).
     f.core.v12.samplerMirrorClampToEdge = VK_TRUE;
+    // VkSamplerReductionModeCreateInfo MIN / MAX: shader/texture_reduce.h in every linear filter step as gallivm's
+    // lp_build_reduce_filter (ApiSamplerExt.FilterMinmax*, cts texture.minmax.*).
+    f.core.v12.samplerFilterMinmax = VK_TRUE;
     f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).
@@ -240,6 +247,7 @@ Features::Features() {
     init(depth_clip_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT);
     init(line_rasterization, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT);
     init(atomic_float, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT);
+    init(custom_border_color, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -254,7 +262,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&provoking_vertex),
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable),
                                  reinterpret_cast<VkBaseOutStructure*>(&line_rasterization),
-                                 reinterpret_cast<VkBaseOutStructure*>(&atomic_float)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&atomic_float),
+                                 reinterpret_cast<VkBaseOutStructure*>(&custom_border_color)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

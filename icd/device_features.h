@@ -25,6 +25,7 @@ struct Features {
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
+    VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

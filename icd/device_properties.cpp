@@ -74,8 +74,10 @@ void fill_v12(const PhysicalDevice& pd, VkPhysicalDeviceVulkan12Properties& p) {
     p.supportedStencilResolveModes = kStencilResolveModes;
     p.independentResolveNone = VK_FALSE;
     p.independentResolve = VK_FALSE;
-    p.filterMinmaxSingleComponentFormats = VK_FALSE;
-    p.filterMinmaxImageComponentMapping = VK_FALSE;
+    // samplerFilterMinmax: the reduction applies to the format's channels before the view's component mapping
+    // (shader/texture.cpp), on the single-component formats Vulkan lists (format/support.txt @minmax); lavapipe's.
+    p.filterMinmaxSingleComponentFormats = VK_TRUE;
+    p.filterMinmaxImageComponentMapping = VK_TRUE;
     // Counters are compared as 64-bit values, never as differences: any distance works (lavapipe: UINT64_MAX).
     p.maxTimelineSemaphoreValueDifference = UINT64_MAX;
     p.framebufferIntegerColorSampleCounts = VK_SAMPLE_COUNT_1_BIT;
@@ -156,6 +158,11 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR:
             // A pushed set is an ordinary set (push_descriptor.cpp); 32 is lavapipe's MAX_PUSH_DESCRIPTORS.
             reinterpret_cast<VkPhysicalDevicePushDescriptorPropertiesKHR*>(s)->maxPushDescriptors = 32;
+            return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_PROPERTIES_EXT:
+            // A custom colour lives in its sampler (shader::SamplerState), so any number would do; lavapipe's 32768.
+            reinterpret_cast<VkPhysicalDeviceCustomBorderColorPropertiesEXT*>(s)->maxCustomBorderColorSamplers =
+                32 * 1024;
             return;
         default:
             read_core_properties(core, s);  // the promoted structs; anything else is left untouched

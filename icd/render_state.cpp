@@ -1,6 +1,7 @@
 #include "render_state.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "buffer_view.h"
 #include "formats.h"
@@ -10,6 +11,10 @@
 #include "rast/fragment/block.h"
 
 namespace tilevk::icd {
+
+static_assert(int(shader::Reduction::WeightedAverage) == VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE &&
+              int(shader::Reduction::Min) == VK_SAMPLER_REDUCTION_MODE_MIN &&
+              int(shader::Reduction::Max) == VK_SAMPLER_REDUCTION_MODE_MAX);
 
 shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     shader::SamplerState s;
@@ -33,12 +38,27 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
         case VK_BORDER_COLOR_INT_OPAQUE_WHITE:
             s.border = shader::BorderColor::OpaqueWhite;
             break;
+        case VK_BORDER_COLOR_FLOAT_CUSTOM_EXT:
+        case VK_BORDER_COLOR_INT_CUSTOM_EXT: {
+            // VK_EXT_custom_border_color: the colour's bits as lavapipe stores them (vk_sampler_border_color_value),
+            // the format member unused (customBorderColorWithoutFormat); shader/ clamps them to the view's format.
+            s.border = shader::BorderColor::Custom;
+            const auto* cb = find_in_chain<VkSamplerCustomBorderColorCreateInfoEXT>(
+                in.pNext, VK_STRUCTURE_TYPE_SAMPLER_CUSTOM_BORDER_COLOR_CREATE_INFO_EXT);
+            if (cb != nullptr) std::memcpy(s.custom_border.data(), cb->customBorderColor.uint32, 16);
+            break;
+        }
         default:
             s.border = shader::BorderColor::TransparentBlack;
     }
     s.integer_border = in.borderColor == VK_BORDER_COLOR_INT_TRANSPARENT_BLACK ||
                        in.borderColor == VK_BORDER_COLOR_INT_OPAQUE_BLACK ||
                        in.borderColor == VK_BORDER_COLOR_INT_OPAQUE_WHITE;
+    // samplerFilterMinmax: VkSamplerReductionMode numbers its values as shader::Reduction
+    if (const auto* rm = find_in_chain<VkSamplerReductionModeCreateInfo>(
+            in.pNext, VK_STRUCTURE_TYPE_SAMPLER_REDUCTION_MODE_CREATE_INFO);
+        rm != nullptr && rm->reductionMode <= VK_SAMPLER_REDUCTION_MODE_MAX)
+        s.reduction = shader::Reduction(rm->reductionMode);
     s.unnormalized = in.unnormalizedCoordinates;
     s.compare_enable = in.compareEnable;
     s.compare_op = shader::CompareOp(in.compareOp);

@@ -14,9 +14,9 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSampler(VkDevice device, const VkSample
     }
     Sampler* s = create_object<Sampler>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (s == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateSampler: out of host memory");
+    s->state = sampler_state_of(*ci);  // with its pNext chain (custom border colour)
     s->info = *ci;
     s->info.pNext = nullptr;
-    s->state = sampler_state_of(s->info);
     *pSampler = to_handle(s);
     return VK_SUCCESS;
 }

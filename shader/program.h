@@ -242,7 +242,10 @@ ViewLevelTable level_table(const ImageView& view);
 enum class Filter : uint8_t { Nearest, Linear };
 enum class MipmapMode : uint8_t { Nearest, Linear };
 enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder, MirrorClampToEdge };
-enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
+// Custom: VK_EXT_custom_border_color's colour, SamplerState::custom_border.
+enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite, Custom };
+// VkSamplerReductionMode's values (shader/texture_reduce.h).
+enum class Reduction : uint8_t { WeightedAverage, Min, Max };
 // Same order as VkCompareOp. The one compare-op enum: depth/stencil tests (rast/fragment) and depth-compare
 // sampling both use it.
 enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
@@ -284,6 +287,9 @@ struct SamplerState {
     float max_lod = 1000.0f;
     BorderColor border = BorderColor::TransparentBlack;
     bool integer_border = false;  // VK_BORDER_COLOR_INT_*: the opaque alpha is the integer 1, not 1.0f
+    // BorderColor::Custom: VkClearColorValue's bits (float or integer alike: gallivm reads them as the texel type)
+    std::array<uint32_t, 4> custom_border{};
+    Reduction reduction = Reduction::WeightedAverage;  // how the linear filter combines its texels
     bool unnormalized = false;
     bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
     CompareOp compare_op = CompareOp::Never;

@@ -14,6 +14,7 @@
 #include "shader/texture_cube.h"
 #include "shader/texture_fixed8.h"
 #include "shader/texture_internal.h"
+#include "shader/texture_reduce.h"
 
 namespace tilevk::shader {
 namespace tex {
@@ -27,34 +28,9 @@ Vec4 decode(const format::FormatInfo& f, const uint8_t* p) {
     return r;
 }
 
-// The sampler's border colour as gallivm returns it: its bits whatever the format (an INT border's 1 is the integer
-// 1, a FLOAT border's 1.0f its float bits, also on integer images).
-Vec4 border_color(const SamplerState& smp) {
-    const float one = smp.integer_border ? std::bit_cast<float>(1u) : 1.0f;
-    switch (smp.border) {
-        case BorderColor::OpaqueBlack:
-            return {0, 0, 0, one};
-        case BorderColor::OpaqueWhite:
-            return {one, one, one, one};
-        default:
-            return {0, 0, 0, 0};
-    }
-}
-
 // The view's format returns integers (UINT/SINT): a swizzle's ONE is the integer 1 there (the texel type's one).
 bool integer_format(const ImageView& img) {
     return format::is_integer(format::format_info(img.format));
-}
-
-// The border colour as the float filter substitutes it for a texel of format f: lavapipe replaces only the channels
-// a BC format stores (texel_bc.h bc_stored_channels); the others keep the format's 0 (colour) or 1 (alpha).
-Vec4 format_border(const format::FormatInfo& f, const SamplerState& smp) {
-    Vec4 b = border_color(smp);
-    if (f.layout != format::Layout::kCompressed) return b;
-    const uint8_t keep = format::bc_stored_channels(f);
-    for (int c = 0; c < 4; ++c)
-        if (!(keep & (1u << c))) b[size_t(c)] = c == 3 ? 1.0f : 0.0f;
-    return b;
 }
 
 // Texel index after addressing; -1 means "border".
@@ -259,8 +235,9 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
     Vec4 r;
     // lavapipe's float (SoA) filter: lerp(w, p, q) = fmuladd(w, q - p, p) (fused on FMA hosts), along x, then
     // along y (lp_build_lerp_2d via lp_build_reduce_filter_2d), for every format that reaches it; never the
-    // weighted sum of the four texels, which differs in the last bits.
+    // weighted sum of the four texels, which differs in the last bits. MIN / MAX reduce in the same order.
     auto lerp = [](float w, float p, float q) { return std::fma(w, q - p, p); };
+    auto reduce = [m = smp.reduction](float w, float p, float q) { return reduce_step(m, w, p, q); };
     if (args.dref) {
         // the compared texels are masks: each row is (m0 ? 1 - a : 0) + (m1 ? a : 0) (lp_build_masklerp2d), then
         // the rows are lerped along y
@@ -270,8 +247,8 @@ Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level,
         return r;
     }
     for (int c = 0; c < 4; ++c) {
-        float x0 = lerp(a, t00[c], t10[c]);
-        r[c] = one_d ? x0 : lerp(b, x0, lerp(a, t01[c], t11[c]));
+        float x0 = reduce(a, t00[c], t10[c]);
+        r[c] = one_d ? x0 : reduce(b, x0, reduce(a, t01[c], t11[c]));
     }
     return r;
 }
@@ -326,13 +303,14 @@ Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_
     fixed8::Pair py = one_d ? fixed8::Pair{0, 0, 0} : axis_fixed8(t, h, args.off_y, smp.unnormalized, smp.address_v);
     Bytes t00 = at(px.i0, py.i0), t10 = at(px.i1, py.i0);
     Bytes r;
+    const Reduction m = smp.reduction;
     if (one_d) {
-        for (int c = 0; c < 4; ++c) r[c] = fixed8::lerp(px.w, t00[c], t10[c]);
+        for (int c = 0; c < 4; ++c) r[c] = reduce_step8(m, px.w, t00[c], t10[c]);
         return r;
     }
     Bytes t01 = at(px.i0, py.i1), t11 = at(px.i1, py.i1);
     for (int c = 0; c < 4; ++c)
-        r[c] = fixed8::lerp(py.w, fixed8::lerp(px.w, t00[c], t10[c]), fixed8::lerp(px.w, t01[c], t11[c]));
+        r[c] = reduce_step8(m, py.w, reduce_step8(m, px.w, t00[c], t10[c]), reduce_step8(m, px.w, t01[c], t11[c]));
     return r;
 }
 
@@ -467,7 +445,8 @@ Vec4 sample_lambda(const ImageView& img, const SamplerState& smp, float lambda, 
         Bytes a = sample_level_fixed8(img, smp, lv, layer, s, t, linear, one_d, args);
         if (mw > 0) {
             const Bytes b = sample_level_fixed8(img, smp, hi, layer, s, t, linear, one_d, args);
-            for (int c = 0; c < 4; ++c) a[c] = fixed8::lerp(mw, a[c], b[c]);
+            // the 8-bit path reduces between levels too (lp_bld_sample_aos.c lp_build_sample_mipmap)
+            for (int c = 0; c < 4; ++c) a[c] = reduce_step8(smp.reduction, mw, a[c], b[c]);
         }
         r = bytes_to_float(a);
     } else if (smp.unnormalized || mag) {

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "shader/texture_internal.h"
+#include "shader/texture_reduce.h"
 
 namespace tilevk::shader::tex {
 
@@ -48,7 +49,7 @@ const uint8_t* texel_address(const Level3& lv, int32_t x, int32_t y, int32_t z) 
 Vec4 sample_level_3d(const ImageView& img, const SamplerState& smp, uint32_t level, float s, float t, bool linear,
                      const SampleArgs& args) {
     const Level3 lv = level_3d(img, smp, level, s, t, args.r);
-    const Vec4 border = border_color(smp);
+    const Vec4 border = format_border(*lv.fi, smp);
     // x, y, z: indices with the offsets added, before the wrap; any axis outside (CLAMP_TO_BORDER) reads the border
     auto fetch = [&](int32_t x, int32_t y, int32_t z) -> Vec4 {
         const int32_t wx = wrap(x, lv.w, smp.address_u), wy = wrap(y, lv.h, smp.address_v);
@@ -65,7 +66,8 @@ Vec4 sample_level_3d(const ImageView& img, const SamplerState& smp, uint32_t lev
     const Axis ay = linear_axis(t, lv.v, lv.h, args.off_y, smp.address_v, un);
     const Axis az = linear_axis(args.r, lv.q, lv.d, 0, smp.address_w, un);
     // lavapipe's float filter: fmuladd(w, q - p, p) along x, then y, per slice, then along r between the slices
-    auto lerp = [](float w, float p, float q) { return std::fma(w, q - p, p); };
+    // (lp_build_reduce_filter_3d: MIN / MAX in the same order)
+    auto lerp = [m = smp.reduction](float w, float p, float q) { return reduce_step(m, w, p, q); };
     Vec4 out;
     const Vec4 a00 = fetch(ax.i0, ay.i0, az.i0), a10 = fetch(ax.i1, ay.i0, az.i0);
     const Vec4 a01 = fetch(ax.i0, ay.i1, az.i0), a11 = fetch(ax.i1, ay.i1, az.i0);
@@ -98,10 +100,11 @@ Bytes sample_level_3d_fixed8(const ImageView& img, const SamplerState& smp, uint
     const Bytes b00 = at(px.i0, py.i0, pz.i1), b10 = at(px.i1, py.i0, pz.i1);
     const Bytes b01 = at(px.i0, py.i1, pz.i1), b11 = at(px.i1, py.i1, pz.i1);
     Bytes out;
+    auto lerp = [m = smp.reduction](int32_t w, int32_t a, int32_t b) { return reduce_step8(m, w, a, b); };
     for (size_t c = 0; c < 4; ++c) {
-        const int32_t z0 = fixed8::lerp(py.w, fixed8::lerp(px.w, a00[c], a10[c]), fixed8::lerp(px.w, a01[c], a11[c]));
-        const int32_t z1 = fixed8::lerp(py.w, fixed8::lerp(px.w, b00[c], b10[c]), fixed8::lerp(px.w, b01[c], b11[c]));
-        out[c] = fixed8::lerp(pz.w, z0, z1);
+        const int32_t z0 = lerp(py.w, lerp(px.w, a00[c], a10[c]), lerp(px.w, a01[c], a11[c]));
+        const int32_t z1 = lerp(py.w, lerp(px.w, b00[c], b10[c]), lerp(px.w, b01[c], b11[c]));
+        out[c] = lerp(pz.w, z0, z1);
     }
     return out;
 }

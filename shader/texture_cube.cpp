@@ -9,6 +9,7 @@
 
 #include "format/texel_codec.h"
 #include "shader/texture_fixed8.h"
+#include "shader/texture_reduce.h"
 
 namespace tilevk::shader::cube {
 
@@ -356,7 +357,8 @@ Vec4 linear_level(const Lane& ln, uint32_t level, bool corner_path) {
     Vec4 n[4];
     for (int i = 0; i < 4; ++i) n[i] = fetch(ln, level, fp.texel[size_t(i)]);
     const float a = fp.ws, b = fp.wt;
-    if (corner_path) {
+    const Reduction m = ln.smp->reduction;  // MIN / MAX never take the corner path (lp_build_sample_image_linear)
+    if (corner_path && m == Reduction::WeightedAverage) {
         const float wx0 = 1.0f - a, wy0 = 1.0f - b;
         float w[4] = {wx0 * wy0, a * wy0, wx0 * b, a * b};
         float cw = 0.0f;
@@ -384,7 +386,8 @@ Vec4 linear_level(const Lane& ln, uint32_t level, bool corner_path) {
         return {lerp(b, row(n[0], n[1]), row(n[2], n[3])), 0.0f, 0.0f, 1.0f};
     }
     Vec4 r;
-    for (size_t c = 0; c < 4; ++c) r[c] = lerp(b, lerp(a, n[0][c], n[1][c]), lerp(a, n[2][c], n[3][c]));
+    for (size_t c = 0; c < 4; ++c)
+        r[c] = reduce_step(m, b, reduce_step(m, a, n[0][c], n[1][c]), reduce_step(m, a, n[2][c], n[3][c]));
     return r;
 }
 
@@ -442,7 +445,7 @@ void exec_sample_cube(const Inst& in, uint32_t* R, const Descriptor* const* slot
                 const int32_t mw = fixed8::mip_weight(ln.frac);
                 if (mw > 0) {
                     const std::array<int32_t, 4> b = bytes(ln.level1);
-                    for (size_t c = 0; c < 4; ++c) a[c] = fixed8::lerp(mw, a[c], b[c]);
+                    for (size_t c = 0; c < 4; ++c) a[c] = reduce_step8(ln.smp->reduction, mw, a[c], b[c]);
                 }
                 for (size_t c = 0; c < 4; ++c) r[c] = format::unorm8_to_float(uint8_t(a[c]));
             } else {

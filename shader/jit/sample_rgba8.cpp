@@ -19,6 +19,7 @@ namespace {
 // Whether the kernel covers this sampler on a view whose level table `t` covers, wraps checked per axis.
 bool sampler_fits(const SamplerState& smp, const ViewLevelTable& t) {
     if (smp.unnormalized || smp.mag_filter != Filter::Linear || smp.min_filter != Filter::Linear) return false;
+    if (smp.reduction != Reduction::WeightedAverage) return false;  // its kernel lerps (texture_reduce.h)
     auto ok_wrap = [](AddressMode m, uint32_t n) {
         return m == AddressMode::ClampToEdge || (m == AddressMode::Repeat && (n & (n - 1)) == 0);
     };

@@ -667,3 +667,92 @@ TEST(ShaderTexture, ThreeDimensionalAndCubeStorageImagesAreRefusedByName) {
             << r.error;
     }
 }
+
+namespace {
+// A 2x2 single-level view of `fmt` over `bytes` (texels tight, `texel` bytes each).
+ImageView small_view(Format fmt, const std::vector<uint8_t>& bytes, uint32_t texel) {
+    ImageView v;
+    v.format = fmt;
+    v.width = v.height = 2;
+    v.levels = 1;
+    v.level[0] = ImageLevel{0, 2 * texel, 4 * texel};
+    v.base = bytes.data();
+    return v;
+}
+}  // namespace
+
+// samplerFilterMinmax, worked out by hand: at the centre of a 2x2 texture the linear footprint is all four texels
+// with weights 0.5, so MIN and MAX are the smallest and largest of them; at texel (0, 0)'s centre both weights are
+// 0 and lavapipe keeps the first texel (lp_build_sample_min: a zero weight keeps v0), not the footprint's minimum.
+// R32_SFLOAT takes the float filter, R8_UNORM the 8-bit one (CLAMP_TO_EDGE).
+TEST(ShaderTexture, MinMaxReductionOfFourTexels) {
+    const float fl[4] = {0.75f, 0.25f, -0.5f, 2.0f};
+    std::vector<uint8_t> f32(16);
+    std::memcpy(f32.data(), fl, 16);
+    const std::vector<uint8_t> u8 = {200, 40, 90, 255};
+    const ImageView views[2] = {small_view(Format::R32_SFLOAT, f32, 4), small_view(Format::R8_UNORM, u8, 1)};
+    const float mins[2] = {-0.5f, 40 * kUnorm8}, maxs[2] = {2.0f, 255 * kUnorm8}, firsts[2] = {0.75f, 200 * kUnorm8};
+    for (int v = 0; v < 2; ++v)
+        for (Reduction m : {Reduction::Min, Reduction::Max}) {
+            SamplerState smp;
+            smp.mag_filter = smp.min_filter = Filter::Linear;
+            smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+            smp.reduction = m;
+            FsTex r("color = textureLod(tex, v.xy, 0.0);");
+            r.bindings.set(0, 0, 0, Descriptor{{}, &views[v], &smp});
+            for (int l = 0; l < kLanes; ++l) {
+                const float c = l % 2 ? 0.5f : 0.25f;  // the texture's centre; texel (0, 0)'s centre
+                r.block.inputs[0][0][l] = u(c), r.block.inputs[0][1][l] = u(c);
+            }
+            r.run();
+            for (int l = 0; l < kLanes; ++l) {
+                const float want = l % 2 ? (m == Reduction::Min ? mins[v] : maxs[v]) : firsts[v];
+                EXPECT_EQ(r.out(l, 0), want) << "view " << v << " mode " << int(m) << " lane " << l;
+                EXPECT_EQ(r.out(l, 3), 1.0f);  // R formats: alpha 1 in every texel
+            }
+        }
+}
+
+// Custom border colours, worked out by hand from gallivm's rule (lp_build_clamp_border_color,
+// lp_build_sample_texel_soa): the colour is clamped to the format's range (UNORM [0, 1], SNORM [-1, 1], UINT8
+// [0, 255] unsigned, float not at all) and replaces only the channels the format stores; the others keep 0, and
+// alpha 1 (the integer 1 on integer formats).
+TEST(ShaderTexture, CustomBorderClampedToTheFormatsChannels) {
+    struct Row {
+        Format fmt;
+        uint32_t texel;
+        std::array<uint32_t, 4> border, want;
+    };
+    const auto F = [](float a, float b, float c, float d) { return std::array<uint32_t, 4>{u(a), u(b), u(c), u(d)}; };
+    const Row rows[] = {
+        {Format::R8_UNORM, 1, F(0.25f, -0.5f, 2.0f, 0.75f), F(0.25f, 0.0f, 0.0f, 1.0f)},
+        {Format::R8G8B8A8_UNORM, 4, F(0.25f, -0.5f, 2.0f, 0.75f), F(0.25f, 0.0f, 1.0f, 0.75f)},
+        {Format::B8G8R8A8_UNORM, 4, F(-3.0f, 0.5f, 7.0f, 0.125f), F(0.0f, 0.5f, 1.0f, 0.125f)},
+        {Format::R8G8_SNORM, 2, F(0.25f, -1.5f, 2.0f, 0.75f), F(0.25f, -1.0f, 0.0f, 1.0f)},
+        {Format::R32_SFLOAT, 4, F(-3.0f, 0.5f, 7.0f, 0.125f), F(-3.0f, 0.0f, 0.0f, 1.0f)},
+        {Format::R8_UINT, 1, {300, 7, 9, 11}, {255, 0, 0, 1}},
+        {Format::R8G8B8A8_SINT, 4, {uint32_t(-200), 100, 5, uint32_t(-1)}, {uint32_t(-128), 100, 5, uint32_t(-1)}},
+    };
+    for (const Row& row : rows) {
+        const std::vector<uint8_t> bytes(4 * row.texel, 0x5A);
+        const ImageView view = small_view(row.fmt, bytes, row.texel);
+        SamplerState smp;
+        smp.address_u = smp.address_v = AddressMode::ClampToBorder;
+        smp.border = BorderColor::Custom;
+        smp.custom_border = row.border;
+        const bool is_uint = row.fmt == Format::R8_UINT, is_sint = row.fmt == Format::R8G8B8A8_SINT;
+        FsTex r(is_uint   ? "color = uintBitsToFloat(textureLod(tex, v.xy, 0.0));"
+                : is_sint ? "color = intBitsToFloat(textureLod(tex, v.xy, 0.0));"
+                          : "color = textureLod(tex, v.xy, 0.0);",
+                std::string("layout(set=0, binding=0) uniform ") +
+                    (is_uint   ? "u"
+                     : is_sint ? "i"
+                               : "") +
+                    "sampler2D tex;\n");
+        r.bindings.set(0, 0, 0, Descriptor{{}, &view, &smp});
+        for (int l = 0; l < kLanes; ++l) r.block.inputs[0][0][l] = u(-0.25f), r.block.inputs[0][1][l] = u(0.5f);
+        r.run();
+        for (int c = 0; c < 4; ++c)
+            EXPECT_EQ(u(r.out(5, c)), row.want[size_t(c)]) << "format " << int(row.fmt) << " channel " << c;
+    }
+}

@@ -1,0 +1,10 @@
+#version 450
+// samplerFilterMinmax: one textureLod per invocation (api_breadth_sampler_test.cpp), the coordinate's z the LOD.
+layout(local_size_x = 16) in;
+layout(set = 0, binding = 0) uniform sampler2D tex;
+layout(set = 0, binding = 1, std430) readonly buffer Coords { vec4 coords[]; };
+layout(set = 0, binding = 2, std430) writeonly buffer Out { vec4 o[]; };
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    o[i] = textureLod(tex, coords[i].xy, coords[i].z);
+}
