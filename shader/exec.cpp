@@ -144,6 +144,10 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
     }
     s.back_edges = 0;
     s.bound_key = 0;  // the slots below are this run's (bind_fragment sets the key after)
+    // Sample instructions are bound again at their first run with these bindings (BoundSample)
+    const uint32_t sample_ops = p.jit ? p.jit->sample_ops : 0;
+    if (s.samples.size() != sample_ops) s.samples.resize(sample_ops);
+    for (BoundSample& b : s.samples) b.state = BoundSample::State::Unbound;
     size_t words = size_t(std::max(1u, p.local_words)) * kLanes;
     if (s.local.size() < words) s.local.resize(words);
     // variables start at zero, so results never depend on history

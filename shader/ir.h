@@ -439,6 +439,23 @@ struct ProgramImpl {
     std::shared_ptr<const jit::Code> jit;
 };
 
+// One Sample instruction of a compiled program bound to the image and sampler its handle names in the current
+// bindings (shader/jit/sample_rgba8.cpp bind_sample): resolved and checked at the instruction's first run after
+// prepare() (which unbinds every entry), then reused by every later run with the same handle; so a draw's
+// per-texture checks (format, swizzle, filters, wraps, level table) are made once per draw and worker, not per call.
+struct BoundSample {
+    enum class State : uint8_t {
+        Unbound,      // not resolved since prepare()
+        Kernel,       // the RGBA8 kernel covers it: img, smp and table hold what it reads
+        Interpreter,  // exec_image (a case the kernel does not cover)
+    };
+    State state = State::Unbound;
+    uint32_t handle = 0;  // the handle (every lane's) it was resolved for
+    const ImageView* img = nullptr;
+    const SamplerState* smp = nullptr;
+    ViewLevelTable table;  // the view's level table (prepare_view's, or rebuilt when the view changed since)
+};
+
 // Per-thread working memory.
 struct Scratch::Impl {
     std::vector<uint32_t> regs;
@@ -452,6 +469,7 @@ struct Scratch::Impl {
     uint64_t loop_limit_hits = 0;
     const std::atomic<bool>* stop = nullptr;  // Scratch::set_stop_flag
     const InputPlanes* input_planes = nullptr;  // run_fragment: the block's (Op::InterpolateAt), else null
+    std::vector<BoundSample> samples;           // per Sample instruction of the compiled code (jit::Code::sample_ops)
     uint64_t back_edges = 0;                  // loop watchdog: back edges taken in this run (all its phases)
     // Compute: the workgroup's shared memory (Program::run_workgroup) and, for programs with barriers, one frame
     // (registers, local memory, where it stopped) per batch of the workgroup beyond this one.

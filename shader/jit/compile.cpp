@@ -53,7 +53,7 @@ class Generator {
     }
     void any_lane(uint32_t r);  // ZF = no lane of r set
     void resume_table();        // the jump from Frame::resume to the instruction after its Barrier
-    void call(const void* fn, const Inst* code);
+    void call(const void* fn, const Inst* code, int64_t index = -1);
     bool sync(const Inst& in);
 
     const ProgramImpl& p_;
@@ -85,10 +85,12 @@ void Generator::resume_table() {
     }
 }
 
-// fn(frame->scratch, code): every YMM register is free here (a sync point) and the callee-saved bases survive.
-void Generator::call(const void* fn, const Inst* code) {
+// fn(frame->scratch, code[, index]): every YMM register is free here (a sync point) and the callee-saved bases
+// survive.
+void Generator::call(const void* fn, const Inst* code, int64_t index) {
     a_.mov(x86::rdi, x86::qword_ptr(kFrameBase, int32_t(offsetof(Frame, scratch))));
     if (code) a_.mov(x86::rsi, reinterpret_cast<uint64_t>(code));
+    if (index >= 0) a_.mov(x86::edx, uint32_t(index));
     a_.mov(x86::rax, reinterpret_cast<uint64_t>(fn));
     a_.call(x86::rax);
 }
@@ -146,9 +148,10 @@ bool Generator::sync(const Inst& in) {
     Inst* code = out_.helper_code.get() + 2 * helpers_used_++;
     code[0] = in;
     code[1] = Inst{Op::Halt};
-    call(in.op == Op::Sample ? reinterpret_cast<const void*>(&run_sample)
-                             : reinterpret_cast<const void*>(&run_one_instruction),
-         code);
+    if (in.op == Op::Sample)
+        call(reinterpret_cast<const void*>(&run_sample), code, int64_t(out_.sample_ops++));
+    else
+        call(reinterpret_cast<const void*>(&run_one_instruction), code);
     ++out_.helper_ops;
     return true;
 }

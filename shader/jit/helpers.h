@@ -10,8 +10,9 @@ namespace tilevk::shader::jit {
 // the rarer integer ops are the interpreter's own code, so both tiers compute them identically.
 void run_one_instruction(Scratch::Impl* s, const Inst* code);
 
-// A Sample instruction (code[0], followed by Halt): sample_rgba8 when it covers the case, else the interpreter.
-void run_sample(Scratch::Impl* s, const Inst* code);
+// Sample instruction number `index` of the program (code[0], followed by Halt): the RGBA8 kernel bound to it
+// (s->samples[index], bound at its first run after prepare) when it covers the case, else the interpreter.
+void run_sample(Scratch::Impl* s, const Inst* code, uint32_t index);
 
 // One 8-lane half of a libm op inside a segment (lanes.cpp lane_call): d[l] = f(a[l]) or f(a[l], b[l]) with the
 // interpreter's own lane expression (exec_math.h, exec_arith.h), so both tiers call the same libm function on the

@@ -58,9 +58,22 @@ __attribute__((target("avx"))) void run_one_instruction(Scratch::Impl* s, const 
     execute_code(code, *s);
 }
 
-__attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* code) {
+__attribute__((target("avx"))) void run_sample(Scratch::Impl* s, const Inst* code, uint32_t index) {
     _mm256_zeroupper();
-    if (!sample_rgba8(code[0], s->regs.data(), s->slots.data(), uint32_t(s->slots.size()))) execute_code(code, *s);
+    uint32_t* regs = s->regs.data();
+    if (index < s->samples.size()) {
+        BoundSample& b = s->samples[index];
+        if (sample_bound(code[0], regs, b)) return;
+        // first run since prepare(): bind to this run's handle (the kernel takes only one for all lanes)
+        const uint32_t* handle = regs + size_t(code[0].a) * kLanes;
+        if (b.state == BoundSample::State::Unbound &&
+            bind_sample(code[0], handle[0], s->slots.data(), uint32_t(s->slots.size()), b) &&
+            sample_bound(code[0], regs, b))
+            return;
+    } else if (sample_rgba8(code[0], regs, s->slots.data(), uint32_t(s->slots.size()))) {
+        return;
+    }
+    execute_code(code, *s);
 }
 
 // exec_libm.h's lane expressions (the interpreter's kernels of the same list), for the eight lanes of one half. One

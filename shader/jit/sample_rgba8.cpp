@@ -286,10 +286,10 @@ TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, 
 
 namespace {
 
-// The instruction on a view whose level table is `levels`.
-TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, const SamplerState& smp,
-                          const ViewLevelTable& levels) {
-    if (!levels.rgba8 || !sampler_fits(smp, levels)) return false;
+// The instruction on the view, sampler and level table bound to it (bind_sample checked that the kernel covers them).
+TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const BoundSample& b) {
+    const ImageView& img = *b.img;
+    const SamplerState& smp = *b.smp;
     // the levels of both halves before any write: a NaN in the implicit LOD sends the whole instruction to
     // exec_image, which must see the registers unchanged (the destination may be a source). After that, half 0's
     // results go straight to their lanes: half 1 reads only lanes 8-15 of its sources (the levels are known), so
@@ -312,39 +312,52 @@ TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const ImageView& img, con
             for (int h = 0; h < 2; ++h) L[h] = {quad_spread(q.lv, h), quad_spread(q.hi, h), quad_spread(q.mw, h)};
         }
     }
-    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, levels, h, L[h]);
+    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, b.table, h, L[h]);
     return true;
 }
 
-// A view without a current table (filled by hand, or changed after prepare_view): the table built on the stack, in
-// a function of its own so that the usual call does not set up room for one (a std::optional there cost ~18
-// instructions per call).
-TVK_AVX2 __attribute__((noinline)) bool sample_rebuilt(const Inst& in, uint32_t* R, const ImageView& img,
-                                                       const SamplerState& smp) {
-    const ViewLevelTable local = level_table(img);
-    return sample_with(in, R, img, smp, local);
+// Every lane of the handle register holds h.
+TVK_AVX2 bool uniform_handle(const uint32_t* handle, uint32_t h) {
+    const __m256i hv = _mm256_set1_epi32(int(h));
+    const __m256i same =
+        _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle)), hv),
+                         _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle + 8)), hv));
+    return _mm256_movemask_epi8(same) == -1;
 }
 
 }  // namespace
 
-TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
+bool bind_sample(const Inst& in, uint32_t handle, const Descriptor* const* slots, uint32_t num_slots, BoundSample& b) {
+    b.handle = handle;
+    b.state = BoundSample::State::Interpreter;
     constexpr uint32_t kAllowed = kSampleImplicitLod | kSampleBias | kSampleExplicitLod;
     if (in.op != Op::Sample || (in.imm & ~kAllowed) || in.b == kNoReg) return false;
     if ((in.imm & (kSampleBias | kSampleExplicitLod)) && in.c == kNoReg) return false;
-    // one handle for all 16 lanes
-    const uint32_t* handle = R + size_t(in.a) * kLanes;
-    const __m256i h0 = _mm256_set1_epi32(int(handle[0]));
-    const __m256i same =
-        _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle)), h0),
-                         _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(handle + 8)), h0));
-    if (_mm256_movemask_epi8(same) != -1) return false;
-    const uint32_t si = handle[0] & 0xFFFF, ss = handle[0] >> 16;
+    const uint32_t si = handle & 0xFFFF, ss = handle >> 16;
     if (si >= num_slots || ss >= num_slots || !slots[si] || !slots[ss]) return false;
     const ImageView* img = slots[si]->image;
     const SamplerState* smp = slots[ss]->sampler;
-    if (smp && smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
     if (!img || !smp || !img->base) return false;
-    return table_current(*img) ? sample_with(in, R, *img, *smp, img->table) : sample_rebuilt(in, R, *img, *smp);
+    if (smp->mipmap_mode == MipmapMode::Nearest && !(in.imm & kSampleExplicitLod)) return false;  // exact log2
+    // the table prepare_view made, or (a view filled by hand, or changed since) the one it would make now
+    b.table = table_current(*img) ? img->table : level_table(*img);
+    if (!b.table.rgba8 || !sampler_fits(*smp, b.table)) return false;
+    b.img = img;
+    b.smp = smp;
+    b.state = BoundSample::State::Kernel;
+    return true;
+}
+
+TVK_AVX2 bool sample_bound(const Inst& in, uint32_t* R, const BoundSample& b) {
+    return b.state == BoundSample::State::Kernel && uniform_handle(R + size_t(in.a) * kLanes, b.handle) &&
+           sample_with(in, R, b);
+}
+
+TVK_AVX2 bool sample_rgba8(const Inst& in, uint32_t* R, const Descriptor* const* slots, uint32_t num_slots) {
+    const uint32_t* handle = R + size_t(in.a) * kLanes;
+    if (!uniform_handle(handle, handle[0])) return false;  // one handle for all 16 lanes
+    BoundSample b;
+    return bind_sample(in, handle[0], slots, num_slots, b) && sample_with(in, R, b);
 }
 
 }  // namespace tilevk::shader::jit
