@@ -75,6 +75,21 @@ fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
     return t;
 }
 
+// The window depths whose fragments this draw's depth test rejects whatever the depth buffer holds
+// (geometry::HiddenDepth): the test must see the interpolated depth clamped to [0, 1] against stored values in
+// [0, 1] (no bias, depth clamp, shader depth or unrestricted D32F), and a rejected fragment must leave no trace (no
+// stencil test, whose depth-fail op writes; no memory writes from the shader, which runs before a late test).
+geometry::HiddenDepth hidden_depth(const fragment::DepthStencilState& ds, const PipelineState& pipe,
+                                   fragment::DepthFormat format) {
+    const fragment::ShaderDepthTraits fs = depth_traits(pipe.fragment);
+    if (!ds.depth_test || ds.stencil_test || pipe.depth_bias_enable || ds.depth_clamp || fs.writes_depth ||
+        fs.writes_memory || (ds.unrestricted_depth && format == fragment::DepthFormat::D32F))
+        return geometry::HiddenDepth::kNone;
+    if (ds.depth_compare == fragment::CompareOp::Less) return geometry::HiddenDepth::kFromOne;
+    if (ds.depth_compare == fragment::CompareOp::Greater) return geometry::HiddenDepth::kUpToZero;
+    return geometry::HiddenDepth::kNone;
+}
+
 bool vertex_writes_memory(const shader::Program* vs) {
     if (vs->interface().writes_device_addresses) return true;
     for (const shader::DescriptorUse& d : vs->interface().descriptors)
@@ -429,6 +444,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
     plan.ccfg.samples = fb_.samples;
+    plan.ccfg.hidden_depth = hidden_depth(rec.depth_stencil, pipe, fb_.depth_stencil.format);
     plan.ccfg.distance_slot = rec.varyings.distance_slot;
     plan.ccfg.num_clip_distances = rec.varyings.num_clip_distances;
     plan.ccfg.num_cull_distances = rec.varyings.num_cull_distances;
