@@ -144,10 +144,11 @@ Scene random_scene(uint32_t seed) {
     if (std::getenv("TILEVK_CTS_EXTREME_DUMP")) {
         std::printf("extreme.random.seed_%u: %ux%u\n", seed, s.target.width, s.target.height);
         for (const Vertex& vx : s.draws[0].vertices)
-            std::printf("  (%.9g, %.9g, %.9g, %.9g) = {0x%08x, 0x%08x, 0x%08x, 0x%08x},\n", double(vx.pos[0]),
-                        double(vx.pos[1]), double(vx.pos[2]), double(vx.pos[3]), std::bit_cast<uint32_t>(vx.pos[0]),
-                        std::bit_cast<uint32_t>(vx.pos[1]), std::bit_cast<uint32_t>(vx.pos[2]),
-                        std::bit_cast<uint32_t>(vx.pos[3]));
+            std::printf("  (%.9g, %.9g, %.9g, %.9g) = {0x%08x, 0x%08x, 0x%08x, 0x%08x}, colour {%.9g, %.9g, %.9g}\n",
+                        double(vx.pos[0]), double(vx.pos[1]), double(vx.pos[2]), double(vx.pos[3]),
+                        std::bit_cast<uint32_t>(vx.pos[0]), std::bit_cast<uint32_t>(vx.pos[1]),
+                        std::bit_cast<uint32_t>(vx.pos[2]), std::bit_cast<uint32_t>(vx.pos[3]), double(vx.color[0]),
+                        double(vx.color[1]), double(vx.color[2]));
     }
     return s;
 }
@@ -194,6 +195,9 @@ struct Regression {
     const char* name;
     uint32_t size;                                  // square target
     std::vector<std::array<uint32_t, 4>> vertices;  // clip-space position bits, three per triangle
+    VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;
+    std::vector<std::array<float, 3>> colours = {};  // per vertex; empty: red, green, blue in turn
 };
 const Regression kRegressions[] = {
     // (-1e38, 1e38) at w = 1.5: lavapipe's clip of the edges to it cancels; lavapipe misses 19 of its pixel
@@ -219,6 +223,52 @@ const Regression kRegressions[] = {
      {{0xbefc25f8, 0xfe967699, 0x3f1dbcd1, 0x3f25e690},
       {0x3f920978, 0x3fa1d496, 0x3d65fa7f, 0x3fa50aa9},
       {0xbf927dd1, 0xbf9318e4, 0x3f1224e6, 0x3f4fcbb1}}},
+    // w = 1e37 beside w = 0 (extreme.random.seed_2903): draw's intersection with the far plane, 4e-39 from the
+    // w = 1e37 vertex, flushes to t = 0 and keeps a vertex past that plane, 10 px from the precise one; but with D32
+    // LESS what it adds there is at depth >= 1 and never drawn, so draw's polygon draws the exact pixels and its
+    // roundings are kept (ClipConfig::hidden_depth; the precise polygon gave 1 pixel and 2 colours otherwise).
+    {"w_zero_far_plane",
+     256,
+     {{0xbf7769a1, 0x3f2860da, 0x3f75b2c8, 0x7cf0bdc2},
+      {0x3fb8ea4b, 0xbf65f060, 0x3f173249, 0x3f90119c},
+      {0xbeeeb050, 0xbe0c790f, 0x3f0211b2, 0x00000000}}},
+    // Lines with w = 2.5e37..5e37 and small colours: the 1/w-premultiplied colours and their differences along a
+    // line meet subnormals in llvmpipe's line setup (lp_setup_line.c, plain C). Clipped lines wait in draw's vbuf
+    // like triangles and are set up after draw_vbo, denormals kept; tilevk set them up at once with denormals
+    // flushed (124 pixels differed).
+    {"lines_w_3e37_setup_after_draw",
+     64,
+     {{0x7dd01240, 0xfcae4616, 0x7c47109e, 0x7e167699},
+      {0xfdc6e0ad, 0x7d4a92da, 0x7da38edb, 0x7db48e52},
+      {0xfcf0469e, 0x7d55c3fa, 0x7d2630a2, 0x7db48e52},
+      {0xfd076f00, 0xfd41af7c, 0x7db1628c, 0x7db48e52},
+      {0xfbd70eed, 0xfd27382f, 0x7d814dec, 0x7db48e52},
+      {0x7d88e47b, 0xfda94405, 0x7d537418, 0x7db48e52}},
+     VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+     VK_POLYGON_MODE_FILL,
+     {{0.567100704f, 0.0215862151f, 0.418073058f},
+      {0.909990907f, 0.705541015f, 0.224205479f},
+      {0.91857636f, 0.352847993f, 2.66411075e-06f},
+      {0.0477041863f, 0.000267092022f, 0.474410772f},
+      {0.632494926f, 0.597110689f, 0.0344341211f},
+      {0.385582685f, 0.0126472199f, 0.189255178f}}},
+    // The same through polygonMode LINE: the unfilled stage's edges reach the vbuf as lines.
+    {"polygon_line_w_3e37_setup_after_draw",
+     64,
+     {{0x7d8feda5, 0x7d8a72cc, 0x7c1ccaf0, 0x7db48e52},
+      {0x7b20bb3a, 0x7a7fe36e, 0x787e8f56, 0x7b4097ce},
+      {0x7d885361, 0xfe5318fb, 0x7e8e37bc, 0x7e967699},
+      {0x7d367a6e, 0x7d1c6392, 0x7d8beb60, 0x7db48e52},
+      {0xfd503d0c, 0xfda36114, 0x7c003f29, 0x7db48e52},
+      {0x7c34e22a, 0xfbb19292, 0x7d3c78eb, 0x7db48e52}},
+     VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+     VK_POLYGON_MODE_LINE,
+     {{4.49179197e-06f, 0.08767014f, 0.000100857833f},
+      {0.0181117151f, 0.516004622f, 0.151030898f},
+      {0.222569466f, 0.167743996f, 0.27937752f},
+      {0.00632749684f, 2.24866853e-05f, 0.00916628446f},
+      {0.172597408f, 0.0829013735f, 0.0062905862f},
+      {0.42352134f, 0.0383573174f, 0.562924445f}}},
     // w = 1e38 and 1e37 (extreme.random.seed_2403, its third triangle): the colour and 1/w planes' setup meets
     // subnormals. The clipped triangle waits in draw's vbuf until llvmpipe_draw_vbo's final draw_flush, after draw_vbo
     // has restored the float state, so lavapipe sets it up with denormals kept (rast/geometry/README.md).
@@ -277,10 +327,15 @@ Scene regression_scene(const Regression& g) {
     const std::array<float, 4> colours[3] = {kRed, kGreen, kBlue};
     for (size_t i = 0; i < g.vertices.size(); ++i) {
         const auto& b = g.vertices[i];
-        v.push_back(raw(bits(b[0]), bits(b[1]), bits(b[2]), bits(b[3]), colours[i % 3]));
+        const std::array<float, 4> c = g.colours.empty()
+                                           ? colours[i % 3]
+                                           : std::array<float, 4>{g.colours[i][0], g.colours[i][1], g.colours[i][2], 1};
+        v.push_back(raw(bits(b[0]), bits(b[1]), bits(b[2]), bits(b[3]), c));
     }
     Scene s = depth_tested(std::move(v));
     s.target.width = s.target.height = g.size;
+    s.draws[0].topology = g.topology;
+    s.draws[0].polygon_mode = g.polygon_mode;
     return s;
 }
 

@@ -97,10 +97,14 @@ bool interp_imprecise(const ClipConfig& cfg, const float* dst, float t, const fl
     return false;
 }
 
+// A polygon in window coordinates (x, y, z).
+using WinPoint = std::array<double, 3>;
+using WinPolygon = std::vector<WinPoint>;
+
 // The polygon a fan of clipped triangles came from, in window coordinates (clip_triangle_float's emit order).
-std::vector<std::array<double, 2>> fan_polygon(const ClipConfig& cfg, const ClippedTriangle* tri, uint32_t n) {
-    std::vector<std::array<double, 2>> p;
-    auto add = [&](const float* r) { p.push_back({win_pos(r)[0], win_pos(r)[1]}); };
+WinPolygon fan_polygon(const ClipConfig& cfg, const ClippedTriangle* tri, uint32_t n) {
+    WinPolygon p;
+    auto add = [&](const float* r) { p.push_back({win_pos(r)[0], win_pos(r)[1], win_pos(r)[2]}); };
     if (cfg.flatshade_first) {
         add(tri[0].v[0]);
         for (uint32_t t = 0; t < n; ++t) add(tri[t].v[1]);
@@ -113,23 +117,29 @@ std::vector<std::array<double, 2>> fan_polygon(const ClipConfig& cfg, const Clip
     return p;
 }
 
-// The part of a polygon inside the viewport rectangle (Sutherland-Hodgman in double, in window coordinates).
-std::vector<std::array<double, 2>> inside_viewport(const ClipConfig& cfg, std::vector<std::array<double, 2>> p) {
-    const double lo[2] = {double(cfg.vp.translate[0]) - std::fabs(cfg.vp.scale[0]),
-                          double(cfg.vp.translate[1]) - std::fabs(cfg.vp.scale[1])};
-    const double hi[2] = {double(cfg.vp.translate[0]) + std::fabs(cfg.vp.scale[0]),
-                          double(cfg.vp.translate[1]) + std::fabs(cfg.vp.scale[1])};
-    for (int side = 0; side < 4 && !p.empty(); ++side) {
+// The part of a polygon that can draw anything: inside the viewport rectangle, and at the window depths the depth
+// test does not reject outright (ClipConfig::hidden_depth). Sutherland-Hodgman in double; depth is affine in window
+// coordinates over a triangle, so an edge crosses z = 1 (or 0) where the linear interpolation says.
+WinPolygon visible_part(const ClipConfig& cfg, WinPolygon p) {
+    const double lo[3] = {double(cfg.vp.translate[0]) - std::fabs(cfg.vp.scale[0]),
+                          double(cfg.vp.translate[1]) - std::fabs(cfg.vp.scale[1]),
+                          cfg.hidden_depth == HiddenDepth::kUpToZero ? 0.0 : -HUGE_VAL};
+    const double hi[3] = {double(cfg.vp.translate[0]) + std::fabs(cfg.vp.scale[0]),
+                          double(cfg.vp.translate[1]) + std::fabs(cfg.vp.scale[1]),
+                          cfg.hidden_depth == HiddenDepth::kFromOne ? 1.0 : HUGE_VAL};
+    const int sides = cfg.hidden_depth == HiddenDepth::kNone ? 4 : 6;
+    for (int side = 0; side < sides && !p.empty(); ++side) {
         const int axis = side / 2;
         const double limit = side % 2 ? hi[axis] : lo[axis];
-        auto inside = [&](const std::array<double, 2>& q) { return side % 2 ? q[axis] <= limit : q[axis] >= limit; };
-        std::vector<std::array<double, 2>> out;
+        if (std::isinf(limit)) continue;
+        auto inside = [&](const WinPoint& q) { return side % 2 ? !(q[axis] > limit) : !(q[axis] < limit); };
+        WinPolygon out;
         for (size_t i = 0; i < p.size(); ++i) {
-            const std::array<double, 2>&a = p[i], &b = p[(i + 1) % p.size()];
+            const WinPoint &a = p[i], &b = p[(i + 1) % p.size()];
             if (inside(a)) out.push_back(a);
             if (inside(a) != inside(b)) {
                 const double t = (limit - a[axis]) / (b[axis] - a[axis]);
-                out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+                out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])});
             }
         }
         p = std::move(out);
@@ -138,10 +148,10 @@ std::vector<std::array<double, 2>> inside_viewport(const ClipConfig& cfg, std::v
 }
 
 // Whether point q lies in polygon p (crossing test) or within `tol` of its boundary.
-bool near_polygon(const std::array<double, 2>& q, const std::vector<std::array<double, 2>>& p, double tol) {
+bool near_polygon(const WinPoint& q, const WinPolygon& p, double tol) {
     bool in = false;
     for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-        const std::array<double, 2>&a = p[i], &b = p[j];
+        const WinPoint &a = p[i], &b = p[j];
         if ((a[1] > q[1]) != (b[1] > q[1]) && q[0] < (b[0] - a[0]) * (q[1] - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
         const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
         const double t = len2 > 0 ? std::clamp(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
@@ -154,9 +164,7 @@ bool near_polygon(const std::array<double, 2>& q, const std::vector<std::array<d
 // Whether two clip results cover the same part of the viewport up to half a fixed-point step (1/512 px): every
 // corner of either region lies in the other or that close to it (lavapipe's float result then rasterizes as the
 // precise one would, e.g. when its imprecise vertex lies far outside the viewport on a shared edge).
-bool same_visible_region(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
-                         uint32_t nb) {
-    const auto pa = inside_viewport(cfg, fan_polygon(cfg, a, na)), pb = inside_viewport(cfg, fan_polygon(cfg, b, nb));
+bool same_visible_region(const WinPolygon& pa, const WinPolygon& pb) {
     if (pa.empty() || pb.empty()) return pa.empty() == pb.empty();
     for (const auto& q : pa)
         if (!near_polygon(q, pb, 1.0 / 512)) return false;
@@ -169,10 +177,10 @@ bool same_visible_region(const ClipConfig& cfg, const ClippedTriangle* a, uint32
 // fixed-point snap of either result may decide it either way).
 enum class PointSide { kInside, kOutside, kNear };
 
-PointSide point_side(const std::array<double, 2>& q, const std::vector<std::array<double, 2>>& p, double tol) {
+PointSide point_side(const WinPoint& q, const WinPolygon& p, double tol) {
     bool in = false;
     for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-        const std::array<double, 2>&a = p[i], &b = p[j];
+        const WinPoint &a = p[i], &b = p[j];
         const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
         const double t = len2 > 0 ? std::clamp(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
         const double ex = a[0] + t * dx - q[0], ey = a[1] + t * dy - q[1];
@@ -189,9 +197,7 @@ PointSide point_side(const std::array<double, 2>& q, const std::vector<std::arra
 // float result rasterizes the exact coverage although its polygon differs from the precise one by more than
 // same_visible_region allows (cancellation moves a vertex far outside the viewport along an edge), and only its
 // depth and attribute roundings differ: lavapipe's are kept. Bounded work: false for regions over 2^18 pixels.
-bool same_sample_coverage(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
-                          uint32_t nb) {
-    const auto pa = inside_viewport(cfg, fan_polygon(cfg, a, na)), pb = inside_viewport(cfg, fan_polygon(cfg, b, nb));
+bool same_sample_coverage(const ClipConfig& cfg, const WinPolygon& pa, const WinPolygon& pb) {
     if (pa.size() < 3 || pb.size() < 3) return false;
     double lo[2] = {pa[0][0], pa[0][1]}, hi[2] = {pa[0][0], pa[0][1]};
     for (const auto* poly : {&pa, &pb})
@@ -205,11 +211,20 @@ bool same_sample_coverage(const ClipConfig& cfg, const ClippedTriangle* a, uint3
     for (double y = y0; y < y1; ++y)
         for (double x = x0; x < x1; ++x)
             for (size_t k = first; k < end; ++k) {
-                const std::array<double, 2> q = {x + kOffsets[k][0], y + kOffsets[k][1]};
+                const WinPoint q = {x + kOffsets[k][0], y + kOffsets[k][1], 0.0};
                 const PointSide sb = point_side(q, pb, kJudged);
                 if (sb != PointSide::kNear && point_side(q, pa, kSnap) != sb) return false;
             }
     return true;
+}
+
+// Whether draw's clip result `a` draws what the precise result `b` draws: the same visible part (visible_part) of
+// the viewport, or the same sample points of it.
+bool same_drawn_region(const ClipConfig& cfg, const ClippedTriangle* a, uint32_t na, const ClippedTriangle* b,
+                       uint32_t nb) {
+    const WinPolygon pa = na ? visible_part(cfg, fan_polygon(cfg, a, na)) : WinPolygon();
+    const WinPolygon pb = visible_part(cfg, fan_polygon(cfg, b, nb));
+    return same_visible_region(pa, pb) || same_sample_coverage(cfg, pa, pb);
 }
 
 }  // namespace
@@ -411,9 +426,7 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
     precise_scratch.resize(size_t(kClipScratchVertices) * stride);
     ClippedTriangle precise[kMaxClippedTriangles];
     const uint32_t pn = clip_triangle_precise(cfg, v0, v1, v2, clipmask, precise_scratch.data(), precise);
-    if (!unrepresentable && (pn == 0 || (n != 0 && (same_visible_region(cfg, out, n, precise, pn) ||
-                                                    same_sample_coverage(cfg, out, n, precise, pn)))))
-        return n;
+    if (!unrepresentable && (pn == 0 || same_drawn_region(cfg, out, n, precise, pn))) return n;
     std::memcpy(scratch, precise_scratch.data(), sizeof(float) * precise_scratch.size());
     const float* base = precise_scratch.data();
     for (uint32_t t = 0; t < pn; ++t) {

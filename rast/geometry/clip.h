@@ -16,6 +16,11 @@ inline constexpr uint32_t kClipScratchVertices = kMaxClippedVertices + 1;
 // Most triangles one clipped triangle turns into.
 inline constexpr uint32_t kMaxClippedTriangles = kMaxClippedVertices - 2;
 
+// The window depths whose fragments the depth test rejects whatever the depth buffer holds: lavapipe clamps a
+// fragment's depth to [0, 1] before the test (lavapipe-rules §4), so with LESS nothing at z >= 1 passes and with
+// GREATER nothing at z <= 0 (the renderer decides it: rast/render/renderer.cpp hidden_depth).
+enum class HiddenDepth : uint8_t { kNone, kFromOne, kUpToZero };
+
 struct ClipConfig {
     VertexLayout layout;
     Viewport vp;                  // draw->viewports[0]: new vertices are transformed with it in C
@@ -30,6 +35,10 @@ struct ClipConfig {
     bool precise_fallback = false;
     // The framebuffer's sample count: where draw's result and the precise one must agree for draw's to be kept.
     uint32_t samples = 1;
+    // Where draw's result and the precise one are compared, the part of either beyond this depth is left out: an
+    // intersection parameter flushed to 0 may leave draw's polygon a vertex past the far (near) plane, and what it
+    // adds there is never drawn (cts extreme.regression.w_zero_far_plane).
+    HiddenDepth hidden_depth = HiddenDepth::kNone;
     // The vertex shader's ClipDistance and CullDistance outputs, as lavapipe's NIR holds them: one array, clip
     // distances first (nir_lower_clip_cull_distance_arrays), in the record's perspective attribute slots from
     // `distance_slot` on, four per slot (draw's two ccdistance outputs). User plane i is clip-mask bit 6 + i

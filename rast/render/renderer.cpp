@@ -75,6 +75,21 @@ fragment::ShaderDepthTraits depth_traits(const shader::Program* fs) {
     return t;
 }
 
+// The window depths whose fragments this draw's depth test rejects whatever the depth buffer holds
+// (geometry::HiddenDepth): the test must see the interpolated depth clamped to [0, 1] against stored values in
+// [0, 1] (no bias, depth clamp, shader depth or unrestricted D32F), and a rejected fragment must leave no trace (no
+// stencil test, whose depth-fail op writes; no memory writes from the shader, which runs before a late test).
+geometry::HiddenDepth hidden_depth(const fragment::DepthStencilState& ds, const PipelineState& pipe,
+                                   fragment::DepthFormat format) {
+    const fragment::ShaderDepthTraits fs = depth_traits(pipe.fragment);
+    if (!ds.depth_test || ds.stencil_test || pipe.depth_bias_enable || ds.depth_clamp || fs.writes_depth ||
+        fs.writes_memory || (ds.unrestricted_depth && format == fragment::DepthFormat::D32F))
+        return geometry::HiddenDepth::kNone;
+    if (ds.depth_compare == fragment::CompareOp::Less) return geometry::HiddenDepth::kFromOne;
+    if (ds.depth_compare == fragment::CompareOp::Greater) return geometry::HiddenDepth::kUpToZero;
+    return geometry::HiddenDepth::kNone;
+}
+
 bool vertex_writes_memory(const shader::Program* vs) {
     if (vs->interface().writes_device_addresses) return true;
     for (const shader::DescriptorUse& d : vs->interface().descriptors)
@@ -398,6 +413,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
     plan.ccfg.samples = fb_.samples;
+    plan.ccfg.hidden_depth = hidden_depth(rec.depth_stencil, pipe, fb_.depth_stencil.format);
     plan.ccfg.distance_slot = rec.varyings.distance_slot;
     plan.ccfg.num_clip_distances = rec.varyings.num_clip_distances;
     plan.ccfg.num_cull_distances = rec.varyings.num_cull_distances;
@@ -439,15 +455,19 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.pair_candidates = !has_flat_input && !plan.unfilled && plan.verts_per_prim == 3;
     rect_pairs_ = fb_.linear_mode && plan.pair_candidates;
     vbuf_triangles_ = plan.verts_per_prim == 3 && !plan.unfilled;
-    if (vbuf_triangles_) {
+    {
         // vbuf vertex size: position + one vec4 per fragment input (+ face, + point size), 16 bytes each
-        // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size.
+        // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size. Unfilled
+        // triangles reach it as their edges or corners.
         uint32_t slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
         if (plan.reads_front_facing) ++slots;
         if (pipe.vertex->interface().builtins_written & shader::bit(shader::BuiltIn::PointSize)) ++slots;
+        vbuf_.verts_per_prim = !plan.unfilled ? plan.verts_per_prim : pipe.polygon_mode == PolygonMode::kLine ? 2 : 1;
         vbuf_.stride = geometry::vertex_floats(layout);
         vbuf_.max_vertices = 4096 / (16 * slots);
         vbuf_.records.clear();
+        vbuf_.point_size.clear();
+        vbuf_.front.clear();
         vbuf_.vertices = 0;
         vbuf_.emitted_id.clear();
     }
@@ -541,20 +561,40 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
         }
         if (vpp == 1) {
             const float* v0 = shaded_.record(ids[0]);
-            if (pipeline_path && !geometry::clip_point_keep(v0, shaded_.clipmask[ids[0]])) continue;
-            add_point(draw_index, rec, v0, shaded_.point_size[ids[0]]);
+            if (!pipeline_path) {
+                add_point(draw_index, rec, v0, shaded_.point_size[ids[0]]);
+            } else if (geometry::clip_point_keep(v0, shaded_.clipmask[ids[0]])) {
+                const uint64_t id = batch_serial << 32 | ids[0];
+                vbuf_primitive(draw_index, rec, &v0, &id, shaded_.point_size[ids[0]]);
+            }
         } else if (vpp == 2) {
-            const float *v0 = shaded_.record(ids[0]), *v1 = shaded_.record(ids[1]);
-            if (pipeline_path && !geometry::clip_line(plan.ccfg, v0, v1, shaded_.clipmask[ids[0]],
-                                                      shaded_.clipmask[ids[1]], clip_scratch_.data(), &v0, &v1))
-                continue;
-            add_line(draw_index, rec, v0, v1);
+            emit_line(plan, draw_index, rec, ids, pipeline_path, batch_serial);
         } else if (!pipeline_path) {
             add_triangle(draw_index, rec, shaded_.record(ids[0]), shaded_.record(ids[1]), shaded_.record(ids[2]));
         } else {
             emit_clipped_triangle(plan, draw_index, rec, ids, batch_serial);
         }
     }
+}
+
+// A line (shaded slots ids[0..1]): straight to setup, or through draw's clipper into the vbuf stage (a new end is a
+// fresh vertex header per clip call).
+void Renderer::emit_line(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
+                         bool pipeline_path, uint64_t batch_serial) {
+    const float* v[2] = {shaded_.record(ids[0]), shaded_.record(ids[1])};
+    if (!pipeline_path) {
+        add_line(draw_index, rec, v[0], v[1]);
+        return;
+    }
+    const float* in[2] = {v[0], v[1]};
+    if (!geometry::clip_line(plan.ccfg, in[0], in[1], shaded_.clipmask[ids[0]], shaded_.clipmask[ids[1]],
+                             clip_scratch_.data(), &v[0], &v[1]))
+        return;
+    const uint64_t clip_serial = ++plan.vertex_serial;
+    uint64_t vbuf_ids[2];
+    for (int k = 0; k < 2; ++k)
+        vbuf_ids[k] = v[k] == in[k] ? batch_serial << 32 | ids[k] : clip_serial << 32 | (1u << 31) | uint64_t(k);
+    vbuf_primitive(draw_index, rec, v, vbuf_ids);
 }
 
 // A triangle of a pipeline batch (shaded slots ids[0..2]): draw's clipper and float cull, then vbuf (linear mode),
@@ -572,34 +612,46 @@ void Renderer::emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const 
         if (plan.any_cull &&
             !geometry::float_cull_keep(plan.fcull, geometry::win_pos(a), geometry::win_pos(b), geometry::win_pos(c)))
             continue;
+        // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch, a clipper-made one
+        // is a fresh header per clip call
+        uint64_t vbuf_ids[3];
+        for (int k = 0; k < 3; ++k) {
+            const float* r = out[t].v[k];
+            if (r == v0 || r == v1 || r == v2)
+                vbuf_ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
+            else
+                vbuf_ids[k] =
+                    clip_serial << 32 | (1u << 31) | static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
+        }
         if (vbuf_triangles_) {
-            // vbuf vertex ids (draw's vertex_id caching): an input vertex is one header per batch, a clipper-made
-            // one is a fresh header per clip call
-            uint64_t vbuf_ids[3];
-            for (int k = 0; k < 3; ++k) {
-                const float* r = out[t].v[k];
-                if (r == v0 || r == v1 || r == v2)
-                    vbuf_ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
-                else
-                    vbuf_ids[k] = clip_serial << 32 | (1u << 31) |
-                                  static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
-            }
             const float* vv[3] = {a, b, c};
-            vbuf_triangle(draw_index, rec, vv, vbuf_ids);
+            vbuf_primitive(draw_index, rec, vv, vbuf_ids);
         } else if (!plan.unfilled) {
             add_triangle(draw_index, rec, a, b, c);
         } else {
-            emit_unfilled(plan, draw_index, rec, out[t]);
+            emit_unfilled(plan, draw_index, rec, out[t], vbuf_ids);
         }
     }
 }
 
-// draw's offset, flatshade and unfilled stages (unfilled.h) on one clipped triangle: edges / corners by edge flag.
-void Renderer::emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
-                             const geometry::ClippedTriangle& tri) {
+// draw's offset, flatshade and unfilled stages (unfilled.h) on one clipped triangle: edges / corners by edge flag,
+// into the vbuf stage. `ids`: its vertex headers as the clipper left them.
+void Renderer::emit_unfilled(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
+                             const geometry::ClippedTriangle& tri, const uint64_t ids[3]) {
     const PipelineState& pipe = *plan.pipe;
     const float* u[3];
     geometry::prepare_unfilled_triangle(plan.ucfg, tri.v, unfilled_scratch_.data(), u);
+    // The headers the vbuf sees: the offset stage copies all three (dup_vert), the flatshade stage, always in the
+    // pipeline with unfilled polygons, the two that are not provoking, and the face slot's injection resets every
+    // header's vertex_id (draw_pipe_offset.c, draw_pipe_flatshade.c, draw_pipe_unfilled.c): each such one is a new
+    // vertex per triangle.
+    const uint64_t tri_serial = ++plan.vertex_serial;
+    const int provoking = pipe.flatshade_first ? 0 : 2;
+    uint64_t vid[3];
+    for (int k = 0; k < 3; ++k)
+        vid[k] = plan.ucfg.bias_enable || plan.reads_front_facing || k != provoking
+                     ? tri_serial << 32 | (1u << 30) | uint64_t(k)
+                     : ids[k];
     // llvmpipe's line/point setup takes the facing from the face slot draw's unfilled stage injects, which exists
     // only when the fragment shader reads gl_FrontFacing (lp_state_derived.c face_slot); otherwise every
     // edge/corner is front facing, for the two-sided stencil test too.
@@ -609,11 +661,16 @@ void Renderer::emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const Dr
     if (pipe.polygon_mode == PolygonMode::kLine) {
         uint8_t lines[3][2];
         const uint32_t nl = geometry::unfilled_lines(tri.edges, lines);
-        for (uint32_t l = 0; l < nl; ++l) add_line(draw_index, rec, u[lines[l][0]], u[lines[l][1]], front);
+        for (uint32_t l = 0; l < nl; ++l) {
+            const float* v[2] = {u[lines[l][0]], u[lines[l][1]]};
+            const uint64_t line_ids[2] = {vid[lines[l][0]], vid[lines[l][1]]};
+            vbuf_primitive(draw_index, rec, v, line_ids, 1.0f, front);
+        }
     } else {
         for (int k = 0; k < 3; ++k)
             if (tri.corners & (1u << k))
-                add_point(draw_index, rec, u[k], geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
+                vbuf_primitive(draw_index, rec, &u[k], &vid[k],
+                               geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
     }
 }
 

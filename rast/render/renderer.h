@@ -81,8 +81,10 @@ class Renderer {
                     bool any_clipped);
     void emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
                                uint64_t batch_serial);
-    void emit_unfilled(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec,
-                       const geometry::ClippedTriangle& tri);
+    void emit_unfilled(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const geometry::ClippedTriangle& tri,
+                       const uint64_t ids[3]);
+    void emit_line(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids, bool pipeline_path,
+                   uint64_t batch_serial);
     void record_draw(DrawRecord& rec, const PipelineState& pipe, const DrawCall& call,
                      const shader::Bindings& bindings);
     void triangle_records(uint32_t p, const float* v[3]) const;
@@ -111,11 +113,14 @@ class Renderer {
     void rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
     // setup->rect's outcome applied; returns false when it declined (kTriangles), having drawn nothing.
     bool apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
-    // draw's vbuf stage for triangles leaving the pipeline (clipper, float cull): they collect until a direct batch,
-    // the end of the draw or a full vertex/index buffer, then reach setup as one indexed list (in linear mode as
-    // rectangle pairs where they qualify). after_draw: the flush at the end of llvmpipe_draw_vbo, outside draw_vbo's
-    // denormal flushing, so setup keeps denormals.
-    void vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]);
+    // draw's vbuf stage for the primitives leaving the pipeline (clipper, float cull, unfilled stage): triangles,
+    // lines or points (VbufGroup::verts_per_prim vertices each) collect until a direct batch, the end of the draw or
+    // a full vertex/index buffer, then reach setup as one indexed list (triangles in linear mode as rectangle pairs
+    // where they qualify). `ids` tell draw's vertex headers apart (each is emitted once per buffer); a point carries
+    // its size, an unfilled triangle's line or point its facing. after_draw: the flush at the end of
+    // llvmpipe_draw_vbo, outside draw_vbo's denormal flushing, so setup keeps denormals.
+    void vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float* const* v, const uint64_t* ids,
+                        float point_size = 1.0f, bool front = true);
     void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
     bool batch_takes_pipeline(uint32_t first, uint32_t end, bool any_clipped) const;
     uint32_t parallel_prefix(const DrawPlan& plan, bool any_clipped) const;
@@ -155,7 +160,10 @@ class Renderer {
     bool rect_pairs_ = false;  // linear mode and no flat input (lp_setup_vbuf.c: !uses_constant_interp)
     bool vbuf_triangles_ = false;  // filled triangles: clipped batches reach setup through vbuf_
     struct VbufGroup {
-        std::vector<float> records;        // 3 copied vertex records per triangle
+        uint32_t verts_per_prim = 3;       // the draw's primitives as setup gets them: 3, 2 (lines) or 1 (points)
+        std::vector<float> records;        // verts_per_prim copied vertex records per primitive
+        std::vector<float> point_size;     // per primitive (points)
+        std::vector<uint8_t> front;        // per primitive (lines and points)
         uint32_t stride = 0;               // floats per record
         uint32_t vertices = 0;             // vbuf->nr_vertices (each vertex counted once per buffer)
         uint32_t max_vertices = 0;         // 4096 bytes / vertex size

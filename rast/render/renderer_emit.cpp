@@ -154,28 +154,38 @@ void Renderer::rect_or_triangles(uint32_t draw, const DrawRecord& rec, const flo
     add_triangle(draw, rec, t1[0], t1[1], t1[2]);
 }
 
-void Renderer::vbuf_triangle(uint32_t draw, const DrawRecord& rec, const float* const v[3], const uint64_t ids[3]) {
-    // draw_pipe_vbuf.c vbuf_tri: check_space(3) against both buffers, then each vertex emitted once per buffer.
+void Renderer::vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float* const* v, const uint64_t* ids,
+                              float point_size, bool front) {
+    // draw_pipe_vbuf.c vbuf_tri / vbuf_line / vbuf_point: check_space(n) against both buffers, then each vertex
+    // emitted once per buffer.
     constexpr uint32_t kMaxIndices = 1020;  // lp_setup_vbuf.c LP_MAX_VBUF_INDEXES
+    const uint32_t n = vbuf_.verts_per_prim;
     const size_t indices = vbuf_.records.size() / vbuf_.stride;
-    if (vbuf_.vertices + 3 > vbuf_.max_vertices || indices + 3 > kMaxIndices) vbuf_flush(draw, rec);
-    for (int k = 0; k < 3; ++k) {
+    if (vbuf_.vertices + n > vbuf_.max_vertices || indices + n > kMaxIndices) vbuf_flush(draw, rec);
+    for (uint32_t k = 0; k < n; ++k) {
         if (std::find(vbuf_.emitted_id.begin(), vbuf_.emitted_id.end(), ids[k]) == vbuf_.emitted_id.end()) {
             vbuf_.emitted_id.push_back(ids[k]);
             ++vbuf_.vertices;
         }
         vbuf_.records.insert(vbuf_.records.end(), v[k], v[k] + vbuf_.stride);
     }
+    vbuf_.point_size.push_back(point_size);
+    vbuf_.front.push_back(front ? 1 : 0);
 }
 
 void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw) {
     if (vbuf_.records.empty()) return;
     std::optional<geometry::ScopedKeepDenormals> keep_denormals;
     if (after_draw) keep_denormals.emplace();
-    // lp_setup_vbuf.c draw_elements, PIPE_PRIM_TRIANGLES: rect() per pair when nr % 6 == 0, else triangles.
+    // lp_setup_vbuf.c draw_elements: PIPE_PRIM_TRIANGLES rect() per pair when nr % 6 == 0, else triangles;
+    // PIPE_PRIM_LINES / POINTS setup->line / setup->point each.
     const size_t nr = vbuf_.records.size() / vbuf_.stride;
     auto vert = [&](size_t i) { return vbuf_.records.data() + i * vbuf_.stride; };
-    if (rect_pairs_ && nr % 6 == 0) {
+    if (vbuf_.verts_per_prim == 1) {
+        for (size_t i = 0; i < nr; ++i) add_point(draw, rec, vert(i), vbuf_.point_size[i], vbuf_.front[i] != 0);
+    } else if (vbuf_.verts_per_prim == 2) {
+        for (size_t i = 0; i + 1 < nr; i += 2) add_line(draw, rec, vert(i), vert(i + 1), vbuf_.front[i / 2] != 0);
+    } else if (rect_pairs_ && nr % 6 == 0) {
         for (size_t i = 0; i + 5 < nr; i += 6) {
             const float* t0[3] = {vert(i), vert(i + 1), vert(i + 2)};
             const float* t1[3] = {vert(i + 3), vert(i + 4), vert(i + 5)};
@@ -185,6 +195,8 @@ void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw)
         for (size_t i = 0; i + 2 < nr; i += 3) add_triangle(draw, rec, vert(i), vert(i + 1), vert(i + 2));
     }
     vbuf_.records.clear();
+    vbuf_.point_size.clear();
+    vbuf_.front.clear();
     vbuf_.vertices = 0;
     vbuf_.emitted_id.clear();
 }

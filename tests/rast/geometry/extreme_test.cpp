@@ -39,11 +39,13 @@ struct Tri {
             viewport_transform(vc, r + kClipPosOffset, r + kWinPosOffset);
         }
     }
-    uint32_t clip(bool precise, std::vector<float>* scratch, ClippedTriangle* out) const {
+    uint32_t clip(bool precise, std::vector<float>* scratch, ClippedTriangle* out,
+                  HiddenDepth hidden = HiddenDepth::kNone) const {
         ClipConfig cc;
         cc.layout = kLayout;
         cc.vp = vp;
         cc.precise_fallback = precise;
+        cc.hidden_depth = hidden;
         scratch->assign(size_t(kClipScratchVertices) * vertex_floats(kLayout), 0.0f);
         return clip_triangle(cc, v(0), v(1), v(2), mask[0], mask[1], mask[2], scratch->data(), out);
     }
@@ -123,6 +125,40 @@ TEST(Extreme, FlushedIntersectionParameterIsRecomputed) {
     // The other new corner: edge v1 -> v2 meets x = w at t = (3e38 - 1) / (3e38 - 1 + 0.9) ~ 1 - 3e-39, i.e. at v2's
     // side: y/w = 0.7 - 3e-39 * 1.1 = 0.7, window (256, 217.6).
     EXPECT_TRUE(has_vertex(out, n, 256.0f, 217.6f, 1.0f / 256));
+}
+
+// w = 1e37 beside w = 0 (cts extreme.regression.w_zero_far_plane). Draw cuts the edge v2 -> v0 at x = -w first,
+// t = 0.466 / 1e37 = 4.7e-38 from v2: the corner (-0.466, -0.137, 0.508, 0.466), window (0, 90.33), lies past the
+// far plane (z > w). Its cut at z = w is 0.042 / 1e37 = 4.2e-39 from it, which FTZ flushes to 0, so draw keeps it.
+// The exact corner lies on v2 -> v0 where z = w, i.e. at w = 0.508 to float precision (the v0 - v2 terms are 1e-38
+// of it): window 128 + 128 (x, y) / z of v2 = (10.55, 93.44). What draw's polygon adds beyond the far plane has
+// depth >= 1: with LESS it is never drawn and draw's polygon stands; with GREATER it is drawn and the precise one
+// is taken.
+TEST(Extreme, FlushedFarPlaneCutStandsWhereTheDepthTestHidesIt) {
+    const ScopedFlushDenormals ftz;
+    const float p[3][4] = {{bits(0xbf7769a1), bits(0x3f2860da), bits(0x3f75b2c8), bits(0x7cf0bdc2)},
+                           {bits(0x3fb8ea4b), bits(0xbf65f060), bits(0x3f173249), bits(0x3f90119c)},
+                           {bits(0xbeeeb050), bits(0xbe0c790f), bits(0x3f0211b2), 0.0f}};
+    const Tri tri(p);
+    EXPECT_EQ(tri.mask[0], 0u);
+    EXPECT_EQ(tri.mask[2], kClipLeft | kClipTop | kClipFar);
+    const float exact_x = float(128 + 128 * double(p[2][0]) / p[2][2]);
+    const float exact_y = float(128 + 128 * double(p[2][1]) / p[2][2]);
+    const float draw_y = float(128 + 128 * double(p[2][1]) / -double(p[2][0]));  // on x = -w
+    EXPECT_NEAR(exact_x, 10.554f, 1e-3f);
+    std::vector<float> scratch;
+    ClippedTriangle out[kMaxClippedTriangles];
+    uint32_t n = tri.clip(false, &scratch, out);
+    EXPECT_TRUE(has_vertex(out, n, 0.0f, draw_y, 1.0f / 256));
+    EXPECT_FALSE(has_vertex(out, n, exact_x, exact_y, 0.5f));
+    for (const HiddenDepth visible_far : {HiddenDepth::kNone, HiddenDepth::kUpToZero}) {
+        n = tri.clip(true, &scratch, out, visible_far);
+        EXPECT_TRUE(has_vertex(out, n, exact_x, exact_y, 1.0f / 256));
+        EXPECT_FALSE(has_vertex(out, n, 0.0f, draw_y, 0.5f));
+    }
+    n = tri.clip(true, &scratch, out, HiddenDepth::kFromOne);
+    EXPECT_TRUE(has_vertex(out, n, 0.0f, draw_y, 1.0f / 256));
+    EXPECT_FALSE(has_vertex(out, n, exact_x, exact_y, 0.5f));
 }
 
 // Pixel centres of a 256x256 viewport that a clip-space triangle covers by homogeneous edge functions in long
