@@ -247,8 +247,16 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         VkPhysicalDevice8BitStorageFeatures storage8{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_8BIT_STORAGE_FEATURES};
         VkPhysicalDeviceShaderFloat16Int8Features int8{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
         link(storage16, VK_KHR_16BIT_STORAGE_EXTENSION_NAME);
-        link(storage8, VK_KHR_8BIT_STORAGE_EXTENSION_NAME);
-        link(int8, VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
+        // On a Vulkan 1.2+ instance the validation layer reads Vulkan 1.2's features from this struct only (e.g.
+        // samplerFilterMinmax, texture.minmax.*), and it must then replace the structs of extensions promoted to 1.2.
+        VkPhysicalDeviceVulkan12Features core12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        if (spirv_target_vulkan_minor() >= 2) {
+            core12.pNext = chain;
+            chain = &core12;
+        } else {
+            link(storage8, VK_KHR_8BIT_STORAGE_EXTENSION_NAME);
+            link(int8, VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
+        }
         if (chain != nullptr) {
             auto features2 = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
                 vkGetInstanceProcAddr(instance_, "vkGetPhysicalDeviceFeatures2KHR"));
