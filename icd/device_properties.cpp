@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "memory_external.h"
 #include "physical_device.h"
 #include "shader/program.h"
 
@@ -163,6 +164,10 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             // A custom colour lives in its sampler (shader::SamplerState), so any number would do; lavapipe's 32768.
             reinterpret_cast<VkPhysicalDeviceCustomBorderColorPropertiesEXT*>(s)->maxCustomBorderColorSamplers =
                 32 * 1024;
+            return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT:
+            reinterpret_cast<VkPhysicalDeviceExternalMemoryHostPropertiesEXT*>(s)->minImportedHostPointerAlignment =
+                kMinImportedHostPointerAlignment;
             return;
         default:
             read_core_properties(core, s);  // the promoted structs; anything else is left untouched

@@ -1,9 +1,8 @@
 #include "memory.h"
 
-#include <cstdlib>
-
 #include "device.h"
 #include "entrypoints.h"
+#include "memory_external.h"
 #include "physical_device.h"
 #include "shader/program.h"
 #include "vk_names.h"
@@ -37,15 +36,11 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AllocateMemory(VkDevice device, const VkMemor
     DeviceMemory* mem =
         create_object<DeviceMemory>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (mem == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkAllocateMemory: out of host memory");
-    // Device memory is not host memory in Vulkan's sense: it does not go through the allocation callbacks.
-    void* p = nullptr;
-    if (posix_memalign(&p, kMemoryAlignment, size_t((size + kMemoryAlignment - 1) & ~(kMemoryAlignment - 1))) != 0) {
+    const VkResult backed = allocate_memory_backing(*pAllocateInfo, *mem);
+    if (backed != VK_SUCCESS) {
         destroy_object(mem);
-        return fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory: cannot allocate %llu bytes",
-                    (unsigned long long)size);
+        return backed;
     }
-    mem->data = static_cast<uint8_t*>(p);
-    mem->size = size;
     // Buffers with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT must be bound to such memory: shaders may reach these
     // bytes, and only these, through PhysicalStorageBuffer pointers (shader/program.h register_device_memory).
     mem->device_address = device_address;
@@ -58,7 +53,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_FreeMemory(VkDevice, VkDeviceMemory memory, const
     DeviceMemory* mem = from_handle<DeviceMemory>(memory);
     if (mem == nullptr) return;
     if (mem->device_address) shader::unregister_device_memory(mem->data);
-    free(mem->data);
+    free_memory_backing(*mem);
     destroy_object(mem);
 }
 

@@ -7,6 +7,7 @@
 #include "device_properties.h"
 #include "entrypoints.h"
 #include "formats.h"
+#include "memory_external.h"
 #include "object.h"
 #include "physical_device.h"
 
@@ -70,24 +71,29 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties2(
     VkPhysicalDevice physicalDevice, const VkPhysicalDeviceImageFormatInfo2* pInfo,
     VkImageFormatProperties2* pProperties) {
     VkImageUsageFlags usage = pInfo->usage;
-    bool external = false;
+    const VkPhysicalDeviceExternalImageFormatInfo* external = nullptr;
     for_each_in(pInfo->pNext, [&](const VkBaseInStructure* s) {
         if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_IMAGE_FORMAT_INFO) {
-            external = reinterpret_cast<const VkPhysicalDeviceExternalImageFormatInfo*>(s)->handleType != 0;
+            external = reinterpret_cast<const VkPhysicalDeviceExternalImageFormatInfo*>(s);
         } else if (s->sType == VK_STRUCTURE_TYPE_IMAGE_STENCIL_USAGE_CREATE_INFO) {
             usage |= reinterpret_cast<const VkImageStencilUsageCreateInfo*>(s)->stencilUsage;
         }
     });
     pProperties->imageFormatProperties = {};
-    // No external memory handle type is supported (VkPhysicalDeviceExternalImageFormatInfo).
-    if (external) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    // An image's bytes are plain linear memory whatever holds them, so the handle types of memory_external.h serve
+    // every image tilevk can make; any other handle type serves none.
+    ExternalMemorySupport ext;
+    if (external != nullptr && external->handleType != 0) {
+        ext = external_memory_support(external->handleType);
+        if (!ext.supported) return VK_ERROR_FORMAT_NOT_SUPPORTED;
+    }
     const VkResult r =
         tvk_GetPhysicalDeviceImageFormatProperties(physicalDevice, pInfo->format, pInfo->type, pInfo->tiling, usage,
                                                    pInfo->flags, &pProperties->imageFormatProperties);
     if (r != VK_SUCCESS) return r;
-    for_each_out(pProperties->pNext, [](VkBaseOutStructure* s) {
+    for_each_out(pProperties->pNext, [&](VkBaseOutStructure* s) {
         if (s->sType == VK_STRUCTURE_TYPE_EXTERNAL_IMAGE_FORMAT_PROPERTIES) {
-            reinterpret_cast<VkExternalImageFormatProperties*>(s)->externalMemoryProperties = {};
+            reinterpret_cast<VkExternalImageFormatProperties*>(s)->externalMemoryProperties = ext.properties;
         }
     });
     return VK_SUCCESS;
@@ -120,13 +126,14 @@ tvk_GetPhysicalDeviceSparseImageFormatProperties2(VkPhysicalDevice, const VkPhys
     *pPropertyCount = 0;  // no sparse resources
 }
 
-// External memory, fences and semaphores (VK_KHR_external_*_capabilities): no handle type can be exported or
-// imported, so every query answers with no features and no compatible types.
-VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceExternalBufferProperties(VkPhysicalDevice,
-                                                                         const VkPhysicalDeviceExternalBufferInfo*,
-                                                                         VkExternalBufferProperties* pProperties) {
-    pProperties->externalMemoryProperties = {};
+// External memory (memory_external.h): OPAQUE_FD and HOST_ALLOCATION, for buffers of any usage.
+VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceExternalBufferProperties(
+    VkPhysicalDevice, const VkPhysicalDeviceExternalBufferInfo* pInfo, VkExternalBufferProperties* pProperties) {
+    pProperties->externalMemoryProperties = external_memory_support(pInfo->handleType).properties;
 }
+
+// External fences and semaphores (VK_KHR_external_{fence,semaphore}_capabilities): no handle type can be exported
+// or imported, so every query answers with no features and no compatible types.
 
 VKAPI_ATTR void VKAPI_CALL tvk_GetPhysicalDeviceExternalFenceProperties(VkPhysicalDevice,
                                                                         const VkPhysicalDeviceExternalFenceInfo*,

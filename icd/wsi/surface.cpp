@@ -204,7 +204,12 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceSurfaceCapabilitiesKHR(VkPhy
 
 VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceSurfaceCapabilities2KHR(
     VkPhysicalDevice, const VkPhysicalDeviceSurfaceInfo2KHR* pSurfaceInfo, VkSurfaceCapabilities2KHR* pCaps) {
-    // Nothing in pSurfaceInfo->pNext or pCaps->pNext belongs to an extension tilevk exposes: left alone.
+    // VK_KHR_surface_protected_capabilities: tilevk has no protected memory (protectedMemory is VK_FALSE), so no
+    // swapchain can be protected. Nothing else in either chain belongs to an extension tilevk exposes.
+    for (auto* s = static_cast<VkBaseOutStructure*>(pCaps->pNext); s != nullptr; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_SURFACE_PROTECTED_CAPABILITIES_KHR)
+            reinterpret_cast<VkSurfaceProtectedCapabilitiesKHR*>(s)->supportsProtected = VK_FALSE;
+    }
     return wsi::surface_capabilities(pSurfaceInfo->surface, &pCaps->surfaceCapabilities);
 }
 

@@ -296,7 +296,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_AcquireNextImageKHR(VkDevice device, VkSwapch
 
 // Presents once every submission made earlier on this queue has finished (batches the worker holds for a timeline
 // value included: queue_scheduler.h), so the wait semaphores are satisfied and the images are final; the queue lock
-// orders this call after one in flight.
+// orders this call after one in flight. A VkPresentRegionsKHR (VK_KHR_incremental_present) is a hint that only those
+// rectangles changed; presenting the whole image, as tilevk does, is what the extension allows when it is ignored.
 VKAPI_ATTR VkResult VKAPI_CALL tvk_QueuePresentKHR(VkQueue queue, const VkPresentInfoKHR* pPresentInfo) {
     Queue* q = from_handle<Queue>(queue);
     q->scheduler->wait_idle();

@@ -538,7 +538,8 @@ TEST_F(ApiExtensions, PipelineCreationCacheControlAndFeedback) {
     });
 }
 
-// Instance-level queries: no external memory, fence or semaphore handle type on tilevk; the tools both drivers report
+// Instance-level queries through the KHR aliases: OPAQUE_FD memory is exportable and importable (the handle types:
+// api_breadth_external_memory_test.cpp), no fence or semaphore handle type on tilevk; the tools both drivers report
 // are the same (the validation layer's own entry). (Device groups: honest_reports_test.cpp, without the layer, whose
 // 1.3.239 flags vkEnumeratePhysicalDeviceGroupsKHR as a 1.1 command on a 1.0 instance.)
 TEST_F(ApiExtensions, ExternalCapabilitiesAndTools) {
@@ -549,7 +550,9 @@ TEST_F(ApiExtensions, ExternalCapabilitiesAndTools) {
     bp.externalMemoryProperties.externalMemoryFeatures = ~0u;
     instance_proc<PFN_vkGetPhysicalDeviceExternalBufferPropertiesKHR>("vkGetPhysicalDeviceExternalBufferPropertiesKHR")(
         tilevk_->physical(), &bi, &bp);
-    EXPECT_EQ(bp.externalMemoryProperties.externalMemoryFeatures, 0u);
+    EXPECT_EQ(bp.externalMemoryProperties.externalMemoryFeatures,
+              VkExternalMemoryFeatureFlags(VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT |
+                                           VK_EXTERNAL_MEMORY_FEATURE_IMPORTABLE_BIT));
     VkPhysicalDeviceExternalFenceInfo fi{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_FENCE_INFO};
     fi.handleType = VK_EXTERNAL_FENCE_HANDLE_TYPE_OPAQUE_FD_BIT;
     VkExternalFenceProperties fp{VK_STRUCTURE_TYPE_EXTERNAL_FENCE_PROPERTIES};

@@ -42,9 +42,9 @@ double cpu_seconds() {
 class Headless {
   public:
     explicit Headless(bool validation = true,
-                      const std::vector<const char*>& device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME})
-        : harness_(validation, {VK_KHR_SURFACE_EXTENSION_NAME, VK_EXT_HEADLESS_SURFACE_EXTENSION_NAME,
-                                VK_KHR_GET_SURFACE_CAPABILITIES_2_EXTENSION_NAME}) {
+                      const std::vector<const char*>& device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME},
+                      const char* instance_extension = nullptr)
+        : harness_(validation, instance_extensions(instance_extension)) {
         if (!harness_.ok()) return;
         pd_ = harness_.find_device("tilevk");
         if (pd_ == VK_NULL_HANDLE) return;
@@ -126,7 +126,8 @@ class Headless {
         return r;
     }
     // Clears the image (its command buffer, recorded at creation) and presents it, the render semaphore between.
-    VkResult frame(VkSwapchainKHR sc, uint32_t index, VkSemaphore acquired = VK_NULL_HANDLE) {
+    VkResult frame(VkSwapchainKHR sc, uint32_t index, VkSemaphore acquired = VK_NULL_HANDLE,
+                   const void* present_chain = nullptr) {
         VkSemaphore rendered = render_semaphore(sc, index);
         VkPipelineStageFlags stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
         VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -141,10 +142,11 @@ class Headless {
         vkResetFences(device(), 1, &submit_fence_);
         if (VkResult r = vkQueueSubmit(queue(), 1, &si, submit_fence_); r != VK_SUCCESS) return r;
         if (VkResult r = vkWaitForFences(device(), 1, &submit_fence_, VK_TRUE, UINT64_MAX); r != VK_SUCCESS) return r;
-        return present(sc, index, rendered);
+        return present(sc, index, rendered, nullptr, present_chain);
     }
-    VkResult present(VkSwapchainKHR sc, uint32_t index, VkSemaphore wait, VkResult* result = nullptr) {
-        VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    VkResult present(VkSwapchainKHR sc, uint32_t index, VkSemaphore wait, VkResult* result = nullptr,
+                     const void* chain = nullptr) {
+        VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, chain};
         pi.waitSemaphoreCount = wait != VK_NULL_HANDLE ? 1 : 0;
         pi.pWaitSemaphores = &wait;
         pi.swapchainCount = 1;
@@ -162,6 +164,12 @@ class Headless {
     }
 
   private:
+    static std::vector<const char*> instance_extensions(const char* extra) {
+        std::vector<const char*> v{VK_KHR_SURFACE_EXTENSION_NAME, VK_EXT_HEADLESS_SURFACE_EXTENSION_NAME,
+                                   VK_KHR_GET_SURFACE_CAPABILITIES_2_EXTENSION_NAME};
+        if (extra != nullptr) v.push_back(extra);
+        return v;
+    }
     // One semaphore per image: re-signalled only after the image came back from presentation.
     VkSemaphore render_semaphore(VkSwapchainKHR sc, uint32_t index) {
         auto& v = render_semaphores_[sc];
@@ -272,6 +280,42 @@ TEST(Swapchain, HeadlessSurfaceReportsWhatSwapchainsAccept) {
     uint32_t one = 1;
     VkImage first;
     EXPECT_EQ(vkGetSwapchainImagesKHR(h.device(), sc, &one, &first), VK_INCOMPLETE);
+}
+
+// VK_KHR_surface_protected_capabilities: tilevk has no protected memory, so no surface supports protected
+// swapchains (the struct is written, whatever the application left in it).
+TEST(Swapchain, NoSurfaceSupportsProtectedSwapchains) {
+    Headless h(true, {VK_KHR_SWAPCHAIN_EXTENSION_NAME}, VK_KHR_SURFACE_PROTECTED_CAPABILITIES_EXTENSION_NAME);
+    REQUIRE_OK(h);
+    auto caps2_fn = reinterpret_cast<PFN_vkGetPhysicalDeviceSurfaceCapabilities2KHR>(
+        vkGetInstanceProcAddr(h.harness().instance(), "vkGetPhysicalDeviceSurfaceCapabilities2KHR"));
+    ASSERT_NE(caps2_fn, nullptr);
+    VkPhysicalDeviceSurfaceInfo2KHR info{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SURFACE_INFO_2_KHR};
+    info.surface = h.surface();
+    VkSurfaceProtectedCapabilitiesKHR prot{VK_STRUCTURE_TYPE_SURFACE_PROTECTED_CAPABILITIES_KHR};
+    prot.supportsProtected = VK_TRUE;
+    VkSurfaceCapabilities2KHR caps2{VK_STRUCTURE_TYPE_SURFACE_CAPABILITIES_2_KHR, &prot};
+    ASSERT_EQ(caps2_fn(h.physical(), &info, &caps2), VK_SUCCESS);
+    EXPECT_EQ(prot.supportsProtected, VK_FALSE);
+    EXPECT_EQ(caps2.surfaceCapabilities.minImageCount, 2u);
+}
+
+// VK_KHR_incremental_present: a present naming the changed rectangles is accepted and presents the image (the
+// regions are a hint; tilevk presents the whole image), with zero validation messages.
+TEST(Swapchain, IncrementalPresentRegionsAreAccepted) {
+    Headless h(true, {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_KHR_INCREMENTAL_PRESENT_EXTENSION_NAME});
+    REQUIRE_OK(h);
+    VkSwapchainKHR sc = h.make(VK_PRESENT_MODE_IMMEDIATE_KHR, 3);
+    ASSERT_NE(sc, VK_NULL_HANDLE);
+    uint32_t a = 0;
+    ASSERT_EQ(h.acquire(sc, UINT64_MAX, &a), VK_SUCCESS);
+    const VkRectLayerKHR rect{{8, 4}, {16, 8}, 0};
+    const VkPresentRegionKHR region{1, &rect};
+    const VkPresentRegionsKHR regions{VK_STRUCTURE_TYPE_PRESENT_REGIONS_KHR, nullptr, 1, &region};
+    ASSERT_EQ(h.frame(sc, a, VK_NULL_HANDLE, &regions), VK_SUCCESS);
+    ASSERT_EQ(vkQueueWaitIdle(h.queue()), VK_SUCCESS);
+    uint32_t next = 0;
+    ASSERT_EQ(h.acquire(sc, UINT64_MAX, &next), VK_SUCCESS);
 }
 
 // FIFO: images come back in the order they were presented, one per refresh. The first present is shown at once
