@@ -99,7 +99,7 @@ void load_attachments(ExecState& st, uint32_t sp) {
         const Image& img = *c.view->image;
         const uint32_t level = c.view->range.baseMipLevel;
         if (c.aspects & VK_IMAGE_ASPECT_COLOR_BIT)
-            clear_color_rect(img, level, c.layer, 1, rect, c.value.color);
+            clear_color_rect(img, *c.view->format, level, c.layer, 1, rect, c.value.color);
         else
             clear_depth_stencil_rect(img, level, c.layer, 1, rect, c.aspects, c.value.depthStencil);
     };
@@ -245,7 +245,7 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
                 count = 1;
             }
             if (ca.aspectMask & VK_IMAGE_ASPECT_COLOR_BIT) {
-                clear_color_rect(*v.image, v.range.baseMipLevel, base, count, rect, ca.clearValue.color);
+                clear_color_rect(*v.image, *v.format, v.range.baseMipLevel, base, count, rect, ca.clearValue.color);
             } else {
                 clear_depth_stencil_rect(*v.image, v.range.baseMipLevel, base, count, rect, ca.aspectMask,
                                          ca.clearValue.depthStencil);

@@ -239,9 +239,11 @@ void exec_resolve_image(const CmdResolveImage& c);
 // Writes bytes [byte_offset, byte_offset + byte_count) of `texel` into every sample of every texel of `rect`.
 void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D& rect, const uint8_t* texel,
                uint32_t byte_offset, uint32_t byte_count);
-// Packs and writes a colour clear into rect of `layer_count` layers from `base_layer`.
-void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
-                      const VkClearColorValue& color);
+// Packs a colour clear as `as` (the image's format for vkCmdClearColorImage, an attachment view's for load-op clears
+// and vkCmdClearAttachments: a MUTABLE_FORMAT image's sRGB view clears with the sRGB encoding, as lavapipe's surface
+// of the view's format does) and writes it into rect of `layer_count` layers from `base_layer`.
+void clear_color_rect(const Image& img, const FormatInfo& as, uint32_t level, uint32_t base_layer, uint32_t layer_count,
+                      const VkRect2D& rect, const VkClearColorValue& color);
 // Clears the given aspects of a depth/stencil image in rect.
 void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
                               const VkRect2D& rect, VkImageAspectFlags aspects, const VkClearDepthStencilValue& v);

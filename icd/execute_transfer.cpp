@@ -265,16 +265,17 @@ void fill_rect(const Image& img, uint32_t level, uint32_t layer, const VkRect2D&
     }
 }
 
-void clear_color_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count, const VkRect2D& rect,
-                      const VkClearColorValue& color) {
-    if (img.format->layout == format::Layout::kCompressed) {
-        // VUID-vkCmdClearColorImage-image-00007: never a compressed image (its blocks have no clear packing)
-        log_error("clear: %s is a compressed format; skipped", img.format->name);
+void clear_color_rect(const Image& img, const FormatInfo& as, uint32_t level, uint32_t base_layer, uint32_t layer_count,
+                      const VkRect2D& rect, const VkClearColorValue& color) {
+    if (as.layout == format::Layout::kCompressed || as.bytes != img.format->bytes) {
+        // VUID-vkCmdClearColorImage-image-00007: never a compressed image (its blocks have no clear packing); a
+        // view's format always has the image's texel size (compatible formats of a MUTABLE_FORMAT image).
+        log_error("clear: %s as %s cannot be cleared; skipped", img.format->name, as.name);
         return;
     }
     uint8_t texel[16] = {};
-    rast::fragment::pack_clear_color(*img.format, color.float32, texel);
-    for (uint32_t l = 0; l < layer_count; ++l) fill_rect(img, level, base_layer + l, rect, texel, 0, img.format->bytes);
+    rast::fragment::pack_clear_color(as, color.float32, texel);
+    for (uint32_t l = 0; l < layer_count; ++l) fill_rect(img, level, base_layer + l, rect, texel, 0, as.bytes);
 }
 
 void clear_depth_stencil_rect(const Image& img, uint32_t level, uint32_t base_layer, uint32_t layer_count,
@@ -306,7 +307,7 @@ void exec_clear_color_image(const CmdClearColorImage& c) {
         for (uint32_t m = r.baseMipLevel; m < r.baseMipLevel + levels; ++m) {
             const LayerSpan l = clear_layers(*c.image, r, m);
             if (!image_ok(c.image, m, l.first, l.count, 0, 0, 0, 0, "vkCmdClearColorImage")) break;
-            clear_color_rect(*c.image, m, l.first, l.count, full_rect(*c.image, m), c.color);
+            clear_color_rect(*c.image, *c.image->format, m, l.first, l.count, full_rect(*c.image, m), c.color);
         }
     }
 }

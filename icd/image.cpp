@@ -117,6 +117,7 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImage(VkDevice device, const VkImageCre
     img->tiling = ci->tiling;
     img->usage = ci->usage;
     img->cube_compatible = (ci->flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) != 0;
+    img->mutable_format = (ci->flags & VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT) != 0;
     img->layout = compute_image_layout(*f, ci->extent, ci->mipLevels, ci->arrayLayers, ci->samples);
     *pImage = to_handle(img);
     return VK_SUCCESS;

@@ -39,6 +39,7 @@ struct Image : NonDispatchableObject {
     VkImageTiling tiling = VK_IMAGE_TILING_OPTIMAL;
     VkImageUsageFlags usage = 0;
     bool cube_compatible = false;  // VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT: cube and cube-array views allowed
+    bool mutable_format = false;   // VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT: views of other same-sized colour formats
     ImageLayout layout;
     DeviceMemory* memory = nullptr;
     VkDeviceSize memory_offset = 0;

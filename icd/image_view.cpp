@@ -51,6 +51,22 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateImageView(VkDevice device, const VkImag
     if (f == nullptr || !has_image_support(*f)) {
         return fail(VK_ERROR_FORMAT_NOT_SUPPORTED, "vkCreateImageView: %s is not supported", vk_enum_name(ci->format));
     }
+    // Another format reinterprets the image's bytes: only for a MUTABLE_FORMAT image and a colour format of the same
+    // texel size (the size-compatible classes; VUID-VkImageViewCreateInfo-image-01761/01762). Every path that reads
+    // or writes through a view uses the view's format; copies and blits use the image's.
+    if (f != img->format) {
+        const bool colour =
+            f->aspects == VK_IMAGE_ASPECT_COLOR_BIT && img->format->aspects == VK_IMAGE_ASPECT_COLOR_BIT;
+        if (!img->mutable_format || !colour || f->bytes != img->format->bytes ||
+            f->layout == format::Layout::kCompressed || img->format->layout == format::Layout::kCompressed) {
+            return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
+                        "vkCreateImageView: a %s view of a %s image%s: tilevk views an image as another format only "
+                        "when the image has VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT and both are uncompressed colour "
+                        "formats of one texel size (VUID-VkImageViewCreateInfo-image-01761)",
+                        vk_enum_name(ci->format), vk_enum_name(vk_format(*img->format)),
+                        img->mutable_format ? "" : " without VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT");
+        }
+    }
     ImageView* view =
         create_object<ImageView>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (view == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateImageView: out of host memory");

@@ -221,10 +221,14 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
         VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     if (type == VK_IMAGE_TYPE_1D && (f->layout == format::Layout::kCompressed || (usage & ~kUsage1D) != 0))
         return VK_ERROR_FORMAT_NOT_SUPPORTED;
-    // Cube-compatible 2D images are 2D arrays whose layers cube views sample (shader/texture_cube.cpp); no
-    // mutable/sparse/alias images.
-    if ((flags & ~VkImageCreateFlags(VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT)) != 0 ||
-        ((flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) && type != VK_IMAGE_TYPE_2D))
+    // Cube-compatible 2D images are 2D arrays whose layers cube views sample (shader/texture_cube.cpp). A
+    // MUTABLE_FORMAT colour image takes views of its size class (image_view.cpp); EXTENDED_USAGE is accepted when
+    // the image's own format supports the usage, as checked below, so it widens nothing. No sparse/alias images.
+    constexpr VkImageCreateFlags kFlags =
+        VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT | VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+    if ((flags & ~kFlags) != 0 || ((flags & VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT) && type != VK_IMAGE_TYPE_2D) ||
+        ((flags & VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT) &&
+         (f->aspects != VK_IMAGE_ASPECT_COLOR_BIT || f->layout == format::Layout::kCompressed)))
         return VK_ERROR_FORMAT_NOT_SUPPORTED;
     VkFormatFeatureFlags have = tiling == VK_IMAGE_TILING_OPTIMAL  ? VkFormatFeatureFlags(f->optimal)
                                 : tiling == VK_IMAGE_TILING_LINEAR ? VkFormatFeatureFlags(f->linear)

@@ -60,6 +60,7 @@ VkResult make_image(const VkAllocationCallbacks& a, const VkSwapchainCreateInfoK
     img->format = find_format(ci.imageFormat);
     img->extent = {ci.imageExtent.width, ci.imageExtent.height, 1};
     img->usage = ci.imageUsage;
+    img->mutable_format = (ci.flags & VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR) != 0;
     img->layout = compute_image_layout(*img->format, img->extent, 1, 1, 1);
     img->memory = create_object<DeviceMemory>(a, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     void* data = nullptr;
@@ -75,6 +76,14 @@ VkResult make_image(const VkAllocationCallbacks& a, const VkSwapchainCreateInfoK
     return VK_SUCCESS;
 }
 
+// A mutable-format swapchain names the formats its images may be viewed as, imageFormat among them.
+bool lists_image_format(const VkSwapchainCreateInfoKHR& ci) {
+    const auto* list =
+        find_in_chain<VkImageFormatListCreateInfo>(ci.pNext, VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO);
+    return list != nullptr && std::find(list->pViewFormats, list->pViewFormats + list->viewFormatCount,
+                                        ci.imageFormat) != list->pViewFormats + list->viewFormatCount;
+}
+
 // What vkCreateSwapchainKHR accepts beyond the valid-usage rules the validation layer checks: the surface's current
 // formats, usages, alpha modes and tilevk's present modes. VK_ERROR_INITIALIZATION_FAILED with a message otherwise.
 VkResult check_create_info(const VkSwapchainCreateInfoKHR& ci) {
@@ -85,8 +94,12 @@ VkResult check_create_info(const VkSwapchainCreateInfoKHR& ci) {
     wsi::SurfaceInfo info;
     if (VkResult r = wsi::query_surface(ci.surface, &info); r != VK_SUCCESS) return r;
     const char* what = nullptr;
-    if (ci.flags != 0) {
-        what = "flags other than 0";
+    if ((ci.flags & ~VkSwapchainCreateFlagsKHR(VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR)) != 0) {
+        what = "flags other than VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR";
+    } else if (ci.flags != 0 && !lists_image_format(ci)) {
+        what =
+            "VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR without a VkImageFormatListCreateInfo that lists imageFormat "
+            "(VUID-VkSwapchainCreateInfoKHR-flags-03168)";
     } else if (std::find(info.formats.begin(), info.formats.end(), ci.imageFormat) == info.formats.end() ||
                ci.imageColorSpace != VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) {
         what = "a format or colour space the surface does not offer";
@@ -255,6 +268,8 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSwapchainKHR(VkDevice device, const VkS
     sc->device = dev;
     sc->extent = ci->imageExtent;
     sc->present_mode = ci->presentMode;
+    if ((ci->flags & VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR) != 0)
+        sc->image_flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
     const wsi::TargetDesc desc{ci->imageExtent, ci->imageFormat, ci->compositeAlpha};
     VkResult r = wsi::create_target(ci->surface, desc, &sc->target);
     for (uint32_t i = 0; r == VK_SUCCESS && i < std::max(ci->minImageCount, wsi::kMinSwapchainImages); ++i) {
@@ -327,7 +342,7 @@ VkResult check_swapchain_image(const VkImageCreateInfo& ci, const VkImageSwapcha
     if (ci.format == vk_format(*image.format) && ci.imageType == VK_IMAGE_TYPE_2D &&
         ci.extent.width == image.extent.width && ci.extent.height == image.extent.height && ci.extent.depth == 1 &&
         ci.mipLevels == 1 && ci.arrayLayers == 1 && ci.samples == VK_SAMPLE_COUNT_1_BIT &&
-        ci.tiling == VK_IMAGE_TILING_OPTIMAL && ci.usage == image.usage && ci.flags == 0)
+        ci.tiling == VK_IMAGE_TILING_OPTIMAL && ci.usage == image.usage && ci.flags == sc->image_flags)
         return VK_SUCCESS;
     return fail(VK_ERROR_FORMAT_NOT_SUPPORTED,
                 "vkCreateImage: VkImageSwapchainCreateInfoKHR names a swapchain of %ux%u %s images with usage %s, "

@@ -68,6 +68,9 @@ struct Swapchain : NonDispatchableObject {
     VkExtent2D extent{};
     VkPresentModeKHR present_mode = VK_PRESENT_MODE_FIFO_KHR;
     uint32_t image_count = 0;
+    // VK_KHR_swapchain_mutable_format: a MUTABLE_FORMAT swapchain's images are MUTABLE_FORMAT | EXTENDED_USAGE
+    // images, as the extension says; an image bound to one (VkImageSwapchainCreateInfoKHR) must say the same.
+    VkImageCreateFlags image_flags = 0;
     Image* images[wsi::kMaxSwapchainImages] = {};
     std::unique_ptr<wsi::PresentTarget> target;
 

@@ -17,6 +17,7 @@
 
 #include "../stderr_capture.h"
 #include "vk_harness.h"
+#include "vk_pipeline.h"
 
 using namespace tilevk::test;
 using Clock = std::chrono::steady_clock;
@@ -316,6 +317,84 @@ TEST(Swapchain, IncrementalPresentRegionsAreAccepted) {
     ASSERT_EQ(vkQueueWaitIdle(h.queue()), VK_SUCCESS);
     uint32_t next = 0;
     ASSERT_EQ(h.acquire(sc, UINT64_MAX, &next), VK_SUCCESS);
+}
+
+// Clears `image` through a view of `view_format` to (0.5, 0.25, 0.75, 1) in a render pass and returns its bytes.
+std::vector<uint8_t> clear_through_view(Device& dev, VkImage image, VkFormat view_format) {
+    VkAttachmentDescription a{};
+    a.format = view_format;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    SingleAttachmentPass pass(dev.device(), image, a, VK_IMAGE_ASPECT_COLOR_BIT, kExtent.width, kExtent.height);
+    Device::Buffer out = dev.make_buffer(VkDeviceSize(kExtent.width) * kExtent.height * 4);
+    EXPECT_EQ(dev.run([&](VkCommandBuffer c) {
+        VkClearValue clear{};
+        clear.color = {{0.5f, 0.25f, 0.75f, 1.0f}};
+        VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        rb.renderPass = pass.pass;
+        rb.framebuffer = pass.framebuffer;
+        rb.renderArea = {{0, 0}, kExtent};
+        rb.clearValueCount = 1;
+        rb.pClearValues = &clear;
+        vkCmdBeginRenderPass(c, &rb, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdEndRenderPass(c);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {kExtent.width, kExtent.height, 1};
+        vkCmdCopyImageToBuffer(c, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.buffer, 1, &region);
+    }),
+              VK_SUCCESS);
+    std::vector<uint8_t> bytes(static_cast<uint8_t*>(out.map), static_cast<uint8_t*>(out.map) + out.size);
+    dev.destroy(out);
+    pass.destroy(dev.device());
+    return bytes;
+}
+
+// VK_KHR_swapchain_mutable_format: a swapchain made with MUTABLE_FORMAT and a format list takes views of the listed
+// formats — an sRGB view over B8G8R8A8_UNORM images writes the sRGB encoding, the same bytes as an ordinary
+// B8G8R8A8_SRGB image cleared the same way; without the format list creation is refused by name.
+TEST(Swapchain, MutableFormatImagesTakeViewsOfTheListedFormats) {
+    Headless h(true, {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME,
+                      VK_KHR_IMAGE_FORMAT_LIST_EXTENSION_NAME, VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME});
+    REQUIRE_OK(h);
+    const VkFormat formats[2] = {VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_B8G8R8A8_SRGB};
+    VkImageFormatListCreateInfo list{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO, nullptr, 2, formats};
+    VkSwapchainCreateInfoKHR ci = h.create_info(VK_PRESENT_MODE_IMMEDIATE_KHR, 2);
+    ci.pNext = &list;
+    ci.flags = VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR;
+    ci.imageUsage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    VkSwapchainKHR sc = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSwapchainKHR(h.device(), &ci, nullptr, &sc), VK_SUCCESS);
+    uint32_t index = 0;
+    ASSERT_EQ(h.acquire(sc, UINT64_MAX, &index), VK_SUCCESS);
+    const std::vector<VkImage> images = h.images(sc);
+    const std::vector<uint8_t> through_srgb = clear_through_view(h.device_object(), images[index], formats[1]);
+    Device::Image plain = h.device_object().make_image(
+        VK_FORMAT_B8G8R8A8_SRGB, kExtent.width, kExtent.height, 1, 1, VK_SAMPLE_COUNT_1_BIT,
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    const std::vector<uint8_t> reference = clear_through_view(h.device_object(), plain.image, formats[1]);
+    h.device_object().destroy(plain);
+    EXPECT_EQ(through_srgb, reference);
+    EXPECT_GE(through_srgb[2], 180);  // red 0.5 encoded as sRGB (0.735 * 255), not UNORM's 128
+    vkDestroySwapchainKHR(h.device(), sc, nullptr);
+}
+
+TEST(Swapchain, MutableFormatWithoutAFormatListIsRefused) {
+    Headless h(false, {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_KHR_MAINTENANCE_2_EXTENSION_NAME,
+                       VK_KHR_IMAGE_FORMAT_LIST_EXTENSION_NAME, VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME});
+    ASSERT_TRUE(h.ok());
+    VkSwapchainCreateInfoKHR ci = h.create_info(VK_PRESENT_MODE_IMMEDIATE_KHR, 2);
+    ci.flags = VK_SWAPCHAIN_CREATE_MUTABLE_FORMAT_BIT_KHR;
+    VkSwapchainKHR sc = VK_NULL_HANDLE;
+    StderrCapture err;
+    EXPECT_EQ(vkCreateSwapchainKHR(h.device(), &ci, nullptr, &sc), VK_ERROR_INITIALIZATION_FAILED);
+    EXPECT_NE(err.text().find("VUID-VkSwapchainCreateInfoKHR-flags-03168"), std::string::npos);
+    EXPECT_EQ(sc, VK_NULL_HANDLE);
 }
 
 // FIFO: images come back in the order they were presented, one per refresh. The first present is shown at once
