@@ -322,6 +322,32 @@ Scene mid_and_end_of_large_draw(const Regression& g, int before, int after) {
     return s;
 }
 
+// The same triangle at the start of draw's vbuf's last filling, in a draw large enough for tilevk's parallel triangle
+// path whose every batch goes through draw's pipeline (each has a triangle wholly right of the viewport, which the
+// clipper drops), so the draw has no direct batch. A vbuf vertex is 3 slots here (tilevk's count: position, v_color
+// and the vertex shader's point size; lavapipe's boundaries agree on this scene), a buffer 85 vertices: 28
+// unclipped small triangles. After 73 full buffers of small ones (flushed inside draw_vbo, denormals flushed), the
+// triangle starts the last buffer, with 3 small ones after it, set up after draw_vbo (denormals kept). tilevk sets
+// the draw up in parallel up to that last filling: a boundary one filling (or one triangle) late sets the triangle
+// up with denormals flushed.
+Scene at_last_vbuf_filling(const Regression& g) {
+    Scene s = regression_scene(g);
+    std::vector<Vertex>& v = s.draws[0].vertices;
+    const std::vector<Vertex> extreme = v;
+    const std::vector<Vertex> off = {raw(3.0f, 0.0f, 0.5f, 1.0f, kRed), raw(3.5f, 0.0f, 0.5f, 1.0f, kGreen),
+                                     raw(3.0f, 0.5f, 0.5f, 1.0f, kBlue)};
+    constexpr int kHead = 73 * 28, kBatchTriangles = 1365;  // non-indexed list batches: 4095 vertices
+    v = off;                                                // batch 0 starts with one
+    const std::vector<Vertex> head = small_triangles(0, kHead), tail = small_triangles(kHead, 3);
+    for (int i = 0; i < kHead; ++i) {
+        if (v.size() / 3 == kBatchTriangles) v.insert(v.end(), off.begin(), off.end());  // and batch 1
+        v.insert(v.end(), head.begin() + 3 * i, head.begin() + 3 * i + 3);
+    }
+    v.insert(v.end(), extreme.begin(), extreme.end());
+    v.insert(v.end(), tail.begin(), tail.end());
+    return s;
+}
+
 Scene regression_scene(const Regression& g) {
     std::vector<Vertex> v;
     const std::array<float, 4> colours[3] = {kRed, kGreen, kBlue};
@@ -368,6 +394,8 @@ void add_extreme_cases(CaseList& out) {
                                [&late_setup] { return with_small_triangles(late_setup, 2100, true); }));
     out.push_back(extreme_case("extreme.regression.w_1e37_setup_mid_and_end_of_large_draw",
                                [&late_setup] { return mid_and_end_of_large_draw(late_setup, 1000, 1100); }));
+    out.push_back(extreme_case("extreme.regression.w_1e37_setup_at_last_vbuf_filling",
+                               [&late_setup] { return at_last_vbuf_filling(late_setup); }));
     for (const HandCase& h : kHandCases)
         out.push_back(
             extreme_case(std::string("extreme.class.") + h.name, [h] { return one_extreme(h.x, h.y, h.z, h.w); }));

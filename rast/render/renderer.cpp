@@ -337,9 +337,13 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         if (plan.discard) continue;
         const bool any_clipped =
             std::any_of(shaded_.clipmask.begin(), shaded_.clipmask.end(), [](uint32_t m) { return m != 0; });
-        // The parallel path takes the batches up to the last direct one (which flushes draw's vbuf); the batches
-        // after it, all through draw's pipeline, leave their triangles in the vbuf and take the batch loop.
-        const uint32_t parallel_prims = plan.parallel_triangles ? parallel_prefix(plan, any_clipped) : 0;
+        // The parallel path takes the batches up to the last direct one (which flushes draw's vbuf) and, of the
+        // batches after it (all through draw's pipeline), the triangles that a full vbuf flushes inside draw_vbo.
+        // The rest, from a filling start on, take the batch loop and its vbuf (maybe set up after draw_vbo).
+        uint32_t parallel_prims = plan.parallel_triangles ? parallel_prefix(plan, any_clipped) : 0;
+        if (plan.parallel_triangles && parallel_prims < plan.num_prims)
+            parallel_prims =
+                last_filling_start({nullptr, &plan.ccfg, &plan.fcull, plan.any_cull}, plan.num_prims, parallel_prims);
         if (parallel_prims > 0) {
             vbuf_flush(draw_index, rec);
             draw_triangles_parallel(plan, draw_index, rec, any_clipped, parallel_prims);
@@ -349,7 +353,9 @@ std::string Renderer::draw(const PipelineState& pipe, const DrawCall& call, cons
         for (const uint32_t batch_prims : batches_) {
             if (stopped()) break;  // the instance loop notes it
             const uint32_t end_prim = std::min(plan.num_prims, first_prim + batch_prims);
-            if (first_prim >= parallel_prims) emit_batch(plan, draw_index, rec, first_prim, end_prim, any_clipped);
+            if (end_prim > parallel_prims)
+                emit_batch(plan, draw_index, rec, first_prim, end_prim, std::max(first_prim, parallel_prims),
+                           any_clipped);
             first_prim = end_prim;
         }
     }
@@ -496,12 +502,13 @@ void Renderer::draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index
     // draw_pt_fetch_shade_pipeline_llvm.c: one vertex with a clip-mask bit sends the whole batch through draw's
     // pipeline (clipper, float cull), as in emit_batch.
     tri_pipeline_.assign(num_prims, 0);
+    // num_prims may end inside a batch: the whole batch decides.
     uint32_t first = 0;
     for (const uint32_t batch_prims : batches_) {
         if (first >= num_prims) break;
-        const uint32_t end = std::min(num_prims, first + batch_prims);
+        const uint32_t end = std::min(plan.num_prims, first + batch_prims);
         if (batch_takes_pipeline(first, end, any_clipped))
-            std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + end, uint8_t(1));
+            std::fill(tri_pipeline_.begin() + first, tri_pipeline_.begin() + std::min(num_prims, end), uint8_t(1));
         first = end;
     }
     add_triangles_parallel(draw_index, rec, assembled_.data(), num_prims,
@@ -533,7 +540,7 @@ uint32_t Renderer::parallel_prefix(const DrawPlan& plan, bool any_clipped) const
 
 // One of draw's batches, primitives [first_prim, end_prim): straight to setup, or through draw's pipeline.
 void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim,
-                          uint32_t end_prim, bool any_clipped) {
+                          uint32_t end_prim, uint32_t start_prim, bool any_clipped) {
     const uint32_t vpp = plan.verts_per_prim;
     const uint32_t* batch_ids = assembled_.data() + size_t(first_prim) * vpp;
     const size_t batch_verts = size_t(end_prim - first_prim) * vpp;
@@ -552,7 +559,7 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
     const uint32_t batch_end = plan.nine_vertex_candidate && !pipeline_path && batch_verts == 9
                                    ? nine_vertex_batch_end(draw_index, rec, first_prim, end_prim, batch_ids)
                                    : end_prim;
-    for (uint32_t p = first_prim; p < batch_end; ++p) {
+    for (uint32_t p = start_prim; p < batch_end; ++p) {
         const uint32_t* ids = assembled_.data() + size_t(p) * vpp;
         if (plan.ccfg.num_cull_distances > 0) {  // draw's user_cull stage, first in the pipeline
             const float* rv[3] = {};

@@ -77,8 +77,10 @@ class Renderer {
                    const geometry::IndexSource& src);
     void draw_triangles_parallel(const DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, bool any_clipped,
                                  uint32_t num_prims);
+    // Batch [first_prim, end_prim), its primitives from start_prim on (start_prim > first_prim only in a batch
+    // through draw's pipeline whose head the parallel path set up).
     void emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim,
-                    bool any_clipped);
+                    uint32_t start_prim, bool any_clipped);
     void emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const uint32_t* ids,
                                uint64_t batch_serial);
     void emit_unfilled(DrawPlan& plan, uint32_t draw_index, const DrawRecord& rec, const geometry::ClippedTriangle& tri,
@@ -124,6 +126,10 @@ class Renderer {
     void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
     bool batch_takes_pipeline(uint32_t first, uint32_t end, bool any_clipped) const;
     uint32_t parallel_prefix(const DrawPlan& plan, bool any_clipped) const;
+    // The last triangle at or after tail_first (a batch start after which every batch of the instance goes through
+    // draw's pipeline) where a filling of draw's vbuf starts, no later than its last filling: a serial count of the
+    // vertices the vbuf stage receives from triangles [tail_first, num_prims) (cfg.pipeline unused).
+    uint32_t last_filling_start(const TrianglePipeline& cfg, uint32_t num_prims, uint32_t tail_first);
     ClipRect prim_clip(const PipelineState& pipe) const;
     // Linear mode: tiles a non-rectangle primitive may be binned to cannot be llvmpipe linear bins.
     void mark_not_linear(int32_t px0, int32_t py0, int32_t px1, int32_t py1, const ClipRect& clip);
@@ -152,6 +158,7 @@ class Renderer {
     std::vector<std::vector<float>> clip_workers_;  // clip scratch per worker (add_triangles_parallel)
     std::vector<uint8_t> tri_pipeline_;             // per triangle of a parallel draw: its batch took draw's pipeline
     std::vector<uint32_t> piece_first_;             // per triangle of a parallel draw: its first slot
+    std::vector<uint32_t> vbuf_stamp_;              // per shaded slot: last_filling_start's buffer generation
     std::vector<geometry::AttribPlane> attrib_planes_;
     std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
     std::vector<float> unfilled_scratch_;  // 3 records: a polygonMode LINE/POINT triangle after offset/flatshade
@@ -167,6 +174,7 @@ class Renderer {
         uint32_t stride = 0;               // floats per record
         uint32_t vertices = 0;             // vbuf->nr_vertices (each vertex counted once per buffer)
         uint32_t max_vertices = 0;         // 4096 bytes / vertex size
+        static constexpr uint32_t kMaxIndices = 1020;  // lp_setup_vbuf.c LP_MAX_VBUF_INDEXES
         std::vector<uint64_t> emitted_id;  // vertex ids emitted into the current buffer
     } vbuf_;
     std::vector<uint8_t> tile_linear_;                // per 64x64 tile, row-major (linear mode)

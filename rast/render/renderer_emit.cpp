@@ -158,10 +158,9 @@ void Renderer::vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float*
                               float point_size, bool front) {
     // draw_pipe_vbuf.c vbuf_tri / vbuf_line / vbuf_point: check_space(n) against both buffers, then each vertex
     // emitted once per buffer.
-    constexpr uint32_t kMaxIndices = 1020;  // lp_setup_vbuf.c LP_MAX_VBUF_INDEXES
     const uint32_t n = vbuf_.verts_per_prim;
     const size_t indices = vbuf_.records.size() / vbuf_.stride;
-    if (vbuf_.vertices + n > vbuf_.max_vertices || indices + n > kMaxIndices) vbuf_flush(draw, rec);
+    if (vbuf_.vertices + n > vbuf_.max_vertices || indices + n > VbufGroup::kMaxIndices) vbuf_flush(draw, rec);
     for (uint32_t k = 0; k < n; ++k) {
         if (std::find(vbuf_.emitted_id.begin(), vbuf_.emitted_id.end(), ids[k]) == vbuf_.emitted_id.end()) {
             vbuf_.emitted_id.push_back(ids[k]);
@@ -171,6 +170,63 @@ void Renderer::vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float*
     }
     vbuf_.point_size.push_back(point_size);
     vbuf_.front.push_back(front ? 1 : 0);
+}
+
+// vbuf_primitive's count replayed without copying: per batch of the tail, each triangle's pieces as
+// emit_clipped_triangle makes them (clipped only when a vertex has a clip-mask bit, then the float cull), each
+// vertex counted once per buffer: an input vertex by its shaded slot within the batch (vbuf_stamp_ holds the
+// generation, bumped per batch and per buffer, in which the slot was last counted), a clipper-made one by its
+// record within the clip call. A filling that starts at a triangle's first piece is a place where the batch loop
+// can take over with an empty vbuf; one that starts at a later piece is not.
+uint32_t Renderer::last_filling_start(const TrianglePipeline& cfg, uint32_t num_prims, uint32_t tail_first) {
+    const uint32_t max_vertices = vbuf_.max_vertices;
+    uint32_t vertices = vbuf_.vertices;
+    uint32_t indices = static_cast<uint32_t>(vbuf_.records.size() / vbuf_.stride);
+    if (tail_first > 0) vertices = indices = 0;  // the prefix's last (direct) batch flushed the vbuf
+    vbuf_stamp_.assign(shaded_.clipmask.size(), 0);
+    uint32_t generation = 0, start = tail_first, first = 0;
+    const float* made[3 * geometry::kMaxClippedTriangles];  // clipper-made vertices counted in this buffer
+    for (const uint32_t batch_prims : batches_) {
+        const uint32_t end = std::min(num_prims, first + batch_prims);
+        const uint32_t from = std::max(first, tail_first);
+        first = end;
+        if (from >= end) continue;
+        ++generation;  // a new batch: its vertices are new vertex headers
+        for (uint32_t i = from; i < end; ++i) {
+            const uint32_t* s = assembled_.data() + size_t(i) * 3;
+            const float* v[3] = {shaded_.record(s[0]), shaded_.record(s[1]), shaded_.record(s[2])};
+            geometry::ClippedTriangle out[geometry::kMaxClippedTriangles];
+            const uint32_t pieces =
+                geometry::clip_triangle(*cfg.clip, v[0], v[1], v[2], shaded_.clipmask[s[0]], shaded_.clipmask[s[1]],
+                                        shaded_.clipmask[s[2]], clip_scratch_.data(), out);
+            uint32_t num_made = 0;
+            bool first_piece = true;
+            for (uint32_t t = 0; t < pieces; ++t) {
+                const float* const* p = out[t].v;
+                if (cfg.any_cull && !geometry::float_cull_keep(*cfg.float_cull, geometry::win_pos(p[0]),
+                                                               geometry::win_pos(p[1]), geometry::win_pos(p[2])))
+                    continue;
+                if (vertices + 3 > max_vertices || indices + 3 > VbufGroup::kMaxIndices) {
+                    vertices = indices = num_made = 0;
+                    ++generation;
+                    if (first_piece) start = i;
+                }
+                first_piece = false;
+                indices += 3;
+                for (int k = 0; k < 3; ++k) {
+                    const int input = p[k] == v[0] ? 0 : p[k] == v[1] ? 1 : p[k] == v[2] ? 2 : -1;
+                    if (input >= 0) {
+                        if (vbuf_stamp_[s[input]] != generation) ++vertices;
+                        vbuf_stamp_[s[input]] = generation;
+                    } else if (std::find(made, made + num_made, p[k]) == made + num_made) {
+                        made[num_made++] = p[k];
+                        ++vertices;
+                    }
+                }
+            }
+        }
+    }
+    return start;
 }
 
 void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw) {
