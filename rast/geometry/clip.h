@@ -98,7 +98,8 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
 // triangle again with 237-bit positions (clip_precise.cpp) and hands setup the rounded result.
 uint32_t clip_triangle_precise(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2,
                                uint32_t clipmask, float* scratch, ClippedTriangle* out);
-// The tests of that decision: inputs with an exact answer in lavapipe's float environment (finite, |w| < 2^126),
+// The tests of that decision: inputs with an exact answer in lavapipe's float environment (finite, |w| < 2^126 or
+// x, y, z at most 2^-64 |w|, where FTZ's centre is the exact projection),
 // and float output that lavapipe's setup cannot rasterize faithfully.
 bool clip_inputs_finite(const float* v0, const float* v1, const float* v2);
 bool clip_needs_precision(const float* v0, const float* v1, const float* v2, const ClippedTriangle* out, uint32_t n);
