@@ -162,9 +162,9 @@ uint32_t clip_triangle_precise(const ClipConfig& cfg, const float* v0, const flo
     uint32_t count = 0;
     for (uint32_t i = 2; i < n; ++i) {
         if (cfg.flatshade_first)
-            out[count++] = {{first, in[i - 1].record, in[i].record}, kAllEdges, kAllEdges};
+            out[count++] = {{first, in[i - 1].record, in[i].record}, kAllEdges};
         else
-            out[count++] = {{in[i - 1].record, in[i].record, first}, kAllEdges, kAllEdges};
+            out[count++] = {{in[i - 1].record, in[i].record, first}, kAllEdges};
     }
     return count;
 }
