@@ -269,6 +269,22 @@ const Regression kRegressions[] = {
       {0.00632749684f, 2.24866853e-05f, 0.00916628446f},
       {0.172597408f, 0.0829013735f, 0.0062905862f},
       {0.42352134f, 0.0383573174f, 0.562924445f}}},
+    // w = FLT_MAX beside a vertex at w = 1e-20 past the right, bottom and far planes (extreme.random.seed_6638): draw's
+    // cut of the edge back to the w = FLT_MAX vertex has t = 0.986 / FLT_MAX, flushed to 0 (FTZ), so it keeps the
+    // w = 1e-20 vertex, 1e20 px away; lavapipe snaps it to INT_MIN and draws 1721 wrong pixels, tilevk's precise clip
+    // the exact ones. With x, y, z at most 2^-64 w, FTZ's centre is the exact projection, so the exact answer holds.
+    {"w_flt_max_flushed_t",
+     64,
+     {{0x402cf557, 0x3fa4d831, 0x3eb47ea0, 0x7f7fffff},
+      {0xbe80f722, 0x3ff0f6fc, 0x3f4c3489, 0x3fa7a738},
+      {0x3f7c5710, 0x3f9132d0, 0x3e8e5d60, 0x1e3ce508}}},
+    // y = 3e38 at w = 0.89 beside w = FLT_MAX (extreme.random.seed_2215): a plane distance FLT_MAX + 3e38 overflows,
+    // t = 0 keeps a vertex at y = 9.6e19 px; lavapipe draws half the target from INT_MIN, tilevk the exact 555 centres.
+    {"w_flt_max_overflow",
+     64,
+     {{0x60ad78ec, 0x7f61b1e6, 0x3f10765d, 0x3f634504},
+      {0xbf3df3c8, 0x3fbb5899, 0x3eeb4e42, 0x7f7fffff},
+      {0x3f3bc6bf, 0x3f005b5c, 0x3b6713ad, 0x3f84c1c9}}},
     // w = 1e38 and 1e37 (extreme.random.seed_2403, its third triangle): the colour and 1/w planes' setup meets
     // subnormals. The clipped triangle waits in draw's vbuf until llvmpipe_draw_vbo's final draw_flush, after draw_vbo
     // has restored the float state, so lavapipe sets it up with denormals kept (rast/geometry/README.md).

@@ -190,7 +190,8 @@ void add_batch_cases(CaseList& out) {
 
 // polygonMode LINE / POINT: draw's clipper marks the edges it creates along frustum planes as hidden and the
 // vertices where a polygon leaves a plane as not drawn (draw_pipe_clip.c); offset, flatshade and the vertex's
-// point size apply through draw's stages (draw_pipe_offset.c, draw_pipe_flatshade.c, lp_setup_point.c).
+// point size apply through draw's stages (draw_pipe_offset.c, draw_pipe_flatshade.c, lp_setup_point.c). In POINT
+// mode lavapipe makes no x/y cut (rast/geometry/clip.h ClipConfig::cut_xy).
 // A case table (over 150 lines): one entry per case, in groups under their comments, sharing the scene builders
 // and constants declared at its top.
 void add_unfilled_cases(CaseList& out) {
@@ -233,7 +234,7 @@ void add_unfilled_cases(CaseList& out) {
                    },
                    Check(), ""});
     // A vertex the clipper makes where the polygon re-enters through the near plane is drawn (with its
-    // interpolated size); one on an x/y plane is not (clip.h ClippedTriangle::corners).
+    // interpolated size); the x/y planes make no vertex in POINT mode (clip.h ClipConfig::cut_xy).
     out.push_back({"quirks.unfilled.point_near_plane_vertex_drawn",
                    [] {
                        Draw d;
@@ -265,6 +266,30 @@ void add_unfilled_cases(CaseList& out) {
                        return one_draw(d);
                    },
                    Check(), ""});
+    // In POINT mode a vertex outside the viewport is not cut away at x = w: lavapipe draws the part of its point
+    // inside the draw region (the viewport: 6 px here, and 12 px inside a smaller viewport), where the x cut would
+    // have left a corner on the edge that draw's edge flags draw (18 px) — lavapipe draws neither that nor nothing.
+    // With the vertex also behind z = 0 the near plane cuts, and its coming-in vertex is drawn (18 px). Each fails
+    // with x/y cuts and corners on x/y planes hidden (the rule before 2026-12-07).
+    struct OutsidePoint {
+        const char* name;
+        float x, z;
+        bool small_viewport;
+    };
+    for (const OutsidePoint& o : {OutsidePoint{"point_outside_vertex_partly_visible", 1.05f, 0.5f, false},
+                                  OutsidePoint{"point_outside_vertex_small_viewport", 1.05f, 0.5f, true},
+                                  OutsidePoint{"point_right_and_near_plane_vertex", 1.7f, -0.5f, false}})
+        out.push_back({std::string("quirks.unfilled.") + o.name,
+                       [=] {
+                           Draw d = big(VK_POLYGON_MODE_POINT);
+                           if (!o.small_viewport) d.viewport.reset();
+                           d.vertices[1].pos[0] = o.x;
+                           d.vertices[1].pos[2] = o.z;
+                           d.vertices[2] = vtx(0.3f, 0.8f, 0.5f, 1, kBlue);
+                           for (Vertex& v : d.vertices) v.point_size = 6.0f;
+                           return one_draw(d);
+                       },
+                       Check(), ""});
     out.push_back({"quirks.unfilled.point_size_from_shader",
                    [] {
                        Draw d = triangle(kBlue);

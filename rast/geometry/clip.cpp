@@ -264,15 +264,10 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
     const float* b[kMaxClippedVertices];
     bool va[kMaxClippedVertices], vb[kMaxClippedVertices];
     bool ea[kMaxClippedVertices], eb[kMaxClippedVertices];
-    // The x or y frustum plane (0-3) a vertex was created on, or -1. A vertex a user plane creates on an edge whose
-    // two ends lie on the same x/y plane lies on that plane too and counts as on it (cts clipping.clip_distance.
-    // polygon_point: lavapipe does not draw it as a point either).
-    int8_t xa[kMaxClippedVertices], xb[kMaxClippedVertices];
     const float** inlist = a;
     const float** outlist = b;
     bool *in_vflag = va, *out_vflag = vb;
     bool *in_edge = ea, *out_edge = eb;
-    int8_t *in_xy = xa, *out_xy = xb;
     uint32_t tmpnr = 0;
     uint32_t n = 3;
     inlist[0] = v0;
@@ -280,7 +275,6 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
     inlist[2] = v2;
     for (int i = 0; i < 3; ++i) {
         in_vflag[i] = in_edge[i] = true;  // decomposition: DRAW_PIPE_EDGE_FLAG_ALL
-        in_xy[i] = -1;
     }
 
     while (clipmask && n >= 3) {
@@ -289,7 +283,6 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         const float* vert_prev = inlist[0];
         bool vflag_prev = in_vflag[0];
         bool edge_prev = in_edge[0];
-        int8_t xy_prev = in_xy[0];
         const bool user_plane = plane >= kClipUserShift;
         float dp_prev = plane_distance(cfg, vert_prev, plane);
         if (is_inf_or_nan(dp_prev)) {
@@ -300,7 +293,6 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         inlist[n] = inlist[0];  // close the polygon without rotating it
         in_vflag[n] = in_vflag[0];
         in_edge[n] = in_edge[0];
-        in_xy[n] = in_xy[0];
         uint32_t outcount = 0;
         for (uint32_t i = 1; i <= n; ++i) {
             const float* vert = inlist[i];
@@ -314,7 +306,6 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
                 if (outcount >= kMaxClippedVertices) return 0;
                 out_vflag[outcount] = vflag_prev;
                 out_edge[outcount] = edge_prev;
-                out_xy[outcount] = xy_prev;
                 outlist[outcount++] = vert_prev;
                 different_sign = dp < 0.0f;
             } else {
@@ -331,9 +322,6 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
                 const bool going_out_user = dp < 0.0f && user_plane;
                 out_edge[outcount] = going_out_user ? true : edge_prev;
                 out_vflag[outcount] = going_out_user ? true : (dp < 0.0f ? false : vflag_prev);
-                out_xy[outcount] = plane < 4                                           ? static_cast<int8_t>(plane)
-                                   : user_plane && xy_prev >= 0 && xy_prev == in_xy[i] ? xy_prev
-                                                                                       : int8_t(-1);
                 outlist[outcount++] = nv;
                 const float denom = dp - dp_prev;
                 // Interpolate from the vertex nearer the plane so |t| <= 0.5.
@@ -352,13 +340,11 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
             vert_prev = vert;
             vflag_prev = in_vflag[i];
             edge_prev = in_edge[i];
-            xy_prev = in_xy[i];
             dp_prev = dp;
         }
         std::swap(inlist, outlist);
         std::swap(in_vflag, out_vflag);
         std::swap(in_edge, out_edge);
-        std::swap(in_xy, out_xy);
         n = outcount;
     }
     if (n < 3) return 0;
@@ -389,14 +375,11 @@ uint32_t clip_triangle_float(const ClipConfig& cfg, const float* v0, const float
         }
         if (!in_edge[i - 1]) flags &= static_cast<uint8_t>(~edge_middle);
         if (i == n - 1 && in_edge[i]) flags |= edge_last;
-        // draw_pipe_unfilled: edge k is drawn iff header flag k and tri.v[k]->edgeflag
-        uint8_t edges = 0, corners = 0;
-        for (int k = 0; k < 3; ++k) {
-            if (!(flags & (1u << k)) || !in_vflag[pos[k]]) continue;
-            edges |= static_cast<uint8_t>(1u << k);
-            if (in_xy[pos[k]] < 0) corners |= static_cast<uint8_t>(1u << k);
-        }
-        out[count++] = {{inlist[pos[0]], inlist[pos[1]], inlist[pos[2]]}, edges, corners};
+        // draw_pipe_unfilled: edge k (corner k) is drawn iff header flag k and tri.v[k]->edgeflag
+        uint8_t edges = 0;
+        for (int k = 0; k < 3; ++k)
+            if ((flags & (1u << k)) && in_vflag[pos[k]]) edges |= static_cast<uint8_t>(1u << k);
+        out[count++] = {{inlist[pos[0]], inlist[pos[1]], inlist[pos[2]]}, edges};
     }
     return count;
 }
@@ -407,11 +390,12 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
                        uint32_t m1, uint32_t m2, float* scratch, ClippedTriangle* out) {
     uint32_t clipmask = m0 | m1 | m2;
     if (clipmask == 0) {
-        out[0] = {{v0, v1, v2}, kAllEdges, kAllEdges};
+        out[0] = {{v0, v1, v2}, kAllEdges};
         return 1;
     }
     if ((m0 & m1 & m2) != 0) return 0;
     clipmask &= clip_planes(cfg);
+    if (!cfg.cut_xy) clipmask &= ~0xFu;  // polygonMode POINT: rejected whole by x/y, never cut (ClipConfig::cut_xy)
     bool imprecise = false;
     const uint32_t n = clip_triangle_float(cfg, v0, v1, v2, clipmask, scratch, out, &imprecise);
     // The precise clipper knows the frustum planes only: with a user plane cut, draw's result stands.

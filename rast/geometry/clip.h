@@ -30,6 +30,13 @@ struct ClipConfig {
     // |x|, |y| <= 2w. The clip mask (compute_clipmask) still tests the viewport, so a triangle crossing the
     // viewport edge enters the clipper, is cut only beyond the guard band, and is re-emitted as a fan.
     bool guard_band_xy = false;
+    // Off for polygonMode POINT: lavapipe rejects a triangle whose three vertices are outside one x/y plane, but cuts
+    // it along the z and user planes only, so a vertex outside the viewport stays a point that the draw region
+    // (viewport, scissor, framebuffer) bounds at rasterization. Found by experiment (cts quirks.unfilled.point_*:
+    // a vertex just right of the viewport is drawn in part; a cut at x = w would be a point on the edge, which draw's
+    // edge flags would draw and lavapipe does not; a vertex outside the right and near planes gets its near-plane
+    // point); where draw's source decides it was not found (draw_pipe_clip.c cuts every set plane).
+    bool cut_xy = true;
     // Re-clip in extended precision the triangles lavapipe's float clipper provably gets wrong (filled polygons;
     // clip_triangle_precise). Off: draw's result always, e.g. for polygonMode LINE/POINT (edge flags).
     bool precise_fallback = false;
@@ -65,11 +72,6 @@ inline constexpr uint8_t kAllEdges = 7;
 struct ClippedTriangle {
     const float* v[3];  // vertex records (inputs or scratch)
     uint8_t edges = kAllEdges;
-    // Corner bit k: v[k] is drawn by polygonMode POINT. The edge bit, except that a vertex the clipper created on
-    // an x or y frustum plane is never drawn as a point by lavapipe (found by experiment, cts quirks.unfilled.
-    // point_clipped_*: a coming-in vertex on the near plane is drawn with its interpolated size, one on an x/y
-    // plane is not, though its edges are drawn in LINE mode; the mechanism in draw was not pinned down).
-    uint8_t corners = kAllEdges;
 };
 
 // Clips one triangle whose vertices have clip masks m0..m2 (compute_clipmask). Returns the number of triangles
@@ -98,7 +100,8 @@ uint32_t clip_triangle(const ClipConfig& cfg, const float* v0, const float* v1, 
 // triangle again with 237-bit positions (clip_precise.cpp) and hands setup the rounded result.
 uint32_t clip_triangle_precise(const ClipConfig& cfg, const float* v0, const float* v1, const float* v2,
                                uint32_t clipmask, float* scratch, ClippedTriangle* out);
-// The tests of that decision: inputs with an exact answer in lavapipe's float environment (finite, |w| < 2^126),
+// The tests of that decision: inputs with an exact answer in lavapipe's float environment (finite, |w| < 2^126 or
+// x, y, z at most 2^-64 |w|, where FTZ's centre is the exact projection),
 // and float output that lavapipe's setup cannot rasterize faithfully.
 bool clip_inputs_finite(const float* v0, const float* v1, const float* v2);
 bool clip_needs_precision(const float* v0, const float* v1, const float* v2, const ClippedTriangle* out, uint32_t n);

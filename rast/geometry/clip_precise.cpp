@@ -48,7 +48,13 @@ bool clip_inputs_finite(const float* v0, const float* v1, const float* v2) {
             if (!std::isfinite(clip_pos(vert)[c])) return false;  // no exact answer: lavapipe's result stands
         // |w| >= 2^126: lavapipe's FTZ flushes 1/w and puts the vertex on the viewport's centre; that float
         // environment defines the vertex, and tilevk follows it (rast/geometry/README.md, "Extreme coordinates").
-        if (std::fabs(clip_pos(vert)[3]) >= 0x1p126f) return false;
+        // Unless x, y and z are so small beside w (at most 2^-64 |w|) that the exact projection is the centre too,
+        // within 2^-49 px on any viewport: then the answer is exact either way (seeds 2215 and 6638).
+        const float w = std::fabs(clip_pos(vert)[3]);
+        const float centred = w * 0x1p-64f;
+        if (w >= 0x1p126f && !(std::fabs(clip_pos(vert)[0]) <= centred && std::fabs(clip_pos(vert)[1]) <= centred &&
+                               std::fabs(clip_pos(vert)[2]) <= centred))
+            return false;
     }
     return true;
 }
@@ -156,9 +162,9 @@ uint32_t clip_triangle_precise(const ClipConfig& cfg, const float* v0, const flo
     uint32_t count = 0;
     for (uint32_t i = 2; i < n; ++i) {
         if (cfg.flatshade_first)
-            out[count++] = {{first, in[i - 1].record, in[i].record}, kAllEdges, kAllEdges};
+            out[count++] = {{first, in[i - 1].record, in[i].record}, kAllEdges};
         else
-            out[count++] = {{in[i - 1].record, in[i].record, first}, kAllEdges, kAllEdges};
+            out[count++] = {{in[i - 1].record, in[i].record, first}, kAllEdges};
     }
     return count;
 }

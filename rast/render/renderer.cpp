@@ -416,6 +416,7 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     plan.ccfg.clip_halfz = pipe.clip_halfz;
     plan.ccfg.flatshade_first = pipe.flatshade_first;
     plan.ccfg.guard_band_xy = fb_.linear_mode;
+    plan.ccfg.cut_xy = pipe.polygon_mode != PolygonMode::kPoint;
     // Filled polygons only: the unfilled stage needs draw's edge flags, which the precise clipper does not keep.
     plan.ccfg.precise_fallback = pipe.polygon_mode == PolygonMode::kFill || plan.verts_per_prim != 3;
     plan.ccfg.samples = fb_.samples;
@@ -675,7 +676,7 @@ void Renderer::emit_unfilled(DrawPlan& plan, uint32_t draw_index, const DrawReco
         }
     } else {
         for (int k = 0; k < 3; ++k)
-            if (tri.corners & (1u << k))
+            if (tri.edges & (1u << k))
                 vbuf_primitive(draw_index, rec, &u[k], &vid[k],
                                geometry::attrib(u[k], rec.varyings.point_size_slot())[0], front);
     }

@@ -115,7 +115,6 @@ TEST(ClipEdgeFlags, UnclippedTriangleDrawsEverything) {
     ClippedTriangle out[kMaxClippedTriangles];
     ASSERT_EQ(clip_triangle(config(), a.f, b.f, c.f, 0, 0, 0, scratch.data(), out), 1u);
     EXPECT_EQ(out[0].edges, 7);
-    EXPECT_EQ(out[0].corners, 7);
 }
 
 TEST(ClipEdgeFlags, RightPlaneCut) {
@@ -124,7 +123,7 @@ TEST(ClipEdgeFlags, RightPlaneCut) {
     // (v0, B, v2) flags middle|last.
     //   tri 0 edges: v0->A yes, A->B no (A's flag), B->v0 is inner (no flag)        -> 0b001
     //   tri 1 edges: v0->B inner, B->v2 yes, v2->v0 yes                             -> 0b110
-    // Corners: A and B were made on an x plane: never points. tri 0: v0; tri 1: v2.
+    // polygonMode LINE; POINT makes no x/y cut (PointModeCutsNoXyPlane).
     Rec v0 = rec(-0.5f, 0, 0.5f, 1), v1 = rec(2, 0.2f, 0.5f, 1), v2 = rec(0, 0.8f, 0.5f, 1);
     std::vector<float> scratch(12 * kClipScratchVertices);
     ClippedTriangle out[kMaxClippedTriangles];
@@ -133,14 +132,38 @@ TEST(ClipEdgeFlags, RightPlaneCut) {
     EXPECT_EQ(out[1].v[2], v2.f);
     EXPECT_EQ(out[0].edges, 0b001);
     EXPECT_EQ(out[1].edges, 0b110);
-    EXPECT_EQ(out[0].corners, 0b001);
-    EXPECT_EQ(out[1].corners, 0b100);
+}
+
+// polygonMode POINT (ClipConfig::cut_xy off): the same triangle is not cut at x = w. It still goes through draw's
+// clipper, which re-emits it as a one-triangle fan with every flag, so v1, outside the viewport, stays a corner
+// (lavapipe draws the part of its point inside the viewport: cts quirks.unfilled.point_outside_vertex_*). Three
+// vertices outside one x/y plane still reject the triangle.
+TEST(ClipEdgeFlags, PointModeCutsNoXyPlane) {
+    Rec v0 = rec(-0.5f, 0, 0.5f, 1), v1 = rec(2, 0.2f, 0.5f, 1), v2 = rec(0, 0.8f, 0.5f, 1);
+    std::vector<float> scratch(12 * kClipScratchVertices);
+    ClippedTriangle out[kMaxClippedTriangles];
+    ClipConfig c = config();
+    c.cut_xy = false;
+    ASSERT_EQ(clip_triangle(c, v0.f, v1.f, v2.f, 0, 1, 0, scratch.data(), out), 1u);
+    EXPECT_EQ(out[0].v[0], v0.f);
+    EXPECT_EQ(out[0].v[1], v1.f);
+    EXPECT_EQ(out[0].v[2], v2.f);
+    EXPECT_EQ(out[0].edges, 7);
+    EXPECT_EQ(clip_triangle(c, v0.f, v1.f, v2.f, 1, 1, 1, scratch.data(), out), 0u);
+    // Outside the right and the near plane: only the near plane cuts. The vertex coming back in on v1->v2 lies at
+    // z = 0 and x = 1 (window 64: where the x cut would have put a corner too) and is a corner (v1's flag).
+    Rec n1 = rec(2, 0.2f, -0.5f, 1);
+    ASSERT_EQ(clip_triangle(c, v0.f, n1.f, v2.f, 0, 1 | 16, 0, scratch.data(), out), 2u);
+    EXPECT_EQ(out[1].v[0], v0.f);
+    EXPECT_EQ(out[1].edges & 0b010, 0b010);
+    EXPECT_FLOAT_EQ(out[1].v[1][0], 1.0f);
+    EXPECT_FLOAT_EQ(out[1].v[1][2], 0.0f);
 }
 
 TEST(ClipEdgeFlags, NearPlaneComingInVertexIsAPoint) {
     // v0 behind z = 0: (v0, v1, v2) -> (B, v1, v2, C), B coming in on the v0->v1 edge (flag of v0 = 1), C going
     // out on v2->v0 (flag 0). Fan around B: (B, v1, v2): first|middle -> B->v1 yes, v1->v2 yes -> 0b011;
-    // (B, v2, C): middle|last -> v2->C yes, C->B hidden by C's flag -> 0b010. Corners: B is a z-plane vertex.
+    // (B, v2, C): middle|last -> v2->C yes, C->B hidden by C's flag -> 0b010. Corners: the same bits.
     Rec v0 = rec(-0.8f, -0.8f, -0.5f, 1), v1 = rec(0.8f, -0.6f, 0.5f, 1), v2 = rec(0.1f, 0.9f, 0.9f, 1);
     std::vector<float> scratch(12 * kClipScratchVertices);
     ClippedTriangle out[kMaxClippedTriangles];
@@ -148,8 +171,6 @@ TEST(ClipEdgeFlags, NearPlaneComingInVertexIsAPoint) {
     EXPECT_EQ(out[0].v[1], v1.f);
     EXPECT_EQ(out[0].edges, 0b011);
     EXPECT_EQ(out[1].edges, 0b010);
-    EXPECT_EQ(out[0].corners, 0b011);
-    EXPECT_EQ(out[1].corners, 0b010);
 }
 
 // --- unfilled stages ---

@@ -225,6 +225,35 @@ TEST(Extreme, OverflowedPlaneDistanceIsRecomputed) {
     EXPECT_GE(got, expect);
 }
 
+// A vertex at w = FLT_MAX with x, y, z near 1 (at most 2^-64 w) projects to the viewport's centre exactly as FTZ
+// puts it, so the triangle has an exact answer. The edge from the w = 1e-20 vertex (past the right, bottom and far
+// planes) back to it is cut at t = 0.986 / FLT_MAX, which FTZ flushes to 0: draw keeps the w = 1e-20 vertex, 4e21 px
+// away, past llvmpipe's snap range (cts extreme.regression.w_flt_max_flushed_t, seed 6638). The precise fallback
+// draws what homogeneous edge functions say.
+TEST(Extreme, FlushedCutToAFltMaxWVertexIsRecomputed) {
+    const ScopedFlushDenormals ftz;
+    const float max = std::numeric_limits<float>::max();
+    const float p[3][4] = {{2.70247436f, 1.28784764f, 0.352528572f, max},
+                           {-0.251885474f, 1.88253736f, 0.797676623f, 1.30979061f},
+                           {0.985703468f, 1.13436317f, 0.278056145f, 1e-20f}};
+    const Tri tri(p);
+    std::vector<float> scratch;
+    ClippedTriangle out[kMaxClippedTriangles];
+    const uint32_t n_float = tri.clip(false, &scratch, out);
+    bool far_vertex = false;  // draw's polygon keeps a vertex lavapipe's setup snaps to INT_MIN
+    for (uint32_t t = 0; t < n_float; ++t)
+        for (const float* r : out[t].v) far_vertex |= std::fabs(win_pos(r)[0]) > 1e20f;
+    EXPECT_TRUE(far_vertex);
+    const uint32_t n = tri.clip(true, &scratch, out);
+    ASSERT_GT(n, 0u);
+    uint64_t near = 0;
+    const uint64_t expect = homogeneous_count(p, &near);
+    const uint64_t got = covered_pixels(out, n);
+    EXPECT_GT(expect, 1000u);
+    EXPECT_LE(got, expect + near);
+    EXPECT_GE(got, expect);
+}
+
 // |w| >= 2^126: 1/w is subnormal and lavapipe's FTZ flushes it to 0, so the viewport transform puts the vertex on
 // the viewport's centre with depth = translate, whatever its x/w, y/w, z/w: tilevk follows that float environment
 // ((5e37, -2.5e37, 5e37, 1e38) is NDC (0.5, -0.25, 0.5) but lands on (128, 128, 0) on 256x256).

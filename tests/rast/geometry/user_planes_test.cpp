@@ -85,7 +85,6 @@ TEST(UserPlanes, TriangleCutByHandKeepsTheEdgeAlongThePlane) {
     EXPECT_EQ(A[12], 0.0f);       // the distance is interpolated like any perspective attribute
     EXPECT_EQ(out[0].edges, 3u);  // v0->A and A->B
     EXPECT_EQ(out[1].edges, 6u);  // B->v2 and v2->v0
-    EXPECT_EQ(out[0].corners, 3u);
 }
 
 TEST(UserPlanes, SecondPlaneReadsTheInterpolatedDistance) {
@@ -162,23 +161,26 @@ TEST(UserPlanes, CullDistanceNeedsEveryVertexOutForOneDistance) {
     EXPECT_TRUE(cull_distance_keep(config(2, 0), tri, 3));  // no cull distances: nothing culled
 }
 
-TEST(UserPlanes, VertexOnAnXYPlaneEdgeIsNoCorner) {
-    // v0 (0, -2) is above the top plane (y + w < 0), v1 (0.5, 0.5), v2 (-0.5, 0.5); distance -x + 0.1.
-    // Top plane: P = (0.2, -1) coming in on v0->v1, Q = (-0.2, -1) going out on v2->v0: (P, v1, v2, Q), distances
-    // (-0.1, -0.4, 0.6, 0.3). User plane: R coming in on v1->v2, then v2, Q, and S = (0.1, -1) going out on Q->P, an
-    // edge along the top plane: fan (R, v2, Q), (R, Q, S). S's edge R->... is drawn (user plane: the going-out
-    // vertex's edge flag is set), but S lies on the top plane and is no point in polygonMode POINT (as lavapipe).
+TEST(UserPlanes, PointModeCutsTheUserPlaneOnly) {
+    // v0 (0, -2) is above the top plane (y + w < 0), v1 (0.5, 0.5), v2 (-0.5, 0.5); distances 0.1, -0.4, 0.6. In
+    // polygonMode POINT (cut_xy off) the top plane cuts nothing, so the user plane cuts the whole triangle: A going
+    // out on v0->v1 at t = 0.2 (0.1, -1.5), drawn as a point (a user plane sets the going-out flags), B coming in on
+    // v1->v2 at t = 0.4 (0.1, 0.5) with v1's flag. Fan (v0, A, B), (v0, B, v2); v0 stays a corner above the viewport.
     std::vector<float> scratch(kClipScratchVertices * kFloats);
     ClippedTriangle out[kMaxClippedTriangles];
-    const ClipConfig cfg = config(1);
+    ClipConfig cfg = config(1);
+    cfg.cut_xy = false;
     Vtx v0 = vert(0, -2, 0, {0.1f}), v1 = vert(0.5f, 0.5f, 0, {-0.4f}), v2 = vert(-0.5f, 0.5f, 0, {0.6f});
     ASSERT_EQ(mask(v0, 1), kClipTop);
     ASSERT_EQ(clip_triangle(cfg, v0.f, v1.f, v2.f, mask(v0, 1), mask(v1, 1), mask(v2, 1), scratch.data(), out), 2u);
-    EXPECT_EQ(out[0].v[1], v2.f);
-    const float* S = out[1].v[2];
-    EXPECT_NEAR(S[0], 0.1f, 1e-6f);
-    EXPECT_EQ(S[1], -1.0f);
-    EXPECT_EQ(out[0].corners, 3u);  // R and v2; Q was made going out on the top plane
-    EXPECT_TRUE(out[1].edges & 4u);
-    EXPECT_EQ(out[1].corners & 4u, 0u);
+    EXPECT_EQ(out[0].v[0], v0.f);
+    const float* A = out[0].v[1];
+    const float* B = out[0].v[2];
+    EXPECT_NEAR(A[0], 0.1f, 1e-6f);
+    EXPECT_NEAR(A[1], -1.5f, 1e-6f);
+    EXPECT_NEAR(B[0], 0.1f, 1e-6f);
+    EXPECT_NEAR(B[1], 0.5f, 1e-6f);
+    EXPECT_EQ(out[0].edges, 3u);  // v0 and A
+    EXPECT_EQ(out[1].v[2], v2.f);
+    EXPECT_EQ(out[1].edges, 6u);  // B and v2
 }
