@@ -86,6 +86,7 @@ class LaneEmitter {
     void def(uint64_t key, Ymm y);
     void def(uint32_t r, const Ymm& y) { def(reg_key(r), y); }
     void end_instruction();
+    bool dead(const Inst& in) const;  // nothing reads its results: not emitted
     bool op(const Inst& in);
     // op() by family (lanes.cpp): nullopt when in.op is not of the family, else op()'s answer
     std::optional<bool> float_op(const Inst& in);
@@ -126,6 +127,7 @@ class LaneEmitter {
     const Uses* uses_ = nullptr;  // of the instruction being emitted
     int half_ = 0;
     bool overflow_ = false;
+    uint32_t uniform_slot_ = kNoReg;  // the slot whose data and size r8, r9 hold (load_buf_uniform)
 };
 
 // The memory sync ops as the interpreter's lane loops (memory_ops.cpp), at a sync point (every value in its home,

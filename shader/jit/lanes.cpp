@@ -41,10 +41,6 @@ constexpr uint32_t fbits(float f) {
     return std::bit_cast<uint32_t>(f);
 }
 
-// A missing descriptor reads through kNoDescriptor; a failed bounds check reads kZeroWord.
-const Descriptor kNoDescriptor{};
-const uint32_t kZeroWord = 0;
-
 }  // namespace
 
 // --- constant pool ----------------------------------------------------------------------------------------------
@@ -208,9 +204,19 @@ void LaneEmitter::end_instruction() {
 
 bool LaneEmitter::pass(size_t first, size_t end, const std::vector<Uses>& uses, int h) {
     half_ = h;
+    uniform_slot_ = kNoReg;  // the code before this pass (a sync op, the other half's end) may use r8-r11
     for (size_t i = first; i < end; ++i) {
         uses_ = &uses[i - first];
         const Inst& in = p_.code[i];
+        if (dead(in)) {  // its results' old values (maybe its own operands) are gone all the same
+            for (int k = 0; k < uses_->n; ++k)
+                if (uses_->write[k] && where(uses_->key[k]) >= 0) {
+                    phys_[where(uses_->key[k])] = Phys{};
+                    where(uses_->key[k]) = -1;
+                }
+            end_instruction();
+            continue;
+        }
         if (!(in.op == Op::LoadShared ? load_shared(in) : op(in)) || overflow_) return false;
         end_instruction();
     }
@@ -219,6 +225,25 @@ bool LaneEmitter::pass(size_t first, size_t end, const std::vector<Uses>& uses, 
         ph = Phys{};
     }
     return true;
+}
+
+// Whether every result of `in` is a segment-local register that nothing reads before the segment ends or writes
+// it again: such a value would never leave its YMM register (def() does not write local registers through, and
+// alloc() spills only values read later), so nothing can see it and the instruction is not emitted. Lane-wise ops
+// write nothing but their results (memory writes are sync ops); an op whose footprint lists more writes than its
+// Uses entry holds, or that writes a local word, is emitted. E.g. meshes_lit's shader loads the push constant's
+// whole vec4 and reads three words.
+bool LaneEmitter::dead(const Inst& in) const {
+    const Footprint f = footprint(in);
+    if (f.num_writes == 0 || f.num_writes > Footprint::kMax) return false;
+    int found = 0;
+    for (int k = 0; k < uses_->n; ++k) {
+        if (!uses_->write[k]) continue;
+        const uint64_t key = uses_->key[k];
+        if ((key >> 32) != 1 || !an_.local[uint32_t(key)] || uses_->next[k] != kNever) return false;
+        ++found;
+    }
+    return found == f.num_writes;
 }
 
 // --- lowerings --------------------------------------------------------------------------------------------------
@@ -408,32 +433,6 @@ bool LaneEmitter::load_local(const Inst& in) {
     return true;
 }
 
-// One bounds-checked read broadcast to every lane (exec.cpp LoadBufUniform), without branches.
-void LaneEmitter::load_buf_uniform(const Inst& in) {
-    Ymm d = temp();
-    if (in.imm >= p_.num_slots) {
-        a_.vpxor(d, d, d);
-        def(in.d, d);
-        return;
-    }
-    using namespace x86;
-    a_.mov(rax, qword_ptr(kSlotsBase, int32_t(in.imm) * 8));
-    a_.mov(rcx, reinterpret_cast<uint64_t>(&kNoDescriptor));
-    a_.test(rax, rax);
-    a_.cmovz(rax, rcx);
-    a_.mov(rdx, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, data))));
-    a_.mov(rsi, reinterpret_cast<uint64_t>(&kZeroWord));
-    a_.mov(rdi, uint64_t(in.extra));
-    a_.add(rdi, rdx);
-    a_.mov(rcx, uint64_t(in.extra) + 4);
-    a_.cmp(qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, size))), rcx);
-    a_.cmovb(rdi, rsi);  // size < extra + 4
-    a_.test(rdx, rdx);
-    a_.cmovz(rdi, rsi);  // no data
-    a_.vpbroadcastd(d, dword_ptr(rdi));
-    def(in.d, d);
-}
-
 // d = fn(a, b) for this half's eight lanes, in their homes (helpers.h LaneFn): a libm op without leaving the
 // segment. The call clobbers every YMM register, so first the values this segment still reads go to their homes
 // (only segment-local registers can be missing there: everything else is written through) and the machine
@@ -459,6 +458,7 @@ void LaneEmitter::lane_call(const Inst& in, const void* fn) {
     a_.mov(rax, reinterpret_cast<uint64_t>(fn));
     a_.vzeroupper();
     a_.call(rax);
+    uniform_slot_ = kNoReg;  // the call clobbered r8-r11 (load_buf_uniform)
 }
 
 // The op families below mirror shader/exec_kernels.h; each answers nullopt for an op not of its family, else

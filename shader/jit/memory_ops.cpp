@@ -1,10 +1,11 @@
-// Memory ops of the compiled tier: LoadBuf from one buffer and compute's LoadShared inside segments (a load, a
-// broadcast or a gather per 8-lane half), the sync ops StoreShared and AtomicShared, and StoreBuf to one buffer, the
-// sync ops as the interpreter's lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the same words
-// in the same lane order, so the same memory and the same atomic results. Shared memory is one flat block per workgroup
-// (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the shared atomics are plain
-// read-modify-writes, as in the interpreter.
+// Memory ops of the compiled tier: LoadBufUniform, LoadBuf from one buffer and compute's LoadShared inside segments
+// (a load, a broadcast or a gather per 8-lane half), the sync ops StoreShared and AtomicShared, and StoreBuf to one
+// buffer, the sync ops as the interpreter's lane loops (exec_atomic.h, exec_memory.h) written out for the 16 lanes: the
+// same words in the same lane order, so the same memory and the same atomic results. Shared memory is one flat block
+// per workgroup (not SoA), reached through Frame::shared; a workgroup runs on one thread, so the shared atomics are
+// plain read-modify-writes, as in the interpreter.
 #include <cstddef>
+#include <cstdint>
 
 #include "shader/jit/codegen.h"
 #include "shader/jit/jit.h"
@@ -15,8 +16,9 @@ using namespace asmjit;
 
 namespace {
 
-// A missing descriptor reads through kNoBuffer (no data, size 0).
+// A missing descriptor reads through kNoBuffer (no data, size 0); a failed uniform bounds check reads kZeroWord.
 const Descriptor kNoBuffer{};
+const uint32_t kZeroWord = 0;
 
 // Word `lane` of IR register r in the register file.
 x86::Mem lane_of(uint32_t r, int lane) {
@@ -176,6 +178,49 @@ bool emit_store_buf(x86::Assembler& a, const ProgramImpl& p, const Inst& in) {
     }
     a.bind(done);
     return true;
+}
+
+// One bounds-checked read broadcast to every lane (exec.cpp LoadBufUniform), without branches. The descriptor's
+// data pointer and size are resolved once per slot for the loads that follow in the segment (a shader reads its
+// push constants and uniforms as runs of such loads: meshes_lit's tint took 14 instructions a word, now 4 after
+// the resolution): r8 = the data, r9 = the size, 0 when there is no data (so every bound check fails, as the
+// interpreter's `data &&`), r11 = the zero word. No lane-wise lowering touches r8-r11; a lane call (a C++
+// call) clobbers them, so it forgets the resolution (uniform_slot_), and so does the end of the pass.
+void LaneEmitter::load_buf_uniform(const Inst& in) {
+    Ymm d = temp();
+    if (in.imm >= p_.num_slots) {
+        a_.vpxor(d, d, d);
+        def(in.d, d);
+        return;
+    }
+    using namespace x86;
+    if (uniform_slot_ != in.imm) {
+        a_.mov(rax, qword_ptr(kSlotsBase, int32_t(in.imm) * 8));
+        a_.mov(rcx, reinterpret_cast<uint64_t>(&kNoBuffer));
+        a_.test(rax, rax);
+        a_.cmovz(rax, rcx);
+        a_.mov(r8, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, data))));
+        a_.mov(r9, qword_ptr(rax, int32_t(offsetof(Descriptor, buffer) + offsetof(BufferView, size))));
+        a_.xor_(ecx, ecx);
+        a_.test(r8, r8);
+        a_.cmovz(r9, rcx);  // no data: size 0
+        a_.mov(r11, reinterpret_cast<uint64_t>(&kZeroWord));
+        uniform_slot_ = in.imm;
+    }
+    // extra + 4 <= size, compared in 64 bits as the interpreter does (extra < 2^32: no overflow)
+    const uint64_t end = uint64_t(in.extra) + 4;
+    if (end <= uint64_t(INT32_MAX)) {
+        a_.lea(rdi, qword_ptr(r8, int32_t(in.extra)));
+        a_.cmp(r9, int32_t(end));
+    } else {
+        a_.mov(rdi, uint64_t(in.extra));
+        a_.add(rdi, r8);
+        a_.mov(rcx, end);
+        a_.cmp(r9, rcx);
+    }
+    a_.cmovb(rdi, r11);  // size < extra + 4, or no data
+    a_.vpbroadcastd(d, dword_ptr(rdi));
+    def(in.d, d);
 }
 
 // exec_memory.h op_load_buf for a single buffer (in.n == 1) as one masked gather: a lane reads the word at byte

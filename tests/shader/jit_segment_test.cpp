@@ -1,0 +1,162 @@
+// The compiled tier's segment-level shortcuts against the interpreter (shader/jit/lanes.cpp): runs of LoadBufUniform
+// sharing one resolution of their descriptor (load_buf_uniform), and instructions whose results nothing reads left
+// out (LaneEmitter::dead). Both must leave every register the host or a later segment can see as the interpreter
+// leaves it.
+#include <gtest/gtest.h>
+#include <xmmintrin.h>
+
+#include <bit>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "shader/ir.h"
+#include "shader/jit/analysis.h"
+#include "shader/jit/jit.h"
+
+using namespace tilevk::shader;
+
+namespace {
+
+class JitSegment : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        if (!jit::host_supported()) GTEST_SKIP() << "the CPU lacks AVX2/FMA: there is no compiled tier to compare";
+        if (!jit::enabled()) GTEST_SKIP() << "TILEVK_JIT=0: the compiled tier is off";
+    }
+};
+
+// Runs `p` on both tiers from the same registers; "" when every register that is not segment-local (the ones the
+// host or a later segment reads) has the same bits, else the first difference.
+std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descriptor*>& slots, std::mt19937& rng) {
+    std::string why;
+    auto code = jit::compile(p, &why);
+    if (!code) return "not compiled: " + why;
+    const jit::Analysis an = jit::analyze(p);
+    Scratch::Impl a, b;
+    a.regs.resize(size_t(p.num_regs) * kLanes);
+    for (auto& w : a.regs) w = uint32_t(rng());
+    a.local.assign(size_t(p.local_words) * kLanes, 0);
+    a.slots = slots;
+    b.regs = a.regs, b.local = a.local, b.slots = a.slots;
+    jit::run(*code, a);
+    execute(p, b);
+    for (uint32_t r = 0; r < p.num_regs; ++r) {
+        if (an.local[r]) continue;
+        for (int l = 0; l < kLanes; ++l)
+            if (a.regs[r * kLanes + l] != b.regs[r * kLanes + l])
+                return "register " + std::to_string(r) + " lane " + std::to_string(l) + ": compiled " +
+                       std::to_string(a.regs[r * kLanes + l]) + ", interpreter " +
+                       std::to_string(b.regs[r * kLanes + l]);
+    }
+    return "";
+}
+
+// registers 0..9: the loads' results, 10: the lane call's, all read after a sync point (so not segment-local)
+constexpr uint32_t kCount = 10;
+// lane calls (lanes.cpp lane_call): gallivm's pow and sin, libm's atan2, fmod and asinh lane by lane
+constexpr Op kCalls[] = {Op::Pow, Op::Sin, Op::Atan2, Op::FRem, Op::Asinh};
+
+// A run of uniform loads in one segment: slots alternating between two buffers of different sizes, a descriptor
+// without data, a missing one and one past the table, at offsets inside, at the last word, straddling the end and
+// past it (also past 2^31), with a lane call among them (a C++ call: gallivm's or libm's code, which may use the
+// registers holding the resolution).
+// Then a sync point (JumpIfNone) and reads of every result from the next segment.
+TEST_F(JitSegment, UniformLoadsSharingADescriptorMatchTheInterpreter) {
+    std::vector<uint8_t> big(64), small(24);
+    for (size_t i = 0; i < big.size(); ++i) big[i] = uint8_t(i * 37 + 1);
+    for (size_t i = 0; i < small.size(); ++i) small[i] = uint8_t(i * 91 + 7);
+    Descriptor full, part, no_data;
+    full.buffer = BufferView{big.data(), big.data(), big.size()};
+    part.buffer = BufferView{small.data(), small.data(), small.size()};
+    no_data.buffer = BufferView{nullptr, nullptr, 64};
+    const std::vector<const Descriptor*> slots = {&full, &part, &no_data, nullptr};
+    const uint32_t offsets[] = {0, 4, 16, 20, 21, 24, 56, 60, 61, 64, 0x7FFFFFF8u, 0x7FFFFFFCu, 0xFFFFFFFCu};
+    std::mt19937 rng(11);
+    int programs = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        ProgramImpl p;
+        p.num_regs = kCount + 4;
+        p.local_words = 1;
+        p.reg_live = kCount + 2, p.reg_entry_mask = kCount + 3;
+        p.num_slots = uint32_t(slots.size());
+        // mostly runs on one slot (the resolution reused), sometimes another slot or a slot past the table
+        uint32_t slot = uint32_t(rng() % 2);
+        const uint32_t call_at = uint32_t(rng() % (kCount + 1));  // kCount: no call
+        const Op call = kCalls[rng() % std::size(kCalls)];
+        for (uint32_t r = 0; r < kCount; ++r) {
+            if (rng() % 4 == 0) slot = uint32_t(rng() % (slots.size() + 1));
+            if (r == call_at) p.code.push_back(Inst{call, 0, kCount, kCount + 1, kCount + 1});
+            Inst in{Op::LoadBufUniform, 0, r, kNoReg, kNoReg, kNoReg, slot};
+            in.extra = offsets[rng() % std::size(offsets)];
+            p.code.push_back(in);
+        }
+        const uint32_t after = uint32_t(p.code.size()) + 1;
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, kCount + 2, kNoReg, kNoReg, after});
+        for (uint32_t r = 0; r <= kCount; ++r) p.code.push_back(Inst{Op::Mov, 0, kCount + 1, r});  // and Pow's
+        p.code.push_back(Inst{Op::Halt});
+        const std::string diff = compare_tiers(p, slots, rng);
+        ASSERT_EQ(diff, "") << "program " << trial;
+        ++programs;
+    }
+    EXPECT_EQ(programs, 200);
+}
+
+// Results nothing reads (a segment-local register written twice, a dead load, a dead libm call) are not emitted,
+// and the live ones around them still come out right: the registers read after the sync point equal the
+// interpreter's, and the code is byte for byte as long as the same program's without the dead instructions.
+TEST_F(JitSegment, DeadResultsAreLeftOutAndLiveOnesKept) {
+    std::vector<uint8_t> bytes(32);
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(i * 13 + 5);
+    Descriptor buf;
+    buf.buffer = BufferView{bytes.data(), bytes.data(), bytes.size()};
+    const std::vector<const Descriptor*> slots = {&buf};
+    enum Variant { kDead, kWithout, kRead };
+    auto program = [](Variant v) {
+        ProgramImpl p;
+        p.num_regs = 12;
+        p.local_words = 1;
+        p.reg_live = 10, p.reg_entry_mask = 11;
+        p.num_slots = 1;
+        Inst load{Op::LoadBufUniform, 0, 5, kNoReg, kNoReg, kNoReg, 0};
+        load.extra = 8;
+        if (v != kWithout) p.code.push_back(Inst{Op::FMul, 0, 4, 0, 1});  // dead: overwritten before any read
+        p.code.push_back(Inst{Op::FAdd, 0, 4, 0, 0});                     // live: read by the FSub
+        if (v != kWithout) {
+            p.code.push_back(load);                       // dead unless read (kRead)
+            p.code.push_back(Inst{Op::Pow, 0, 6, 0, 1});  // dead unless read (kRead)
+        }
+        p.code.push_back(Inst{Op::FSub, 0, 2, 4, 1});  // r2, r3 read after the sync point
+        p.code.push_back(Inst{Op::FMul, 0, 3, 4, 0});
+        if (v == kRead) {
+            p.code.push_back(Inst{Op::FAdd, 0, 7, 5, 6});
+            p.code.push_back(Inst{Op::FAdd, 0, 3, 3, 7});
+        }
+        const uint32_t after = uint32_t(p.code.size()) + 1;
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, 10, kNoReg, kNoReg, after});
+        p.code.push_back(Inst{Op::FAdd, 0, 8, 2, 3});
+        p.code.push_back(Inst{Op::Halt});
+        return p;
+    };
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr((saved_csr & ~0x6000u) | 0x8040u);
+    std::mt19937 rng(3);
+    for (Variant v : {kDead, kRead})
+        for (int trial = 0; trial < 64; ++trial)
+            ASSERT_EQ(compare_tiers(program(v), slots, rng), "") << "variant " << int(v);
+    _mm_setcsr(saved_csr);
+    const jit::Analysis an = jit::analyze(program(kDead));
+    ASSERT_TRUE(an.local[4] && an.local[5] && an.local[6]) << "the test's dead registers are not segment-local";
+    size_t bytes_of[3] = {};
+    for (Variant v : {kDead, kWithout, kRead}) {
+        std::string why;
+        auto code = jit::compile(program(v), &why);
+        ASSERT_NE(code, nullptr) << why;
+        bytes_of[v] = code->code_bytes;
+    }
+    EXPECT_EQ(bytes_of[kDead], bytes_of[kWithout]);
+    EXPECT_GT(bytes_of[kRead], bytes_of[kDead]);  // read, they are emitted
+}
+
+}  // namespace
