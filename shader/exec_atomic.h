@@ -18,8 +18,10 @@
 namespace tilevk::shader::exec {
 namespace {
 
-// The value an atomic leaves in memory, given the old one, the operand v and the comparator.
-inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cmp) {
+// The value an integer atomic leaves in memory, given the old one, the operand v and the comparator: on U (uint32_t,
+// or uint64_t for kAtomicWide), S its signed twin.
+template <class U, class S>
+inline U integer_atomic_result(AtomicOp op, U old, U v, U cmp) {
     switch (op) {
         case AtomicOp::Load:
             return old;
@@ -31,9 +33,9 @@ inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cm
         case AtomicOp::IAdd:
             return old + v;
         case AtomicOp::SMin:
-            return int32_t(v) < int32_t(old) ? v : old;
+            return S(v) < S(old) ? v : old;
         case AtomicOp::SMax:
-            return int32_t(v) > int32_t(old) ? v : old;
+            return S(v) > S(old) ? v : old;
         case AtomicOp::UMin:
             return std::min(old, v);
         case AtomicOp::UMax:
@@ -44,6 +46,14 @@ inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cm
             return old | v;
         case AtomicOp::Xor:
             return old ^ v;
+        default:  // the float operations: 32-bit only (atomic_result; translate_atomic.cpp refuses the rest)
+            return old;
+    }
+}
+
+// The value a 32-bit atomic leaves in memory: the integer ones, and the float add, min and max.
+inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cmp) {
+    switch (op) {
         case AtomicOp::FAdd: {  // LLVM's atomicrmw fadd: old + v under the run's MXCSR, retried by compare-exchange
             // ADDSS with old first, as the compiled tier's (memory_ops.cpp), whichever NaN the compiler would pick
             const __m128 sum = _mm_add_ss(_mm_set_ss(std::bit_cast<float>(old)), _mm_set_ss(std::bit_cast<float>(v)));
@@ -55,38 +65,8 @@ inline uint32_t atomic_result(AtomicOp op, uint32_t old, uint32_t v, uint32_t cm
             const __m128 m = op == AtomicOp::FMin ? _mm_min_ss(x, o) : _mm_max_ss(x, o);
             return (old & 0x7FFFFFFFu) > 0x7F800000u ? v : std::bit_cast<uint32_t>(_mm_cvtss_f32(m));
         }
-    }
-    return old;
-}
-
-// The 64-bit integer form (kAtomicWide): the same operations on uint64_t / int64_t.
-inline uint64_t atomic_result64(AtomicOp op, uint64_t old, uint64_t v, uint64_t cmp) {
-    switch (op) {
-        case AtomicOp::Load:
-            return old;
-        case AtomicOp::Store:
-        case AtomicOp::Exchange:
-            return v;
-        case AtomicOp::CompareExchange:
-            return old == cmp ? v : old;
-        case AtomicOp::IAdd:
-            return old + v;
-        case AtomicOp::SMin:
-            return int64_t(v) < int64_t(old) ? v : old;
-        case AtomicOp::SMax:
-            return int64_t(v) > int64_t(old) ? v : old;
-        case AtomicOp::UMin:
-            return std::min(old, v);
-        case AtomicOp::UMax:
-            return std::max(old, v);
-        case AtomicOp::And:
-            return old & v;
-        case AtomicOp::Or:
-            return old | v;
-        case AtomicOp::Xor:
-            return old ^ v;
-        default:  // float operations are 32-bit only (translate_atomic.cpp refuses the rest)
-            return old;
+        default:
+            return integer_atomic_result<uint32_t, int32_t>(op, old, v, cmp);
     }
 }
 
@@ -98,7 +78,8 @@ inline uint64_t atomic_on_dword(AtomicOp op, uint64_t* word, uint64_t v, uint64_
         return 0;
     }
     uint64_t old = ref.load();
-    while (op != AtomicOp::Load && !ref.compare_exchange_weak(old, atomic_result64(op, old, v, cmp))) {
+    while (op != AtomicOp::Load &&
+           !ref.compare_exchange_weak(old, integer_atomic_result<uint64_t, int64_t>(op, old, v, cmp))) {
     }
     return old;
 }
@@ -170,7 +151,7 @@ inline uint32_t atomic_on_word(AtomicOp op, uint32_t* word, uint32_t v, uint32_t
             uint32_t& lo = mc.S[std::min<uint64_t>(uint64_t(in.imm) + a[l], in.n - 1)];
             uint32_t& hi = mc.S[std::min<uint64_t>(uint64_t(in.imm) + a[l] + 1, in.n - 1)];
             const uint64_t old = uint64_t(lo) | uint64_t(hi) << 32;
-            const uint64_t now = atomic_result64(op, old, pair_lane(c, l), pair_lane(d, l));
+            const uint64_t now = integer_atomic_result<uint64_t, int64_t>(op, old, pair_lane(c, l), pair_lane(d, l));
             lo = uint32_t(now), hi = uint32_t(now >> 32);
             set_pair_lane(d, l, old);
         }
