@@ -174,6 +174,8 @@ void add_basic_cases(CaseList& out) {
 void add_compute_shared_cases(CaseList& out);  // cases_compute_shared.cpp
 void add_compute_atomic_cases(CaseList& out);  // cases_compute_atomic.cpp
 void add_compute_atomic_float_cases(CaseList& out);  // cases_compute_atomic_float.cpp
+void add_compute_atomic_float2_cases(CaseList& out);  // cases_compute_atomic_float2.cpp
+void add_compute_atomic_int64_cases(CaseList& out);   // cases_compute_atomic_int64.cpp
 void add_compute_image_cases(CaseList& out);   // cases_compute_image.cpp
 void add_compute_store_cases(CaseList& out);   // cases_compute_stores.cpp
 
@@ -182,6 +184,8 @@ void add_compute_cases(CaseList& out) {
     add_compute_shared_cases(out);
     add_compute_atomic_cases(out);
     add_compute_atomic_float_cases(out);
+    add_compute_atomic_float2_cases(out);
+    add_compute_atomic_int64_cases(out);
     add_compute_image_cases(out);
     add_compute_store_cases(out);
 }

@@ -641,6 +641,19 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
             !f.shaderSharedFloat32AtomicAdd || !f.shaderImageFloat32Atomics || !f.shaderImageFloat32AtomicAdd)
             return "a 32-bit member of VkPhysicalDeviceShaderAtomicFloatFeaturesEXT";
     }
+    if (s.atomic_float_min_max) {
+        const VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT& f = c.atomic_float2;
+        if (!c.has_extension(VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME)) return "VK_EXT_shader_atomic_float2";
+        if (!f.shaderBufferFloat32AtomicMinMax || !f.shaderSharedFloat32AtomicMinMax ||
+            !f.shaderImageFloat32AtomicMinMax)
+            return "a Float32AtomicMinMax member of VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT";
+    }
+    if (s.atomic_int64) {
+        if (!c.has_extension(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME)) return "VK_KHR_shader_atomic_int64";
+        if (!c.features.shaderInt64) return "feature shaderInt64";
+        if (!c.atomic_int64.shaderBufferInt64Atomics || !c.atomic_int64.shaderSharedInt64Atomics)
+            return "feature shaderBufferInt64Atomics or shaderSharedInt64Atomics";
+    }
     for (const ComputeBuffer& b : s.buffers) {
         if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
         VkFormatProperties fp;

@@ -88,6 +88,10 @@ struct ComputeSpec {
     ComputeDraw draw;
     // The shaders use 32-bit float atomics (VK_EXT_shader_atomic_float: buffer, shared and image features, add too).
     bool atomic_float = false;
+    // ... and 32-bit float min / max (VK_EXT_shader_atomic_float2: buffer, shared and image MinMax features).
+    bool atomic_float_min_max = false;
+    // 64-bit integer atomics on buffers and shared memory (VK_KHR_shader_atomic_int64, with shaderInt64).
+    bool atomic_int64 = false;
 };
 
 // Records the steps on one device, submits, waits and reads back every plane.

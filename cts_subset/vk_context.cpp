@@ -36,6 +36,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME,
                                          VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME,
                                          VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME,
+                                         VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME,
+                                         VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME,
                                          VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME,
                                          VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME};
 
@@ -234,6 +236,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.depth_clip_enable, VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME);
         link(out.line_rasterization, VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME);
         link(out.atomic_float, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+        link(out.atomic_float2, VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
         link(out.custom_border_color, VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
@@ -256,6 +259,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         } else {
             link(storage8, VK_KHR_8BIT_STORAGE_EXTENSION_NAME);
             link(int8, VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME);
+            link(out.atomic_int64, VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME);
         }
         if (chain != nullptr) {
             auto features2 = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
@@ -266,6 +270,10 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             // ... except the one that needs VK_EXT_transform_feedback, which the subset never enables
             out.provoking_vertex.transformFeedbackPreservesProvokingVertex = VK_FALSE;
         }
+        if (spirv_target_vulkan_minor() >= 2 && out.has_extension(VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME)) {
+            out.atomic_int64.shaderBufferInt64Atomics = core12.shaderBufferInt64Atomics;  // enabled through core12
+            out.atomic_int64.shaderSharedInt64Atomics = core12.shaderSharedInt64Atomics;
+        }
         dci.pNext = chain;
         dci.enabledExtensionCount = uint32_t(enable.size());
         dci.ppEnabledExtensionNames = enable.data();
@@ -275,7 +283,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.extended_dynamic_state.pNext = out.extended_dynamic_state2.pNext = nullptr;
             out.color_write_enable.pNext = out.multi_draw.pNext = nullptr;
             out.provoking_vertex.pNext = out.depth_clip_enable.pNext = out.line_rasterization.pNext = nullptr;
-            out.atomic_float.pNext = nullptr;
+            out.atomic_float.pNext = out.atomic_float2.pNext = out.atomic_int64.pNext = nullptr;
             out.custom_border_color.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;

@@ -52,6 +52,12 @@ struct DeviceContext {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+    VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT atomic_float2{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_2_FEATURES_EXT};
+    // VK_KHR_shader_atomic_int64's features (on a Vulkan 1.2+ instance enabled through Vulkan 1.2's struct and
+    // copied here).
+    VkPhysicalDeviceShaderAtomicInt64Features atomic_int64{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT};
     bool has_extension(const char* name) const;

@@ -67,6 +67,14 @@ void add_extension_features(Features& f) {
     // stippled lines are refused at pipeline creation (pipeline.cpp translate_line_state).
     f.line_rasterization.rectangularLines = VK_TRUE;
     f.line_rasterization.bresenhamLines = VK_TRUE;
+    // VK_BORDER_COLOR_*_CUSTOM_EXT: the colour's bits, clamped to the view's format and put in the channels it
+    // stores as gallivm does (shader/texture_border.cpp format_border), so the sampler's format member is never needed.
+    f.custom_border_color.customBorderColors = VK_TRUE;
+    f.custom_border_color.customBorderColorWithoutFormat = VK_TRUE;
+}
+
+// The atomics beyond Vulkan 1.0's 32-bit integer ones.
+void add_atomic_features(Features& f) {
     // 32-bit float Load / Store / Exchange / OpAtomicFAddEXT on storage buffers, Workgroup memory and R32_SFLOAT
     // storage images and texel buffers (shader/translate_atomic.cpp, exec_atomic.h), exactly lavapipe's answer
     // (lvp_device.c): no 64-bit float atomics, no sparse images.
@@ -76,10 +84,17 @@ void add_extension_features(Features& f) {
     f.atomic_float.shaderSharedFloat32AtomicAdd = VK_TRUE;
     f.atomic_float.shaderImageFloat32Atomics = VK_TRUE;
     f.atomic_float.shaderImageFloat32AtomicAdd = VK_TRUE;
-    // VK_BORDER_COLOR_*_CUSTOM_EXT: the colour's bits, clamped to the view's format and put in the channels it
-    // stores as gallivm does (shader/texture_border.cpp format_border), so the sampler's format member is never needed.
-    f.custom_border_color.customBorderColors = VK_TRUE;
-    f.custom_border_color.customBorderColorWithoutFormat = VK_TRUE;
+    // OpAtomicFMinEXT / FMaxEXT on the same 32-bit floats, as LLVM 15 computes them on x86 (docs/lavapipe-rules.md
+    // "Float atomics"): lavapipe 22.3's three Float32AtomicMinMax members with LLVM >= 15 (lvp_device.c), no 16- or
+    // 64-bit float and no sparse member.
+    f.atomic_float2.shaderBufferFloat32AtomicMinMax = VK_TRUE;
+    f.atomic_float2.shaderSharedFloat32AtomicMinMax = VK_TRUE;
+    f.atomic_float2.shaderImageFloat32AtomicMinMax = VK_TRUE;
+    // Every 64-bit integer OpAtomic* on storage buffers (through PhysicalStorageBuffer pointers too) and Workgroup
+    // memory, interpreted on register pairs (shader/translate_atomic.cpp, exec_atomic.h kAtomicWide), as lavapipe
+    // reports (lvp_device.c). No image form (VK_EXT_shader_image_atomic_int64 is not offered, as in lavapipe 22.3).
+    f.core.v12.shaderBufferInt64Atomics = VK_TRUE;
+    f.core.v12.shaderSharedInt64Atomics = VK_TRUE;
 }
 
 Features make_supported() {
@@ -162,6 +177,7 @@ Features make_supported() {
     f.core.v12.shaderInt8 = VK_TRUE;
 
     add_extension_features(f);
+    add_atomic_features(f);
     // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
     f.core.v11.shaderDrawParameters = VK_TRUE;
     // execute.cpp runs a multiview subpass once per view into its layers, ViewIndex given to the shaders; there is
@@ -247,6 +263,7 @@ Features::Features() {
     init(depth_clip_enable, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT);
     init(line_rasterization, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT);
     init(atomic_float, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT);
+    init(atomic_float2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_2_FEATURES_EXT);
     init(custom_border_color, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT);
 }
 
@@ -263,6 +280,7 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable),
                                  reinterpret_cast<VkBaseOutStructure*>(&line_rasterization),
                                  reinterpret_cast<VkBaseOutStructure*>(&atomic_float),
+                                 reinterpret_cast<VkBaseOutStructure*>(&atomic_float2),
                                  reinterpret_cast<VkBaseOutStructure*>(&custom_border_color)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;

@@ -25,6 +25,7 @@ struct Features {
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{};
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
+    VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT atomic_float2{};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
 
     Features();

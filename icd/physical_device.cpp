@@ -260,8 +260,10 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_GetPhysicalDeviceImageFormatProperties(VkPhys
     // level count, depth up to maxImageDimension3D, one array layer, one sample.
     pProps->maxExtent = {kMaxImageDimension, type == VK_IMAGE_TYPE_1D ? 1 : kMaxImageDimension,
                          is_3d ? kMaxImageDimension3D : 1};
-    pProps->maxMipLevels = tiling == VK_IMAGE_TILING_LINEAR ? 1 : kMaxMipLevels;
-    pProps->maxArrayLayers = tiling == VK_IMAGE_TILING_LINEAR || is_3d ? 1 : kMaxArrayLayers;
+    // LINEAR images have the same levels and layers as OPTIMAL ones, as in lavapipe: tilevk stores both tilings in
+    // its one plain layout (image.h), which vkGetImageSubresourceLayout reports for any level and layer.
+    pProps->maxMipLevels = kMaxMipLevels;
+    pProps->maxArrayLayers = is_3d ? 1 : kMaxArrayLayers;
     const bool attachment =
         (have & (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0;
     // Multisampled images can be sampled (texelFetch with a sample index, textureSamples: shader/texture.cpp), as

@@ -45,20 +45,26 @@ inline uint64_t lane_address(const Inst& in, const uint32_t* lo, const uint32_t*
 
 // d = atomic pad:AtomicOp on the word at (a, b) + extra, value c, comparator d, in the lanes of mask n (a
 // register), lanes in order; other lanes, misaligned words and words outside registered memory: nothing, d = 0.
+// With kAtomicWide: a 64-bit doubleword, c, d register pairs (exec_atomic.h).
 [[gnu::always_inline]] inline void op_atomic_ptr(const Inst& in, Machine& mc) {
     uint32_t* d = D;
     const uint32_t *a = A, *b = B, *c = C;
     const uint32_t* m = mc.R + size_t(in.n) * kLanes;
-    const auto op = AtomicOp(in.pad);
+    const auto op = AtomicOp(in.pad & ~kAtomicWide);
+    const bool wide = (in.pad & kAtomicWide) != 0;
+    const size_t bytes = wide ? 8 : 4;
     const DeviceAddressCheck check;
     for (int l = 0; l < kLanes; ++l) {
-        const uint32_t cmp = d[l];
+        const uint64_t cmp = wide ? pair_lane(d, l) : d[l];
+        if (wide) set_pair_lane(d, l, 0);
         d[l] = 0;
         if (m[l] == 0) continue;
-        void* p = check.find(lane_address(in, a, b, l), 4);
-        if (p == nullptr || reinterpret_cast<uintptr_t>(p) % std::atomic_ref<uint32_t>::required_alignment != 0)
-            continue;
-        d[l] = atomic_on_word(op, static_cast<uint32_t*>(p), c[l], cmp);
+        void* p = check.find(lane_address(in, a, b, l), bytes);
+        if (p == nullptr || reinterpret_cast<uintptr_t>(p) % bytes != 0) continue;
+        if (wide)
+            set_pair_lane(d, l, atomic_on_dword(op, static_cast<uint64_t*>(p), pair_lane(c, l), cmp));
+        else
+            d[l] = atomic_on_word(op, static_cast<uint32_t*>(p), c[l], uint32_t(cmp));
     }
 }
 

@@ -311,7 +311,12 @@ constexpr uint32_t wide_shape(WideOp o) {
 }
 
 // Inst::pad of AtomicBuf / AtomicShared: which OpAtomic*. IIncrement / IDecrement / ISub become IAdd of 1, -1, -v.
-// FAdd is OpAtomicFAddEXT (VK_EXT_shader_atomic_float): the word read as a float plus the operand, old value first.
+// FAdd is OpAtomicFAddEXT (VK_EXT_shader_atomic_float): the word read as a float plus the operand, old value first;
+// FMin / FMax are OpAtomicFMinEXT / OpAtomicFMaxEXT (VK_EXT_shader_atomic_float2) as LLVM 15 lowers atomicrmw
+// fmin / fmax on x86 (docs/lavapipe-rules.md "Float atomics"). kAtomicWide or'ed into pad: a 64-bit integer atomic
+// (VK_KHR_shader_atomic_int64) on AtomicBuf / AtomicShared, whose d, c and comparator are register pairs (low word,
+// high word) and whose memory is two words (interpreter only: jit/analysis.cpp leaves such programs there).
+constexpr uint16_t kAtomicWide = 0x100;
 enum class AtomicOp : uint16_t {
     Load,
     Store,
@@ -325,7 +330,9 @@ enum class AtomicOp : uint16_t {
     And,
     Or,
     Xor,
-    FAdd
+    FAdd,
+    FMin,
+    FMax
 };
 
 enum SampleFlags : uint32_t {

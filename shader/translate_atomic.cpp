@@ -1,6 +1,7 @@
-// Compute's synchronisation and atomics: OpControlBarrier and the 32-bit OpAtomic* family (integers; floats: Load,
-// Store, Exchange, OpAtomicFAddEXT) on storage buffers, storage images and Workgroup memory (the kernels:
-// exec_atomic.h).
+// Compute's synchronisation and atomics: OpControlBarrier and the OpAtomic* family (32-bit integers; 32-bit floats:
+// Load, Store, Exchange, OpAtomicFAddEXT, OpAtomicFMinEXT / FMaxEXT) on storage buffers, storage images and
+// Workgroup memory, and 64-bit integers on storage buffers and Workgroup memory (the kernels: exec_atomic.h,
+// exec_pointer.h).
 #include "shader/translator.h"
 
 namespace tilevk::shader {
@@ -54,29 +55,52 @@ bool atomic_kind(spv::Op op, AtomicOp& out) {
         case spv::Op::OpAtomicFAddEXT:
             out = AtomicOp::FAdd;
             return true;
+        case spv::Op::OpAtomicFMinEXT:
+            out = AtomicOp::FMin;
+            return true;
+        case spv::Op::OpAtomicFMaxEXT:
+            out = AtomicOp::FMax;
+            return true;
         default:
-            return false;  // OpAtomicFlag*, OpAtomicCompareExchangeWeak (Kernel), OpAtomicFMin/FMaxEXT: refused by name
+            return false;  // OpAtomicFlag*, OpAtomicCompareExchangeWeak (Kernel): refused by name
     }
 }
 
-// The message refusing atomic `kind` on type t, or empty. 32-bit integers take every atomic; 32-bit floats
-// (VK_EXT_shader_atomic_float's shader*Float32Atomics and *Float32AtomicAdd, as lavapipe reports them) take Load,
-// Store, Exchange and OpAtomicFAddEXT. The 64-bit float features are VK_FALSE in lavapipe and tilevk.
-std::string atomic_type_error(spv::Op op, AtomicOp kind, const Type& t) {
+bool is_float_op(AtomicOp kind) {
+    return kind == AtomicOp::FAdd || kind == AtomicOp::FMin || kind == AtomicOp::FMax;
+}
+
+// The message refusing atomic `kind` on type t in `space`, or empty. 32-bit integers take every atomic; 64-bit
+// integers every integer atomic on storage buffers (through PhysicalStorageBuffer pointers too) and Workgroup memory
+// (VK_KHR_shader_atomic_int64's shaderBufferInt64Atomics and shaderSharedInt64Atomics, as lavapipe reports them; no
+// image form).
+// 32-bit floats (VK_EXT_shader_atomic_float's shader*Float32Atomics and *Float32AtomicAdd, and
+// VK_EXT_shader_atomic_float2's shader*Float32AtomicMinMax, as lavapipe 22.3 with LLVM 15 reports them) take Load,
+// Store, Exchange, OpAtomicFAddEXT and OpAtomicFMinEXT / FMaxEXT. The 16- and 64-bit float features are VK_FALSE
+// in lavapipe and tilevk.
+std::string atomic_type_error(spv::Op op, AtomicOp kind, const Type& t, Space space) {
     const bool float_op =
-        kind == AtomicOp::Load || kind == AtomicOp::Store || kind == AtomicOp::Exchange || kind == AtomicOp::FAdd;
+        kind == AtomicOp::Load || kind == AtomicOp::Store || kind == AtomicOp::Exchange || is_float_op(kind);
     const std::string what = "unsupported " + opname(op);
-    if (t.kind == Type::Int && (t.wide || t.bits != 32))
-        return what + " on a " + (t.wide ? "64" : std::to_string(t.bits)) +
-               "-bit integer (shaderBufferInt64Atomics and shaderSharedInt64Atomics are VK_FALSE)";
-    if (t.kind == Type::Int && kind != AtomicOp::FAdd) return {};
+    if (t.kind == Type::Int && t.wide && is_float_op(kind)) return what + " on a 64-bit integer";
+    if (t.kind == Type::Int && t.wide && space == Space::Texel)
+        return what + " on a 64-bit integer image texel (VK_EXT_shader_image_atomic_int64 is not offered)";
+    if (t.kind == Type::Int && t.wide) return {};
+    if (t.kind == Type::Int && t.bits != 32) return what + " on a " + std::to_string(t.bits) + "-bit integer";
+    if (t.kind == Type::Int && !is_float_op(kind)) return {};
     if (t.kind != Type::Float) return what + " on a non-integer, non-float type";
     if (t.wide)
         return what +
                " on a 64-bit float (VkPhysicalDeviceShaderAtomicFloatFeaturesEXT::shaderBufferFloat64Atomics and "
                "shaderSharedFloat64Atomics are VK_FALSE)";
-    if (t.bits != 32) return what + " on a 16-bit float (VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT is not offered)";
-    if (!float_op) return what + " on a float (32-bit floats: OpAtomicLoad, Store, Exchange and OpAtomicFAddEXT)";
+    if (t.bits != 32)
+        return what +
+               " on a 16-bit float (VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT::shaderBufferFloat16Atomics "
+               "and shaderSharedFloat16Atomics are VK_FALSE)";
+    if (!float_op)
+        return what +
+               " on a float (32-bit floats: OpAtomicLoad, Store, Exchange, OpAtomicFAddEXT, OpAtomicFMinEXT "
+               "and OpAtomicFMaxEXT)";
     return {};
 }
 
@@ -106,20 +130,21 @@ bool Translator::op_atomic(const Instr& in) {
     const bool phys = pv.type != 0 && is_phys_pointer(pv.type);
     if (pv.ptr < 0 && !phys) fail(opname(in.op) + " on a non-pointer");
     const Pointer p = phys ? phys_pointer(ptr_id) : pointers_[size_t(pv.ptr)];
-    if (std::string why = atomic_type_error(in.op, kind, type(p.type)); !why.empty()) fail(why);
+    if (std::string why = atomic_type_error(in.op, kind, type(p.type), p.space); !why.empty()) fail(why);
+    const bool is64 = type(p.type).wide;  // 64-bit integers: register pairs (value, comparator, result)
     uint32_t value = zero_;
     switch (in.op) {
         case spv::Op::OpAtomicStore:
             value = reg(in[4]);
             break;
         case spv::Op::OpAtomicIIncrement:
-            value = konst(1);
+            value = is64 ? konst64(1) : konst(1);
             break;
         case spv::Op::OpAtomicIDecrement:
-            value = konst(~0u);
+            value = is64 ? konst64(~uint64_t(0)) : konst(~0u);
             break;
         case spv::Op::OpAtomicISub:
-            value = emit1(SOp::INeg, reg(in[6]));
+            value = is64 ? wide(WideOp::INeg, kNoReg, reg(in[6])) : emit1(SOp::INeg, reg(in[6]));
             break;
         case spv::Op::OpAtomicLoad:
             break;
@@ -134,13 +159,15 @@ bool Translator::op_atomic(const Instr& in) {
     const uint32_t dyn = p.dyn == kNoReg ? zero_ : p.dyn;
     iface_.uses_atomics = true;
     // Inactive lanes get an element / word index of kNoReg: the kernel skips them (their result is 0).
+    const uint16_t pad = uint16_t(uint16_t(kind) | (is64 ? kAtomicWide : 0));
     auto gen = [&](uint32_t d) {
         if (comparator != kNoReg) emit(SOp::Mov, d, comparator);
+        if (comparator != kNoReg && is64) emit(SOp::Mov, d + 1, comparator + 1);
         if (p.space == Space::Phys) {  // lanes outside the side-effect mask do nothing and get 0
             iface_.writes_device_addresses = true;
             Inst& a = emit(SOp::AtomicPtr, d, p.base, p.base + 1, value, 0, p.offset);
             a.n = side_effect_mask();
-            a.pad = uint16_t(kind);
+            a.pad = pad;
             return;
         }
         if (p.space == Space::Texel) {  // the handle is kNoReg in lanes without effect: the kernel skips them
@@ -153,7 +180,7 @@ bool Translator::op_atomic(const Instr& in) {
             const uint32_t idx = emit1(SOp::Select, dyn, konst(kNoReg), cur_mask_);
             Inst& a = emit(SOp::AtomicShared, d, idx, kNoReg, value, p.base + p.offset);
             a.n = p.limit;
-            a.pad = uint16_t(kind);
+            a.pad = pad;
             return;
         }
         if (p.space != Space::Buffer || p.base == 0 || !p.writable)
@@ -163,14 +190,15 @@ bool Translator::op_atomic(const Instr& in) {
         const uint32_t e = emit1(SOp::Select, elem, konst(kNoReg), side_effect_mask());
         Inst& a = emit(SOp::AtomicBuf, d, e, dyn, value, p.base, p.offset);
         a.n = p.limit;
-        a.pad = uint16_t(kind);
+        a.pad = pad;
     };
+    const uint32_t words = is64 ? 2 : 1;
     if (store) {
-        gen(alloc());
+        gen(alloc(words));
         return true;
     }
     // the result depends on other lanes' atomics: in a loop, lanes that left it keep what they got
-    keep_active(def(in), 1, gen);
+    keep_active(def(in), words, gen);
     return true;
 }
 

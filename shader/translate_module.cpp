@@ -71,10 +71,13 @@ bool capability_supported(spv::Capability c) {
         case spv::Capability::StorageBuffer8BitAccess:
         case spv::Capability::UniformAndStorageBuffer8BitAccess:
         case spv::Capability::StoragePushConstant8:
-        // OpAtomicFAddEXT on 32-bit floats in buffers, images and Workgroup memory (translate_atomic.cpp;
-        // VK_EXT_shader_atomic_float). Not AtomicFloat64AddEXT nor AtomicFloat32MinMaxEXT
-        // (VK_EXT_shader_atomic_float2).
+        // OpAtomicFAddEXT and OpAtomicFMinEXT / FMaxEXT on 32-bit floats in buffers, images and Workgroup memory
+        // (translate_atomic.cpp; VK_EXT_shader_atomic_float, VK_EXT_shader_atomic_float2). Not the 16- and 64-bit
+        // float forms, which lavapipe does not report either.
         case spv::Capability::AtomicFloat32AddEXT:
+        case spv::Capability::AtomicFloat32MinMaxEXT:
+        // 64-bit integer atomics on storage buffers and Workgroup memory (VK_KHR_shader_atomic_int64).
+        case spv::Capability::Int64Atomics:
             return true;
         default:
             return false;
@@ -88,7 +91,7 @@ bool extension_supported(const std::string& e) {
            e == "SPV_KHR_terminate_invocation" || e == "SPV_KHR_integer_dot_product" ||
            e == "SPV_KHR_vulkan_memory_model" || e == "SPV_KHR_physical_storage_buffer" ||
            e == "SPV_EXT_physical_storage_buffer" || e == "SPV_KHR_16bit_storage" || e == "SPV_KHR_8bit_storage" ||
-           e == "SPV_EXT_shader_atomic_float_add" ||
+           e == "SPV_EXT_shader_atomic_float_add" || e == "SPV_EXT_shader_atomic_float_min_max" ||
            // OpDecorateString / OpDecorateId with UserSemantic, HlslCounterBufferGOOGLE: reflection only, ignored
            e == "SPV_GOOGLE_decorate_string" || e == "SPV_GOOGLE_hlsl_functionality1";
 }

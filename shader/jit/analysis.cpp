@@ -245,6 +245,9 @@ NanOrder nan_order(Op op, int quarter) {
 }
 
 Lowering lowering(const Inst& in) {
+    // 64-bit integer atomics (register pairs, two-word memory): a program with one stays in the interpreter, as
+    // programs with Op::Wide do.
+    if ((in.op == Op::AtomicBuf || in.op == Op::AtomicShared) && (in.pad & kAtomicWide)) return Lowering::Unknown;
     if (in.op == Op::FAdd || in.op == Op::FMul)
         for (int q = 0; q < 4; ++q)
             if (nan_order(in.op, q) == NanOrder::Unknown) return Lowering::Helper;
@@ -374,7 +377,7 @@ Analysis analyze(const ProgramImpl& p) {
     an.label[0] = 1;
     for (size_t i = 0; i < n; ++i) {
         const Inst& in = p.code[i];
-        if (op_info(in.op).lowering == Lowering::Unknown) {
+        if (lowering(in) == Lowering::Unknown) {
             if (an.unknown_at < 0) an.unknown_at = int64_t(i);
             continue;
         }
@@ -437,7 +440,7 @@ Analysis analyze(const ProgramImpl& p) {
     // A constant some instruction writes is an ordinary register.
     for (size_t i = 0; i < n; ++i) {
         const Inst& in = p.code[i];
-        if (op_info(in.op).lowering == Lowering::Unknown) continue;
+        if (lowering(in) == Lowering::Unknown) continue;
         const Footprint f = footprint(in);
         for (int k = 0; k < f.num_writes && k < Footprint::kMax; ++k)
             if (f.writes[k] < regs) an.is_const[f.writes[k]] = 0;

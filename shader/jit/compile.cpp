@@ -256,7 +256,8 @@ std::shared_ptr<const Code> generate_code(const ProgramImpl& p, std::string* why
     const Analysis an = analyze(p);
     if (an.unknown_at >= 0) {
         const Inst& in = p.code[size_t(an.unknown_at)];
-        *why_not = "IR op " + op_name(in.op) + " at " + std::to_string(an.unknown_at) + " is not compiled";
+        *why_not = "IR op " + op_name(in.op) + (lowering(in) != op_info(in.op).lowering ? " (64-bit)" : "") + " at " +
+                   std::to_string(an.unknown_at) + " is not compiled";
         return nullptr;
     }
     auto code = std::make_shared<Code>();

@@ -93,6 +93,18 @@ bool atomic_result(x86::Assembler& a, const Inst& in, int lane) {
             a.vaddss(xmm0, xmm0, xmm1);
             a.vmovd(r9d, xmm0);
             return true;
+        case AtomicOp::FMin:  // MINSS / MAXSS(v, old), then v when old is NaN (exec_atomic.h)
+        case AtomicOp::FMax:
+            a.vmovd(xmm0, r8d);
+            a.vmovd(xmm1, ecx);
+            if (AtomicOp(in.pad) == AtomicOp::FMin)
+                a.vminss(xmm0, xmm0, xmm1);
+            else
+                a.vmaxss(xmm0, xmm0, xmm1);
+            a.vmovd(r9d, xmm0);
+            a.vucomiss(xmm1, xmm1);
+            a.cmovp(r9d, r8d);
+            return true;
     }
     return false;
 }

@@ -2,7 +2,9 @@
 // and for the R32_SFLOAT atomic format bits, and what it reports works: buffer, shared-memory and image float atomics
 // (cp_atomic_float.comp) on both drivers with the extension and its six 32-bit features enabled, the validation layer
 // on, bytes compared and every value checked against the answers computed here.
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "api_breadth.h"
 // after api_breadth.h, which includes <cstdint> for the generated array
@@ -110,6 +112,52 @@ TEST_F(ApiAtomicFloat, ReportsWhatLavapipeReports) {
         vkGetPhysicalDeviceFormatProperties(pd, VK_FORMAT_R32_SFLOAT, &fp);
         EXPECT_TRUE(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_ATOMIC_BIT);
         EXPECT_TRUE(fp.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_ATOMIC_BIT);
+    }
+}
+
+// The feature struct of type T (sType t) as the physical device reports it.
+template <class T>
+T reported_struct(VkInstance instance, VkPhysicalDevice pd, VkStructureType t) {
+    T f{};
+    f.sType = t;
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.pNext = &f;
+    auto get = reinterpret_cast<PFN_vkGetPhysicalDeviceFeatures2KHR>(
+        vkGetInstanceProcAddr(instance, "vkGetPhysicalDeviceFeatures2KHR"));
+    if (get != nullptr) get(pd, &f2);
+    f.pNext = nullptr;
+    return f;
+}
+
+// VK_EXT_shader_atomic_float2 and VK_KHR_shader_atomic_int64, member by member lavapipe 22.3.6's answer (with LLVM
+// 15: the three 32-bit MinMax members; buffer and shared 64-bit integer atomics), and both extensions offered.
+TEST_F(ApiAtomicFloat, Float2AndInt64ReportWhatLavapipeReports) {
+    const VkInstance in = harness_->instance();
+    using F2 = VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT;
+    using I64 = VkPhysicalDeviceShaderAtomicInt64Features;
+    const auto f2 = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_2_FEATURES_EXT;
+    const auto i64 = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
+    const F2 t2 = reported_struct<F2>(in, tilevk_->physical(), f2),
+             l2 = reported_struct<F2>(in, lavapipe_->physical(), f2);
+    const I64 t64 = reported_struct<I64>(in, tilevk_->physical(), i64),
+              l64 = reported_struct<I64>(in, lavapipe_->physical(), i64);
+    EXPECT_EQ(std::memcmp(&t2, &l2, sizeof t2), 0);
+    EXPECT_EQ(std::memcmp(&t64, &l64, sizeof t64), 0);
+    EXPECT_TRUE(t2.shaderBufferFloat32AtomicMinMax && t2.shaderSharedFloat32AtomicMinMax &&
+                t2.shaderImageFloat32AtomicMinMax);
+    EXPECT_FALSE(t2.shaderBufferFloat16Atomics || t2.shaderBufferFloat64AtomicMinMax ||
+                 t2.sparseImageFloat32AtomicMinMax);
+    EXPECT_TRUE(t64.shaderBufferInt64Atomics && t64.shaderSharedInt64Atomics);
+    for (VkPhysicalDevice pd : {tilevk_->physical(), lavapipe_->physical()}) {
+        uint32_t n = 0;
+        vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+        std::vector<VkExtensionProperties> e(n);
+        vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, e.data());
+        for (const char* want :
+             {VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME, VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME})
+            EXPECT_TRUE(std::any_of(e.begin(), e.end(), [&](const VkExtensionProperties& x) {
+                return std::strcmp(x.extensionName, want) == 0;
+            })) << want;
     }
 }
 

@@ -156,8 +156,9 @@ TEST_F(HonestReports, EveryFeatureStructMemberIsAcceptedExactlyWhenReported) {
         }
     }
     // (a floor proving the loop reached the structs: 295 members refused once 8/16-bit types were reported, 280 once
-    // VK_EXT_shader_atomic_float's six were; each newly reported member lowers it by one)
-    EXPECT_GT(refused, 270);
+    // VK_EXT_shader_atomic_float's six were, 7 fewer with VK_EXT_shader_atomic_float2's three and the two 64-bit
+    // integer atomics members in two structs; each newly reported member lowers it by one)
+    EXPECT_GT(refused, 250);
 }
 
 // Expectations written from the design, not read from the driver: what the issue found accepted silently, a

@@ -112,6 +112,32 @@ void main() {
     y[base + 5u] = s[i % 16u];
 })";
 
+// VK_EXT_shader_atomic_float2: contended float min / max on shared words (the compiled tier's own loop) and buffer
+// words (the interpreter's code), over random words (many NaNs and denormals) with the sign flipped for some, so
+// that zeros of both signs meet.
+const char* const kFloatMinMax = R"(#version 450
+#extension GL_EXT_shader_atomic_float2 : require
+layout(local_size_x_id = 0) in;
+layout(std430, set = 0, binding = 0) buffer X { float x[]; };
+layout(std430, set = 0, binding = 1) buffer Y { float y[]; };
+layout(std430, set = 0, binding = 2) buffer H { float h[]; };
+shared float s[16];
+void main() {
+    uint i = gl_LocalInvocationIndex, g = gl_GlobalInvocationID.x;
+    uint k = floatBitsToUint(x[g % 128u]);
+    float v = uintBitsToFloat((k & 32u) != 0u ? k ^ 0x80000000u : k);
+    if (i < 16u) s[i] = x[i + 200u];
+    barrier();
+    float r0 = atomicMin(s[k % 16u], v);
+    float r1 = atomicMax(s[(k >> 4) % 16u], v);
+    float r2 = atomicMin(h[k % 32u], v);
+    float r3 = atomicMax(h[32u + (k >> 5) % 8u], v);
+    barrier();
+    uint base = (g % 64u) * 5u;
+    y[base] = r0, y[base + 1u] = r1, y[base + 2u] = r2, y[base + 3u] = r3;
+    y[base + 4u] = s[i % 16u];
+})";
+
 // A reduction whose barriers sit in a loop and in divergent-looking code, reads of other batches' words after the
 // last barrier, and shared indices past the array (clamped to its last word) in loads, stores and atomics.
 const char* const kReduceClamp = R"(#version 450
@@ -266,6 +292,7 @@ TEST_F(JitComputeDiff, ProgramsMatchInterpreterBitForBit) {
         {"matmul", kMatmul, {0}, false},
         {"atomics", kAtomics, {64, 24, 16, 1, 40}, false},
         {"float_atomics", kFloatAtomics, {64, 24, 16, 1}, false},
+        {"float_min_max", kFloatMinMax, {64, 24, 16, 1}, false},
         {"reduce_clamp", kReduceClamp, {64, 24, 17, 1}, false},
         {"subgroups", kSubgroups, {64, 24, 8}, true},
     };

@@ -6,6 +6,7 @@
 
 #include <spirv-tools/libspirv.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -145,4 +146,37 @@ void main() {
     Result r = Program::create(spv, Stage::Compute, "main", {});
     EXPECT_FALSE(r);
     EXPECT_NE(r.error.find("unsupported GLSL.std.450 Ldexp on 64-bit values"), std::string::npos) << r.error;
+}
+
+// 64-bit integer atomics through a buffer_reference (VK_KHR_shader_atomic_int64 covers PhysicalStorageBuffer):
+// adds whose sums carry into the high word, in lane order (so every returned value is known), and a max on the
+// high word.
+TEST(ShaderPointer, Int64AtomicsThroughPointers) {
+    auto p = compute(R"(#version 450
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+layout(local_size_x = 16) in;
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer B { uint64_t v[]; };
+layout(push_constant) uniform PC { B b; };
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    b.v[8u + i] = atomicAdd(b.v[i % 4u], 0xFFFFFFFFul + uint64_t(i));
+    atomicMax(b.v[4u], uint64_t(i) << 40);
+})");
+    ASSERT_TRUE(p);
+    std::vector<uint64_t> v(24, 0);
+    for (uint32_t k = 0; k < 4; ++k) v[k] = uint64_t(k) * 0x80000001ull;
+    v[4] = uint64_t(7) << 40;
+    const std::vector<uint64_t> before = v;
+    register_device_memory(v.data(), v.size() * 8);
+    run_with_pointer(*p, v.data());
+    unregister_device_memory(v.data());
+    std::vector<uint64_t> want = before;
+    for (uint32_t i = 0; i < 16; ++i) {
+        want[8 + i] = want[i % 4];
+        want[i % 4] += 0xFFFFFFFFull + i;
+        want[4] = std::max(want[4], uint64_t(i) << 40);
+    }
+    for (size_t k = 0; k < v.size(); ++k) EXPECT_EQ(v[k], want[k]) << k;
 }

@@ -211,7 +211,7 @@ TEST(ShaderWorkgroup, SharedAtomicsReturnValuesInLaneOrder) {
 // Float atomics (VK_EXT_shader_atomic_float): a shared float accumulates x[i] in LocalInvocationIndex order, so each
 // invocation gets the rounded sum of the values before its own (computed here in the same order, IEEE without
 // FTZ/DAZ as compute runs); buffer words take one-writer adds and exchanges. OpAtomicExchange on a 64-bit float and
-// atomicMin on a float (VK_EXT_shader_atomic_float2's capability, not offered) are refused by name.
+// atomicAdd on a double (AtomicFloat64AddEXT, not offered) are refused by name.
 TEST(ShaderWorkgroup, FloatAtomicsAddInLaneOrder) {
     auto p = compute(R"(#version 450
         #extension GL_EXT_shader_atomic_float : require
@@ -264,13 +264,13 @@ TEST(ShaderWorkgroup, FloatAtomicsAddInLaneOrder) {
         EXPECT_EQ(after[80 + i], -xf[i]) << i;
     }
     const std::string min_src = R"(#version 450
-        #extension GL_EXT_shader_atomic_float2 : require
+        #extension GL_EXT_shader_atomic_float : require
         layout(local_size_x = 4) in;
-        layout(std430, set = 0, binding = 0) buffer X { float x[]; };
-        void main() { atomicMin(x[0], 1.0); })";
+        layout(std430, set = 0, binding = 0) buffer X { double x[]; };
+        void main() { atomicAdd(x[0], 1.0lf); })";
     Result r = Program::create(compile_glsl(Stage::Compute, min_src), Stage::Compute, "main", {});
     EXPECT_FALSE(r);
-    EXPECT_NE(r.error.find("AtomicFloat32MinMaxEXT"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find("AtomicFloat64AddEXT"), std::string::npos) << r.error;
     const std::string add64_src = R"(#version 450
         #extension GL_EXT_shader_atomic_float : require
         layout(local_size_x = 4) in;
@@ -279,6 +279,143 @@ TEST(ShaderWorkgroup, FloatAtomicsAddInLaneOrder) {
     r = Program::create(compile_glsl(Stage::Compute, add64_src), Stage::Compute, "main", {});
     EXPECT_FALSE(r);
     EXPECT_NE(r.error.find("OpAtomicExchange on a 64-bit float"), std::string::npos) << r.error;
+}
+
+namespace {
+
+bool is_nan_bits(uint32_t b) {
+    return (b & 0x7FFFFFFFu) > 0x7F800000u;
+}
+
+// The word atomicMin / atomicMax(memory old, operand v) leaves, by the rule of docs/lavapipe-rules.md "Float
+// atomics" (no FTZ/DAZ in compute): a NaN in memory gives the operand, a NaN operand keeps memory, and memory is
+// replaced only by a strictly smaller / larger operand (so a tie of zeros keeps memory's sign).
+uint32_t min_max_rule(bool is_min, uint32_t old, uint32_t v) {
+    if (is_nan_bits(old)) return v;
+    if (is_nan_bits(v)) return old;
+    float o, x;
+    std::memcpy(&o, &old, 4);
+    std::memcpy(&x, &v, 4);
+    return (is_min ? x < o : x > o) ? v : old;
+}
+
+}  // namespace
+
+// VK_EXT_shader_atomic_float2: atomicMin / atomicMax on 32-bit floats in a buffer (one writer per word) and in
+// shared memory (every lane of the workgroup on the same two words, in LocalInvocationIndex order), over pairs of
+// zeros of both signs, quiet, signalling and negative NaNs, infinities, denormals and ones.
+TEST(ShaderWorkgroup, FloatMinMaxKeepMemoryOnTiesAndReplaceNaN) {
+    auto p = compute(R"(#version 450
+        #extension GL_EXT_shader_atomic_float2 : require
+        layout(local_size_x = 64) in;
+        layout(std430, set = 0, binding = 0) buffer X { float v[64]; float a[64]; float b[64]; float init[2]; };
+        layout(std430, set = 0, binding = 1) buffer Y { float y[]; };
+        shared float smin, smax;
+        void main() {
+            uint i = gl_LocalInvocationIndex;
+            if (i == 0u) { smin = init[0]; smax = init[1]; }
+            barrier();
+            y[i * 4u] = atomicMin(a[i], v[i]);
+            y[i * 4u + 1u] = atomicMax(b[i], v[i]);
+            y[i * 4u + 2u] = atomicMin(smin, v[i]);
+            y[i * 4u + 3u] = atomicMax(smax, v[i]);
+            barrier();
+            if (i == 0u) { y[256] = smin; y[257] = smax; }
+        })");
+    ASSERT_TRUE(p);
+    const uint32_t special[] = {0x00000000u, 0x80000000u, 0x7FC00000u, 0x7F800001u,
+                                0xFFC00123u, 0x7F800000u, 0xFF800000u, 0x00000001u};
+    std::vector<uint32_t> x(3 * 64 + 2), y(258, 0xDEADu);
+    for (uint32_t i = 0; i < 64; ++i) {
+        x[i] = special[i % 8];                    // operand
+        x[64 + i] = x[128 + i] = special[i / 8];  // memory
+    }
+    x[192] = 0x80000000u;  // -0: +0 operands tie with it
+    x[193] = 0x7FC00000u;  // NaN: the first operand replaces it
+    const std::vector<uint32_t> before = x;
+    Bindings bind;
+    bind.set(0, 0, 0, storage(x));
+    bind.set(0, 1, 0, storage(y));
+    Scratch s;
+    dispatch(*p, bind, 0, 1, 1, s);
+    uint32_t smin = before[192], smax = before[193];
+    for (uint32_t i = 0; i < 64; ++i) {
+        const uint32_t v = before[i], old = before[64 + i];
+        EXPECT_EQ(y[i * 4], old) << i;
+        EXPECT_EQ(y[i * 4 + 1], old) << i;
+        EXPECT_EQ(x[64 + i], min_max_rule(true, old, v)) << "min of memory " << old << " and " << v;
+        EXPECT_EQ(x[128 + i], min_max_rule(false, old, v)) << "max of memory " << old << " and " << v;
+        EXPECT_EQ(y[i * 4 + 2], smin) << i;
+        EXPECT_EQ(y[i * 4 + 3], smax) << i;
+        smin = min_max_rule(true, smin, v);
+        smax = min_max_rule(false, smax, v);
+    }
+    EXPECT_EQ(y[256], smin);
+    EXPECT_EQ(y[257], smax);
+}
+
+// VK_KHR_shader_atomic_int64: 64-bit atomics on a shared word (in LocalInvocationIndex order, so every return is
+// known) and on buffer words, with operands whose low words carry into and compare equal across the high words.
+TEST(ShaderWorkgroup, Int64AtomicsCarryAcrossWords) {
+    auto p = compute(R"(#version 450
+        #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+        #extension GL_EXT_shader_atomic_int64 : require
+        layout(local_size_x = 40) in;
+        layout(std430, set = 0, binding = 0) buffer X { uint64_t x[40]; uint64_t w[40]; int64_t m[2]; uint64_t u; };
+        layout(std430, set = 0, binding = 1) buffer Y { uint64_t y[]; };
+        shared uint64_t sum;
+        shared int64_t smin;
+        void main() {
+            uint i = gl_LocalInvocationIndex;
+            if (i == 0u) { sum = 0xFFFFFFFF00000000ul; smin = 0l; }
+            barrier();
+            y[i * 4u] = atomicAdd(sum, x[i]);
+            y[i * 4u + 1u] = uint64_t(atomicMin(smin, int64_t(x[i])));
+            y[i * 4u + 2u] = atomicCompSwap(w[i], (i & 1u) == 0u ? w[i] : ~w[i], x[39u - i]);
+            atomicMax(m[0], int64_t(x[i]));
+            atomicMin(m[1], int64_t(x[i]));
+            atomicMax(u, x[i]);
+            barrier();
+            if (i == 0u) { y[160] = sum; y[161] = uint64_t(smin); }
+        })");
+    ASSERT_TRUE(p);
+    std::vector<uint64_t> x(40 + 40 + 3);
+    for (uint32_t i = 0; i < 40; ++i) {
+        x[i] = uint64_t(i) * 0x9E3779B97F4A7C15ull | 0xFFFFFF00u;  // equal-ish low words, signs of both kinds
+        x[40 + i] = uint64_t(i) << 32 | (i * 3u);
+    }
+    x[80] = x[81] = 0;
+    x[82] = 0x00000000FFFFFFFFull;
+    std::vector<uint32_t> xw(x.size() * 2), y(162 * 2, 0xDEADu);
+    std::memcpy(xw.data(), x.data(), x.size() * 8);
+    Bindings bind;
+    bind.set(0, 0, 0, storage(xw));
+    bind.set(0, 1, 0, storage(y));
+    Scratch s;
+    dispatch(*p, bind, 0, 1, 1, s);
+    std::vector<uint64_t> after(x.size()), got(162);
+    std::memcpy(after.data(), xw.data(), after.size() * 8);
+    std::memcpy(got.data(), y.data(), got.size() * 8);
+    uint64_t sum = 0xFFFFFFFF00000000ull;
+    int64_t smin = 0, mx = 0, mn = 0;
+    uint64_t umax = x[82];
+    for (uint32_t i = 0; i < 40; ++i) {
+        EXPECT_EQ(got[i * 4], sum) << i;
+        EXPECT_EQ(got[i * 4 + 1], uint64_t(smin)) << i;
+        EXPECT_EQ(got[i * 4 + 2], x[40 + i]) << i;
+        EXPECT_EQ(after[40 + i], (i & 1u) == 0u ? x[39 - i] : x[40 + i]) << i;
+        sum += x[i];
+        smin = std::min(smin, int64_t(x[i]));
+        mx = std::max(mx, int64_t(x[i]));
+        mn = std::min(mn, int64_t(x[i]));
+        umax = std::max(umax, x[i]);
+    }
+    EXPECT_EQ(got[160], sum);
+    EXPECT_EQ(got[161], uint64_t(smin));
+    EXPECT_EQ(int64_t(after[80]), mx);
+    EXPECT_EQ(int64_t(after[81]), mn);
+    EXPECT_EQ(after[82], umax);
+    EXPECT_FALSE(p->compiled()) << "64-bit atomics stay in the interpreter";
 }
 
 // Atomics in a loop with a lane-dependent trip count: every lane keeps the value it got while it was active.
