@@ -26,6 +26,9 @@ struct Features {
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
+    VkPhysicalDevice4444FormatsFeaturesEXT formats_4444{};
+    VkPhysicalDeviceTexelBufferAlignmentFeaturesEXT texel_buffer_alignment{};
+    VkPhysicalDeviceBorderColorSwizzleFeaturesEXT border_color_swizzle{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.
