@@ -33,6 +33,8 @@ uint32_t texel_bytes(VkFormat f) {
         case VK_FORMAT_R16_UINT:
         case VK_FORMAT_R5G6B5_UNORM_PACK16:
         case VK_FORMAT_A1R5G5B5_UNORM_PACK16:
+        case VK_FORMAT_A4R4G4B4_UNORM_PACK16:
+        case VK_FORMAT_A4B4G4R4_UNORM_PACK16:
             return 2;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R16G16B16A16_SNORM:
@@ -436,6 +438,9 @@ void add_blit_cases(CaseList& out) {
     add(out, "r5g6b5_linear_scale",
         whole(VK_FORMAT_R5G6B5_UNORM_PACK16, 32, 32, VK_FORMAT_R5G6B5_UNORM_PACK16, 45, 21, kLinear));
     add(out, "a1r5g5b5_from_rgba8", whole(kRgba8, 32, 32, VK_FORMAT_A1R5G5B5_UNORM_PACK16, 40, 40, kNearest));
+    add(out, "a4r4g4b4_linear_scale",
+        whole(VK_FORMAT_A4R4G4B4_UNORM_PACK16, 32, 32, VK_FORMAT_A4R4G4B4_UNORM_PACK16, 45, 21, kLinear));
+    add(out, "a4b4g4r4_from_rgba8", whole(kRgba8, 32, 32, VK_FORMAT_A4B4G4R4_UNORM_PACK16, 40, 40, kLinear));
     add(out, "a2b10g10r10_linear_scale",
         whole(VK_FORMAT_A2B10G10R10_UNORM_PACK32, 32, 24, VK_FORMAT_A2B10G10R10_UNORM_PACK32, 19, 41, kLinear));
     add(out, "r16_uint_nearest_scale", whole(VK_FORMAT_R16_UINT, 32, 32, VK_FORMAT_R16_UINT, 45, 21, kNearest));

@@ -43,6 +43,9 @@ const FormatCase kFormats[] = {
     {"b5g5r5a1_unorm_pack16", VK_FORMAT_B5G5R5A1_UNORM_PACK16, Kind::kNorm, true},
     {"a1r5g5b5_unorm_pack16", VK_FORMAT_A1R5G5B5_UNORM_PACK16, Kind::kNorm, true},
     {"b4g4r4a4_unorm_pack16", VK_FORMAT_B4G4R4A4_UNORM_PACK16, Kind::kNorm, true},
+    // VK_EXT_4444_formats (the device enables formatA4R4G4B4 / formatA4B4G4R4 where offered)
+    {"a4r4g4b4_unorm_pack16", VK_FORMAT_A4R4G4B4_UNORM_PACK16, Kind::kNorm, true},
+    {"a4b4g4r4_unorm_pack16", VK_FORMAT_A4B4G4R4_UNORM_PACK16, Kind::kNorm, true},
     {"a2b10g10r10_unorm_pack32", VK_FORMAT_A2B10G10R10_UNORM_PACK32, Kind::kNorm, true},
     {"a2r10g10b10_unorm_pack32", VK_FORMAT_A2R10G10B10_UNORM_PACK32, Kind::kNorm, true},
     {"b10g11r11_ufloat_pack32", VK_FORMAT_B10G11R11_UFLOAT_PACK32, Kind::kNorm, true},

@@ -31,6 +31,7 @@ uint32_t color_bytes(VkFormat f) {
     if (v == 1 || (v >= 9 && v <= 15)) return 1;
     if ((v >= 2 && v <= 8) || (v >= 16 && v <= 22) || (v >= 70 && v <= 76)) return 2;
     if (v >= 23 && v <= 36) return 3;
+    if (f == VK_FORMAT_A4R4G4B4_UNORM_PACK16 || f == VK_FORMAT_A4B4G4R4_UNORM_PACK16) return 2;
     if (v >= 84 && v <= 90) return 6;
     if ((v >= 91 && v <= 97) || (v >= 101 && v <= 103)) return 8;
     if (v >= 104 && v <= 106) return 12;

@@ -39,7 +39,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME,
                                          VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME,
                                          VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME,
-                                         VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME};
+                                         VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME,
+                                         VK_EXT_4444_FORMATS_EXTENSION_NAME};
 
 }  // namespace
 
@@ -238,6 +239,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.atomic_float, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
         link(out.atomic_float2, VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
         link(out.custom_border_color, VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME);
+        link(out.formats_4444, VK_EXT_4444_FORMATS_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -285,6 +287,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.provoking_vertex.pNext = out.depth_clip_enable.pNext = out.line_rasterization.pNext = nullptr;
             out.atomic_float.pNext = out.atomic_float2.pNext = out.atomic_int64.pNext = nullptr;
             out.custom_border_color.pNext = nullptr;
+            out.formats_4444.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

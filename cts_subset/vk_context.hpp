@@ -60,6 +60,7 @@ struct DeviceContext {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT};
+    VkPhysicalDevice4444FormatsFeaturesEXT formats_4444{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_4444_FORMATS_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {

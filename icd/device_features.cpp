@@ -71,6 +71,18 @@ void add_extension_features(Features& f) {
     // stores as gallivm does (shader/texture_border.cpp format_border), so the sampler's format member is never needed.
     f.custom_border_color.customBorderColors = VK_TRUE;
     f.custom_border_color.customBorderColorWithoutFormat = VK_TRUE;
+    // A4R4G4B4 / A4B4G4R4_UNORM_PACK16: rows of the format table like B4G4R4A4 (format/support.txt), drawn, blended,
+    // sampled and blitted through the packed-UNORM codec as lavapipe (B4G4R4A4 / R4G4B4A4 in gallium's names).
+    f.formats_4444.formatA4R4G4B4 = VK_TRUE;
+    f.formats_4444.formatA4B4G4R4 = VK_TRUE;
+    // Texel buffer views at any offset aligned to one texel (or, for three-component formats, one component): the
+    // view's byte offset is added to the buffer's address as it is (buffer_view.cpp), as llvmpipe adds it.
+    f.texel_buffer_alignment.texelBufferAlignment = VK_TRUE;
+    // Border colours go through the view's component mapping after replacing the format's channels, as gallivm
+    // (shader/texture_border.cpp), so the swizzle comes from the image;
+    // VkSamplerBorderColorComponentMappingCreateInfoEXT is accepted and, as in lavapipe, not needed.
+    f.border_color_swizzle.borderColorSwizzle = VK_TRUE;
+    f.border_color_swizzle.borderColorSwizzleFromImage = VK_TRUE;
 }
 
 // The atomics beyond Vulkan 1.0's 32-bit integer ones.
@@ -265,6 +277,9 @@ Features::Features() {
     init(atomic_float, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT);
     init(atomic_float2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_2_FEATURES_EXT);
     init(custom_border_color, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT);
+    init(formats_4444, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_4444_FORMATS_FEATURES_EXT);
+    init(texel_buffer_alignment, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TEXEL_BUFFER_ALIGNMENT_FEATURES_EXT);
+    init(border_color_swizzle, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BORDER_COLOR_SWIZZLE_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -281,7 +296,10 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&line_rasterization),
                                  reinterpret_cast<VkBaseOutStructure*>(&atomic_float),
                                  reinterpret_cast<VkBaseOutStructure*>(&atomic_float2),
-                                 reinterpret_cast<VkBaseOutStructure*>(&custom_border_color)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&custom_border_color),
+                                 reinterpret_cast<VkBaseOutStructure*>(&formats_4444),
+                                 reinterpret_cast<VkBaseOutStructure*>(&texel_buffer_alignment),
+                                 reinterpret_cast<VkBaseOutStructure*>(&border_color_swizzle)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -27,6 +27,9 @@ struct Features {
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
     VkPhysicalDeviceShaderAtomicFloat2FeaturesEXT atomic_float2{};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
+    VkPhysicalDevice4444FormatsFeaturesEXT formats_4444{};
+    VkPhysicalDeviceTexelBufferAlignmentFeaturesEXT texel_buffer_alignment{};
+    VkPhysicalDeviceBorderColorSwizzleFeaturesEXT border_color_swizzle{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -103,10 +103,12 @@ void fill_v13(const PhysicalDevice& pd, VkPhysicalDeviceVulkan13Properties& p) {
     p.maxDescriptorSetUpdateAfterBindInlineUniformBlocks = p.maxDescriptorSetInlineUniformBlocks;
     p.maxInlineUniformTotalSize =
         p.maxInlineUniformBlockSize * p.maxDescriptorSetInlineUniformBlocks * limits.maxBoundDescriptorSets;
+    // Texel buffer views read and write from their byte offset whatever its alignment (buffer_view.cpp), so one
+    // texel's alignment is enough, as lavapipe reports (ApiSmallExtensions.TexelBufferAlignment*).
     p.storageTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
-    p.storageTexelBufferOffsetSingleTexelAlignment = VK_FALSE;
+    p.storageTexelBufferOffsetSingleTexelAlignment = VK_TRUE;
     p.uniformTexelBufferOffsetAlignmentBytes = limits.minTexelBufferOffsetAlignment;
-    p.uniformTexelBufferOffsetSingleTexelAlignment = VK_FALSE;
+    p.uniformTexelBufferOffsetSingleTexelAlignment = VK_TRUE;
     p.maxBufferSize = pd.memory.memoryHeaps[0].size;  // no buffer larger than the heap can be bound
 }
 

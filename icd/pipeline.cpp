@@ -387,6 +387,9 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
     if (discard && !is_dynamic(p, DynamicState::kRasterizerDiscardEnable)) return {};
     if (std::string why = translate_rasterization(ci, p); !why.empty()) return why;
     if (std::string why = translate_multisample_depth(ci, p); !why.empty()) return why;
+    // VK_EXT_depth_range_unrestricted enabled on the device: D32F depth (also of D32_SFLOAT_S8_UINT) is not clamped
+    // to [0, 1], as lavapipe's unclamped_fragment_depth_values (lvp_execute.c) for every draw of such a device.
+    p.state.depth_stencil.unrestricted_depth = dev.enabled_extensions[size_t(Ext::EXT_depth_range_unrestricted)];
     return translate_blend(ci, is_dynamic(p, DynamicState::kColorWriteEnable), p.state);
 }
 

@@ -702,6 +702,7 @@ inline uint32_t texel_bytes(VkFormat f, VkImageAspectFlags aspect) {
         return aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? 1 : f == VK_FORMAT_D16_UNORM_S8_UINT ? 2 : 4;
     if (v == 1 || (v >= 9 && v <= 15) || f == VK_FORMAT_S8_UINT) return 1;
     if ((v >= 2 && v <= 8) || (v >= 16 && v <= 22) || (v >= 70 && v <= 76) || f == VK_FORMAT_D16_UNORM) return 2;
+    if (f == VK_FORMAT_A4R4G4B4_UNORM_PACK16 || f == VK_FORMAT_A4B4G4R4_UNORM_PACK16) return 2;
     if (v >= 23 && v <= 36) return 3;
     if ((v >= 37 && v <= 69) || (v >= 77 && v <= 83) || (v >= 98 && v <= 100) || (v >= 122 && v <= 123) ||
         f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT)

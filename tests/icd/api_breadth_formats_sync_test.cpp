@@ -17,10 +17,112 @@ namespace {
 
 // ---- Format honesty --------------------------------------------------------------------------------------------
 
+struct FormatCounts {
+    int colour = 0, depth = 0, sampled = 0;
+};
+// Runs a scene on tilevk and lavapipe and expects the same bytes (ApiBreadth::both, or both_on on devices of a test).
+using BothDrivers = std::function<void(const std::function<Bytes(Kit&)>&)>;
+
+// Format `f`, whose optimal-tiling features on tilevk are `t`, renders (COLOR_ATTACHMENT, + BLEND,
+// DEPTH_STENCIL_ATTACHMENT), samples and filters exactly as on lavapipe.
+void expect_format_works(VkFormat f, VkFormatFeatureFlags t, const BothDrivers& both, FormatCounts& n) {
+    if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
+        ++n.colour;
+        SCOPED_TRACE("colour attachment");
+        const bool blend = t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
+        both([&](Kit& k) {
+            Target tg = target(k, f);
+            Pipe p;
+            p.rp = tg.rp;
+            p.blend = {blend ? alpha_over() : opaque()};
+            if (is_uint_format(f)) p.fs = SPV(ab_color_uint_frag);
+            if (is_sint_format(f)) p.fs = SPV(ab_color_sint_frag);
+            VkPipeline pipe = k.pipeline(p);
+            Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(0.1f, 0.2f, 0.3f, 0.4f)});
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                bind_vertices(c, vb);
+                vkCmdDraw(c, 6, 1, 0, 0);
+                vkCmdEndRenderPass(c);
+            }),
+                      VK_SUCCESS);
+            return k.read(tg.image.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT));
+        });
+    }
+    if (t & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
+        ++n.depth;
+        SCOPED_TRACE("depth/stencil attachment");
+        both([&](Kit& k) {
+            const auto [col, dep, rp, fb] = depth_target(k, f);
+            VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
+            ds.stencilTestEnable = has_stencil(f);
+            ds.front = ds.back = {VK_STENCIL_OP_KEEP,
+                                  VK_STENCIL_OP_REPLACE,
+                                  VK_STENCIL_OP_INCREMENT_AND_CLAMP,
+                                  VK_COMPARE_OP_ALWAYS,
+                                  0xff,
+                                  0xff,
+                                  0x5a};
+            Pipe p;
+            p.rp = rp;
+            p.ds = &ds;
+            VkPipeline pipe = k.pipeline(p);
+            Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.7f, 3)});
+                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                bind_vertices(c, vb);
+                vkCmdDraw(c, 6, 1, 0, 0);
+                vkCmdEndRenderPass(c);
+            }),
+                      VK_SUCCESS);
+            Bytes out = k.read(col.image, 32, 32, 4);
+            if (f != VK_FORMAT_S8_UINT)
+                out = concat({out, k.read(dep.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT),
+                                          VK_IMAGE_ASPECT_DEPTH_BIT)});
+            if (has_stencil(f)) out = concat({out, k.read(dep.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT)});
+            return out;
+        });
+    }
+    if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
+        ++n.sampled;
+        SCOPED_TRACE("sampled image");
+        both([&](Kit& k) {
+            return sample_4x4(k, f,
+                              is_uint_format(f)   ? SPV(ab_sample_uint_frag)
+                              : is_sint_format(f) ? SPV(ab_sample_sint_frag)
+                                                  : SPV(ab_sample_frag));
+        });
+    }
+    if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) {
+        SCOPED_TRACE("linear filtering");
+        both([&](Kit& k) {  // bilinear footprints near and past the edges (REPEAT and CLAMP_TO_EDGE)
+            Bytes out;
+            for (VkSamplerAddressMode mode : {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
+                Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8);
+                Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+                Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f) + 77), 0);
+                upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
+                const auto [dsl, layout, set] = sampler_set(k);
+                VkDescriptorImageInfo ii{k.sampler(VK_FILTER_LINEAR, mode),
+                                         k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+                k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
+                const Pipe p = fullscreen_pipe(SPV(ab_sample_edges_frag), tg, layout);
+                VkPipeline pipe = k.pipeline(p);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
+                out = concat({out, k.read(tg.image.image, 8, 8, 16)});
+            }
+            return out;
+        });
+    }
+}
+
 // Every format tilevk reports as COLOR_ATTACHMENT (+BLEND), DEPTH_STENCIL_ATTACHMENT or SAMPLED_IMAGE renders /
 // samples exactly as on lavapipe; lavapipe must report the same feature (else the test could not compare).
 TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
-    int colour = 0, depth = 0, sampled = 0;
+    FormatCounts n;
     for (int fi = 1; fi <= VK_FORMAT_ASTC_12x12_SRGB_BLOCK; ++fi) {
         const VkFormat f = VkFormat(fi);
         VkFormatProperties tp, lp;
@@ -37,102 +139,45 @@ TEST_F(ApiBreadth, EveryReportedImageFormatWorks) {
         SCOPED_TRACE("format " + std::to_string(fi));
         EXPECT_EQ(t & ~lp.optimalTilingFeatures, 0u) << "tilevk reports features lavapipe lacks";
         ASSERT_NE(texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT), 0u) << "the test does not know this format";
-        if (t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) {
-            ++colour;
-            SCOPED_TRACE("colour attachment");
-            const bool blend = t & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
-            both([&](Kit& k) {
-                Target tg = target(k, f);
-                Pipe p;
-                p.rp = tg.rp;
-                p.blend = {blend ? alpha_over() : opaque()};
-                if (is_uint_format(f)) p.fs = SPV(ab_color_uint_frag);
-                if (is_sint_format(f)) p.fs = SPV(ab_color_sint_frag);
-                VkPipeline pipe = k.pipeline(p);
-                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(0.1f, 0.2f, 0.3f, 0.4f)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    bind_vertices(c, vb);
-                    vkCmdDraw(c, 6, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
-                return k.read(tg.image.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT));
-            });
-        }
-        if (t & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
-            ++depth;
-            SCOPED_TRACE("depth/stencil attachment");
-            both([&](Kit& k) {
-                const auto [col, dep, rp, fb] = depth_target(k, f);
-                VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
-                ds.stencilTestEnable = has_stencil(f);
-                ds.front = ds.back = {VK_STENCIL_OP_KEEP,
-                                      VK_STENCIL_OP_REPLACE,
-                                      VK_STENCIL_OP_INCREMENT_AND_CLAMP,
-                                      VK_COMPARE_OP_ALWAYS,
-                                      0xff,
-                                      0xff,
-                                      0x5a};
-                Pipe p;
-                p.rp = rp;
-                p.ds = &ds;
-                VkPipeline pipe = k.pipeline(p);
-                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.7f, 3)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    bind_vertices(c, vb);
-                    vkCmdDraw(c, 6, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
-                Bytes out = k.read(col.image, 32, 32, 4);
-                if (f != VK_FORMAT_S8_UINT)
-                    out = concat({out, k.read(dep.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_DEPTH_BIT),
-                                              VK_IMAGE_ASPECT_DEPTH_BIT)});
-                if (has_stencil(f)) out = concat({out, k.read(dep.image, 32, 32, 1, VK_IMAGE_ASPECT_STENCIL_BIT)});
-                return out;
-            });
-        }
-        if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
-            ++sampled;
-            SCOPED_TRACE("sampled image");
-            both([&](Kit& k) {
-                return sample_4x4(k, f,
-                                  is_uint_format(f)   ? SPV(ab_sample_uint_frag)
-                                  : is_sint_format(f) ? SPV(ab_sample_sint_frag)
-                                                      : SPV(ab_sample_frag));
-            });
-        }
-        if (t & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) {
-            SCOPED_TRACE("linear filtering");
-            both([&](Kit& k) {  // bilinear footprints near and past the edges (REPEAT and CLAMP_TO_EDGE)
-                Bytes out;
-                for (VkSamplerAddressMode mode :
-                     {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE}) {
-                    Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 8, 8);
-                    Device::Image tex = k.image(f, 4, 4, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-                    Device::Buffer src = k.buffer_of(texel_data(f, 16, uint32_t(f) + 77), 0);
-                    upload(k, src, tex.image, VK_IMAGE_ASPECT_COLOR_BIT, 4, 4);
-                    const auto [dsl, layout, set] = sampler_set(k);
-                    VkDescriptorImageInfo ii{k.sampler(VK_FILTER_LINEAR, mode),
-                                             k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT),
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-                    k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-                    const Pipe p = fullscreen_pipe(SPV(ab_sample_edges_frag), tg, layout);
-                    VkPipeline pipe = k.pipeline(p);
-                    EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_fullscreen(c, tg, pipe, layout, set); }), VK_SUCCESS);
-                    out = concat({out, k.read(tg.image.image, 8, 8, 16)});
-                }
-                return out;
-            });
-        }
+        expect_format_works(
+            f, t, [this](const std::function<Bytes(Kit&)>& scene) { both(scene); }, n);
     }
-    EXPECT_GT(colour, 0);
-    EXPECT_GT(depth, 0);
-    EXPECT_GT(sampled, 0);
+    EXPECT_GT(n.colour, 0);
+    EXPECT_GT(n.depth, 0);
+    EXPECT_GT(n.sampled, 0);
+}
+
+// VK_EXT_4444_formats: both drivers offer it with both features; on devices that enable them, A4R4G4B4 and
+// A4B4G4R4_UNORM_PACK16 report lavapipe's image features (no buffer features) and render, blend, sample and filter as
+// on lavapipe.
+TEST_F(ApiBreadth, Formats4444WorkLikeLavapipe) {
+    VkPhysicalDevice4444FormatsFeaturesEXT want{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_4444_FORMATS_FEATURES_EXT};
+    for (Device* dev : {tilevk_.get(), lavapipe_.get()}) {
+        VkPhysicalDevice4444FormatsFeaturesEXT got{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_4444_FORMATS_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &got};
+        vkGetPhysicalDeviceFeatures2(dev->physical(), &f2);
+        EXPECT_EQ(got.formatA4R4G4B4, VK_TRUE);
+        EXPECT_EQ(got.formatA4B4G4R4, VK_TRUE);
+    }
+    want.formatA4R4G4B4 = want.formatA4B4G4R4 = VK_TRUE;
+    auto d = device_pair({VK_EXT_4444_FORMATS_EXTENSION_NAME}, &want);
+    ASSERT_TRUE(d->ok());
+    FormatCounts n;
+    for (VkFormat f : {VK_FORMAT_A4R4G4B4_UNORM_PACK16, VK_FORMAT_A4B4G4R4_UNORM_PACK16}) {
+        SCOPED_TRACE("format " + std::to_string(int(f)));
+        VkFormatProperties tp, lp;
+        vkGetPhysicalDeviceFormatProperties(tilevk_->physical(), f, &tp);
+        vkGetPhysicalDeviceFormatProperties(lavapipe_->physical(), f, &lp);
+        EXPECT_EQ(tp.optimalTilingFeatures, lp.optimalTilingFeatures);
+        EXPECT_EQ(tp.linearTilingFeatures, lp.linearTilingFeatures);
+        // lavapipe also offers uniform texel and vertex buffers of them, which tilevk does not report (yet)
+        EXPECT_EQ(tp.bufferFeatures, 0u);
+        expect_format_works(
+            f, tp.optimalTilingFeatures,
+            [&](const std::function<Bytes(Kit&)>& scene) { both_on(d->tilevk, d->lavapipe, scene); }, n);
+    }
+    EXPECT_EQ(n.colour, 2);
+    EXPECT_EQ(n.sampled, 2);
 }
 
 // Half-float texels that are NaN (signalling and quiet, with payloads), infinite, zero or denormal, sampled into an

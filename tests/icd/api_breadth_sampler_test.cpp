@@ -33,7 +33,9 @@ struct Border {
 
 // One dispatch of cp_border_<kind>.comp on a kW x kH texture of `f` (texel_data, depth formats through their depth
 // aspect) viewed with `components`, sampled with `filter` and CLAMP_TO_BORDER.
-Bytes border_lookups(Kit& k, VkFormat f, VkFilter filter, const Border& b, VkComponentMapping components = {}) {
+// `sampler_pnext`: more structs for the sampler's chain (VkSamplerBorderColorComponentMappingCreateInfoEXT).
+Bytes border_lookups(Kit& k, VkFormat f, VkFilter filter, const Border& b, VkComponentMapping components = {},
+                     VkBaseInStructure* sampler_pnext = nullptr) {
     const VkShaderStageFlags C = VK_SHADER_STAGE_COMPUTE_BIT;
     VkDescriptorSetLayout dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, C},
                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, C},
@@ -49,6 +51,10 @@ Bytes border_lookups(Kit& k, VkFormat f, VkFilter filter, const Border& b, VkCom
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     const bool custom = b.color == VK_BORDER_COLOR_FLOAT_CUSTOM_EXT || b.color == VK_BORDER_COLOR_INT_CUSTOM_EXT;
     sci.pNext = custom ? &cb : nullptr;
+    if (sampler_pnext != nullptr) {
+        sampler_pnext->pNext = static_cast<const VkBaseInStructure*>(sci.pNext);
+        sci.pNext = sampler_pnext;
+    }
     sci.magFilter = sci.minFilter = filter;
     sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
     sci.borderColor = b.color;
@@ -188,6 +194,54 @@ TEST_F(ApiSamplerExt, CustomBorderColorThroughSwizzledViewsAsLavapipe) {
             SCOPED_TRACE("format " + std::to_string(int(f)) + " filter " + std::to_string(int(filter)));
             both_on(d->tilevk, d->lavapipe, [&](Kit& k) { return border_lookups(k, f, filter, b, m); });
         }
+}
+
+// VK_EXT_border_color_swizzle: both drivers offer borderColorSwizzle and borderColorSwizzleFromImage; a sampler that
+// names the view's mapping in VkSamplerBorderColorComponentMappingCreateInfoEXT reads through swizzled views what
+// lavapipe reads (custom and standard colours, float and integer views, nearest and linear).
+TEST_F(ApiSamplerExt, BorderColorSwizzleAsLavapipe) {
+    for (Device* dev : {tilevk_.get(), lavapipe_.get()}) {
+        VkPhysicalDeviceBorderColorSwizzleFeaturesEXT got{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BORDER_COLOR_SWIZZLE_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &got};
+        vkGetPhysicalDeviceFeatures2(dev->physical(), &f2);
+        EXPECT_EQ(got.borderColorSwizzle, VK_TRUE);
+        EXPECT_EQ(got.borderColorSwizzleFromImage, VK_TRUE);
+    }
+    features_.customBorderColors = features_.customBorderColorWithoutFormat = VK_TRUE;
+    VkPhysicalDeviceBorderColorSwizzleFeaturesEXT swizzle{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BORDER_COLOR_SWIZZLE_FEATURES_EXT, &features_};
+    swizzle.borderColorSwizzle = swizzle.borderColorSwizzleFromImage = VK_TRUE;
+    auto d =
+        device_pair({VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME, VK_EXT_BORDER_COLOR_SWIZZLE_EXTENSION_NAME}, &swizzle);
+    ASSERT_TRUE(d->ok());
+    const VkComponentMapping maps[] = {
+        {VK_COMPONENT_SWIZZLE_B, VK_COMPONENT_SWIZZLE_A, VK_COMPONENT_SWIZZLE_ONE, VK_COMPONENT_SWIZZLE_R},
+        {VK_COMPONENT_SWIZZLE_A, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_G, VK_COMPONENT_SWIZZLE_G}};
+    const Border float_borders[] = {{VK_BORDER_COLOR_FLOAT_CUSTOM_EXT, float_color(0.2f, 0.4f, 0.6f, 0.8f)},
+                                    {VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK, {}},
+                                    {VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK, {}}};
+    const Border int_borders[] = {{VK_BORDER_COLOR_INT_CUSTOM_EXT, int_color(7, -3, 200, 1)},
+                                  {VK_BORDER_COLOR_INT_OPAQUE_BLACK, {}}};
+    for (const VkComponentMapping& m : maps) {
+        VkSamplerBorderColorComponentMappingCreateInfoEXT cm{
+            VK_STRUCTURE_TYPE_SAMPLER_BORDER_COLOR_COMPONENT_MAPPING_CREATE_INFO_EXT};
+        cm.components = m;
+        auto* chain = reinterpret_cast<VkBaseInStructure*>(&cm);
+        for (VkFormat f : {VK_FORMAT_R8_UNORM, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT})
+            for (VkFilter filter : {VK_FILTER_NEAREST, VK_FILTER_LINEAR})
+                for (const Border& b : float_borders) {
+                    SCOPED_TRACE("format " + std::to_string(int(f)) + " filter " + std::to_string(int(filter)) +
+                                 " border " + std::to_string(int(b.color)));
+                    both_on(d->tilevk, d->lavapipe, [&](Kit& k) { return border_lookups(k, f, filter, b, m, chain); });
+                }
+        for (VkFormat f : {VK_FORMAT_R8G8_UINT, VK_FORMAT_R32G32B32A32_SINT})
+            for (const Border& b : int_borders) {
+                SCOPED_TRACE("format " + std::to_string(int(f)) + " border " + std::to_string(int(b.color)));
+                both_on(d->tilevk, d->lavapipe,
+                        [&](Kit& k) { return border_lookups(k, f, VK_FILTER_NEAREST, b, m, chain); });
+            }
+    }
 }
 
 // ---- samplerFilterMinmax ----------------------------------------------------------------------------------------

@@ -485,5 +485,146 @@ TEST_F(ApiSmallExtensions, StorageBufferClassWithRelaxedBlockLayout) {
     EXPECT_EQ(got[3], 2.0f);
 }
 
+// VK_EXT_texel_buffer_alignment: both drivers report the feature and the same Vulkan 1.3 alignment properties
+// (16 bytes, or one texel); uniform texel buffer views at offsets aligned to one texel only (one component for
+// R32G32B32_SFLOAT) read the same texels on both, and the first texel read is the one at the view's offset.
+TEST_F(ApiSmallExtensions, TexelBufferAlignmentSingleTexelOffsets) {
+    for (Device* dev : {tilevk_.get(), lavapipe_.get()}) {
+        ASSERT_TRUE(advertised(dev->physical(), VK_EXT_TEXEL_BUFFER_ALIGNMENT_EXTENSION_NAME));
+        VkPhysicalDeviceTexelBufferAlignmentFeaturesEXT f{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TEXEL_BUFFER_ALIGNMENT_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f};
+        vkGetPhysicalDeviceFeatures2(dev->physical(), &f2);
+        EXPECT_EQ(f.texelBufferAlignment, VK_TRUE);
+        VkPhysicalDeviceTexelBufferAlignmentProperties a{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TEXEL_BUFFER_ALIGNMENT_PROPERTIES};
+        VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &a};
+        vkGetPhysicalDeviceProperties2(dev->physical(), &p2);
+        EXPECT_EQ(a.storageTexelBufferOffsetAlignmentBytes, 16u);
+        EXPECT_EQ(a.uniformTexelBufferOffsetAlignmentBytes, 16u);
+        EXPECT_EQ(a.storageTexelBufferOffsetSingleTexelAlignment, VK_TRUE);
+        EXPECT_EQ(a.uniformTexelBufferOffsetSingleTexelAlignment, VK_TRUE);
+    }
+    VkPhysicalDeviceTexelBufferAlignmentFeaturesEXT want{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TEXEL_BUFFER_ALIGNMENT_FEATURES_EXT};
+    want.texelBufferAlignment = VK_TRUE;
+    auto d = devices({VK_EXT_TEXEL_BUFFER_ALIGNMENT_EXTENSION_NAME}, &want);
+    ASSERT_TRUE(d->ok());
+    struct Case {
+        VkFormat format;
+        VkDeviceSize offset;
+    };
+    for (const Case c :
+         {Case{VK_FORMAT_R8_UNORM, 3}, Case{VK_FORMAT_R8G8B8A8_UNORM, 4}, Case{VK_FORMAT_R16G16_SFLOAT, 8},
+          Case{VK_FORMAT_R32_SFLOAT, 20}, Case{VK_FORMAT_R32G32B32_SFLOAT, 4}}) {
+        SCOPED_TRACE("format " + std::to_string(int(c.format)) + " offset " + std::to_string(c.offset));
+        const uint32_t n = texel_bytes(c.format, VK_IMAGE_ASPECT_COLOR_BIT);
+        std::vector<uint8_t> data(c.offset, 0xEE);
+        const std::vector<uint8_t> texels = texel_data(c.format, 20, 700 + uint32_t(c.format));
+        data.insert(data.end(), texels.begin(), texels.end());
+        const Bytes out = both_on(d->tilevk, d->lavapipe, [&](Kit& k) {
+            Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
+            Device::Buffer buf = k.buffer_of(data, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+            VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+            bvci.buffer = buf.buffer;
+            bvci.format = c.format;
+            bvci.offset = c.offset;
+            bvci.range = VkDeviceSize(18) * n;
+            VkBufferView view = VK_NULL_HANDLE;
+            EXPECT_EQ(vkCreateBufferView(k.d, &bvci, nullptr, &view), VK_SUCCESS);
+            VkDescriptorSetLayout dsl =
+                k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+            VkPipelineLayout layout = k.pipeline_layout({dsl});
+            VkDescriptorSet set = k.descriptor_set(dsl);
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = set;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+            w.pTexelBufferView = &view;
+            vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+            VkPipeline pipe = k.pipeline(fullscreen_pipe(SPV(ab_texel_buffer_frag), tg, layout));
+            EXPECT_EQ(k.run([&](VkCommandBuffer cb) { draw_fullscreen(cb, tg, pipe, layout, set); }), VK_SUCCESS);
+            Bytes o = k.read(tg.image.image, 4, 4, 16);
+            vkDestroyBufferView(k.d, view, nullptr);
+            return o;
+        });
+        ASSERT_EQ(out.size(), 256u);
+        float red;  // texel 0's first channel, computed here from the bytes at the offset
+        std::memcpy(&red, out.data(), 4);
+        if (c.format == VK_FORMAT_R8_UNORM || c.format == VK_FORMAT_R8G8B8A8_UNORM) {
+            EXPECT_EQ(red, float(texels[0]) * float(1.0 / 255.0));
+        }
+        if (c.format == VK_FORMAT_R32_SFLOAT || c.format == VK_FORMAT_R32G32B32_SFLOAT) {
+            float want_red;
+            std::memcpy(&want_red, texels.data(), 4);
+            EXPECT_EQ(red, want_red);
+        }
+    }
+}
+
+// VK_EXT_depth_range_unrestricted: with the extension enabled, a viewport depth range of [-0.5, 3] and a depth clear
+// of 2.5 reach D32F depth buffers unclamped (lavapipe's unclamped_fragment_depth_values), while D16 stays clamped to
+// [0, 1]; with depthClamp on too, z is clamped to the viewport's range only. Bytes equal lavapipe's; the stored
+// values are checked against the ranges here.
+TEST_F(ApiSmallExtensions, DepthRangeUnrestrictedKeepsFloatDepth) {
+    for (Device* dev : {tilevk_.get(), lavapipe_.get()})
+        ASSERT_TRUE(advertised(dev->physical(), VK_EXT_DEPTH_RANGE_UNRESTRICTED_EXTENSION_NAME));
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.features.depthClamp = VK_TRUE;
+    auto d = devices({VK_EXT_DEPTH_RANGE_UNRESTRICTED_EXTENSION_NAME}, &f2);
+    ASSERT_TRUE(d->ok());
+    for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D16_UNORM}) {
+        for (bool clamp : {false, true}) {
+            SCOPED_TRACE("format " + std::to_string(int(f)) + (clamp ? " depthClamp" : ""));
+            const Bytes out = both_on(d->tilevk, d->lavapipe, [&](Kit& k) {
+                const auto [col, dep, rp, fb] = depth_target(k, f);
+                VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
+                Pipe p;
+                p.rp = rp;
+                p.ds = &ds;
+                p.depth_clamp = clamp;
+                p.dynamic = {VK_DYNAMIC_STATE_VIEWPORT};
+                VkPipeline pipe = k.pipeline(p);
+                Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+                    begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(2.5f)});
+                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+                    // z' = -0.5 + 3.5 z: the triangles' z in [0.1, 0.9] lands in about [-0.15, 2.65]
+                    const VkViewport vp{0, 0, 32, 32, -0.5f, 3.0f};
+                    vkCmdSetViewport(c, 0, 1, &vp);
+                    bind_vertices(c, vb);
+                    vkCmdDraw(c, 6, 1, 0, 0);
+                    vkCmdEndRenderPass(c);
+                }),
+                          VK_SUCCESS);
+                return k.read(dep.image, 32, 32, f == VK_FORMAT_D16_UNORM ? 2 : 4, VK_IMAGE_ASPECT_DEPTH_BIT);
+            });
+            if (f == VK_FORMAT_D16_UNORM) {
+                ASSERT_EQ(out.size(), 32u * 32u * 2u);
+                int at_one = 0;  // the clear value 2.5 and fragments past 1, clamped to 1
+                for (size_t i = 0; i < out.size(); i += 2) at_one += (out[i] | (out[i + 1] << 8)) == 0xffff;
+                EXPECT_GT(at_one, 0);
+                continue;
+            }
+            ASSERT_EQ(out.size(), 32u * 32u * 4u);
+            int above_one = 0, below_zero = 0, cleared = 0;
+            for (size_t i = 0; i < out.size(); i += 4) {
+                float z;
+                std::memcpy(&z, &out[i], 4);
+                cleared += z == 2.5f;
+                above_one += z > 1.0f && z < 2.5f;
+                below_zero += z < 0.0f;
+                EXPECT_GE(z, -0.5f);
+                EXPECT_LE(z, 2.5f);
+            }
+            EXPECT_GT(cleared, 0);    // the clear value, unclamped
+            EXPECT_GT(above_one, 0);  // fragments past 1 stored as they are
+            if (!clamp) {
+                EXPECT_GT(below_zero, 0);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace tilevk::test::breadth

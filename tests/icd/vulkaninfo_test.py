@@ -86,9 +86,13 @@ def flag_set(v):
 
 
 j_formats = {f: v['VkFormatProperties'] for f, v in dev.get('formats', {}).items()}
-check(set(j_formats) == set(ours['formats']),
-      f'-j: formats differ: only vulkaninfo {sorted(set(j_formats) - set(ours["formats"]))}, '
-      f'only API {sorted(set(ours["formats"]) - set(j_formats))}')
+# vulkaninfo 1.3.239's -j does not walk the VK_EXT_4444_formats formats (on lavapipe either): the API's answer for them
+# is checked by tests/icd ApiBreadth.Formats4444WorkLikeLavapipe instead.
+not_walked = {'VK_FORMAT_A4R4G4B4_UNORM_PACK16', 'VK_FORMAT_A4B4G4R4_UNORM_PACK16'}
+api_formats = set(ours['formats']) - not_walked
+check(set(j_formats) == api_formats,
+      f'-j: formats differ: only vulkaninfo {sorted(set(j_formats) - api_formats)}, '
+      f'only API {sorted(api_formats - set(j_formats))}')
 for f, props in j_formats.items():
     for k in ('linearTilingFeatures', 'optimalTilingFeatures', 'bufferFeatures'):
         if f in ours['formats']:
