@@ -39,6 +39,27 @@ auto* core_struct(Core& core, VkStructureType t) {
     }
 }
 
+// Extended dynamic state 3: each member whose state dynamic_state.cpp applies at the draw, as lavapipe 22.3.6 does.
+// Not, though lavapipe reports them: TessellationDomainOrigin (tilevk has no tessellation) and RasterizationSamples
+// (a render pass instance takes its sample count from the first draw's pipeline). LineStippleEnable: only VK_FALSE
+// is valid (no stippled* feature), and a draw with VK_TRUE is refused by name. The rest are VK_FALSE in lavapipe too.
+void add_dynamic_state3_features(VkPhysicalDeviceExtendedDynamicState3FeaturesEXT& f) {
+    f.extendedDynamicState3PolygonMode = VK_TRUE;
+    f.extendedDynamicState3DepthClampEnable = VK_TRUE;
+    f.extendedDynamicState3DepthClipEnable = VK_TRUE;
+    f.extendedDynamicState3LogicOpEnable = VK_TRUE;
+    f.extendedDynamicState3SampleMask = VK_TRUE;
+    f.extendedDynamicState3AlphaToCoverageEnable = VK_TRUE;
+    f.extendedDynamicState3AlphaToOneEnable = VK_TRUE;
+    f.extendedDynamicState3DepthClipNegativeOneToOne = VK_TRUE;
+    f.extendedDynamicState3LineRasterizationMode = VK_TRUE;
+    f.extendedDynamicState3LineStippleEnable = VK_TRUE;
+    f.extendedDynamicState3ProvokingVertexMode = VK_TRUE;
+    f.extendedDynamicState3ColorBlendEnable = VK_TRUE;
+    f.extendedDynamicState3ColorBlendEquation = VK_TRUE;
+    f.extendedDynamicState3ColorWriteMask = VK_TRUE;
+}
+
 // The feature structs of extensions that no core version took in (Features' own members).
 void add_extension_features(Features& f) {
     f.index_type_uint8.indexTypeUint8 = VK_TRUE;  // rast/geometry fetch_index: 1-byte indices, restart 0xff
@@ -49,6 +70,9 @@ void add_extension_features(Features& f) {
     f.extended_dynamic_state.extendedDynamicState = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2 = VK_TRUE;
     f.extended_dynamic_state2.extendedDynamicState2LogicOp = VK_TRUE;
+    // vkCmdSetVertexInputEXT replaces the pipeline's bindings and attributes (dynamic_state.cpp apply_vertex_input).
+    f.vertex_input_dynamic_state.vertexInputDynamicState = VK_TRUE;
+    add_dynamic_state3_features(f.extended_dynamic_state3);
     // Instance-rate divisors (VkPipelineVertexInputDivisorStateCreateInfoEXT): element firstInstance + instance /
     // divisor (rast/geometry element_index), divisor 0 as lavapipe's UINT32_MAX (every instance reads firstInstance).
     f.vertex_attribute_divisor.vertexAttributeInstanceRateDivisor = VK_TRUE;
@@ -248,6 +272,8 @@ Features::Features() {
     init(line_rasterization, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT);
     init(atomic_float, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT);
     init(custom_border_color, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT);
+    init(vertex_input_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT);
+    init(extended_dynamic_state3, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -263,7 +289,9 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&depth_clip_enable),
                                  reinterpret_cast<VkBaseOutStructure*>(&line_rasterization),
                                  reinterpret_cast<VkBaseOutStructure*>(&atomic_float),
-                                 reinterpret_cast<VkBaseOutStructure*>(&custom_border_color)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&custom_border_color),
+                                 reinterpret_cast<VkBaseOutStructure*>(&vertex_input_dynamic_state),
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

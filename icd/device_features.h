@@ -26,6 +26,8 @@ struct Features {
     VkPhysicalDeviceLineRasterizationFeaturesEXT line_rasterization{};
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{};
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{};
+    VkPhysicalDeviceVertexInputDynamicStateFeaturesEXT vertex_input_dynamic_state{};
+    VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.
