@@ -274,7 +274,6 @@ void record_dynamic_state3(const DeviceContext& c, VkCommandBuffer cb, const Sce
     f.logic_op_enable(cb, d.logic_op.has_value());
     f.sample_mask(cb, s.target.samples, &d.sample_mask);
     f.alpha_to_coverage(cb, d.alpha_to_coverage);
-    f.alpha_to_one(cb, d.alpha_to_one);
     f.line_mode(cb, d.line_mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT));
     f.line_stipple(cb, VK_FALSE);
     f.provoking_vertex(cb, d.provoking_last ? VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT

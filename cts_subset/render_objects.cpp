@@ -457,16 +457,22 @@ struct Dynamic3Parts {
 
 // Extended dynamic state 3: the states Draw::dynamic3 sets (DEPTH_CLIP_ENABLE only for draws that chain the
 // depth clip struct, so that the others see depth clipping follow the dynamic depth clamp).
-const VkDynamicState kDynamicStates3[] = {
-    VK_DYNAMIC_STATE_VERTEX_INPUT_EXT,          VK_DYNAMIC_STATE_POLYGON_MODE_EXT,
-    VK_DYNAMIC_STATE_DEPTH_CLAMP_ENABLE_EXT,    VK_DYNAMIC_STATE_DEPTH_CLIP_NEGATIVE_ONE_TO_ONE_EXT,
-    VK_DYNAMIC_STATE_LOGIC_OP_ENABLE_EXT,       VK_DYNAMIC_STATE_SAMPLE_MASK_EXT,
-    VK_DYNAMIC_STATE_ALPHA_TO_COVERAGE_ENABLE_EXT, VK_DYNAMIC_STATE_ALPHA_TO_ONE_ENABLE_EXT,
-    VK_DYNAMIC_STATE_LINE_RASTERIZATION_MODE_EXT, VK_DYNAMIC_STATE_LINE_STIPPLE_ENABLE_EXT,
-    VK_DYNAMIC_STATE_PROVOKING_VERTEX_MODE_EXT, VK_DYNAMIC_STATE_COLOR_BLEND_ENABLE_EXT,
-    VK_DYNAMIC_STATE_COLOR_BLEND_EQUATION_EXT,  VK_DYNAMIC_STATE_COLOR_WRITE_MASK_EXT};
+const VkDynamicState kDynamicStates3[] = {VK_DYNAMIC_STATE_VERTEX_INPUT_EXT,
+                                          VK_DYNAMIC_STATE_POLYGON_MODE_EXT,
+                                          VK_DYNAMIC_STATE_DEPTH_CLAMP_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_DEPTH_CLIP_NEGATIVE_ONE_TO_ONE_EXT,
+                                          VK_DYNAMIC_STATE_LOGIC_OP_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_SAMPLE_MASK_EXT,
+                                          VK_DYNAMIC_STATE_ALPHA_TO_COVERAGE_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_LINE_RASTERIZATION_MODE_EXT,
+                                          VK_DYNAMIC_STATE_LINE_STIPPLE_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_PROVOKING_VERTEX_MODE_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_BLEND_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_BLEND_EQUATION_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_WRITE_MASK_EXT};
 
-// Another topology class (dynamicPrimitiveTopologyUnrestricted), every enable inverted, LAST/FIRST vertex and
+// Another topology class (dynamicPrimitiveTopologyUnrestricted), every enable inverted (alpha to one stays static:
+// tilevk does not report it dynamic), LAST/FIRST vertex and
 // BRESENHAM/RECTANGULAR swapped, another blend equation and write mask, and (make_pipeline) sample mask ~mask.
 void bake_dynamic3(const Draw& d, const Dynamic3Parts& p) {
     const bool triangles = d.topology >= VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -487,7 +493,6 @@ void bake_dynamic3(const Draw& d, const Dynamic3Parts& p) {
     if (!d.line_mode) chain_rs(r.line);
     if (d.depth_clip_enable) r.depth_clip.depthClipEnable = !*d.depth_clip_enable;
     p.ms.alphaToCoverageEnable = !d.alpha_to_coverage;
-    p.ms.alphaToOneEnable = !d.alpha_to_one;
     p.blend = {!d.blend.blendEnable,       VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR, VK_BLEND_FACTOR_SRC_ALPHA,
                VK_BLEND_OP_REVERSE_SUBTRACT, VK_BLEND_FACTOR_ZERO,              VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
                VK_BLEND_OP_SUBTRACT,         ~d.blend.colorWriteMask & 0xFu};

@@ -80,7 +80,6 @@ static void load_dynamic_state_commands(DeviceContext& c) {
     if (f3.extendedDynamicState3LogicOpEnable) get(d.logic_op_enable, "vkCmdSetLogicOpEnableEXT");
     if (f3.extendedDynamicState3SampleMask) get(d.sample_mask, "vkCmdSetSampleMaskEXT");
     if (f3.extendedDynamicState3AlphaToCoverageEnable) get(d.alpha_to_coverage, "vkCmdSetAlphaToCoverageEnableEXT");
-    if (f3.extendedDynamicState3AlphaToOneEnable) get(d.alpha_to_one, "vkCmdSetAlphaToOneEnableEXT");
     if (f3.extendedDynamicState3LineRasterizationMode) get(d.line_mode, "vkCmdSetLineRasterizationModeEXT");
     if (f3.extendedDynamicState3LineStippleEnable) get(d.line_stipple, "vkCmdSetLineStippleEnableEXT");
     if (f3.extendedDynamicState3ProvokingVertexMode) get(d.provoking_vertex, "vkCmdSetProvokingVertexModeEXT");

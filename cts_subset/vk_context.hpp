@@ -89,7 +89,6 @@ struct DeviceContext {
         PFN_vkCmdSetLogicOpEnableEXT logic_op_enable = nullptr;
         PFN_vkCmdSetSampleMaskEXT sample_mask = nullptr;
         PFN_vkCmdSetAlphaToCoverageEnableEXT alpha_to_coverage = nullptr;
-        PFN_vkCmdSetAlphaToOneEnableEXT alpha_to_one = nullptr;
         PFN_vkCmdSetLineRasterizationModeEXT line_mode = nullptr;
         PFN_vkCmdSetLineStippleEnableEXT line_stipple = nullptr;
         PFN_vkCmdSetProvokingVertexModeEXT provoking_vertex = nullptr;

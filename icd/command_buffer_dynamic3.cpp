@@ -105,10 +105,6 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetAlphaToCoverageEnableEXT(VkCommandBuffer co
     set(commandBuffer, DynamicState::kAlphaToCoverageEnable, alphaToCoverageEnable);
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetAlphaToOneEnableEXT(VkCommandBuffer commandBuffer, VkBool32 alphaToOneEnable) {
-    set(commandBuffer, DynamicState::kAlphaToOneEnable, alphaToOneEnable);
-}
-
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineRasterizationModeEXT(VkCommandBuffer commandBuffer,
                                                               VkLineRasterizationModeEXT lineRasterizationMode) {
     set(commandBuffer, DynamicState::kLineRasterizationMode, uint32_t(lineRasterizationMode));
@@ -146,8 +142,10 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteMaskEXT(VkCommandBuffer commandBu
                     nullptr);
 }
 
-// The members tilevk reports VK_FALSE. Tessellation domain origin: tilevk has no tessellation. Rasterization
-// samples: a render pass instance's sample count is taken from the pipeline bound at its first draw.
+// The members tilevk reports VK_FALSE (device_features.cpp says why).
+VKAPI_ATTR void VKAPI_CALL tvk_CmdSetAlphaToOneEnableEXT(VkCommandBuffer, VkBool32) {
+    unsupported("vkCmdSetAlphaToOneEnableEXT", "extendedDynamicState3AlphaToOneEnable");
+}
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetTessellationDomainOriginEXT(VkCommandBuffer, VkTessellationDomainOrigin) {
     unsupported("vkCmdSetTessellationDomainOriginEXT", "extendedDynamicState3TessellationDomainOrigin");
 }

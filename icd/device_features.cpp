@@ -40,8 +40,11 @@ auto* core_struct(Core& core, VkStructureType t) {
 }
 
 // Extended dynamic state 3: each member whose state dynamic_state.cpp applies at the draw, as lavapipe 22.3.6 does.
-// Not, though lavapipe reports them: TessellationDomainOrigin (tilevk has no tessellation) and RasterizationSamples
-// (a render pass instance takes its sample count from the first draw's pipeline). LineStippleEnable: only VK_FALSE
+// Not, though lavapipe reports them: TessellationDomainOrigin (tilevk has no tessellation), RasterizationSamples
+// (a render pass instance takes its sample count from the first draw's pipeline) and AlphaToOneEnable (lavapipe
+// 22.3.6 leaves the alpha of a single-sampled draw as the shader wrote it when alpha to one is set dynamically, but
+// not when it is static; cts dynamic.vertex_input_eds3.feature.alpha_to_one.* at 1x showed it and the cause in
+// llvmpipe is not yet known, so tilevk does not claim a rule it cannot state). LineStippleEnable: only VK_FALSE
 // is valid (no stippled* feature), and a draw with VK_TRUE is refused by name. The rest are VK_FALSE in lavapipe too.
 void add_dynamic_state3_features(VkPhysicalDeviceExtendedDynamicState3FeaturesEXT& f) {
     f.extendedDynamicState3PolygonMode = VK_TRUE;
@@ -50,7 +53,6 @@ void add_dynamic_state3_features(VkPhysicalDeviceExtendedDynamicState3FeaturesEX
     f.extendedDynamicState3LogicOpEnable = VK_TRUE;
     f.extendedDynamicState3SampleMask = VK_TRUE;
     f.extendedDynamicState3AlphaToCoverageEnable = VK_TRUE;
-    f.extendedDynamicState3AlphaToOneEnable = VK_TRUE;
     f.extendedDynamicState3DepthClipNegativeOneToOne = VK_TRUE;
     f.extendedDynamicState3LineRasterizationMode = VK_TRUE;
     f.extendedDynamicState3LineStippleEnable = VK_TRUE;

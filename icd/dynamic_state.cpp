@@ -25,7 +25,6 @@ bool dynamic_state3_of(VkDynamicState v, DynamicState* out) {
         {VK_DYNAMIC_STATE_LOGIC_OP_ENABLE_EXT, DynamicState::kLogicOpEnable},
         {VK_DYNAMIC_STATE_SAMPLE_MASK_EXT, DynamicState::kSampleMask},
         {VK_DYNAMIC_STATE_ALPHA_TO_COVERAGE_ENABLE_EXT, DynamicState::kAlphaToCoverageEnable},
-        {VK_DYNAMIC_STATE_ALPHA_TO_ONE_ENABLE_EXT, DynamicState::kAlphaToOneEnable},
         {VK_DYNAMIC_STATE_LINE_RASTERIZATION_MODE_EXT, DynamicState::kLineRasterizationMode},
         {VK_DYNAMIC_STATE_LINE_STIPPLE_ENABLE_EXT, DynamicState::kLineStippleEnable},
         {VK_DYNAMIC_STATE_PROVOKING_VERTEX_MODE_EXT, DynamicState::kProvokingVertexMode},
@@ -220,7 +219,6 @@ void apply_dynamic_state3(DynamicMask mask, const StaticValues& statics, const D
     if (dyn(DynamicState::kDepthClipNegativeOneToOne)) s.clip_halfz = !v.negative_one_to_one;
     if (dyn(DynamicState::kSampleMask)) s.sample_mask = v.sample_mask;
     if (dyn(DynamicState::kAlphaToCoverageEnable)) s.alpha_to_coverage = v.alpha_to_coverage;
-    if (dyn(DynamicState::kAlphaToOneEnable)) s.alpha_to_one = v.alpha_to_one;
     // lavapipe's line_rectangular: every mode but BRESENHAM (RECTANGULAR_SMOOTH is invalid: smoothLines VK_FALSE).
     if (dyn(DynamicState::kLineRasterizationMode))
         s.line_mode = v.line_mode == VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT ? rast::geometry::LineMode::kBresenham
@@ -318,9 +316,6 @@ void set_dynamic3(DynamicValues& v, DynamicState state, uint32_t value) {
             break;
         case DynamicState::kAlphaToCoverageEnable:
             v.alpha_to_coverage = value != 0;
-            break;
-        case DynamicState::kAlphaToOneEnable:
-            v.alpha_to_one = value != 0;
             break;
         case DynamicState::kLineRasterizationMode:
             v.line_mode = VkLineRasterizationModeEXT(value);

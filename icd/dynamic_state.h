@@ -57,7 +57,6 @@ enum class DynamicState : uint8_t {
     kLogicOpEnable,
     kSampleMask,
     kAlphaToCoverageEnable,
-    kAlphaToOneEnable,
     kLineRasterizationMode,
     kLineStippleEnable,
     kProvokingVertexMode,
@@ -120,7 +119,7 @@ struct DynamicValues {
     // VK_EXT_extended_dynamic_state3
     VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;
     bool depth_clamp = false, depth_clip = false, negative_one_to_one = false, logic_op_enable = false;
-    bool alpha_to_coverage = false, alpha_to_one = false, line_stipple = false, provoking_last = false;
+    bool alpha_to_coverage = false, line_stipple = false, provoking_last = false;
     uint32_t sample_mask = ~0u;
     VkLineRasterizationModeEXT line_mode = VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT;
     static constexpr uint32_t kMaxAttachments = 8;
