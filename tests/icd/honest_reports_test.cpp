@@ -156,8 +156,9 @@ TEST_F(HonestReports, EveryFeatureStructMemberIsAcceptedExactlyWhenReported) {
         }
     }
     // (a floor proving the loop reached the structs: 295 members refused once 8/16-bit types were reported, 280 once
-    // VK_EXT_shader_atomic_float's six were; each newly reported member lowers it by one)
-    EXPECT_GT(refused, 270);
+    // VK_EXT_shader_atomic_float's six were, 263 once vertexInputDynamicState and thirteen of extended dynamic state 3
+    // were; each newly reported member lowers it by one)
+    EXPECT_GT(refused, 255);
 }
 
 // Expectations written from the design, not read from the driver: what the issue found accepted silently, a
