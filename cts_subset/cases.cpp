@@ -19,25 +19,43 @@ void add_types_narrow_cases(CaseList& out);  // cases_types_narrow.cpp: 8- and 1
 // dynamic.*: cases of the groups whose state extended dynamic state 1 and 2 can set, again with every such state
 // set by vkCmdSet* on a pipeline made with other values (Draw::dynamic, render.cpp): culling, primitives (strips,
 // fans, restart), depth, stencil, viewports and scissors, logic ops, list restart.
+// dynamic.vertex_input_eds3.*: those groups and the ones whose state extended dynamic state 3 sets (blending and
+// write masks, sample masks, alpha to coverage/one, polygon modes, provoking vertex, line modes, depth clamp and
+// clip, [-w, w] depth), with the vertex input (VK_EXT_vertex_input_dynamic_state) and every extended dynamic
+// state 3 state tilevk reports set by vkCmdSet* as well (Draw::dynamic3).
 void add_dynamic_state_cases(CaseList& out) {
     const char* const groups[] = {
         "rasterization.culling.", "rasterization.primitives.", "depth.", "stencil.", "viewport.", "scissor.partial",
         "feature.logic_op.",      "feature.list_restart."};
+    const char* const groups3[] = {"blend.",
+                                   "overdraw.write_mask",
+                                   "quirks.sample_mask.",
+                                   "quirks.unfilled.",
+                                   "feature.alpha_to_one.",
+                                   "feature.depth_clip_control.",
+                                   "rasterization.provoking_vertex.",
+                                   "rasterization.line.",
+                                   "clipping.depth_clip_enable.",
+                                   "multisample.sample_shading.min"};
+    auto in = [](const std::string& name, const auto& list) {
+        for (const char* g : list)
+            if (name.rfind(g, 0) == 0) return true;
+        return false;
+    };
     const size_t n = out.size();
-    for (size_t i = 0; i < n; ++i) {
-        const Case& c = out[i];
-        bool take = false;
-        for (const char* g : groups) take = take || c.name.rfind(g, 0) == 0;
-        if (!take) continue;
-        Case d = c;
-        d.name = "dynamic." + c.name;
-        d.scene = [make = c.scene] {
-            Scene s = make();
-            for (Draw& draw : s.draws) draw.dynamic = true;
-            return s;
-        };
-        out.push_back(std::move(d));
-    }
+    for (int level = 2; level <= 3; ++level)
+        for (size_t i = 0; i < n; ++i) {
+            const Case& c = out[i];
+            if (!in(c.name, groups) && !(level == 3 && in(c.name, groups3))) continue;
+            Case d = c;
+            d.name = (level == 2 ? "dynamic." : "dynamic.vertex_input_eds3.") + c.name;
+            d.scene = [make = c.scene, level] {
+                Scene s = make();
+                for (Draw& draw : s.draws) draw.dynamic = true, draw.dynamic3 = level == 3;
+                return s;
+            };
+            out.push_back(std::move(d));
+        }
 }
 
 CaseList all_cases() {

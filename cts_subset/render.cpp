@@ -253,6 +253,40 @@ void record_texture_uploads(VkCommandBuffer cb, const std::vector<Texture>& text
     }
 }
 
+// Draw::dynamic3: the vertex input and the extended dynamic state 3 states through vkCmdSet* (make_pipeline baked
+// other values).
+void record_dynamic_state3(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, const Draw& d) {
+    const DeviceContext::DynamicStateCommands& f = c.cmd;
+    const VertexInputLayout l = vertex_input_of(d);
+    VkVertexInputBindingDescription2EXT bindings[2];
+    VkVertexInputAttributeDescription2EXT attributes[4];
+    for (uint32_t i = 0; i < l.binding_count; ++i)
+        bindings[i] = {VK_STRUCTURE_TYPE_VERTEX_INPUT_BINDING_DESCRIPTION_2_EXT, nullptr, l.bindings[i].binding,
+                       l.bindings[i].stride, l.bindings[i].inputRate, 1};
+    for (uint32_t i = 0; i < 4; ++i)
+        attributes[i] = {VK_STRUCTURE_TYPE_VERTEX_INPUT_ATTRIBUTE_DESCRIPTION_2_EXT, nullptr, l.attributes[i].location,
+                         l.attributes[i].binding, l.attributes[i].format, l.attributes[i].offset};
+    f.vertex_input(cb, l.binding_count, bindings, 4, attributes);
+    f.polygon_mode(cb, d.polygon_mode);
+    f.depth_clamp(cb, d.depth_clamp);
+    if (d.depth_clip_enable) f.depth_clip(cb, *d.depth_clip_enable);
+    f.negative_one_to_one(cb, d.negative_one_to_one);
+    f.logic_op_enable(cb, d.logic_op.has_value());
+    f.sample_mask(cb, s.target.samples, &d.sample_mask);
+    f.alpha_to_coverage(cb, d.alpha_to_coverage);
+    f.line_mode(cb, d.line_mode.value_or(VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT));
+    f.line_stipple(cb, VK_FALSE);
+    f.provoking_vertex(cb, d.provoking_last ? VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT
+                                            : VK_PROVOKING_VERTEX_MODE_FIRST_VERTEX_EXT);
+    if (s.target.color == VK_FORMAT_UNDEFINED) return;
+    f.blend_enable(cb, 0, 1, &d.blend.blendEnable);
+    const VkColorBlendEquationEXT eq = {d.blend.srcColorBlendFactor, d.blend.dstColorBlendFactor,
+                                        d.blend.colorBlendOp,        d.blend.srcAlphaBlendFactor,
+                                        d.blend.dstAlphaBlendFactor, d.blend.alphaBlendOp};
+    f.blend_equation(cb, 0, 1, &eq);
+    f.write_mask(cb, 0, 1, &d.blend.colorWriteMask);
+}
+
 // Draw::dynamic: the draw's own state through vkCmdSet* over a pipeline made with other values (make_pipeline).
 void record_dynamic_state(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, const Draw& d) {
     const DeviceContext::DynamicStateCommands& f = c.cmd;
@@ -279,6 +313,7 @@ void record_dynamic_state(const DeviceContext& c, VkCommandBuffer cb, const Scen
     f.depth_bias(cb, d.depth_bias);
     f.primitive_restart(cb, d.primitive_restart);
     if (f.logic_op) f.logic_op(cb, d.logic_op.value_or(VK_LOGIC_OP_COPY));
+    if (d.dynamic3) record_dynamic_state3(c, cb, s, d);
 }
 
 // Draw::multi: the entries `kMultiStride` bytes apart (a word of padding after each: the stride is honoured).
@@ -325,6 +360,8 @@ void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkR
         const Draw& d = s.draws[i];
         if (d.dynamic) {
             record_dynamic_state(c, cb, s, d);
+        }
+        if (d.dynamic && !d.dynamic3) {  // with dynamic3 the strides are vkCmdSetVertexInputEXT's
             const VkDeviceSize stride = sizeof(Vertex);
             c.cmd.bind_vertex_buffers2(cb, 0, 1, &vb.buffer, &offset, nullptr, &stride);
         } else {
@@ -332,7 +369,7 @@ void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkR
         }
         if (r.color_buffers[i]) {
             const VkDeviceSize zero = 0, whole = VK_WHOLE_SIZE, stride = packed_color_bytes(d.color_format);
-            if (d.dynamic)
+            if (d.dynamic && !d.dynamic3)
                 c.cmd.bind_vertex_buffers2(cb, 1, 1, &r.color_buffers[i], &zero, &whole, &stride);
             else
                 vkCmdBindVertexBuffers(cb, 1, 1, &r.color_buffers[i], &zero);

@@ -386,6 +386,20 @@ static VkStencilOpState other_ops(const VkStencilOpState& s) {
     return o;
 }
 
+VertexInputLayout vertex_input_of(const Draw& d) {
+    VertexInputLayout l;
+    const bool packed = d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT;
+    l.binding_count = packed ? 2 : 1;
+    l.bindings[0] = {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    l.bindings[1] = {1, packed ? packed_color_bytes(d.color_format) : 0, VK_VERTEX_INPUT_RATE_VERTEX};
+    l.attributes[0] = {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, pos)};
+    l.attributes[1] = {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)};
+    l.attributes[2] = {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)};
+    l.attributes[3] = {3, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, point_size)};
+    if (packed) l.attributes[1] = {1, 1, d.color_format, 0};
+    return l;
+}
+
 namespace {
 
 // The rasterization state of a draw with its extension structs (provoking vertex, depth clip, line mode) chained
@@ -430,6 +444,67 @@ void fill_rasterization(const Draw& d, RasterizationChain& r) {
     }
 }
 
+// The pipeline state Draw::dynamic3 bakes with other values than the draw's (render.cpp sets the draw's).
+struct Dynamic3Parts {
+    VkPipelineInputAssemblyStateCreateInfo& ia;
+    RasterizationChain& raster;
+    VkPipelineMultisampleStateCreateInfo& ms;
+    VkPipelineColorBlendAttachmentState& blend;
+    VkPipelineColorBlendStateCreateInfo& cb;
+    VkPipelineViewportStateCreateInfo& vps;
+    VkPipelineViewportDepthClipControlCreateInfoEXT& clip_control;
+    std::vector<VkDynamicState>& dynamic_states;
+};
+
+// Extended dynamic state 3: the states Draw::dynamic3 sets (DEPTH_CLIP_ENABLE only for draws that chain the
+// depth clip struct, so that the others see depth clipping follow the dynamic depth clamp).
+const VkDynamicState kDynamicStates3[] = {VK_DYNAMIC_STATE_VERTEX_INPUT_EXT,
+                                          VK_DYNAMIC_STATE_POLYGON_MODE_EXT,
+                                          VK_DYNAMIC_STATE_DEPTH_CLAMP_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_DEPTH_CLIP_NEGATIVE_ONE_TO_ONE_EXT,
+                                          VK_DYNAMIC_STATE_LOGIC_OP_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_SAMPLE_MASK_EXT,
+                                          VK_DYNAMIC_STATE_ALPHA_TO_COVERAGE_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_LINE_RASTERIZATION_MODE_EXT,
+                                          VK_DYNAMIC_STATE_LINE_STIPPLE_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_PROVOKING_VERTEX_MODE_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_BLEND_ENABLE_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_BLEND_EQUATION_EXT,
+                                          VK_DYNAMIC_STATE_COLOR_WRITE_MASK_EXT};
+
+// Another topology class (dynamicPrimitiveTopologyUnrestricted), every enable inverted (alpha to one stays static:
+// tilevk does not report it dynamic), LAST/FIRST vertex and
+// BRESENHAM/RECTANGULAR swapped, another blend equation and write mask, and (make_pipeline) sample mask ~mask.
+void bake_dynamic3(const Draw& d, const Dynamic3Parts& p) {
+    const bool triangles = d.topology >= VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    p.ia.topology = triangles ? VK_PRIMITIVE_TOPOLOGY_LINE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    RasterizationChain& r = p.raster;
+    auto chain_rs = [&r](auto& ext) {
+        ext.pNext = r.rs.pNext;
+        r.rs.pNext = &ext;
+    };
+    r.rs.polygonMode = d.polygon_mode == VK_POLYGON_MODE_FILL ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
+    r.rs.depthClampEnable = !d.depth_clamp;
+    r.provoking.provokingVertexMode =
+        d.provoking_last ? VK_PROVOKING_VERTEX_MODE_FIRST_VERTEX_EXT : VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT;
+    if (!d.provoking_last) chain_rs(r.provoking);
+    r.line.lineRasterizationMode =
+        d.line_mode == VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT ? VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT
+                                                                : VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
+    if (!d.line_mode) chain_rs(r.line);
+    if (d.depth_clip_enable) r.depth_clip.depthClipEnable = !*d.depth_clip_enable;
+    p.ms.alphaToCoverageEnable = !d.alpha_to_coverage;
+    p.blend = {!d.blend.blendEnable,       VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR, VK_BLEND_FACTOR_SRC_ALPHA,
+               VK_BLEND_OP_REVERSE_SUBTRACT, VK_BLEND_FACTOR_ZERO,              VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+               VK_BLEND_OP_SUBTRACT,         ~d.blend.colorWriteMask & 0xFu};
+    p.cb.logicOpEnable = !d.logic_op.has_value();
+    p.vps.pNext = d.negative_one_to_one ? nullptr : &p.clip_control;
+    // VERTEX_INPUT_BINDING_STRIDE must not be dynamic with VERTEX_INPUT_EXT (vkCmdSetVertexInputEXT sets strides).
+    std::erase(p.dynamic_states, VK_DYNAMIC_STATE_VERTEX_INPUT_BINDING_STRIDE);
+    p.dynamic_states.insert(p.dynamic_states.end(), std::begin(kDynamicStates3), std::end(kDynamicStates3));
+    if (d.depth_clip_enable) p.dynamic_states.push_back(VK_DYNAMIC_STATE_DEPTH_CLIP_ENABLE_EXT);
+}
+
 }  // namespace
 
 VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, const Draw& d, VkRenderPass rp,
@@ -450,22 +525,13 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     stages[1].module = fs;
     stages[1].pName = "main";
 
-    const bool packed = d.color_format != VK_FORMAT_R32G32B32A32_SFLOAT;
-    VkVertexInputBindingDescription bindings[2] = {
-        {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX},
-        {1, packed ? packed_color_bytes(d.color_format) : 0, VK_VERTEX_INPUT_RATE_VERTEX}};
-    VkVertexInputAttributeDescription attrs[4] = {
-        {0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, pos)},
-        {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
-        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-        {3, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, point_size)},
-    };
-    if (packed) attrs[1] = {1, 1, d.color_format, 0};
+    VertexInputLayout layout_in = vertex_input_of(d);
+    VkVertexInputBindingDescription* bindings = layout_in.bindings;
     VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vi.vertexBindingDescriptionCount = packed ? 2 : 1;
+    vi.vertexBindingDescriptionCount = layout_in.binding_count;
     vi.pVertexBindingDescriptions = bindings;
     vi.vertexAttributeDescriptionCount = 4;
-    vi.pVertexAttributeDescriptions = attrs;
+    vi.pVertexAttributeDescriptions = layout_in.attributes;
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     ia.topology = d.dynamic ? other_of_class(d.topology) : d.topology;
     ia.primitiveRestartEnable = d.dynamic ? !d.primitive_restart : d.primitive_restart;
@@ -492,7 +558,7 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
 
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = t.samples;
-    VkSampleMask mask = d.sample_mask;
+    VkSampleMask mask = d.dynamic3 ? ~d.sample_mask : d.sample_mask;
     ms.pSampleMask = &mask;
     ms.alphaToCoverageEnable = d.alpha_to_coverage;
     ms.alphaToOneEnable = d.alpha_to_one;
@@ -518,7 +584,8 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
 
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = t.color != VK_FORMAT_UNDEFINED ? 1 : 0;
-    cb.pAttachments = &d.blend;
+    VkPipelineColorBlendAttachmentState blend = d.blend;
+    cb.pAttachments = &blend;
     cb.logicOpEnable = d.logic_op.has_value();
     cb.logicOp = d.logic_op.value_or(VK_LOGIC_OP_COPY);
     if (d.dynamic && d.logic_op) cb.logicOp = VkLogicOp((*d.logic_op + 7) % 16);
@@ -527,6 +594,7 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     std::vector<VkDynamicState> dynamic_states;
     if (d.dynamic)
         dynamic_states.assign(kDynamicStates, kDynamicStates + std::size(kDynamicStates) - (c.cmd.logic_op ? 0 : 1));
+    if (d.dynamic3) bake_dynamic3(d, Dynamic3Parts{ia, raster, ms, blend, cb, vps, clip_control, dynamic_states});
     if (d.color_write_enable) {
         write_enable = d.color_write_dynamic ? !*d.color_write_enable : *d.color_write_enable;
         color_write.attachmentCount = cb.attachmentCount;
@@ -542,7 +610,7 @@ VkPipeline make_pipeline(const DeviceContext& c, Cleanup& gc, const Scene& s, co
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.stageCount = 2;
     ci.pStages = stages;
-    ci.pVertexInputState = &vi;
+    ci.pVertexInputState = d.dynamic3 ? nullptr : &vi;  // VK_DYNAMIC_STATE_VERTEX_INPUT_EXT ignores it
     ci.pInputAssemblyState = &ia;
     ci.pViewportState = &vps;
     ci.pRasterizationState = &rs;

@@ -26,6 +26,16 @@ bool pack_color(VkFormat f, const float c[4], std::vector<uint8_t>& out);
 // Bytes of one colour packed as the vertex format f (throws for a format pack_color does not know).
 uint32_t packed_color_bytes(VkFormat f);
 
+// A draw's vertex bindings and attributes: binding 0 holds Vertex (locations 0-3); with a packed colour format
+// (Draw::color_format) location 1 reads binding 1 instead. make_pipeline bakes them, or with Draw::dynamic3
+// render.cpp sets them by vkCmdSetVertexInputEXT.
+struct VertexInputLayout {
+    uint32_t binding_count = 1;
+    VkVertexInputBindingDescription bindings[2];
+    VkVertexInputAttributeDescription attributes[4];
+};
+VertexInputLayout vertex_input_of(const Draw& d);
+
 // Destroys what was created, in reverse order, whether the scene finished or threw.
 struct Cleanup {
     std::vector<std::function<void()>> steps;

@@ -84,6 +84,18 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         if (d.dynamic &&
             !(c.extended_dynamic_state.extendedDynamicState && c.extended_dynamic_state2.extendedDynamicState2))
             return "VK_EXT_extended_dynamic_state(2) extendedDynamicState(2)";
+        if (d.dynamic3 &&
+            !(c.cmd.vertex_input && c.cmd.polygon_mode && c.cmd.depth_clamp && c.cmd.negative_one_to_one &&
+              c.cmd.logic_op_enable && c.cmd.sample_mask && c.cmd.alpha_to_coverage && c.cmd.line_mode &&
+              c.cmd.line_stipple && c.cmd.provoking_vertex && c.cmd.blend_enable && c.cmd.blend_equation &&
+              c.cmd.write_mask && (c.cmd.depth_clip || !d.depth_clip_enable) && c.cmd.logic_op))
+            return "VK_EXT_vertex_input_dynamic_state and the VK_EXT_extended_dynamic_state3 features it sets";
+        // ... and what the pipeline of such a draw bakes (the opposite enables, LAST_VERTEX, BRESENHAM, [-w, w]).
+        if (d.dynamic3 && !(f.logicOp && f.fillModeNonSolid && f.depthClamp && c.provoking_vertex.provokingVertexLast &&
+                            c.line_rasterization.bresenhamLines && c.line_rasterization.rectangularLines &&
+                            c.depth_clip_control.depthClipControl))
+            return "features logicOp, fillModeNonSolid, depthClamp, provokingVertexLast, bresenhamLines, "
+                   "rectangularLines, depthClipControl";
         if (d.dynamic && d.logic_op && !c.extended_dynamic_state2.extendedDynamicState2LogicOp)
             return "VK_EXT_extended_dynamic_state2 extendedDynamicState2LogicOp";
         if (d.color_write_enable && !c.color_write_enable.colorWriteEnable)

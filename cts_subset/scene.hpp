@@ -114,6 +114,10 @@ struct Draw {
     // Everything extended dynamic state 1 and 2 can set is set with vkCmdSet* before the draw instead, on a
     // pipeline created with other values (render.cpp dynamic_pipeline_state): the frame must not change.
     bool dynamic = false;
+    // With `dynamic`: the vertex input (VK_EXT_vertex_input_dynamic_state) and every extended dynamic state 3 state
+    // tilevk reports are set by vkCmdSet* too, the pipeline made with other values (another topology class, the
+    // opposite enables, other blend equations and masks, sample mask 0); render_objects.cpp kDynamicStates3.
+    bool dynamic3 = false;
     std::optional<VkViewport> viewport;
     std::optional<VkRect2D> scissor;
     // Free-form shaders (cases_random.cpp): when set, they replace the generated GLSL. The vertex inputs are

@@ -40,7 +40,9 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_KHR_SHADER_ATOMIC_INT64_EXTENSION_NAME,
                                          VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME,
                                          VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME,
-                                         VK_EXT_4444_FORMATS_EXTENSION_NAME};
+                                         VK_EXT_4444_FORMATS_EXTENSION_NAME,
+                                         VK_EXT_VERTEX_INPUT_DYNAMIC_STATE_EXTENSION_NAME,
+                                         VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME};
 
 }  // namespace
 
@@ -70,6 +72,23 @@ static void load_dynamic_state_commands(DeviceContext& c) {
     }
     if (c.extended_dynamic_state2.extendedDynamicState2LogicOp) get(d.logic_op, "vkCmdSetLogicOpEXT");
     if (c.color_write_enable.colorWriteEnable) get(d.color_write_enable, "vkCmdSetColorWriteEnableEXT");
+    if (c.vertex_input_dynamic_state.vertexInputDynamicState) get(d.vertex_input, "vkCmdSetVertexInputEXT");
+    // Extended dynamic state 3: each command whose feature the device reports (Draw::dynamic3 needs them all).
+    const VkPhysicalDeviceExtendedDynamicState3FeaturesEXT& f3 = c.extended_dynamic_state3;
+    if (f3.extendedDynamicState3PolygonMode) get(d.polygon_mode, "vkCmdSetPolygonModeEXT");
+    if (f3.extendedDynamicState3DepthClampEnable) get(d.depth_clamp, "vkCmdSetDepthClampEnableEXT");
+    if (f3.extendedDynamicState3DepthClipEnable) get(d.depth_clip, "vkCmdSetDepthClipEnableEXT");
+    if (f3.extendedDynamicState3DepthClipNegativeOneToOne)
+        get(d.negative_one_to_one, "vkCmdSetDepthClipNegativeOneToOneEXT");
+    if (f3.extendedDynamicState3LogicOpEnable) get(d.logic_op_enable, "vkCmdSetLogicOpEnableEXT");
+    if (f3.extendedDynamicState3SampleMask) get(d.sample_mask, "vkCmdSetSampleMaskEXT");
+    if (f3.extendedDynamicState3AlphaToCoverageEnable) get(d.alpha_to_coverage, "vkCmdSetAlphaToCoverageEnableEXT");
+    if (f3.extendedDynamicState3LineRasterizationMode) get(d.line_mode, "vkCmdSetLineRasterizationModeEXT");
+    if (f3.extendedDynamicState3LineStippleEnable) get(d.line_stipple, "vkCmdSetLineStippleEnableEXT");
+    if (f3.extendedDynamicState3ProvokingVertexMode) get(d.provoking_vertex, "vkCmdSetProvokingVertexModeEXT");
+    if (f3.extendedDynamicState3ColorBlendEnable) get(d.blend_enable, "vkCmdSetColorBlendEnableEXT");
+    if (f3.extendedDynamicState3ColorBlendEquation) get(d.blend_equation, "vkCmdSetColorBlendEquationEXT");
+    if (f3.extendedDynamicState3ColorWriteMask) get(d.write_mask, "vkCmdSetColorWriteMaskEXT");
     if (c.multi_draw.multiDraw) {
         get(d.draw_multi, "vkCmdDrawMultiEXT");
         get(d.draw_multi_indexed, "vkCmdDrawMultiIndexedEXT");
@@ -240,6 +259,8 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.atomic_float2, VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
         link(out.custom_border_color, VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME);
         link(out.formats_4444, VK_EXT_4444_FORMATS_EXTENSION_NAME);
+        link(out.vertex_input_dynamic_state, VK_EXT_VERTEX_INPUT_DYNAMIC_STATE_EXTENSION_NAME);
+        link(out.extended_dynamic_state3, VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -288,6 +309,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.atomic_float.pNext = out.atomic_float2.pNext = out.atomic_int64.pNext = nullptr;
             out.custom_border_color.pNext = nullptr;
             out.formats_4444.pNext = nullptr;
+            out.vertex_input_dynamic_state.pNext = out.extended_dynamic_state3.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

@@ -61,6 +61,10 @@ struct DeviceContext {
     VkPhysicalDeviceCustomBorderColorFeaturesEXT custom_border_color{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CUSTOM_BORDER_COLOR_FEATURES_EXT};
     VkPhysicalDevice4444FormatsFeaturesEXT formats_4444{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_4444_FORMATS_FEATURES_EXT};
+    VkPhysicalDeviceVertexInputDynamicStateFeaturesEXT vertex_input_dynamic_state{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT};
+    VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {
@@ -83,6 +87,21 @@ struct DeviceContext {
         PFN_vkCmdSetColorWriteEnableEXT color_write_enable = nullptr;
         PFN_vkCmdDrawMultiEXT draw_multi = nullptr;
         PFN_vkCmdDrawMultiIndexedEXT draw_multi_indexed = nullptr;
+        PFN_vkCmdSetVertexInputEXT vertex_input = nullptr;
+        // Extended dynamic state 3 (the members Draw::dynamic3 sets).
+        PFN_vkCmdSetPolygonModeEXT polygon_mode = nullptr;
+        PFN_vkCmdSetDepthClampEnableEXT depth_clamp = nullptr;
+        PFN_vkCmdSetDepthClipEnableEXT depth_clip = nullptr;
+        PFN_vkCmdSetDepthClipNegativeOneToOneEXT negative_one_to_one = nullptr;
+        PFN_vkCmdSetLogicOpEnableEXT logic_op_enable = nullptr;
+        PFN_vkCmdSetSampleMaskEXT sample_mask = nullptr;
+        PFN_vkCmdSetAlphaToCoverageEnableEXT alpha_to_coverage = nullptr;
+        PFN_vkCmdSetLineRasterizationModeEXT line_mode = nullptr;
+        PFN_vkCmdSetLineStippleEnableEXT line_stipple = nullptr;
+        PFN_vkCmdSetProvokingVertexModeEXT provoking_vertex = nullptr;
+        PFN_vkCmdSetColorBlendEnableEXT blend_enable = nullptr;
+        PFN_vkCmdSetColorBlendEquationEXT blend_equation = nullptr;
+        PFN_vkCmdSetColorWriteMaskEXT write_mask = nullptr;
     } cmd;
 
     // The index of a memory type allowed by `bits` that has all of `flags`; throws if there is none.

@@ -61,6 +61,8 @@ struct QueryPool;
     X(SetStencilReference) \
     X(SetDynamic) \
     X(SetStencilOp) \
+    X(SetVertexInput) \
+    X(SetAttachmentDynamic) \
     X(Draw) \
     X(DrawIndexed) \
     X(DrawIndirect) \
@@ -264,6 +266,18 @@ struct CmdSetDynamic : CmdOf<CmdType::kSetDynamic> {
 struct CmdSetStencilOp : CmdOf<CmdType::kSetStencilOp> {
     VkStencilFaceFlags faces;
     VkStencilOpState ops;  // failOp, passOp, depthFailOp, compareOp (the masks and reference are not set)
+};
+// vkCmdSetVertexInputEXT, translated when recorded (command_buffer_dynamic3.cpp).
+struct CmdSetVertexInput : CmdOf<CmdType::kSetVertexInput> {
+    const VertexInputValues* values;
+};
+// The per-attachment states of extended dynamic state 3 (kColorBlendEnable, kColorBlendEquation, kColorWriteMask):
+// attachments first .. first + count - 1 take values[i] (enables and masks) or equations[i].
+struct CmdSetAttachmentDynamic : CmdOf<CmdType::kSetAttachmentDynamic> {
+    DynamicState state;
+    uint32_t first, count;
+    const uint32_t* values;
+    const VkColorBlendEquationEXT* equations;
 };
 struct CmdDraw : CmdOf<CmdType::kDraw> {
     uint32_t vertex_count, instance_count, first_vertex, first_instance;

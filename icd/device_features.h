@@ -30,6 +30,8 @@ struct Features {
     VkPhysicalDevice4444FormatsFeaturesEXT formats_4444{};
     VkPhysicalDeviceTexelBufferAlignmentFeaturesEXT texel_buffer_alignment{};
     VkPhysicalDeviceBorderColorSwizzleFeaturesEXT border_color_swizzle{};
+    VkPhysicalDeviceVertexInputDynamicStateFeaturesEXT vertex_input_dynamic_state{};
+    VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

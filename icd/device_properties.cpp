@@ -154,6 +154,12 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             pv->transformFeedbackPreservesTriangleFanProvokingVertex = VK_FALSE;
             return;
         }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_PROPERTIES_EXT:
+            // vkCmdSetPrimitiveTopology may change the topology class: each draw's topology is applied whole
+            // (dynamic_state.cpp), as lavapipe's, which says VK_TRUE.
+            reinterpret_cast<VkPhysicalDeviceExtendedDynamicState3PropertiesEXT*>(s)
+                ->dynamicPrimitiveTopologyUnrestricted = VK_TRUE;
+            return;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_PROPERTIES_EXT:
             // Line ends snapped to 1/256 pixel (rast/geometry subpixel_snap), lavapipe's 8 bits.
             reinterpret_cast<VkPhysicalDeviceLineRasterizationPropertiesEXT*>(s)->lineSubPixelPrecisionBits = 8;

@@ -272,7 +272,7 @@ bool next_view(ExecState& st) {
     st.view = uint32_t(std::countr_zero(rest));
     ++st.view_ordinal;
     st.bound = st.subpass_bound;
-    st.bound.dirty = ~0u;  // the renderer's translated states ended with its pass
+    st.bound.dirty = ~DynamicMask(0);  // the renderer's translated states ended with its pass
     st.jump_after = st.subpass_command;
     return true;
 }
@@ -359,6 +359,8 @@ struct CommandRunner {
     void operator()(const CmdSetStencilReference& c) { exec_state(st, c); }
     void operator()(const CmdSetDynamic& c) { exec_state(st, c); }
     void operator()(const CmdSetStencilOp& c) { exec_state(st, c); }
+    void operator()(const CmdSetVertexInput& c) { exec_state(st, c); }
+    void operator()(const CmdSetAttachmentDynamic& c) { exec_state(st, c); }
     void operator()(const CmdDraw& c) { exec_draw(st, c); }
     void operator()(const CmdDrawIndexed& c) { exec_draw(st, c); }
     void operator()(const CmdDrawIndirect& c) { exec_draw(st, c); }

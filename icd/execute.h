@@ -62,8 +62,8 @@ struct BoundState {
     // What changed since the draw state was last translated (execute_draw.cpp draw_state): dynamic_bit(state) per
     // vkCmdSet*, kDirtyPipeline for vkCmdBindPipeline. A draw translates the pipeline's state again only when the
     // pipeline or one of the states it takes dynamically changed.
-    static constexpr uint32_t kDirtyPipeline = 1u << 31;
-    uint32_t dirty = ~0u;
+    static constexpr DynamicMask kDirtyPipeline = DynamicMask(1) << 63;
+    DynamicMask dirty = ~DynamicMask(0);
 };
 
 // State that lives across commands while a queue runs one command buffer.
@@ -174,6 +174,8 @@ void exec_state(ExecState& st, const CmdSetStencilCompareMask& c);
 void exec_state(ExecState& st, const CmdSetStencilWriteMask& c);
 void exec_state(ExecState& st, const CmdSetStencilReference& c);
 void exec_state(ExecState& st, const CmdSetDynamic& c);
+void exec_state(ExecState& st, const CmdSetVertexInput& c);
+void exec_state(ExecState& st, const CmdSetAttachmentDynamic& c);
 void exec_state(ExecState& st, const CmdSetStencilOp& c);
 // vkCmdDraw*: render into the current subpass (the renderer starts lazily at the subpass's first draw).
 void exec_draw(ExecState& st, const CmdDraw& c);

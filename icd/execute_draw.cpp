@@ -393,6 +393,11 @@ void run_draw(ExecState& st, rr::DrawCall& call) {
     if (!st.statistics_queries.empty()) count_draw_statistics(st, call, draw_state(st), discarded);
     if (discarded) return;
     DrawContext& ctx = *st.draw;
+    if (const std::string why = dynamic_refusal(p->dynamic, bs.dyn, p->state.samples); !why.empty()) {
+        if (!ctx.warned) log_error("vkQueueSubmit: a draw was not rendered: %s", why.c_str());
+        ctx.warned = true;
+        return;
+    }
     call.id = uint32_t(ctx.origins.size());
     ctx.origins.push_back({to_handle(const_cast<Pipeline*>(p)), st.submit_index, st.command_buffer_index, draw_number});
     if (!ctx.active) begin_rendering(st, p->state.samples);
@@ -618,7 +623,35 @@ void exec_state(ExecState& st, const CmdSetDynamic& c) {
             v.color_write_enables = c.value;
             break;
         default:
+            set_dynamic3(v, c.state, c.value);
             break;  // the other states have commands of their own
+    }
+    mark_dirty(st, dynamic_bit(c.state));
+}
+
+void exec_state(ExecState& st, const CmdSetVertexInput& c) {
+    if (c.values == nullptr) return;  // out of memory when recorded
+    DynamicValues& v = st.bound.dyn;
+    v.vertex_input = *c.values;
+    // Its strides replace those of an earlier vkCmdBindVertexBuffers2 (lavapipe's vb[].stride), for the bindings its
+    // attributes read.
+    for (uint32_t i = 0; i < c.values->attribute_count; ++i) {
+        const uint32_t b = c.values->attributes[i].binding;
+        v.strides[b] = c.values->bindings[b].stride;
+    }
+    mark_dirty(st, dynamic_bit(DynamicState::kVertexInput) | dynamic_bit(DynamicState::kVertexInputBindingStride));
+}
+
+void exec_state(ExecState& st, const CmdSetAttachmentDynamic& c) {
+    DynamicValues& v = st.bound.dyn;
+    for (uint32_t i = 0; i < c.count && c.first + i < DynamicValues::kMaxAttachments; ++i) {
+        const uint32_t a = c.first + i;
+        if (c.state == DynamicState::kColorBlendEnable)
+            v.blend_enables = (v.blend_enables & ~(1u << a)) | uint32_t(c.values[i] != 0) << a;
+        else if (c.state == DynamicState::kColorWriteMask)
+            v.write_masks[a] = uint8_t(c.values[i]);
+        else if (c.state == DynamicState::kColorBlendEquation)
+            v.blend_equations[a] = c.equations[i];
     }
     mark_dirty(st, dynamic_bit(c.state));
 }

@@ -146,9 +146,10 @@ bool is_dynamic(const Pipeline& p, DynamicState d) {
     return (p.dynamic & dynamic_bit(d)) != 0;
 }
 
-// Vertex bindings and attributes (formats with VERTEX_BUFFER support only), topology and restart.
-std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
-    const VkPipelineVertexInputStateCreateInfo* vi = ci.pVertexInputState;
+// Vertex bindings and attributes (formats with VERTEX_BUFFER support only), topology and restart. With
+// VK_DYNAMIC_STATE_VERTEX_INPUT_EXT pVertexInputState is ignored: vkCmdSetVertexInputEXT sets it all.
+std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, bool dynamic_input, PipelineState& s) {
+    const VkPipelineVertexInputStateCreateInfo* vi = dynamic_input ? nullptr : ci.pVertexInputState;
     for (uint32_t i = 0; vi && i < vi->vertexBindingDescriptionCount; ++i) {
         const VkVertexInputBindingDescription& b = vi->pVertexBindingDescriptions[i];
         if (b.binding >= s.bindings.size()) s.bindings.resize(b.binding + 1);
@@ -189,13 +190,16 @@ std::string translate_vertex_input(const VkGraphicsPipelineCreateInfo& ci, Pipel
 // one). Its smooth lines (draw's aaline stage rewrites the fragment shader) and stippled lines (draw's stipple
 // stage) are not reproduced, and it rasterizes Bresenham lines single-sampled in a multisampled pass
 // (lvp_pipeline.c disable_multisample), which tilevk does not model: refused by name.
-std::string translate_line_state(const VkGraphicsPipelineCreateInfo& ci, PipelineState& s) {
+// With the mode or the stipple enable dynamic, the struct's value is ignored (execute_draw.cpp refuses a dynamic
+// BRESENHAM draw into a multisampled pass by name).
+std::string translate_line_state(const VkGraphicsPipelineCreateInfo& ci, const Pipeline& p, PipelineState& s) {
     const auto* ls = find_in_chain<VkPipelineRasterizationLineStateCreateInfoEXT>(
         ci.pRasterizationState->pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT);
     if (ls == nullptr) return {};
-    if (ls->stippledLineEnable)
+    if (ls->stippledLineEnable && !is_dynamic(p, DynamicState::kLineStippleEnable))
         return "stippledLineEnable is not supported (features stippledRectangularLines, stippledBresenhamLines, "
                "stippledSmoothLines)";
+    if (is_dynamic(p, DynamicState::kLineRasterizationMode)) return {};
     switch (ls->lineRasterizationMode) {
         case VK_LINE_RASTERIZATION_MODE_DEFAULT_EXT:
         case VK_LINE_RASTERIZATION_MODE_RECTANGULAR_EXT:
@@ -222,7 +226,7 @@ std::string translate_line_state(const VkGraphicsPipelineCreateInfo& ci, Pipelin
 std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
     PipelineState& s = p.state;
     const VkPipelineRasterizationStateCreateInfo& rs = *ci.pRasterizationState;
-    if (rs.polygonMode > VK_POLYGON_MODE_POINT)
+    if (rs.polygonMode > VK_POLYGON_MODE_POINT && !is_dynamic(p, DynamicState::kPolygonMode))
         return std::string("polygon mode ") + vk_enum_name(rs.polygonMode) + " is not supported";
     s.polygon_mode = rs.polygonMode == VK_POLYGON_MODE_LINE    ? rast::render::PolygonMode::kLine
                      : rs.polygonMode == VK_POLYGON_MODE_POINT ? rast::render::PolygonMode::kPoint
@@ -234,8 +238,10 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     // !depthClampEnable. depthClampEnable still clamps each fragment's z to the viewport's depth range either way.
     s.depth_clip = !rs.depthClampEnable;
     if (const auto* dc = find_in_chain<VkPipelineRasterizationDepthClipStateCreateInfoEXT>(
-            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT))
+            rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_DEPTH_CLIP_STATE_CREATE_INFO_EXT)) {
         s.depth_clip = dc->depthClipEnable;
+        p.statics.depth_clamp_sets_clip = false;
+    }
     // VK_EXT_provoking_vertex: lavapipe's flatshade_first is FIRST_VERTEX, the default.
     if (const auto* pv = find_in_chain<VkPipelineRasterizationProvokingVertexStateCreateInfoEXT>(
             rs.pNext, VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_PROVOKING_VERTEX_STATE_CREATE_INFO_EXT)) {
@@ -249,7 +255,7 @@ std::string translate_rasterization(const VkGraphicsPipelineCreateInfo& ci, Pipe
     s.depth_bias.slope_factor = rs.depthBiasSlopeFactor;
     s.depth_bias.clamp = rs.depthBiasClamp;
     s.line_width = rs.lineWidth;
-    if (std::string why = translate_line_state(ci, s); !why.empty()) return why;
+    if (std::string why = translate_line_state(ci, p, s); !why.empty()) return why;
     if (const VkPipelineViewportStateCreateInfo* vp = ci.pViewportState) {
         // multiViewport: up to maxViewports are accepted; without a viewport-index output (no geometry stage,
         // no shaderOutputViewportIndex) every primitive uses viewport and scissor 0, as in lavapipe.
@@ -322,7 +328,10 @@ std::string translate_multisample_depth(const VkGraphicsPipelineCreateInfo& ci, 
 }
 
 // Per-attachment blend state, the logic op and the blend constants.
-std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, bool dynamic_color_write, PipelineState& s) {
+// A dynamic blend equation (extended dynamic state 3) replaces the ops and factors here, which are then not checked.
+std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, Pipeline& p) {
+    PipelineState& s = p.state;
+    const bool dynamic_equation = is_dynamic(p, DynamicState::kColorBlendEquation);
     const VkPipelineColorBlendStateCreateInfo* cb = ci.pColorBlendState;
     if (!cb) return {};
     if (cb->logicOpEnable && cb->logicOp > VK_LOGIC_OP_SET)
@@ -333,6 +342,10 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, bool dynamic
         const VkPipelineColorBlendAttachmentState& a = cb->pAttachments[i];
         fr::BlendAttachment& b = s.blend[i];
         b.blend_enable = a.blendEnable;
+        b.write_mask = uint8_t(a.colorWriteMask & 0xf);
+        b.logic_op_enable = cb->logicOpEnable;  // VkLogicOp numbers its values as rast/fragment does
+        b.logic_op = fr::LogicOp(cb->logicOp);
+        if (dynamic_equation) continue;
         if (a.colorBlendOp > VK_BLEND_OP_MAX || a.alphaBlendOp > VK_BLEND_OP_MAX)
             return std::string("blend op ") +
                    vk_enum_name(a.colorBlendOp > VK_BLEND_OP_MAX ? a.colorBlendOp : a.alphaBlendOp) +
@@ -344,9 +357,6 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, bool dynamic
         b.src_alpha = fr::BlendFactor(a.srcAlphaBlendFactor);
         b.dst_alpha = fr::BlendFactor(a.dstAlphaBlendFactor);
         b.alpha_op = fr::BlendOp(a.alphaBlendOp);
-        b.write_mask = uint8_t(a.colorWriteMask & 0xf);
-        b.logic_op_enable = cb->logicOpEnable;  // VkLogicOp numbers its values as rast/fragment does
-        b.logic_op = fr::LogicOp(cb->logicOp);
         for (VkBlendFactor f :
              {a.srcColorBlendFactor, a.dstColorBlendFactor, a.srcAlphaBlendFactor, a.dstAlphaBlendFactor})
             if (uint32_t(f) > uint32_t(VK_BLEND_FACTOR_ONE_MINUS_SRC1_ALPHA))
@@ -362,10 +372,11 @@ std::string translate_blend(const VkGraphicsPipelineCreateInfo& ci, bool dynamic
     // dynamic the struct is ignored and apply_dynamic_state does the same at each draw).
     const auto* cw = find_in_chain<VkPipelineColorWriteCreateInfoEXT>(
         cb->pNext, VK_STRUCTURE_TYPE_PIPELINE_COLOR_WRITE_CREATE_INFO_EXT);
-    if (cw != nullptr && !dynamic_color_write) {
+    if (cw != nullptr && !is_dynamic(p, DynamicState::kColorWriteEnable)) {
         uint32_t enables = ~0u;
         for (uint32_t i = 0; i < cw->attachmentCount && i < 32; ++i)
             if (cw->pColorWriteEnables[i] != VK_TRUE) enables &= ~(1u << i);
+        p.statics.color_write_enables = enables;
         disable_color_writes(enables, s);
     }
     return {};
@@ -380,7 +391,8 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
                "(VkPhysicalDeviceDynamicRenderingFeatures::dynamicRendering), not enabled";
     if (std::string why = translate_stages(dev, ci, p); !why.empty()) return why;
     if (std::string why = dynamic_mask_of(ci.pDynamicState, &p.dynamic); !why.empty()) return why;
-    if (std::string why = translate_vertex_input(ci, p.state); !why.empty()) return why;
+    if (std::string why = translate_vertex_input(ci, is_dynamic(p, DynamicState::kVertexInput), p.state); !why.empty())
+        return why;
     const bool discard = ci.pRasterizationState->rasterizerDiscardEnable;
     p.statics.rasterizer_discard = discard;
     // A pipeline that discards everything needs no more state, unless the discard can be switched off per draw.
@@ -390,7 +402,7 @@ std::string build_pipeline(Device& dev, const VkGraphicsPipelineCreateInfo& ci, 
     // VK_EXT_depth_range_unrestricted enabled on the device: D32F depth (also of D32_SFLOAT_S8_UINT) is not clamped
     // to [0, 1], as lavapipe's unclamped_fragment_depth_values (lvp_execute.c) for every draw of such a device.
     p.state.depth_stencil.unrestricted_depth = dev.enabled_extensions[size_t(Ext::EXT_depth_range_unrestricted)];
-    return translate_blend(ci, is_dynamic(p, DynamicState::kColorWriteEnable), p.state);
+    return translate_blend(ci, p);
 }
 
 // VK_EXT_pipeline_creation_feedback: the pipeline's creation time. Per-stage feedback is left invalid (flags 0):

@@ -156,9 +156,11 @@ TEST_F(HonestReports, EveryFeatureStructMemberIsAcceptedExactlyWhenReported) {
         }
     }
     // (a floor proving the loop reached the structs: 295 members refused once 8/16-bit types were reported, 280 once
-    // VK_EXT_shader_atomic_float's six were, 7 fewer with VK_EXT_shader_atomic_float2's three and the two 64-bit
-    // integer atomics members in two structs; each newly reported member lowers it by one)
-    EXPECT_GT(refused, 250);
+    // VK_EXT_shader_atomic_float's six were, then 7 fewer with VK_EXT_shader_atomic_float2's three and the 64-bit
+    // integer atomics' members, 14 fewer with vertexInputDynamicState and thirteen of extended dynamic state 3, 5 fewer
+    // with the 4444-format, texel-buffer-alignment and border-swizzle members; each newly reported member lowers it
+    // by one)
+    EXPECT_GT(refused, 230);
 }
 
 // Expectations written from the design, not read from the driver: what the issue found accepted silently, a
