@@ -429,9 +429,9 @@ TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], _
 // stores touch only `mask` pixels.
 // store_rgba8_rows_avx2 writes rows already packed by detail::pack_rgba8_rows: at 4x the samples of a block share
 // one shader output, so the conversion runs once per block and the store once per sample.
-TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
-                                         bool inside) {
-    const uint32_t raster = lanes_to_raster(mask);
+// store_rgba8_raster_rows_avx2 takes the mask in raster order (bit 4*row + column), as the rasterizer hands it over.
+TILEVK_KERNEL void store_rgba8_raster_rows_avx2(const __m128i rows[4], uint32_t raster, uint8_t* origin, size_t pitch,
+                                                bool inside) {
     for (int r = 0; r < 4; ++r) {
         const uint32_t row_bits = (raster >> (4 * r)) & 0xfu;
         if (!row_bits) continue;
@@ -449,6 +449,11 @@ TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, u
             _mm_maskstore_epi32(reinterpret_cast<int*>(dst), m4, rows[r]);
         }
     }
+}
+
+TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
+                                         bool inside) {
+    store_rgba8_raster_rows_avx2(rows, lanes_to_raster(mask), origin, pitch, inside);
 }
 
 TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,
