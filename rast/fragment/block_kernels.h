@@ -421,6 +421,17 @@ TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], _
         rows[2 * h + 1] = _mm_unpackhi_epi64(lo, hi);
     }
 }
+
+// Row mask (bit i: pixel i of a row of four) -> the 32-bit lanes it selects: one load instead of three operations.
+struct RowSelect {
+    alignas(16) uint32_t lanes[16][4];
+};
+inline constexpr RowSelect kRowSelect = [] {
+    RowSelect t{};
+    for (uint32_t m = 0; m < 16; ++m)
+        for (uint32_t i = 0; i < 4; ++i) t.lanes[m][i] = (m >> i) & 1u ? ~0u : 0u;
+    return t;
+}();
 }  // namespace detail
 
 // UnormPath::Avx8 only. `src` is read through may_alias vector loads only (pack_rgba8_rows), so it may be the
@@ -429,9 +440,9 @@ TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], _
 // stores touch only `mask` pixels.
 // store_rgba8_rows_avx2 writes rows already packed by detail::pack_rgba8_rows: at 4x the samples of a block share
 // one shader output, so the conversion runs once per block and the store once per sample.
-TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
-                                         bool inside) {
-    const uint32_t raster = lanes_to_raster(mask);
+// store_rgba8_raster_rows_avx2 takes the mask in raster order (bit 4*row + column), as the rasterizer hands it over.
+TILEVK_KERNEL void store_rgba8_raster_rows_avx2(const __m128i rows[4], uint32_t raster, uint8_t* origin, size_t pitch,
+                                                bool inside) {
     for (int r = 0; r < 4; ++r) {
         const uint32_t row_bits = (raster >> (4 * r)) & 0xfu;
         if (!row_bits) continue;
@@ -440,8 +451,7 @@ TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, u
             _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), rows[r]);
             continue;
         }
-        const __m128i sel = _mm_setr_epi32(1, 2, 4, 8);
-        const __m128i m4 = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(int(row_bits)), sel), sel);
+        const __m128i m4 = _mm_load_si128(reinterpret_cast<const __m128i*>(detail::kRowSelect.lanes[row_bits]));
         if (inside) {
             const __m128i old = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dst));
             _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm_blendv_epi8(old, rows[r], m4));
@@ -449,6 +459,11 @@ TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, u
             _mm_maskstore_epi32(reinterpret_cast<int*>(dst), m4, rows[r]);
         }
     }
+}
+
+TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
+                                         bool inside) {
+    store_rgba8_raster_rows_avx2(rows, lanes_to_raster(mask), origin, pitch, inside);
 }
 
 TILEVK_KERNEL void store_rgba8_avx2(bool bgra, const float src[4][kBlockLanes], uint16_t mask, uint8_t* origin,

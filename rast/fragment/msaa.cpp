@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "rast/core/cpu.h"
+#include "rast/fragment/resolve_rows.h"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <emmintrin.h>
 #endif
@@ -113,6 +116,9 @@ void resolve_unorm8_row<4>(const uint8_t* src, size_t sample_stride, size_t src_
     };
     int x = 0;
     if (src_step == 4) {
+#if TILEVK_AVX2_VARIANT
+        if (kernel_isa() == Isa::kAvx2) x = isa_avx2::resolve_rgba8_planes(src, sample_stride, dst, w);
+#endif
         for (; x + 4 <= w; x += 4) {
             const uint8_t* p = src + size_t(x) * 4;
             __m128i v[kMaxSamples];  // the loops unrolled keep the arrays in registers (GCC does not at -O2)

@@ -69,6 +69,11 @@ struct DrawPlan {
     fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
     uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
     SquarePlan square;
+    // >= 0: a 4x draw whose only written target is this opaque RGBA8/BGRA8 one, shaded by a uniform shader, with no
+    // depth/stencil, query, alpha to coverage or alpha to one. Every step of the block pipeline between coverage and
+    // store then leaves the masks as they are, so a block inside the framebuffer is the primitive's packed colour
+    // stored under each sample's raster mask (fragment_block.cpp store_uniform_4x).
+    int uniform_store_4x = -1;
     // Direct runs (shader::Program::FragmentDirect): the inputs interpolated straight into the program's local
     // words (InputPlan::word), the colours read from its output words, no FragmentBlock copies. For a shader that is
     // run per block (not uniform, not a copy), without alpha to coverage, whose inputs the plan all provides.

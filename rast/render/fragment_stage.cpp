@@ -138,6 +138,26 @@ void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& p
     sq.ok = true;
 }
 
+// DrawPlan::uniform_store_4x from a finished plan. The conditions are those under which shade_block_n<4> keeps
+// each sample's coverage as its final mask: no depth or query, a uniform shader (no discard, no written sample
+// mask), no alpha to coverage; and those of write_color_in_place's opaque store: no alpha to one, an opaque RGBA8 or
+// BGRA8 path.
+void make_uniform_store_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
+    const PipelineState& pipe = *draw.pipe;
+    if (fb.samples != 4 || !pipe.fragment || !plan.uniform_shader || draw.depth_mode != 0 || draw.samples_passed ||
+        pipe.alpha_to_coverage || pipe.alpha_to_one)
+        return;
+    int target = -1;
+    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
+        if (!fb.color[c].data || plan.color[c] == ColorPath::kNone) continue;
+        if (target >= 0) return;  // a second written target
+        target = int(c);
+    }
+    if (target < 0) return;
+    const ColorPath path = plan.color[target];
+    if (path == ColorPath::kOpaqueRgba8 || path == ColorPath::kOpaqueBgra8) plan.uniform_store_4x = target;
+}
+
 // What the fast path needs to know about a draw, derived once per scene.
 // Fills `plan` in place (its input list keeps its storage from the last scene: no allocation in a steady frame).
 // DrawPlan::direct, after the inputs and colour paths are planned. Each plan gets a key of its own: a draw record's
@@ -243,6 +263,7 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     }
     make_square_plan(draw, fb, plan);
     make_direct_plan(draw, fb, plan);
+    make_uniform_store_plan(draw, fb, plan);
 }
 
 }  // namespace

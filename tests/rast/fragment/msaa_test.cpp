@@ -6,9 +6,13 @@
 #include <cstring>
 #include <random>
 
+#include "rast/core/cpu.h"
 #include "rast/fragment/msaa.h"
 
 using namespace tilevk::rast::fragment;
+using tilevk::rast::Isa;
+using tilevk::rast::kernel_isa;
+using tilevk::rast::set_kernel_isa_for_testing;
 
 TEST(FragmentMsaa, AlphaToCoverageThresholds) {
     float alpha[16];
@@ -109,6 +113,7 @@ TEST(FragmentMsaa, ResolveOfEqualSamplesIsTheSample) {
 // resolve_rect's row path for formats made of UNORM8 bytes is a twin of resolve_pixel: equal on every pixel, in
 // the icd/ layout (a pixel's samples adjacent) and in sample planes, with padding between rows.
 TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
+    const Isa before = kernel_isa();
     std::mt19937 rng(7);
     const ColorFormat formats[] = {ColorFormat::R8G8B8A8_UNORM,     ColorFormat::B8G8R8A8_UNORM,
                                    ColorFormat::R8_UNORM,           ColorFormat::R8G8_UNORM,
@@ -134,8 +139,7 @@ TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
                     for (int s = 1; s <= m; ++s) std::memcpy(s0 + s * sample_stride, s0, bpp);
                 }
             const size_t dst_pitch = w * bpp + 7;
-            std::vector<uint8_t> got(size_t(h) * dst_pitch, 0xcd), want(got);
-            resolve_rect(f, src.data(), sample_stride, pitch, got.data(), dst_pitch, w, h, true, pixel_stride);
+            std::vector<uint8_t> want(size_t(h) * dst_pitch, 0xcd);
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) {
                     const uint8_t* base = src.data() + y * pitch + x * (adjacent ? pixel_stride : bpp);
@@ -143,7 +147,15 @@ TEST(FragmentMsaa, ResolveRectEqualsResolvePixel) {
                                            base + 3 * sample_stride};
                     resolve_pixel(f, p, want.data() + y * dst_pitch + x * bpp, true);
                 }
-            EXPECT_EQ(got, want) << "format " << int(f) << (adjacent ? " adjacent samples" : " sample planes");
+            // Both builds of the eight-pixel step (rast/fragment/resolve_rows.h) and the rows' SSE2 remainder.
+            for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
+                if (!set_kernel_isa_for_testing(isa)) continue;
+                std::vector<uint8_t> got(want.size(), 0xcd);
+                resolve_rect(f, src.data(), sample_stride, pitch, got.data(), dst_pitch, w, h, true, pixel_stride);
+                EXPECT_EQ(got, want) << "format " << int(f) << (adjacent ? " adjacent samples" : " sample planes")
+                                     << (isa == Isa::kAvx2 ? " avx2" : " portable");
+            }
+            set_kernel_isa_for_testing(before);
         }
     }
 }

@@ -119,6 +119,7 @@ struct SceneDesc {
     std::vector<std::vector<Vertex>> draws;
     std::vector<std::array<float, 8>> push;  // per draw, when not empty: its push constants
     size_t split = 0;                        // > 0: the draws from this one on are a second scene of the renderer
+    bool queries = true;                     // false: no draw counts samples (DrawCall::samples_passed null)
 };
 
 // A failing scene, readably.
@@ -276,7 +277,7 @@ class FragmentStageTest : public ::testing::Test {
                 r.begin(fb);
             }
             DrawCall call;
-            call.samples_passed = &t.passed[i];
+            call.samples_passed = d.queries ? &t.passed[i] : nullptr;
             call.count = uint32_t(d.draws[i].size());
             call.vertex_buffers = {
                 {reinterpret_cast<const uint8_t*>(d.draws[i].data()), uint32_t(d.draws[i].size() * sizeof(Vertex))}};
@@ -401,6 +402,43 @@ TEST_F(FragmentStageTest, SquareKernelWritesTheReferenceBytes) {
             const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
             ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
             ASSERT_TRUE(fast.passed == ref.passed) << name << " samples passed, iter " << iter << ": " << describe(d);
+        }
+        set_kernel_isa_for_testing(before);
+    }
+}
+
+// 4x draws of a uniform shader into one opaque RGBA8 or BGRA8 target, without depth, stencil, queries or alpha to
+// coverage, store the primitive's colour under each sample's raster mask (DrawPlan::uniform_store_4x in the AVX2
+// build): the reference bytes at 1 and 2 threads, and the portable build's. The framebuffer sizes that are not
+// multiples of 4 keep their edge blocks on the general path, next to blocks of the store.
+TEST_F(FragmentStageTest, UniformStore4xWritesTheReferenceBytes) {
+    const Isa before = kernel_isa();
+    std::mt19937 rng(4711);
+    for (int iter = 0; iter < 60; ++iter) {
+        SceneDesc d = random_scene(rng, iter);
+        d.samples = 4;
+        d.depth = fragment::DepthFormat::None;
+        d.stencil = false;
+        d.queries = false;
+        d.format0 = rng() % 2 ? fragment::ColorFormat::R8G8B8A8_UNORM : fragment::ColorFormat::B8G8R8A8_UNORM;
+        for (size_t i = 0; i < d.pipes.size(); ++i) {
+            PipelineState& p = d.pipes[i];
+            d.shaders[i] = int(rng() % 2);  // kFs[0] and kFs[1]: uniform, colour 0 only
+            p.fragment = fs_[size_t(d.shaders[i])].get();
+            p.samples = 4;
+            p.alpha_to_coverage = false;
+            p.depth_stencil = {};
+            p.blend[0] = {};  // opaque, every channel written
+            p.blend[1].write_mask = 0;
+        }
+        const Targets ref = render(d, false, 1);
+        ASSERT_TRUE(ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35)) << "nothing drawn, iter " << iter;
+        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
+            if (!set_kernel_isa_for_testing(isa)) continue;
+            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
+            const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
+            ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(fast.color1 == ref.color1) << name << " colour 1, iter " << iter << ": " << describe(d);
         }
         set_kernel_isa_for_testing(before);
     }
