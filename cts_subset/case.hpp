@@ -104,6 +104,18 @@ inline VkPipelineColorBlendAttachmentState additive() {
             0xF};
 }
 
+// SRC_ALPHA, ONE_MINUS_SRC_ALPHA colour over the target ("alpha over"), alpha ONE, ZERO: the usual translucent layer.
+inline VkPipelineColorBlendAttachmentState alpha_over() {
+    return {VK_TRUE,
+            VK_BLEND_FACTOR_SRC_ALPHA,
+            VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+            VK_BLEND_OP_ADD,
+            VK_BLEND_FACTOR_ONE,
+            VK_BLEND_FACTOR_ZERO,
+            VK_BLEND_OP_ADD,
+            0xF};
+}
+
 // An RGBA8 word as read back (R in the low byte).
 constexpr uint32_t rgba8(uint32_t r, uint32_t g, uint32_t b, uint32_t a) {
     return r | g << 8 | b << 16 | a << 24;

@@ -1,6 +1,8 @@
-// compute.basic.*, compute.shared.* and compute.ssbo.*: dispatches through compute.hpp's harness, every result buffer
-// compared byte for byte with the reference, and each case's answer computed here from the definitions (the
-// built-ins, sums and prefix sums, std430 offsets) as an independent check.
+// compute.basic.* (with GLSL packUnorm/packSnorm), compute.shared.* and compute.ssbo.*: dispatches through
+// compute.hpp's harness, every result buffer compared byte for byte with the reference, and each case's answer computed
+// here from the definitions (the built-ins, sums and prefix sums, std430 offsets) as an independent check.
+#include <cmath>
+
 #include "compute_case.hpp"
 
 namespace tilevk::cts {
@@ -61,7 +63,46 @@ void add_builtin_case(CaseList& out, const std::string& name, std::array<uint32_
     add_compute_case(out, "basic." + name, std::move(s), words_are(0, want));
 }
 
+// packUnorm4x8, packSnorm4x8, packUnorm2x16 (xy) and packSnorm2x16 (zw) of 64 vec4s: out of range, signed zeros,
+// ties of the scaled value (0.5 * 255 = 127.5), random values in [-1.5, 1.5]. The answer from GLSL's definition:
+// round(clamp(c, 0, 1) * (2^n - 1)) and round(clamp(c, -1, 1) * (2^(n-1) - 1)), ties to even as both drivers round.
+void add_pack_norm_case(CaseList& out) {
+    std::vector<float> v = {-2.0f, -1.0f, -0.75f, -0.5f, -0.0f, 0.0f,          0.5f,           1.0f / 255.0f,
+                            0.25f, 0.75f, 1.0f,   1.5f,  2.0f,  0.5f / 127.0f, -0.5f / 127.0f, 1e-30f};
+    Lcg g{4321};
+    while (v.size() < 64 * 4) v.push_back(g.next() * 3.0f - 1.5f);
+    const auto unorm = [](float c, float n) {
+        return uint32_t(std::nearbyint(std::fmin(std::fmax(c, 0.0f), 1.0f) * n));
+    };
+    const auto snorm = [](float c, float n) {
+        return uint32_t(int32_t(std::nearbyint(std::fmin(std::fmax(c, -1.0f), 1.0f) * n)));
+    };
+    std::vector<uint32_t> in, want;
+    for (size_t i = 0; i < v.size(); i += 4) {
+        uint32_t u8 = 0, s8 = 0;
+        for (size_t k = 0; k < 4; ++k) {
+            in.push_back(fbits(v[i + k]));
+            u8 |= unorm(v[i + k], 255.0f) << (8 * k);
+            s8 |= (snorm(v[i + k], 127.0f) & 0xFFu) << (8 * k);
+        }
+        want.push_back(u8);
+        want.push_back(s8);
+        want.push_back(unorm(v[i], 65535.0f) | unorm(v[i + 1], 65535.0f) << 16);
+        want.push_back((snorm(v[i + 2], 32767.0f) & 0xFFFFu) | snorm(v[i + 3], 32767.0f) << 16);
+    }
+    ComputeSpec s;
+    s.shaders = {glsl_header(16) +
+                 "layout(std430, binding=0) readonly buffer I { vec4 v[]; };\n"
+                 "layout(std430, binding=1) buffer O { uvec4 o[]; };\n"
+                 "void main() { uint i = gl_GlobalInvocationID.x; vec4 c = v[i];\n"
+                 "  o[i] = uvec4(packUnorm4x8(c), packSnorm4x8(c), packUnorm2x16(c.xy), packSnorm2x16(c.zw)); }\n"};
+    s.buffers = {{in, false, false}, {std::vector<uint32_t>(want.size(), kMarker)}};
+    s.steps = {dispatch(0, 4)};
+    add_compute_case(out, "basic.pack_norm", std::move(s), words_are(1, want));
+}
+
 void add_basic_cases(CaseList& out) {
+    add_pack_norm_case(out);
     const struct {
         const char* name;
         std::array<uint32_t, 3> l, g;

@@ -4,18 +4,6 @@
 namespace tilevk::cts {
 namespace {
 
-// "Over" blending: colour SRC_ALPHA, ONE_MINUS_SRC_ALPHA; alpha ONE, ZERO.
-VkPipelineColorBlendAttachmentState alpha_over() {
-    return {VK_TRUE,
-            VK_BLEND_FACTOR_SRC_ALPHA,
-            VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-            VK_BLEND_OP_ADD,
-            VK_BLEND_FACTOR_ONE,
-            VK_BLEND_FACTOR_ZERO,
-            VK_BLEND_OP_ADD,
-            0xF};
-}
-
 Scene ms_scene(Draw d) {
     Scene s = one_draw(std::move(d));
     s.target.samples = VK_SAMPLE_COUNT_4_BIT;

@@ -71,14 +71,7 @@ void add_overdraw_cases(CaseList& out) {
     out.push_back({"overdraw.blended_last",
                    [] {
                        Draw d = layer(1, 2, Frag::kColor);
-                       d.blend = {VK_TRUE,
-                                  VK_BLEND_FACTOR_SRC_ALPHA,
-                                  VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-                                  VK_BLEND_OP_ADD,
-                                  VK_BLEND_FACTOR_ONE,
-                                  VK_BLEND_FACTOR_ZERO,
-                                  VK_BLEND_OP_ADD,
-                                  0xF};
+                       d.blend = alpha_over();
                        return layers(d);
                    },
                    nullptr, ""});

@@ -110,15 +110,7 @@ Draw multi_draw(uint32_t instances, bool blended, bool indexed, std::optional<in
     const float step = blended ? 0.25f : 0.0f;  // blended entries overlap partly
     for (int e = 0; e < 3; ++e)
         add_corner(d, -0.9f, 0.3f + step * float(e), blended ? 1.0f : 0.4f, blended ? 0.5f : 1.0f);
-    if (blended)
-        d.blend = {VK_TRUE,
-                   VK_BLEND_FACTOR_SRC_ALPHA,
-                   VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
-                   VK_BLEND_OP_ADD,
-                   VK_BLEND_FACTOR_ONE,
-                   VK_BLEND_FACTOR_ZERO,
-                   VK_BLEND_OP_ADD,
-                   0xF};
+    if (blended) d.blend = alpha_over();
     if (!indexed) {
         d.multi = {{0, 3, 0}, {3, 3, 0}, {6, 3, 0}};
         return d;

@@ -135,6 +135,10 @@ void add_atomic_features(Features& f) {
     f.core.v12.shaderSharedInt64Atomics = VK_TRUE;
 }
 
+// The features tilevk reports, a member a line with why it holds. A deliberate twin in shape of make_limits
+// (physical_device.cpp): both are lists of "struct.member = value;" with different members and values. They stay
+// code rather than one generated table because each value's reason (the code that makes it true, the test that
+// checks it) is written next to it; the member names themselves come from the Vulkan headers.
 Features make_supported() {
     Features f;
     VkPhysicalDeviceFeatures& c = f.core10;

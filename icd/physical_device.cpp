@@ -19,6 +19,7 @@ namespace {
 
 // Limits: the Vulkan 1.0 required minimums for everything the render path has yet to prove, and tilevk's own
 // values where they come from its design (16384 = the 15.8 fixed-point range, 8 sub-pixel bits, 1x/4x MSAA).
+// A deliberate twin in shape of device_features.cpp make_supported (a member a line, each with its reason).
 VkPhysicalDeviceLimits make_limits() {
     VkPhysicalDeviceLimits l{};
     l.maxImageDimension1D = kMaxImageDimension;

@@ -192,35 +192,31 @@ TILEVK_GALLIVM_OPS(TILEVK_EXEC_GALLIVM)
     LANES d[l] = half_to_float(a[l] >> 16);
 }
 
-[[gnu::always_inline]] inline void op_pack_unorm4x8(const Inst& in, Machine& mc) {
-    // unorm: round(clamp(c, 0, 1) * 255); snorm: round(clamp(c, -1, 1) * 127)
+// packUnorm/packSnorm of kCount components of kBits each, the first in the low bits: unorm
+// round(clamp(c, 0, 1) * (2^kBits - 1)), snorm round(clamp(c, -1, 1) * (2^(kBits - 1) - 1)).
+template <int kCount, int kBits>
+[[gnu::always_inline]] inline void pack_norm(const Inst& in, Machine& mc, bool sn) {
+    constexpr float kUnormMax = float((1u << kBits) - 1), kSnormMax = float((1u << (kBits - 1)) - 1);
+    constexpr uint32_t kMask = (1u << kBits) - 1;
     uint32_t* __restrict d = D;
-    bool sn = in.op == Op::PackSnorm4x8;
     LANES {
         uint32_t r = 0;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < kCount; ++i) {
             float c = reinterpret_cast<const f32a*>(mc.R + size_t(in.a + i) * kLanes)[l];
-            int v = sn ? int(round_even(std::fmin(std::fmax(c, -1.0f), 1.0f) * 127.0f))
-                       : int(round_even(std::fmin(std::fmax(c, 0.0f), 1.0f) * 255.0f));
-            r |= (uint32_t(v) & 0xff) << (8 * i);
+            int v = sn ? int(round_even(std::fmin(std::fmax(c, -1.0f), 1.0f) * kSnormMax))
+                       : int(round_even(std::fmin(std::fmax(c, 0.0f), 1.0f) * kUnormMax));
+            r |= (uint32_t(v) & kMask) << (kBits * i);
         }
         d[l] = r;
     }
 }
 
+[[gnu::always_inline]] inline void op_pack_unorm4x8(const Inst& in, Machine& mc) {
+    pack_norm<4, 8>(in, mc, in.op == Op::PackSnorm4x8);
+}
+
 [[gnu::always_inline]] inline void op_pack_unorm2x16(const Inst& in, Machine& mc) {
-    uint32_t* __restrict d = D;
-    bool sn = in.op == Op::PackSnorm2x16;
-    LANES {
-        uint32_t r = 0;
-        for (int i = 0; i < 2; ++i) {
-            float c = reinterpret_cast<const f32a*>(mc.R + size_t(in.a + i) * kLanes)[l];
-            int v = sn ? int(round_even(std::fmin(std::fmax(c, -1.0f), 1.0f) * 32767.0f))
-                       : int(round_even(std::fmin(std::fmax(c, 0.0f), 1.0f) * 65535.0f));
-            r |= (uint32_t(v) & 0xffff) << (16 * i);
-        }
-        d[l] = r;
-    }
+    pack_norm<2, 16>(in, mc, in.op == Op::PackSnorm2x16);
 }
 
 [[gnu::always_inline]] inline void op_unpack_unorm4x8(const Inst& in, Machine& mc) {

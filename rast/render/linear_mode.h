@@ -1,8 +1,8 @@
 // lavapipe's "linear" mode as one module (docs/lavapipe-rules.md §0.3 and §8; rast/geometry/README.md "Linear
 // mode"): whether a subpass's framebuffer puts llvmpipe in it, and whether a draw in it is shaded by llvmpipe's
-// 8-bit linear path. What the mode then changes lives next to it: the guard band and rectangles (renderer_emit.cpp,
-// geometry/rect_detect.h), which bins stay linear (linear_bins.h) and the linear shading (fragment/linear.h); the
-// shader class comes from shader/ (Program::linear_shader, shader/linear_analysis.cpp).
+// 8-bit linear path. What the mode then changes lives next to it: the guard band and rectangles
+// (geometry/draw_module.h, geometry/rect_detect.h), which bins stay linear (linear_bins.h) and the linear shading
+// (fragment/linear.h); the shader class comes from shader/ (Program::linear_shader, shader/linear_analysis.cpp).
 #pragma once
 
 #include <cstdint>

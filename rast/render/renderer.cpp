@@ -8,8 +8,8 @@
 #include "rast/fragment/msaa.h"
 #include "rast/geometry/clip.h"
 #include "rast/geometry/draw_batches.h"
+#include "rast/geometry/draw_module.h"
 #include "rast/geometry/fp_env.h"
-#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/unfilled.h"
 #include "rast/geometry/viewport.h"
@@ -455,29 +455,25 @@ bool Renderer::plan_draw(DrawPlan& plan, const PipelineState& pipe, const DrawCa
     // lp_setup_vbuf.c offers triangle pairs to the rectangle test only without flat inputs (uses_constant_interp)
     // and, except for the 4-vertex fan's triangle order, only in linear mode; unfilled polygons reach setup as
     // lines or points.
-    rect_cfg_.layout = layout;
-    rect_cfg_.cull_front = plan.fcull.cull_front;
-    rect_cfg_.cull_back = plan.fcull.cull_back;
-    rect_cfg_.front_ccw = pipe.front_ccw;
     plan.pair_candidates = !has_flat_input && !plan.unfilled && plan.verts_per_prim == 3;
-    rect_pairs_ = fb_.linear_mode && plan.pair_candidates;
     vbuf_triangles_ = plan.verts_per_prim == 3 && !plan.unfilled;
-    {
-        // vbuf vertex size: position + one vec4 per fragment input (+ face, + point size), 16 bytes each
-        // (lp_state_derived.c compute_vertex_info); max_vertices = LP_MAX_VBUF_SIZE 4096 / size. Unfilled
-        // triangles reach it as their edges or corners.
-        uint32_t slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
-        if (plan.reads_front_facing) ++slots;
-        if (pipe.vertex->interface().builtins_written & shader::bit(shader::BuiltIn::PointSize)) ++slots;
-        vbuf_.verts_per_prim = !plan.unfilled ? plan.verts_per_prim : pipe.polygon_mode == PolygonMode::kLine ? 2 : 1;
-        vbuf_.stride = geometry::vertex_floats(layout);
-        vbuf_.max_vertices = 4096 / (16 * slots);
-        vbuf_.records.clear();
-        vbuf_.point_size.clear();
-        vbuf_.front.clear();
-        vbuf_.vertices = 0;
-        vbuf_.emitted_id.clear();
-    }
+    geometry::DrawModuleConfig dcfg;
+    dcfg.rect.layout = layout;
+    dcfg.rect.cull_front = plan.fcull.cull_front;
+    dcfg.rect.cull_back = plan.fcull.cull_back;
+    dcfg.rect.front_ccw = pipe.front_ccw;
+    dcfg.linear_mode = fb_.linear_mode;
+    dcfg.pair_candidates = plan.pair_candidates;
+    dcfg.flatshade_first = pipe.flatshade_first;
+    dcfg.single_sample = fb_.samples == 1;
+    // Unfilled triangles reach the vbuf as their edges or corners. Its vertex: position + one vec4 per fragment
+    // input (+ face, + point size).
+    dcfg.verts_per_prim = !plan.unfilled ? plan.verts_per_prim : pipe.polygon_mode == PolygonMode::kLine ? 2 : 1;
+    dcfg.record_floats = geometry::vertex_floats(layout);
+    dcfg.vertex_slots = 1 + static_cast<uint32_t>(rec.varyings.slot_location.size());
+    if (plan.reads_front_facing) ++dcfg.vertex_slots;
+    if (pipe.vertex->interface().builtins_written & shader::bit(shader::BuiltIn::PointSize)) ++dcfg.vertex_slots;
+    draw_module_.begin_draw(dcfg);
 
     // Large triangle draws where the batch loop would call add_triangle for each triangle of a direct batch and
     // for each clipped, float-culled piece of a pipeline batch, in order: no unfilled polygons, no linear mode
@@ -555,10 +551,10 @@ void Renderer::emit_batch(DrawPlan& plan, uint32_t draw_index, const DrawRecord&
     // A batch emitted straight to setup flushes draw's pipeline first (draw_pt_emit.c draw_do_flush).
     if (!pipeline_path) vbuf_flush(draw_index, rec);
     if (!pipeline_path && plan.pair_candidates &&
-        emit_direct_pairs(draw_index, rec, plan.pipe->topology, plan.indexed, first_prim, end_prim, batch_verts))
+        emit_direct_pairs(draw_index, rec, plan.pipe->topology, plan.indexed, first_prim, end_prim))
         return;
     const uint32_t batch_end = plan.nine_vertex_candidate && !pipeline_path && batch_verts == 9
-                                   ? nine_vertex_batch_end(draw_index, rec, first_prim, end_prim, batch_ids)
+                                   ? nine_vertex_batch_end(draw_index, rec, first_prim, end_prim)
                                    : end_prim;
     for (uint32_t p = start_prim; p < batch_end; ++p) {
         const uint32_t* ids = assembled_.data() + size_t(p) * vpp;
@@ -628,8 +624,8 @@ void Renderer::emit_clipped_triangle(DrawPlan& plan, uint32_t draw_index, const 
             if (r == v0 || r == v1 || r == v2)
                 vbuf_ids[k] = batch_serial << 32 | (r == v0 ? s0 : r == v1 ? s1 : s2);
             else
-                vbuf_ids[k] =
-                    clip_serial << 32 | (1u << 31) | static_cast<uint64_t>((r - clip_scratch_.data()) / vbuf_.stride);
+                vbuf_ids[k] = clip_serial << 32 | (1u << 31) |
+                              static_cast<uint64_t>((r - clip_scratch_.data()) / draw_module_.record_floats());
         }
         if (vbuf_triangles_) {
             const float* vv[3] = {a, b, c};

@@ -19,8 +19,8 @@
 #include "rast/core/thread_pool.h"
 #include "rast/fragment/linear.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/draw_module.h"
 #include "rast/geometry/planes.h"
-#include "rast/geometry/rect_detect.h"
 #include "rast/render/draw_state.h"
 #include "rast/render/scene_records.h"
 #include "rast/render/targets.h"
@@ -89,11 +89,17 @@ class Renderer {
                    uint64_t batch_serial);
     void record_draw(DrawRecord& rec, const PipelineState& pipe, const DrawCall& call,
                      const shader::Bindings& bindings);
-    void triangle_records(uint32_t p, const float* v[3]) const;
+    // The draw module's calls for one batch (rast/geometry/draw_module.h; renderer_emit.cpp): its SetupSink, the
+    // batch as it reads it, the direct batch's rectangle pairs, the 9-vertex analysis (returns where the caller's
+    // triangle loop ends) and the vbuf stage.
+    class Setup;
+    geometry::TriangleBatch triangle_batch(uint32_t first_prim, uint32_t end_prim) const;
     bool emit_direct_pairs(uint32_t draw_index, const DrawRecord& rec, geometry::Topology topology, bool indexed,
-                           uint32_t first_prim, uint32_t end_prim, size_t batch_verts);
-    uint32_t nine_vertex_batch_end(uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim,
-                                   const uint32_t* batch_ids);
+                           uint32_t first_prim, uint32_t end_prim);
+    uint32_t nine_vertex_batch_end(uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim, uint32_t end_prim);
+    void vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float* const* v, const uint64_t* ids,
+                        float point_size = 1.0f, bool front = true);
+    void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
 
     void add_triangle(uint32_t draw, const DrawRecord& rec, const float* v0, const float* v1, const float* v2);
     // Triangles prim_slots[3*i .. 3*i+2] (shaded record slots), i in [0, n), as the primitive loop of draw()
@@ -111,19 +117,6 @@ class Renderer {
     void add_point(uint32_t draw, const DrawRecord& rec, const float* v, float size, bool front_facing = true);
     // llvmpipe's rectangle (lp_setup_rect.c try_rect_cw): box of the snapped corners, planes from (c0, c1, c2).
     void add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, const float* c1, const float* c2, bool front);
-    // lp_setup_vbuf.c rect(): setup->rect in linear mode, else (or when it declines) both triangles in order.
-    void rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
-    // setup->rect's outcome applied; returns false when it declined (kTriangles), having drawn nothing.
-    bool apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3], const float* const t1[3]);
-    // draw's vbuf stage for the primitives leaving the pipeline (clipper, float cull, unfilled stage): triangles,
-    // lines or points (VbufGroup::verts_per_prim vertices each) collect until a direct batch, the end of the draw or
-    // a full vertex/index buffer, then reach setup as one indexed list (triangles in linear mode as rectangle pairs
-    // where they qualify). `ids` tell draw's vertex headers apart (each is emitted once per buffer); a point carries
-    // its size, an unfilled triangle's line or point its facing. after_draw: the flush at the end of
-    // llvmpipe_draw_vbo, outside draw_vbo's denormal flushing, so setup keeps denormals.
-    void vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float* const* v, const uint64_t* ids,
-                        float point_size = 1.0f, bool front = true);
-    void vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw = false);
     bool batch_takes_pipeline(uint32_t first, uint32_t end, bool any_clipped) const;
     uint32_t parallel_prefix(const DrawPlan& plan, bool any_clipped) const;
     // The last triangle at or after tail_first (a batch start after which every batch of the instance goes through
@@ -162,21 +155,8 @@ class Renderer {
     std::vector<geometry::AttribPlane> attrib_planes_;
     std::vector<uint32_t> batches_;        // primitives per draw-module batch (geometry/draw_batches.h)
     std::vector<float> unfilled_scratch_;  // 3 records: a polygonMode LINE/POINT triangle after offset/flatshade
-    // Linear-mode rectangle state of the current draw.
-    geometry::RectPairConfig rect_cfg_;
-    bool rect_pairs_ = false;  // linear mode and no flat input (lp_setup_vbuf.c: !uses_constant_interp)
-    bool vbuf_triangles_ = false;  // filled triangles: clipped batches reach setup through vbuf_
-    struct VbufGroup {
-        uint32_t verts_per_prim = 3;       // the draw's primitives as setup gets them: 3, 2 (lines) or 1 (points)
-        std::vector<float> records;        // verts_per_prim copied vertex records per primitive
-        std::vector<float> point_size;     // per primitive (points)
-        std::vector<uint8_t> front;        // per primitive (lines and points)
-        uint32_t stride = 0;               // floats per record
-        uint32_t vertices = 0;             // vbuf->nr_vertices (each vertex counted once per buffer)
-        uint32_t max_vertices = 0;         // 4096 bytes / vertex size
-        static constexpr uint32_t kMaxIndices = 1020;  // lp_setup_vbuf.c LP_MAX_VBUF_INDEXES
-        std::vector<uint64_t> emitted_id;  // vertex ids emitted into the current buffer
-    } vbuf_;
+    geometry::DrawModule draw_module_;     // vbuf stage, rectangle pairs, 9-vertex analysis of the current draw
+    bool vbuf_triangles_ = false;          // filled triangles: clipped batches reach setup through the vbuf
     std::vector<uint8_t> tile_linear_;                // per 64x64 tile, row-major (linear mode)
     std::vector<fragment::LinearRegion> rect_boxes_;  // pixel box of each kRect (linear mode)
 };

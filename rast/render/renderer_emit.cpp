@@ -1,6 +1,6 @@
 // Renderer's primitives on their way to setup and the bins (renderer.cpp runs the draw up to them): points,
-// lines and triangles (one by one or set up on the workers), llvmpipe's rectangles and the draw module's triangle
-// pairing and vbuf stage that feed them (lp_setup_vbuf.c, lp_setup_rect.c, lp_setup_analysis.c).
+// lines and triangles (one by one or set up on the workers) and llvmpipe's rectangles, as the draw module
+// emulation (rast/geometry/draw_module.h: vbuf stage, rectangle pairing, 9-vertex analysis) hands them over.
 #include <algorithm>
 #include <atomic>
 #include <cstring>
@@ -9,8 +9,8 @@
 #include "rast/core/fixed_point.h"
 #include "rast/fragment/msaa.h"
 #include "rast/geometry/clip.h"
+#include "rast/geometry/draw_module.h"
 #include "rast/geometry/fp_env.h"
-#include "rast/geometry/lavapipe_quirks.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/viewport.h"
 #include "rast/render/linear_bins.h"
@@ -38,138 +38,47 @@ geometry::PlaneSetupConfig Renderer::plane_setup_config(const DrawRecord& rec) c
     return pcfg;
 }
 
-// The shaded records of triangle p of the assembled list.
-void Renderer::triangle_records(uint32_t p, const float* v[3]) const {
-    const uint32_t* ids = assembled_.data() + size_t(p) * 3;
-    for (int k = 0; k < 3; ++k) v[k] = shaded_.record(ids[k]);
+// The draw module's way into this renderer's setup, for one draw.
+class Renderer::Setup final : public geometry::SetupSink {
+  public:
+    Setup(Renderer& r, uint32_t draw, const DrawRecord& rec) : r_(r), draw_(draw), rec_(rec) {}
+    void triangle(const float* v0, const float* v1, const float* v2) override {
+        r_.add_triangle(draw_, rec_, v0, v1, v2);
+    }
+    void rect(const float* c0, const float* c1, const float* c2, bool front) override {
+        r_.add_rect(draw_, rec_, c0, c1, c2, front);
+    }
+    void line(const float* v0, const float* v1, bool front) override { r_.add_line(draw_, rec_, v0, v1, front); }
+    void point(const float* v, float size, bool front) override { r_.add_point(draw_, rec_, v, size, front); }
+
+  private:
+    Renderer& r_;
+    uint32_t draw_;
+    const DrawRecord& rec_;
+};
+
+// Triangles [first_prim, end_prim) of the assembled list, as the draw module reads a batch.
+geometry::TriangleBatch Renderer::triangle_batch(uint32_t first_prim, uint32_t end_prim) const {
+    return {assembled_.data() + size_t(first_prim) * 3, end_prim - first_prim, shaded_.records.data(),
+            shaded_.floats_per_vertex};
 }
 
-// A batch that skipped draw's pipeline, as lp_setup_vbuf.c hands its triangle pairs to setup->rect: 6N-vertex
-// lists and strips in linear mode, the non-indexed 4-vertex fan in any mode. False (nothing drawn) for any other
-// batch, which the caller draws triangle by triangle.
 bool Renderer::emit_direct_pairs(uint32_t draw_index, const DrawRecord& rec, geometry::Topology topology, bool indexed,
-                                 uint32_t first_prim, uint32_t end_prim, size_t batch_verts) {
-    const float* t0[3];
-    const float* t1[3];
-    const bool list6 = topology == geometry::Topology::kTriangleList && batch_verts % 6 == 0;
-    if (rect_pairs_ && list6) {
-        // draw_arrays / draw_elements, PIPE_PRIM_TRIANGLES with nr % 6 == 0: rect() per pair
-        for (uint32_t p = first_prim; p + 1 < end_prim; p += 2) {
-            triangle_records(p, t0);
-            triangle_records(p + 1, t1);
-            rect_or_triangles(draw_index, rec, t0, t1);
-        }
-        return true;
-    }
-    if (rect_pairs_ && !indexed && topology == geometry::Topology::kTriangleStrip && rec.pipe->flatshade_first) {
-        // draw_arrays, strip with flatshade_first: setup->rect on each pair of consecutive triangles;
-        // when it declines, the first is drawn and the pairing moves on by one (last-vertex strips: triangles)
-        uint32_t p = first_prim;
-        for (; p + 1 < end_prim;) {
-            triangle_records(p, t0);
-            triangle_records(p + 1, t1);
-            if (apply_rect_decision(draw_index, rec, t0, t1)) {
-                p += 2;
-            } else {
-                add_triangle(draw_index, rec, t0[0], t0[1], t0[2]);
-                p += 1;
-            }
-        }
-        if (p < end_prim) {
-            triangle_records(p, t0);
-            add_triangle(draw_index, rec, t0[0], t0[1], t0[2]);
-        }
-        return true;
-    }
-    if (!indexed && topology == geometry::Topology::kTriangleFan && end_prim - first_prim == 2) {
-        // draw_arrays, 4-vertex fan (any mode, either provoking vertex): rect(v0, v1, v2, v0, v2, v3), i.e.
-        // outside linear mode the triangles (v0, v1, v2), (v0, v2, v3) instead of the fan's (v1, v2, v0),
-        // (v2, v3, v0) — with the last vertex provoking the fan's own order
-        const float* a[3];
-        const float* b[3];
-        triangle_records(first_prim, a);
-        triangle_records(first_prim + 1, b);
-        const bool first = rec.pipe->flatshade_first;  // assembled (v1, v2, v0), (v2, v3, v0) else (v0, v1, v2), ...
-        const float* q[4] = {first ? a[2] : a[0], first ? a[0] : a[1], first ? a[1] : a[2], first ? b[1] : b[2]};
-        const float* u0[3] = {q[0], q[1], q[2]};
-        const float* u1[3] = {q[0], q[2], q[3]};
-        rect_or_triangles(draw_index, rec, u0, u1);
-        return true;
-    }
-    return false;
+                                 uint32_t first_prim, uint32_t end_prim) {
+    Setup setup(*this, draw_index, rec);
+    return draw_module_.direct_pairs(setup, topology, indexed, triangle_batch(first_prim, end_prim));
 }
 
-// A 9-vertex non-indexed triangle-list batch that skipped draw's pipeline, through llvmpipe's list analysis
-// (lp_setup_analysis.c, geometry/lavapipe_quirks.h): returns where the caller's triangle loop ends, having drawn
-// the rectangle llvmpipe bins instead.
 uint32_t Renderer::nine_vertex_batch_end(uint32_t draw_index, const DrawRecord& rec, uint32_t first_prim,
-                                         uint32_t end_prim, const uint32_t* batch_ids) {
-    float xy[9][2];
-    for (int k = 0; k < 9; ++k) {
-        const float* w = geometry::win_pos(shaded_.record(batch_ids[k]));
-        xy[k][0] = w[0];
-        xy[k][1] = w[1];
-    }
-    geometry::TriangleListBatch qb;
-    qb.vertex_count = 9;
-    const geometry::NineVertexQuirk q = geometry::nine_vertex_quirk(qb, xy);
-    // Swallowed: nothing. Aero: llvmpipe bins one rectangle, lp_rect_cw(v0, v1, v2, front = TRUE), in
-    // any mode; at 4x it is still drawn as its two triangles (rectangles in MSAA are not modelled).
-    if (q == geometry::NineVertexQuirk::kSwallowed) return first_prim;
-    if (q == geometry::NineVertexQuirk::kAeroRect) {
-        if (fb_.samples != 1) return first_prim + 2;
-        const float* t0[3];
-        triangle_records(first_prim, t0);
-        add_rect(draw_index, rec, t0[0], t0[1], t0[2], true);
-        return first_prim;
-    }
-    return end_prim;
-}
-
-bool Renderer::apply_rect_decision(uint32_t draw, const DrawRecord& rec, const float* const t0[3],
-                                   const float* const t1[3]) {
-    const geometry::RectDecision d = geometry::decide_rect_pair(rect_cfg_, t0, t1);
-    switch (d.kind) {
-        case geometry::RectDecision::kTriangles:
-            return false;
-        case geometry::RectDecision::kRect:
-            add_rect(draw, rec, d.corner[0], d.corner[1], d.corner[2], d.front);
-            break;
-        case geometry::RectDecision::kFirstTriangle:
-            add_triangle(draw, rec, t0[0], t0[1], t0[2]);
-            break;
-        case geometry::RectDecision::kSecondTriangle:
-            add_triangle(draw, rec, t1[0], t1[1], t1[2]);
-            break;
-        case geometry::RectDecision::kNothing:
-            break;
-    }
-    return true;
-}
-
-void Renderer::rect_or_triangles(uint32_t draw, const DrawRecord& rec, const float* const t0[3],
-                                 const float* const t1[3]) {
-    if (fb_.linear_mode && apply_rect_decision(draw, rec, t0, t1)) return;
-    add_triangle(draw, rec, t0[0], t0[1], t0[2]);
-    add_triangle(draw, rec, t1[0], t1[1], t1[2]);
+                                         uint32_t end_prim) {
+    Setup setup(*this, draw_index, rec);
+    return first_prim + draw_module_.nine_vertex_batch(setup, triangle_batch(first_prim, end_prim));
 }
 
 void Renderer::vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float* const* v, const uint64_t* ids,
                               float point_size, bool front) {
-    // draw_pipe_vbuf.c vbuf_tri / vbuf_line / vbuf_point: check_space(n) against both buffers, then each vertex
-    // emitted once per buffer.
-    const uint32_t n = vbuf_.verts_per_prim;
-    const size_t indices = vbuf_.records.size() / vbuf_.stride;
-    if (vbuf_.vertices + n > vbuf_.max_vertices || indices + n > VbufGroup::kMaxIndices) vbuf_flush(draw, rec);
-    for (uint32_t k = 0; k < n; ++k) {
-        if (std::find(vbuf_.emitted_id.begin(), vbuf_.emitted_id.end(), ids[k]) == vbuf_.emitted_id.end()) {
-            vbuf_.emitted_id.push_back(ids[k]);
-            ++vbuf_.vertices;
-        }
-        vbuf_.records.insert(vbuf_.records.end(), v[k], v[k] + vbuf_.stride);
-    }
-    vbuf_.point_size.push_back(point_size);
-    vbuf_.front.push_back(front ? 1 : 0);
+    Setup setup(*this, draw, rec);
+    draw_module_.vbuf_primitive(setup, v, ids, point_size, front);
 }
 
 // vbuf_primitive's count replayed without copying: per batch of the tail, each triangle's pieces as
@@ -179,9 +88,9 @@ void Renderer::vbuf_primitive(uint32_t draw, const DrawRecord& rec, const float*
 // record within the clip call. A filling that starts at a triangle's first piece is a place where the batch loop
 // can take over with an empty vbuf; one that starts at a later piece is not.
 uint32_t Renderer::last_filling_start(const TrianglePipeline& cfg, uint32_t num_prims, uint32_t tail_first) {
-    const uint32_t max_vertices = vbuf_.max_vertices;
-    uint32_t vertices = vbuf_.vertices;
-    uint32_t indices = static_cast<uint32_t>(vbuf_.records.size() / vbuf_.stride);
+    const uint32_t max_vertices = draw_module_.vbuf_max_vertices();
+    uint32_t vertices = draw_module_.vbuf_vertices();
+    uint32_t indices = draw_module_.vbuf_indices();
     if (tail_first > 0) vertices = indices = 0;  // the prefix's last (direct) batch flushed the vbuf
     vbuf_stamp_.assign(shaded_.clipmask.size(), 0);
     uint32_t generation = 0, start = tail_first, first = 0;
@@ -206,7 +115,7 @@ uint32_t Renderer::last_filling_start(const TrianglePipeline& cfg, uint32_t num_
                 if (cfg.any_cull && !geometry::float_cull_keep(*cfg.float_cull, geometry::win_pos(p[0]),
                                                                geometry::win_pos(p[1]), geometry::win_pos(p[2])))
                     continue;
-                if (vertices + 3 > max_vertices || indices + 3 > VbufGroup::kMaxIndices) {
+                if (vertices + 3 > max_vertices || indices + 3 > geometry::DrawModule::kMaxVbufIndices) {
                     vertices = indices = num_made = 0;
                     ++generation;
                     if (first_piece) start = i;
@@ -230,31 +139,8 @@ uint32_t Renderer::last_filling_start(const TrianglePipeline& cfg, uint32_t num_
 }
 
 void Renderer::vbuf_flush(uint32_t draw, const DrawRecord& rec, bool after_draw) {
-    if (vbuf_.records.empty()) return;
-    std::optional<geometry::ScopedKeepDenormals> keep_denormals;
-    if (after_draw) keep_denormals.emplace();
-    // lp_setup_vbuf.c draw_elements: PIPE_PRIM_TRIANGLES rect() per pair when nr % 6 == 0, else triangles;
-    // PIPE_PRIM_LINES / POINTS setup->line / setup->point each.
-    const size_t nr = vbuf_.records.size() / vbuf_.stride;
-    auto vert = [&](size_t i) { return vbuf_.records.data() + i * vbuf_.stride; };
-    if (vbuf_.verts_per_prim == 1) {
-        for (size_t i = 0; i < nr; ++i) add_point(draw, rec, vert(i), vbuf_.point_size[i], vbuf_.front[i] != 0);
-    } else if (vbuf_.verts_per_prim == 2) {
-        for (size_t i = 0; i + 1 < nr; i += 2) add_line(draw, rec, vert(i), vert(i + 1), vbuf_.front[i / 2] != 0);
-    } else if (rect_pairs_ && nr % 6 == 0) {
-        for (size_t i = 0; i + 5 < nr; i += 6) {
-            const float* t0[3] = {vert(i), vert(i + 1), vert(i + 2)};
-            const float* t1[3] = {vert(i + 3), vert(i + 4), vert(i + 5)};
-            rect_or_triangles(draw, rec, t0, t1);
-        }
-    } else {
-        for (size_t i = 0; i + 2 < nr; i += 3) add_triangle(draw, rec, vert(i), vert(i + 1), vert(i + 2));
-    }
-    vbuf_.records.clear();
-    vbuf_.point_size.clear();
-    vbuf_.front.clear();
-    vbuf_.vertices = 0;
-    vbuf_.emitted_id.clear();
+    Setup setup(*this, draw, rec);
+    draw_module_.vbuf_flush(setup, after_draw);
 }
 
 void Renderer::add_rect(uint32_t draw, const DrawRecord& rec, const float* c0, const float* c1, const float* c2,

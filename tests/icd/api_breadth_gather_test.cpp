@@ -10,6 +10,7 @@
 
 #include "api_breadth.h"
 #include "cp_gather_comp.h"
+#include "sampler_readback.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -97,21 +98,7 @@ Bytes gather_all(Kit& k, VkSamplerAddressMode mode) {
     k.write(set, 6, S, nullptr, &fi);
     const VkDescriptorImageInfo fn{plain, fi.imageView, ro};
     k.write(set, 7, S, nullptr, &fn);
-    const auto coords = coordinates();
-    Device::Buffer in = k.buffer_of(coords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Device::Buffer out = k.buffer(coords.size() * kResults * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memset(out.map, 0xAB, out.size);
-    const VkDescriptorBufferInfo bi[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
-    k.write(set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[0], nullptr);
-    k.write(set, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[1], nullptr);
-    const VkPipeline p = compute_pipeline(k, SPV(cp_gather_comp), layout);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdDispatch(c, uint32_t(coords.size()) / 16, 1, 1);
-    }),
-              VK_SUCCESS);
-    return Kit::bytes(out);
+    return dispatch_per_coordinate(k, SPV(cp_gather_comp), layout, set, 4, coordinates(), size_t(kResults) * 16);
 }
 
 // upload_rgba8's byte at (x, y), channel ch of a w-wide image.

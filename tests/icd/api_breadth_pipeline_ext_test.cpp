@@ -28,6 +28,20 @@ class ApiPipelineExtensions : public ApiBreadth {
     }
 };
 
+// `fs` (no descriptors) on a full-screen triangle over a 32x32 RGBA8 target cleared to 0: the target's bytes.
+Bytes fullscreen_bytes(Kit& k, Spv fs) {
+    Target t = target(k);
+    VkPipeline pipe = k.pipeline(fullscreen_pipe(fs, t, VK_NULL_HANDLE));
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+        vkCmdDraw(c, 3, 1, 0, 0);
+        vkCmdEndRenderPass(c);
+    }),
+              VK_SUCCESS);
+    return k.read(t.image.image, 32, 32, 4);
+}
+
 // Two RGBA8 attachments (cleared to 0) written by ab_mrt.frag's full-screen triangle; `enables` picks which.
 struct TwoTargets {
     Device::Image img[2];
@@ -215,18 +229,7 @@ TEST_F(ApiPipelineExtensions, ShaderNonSemanticInfo) {
     Device lvp(h13.find_device("llvmpipe"), nullptr, {});
     ASSERT_TRUE(tv.ok() && lvp.ok());
     for (const Spv fs : {SPV(ab_non_semantic_frag), SPV(ab_non_semantic_debug_frag)}) {
-        const Bytes b = both_on(tv, lvp, [&](Kit& k) {
-            Target t = target(k);
-            VkPipeline pipe = k.pipeline(fullscreen_pipe(fs, t, VK_NULL_HANDLE));
-            EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
-                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                vkCmdDraw(c, 3, 1, 0, 0);
-                vkCmdEndRenderPass(c);
-            }),
-                      VK_SUCCESS);
-            return k.read(t.image.image, 32, 32, 4);
-        });
+        const Bytes b = both_on(tv, lvp, [&](Kit& k) { return fullscreen_bytes(k, fs); });
         ASSERT_EQ(b.size(), 32u * 32 * 4);
         size_t wrong = 0;
         for (size_t i = 0; i < 32 * 32; ++i)
@@ -250,18 +253,8 @@ TEST_F(ApiPipelineExtensions, HlslSemanticDecorations) {
     ASSERT_GT(decorate_strings, 0u) << "glslang no longer emits OpDecorateString: the test tests nothing";
     auto d = device_pair({VK_GOOGLE_DECORATE_STRING_EXTENSION_NAME, VK_GOOGLE_HLSL_FUNCTIONALITY_1_EXTENSION_NAME});
     ASSERT_TRUE(d->ok());
-    const Bytes b = both_on(d->tilevk, d->lavapipe, [&](Kit& k) {
-        Target t = target(k);
-        VkPipeline pipe = k.pipeline(fullscreen_pipe(SPV(ab_hlsl_semantics_frag), t, VK_NULL_HANDLE));
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
-        }),
-                  VK_SUCCESS);
-        return k.read(t.image.image, 32, 32, 4);
-    });
+    const Bytes b =
+        both_on(d->tilevk, d->lavapipe, [&](Kit& k) { return fullscreen_bytes(k, SPV(ab_hlsl_semantics_frag)); });
     ASSERT_EQ(b.size(), 32u * 32 * 4);
     const auto unorm = [](float v) { return int(v * 255.0f + 0.5f); };
     size_t wrong = 0;

@@ -12,6 +12,7 @@
 #include "cp_border_sint_comp.h"
 #include "cp_border_uint_comp.h"
 #include "cp_minmax_comp.h"
+#include "sampler_readback.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -74,24 +75,10 @@ Bytes border_lookups(Kit& k, VkFormat f, VkFilter filter, const Border& b, VkCom
     }
     const VkDescriptorImageInfo ii{smp, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-    const auto coords = border_coordinates();
-    Device::Buffer in = k.buffer_of(coords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Device::Buffer out = k.buffer(coords.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memset(out.map, 0xAB, out.size);
-    const VkDescriptorBufferInfo bi[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
-    k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[0], nullptr);
-    k.write(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[1], nullptr);
     const Spv code = is_uint_format(f)   ? SPV(cp_border_uint_comp)
                      : is_sint_format(f) ? SPV(cp_border_sint_comp)
                                          : SPV(cp_border_float_comp);
-    const VkPipeline p = compute_pipeline(k, code, layout);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdDispatch(c, uint32_t(coords.size()) / 16, 1, 1);
-    }),
-              VK_SUCCESS);
-    return Kit::bytes(out);
+    return dispatch_per_coordinate(k, code, layout, set, 1, border_coordinates(), 16);
 }
 
 VkClearColorValue float_color(float r, float g, float b, float a) {
@@ -305,21 +292,7 @@ Bytes minmax_lookups(Kit& k, VkFormat f, VkSamplerReductionMode mode, VkSamplerA
                                    k.view(tex.image, f, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_VIEW_TYPE_2D, 0, kMips),
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     k.write(set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &ii);
-    const auto coords = minmax_coordinates();
-    Device::Buffer in = k.buffer_of(coords, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Device::Buffer out = k.buffer(coords.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::memset(out.map, 0xAB, out.size);
-    const VkDescriptorBufferInfo bi[2] = {{in.buffer, 0, VK_WHOLE_SIZE}, {out.buffer, 0, VK_WHOLE_SIZE}};
-    k.write(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[0], nullptr);
-    k.write(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bi[1], nullptr);
-    const VkPipeline p = compute_pipeline(k, SPV(cp_minmax_comp), layout);
-    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-        vkCmdDispatch(c, uint32_t(coords.size()) / 16, 1, 1);
-    }),
-              VK_SUCCESS);
-    return Kit::bytes(out);
+    return dispatch_per_coordinate(k, SPV(cp_minmax_comp), layout, set, 1, minmax_coordinates(), 16);
 }
 
 // The colour formats tilevk reports SAMPLED_IMAGE_FILTER_MINMAX for, MIN and MAX (and the weighted average they

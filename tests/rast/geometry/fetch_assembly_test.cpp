@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "rast/geometry/lavapipe_quirks.h"
+#include "rast/geometry/draw_module.h"
 #include "rast/geometry/primitive_assembly.h"
 #include "rast/geometry/vertex_fetch.h"
 

@@ -11,7 +11,7 @@
 #include "host/cpu.h"
 #include "lavapipe_harness.h"
 #include "rast/geometry/clip.h"
-#include "rast/geometry/lavapipe_quirks.h"
+#include "rast/geometry/draw_module.h"
 #include "rast/geometry/line_point_setup.h"
 #include "rast/geometry/planes.h"
 #include "rast/geometry/primitive_assembly.h"
