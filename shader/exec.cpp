@@ -145,11 +145,7 @@ void prepare(const ProgramImpl& p, const Bindings& bindings, Scratch::Impl& s, D
     s.back_edges = 0;
     s.bound_key = 0;  // the slots below are this run's (bind_fragment sets the key after)
     // Sample instructions are bound again at their first run with these bindings (BoundSample)
-    // The room is taken once, at a worker's first run of any program: a worker that first meets a sampling shader
-    // in a later frame then does not allocate in that frame (tests/frame steady allocations).
-    constexpr size_t kSampleOpsReserved = 32;
     const uint32_t sample_ops = p.jit ? p.jit->sample_ops : 0;
-    if (s.samples.capacity() < kSampleOpsReserved) s.samples.reserve(kSampleOpsReserved);
     if (s.samples.size() != sample_ops) s.samples.resize(sample_ops);
     for (BoundSample& b : s.samples) b.state = BoundSample::State::Unbound;
     size_t words = size_t(std::max(1u, p.local_words)) * kLanes;

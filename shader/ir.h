@@ -465,6 +465,11 @@ struct BoundSample {
 
 // Per-thread working memory.
 struct Scratch::Impl {
+    // Room for the Sample instructions of ordinary programs, taken when the worker's scratch is made: a worker that
+    // first meets a sampling shader after an application's first frames then does not allocate mid-frame
+    // (bench/frame steady_frame_test.py).
+    static constexpr size_t kSampleOpsReserved = 32;
+    Impl() { samples.reserve(kSampleOpsReserved); }
     std::vector<uint32_t> regs;
     std::vector<uint32_t> local;
     std::vector<const Descriptor*> slots;
