@@ -219,6 +219,7 @@ void add_compute_atomic_float2_cases(CaseList& out);  // cases_compute_atomic_fl
 void add_compute_atomic_int64_cases(CaseList& out);   // cases_compute_atomic_int64.cpp
 void add_compute_image_cases(CaseList& out);   // cases_compute_image.cpp
 void add_compute_store_cases(CaseList& out);   // cases_compute_stores.cpp
+void add_compute_limit_cases(CaseList& out);   // cases_limits.cpp
 
 void add_compute_cases(CaseList& out) {
     add_basic_cases(out);
@@ -229,6 +230,7 @@ void add_compute_cases(CaseList& out) {
     add_compute_atomic_int64_cases(out);
     add_compute_image_cases(out);
     add_compute_store_cases(out);
+    add_compute_limit_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -628,6 +628,34 @@ std::vector<Plane> run_compute(const DeviceContext& c, const ComputeSpec& s) {
     return planes;
 }
 
+namespace {
+
+// The spec's buffers against the device's descriptor limits: every binding is visible to the compute stage.
+std::string buffer_limits_unsupported(const VkPhysicalDeviceLimits& l, const ComputeSpec& s) {
+    uint32_t storage = 0, uniform = 0;
+    for (const ComputeBuffer& b : s.buffers) {
+        if (b.texel_format != VK_FORMAT_UNDEFINED) continue;
+        (b.uniform ? uniform : storage)++;
+        if (b.uniform && b.words.size() * 4 > l.maxUniformBufferRange)
+            return "a uniform buffer of " + std::to_string(b.words.size() * 4) +
+                   " bytes: more than VkPhysicalDeviceLimits::maxUniformBufferRange";
+    }
+    if (storage > std::min(l.maxPerStageDescriptorStorageBuffers, l.maxDescriptorSetStorageBuffers))
+        return std::to_string(storage) +
+               " storage buffers in one stage and set: more than VkPhysicalDeviceLimits::"
+               "maxPerStageDescriptorStorageBuffers or maxDescriptorSetStorageBuffers";
+    if (uniform > std::min(l.maxPerStageDescriptorUniformBuffers, l.maxDescriptorSetUniformBuffers))
+        return std::to_string(uniform) +
+               " uniform buffers in one stage and set: more than VkPhysicalDeviceLimits::"
+               "maxPerStageDescriptorUniformBuffers or maxDescriptorSetUniformBuffers";
+    if (s.images.size() > l.maxDescriptorSetStorageImages)
+        return std::to_string(s.images.size()) +
+               " storage images in one set: more than VkPhysicalDeviceLimits::maxDescriptorSetStorageImages";
+    return {};
+}
+
+}  // namespace
+
 std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
     if (std::any_of(s.steps.begin(), s.steps.end(),
                     [](const ComputeStep& st) { return st.kind == Kind::kDispatchBase; }) &&
@@ -654,6 +682,7 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
         if (!c.atomic_int64.shaderBufferInt64Atomics || !c.atomic_int64.shaderSharedInt64Atomics)
             return "feature shaderBufferInt64Atomics or shaderSharedInt64Atomics";
     }
+    if (std::string why = buffer_limits_unsupported(c.props.limits, s); !why.empty()) return why;
     for (const ComputeBuffer& b : s.buffers) {
         if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
         VkFormatProperties fp;

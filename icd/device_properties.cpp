@@ -52,8 +52,8 @@ void fill_v12(const PhysicalDevice& pd, VkPhysicalDeviceVulkan12Properties& p) {
     p.roundingModeIndependence = VK_SHADER_FLOAT_CONTROLS_INDEPENDENCE_NONE;
     // Descriptor indexing (update-after-bind, non-uniform indexing) is not implemented, but the spec bounds every
     // pipeline layout by the update-after-bind limits too (VUID-VkPipelineLayoutCreateInfo-descriptorType-03022 and
-    // the rest): they are the 1.0 limits, which is what any set tilevk creates can hold. No pool holds
-    // update-after-bind descriptors (maxUpdateAfterBindDescriptorsInAllPools 0).
+    // the rest): they are the plain limits (physical_device.cpp make_limits), which any set tilevk creates can hold. No
+    // pool holds update-after-bind descriptors (maxUpdateAfterBindDescriptorsInAllPools 0).
     p.maxPerStageDescriptorUpdateAfterBindSamplers = limits.maxPerStageDescriptorSamplers;
     p.maxPerStageDescriptorUpdateAfterBindUniformBuffers = limits.maxPerStageDescriptorUniformBuffers;
     p.maxPerStageDescriptorUpdateAfterBindStorageBuffers = limits.maxPerStageDescriptorStorageBuffers;

@@ -30,7 +30,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxImageDimensionCube = kMaxImageDimension;
     l.maxImageArrayLayers = kMaxArrayLayers;
     l.maxTexelBufferElements = kMaxTexelBufferElements;
-    l.maxUniformBufferRange = 16384;
+    // lavapipe's 64 KiB (PIPE_SHADER_CAP_MAX_CONST_BUFFER0_SIZE): a uniform buffer is read in place with its range
+    // as the bound (cts compute.limits.uniform_buffers_15_of_64k reads the last vec4 of 15 such buffers).
+    l.maxUniformBufferRange = 65536;
     l.maxStorageBufferRange = 1u << 27;
     l.maxPushConstantsSize = 128;
     l.maxMemoryAllocationCount = 4096;
@@ -39,26 +41,31 @@ VkPhysicalDeviceLimits make_limits() {
     l.sparseAddressSpaceSize = 0;
     l.maxBoundDescriptorSets = kMaxBoundDescriptorSets;  // lavapipe's 8
     l.maxPerStageDescriptorSamplers = 16;
-    l.maxPerStageDescriptorUniformBuffers = 12;
-    l.maxPerStageDescriptorStorageBuffers = 4;
+    // Buffer and storage-image descriptors: lavapipe's counts. A set's descriptors and a draw's bindings are sized
+    // by the layout (no fixed table); cts compute.limits.* runs one stage with 32 storage buffers, 15 uniform
+    // buffers and 64 storage images in one set.
+    l.maxPerStageDescriptorUniformBuffers = 15;
+    l.maxPerStageDescriptorStorageBuffers = 32;
     l.maxPerStageDescriptorSampledImages = 16;
-    l.maxPerStageDescriptorStorageImages = 4;
+    l.maxPerStageDescriptorStorageImages = 64;
     l.maxPerStageDescriptorInputAttachments = 4;
     l.maxPerStageResources = 128;
     l.maxDescriptorSetSamplers = 96;
-    l.maxDescriptorSetUniformBuffers = 72;
+    l.maxDescriptorSetUniformBuffers = 256;
     l.maxDescriptorSetUniformBuffersDynamic = 8;
-    l.maxDescriptorSetStorageBuffers = 24;
+    l.maxDescriptorSetStorageBuffers = 256;
     l.maxDescriptorSetStorageBuffersDynamic = 4;
     l.maxDescriptorSetSampledImages = 96;
-    l.maxDescriptorSetStorageImages = 24;
+    l.maxDescriptorSetStorageImages = 256;
     l.maxDescriptorSetInputAttachments = 4;
     l.maxVertexInputAttributes = 16;
     l.maxVertexInputBindings = 16;
     l.maxVertexInputAttributeOffset = 2047;
     l.maxVertexInputBindingStride = 2048;
-    l.maxVertexOutputComponents = 64;
-    l.maxFragmentInputComponents = 64;
+    // 32 vec4 locations between the stages (shader/program.h kMaxLocations), lavapipe's 128 components; cts
+    // rasterization.limits.varyings_128.
+    l.maxVertexOutputComponents = 4 * shader::kMaxLocations;
+    l.maxFragmentInputComponents = 4 * shader::kMaxLocations;
     l.maxFragmentOutputAttachments = kMaxColorAttachments;
     l.maxFragmentDualSrcAttachments = 1;  // dualSrcBlend: Location 0, Index 1 (lavapipe's 1)
     l.maxFragmentCombinedOutputResources = kMaxColorAttachments;

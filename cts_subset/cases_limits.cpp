@@ -1,0 +1,169 @@
+// Cases at lavapipe's limits (lvp_device.c), each judged byte for byte against lavapipe and analytically where the
+// answer is known.
+// compute.limits.*: one compute stage with 32 storage buffers, 15 uniform buffers of maxUniformBufferRange (64 KiB)
+// each, 64 storage images in one set. Every binding is read or written at both ends of its range, so a driver that
+// drops a binding past its old limit, or clamps a uniform buffer to 16 KiB, gives other words than the analytic ones.
+// rasterization.limits.varyings_128: maxVertexOutputComponents = maxFragmentInputComponents = 128, 32 vec4 varyings
+// that each move the output colour.
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "case.hpp"
+#include "compute_case.hpp"
+#include "vk_context.hpp"
+
+namespace tilevk::cts {
+namespace {
+
+constexpr uint32_t kStorageBuffers = 32, kUniformBuffers = 15, kStorageImages = 64;
+constexpr uint32_t kUniformWords = 65536 / 4, kGroup = 64;
+
+// Buffer k holds 64 words k * 1000 + i; the shader adds k + 1 to each and writes the sum of word i over all
+// buffers into buffer 0's word i as well, so every binding is both read and written.
+void add_storage_buffers_case(CaseList& out) {
+    std::string glsl = glsl_header(kGroup);
+    for (uint32_t k = 0; k < kStorageBuffers; ++k)
+        glsl += "layout(std430, binding=" + std::to_string(k) + ") buffer B" + std::to_string(k) + " { uint v[]; } b" +
+                std::to_string(k) + ";\n";
+    glsl += "void main() { uint i = gl_GlobalInvocationID.x; uint sum = 0u;\n";
+    for (uint32_t k = 1; k < kStorageBuffers; ++k) {
+        const std::string b = "b" + std::to_string(k);
+        glsl += "  sum += " + b + ".v[i]; " + b + ".v[i] += " + std::to_string(k + 1) + "u;\n";
+    }
+    glsl += "  b0.v[i] = sum; }\n";
+    ComputeSpec s;
+    s.shaders = {glsl};
+    std::vector<std::vector<uint32_t>> want(kStorageBuffers);
+    for (uint32_t k = 0; k < kStorageBuffers; ++k) {
+        std::vector<uint32_t> words(kGroup);
+        for (uint32_t i = 0; i < kGroup; ++i) words[i] = k * 1000 + i;
+        s.buffers.push_back({k == 0 ? std::vector<uint32_t>(kGroup, kMarker) : words});
+        for (uint32_t i = 0; i < kGroup; ++i) want[k].push_back(words[i] + k + 1);
+    }
+    want[0].assign(kGroup, 0);
+    for (uint32_t k = 1; k < kStorageBuffers; ++k)
+        for (uint32_t i = 0; i < kGroup; ++i) want[0][i] += k * 1000 + i;
+    s.steps = {dispatch(0, 1)};
+    add_compute_case(out, "limits.storage_buffers_32", std::move(s), [want](const std::vector<Plane>& planes) {
+        for (uint32_t k = 0; k < kStorageBuffers; ++k)
+            if (std::string why = words_are(k, want[k])(planes); !why.empty()) return why;
+        return std::string();
+    });
+}
+
+// Uniform buffer k (bindings 0..14) is 64 KiB of words k << 16 | w; invocation i reads word i and word
+// 16383 - i of each (the last vec4 of the range included) and writes their sum over all buffers.
+void add_uniform_buffers_case(CaseList& out) {
+    std::string glsl = glsl_header(kGroup);
+    for (uint32_t k = 0; k < kUniformBuffers; ++k)
+        glsl += "layout(std140, binding=" + std::to_string(k) + ") uniform U" + std::to_string(k) + " { uvec4 v[" +
+                std::to_string(kUniformWords / 4) + "]; } u" + std::to_string(k) + ";\n";
+    glsl += "layout(std430, binding=" + std::to_string(kUniformBuffers) + ") buffer O { uint o[]; };\n";
+    glsl += "void main() { uint i = gl_GlobalInvocationID.x, j = " + std::to_string(kUniformWords - 1) +
+            "u - i; uint sum = 0u;\n";
+    for (uint32_t k = 0; k < kUniformBuffers; ++k) {
+        const std::string u = "u" + std::to_string(k);
+        glsl += "  sum += " + u + ".v[i / 4u][i % 4u] + " + u + ".v[j / 4u][j % 4u];\n";
+    }
+    glsl += "  o[i] = sum; }\n";
+    ComputeSpec s;
+    s.shaders = {glsl};
+    for (uint32_t k = 0; k < kUniformBuffers; ++k) {
+        std::vector<uint32_t> words(kUniformWords);
+        for (uint32_t w = 0; w < kUniformWords; ++w) words[w] = k << 16 | w;
+        s.buffers.push_back({words, true, false});
+    }
+    s.buffers.push_back({std::vector<uint32_t>(kGroup, kMarker)});
+    std::vector<uint32_t> want(kGroup, 0);
+    for (uint32_t i = 0; i < kGroup; ++i)
+        for (uint32_t k = 0; k < kUniformBuffers; ++k) want[i] += (k << 16 | i) + (k << 16 | (kUniformWords - 1 - i));
+    s.steps = {dispatch(0, 1)};
+    add_compute_case(out, "limits.uniform_buffers_15_of_64k", std::move(s), words_are(kUniformBuffers, want));
+}
+
+// 64 R32_UINT storage images of 4x4: invocation (x, y) of a 4x4 group stores image k's texel (x, y) as
+// k * 100 + y * 4 + x + 1 into every image; every image is read back as its own plane.
+void add_storage_images_case(CaseList& out) {
+    std::string glsl = glsl_header(4, 4);
+    for (uint32_t k = 0; k < kStorageImages; ++k)
+        glsl +=
+            "layout(binding=" + std::to_string(k) + ", r32ui) uniform writeonly uimage2D i" + std::to_string(k) + ";\n";
+    glsl += "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy); uint t = uint(p.y * 4 + p.x + 1);\n";
+    for (uint32_t k = 0; k < kStorageImages; ++k)
+        glsl += "  imageStore(i" + std::to_string(k) + ", p, uvec4(" + std::to_string(k * 100) + "u + t));\n";
+    glsl += "}\n";
+    ComputeSpec s;
+    s.shaders = {glsl};
+    for (uint32_t k = 0; k < kStorageImages; ++k) {
+        ComputeImage im;
+        im.format = VK_FORMAT_R32_UINT;
+        im.width = im.height = 4;
+        s.images.push_back(im);
+    }
+    s.steps = {dispatch(0, 1)};
+    add_compute_case(out, "limits.storage_images_64", std::move(s), [](const std::vector<Plane>& planes) {
+        for (uint32_t k = 0; k < kStorageImages; ++k) {
+            const std::string name = "image" + std::to_string(k);
+            const Plane* p = nullptr;
+            for (const Plane& q : planes)
+                if (q.name == name) p = &q;
+            if (p == nullptr || p->data.size() != 64) return name + " is missing or has the wrong size";
+            for (uint32_t t = 0; t < 16; ++t) {
+                uint32_t got;
+                std::memcpy(&got, p->data.data() + 4 * t, 4);
+                if (got != k * 100 + t + 1)
+                    return name + " texel " + std::to_string(t) + " is " + std::to_string(got) + ", expected " +
+                           std::to_string(k * 100 + t + 1);
+            }
+        }
+        return std::string();
+    });
+}
+
+// Varying k = the vertex colour scaled by (k + 1) / 32 plus the position's x and y times k / 64 (each varying
+// differs from the next across the triangle); the colour is their mean, so a varying dropped or swapped with its
+// neighbour moves every pixel by at least 1/32 of the colour.
+Scene varyings_scene() {
+    constexpr int kVaryings = 32;
+    std::string vs = "#version 450\nlayout(location=0) in vec4 in_pos;\nlayout(location=1) in vec4 in_color;\n";
+    std::string fs = "#version 450\nlayout(location=0) out vec4 o;\n";
+    for (int k = 0; k < kVaryings; ++k) {
+        vs += "layout(location=" + std::to_string(k) + ") out vec4 v" + std::to_string(k) + ";\n";
+        fs += "layout(location=" + std::to_string(k) + ") in vec4 v" + std::to_string(k) + ";\n";
+    }
+    vs += "void main() {\n  gl_Position = in_pos;\n";
+    fs += "void main() {\n  vec4 s = vec4(0.0);\n";
+    for (int k = 0; k < kVaryings; ++k) {
+        const std::string v = "v" + std::to_string(k);
+        vs += "  " + v + " = in_color * " + std::to_string(k + 1) + ".0 / 32.0 + vec4(in_pos.xy, in_pos.yx) * " +
+              std::to_string(k) + ".0 / 64.0;\n";
+        fs += "  s += " + v + (k % 2 ? ".wzyx" : "") + ";\n";
+    }
+    vs += "}\n";
+    fs += "  o = s / 32.0;\n}\n";
+    Draw d;
+    d.vertices = {vtxc(-0.9f, -0.8f, {1, 0, 0, 1}), vtxc(0.85f, -0.6f, {0, 1, 0, 0.5f}),
+                  vtxc(-0.2f, 0.9f, {0, 0, 1, 0.25f})};
+    d.vertex_glsl = vs;
+    d.fragment_glsl = fs;
+    Scene s = one_draw(std::move(d));
+    s.unsupported = [](const DeviceContext& c) -> std::string {
+        if (c.props.limits.maxVertexOutputComponents < 4 * kVaryings ||
+            c.props.limits.maxFragmentInputComponents < 4 * kVaryings)
+            return "VkPhysicalDeviceLimits::maxVertexOutputComponents or maxFragmentInputComponents below 128";
+        return {};
+    };
+    return s;
+}
+
+}  // namespace
+
+void add_compute_limit_cases(CaseList& out) {
+    add_storage_buffers_case(out);
+    add_uniform_buffers_case(out);
+    add_storage_images_case(out);
+    out.push_back({"rasterization.limits.varyings_128", [] { return varyings_scene(); }});
+}
+
+}  // namespace tilevk::cts
