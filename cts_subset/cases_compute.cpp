@@ -210,6 +210,35 @@ void add_basic_cases(CaseList& out) {
     }
 }
 
+// VK_EXT_conditional_rendering on dispatches (modelled on dEQP-VK.conditional_rendering.dispatch.*): dispatch k
+// writes o[k] = k + 1 under the predicate it names; a skipped one leaves the marker. The predicates (buffer 0) are
+// 0, 0x100 (no bit in the low byte) and 5; the last conditional dispatch reads a predicate a fill of the same
+// command buffer zeroed just before it (read when it executes, not when recorded or submitted).
+void add_conditional_dispatch_case(CaseList& out) {
+    ComputeSpec s;
+    for (uint32_t k = 0; k < 8; ++k)
+        s.shaders.push_back(glsl_header(1) + "layout(std430, binding=1) buffer O { uint o[8]; };\nvoid main() { o[" +
+                            std::to_string(k) + "] = " + std::to_string(k + 1) + "u; }\n");
+    s.buffers = {{{0, 0x100, 5, 0}}, {std::vector<uint32_t>(8, kMarker)}, {{1, 1, 1}, false, false}};
+    auto when = [](ComputeStep st, uint32_t offset, bool inverted) {
+        st.condition = 0;
+        st.condition_offset = offset;
+        st.condition_inverted = inverted;
+        return st;
+    };
+    s.steps = {when(dispatch(0, 1), 0, false),
+               when(dispatch(1, 1), 4, false),
+               when(dispatch(2, 1), 0, true),
+               when(dispatch(3, 1), 8, true),
+               when(dispatch_indirect(4, 2, 0), 0, false),
+               when(dispatch_indirect(5, 2, 0), 4, false),
+               fill(0, 0),
+               when(dispatch(6, 1), 4, false),
+               dispatch(7, 1)};
+    add_compute_case(out, "conditional_rendering.dispatch", std::move(s),
+                     words_are(1, {kMarker, 2, 3, kMarker, kMarker, 6, kMarker, 8}));
+}
+
 }  // namespace
 
 void add_compute_shared_cases(CaseList& out);  // cases_compute_shared.cpp
@@ -223,6 +252,7 @@ void add_compute_limit_cases(CaseList& out);   // cases_limits.cpp
 
 void add_compute_cases(CaseList& out) {
     add_basic_cases(out);
+    add_conditional_dispatch_case(out);
     add_compute_shared_cases(out);
     add_compute_atomic_cases(out);
     add_compute_atomic_float_cases(out);

@@ -1,6 +1,7 @@
 // Pipeline extensions lavapipe offers, each against lavapipe byte for byte and an analytic check:
 // pipeline.color_write_enable.* (VK_EXT_color_write_enable, modelled on dEQP-VK.pipeline.*.color_write_enable) and
-// draw.multi_draw.* (VK_EXT_multi_draw, modelled on dEQP-VK.draw.*.multi_draw). VK_KHR_shader_non_semantic_info has
+// draw.multi_draw.* (VK_EXT_multi_draw, modelled on dEQP-VK.draw.*.multi_draw), draw.conditional_rendering.*
+// (VK_EXT_conditional_rendering, modelled on dEQP-VK.conditional_rendering.draw.*). VK_KHR_shader_non_semantic_info has
 // no case here: the subset's devices are Vulkan 1.0-1.2 and lavapipe 22.3 lists the extension only as part of 1.3
 // (tests/icd ApiPipelineExtensions.ShaderNonSemanticInfo compares it on a 1.3 instance).
 #include "case.hpp"
@@ -156,11 +157,57 @@ void add_multi_draw_cases(CaseList& out) {
                    [] { return multi_draw_scene(multi_draw(2, true, true, 3)); }, nullptr, ""});
 }
 
+// Blue everywhere, then under a predicate (inverted or not): a vkCmdClearAttachments of pixels 8-23 to green (with
+// `clear`) and a red triangle over the corner from NDC (0.5, 0.5) (pixels 48-63). The clear and the draw run when
+// the 32-bit predicate is non-zero (zero when inverted) and are skipped otherwise (the spec's "Conditional
+// Rendering"); the predicate values have bits only outside the low byte, so a reader of fewer bits sees zero.
+Scene conditional_scene(uint32_t predicate, bool inverted, bool clear) {
+    Scene s = one_draw(full_screen({0, 0, 1, 1}, 0));
+    Draw d;
+    d.vertices = {vtxc(0.5f, 0.5f, {1, 0, 0, 1}), vtxc(1.5f, 0.5f, {1, 0, 0, 1}), vtxc(0.5f, 1.5f, {1, 0, 0, 1})};
+    d.condition = predicate;
+    d.condition_inverted = inverted;
+    if (clear) {
+        d.clear_rect = VkRect2D{{8, 8}, {16, 16}};
+        d.clear_rect_color = {0, 1, 0, 1};
+    }
+    s.draws.push_back(std::move(d));
+    return s;
+}
+
+void add_conditional_rendering_cases(CaseList& out) {
+    constexpr uint32_t kRed = 0xFF0000FFu;
+    struct Row {
+        const char* name;
+        uint32_t predicate;
+        bool inverted, clear, runs;
+    };
+    static const Row kRows[] = {
+        {"zero_skips", 0, false, false, false},
+        {"nonzero_draws", 0x100, false, false, true},
+        {"inverted_zero_draws", 0, true, false, true},
+        {"inverted_nonzero_skips", 0x80000000u, true, false, false},
+        {"clear_attachments_zero_skips", 0, false, true, false},
+        {"clear_attachments_nonzero_clears", 0x10000, false, true, true},
+        {"clear_attachments_inverted_zero_clears", 0, true, true, true},
+    };
+    for (const Row& r : kRows) {
+        const uint32_t clear_pixel = r.clear && r.runs ? kGreen : kBlue, corner = r.runs ? kRed : kBlue;
+        out.push_back({std::string("draw.conditional_rendering.") + r.name,
+                       [r] { return conditional_scene(r.predicate, r.inverted, r.clear); },
+                       all_of({palette_only({kBlue, kGreen, kRed}), pixel_is(12, 12, clear_pixel),
+                               pixel_is(23, 23, clear_pixel), pixel_is(60, 60, corner), pixel_is(52, 52, corner),
+                               pixel_is(30, 30, kBlue), pixel_is(5, 60, kBlue)}),
+                       ""});
+    }
+}
+
 }  // namespace
 
 void add_pipeline_ext_cases(CaseList& out) {
     add_color_write_cases(out);
     add_multi_draw_cases(out);
+    add_conditional_rendering_cases(out);
 }
 
 }  // namespace tilevk::cts

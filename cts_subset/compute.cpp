@@ -111,6 +111,11 @@ uint32_t storage_texel_bytes(VkFormat f) {
     }
 }
 
+// Whether a step runs under conditional rendering (ComputeStep::condition).
+bool has_condition(const ComputeSpec& s) {
+    return std::any_of(s.steps.begin(), s.steps.end(), [](const ComputeStep& st) { return st.condition >= 0; });
+}
+
 // The stages and accesses of a step, as the source (its writes) and the destination (its reads and writes) of the
 // barrier that separates it from its neighbour.
 struct Sync {
@@ -235,7 +240,9 @@ void Objects::make_resources(const ComputeSpec& s) {
     for (const ComputeBuffer& b : s.buffers) {
         const VkDeviceSize bytes = std::max<VkDeviceSize>(4, b.words.size() * 4);
         const bool texel = b.texel_format != VK_FORMAT_UNDEFINED;
-        Buffer buf = frame::make_buffer(c, gc, bytes, texel ? usage | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT : usage);
+        Buffer buf = frame::make_buffer(c, gc, bytes,
+                                        (texel ? usage | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT : usage) |
+                                            (has_condition(s) ? VK_BUFFER_USAGE_CONDITIONAL_RENDERING_BIT_EXT : 0));
         std::memset(buf.mapped, 0, bytes);
         if (!b.words.empty()) std::memcpy(buf.mapped, b.words.data(), b.words.size() * 4);
         VkBufferView view = VK_NULL_HANDLE;
@@ -520,6 +527,13 @@ void record_step(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, con
             vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, o.layout, 0, 1, &o.set, 0, nullptr);
             if (!s.push.empty())
                 vkCmdPushConstants(cb, o.layout, kAllStages, 0, uint32_t(s.push.size() * 4), s.push.data());
+            if (st.condition >= 0) {
+                VkConditionalRenderingBeginInfoEXT info{VK_STRUCTURE_TYPE_CONDITIONAL_RENDERING_BEGIN_INFO_EXT};
+                info.buffer = o.buffers.at(size_t(st.condition)).buffer;
+                info.offset = st.condition_offset;
+                info.flags = st.condition_inverted ? VK_CONDITIONAL_RENDERING_INVERTED_BIT_EXT : 0;
+                o.c.cmd.begin_conditional(cb, &info);
+            }
             if (st.kind == Kind::kDispatch) {
                 vkCmdDispatch(cb, st.groups[0], st.groups[1], st.groups[2]);
             } else if (st.kind == Kind::kDispatchBase) {
@@ -530,6 +544,7 @@ void record_step(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, con
             } else {
                 vkCmdDispatchIndirect(cb, o.buffers.at(st.src).buffer, st.dst);
             }
+            if (st.condition >= 0) o.c.cmd.end_conditional(cb);
             return;
         case Kind::kFill:
             vkCmdFillBuffer(cb, o.buffers.at(st.dst).buffer, 0, VK_WHOLE_SIZE, st.value);
@@ -562,6 +577,9 @@ void record(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s, const st
     Kind prev = Kind::kFill;  // the uploads are transfers
     for (const ComputeStep& st : steps) {
         barrier(cb, prev, st.kind);
+        if (st.condition >= 0)  // the predicate an earlier step wrote
+            barrier(cb, sync_of(prev), VK_PIPELINE_STAGE_CONDITIONAL_RENDERING_BIT_EXT,
+                    VK_ACCESS_CONDITIONAL_RENDERING_READ_BIT_EXT);
         record_step(cb, o, s, st);
         prev = st.kind;
     }
@@ -657,6 +675,8 @@ std::string buffer_limits_unsupported(const VkPhysicalDeviceLimits& l, const Com
 }  // namespace
 
 std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
+    if (has_condition(s) && !c.conditional_rendering.conditionalRendering)
+        return "VK_EXT_conditional_rendering conditionalRendering";
     if (std::any_of(s.steps.begin(), s.steps.end(),
                     [](const ComputeStep& st) { return st.kind == Kind::kDispatchBase; }) &&
         !c.has_extension(VK_KHR_DEVICE_GROUP_EXTENSION_NAME))

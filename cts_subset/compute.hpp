@@ -56,6 +56,11 @@ struct ComputeStep {
     uint32_t base[3] = {0, 0, 0};    // kDispatchBase: the first workgroup (vkCmdDispatchBaseKHR)
     uint32_t src = 0, dst = 0;       // buffer/image indices; kDispatchIndirect: the buffer in src, byte offset in dst
     uint32_t value = 0;              // kFill: the word
+    // Dispatches, when >= 0: recorded between vkCmdBeginConditionalRenderingEXT and End on buffer `condition`, the
+    // predicate at byte `condition_offset` (VK_EXT_conditional_rendering; the spec's buffers get the usage bit).
+    int condition = -1;
+    uint32_t condition_offset = 0;
+    bool condition_inverted = false;
 };
 ComputeStep dispatch(uint32_t shader, uint32_t x, uint32_t y = 1, uint32_t z = 1);
 ComputeStep dispatch_indirect(uint32_t shader, uint32_t buffer, uint32_t offset);

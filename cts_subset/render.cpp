@@ -104,7 +104,7 @@ struct DrawResources {
     std::vector<VkPipeline> pipes;
     std::vector<Texture> textures;
     std::vector<VkDescriptorSet> sets, ubo_sets;
-    std::vector<VkBuffer> index_buffers, color_buffers;
+    std::vector<VkBuffer> index_buffers, color_buffers, condition_buffers;
 };
 
 // The set layouts and the pipeline layout. The texture is set 0, the uniform buffer set 1: a set with an
@@ -210,8 +210,15 @@ void make_draw_descriptors(const DeviceContext& c, Cleanup& gc, const Scene& s, 
 void make_draw_buffers(const DeviceContext& c, Cleanup& gc, const Scene& s, DrawResources& r) {
     r.index_buffers.assign(s.draws.size(), VK_NULL_HANDLE);
     r.color_buffers.assign(s.draws.size(), VK_NULL_HANDLE);
+    r.condition_buffers.assign(s.draws.size(), VK_NULL_HANDLE);
     for (size_t i = 0; i < s.draws.size(); ++i) {
         const Draw& d = s.draws[i];
+        if (d.condition) {
+            const uint32_t words[2] = {~*d.condition, *d.condition};
+            Buffer pb = make_buffer(c, gc, sizeof words, VK_BUFFER_USAGE_CONDITIONAL_RENDERING_BIT_EXT);
+            std::memcpy(pb.mapped, words, sizeof words);
+            r.condition_buffers[i] = pb.buffer;
+        }
         if (!d.indices.empty()) {
             const size_t size = d.index_type == VK_INDEX_TYPE_UINT8_EXT ? 1
                                 : d.index_type == VK_INDEX_TYPE_UINT16  ? 2
@@ -333,6 +340,23 @@ void record_multi_draw(const DeviceContext& c, VkCommandBuffer cb, const Draw& d
     }
 }
 
+// Draw::condition's vkCmdBeginConditionalRenderingEXT (ended after the draw) and Draw::clear_rect's clear.
+void record_condition_and_clear(const DeviceContext& c, VkCommandBuffer cb, const Draw& d, VkBuffer predicate) {
+    if (d.condition) {
+        VkConditionalRenderingBeginInfoEXT info{VK_STRUCTURE_TYPE_CONDITIONAL_RENDERING_BEGIN_INFO_EXT};
+        info.buffer = predicate;
+        info.offset = 4;
+        info.flags = d.condition_inverted ? VK_CONDITIONAL_RENDERING_INVERTED_BIT_EXT : 0;
+        c.cmd.begin_conditional(cb, &info);
+    }
+    if (d.clear_rect) {
+        VkClearAttachment a{VK_IMAGE_ASPECT_COLOR_BIT, 0, {}};
+        std::memcpy(a.clearValue.color.float32, d.clear_rect_color.data(), 16);
+        const VkClearRect rect{*d.clear_rect, 0, 1};
+        vkCmdClearAttachments(cb, 1, &a, 1, &rect);
+    }
+}
+
 // The render pass with every draw, each wrapped in its occlusion query with QueryMode::kPerDraw.
 void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkRenderPass rp, const Attachments& at,
                  const DrawResources& r, const Buffer& vb, VkQueryPool qpool, VkQueryControlFlags qflags) {
@@ -380,6 +404,7 @@ void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkR
         if (d.color_write_enable && d.color_write_dynamic) c.cmd.color_write_enable(cb, 1, &*d.color_write_enable);
         if (s.queries == QueryMode::kPerDraw) vkCmdBeginQuery(cb, qpool, uint32_t(i), qflags);
         if (r.index_buffers[i]) vkCmdBindIndexBuffer(cb, r.index_buffers[i], 0, d.index_type);
+        record_condition_and_clear(c, cb, d, r.condition_buffers[i]);
         if (!d.multi.empty()) {
             record_multi_draw(c, cb, d);
         } else if (r.index_buffers[i]) {
@@ -387,6 +412,7 @@ void record_pass(const DeviceContext& c, VkCommandBuffer cb, const Scene& s, VkR
         } else if (!d.vertices.empty()) {
             vkCmdDraw(cb, uint32_t(d.vertices.size()), d.instances, 0, 0);
         }
+        if (d.condition) c.cmd.end_conditional(cb);
         if (s.queries == QueryMode::kPerDraw) vkCmdEndQuery(cb, qpool, uint32_t(i));
         first += s.draws[i].vertices.size();
     }

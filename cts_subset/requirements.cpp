@@ -101,6 +101,8 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
         if (d.color_write_enable && !c.color_write_enable.colorWriteEnable)
             return "VK_EXT_color_write_enable colorWriteEnable";
         if (!d.multi.empty() && !c.multi_draw.multiDraw) return "VK_EXT_multi_draw multiDraw";
+        if (d.condition && !c.conditional_rendering.conditionalRendering)
+            return "VK_EXT_conditional_rendering conditionalRendering";
         if (d.alpha_to_one && !f.alphaToOne) return "feature alphaToOne";
         if (d.min_sample_shading >= 0.0f && !f.sampleRateShading) return "feature sampleRateShading";
         if (d.viewport_count > 1 && !f.multiViewport) return "feature multiViewport";

@@ -147,6 +147,16 @@ struct Draw {
     // bytes apart (render.cpp pads them); multi_vertex_offset: pVertexOffset.
     std::vector<std::array<int32_t, 3>> multi;
     std::optional<int32_t> multi_vertex_offset;
+    // VK_EXT_conditional_rendering: when set, the draw (and clear_rect's clear) is recorded between
+    // vkCmdBeginConditionalRenderingEXT and vkCmdEndConditionalRenderingEXT on a buffer holding this predicate at
+    // offset 4 (its first word ~predicate, so a reader of the wrong word sees the opposite); condition_inverted:
+    // VK_CONDITIONAL_RENDERING_INVERTED_BIT_EXT.
+    std::optional<uint32_t> condition;
+    bool condition_inverted = false;
+    // When set, a vkCmdClearAttachments of colour attachment 0 over this rect (layer 0) to clear_rect_color, just
+    // before the draw.
+    std::optional<VkRect2D> clear_rect;
+    std::array<float, 4> clear_rect_color = {0, 0, 0, 0};
 };
 
 struct Target {

@@ -42,7 +42,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_SAMPLER_FILTER_MINMAX_EXTENSION_NAME,
                                          VK_EXT_4444_FORMATS_EXTENSION_NAME,
                                          VK_EXT_VERTEX_INPUT_DYNAMIC_STATE_EXTENSION_NAME,
-                                         VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME};
+                                         VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME,
+                                         VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME};
 
 }  // namespace
 
@@ -92,6 +93,10 @@ static void load_dynamic_state_commands(DeviceContext& c) {
     if (c.multi_draw.multiDraw) {
         get(d.draw_multi, "vkCmdDrawMultiEXT");
         get(d.draw_multi_indexed, "vkCmdDrawMultiIndexedEXT");
+    }
+    if (c.conditional_rendering.conditionalRendering) {
+        get(d.begin_conditional, "vkCmdBeginConditionalRenderingEXT");
+        get(d.end_conditional, "vkCmdEndConditionalRenderingEXT");
     }
 }
 
@@ -261,6 +266,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.formats_4444, VK_EXT_4444_FORMATS_EXTENSION_NAME);
         link(out.vertex_input_dynamic_state, VK_EXT_VERTEX_INPUT_DYNAMIC_STATE_EXTENSION_NAME);
         link(out.extended_dynamic_state3, VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME);
+        link(out.conditional_rendering, VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -310,6 +316,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.custom_border_color.pNext = nullptr;
             out.formats_4444.pNext = nullptr;
             out.vertex_input_dynamic_state.pNext = out.extended_dynamic_state3.pNext = nullptr;
+            out.conditional_rendering.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

@@ -44,6 +44,8 @@ struct DeviceContext {
     VkPhysicalDeviceColorWriteEnableFeaturesEXT color_write_enable{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_COLOR_WRITE_ENABLE_FEATURES_EXT};
     VkPhysicalDeviceMultiDrawFeaturesEXT multi_draw{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTI_DRAW_FEATURES_EXT};
+    VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional_rendering{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT};
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking_vertex{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
     VkPhysicalDeviceDepthClipEnableFeaturesEXT depth_clip_enable{
@@ -87,6 +89,8 @@ struct DeviceContext {
         PFN_vkCmdSetColorWriteEnableEXT color_write_enable = nullptr;
         PFN_vkCmdDrawMultiEXT draw_multi = nullptr;
         PFN_vkCmdDrawMultiIndexedEXT draw_multi_indexed = nullptr;
+        PFN_vkCmdBeginConditionalRenderingEXT begin_conditional = nullptr;
+        PFN_vkCmdEndConditionalRenderingEXT end_conditional = nullptr;
         PFN_vkCmdSetVertexInputEXT vertex_input = nullptr;
         // Extended dynamic state 3 (the members Draw::dynamic3 sets).
         PFN_vkCmdSetPolygonModeEXT polygon_mode = nullptr;

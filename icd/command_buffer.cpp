@@ -550,4 +550,18 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdDispatchIndirect(VkCommandBuffer commandBuffer
     }
 }
 
+// ---- VK_EXT_conditional_rendering (executed in execute.cpp) --------------------------------------------------
+VKAPI_ATTR void VKAPI_CALL tvk_CmdBeginConditionalRenderingEXT(
+    VkCommandBuffer commandBuffer, const VkConditionalRenderingBeginInfoEXT* pConditionalRenderingBegin) {
+    if (auto* c = cb_of(commandBuffer)->append<CmdBeginConditionalRendering>()) {
+        c->buffer = from_handle<Buffer>(pConditionalRenderingBegin->buffer);
+        c->offset = pConditionalRenderingBegin->offset;
+        c->inverted = (pConditionalRenderingBegin->flags & VK_CONDITIONAL_RENDERING_INVERTED_BIT_EXT) != 0;
+    }
+}
+
+VKAPI_ATTR void VKAPI_CALL tvk_CmdEndConditionalRenderingEXT(VkCommandBuffer commandBuffer) {
+    cb_of(commandBuffer)->append<CmdEndConditionalRendering>();
+}
+
 }  // namespace tilevk::icd

@@ -70,6 +70,8 @@ struct QueryPool;
     X(DrawMulti) \
     X(Dispatch) \
     X(DispatchIndirect) \
+    X(BeginConditionalRendering) \
+    X(EndConditionalRendering) \
     X(ExecuteCommands) \
     X(BeginQuery) \
     X(EndQuery) \
@@ -321,6 +323,14 @@ struct CmdDispatchIndirect : CmdOf<CmdType::kDispatchIndirect> {
     Buffer* buffer;
     VkDeviceSize offset;
 };
+// vkCmdBeginConditionalRenderingEXT / vkCmdEndConditionalRenderingEXT (VK_EXT_conditional_rendering): the 32-bit
+// predicate at `offset` in `buffer` is read when each draw, dispatch or vkCmdClearAttachments between them executes.
+struct CmdBeginConditionalRendering : CmdOf<CmdType::kBeginConditionalRendering> {
+    Buffer* buffer;
+    VkDeviceSize offset;
+    bool inverted;  // VK_CONDITIONAL_RENDERING_INVERTED_BIT_EXT
+};
+struct CmdEndConditionalRendering : CmdOf<CmdType::kEndConditionalRendering> {};
 struct CmdExecuteCommands : CmdOf<CmdType::kExecuteCommands> {
     uint32_t count;
     CommandBuffer* const* buffers;

@@ -109,6 +109,11 @@ void add_extension_features(Features& f) {
     // VkSamplerBorderColorComponentMappingCreateInfoEXT is accepted and, as in lavapipe, not needed.
     f.border_color_swizzle.borderColorSwizzle = VK_TRUE;
     f.border_color_swizzle.borderColorSwizzleFromImage = VK_TRUE;
+    // Draws, dispatches and vkCmdClearAttachments read the predicate as they execute (execute.cpp
+    // condition_passes), as llvmpipe. Not inherited by secondary command buffers: lavapipe 22.3.6 reports
+    // inheritedConditionalRendering VK_FALSE, so no secondary may run inside it (VUID-vkCmdExecuteCommands-
+    // commandBuffer-00101) and tilevk has no reference to match.
+    f.conditional_rendering.conditionalRendering = VK_TRUE;
 }
 
 // The atomics beyond Vulkan 1.0's 32-bit integer ones.
@@ -312,6 +317,7 @@ Features::Features() {
     init(border_color_swizzle, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BORDER_COLOR_SWIZZLE_FEATURES_EXT);
     init(vertex_input_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state3, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT);
+    init(conditional_rendering, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -333,7 +339,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&texel_buffer_alignment),
                                  reinterpret_cast<VkBaseOutStructure*>(&border_color_swizzle),
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_input_dynamic_state),
-                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3),
+                                 reinterpret_cast<VkBaseOutStructure*>(&conditional_rendering)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -4,6 +4,7 @@
 
 #include "execute_blit.h"
 
+#include "buffer.h"
 #include "framebuffer.h"
 #include "image.h"
 #include "rast/render/stage_timer.h"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -254,6 +256,26 @@ void clear_attachments(ExecState& st, const CmdClearAttachments& c) {
     }
 }
 
+// Whether the draw, dispatch or vkCmdClearAttachments being executed runs: outside conditional rendering always;
+// inside, when the 32-bit predicate read now is non-zero (zero with INVERTED). lavapipe reads it the same way when
+// each command executes (llvmpipe lp_query.c llvmpipe_check_render_cond: `(!data) == inverted` skips it), and skips
+// those commands alone: load-op clears, resolves, copies and blits run (docs/lavapipe-rules.md "Conditional
+// rendering").
+bool condition_passes(const ExecState& st) {
+    const Buffer* b = st.condition_buffer;
+    if (b == nullptr) return true;
+    uint32_t predicate = 0;
+    if (b->memory == nullptr || st.condition_offset > b->size || b->size - st.condition_offset < sizeof predicate) {
+        log_error(
+            "vkCmdBeginConditionalRenderingEXT: offset %llu + 4 bytes lies outside the buffer; the predicate "
+            "reads as 0",
+            static_cast<unsigned long long>(st.condition_offset));
+    } else {
+        std::memcpy(&predicate, b->data() + st.condition_offset, sizeof predicate);
+    }
+    return (predicate != 0) != st.condition_inverted;
+}
+
 // A subpass begins (after its load ops): a multiview subpass starts with its lowest view and remembers where it began.
 void begin_subpass_views(ExecState& st) {
     st.view_mask = st.render_pass->subpasses[st.subpass].view_mask;
@@ -334,6 +356,7 @@ struct CommandRunner {
         st.views = nullptr;
     }
     void operator()(const CmdClearAttachments& c) {
+        if (!condition_passes(st)) return;
         // Binned draws render first, so the clear lands after them in API order.
         finish_rendering(st);
         clear_attachments(st, c);
@@ -361,13 +384,29 @@ struct CommandRunner {
     void operator()(const CmdSetStencilOp& c) { exec_state(st, c); }
     void operator()(const CmdSetVertexInput& c) { exec_state(st, c); }
     void operator()(const CmdSetAttachmentDynamic& c) { exec_state(st, c); }
-    void operator()(const CmdDraw& c) { exec_draw(st, c); }
-    void operator()(const CmdDrawIndexed& c) { exec_draw(st, c); }
-    void operator()(const CmdDrawIndirect& c) { exec_draw(st, c); }
-    void operator()(const CmdDrawIndexedIndirect& c) { exec_draw(st, c); }
-    void operator()(const CmdDrawMulti& c) { exec_draw(st, c); }
-    void operator()(const CmdDispatch& c) { exec_dispatch(st, c); }
-    void operator()(const CmdDispatchIndirect& c) { exec_dispatch(st, c); }
+    // A draw or dispatch that conditional rendering discards does nothing at all: no fetch of its indirect
+    // parameters, no query counts (llvmpipe's draw_vbo and launch_grid return first thing).
+    void operator()(const CmdDraw& c) { run_if_condition(c); }
+    void operator()(const CmdDrawIndexed& c) { run_if_condition(c); }
+    void operator()(const CmdDrawIndirect& c) { run_if_condition(c); }
+    void operator()(const CmdDrawIndexedIndirect& c) { run_if_condition(c); }
+    void operator()(const CmdDrawMulti& c) { run_if_condition(c); }
+    void operator()(const CmdDispatch& c) { run_if_condition(c); }
+    void operator()(const CmdDispatchIndirect& c) { run_if_condition(c); }
+    void operator()(const CmdBeginConditionalRendering& c) {
+        st.condition_buffer = c.buffer;
+        st.condition_offset = c.offset;
+        st.condition_inverted = c.inverted;
+    }
+    void operator()(const CmdEndConditionalRendering&) { st.condition_buffer = nullptr; }
+    template <class C>
+    void run_if_condition(const C& c) {
+        if (!condition_passes(st)) return;
+        if constexpr (requires { exec_draw(st, c); })
+            exec_draw(st, c);
+        else
+            exec_dispatch(st, c);
+    }
 
     void operator()(const CmdBeginQuery& c) { exec_query(st, c); }
     void operator()(const CmdEndQuery& c) { exec_query(st, c); }

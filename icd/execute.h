@@ -126,6 +126,10 @@ struct ExecState {
     // command_buffer_index], its draw_number-th draw so far (vkCmdDraw* of it and its secondaries, each draw of an
     // indirect command counted).
     uint32_t submit_index = 0, command_buffer_index = 0, draw_number = 0;
+    // The active vkCmdBeginConditionalRenderingEXT (null: none): its buffer, the predicate's offset, INVERTED.
+    const Buffer* condition_buffer = nullptr;
+    VkDeviceSize condition_offset = 0;
+    bool condition_inverted = false;
 };
 
 void execute_command_buffer(CommandBuffer* cb, ExecState& st);
