@@ -1,6 +1,6 @@
-// compute.basic.* (with GLSL packUnorm/packSnorm), compute.shared.* and compute.ssbo.*: dispatches through
-// compute.hpp's harness, every result buffer compared byte for byte with the reference, and each case's answer computed
-// here from the definitions (the built-ins, sums and prefix sums, std430 offsets) as an independent check.
+// compute.basic.* (with GLSL packUnorm/packSnorm, unpackHalf2x16), compute.shared.* and compute.ssbo.*: dispatches
+// through compute.hpp's harness, every result buffer compared byte for byte with the reference, and each case's answer
+// computed here from the definitions (the built-ins, sums and prefix sums, std430 offsets) as an independent check.
 #include <cmath>
 
 #include "compute_case.hpp"
@@ -101,8 +101,43 @@ void add_pack_norm_case(CaseList& out) {
     add_compute_case(out, "basic.pack_norm", std::move(s), words_are(1, want));
 }
 
+// unpackHalf2x16 of halves with every class: NaNs with payloads (quiet and signalling, both signs), infinities,
+// denormals, zeros, normals. lavapipe lowers it to an fpext of each half (nir lower_pack_split, LLVM fpext:
+// VCVTPH2PS), which is exact, quiets a signalling NaN and keeps its payload. The answer from IEEE 754's widening:
+// the half's fields moved into a float, a NaN's payload shifted up by 13 with the quiet bit set.
+void add_unpack_half_case(CaseList& out) {
+    const auto widen = [](uint32_t h) {
+        const uint32_t sign = (h & 0x8000u) << 16, exp = (h >> 10) & 0x1fu, man = h & 0x3ffu;
+        if (exp == 0x1f) return sign | 0x7f800000u | (man ? 0x400000u | (man << 13) : 0u);
+        if (exp != 0) return sign | ((exp - 15 + 127) << 23) | (man << 13);
+        if (man == 0) return sign;
+        int e = -14;  // denormal: man * 2^-24, normalised
+        uint32_t m = man;
+        while (!(m & 0x400u)) m <<= 1, --e;
+        return sign | (uint32_t(e + 127) << 23) | ((m & 0x3ffu) << 13);
+    };
+    const std::vector<uint32_t> halves = {0x7e01, 0x7c01, 0xfd55, 0x7fff, 0xfe00, 0x7e00, 0x7c00, 0xfc00,
+                                          0x0001, 0x83ff, 0x0000, 0x8000, 0x3c00, 0xc155, 0x7bff, 0x0400};
+    std::vector<uint32_t> in, want;
+    for (size_t i = 0; i < halves.size(); ++i) {
+        const uint32_t lo = halves[i], hi = halves[(i * 7 + 3) % halves.size()];
+        in.push_back(lo | hi << 16);
+        want.push_back(widen(lo));
+        want.push_back(widen(hi));
+    }
+    ComputeSpec s;
+    s.shaders = {glsl_header(16) +
+                 "layout(std430, binding=0) readonly buffer I { uint v[]; };\n"
+                 "layout(std430, binding=1) buffer O { uvec2 o[]; };\n"
+                 "void main() { uint i = gl_GlobalInvocationID.x; o[i] = floatBitsToUint(unpackHalf2x16(v[i])); }\n"};
+    s.buffers = {{in, false, false}, {std::vector<uint32_t>(want.size(), kMarker)}};
+    s.steps = {dispatch(0, 1)};
+    add_compute_case(out, "basic.unpack_half_nan_payload", std::move(s), words_are(1, want));
+}
+
 void add_basic_cases(CaseList& out) {
     add_pack_norm_case(out);
+    add_unpack_half_case(out);
     const struct {
         const char* name;
         std::array<uint32_t, 3> l, g;

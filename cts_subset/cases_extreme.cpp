@@ -364,6 +364,36 @@ Scene at_last_vbuf_filling(const Regression& g) {
     return s;
 }
 
+// The same triangle at the end of a full vbuf whose limit is its 1020 indices (LP_MAX_VBUF_INDEXES), not its
+// vertices: an indexed list cycling through 8 small triangles (24 vertices, each emitted once per buffer) fills the
+// indices long before the 85 vertices. Indexed batches are 341 triangles (draw's vsplit segments of 1023 indices);
+// each batch starts with a triangle wholly right of the viewport, so both go through draw's pipeline and nothing
+// flushes the vbuf but its limit and the end of the draw. Batch 0 is that triangle, the extreme triangle (first, so
+// that none of its pieces is near a buffer boundary: rast/geometry/README.md "Serial tails" names a difference
+// there) and 339 small ones: at least 340 triangles reach the vbuf, which is full before batch 1's small ones, so
+// the extreme triangle is set up inside draw_vbo (denormals flushed). With a limit larger by a dozen triangles it
+// would still wait in the vbuf after draw_vbo (denormals kept): the output depends on where the full vbuf is
+// flushed.
+Scene at_vbuf_index_limit(const Regression& g) {
+    Scene s = regression_scene(g);
+    Draw& d = s.draws[0];
+    const std::vector<Vertex> extreme = d.vertices;
+    d.vertices = {raw(3.0f, 0.0f, 0.5f, 1.0f, kRed), raw(3.5f, 0.0f, 0.5f, 1.0f, kGreen),
+                  raw(3.0f, 0.5f, 0.5f, 1.0f, kBlue)};
+    d.vertices.insert(d.vertices.end(), extreme.begin(), extreme.end());
+    const std::vector<Vertex> small = small_triangles(0, 8);
+    d.vertices.insert(d.vertices.end(), small.begin(), small.end());
+    uint32_t next_small = 0;
+    auto add = [&d](uint32_t first) { d.indices.insert(d.indices.end(), {first, first + 1, first + 2}); };
+    auto add_small = [&] { add(6 + 3 * (next_small++ % 8)); };
+    add(0);  // batch 0
+    add(3);
+    for (int i = 0; i < 339; ++i) add_small();
+    add(0);  // batch 1
+    for (int i = 0; i < 5; ++i) add_small();
+    return s;
+}
+
 Scene regression_scene(const Regression& g) {
     std::vector<Vertex> v;
     const std::array<float, 4> colours[3] = {kRed, kGreen, kBlue};
@@ -412,6 +442,8 @@ void add_extreme_cases(CaseList& out) {
                                [&late_setup] { return mid_and_end_of_large_draw(late_setup, 1000, 1100); }));
     out.push_back(extreme_case("extreme.regression.w_1e37_setup_at_last_vbuf_filling",
                                [&late_setup] { return at_last_vbuf_filling(late_setup); }));
+    out.push_back(extreme_case("extreme.regression.w_1e37_setup_before_vbuf_index_limit_flush",
+                               [&late_setup] { return at_vbuf_index_limit(late_setup); }));
     for (const HandCase& h : kHandCases)
         out.push_back(
             extreme_case(std::string("extreme.class.") + h.name, [h] { return one_extreme(h.x, h.y, h.z, h.w); }));

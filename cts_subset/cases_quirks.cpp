@@ -192,43 +192,50 @@ void add_batch_cases(CaseList& out) {
 // vertices where a polygon leaves a plane as not drawn (draw_pipe_clip.c); offset, flatshade and the vertex's
 // point size apply through draw's stages (draw_pipe_offset.c, draw_pipe_flatshade.c, lp_setup_point.c). In POINT
 // mode lavapipe makes no x/y cut (rast/geometry/clip.h ClipConfig::cut_xy).
-// A case table (over 150 lines): one entry per case, in groups under their comments, sharing the scene builders
-// and constants declared at its top.
-void add_unfilled_cases(CaseList& out) {
-    auto big = [](VkPolygonMode mode) {
-        Draw d;
-        d.polygon_mode = mode;
-        // crosses the right and the top viewport edges
-        d.vertices = {vtx(-0.8f, -0.2f, 0.5f, 1, kRed), vtx(1.7f, -0.6f, 0.5f, 1, kGreen),
-                      vtx(0.3f, -1.6f, 0.5f, 1, kBlue)};
-        d.viewport = VkViewport{8, 8, 48, 48, 0, 1};
-        return d;
-    };
+
+// A triangle crossing the right and the top edges of a 48x48 viewport inside the 64x64 target.
+Draw unfilled_big(VkPolygonMode mode) {
+    Draw d;
+    d.polygon_mode = mode;
+    d.vertices = {vtx(-0.8f, -0.2f, 0.5f, 1, kRed), vtx(1.7f, -0.6f, 0.5f, 1, kGreen),
+                  vtx(0.3f, -1.6f, 0.5f, 1, kBlue)};
+    d.viewport = VkViewport{8, 8, 48, 48, 0, 1};
+    return d;
+}
+
+// A triangle whose first vertex is behind the near plane (z = -0.5).
+Draw unfilled_near(VkPolygonMode mode) {
+    Draw d;
+    d.polygon_mode = mode;
+    d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
+                  vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+    return d;
+}
+
+// The clipper's edge flags: clipped edges hidden, vertices the x/y planes would make not drawn.
+void add_unfilled_clip_cases(CaseList& out) {
     out.push_back({"quirks.unfilled.line_clipped_edges_hidden",
-                   [=] {
-                       Draw d = big(VK_POLYGON_MODE_LINE);
+                   [] {
+                       Draw d = unfilled_big(VK_POLYGON_MODE_LINE);
                        return one_draw(d);
                    },
                    Check(), ""});
     out.push_back({"quirks.unfilled.wide_line_clipped_edges_hidden",
-                   [=] {
-                       Draw d = big(VK_POLYGON_MODE_LINE);
+                   [] {
+                       Draw d = unfilled_big(VK_POLYGON_MODE_LINE);
                        d.line_width = 4.0f;
                        return one_draw(d);
                    },
                    Check(), ""});
     out.push_back({"quirks.unfilled.line_near_plane_edge_hidden",
-                   [=] {
-                       Draw d;
-                       d.polygon_mode = VK_POLYGON_MODE_LINE;
-                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
-                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                   [] {
+                       Draw d = unfilled_near(VK_POLYGON_MODE_LINE);
                        return one_draw(d);
                    },
                    Check(), ""});
     out.push_back({"quirks.unfilled.point_clipped_vertices_size_6",
-                   [=] {
-                       Draw d = big(VK_POLYGON_MODE_POINT);
+                   [] {
+                       Draw d = unfilled_big(VK_POLYGON_MODE_POINT);
                        for (Vertex& v : d.vertices) v.point_size = 6.0f;
                        return one_draw(d);
                    },
@@ -237,20 +244,14 @@ void add_unfilled_cases(CaseList& out) {
     // interpolated size); the x/y planes make no vertex in POINT mode (clip.h ClipConfig::cut_xy).
     out.push_back({"quirks.unfilled.point_near_plane_vertex_drawn",
                    [] {
-                       Draw d;
-                       d.polygon_mode = VK_POLYGON_MODE_POINT;
-                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
-                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                       Draw d = unfilled_near(VK_POLYGON_MODE_POINT);
                        for (Vertex& v : d.vertices) v.point_size = 4.0f;
                        return one_draw(d);
                    },
                    Check(), ""});
     out.push_back({"quirks.unfilled.point_near_plane_vertex_interpolated_size",
                    [] {
-                       Draw d;
-                       d.polygon_mode = VK_POLYGON_MODE_POINT;
-                       d.vertices = {vtx(-0.8f, -0.8f, -0.5f, 1, kRed), vtx(0.8f, -0.6f, 0.5f, 1, kGreen),
-                                     vtx(0.1f, 0.9f, 0.9f, 1, kBlue)};
+                       Draw d = unfilled_near(VK_POLYGON_MODE_POINT);
                        d.vertices[0].point_size = 2.0f;  // the new vertex halfway to v1 gets size 5
                        d.vertices[1].point_size = 8.0f;
                        d.vertices[2].point_size = 4.0f;
@@ -258,8 +259,8 @@ void add_unfilled_cases(CaseList& out) {
                    },
                    Check(), ""});
     out.push_back({"quirks.unfilled.point_right_plane_vertex_hidden",
-                   [=] {
-                       Draw d = big(VK_POLYGON_MODE_POINT);
+                   [] {
+                       Draw d = unfilled_big(VK_POLYGON_MODE_POINT);
                        d.viewport.reset();
                        d.vertices[2] = vtx(0.3f, 0.8f, 0.5f, 1, kBlue);
                        for (Vertex& v : d.vertices) v.point_size = 6.0f;
@@ -281,7 +282,7 @@ void add_unfilled_cases(CaseList& out) {
                                   OutsidePoint{"point_right_and_near_plane_vertex", 1.7f, -0.5f, false}})
         out.push_back({std::string("quirks.unfilled.") + o.name,
                        [=] {
-                           Draw d = big(VK_POLYGON_MODE_POINT);
+                           Draw d = unfilled_big(VK_POLYGON_MODE_POINT);
                            if (!o.small_viewport) d.viewport.reset();
                            d.vertices[1].pos[0] = o.x;
                            d.vertices[1].pos[2] = o.z;
@@ -290,6 +291,11 @@ void add_unfilled_cases(CaseList& out) {
                            return one_draw(d);
                        },
                        Check(), ""});
+}
+
+// What draw's stages carry from the triangle to its edges and corners: the vertex's point size, the provoking
+// vertex's flat colour, the triangle's facing.
+void add_unfilled_attribute_cases(CaseList& out) {
     out.push_back({"quirks.unfilled.point_size_from_shader",
                    [] {
                        Draw d = triangle(kBlue);
@@ -327,7 +333,10 @@ void add_unfilled_cases(CaseList& out) {
                        },
                        Check(), ""});
     }
-    // Depth bias: draw's offset stage offsets the triangle's vertices before its edges/corners are emitted.
+}
+
+// Depth bias: draw's offset stage offsets the triangle's vertices before its edges/corners are emitted.
+void add_unfilled_bias_cases(CaseList& out) {
     struct Bias {
         const char* name;
         VkFormat format;
@@ -419,7 +428,9 @@ void add_quirk_cases(CaseList& out) {
     add_sample_mask_cases(out);
     add_nine_vertex_cases(out);
     add_batch_cases(out);
-    add_unfilled_cases(out);
+    add_unfilled_clip_cases(out);
+    add_unfilled_attribute_cases(out);
+    add_unfilled_bias_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -1,33 +1,23 @@
-// The vkCmdSet* of extended dynamic state 1 and 2 (VK_EXT_extended_dynamic_state[2], core in Vulkan 1.3). Each
-// records the value it sets; execution applies it where the bound pipeline declared the state dynamic
-// (dynamic_state.cpp). vkCmdBindVertexBuffers2 is with the other binds (command_buffer.cpp).
+// The vkCmdSet* of extended dynamic state 1 and 2 (VK_EXT_extended_dynamic_state[2], core in Vulkan 1.3) that do
+// more than record one value, and the two helpers of the one-value commands that dynamic_commands.txt lists (their
+// definitions are generated). Each records the value it sets; execution applies it where the bound pipeline declared
+// the state dynamic (dynamic_state.cpp). vkCmdBindVertexBuffers2 is with the other binds (command_buffer.cpp).
 #include "command_buffer.h"
+#include "dynamic_commands.h"
 #include "entrypoints.h"
 #include "object.h"
 
 namespace tilevk::icd {
-namespace {
 
-void set(VkCommandBuffer commandBuffer, DynamicState state, uint32_t value) {
+void record_dynamic_value(VkCommandBuffer commandBuffer, DynamicState state, uint32_t value) {
     if (auto* c = from_handle<CommandBuffer>(commandBuffer)->append<CmdSetDynamic>()) {
         c->state = state;
         c->value = value;
     }
 }
 
-}  // namespace
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCullMode(VkCommandBuffer commandBuffer, VkCullModeFlags cullMode) {
-    set(commandBuffer, DynamicState::kCullMode, cullMode);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetFrontFace(VkCommandBuffer commandBuffer, VkFrontFace frontFace) {
-    set(commandBuffer, DynamicState::kFrontFace, uint32_t(frontFace));
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPrimitiveTopology(VkCommandBuffer commandBuffer,
-                                                       VkPrimitiveTopology primitiveTopology) {
-    set(commandBuffer, DynamicState::kPrimitiveTopology, uint32_t(primitiveTopology));
+void refuse_dynamic_command(const char* command, const char* feature) {
+    log_error("%s: %s is not supported (VK_FALSE); ignored", command, feature);
 }
 
 // The WithCount forms set the viewports / scissors exactly as vkCmdSetViewport/vkCmdSetScissor from index 0 do.
@@ -39,28 +29,6 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetViewportWithCount(VkCommandBuffer commandBu
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetScissorWithCount(VkCommandBuffer commandBuffer, uint32_t scissorCount,
                                                       const VkRect2D* pScissors) {
     tvk_CmdSetScissor(commandBuffer, 0, scissorCount, pScissors);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthTestEnable(VkCommandBuffer commandBuffer, VkBool32 depthTestEnable) {
-    set(commandBuffer, DynamicState::kDepthTestEnable, depthTestEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthWriteEnable(VkCommandBuffer commandBuffer, VkBool32 depthWriteEnable) {
-    set(commandBuffer, DynamicState::kDepthWriteEnable, depthWriteEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthCompareOp(VkCommandBuffer commandBuffer, VkCompareOp depthCompareOp) {
-    set(commandBuffer, DynamicState::kDepthCompareOp, uint32_t(depthCompareOp));
-}
-
-// depthBounds is not a reported feature, so only VK_FALSE is valid here; the value is kept and unused.
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBoundsTestEnable(VkCommandBuffer commandBuffer,
-                                                           VkBool32 depthBoundsTestEnable) {
-    set(commandBuffer, DynamicState::kDepthBoundsTestEnable, depthBoundsTestEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilTestEnable(VkCommandBuffer commandBuffer, VkBool32 stencilTestEnable) {
-    set(commandBuffer, DynamicState::kStencilTestEnable, stencilTestEnable);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilOp(VkCommandBuffer commandBuffer, VkStencilFaceFlags faceMask,
@@ -75,25 +43,6 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetStencilOp(VkCommandBuffer commandBuffer, Vk
     }
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetRasterizerDiscardEnable(VkCommandBuffer commandBuffer,
-                                                             VkBool32 rasterizerDiscardEnable) {
-    set(commandBuffer, DynamicState::kRasterizerDiscardEnable, rasterizerDiscardEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthBiasEnable(VkCommandBuffer commandBuffer, VkBool32 depthBiasEnable) {
-    set(commandBuffer, DynamicState::kDepthBiasEnable, depthBiasEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPrimitiveRestartEnable(VkCommandBuffer commandBuffer,
-                                                            VkBool32 primitiveRestartEnable) {
-    set(commandBuffer, DynamicState::kPrimitiveRestartEnable, primitiveRestartEnable);
-}
-
-// extendedDynamicState2LogicOp.
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLogicOpEXT(VkCommandBuffer commandBuffer, VkLogicOp logicOp) {
-    set(commandBuffer, DynamicState::kLogicOp, uint32_t(logicOp));
-}
-
 // VK_EXT_color_write_enable: one bit per attachment (at most maxColorAttachments, 8); a value other than VK_TRUE
 // disables, as lavapipe's handle_set_color_write_enable reads it.
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteEnableEXT(VkCommandBuffer commandBuffer, uint32_t attachmentCount,
@@ -101,7 +50,7 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteEnableEXT(VkCommandBuffer command
     uint32_t enables = ~0u;
     for (uint32_t i = 0; i < attachmentCount && i < 32; ++i)
         if (pColorWriteEnables[i] != VK_TRUE) enables &= ~(1u << i);
-    set(commandBuffer, DynamicState::kColorWriteEnable, enables);
+    record_dynamic_value(commandBuffer, DynamicState::kColorWriteEnable, enables);
 }
 // VK_EXT_line_rasterization: no tilevk pipeline stipples its lines (stippledLineEnable and the dynamic state
 // VK_DYNAMIC_STATE_LINE_STIPPLE_EXT are refused at pipeline creation), so the factor and pattern are never read.

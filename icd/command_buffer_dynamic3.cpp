@@ -1,10 +1,12 @@
 // vkCmdSetVertexInputEXT (VK_EXT_vertex_input_dynamic_state) and the vkCmdSet* of extended dynamic state 3
-// (VK_EXT_extended_dynamic_state3). Each records the value it sets; execution applies it where the bound pipeline
-// declared the state dynamic (dynamic_state.cpp). The commands of the members tilevk reports VK_FALSE
-// (device_features.cpp) are invalid to call; they log and record nothing.
+// (VK_EXT_extended_dynamic_state3) that do more than record one value: the sample mask and the per-attachment
+// states. Each records the value it sets; execution applies it where the bound pipeline declared the state dynamic
+// (dynamic_state.cpp). The one-value commands, and the refusals of the members tilevk reports VK_FALSE, are lines
+// of dynamic_commands.txt.
 #include <algorithm>
 
 #include "command_buffer.h"
+#include "dynamic_commands.h"
 #include "entrypoints.h"
 #include "formats.h"
 #include "object.h"
@@ -12,13 +14,6 @@
 
 namespace tilevk::icd {
 namespace {
-
-void set(VkCommandBuffer commandBuffer, DynamicState state, uint32_t value) {
-    if (auto* c = from_handle<CommandBuffer>(commandBuffer)->append<CmdSetDynamic>()) {
-        c->state = state;
-        c->value = value;
-    }
-}
 
 // kColorBlendEnable and kColorWriteMask: one 32-bit value per attachment.
 void set_attachments(VkCommandBuffer commandBuffer, DynamicState state, uint32_t first, uint32_t count,
@@ -31,10 +26,6 @@ void set_attachments(VkCommandBuffer commandBuffer, DynamicState state, uint32_t
         c->values = values ? cb->copy(values, count) : nullptr;
         c->equations = equations ? cb->copy(equations, count) : nullptr;
     }
-}
-
-void unsupported(const char* command, const char* feature) {
-    log_error("%s: %s is not supported (VK_FALSE); ignored", command, feature);
 }
 
 }  // namespace
@@ -73,52 +64,10 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetVertexInputEXT(VkCommandBuffer commandBuffe
     if (auto* c = cb->append<CmdSetVertexInput>()) c->values = cb->copy(&v, 1);
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetPolygonModeEXT(VkCommandBuffer commandBuffer, VkPolygonMode polygonMode) {
-    set(commandBuffer, DynamicState::kPolygonMode, uint32_t(polygonMode));
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthClampEnableEXT(VkCommandBuffer commandBuffer, VkBool32 depthClampEnable) {
-    set(commandBuffer, DynamicState::kDepthClampEnable, depthClampEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthClipEnableEXT(VkCommandBuffer commandBuffer, VkBool32 depthClipEnable) {
-    set(commandBuffer, DynamicState::kDepthClipEnable, depthClipEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetDepthClipNegativeOneToOneEXT(VkCommandBuffer commandBuffer,
-                                                                VkBool32 negativeOneToOne) {
-    set(commandBuffer, DynamicState::kDepthClipNegativeOneToOne, negativeOneToOne);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLogicOpEnableEXT(VkCommandBuffer commandBuffer, VkBool32 logicOpEnable) {
-    set(commandBuffer, DynamicState::kLogicOpEnable, logicOpEnable);
-}
-
 // Only sample mask word 0 exists (at most 4 samples); a null mask is every sample, as lavapipe reads it.
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetSampleMaskEXT(VkCommandBuffer commandBuffer, VkSampleCountFlagBits,
                                                    const VkSampleMask* pSampleMask) {
-    set(commandBuffer, DynamicState::kSampleMask, pSampleMask ? pSampleMask[0] : ~0u);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetAlphaToCoverageEnableEXT(VkCommandBuffer commandBuffer,
-                                                              VkBool32 alphaToCoverageEnable) {
-    set(commandBuffer, DynamicState::kAlphaToCoverageEnable, alphaToCoverageEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineRasterizationModeEXT(VkCommandBuffer commandBuffer,
-                                                              VkLineRasterizationModeEXT lineRasterizationMode) {
-    set(commandBuffer, DynamicState::kLineRasterizationMode, uint32_t(lineRasterizationMode));
-}
-
-// The stippled* features are VK_FALSE, so VK_FALSE is the only valid value; it is recorded all the same.
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineStippleEnableEXT(VkCommandBuffer commandBuffer,
-                                                          VkBool32 stippledLineEnable) {
-    set(commandBuffer, DynamicState::kLineStippleEnable, stippledLineEnable);
-}
-
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetProvokingVertexModeEXT(VkCommandBuffer commandBuffer,
-                                                            VkProvokingVertexModeEXT provokingVertexMode) {
-    set(commandBuffer, DynamicState::kProvokingVertexMode, uint32_t(provokingVertexMode));
+    record_dynamic_value(commandBuffer, DynamicState::kSampleMask, pSampleMask ? pSampleMask[0] : ~0u);
 }
 
 VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorBlendEnableEXT(VkCommandBuffer commandBuffer, uint32_t firstAttachment,
@@ -140,65 +89,6 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorWriteMaskEXT(VkCommandBuffer commandBu
                                                        const VkColorComponentFlags* pColorWriteMasks) {
     set_attachments(commandBuffer, DynamicState::kColorWriteMask, firstAttachment, attachmentCount, pColorWriteMasks,
                     nullptr);
-}
-
-// The members tilevk reports VK_FALSE (device_features.cpp says why).
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetAlphaToOneEnableEXT(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetAlphaToOneEnableEXT", "extendedDynamicState3AlphaToOneEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetTessellationDomainOriginEXT(VkCommandBuffer, VkTessellationDomainOrigin) {
-    unsupported("vkCmdSetTessellationDomainOriginEXT", "extendedDynamicState3TessellationDomainOrigin");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetRasterizationSamplesEXT(VkCommandBuffer, VkSampleCountFlagBits) {
-    unsupported("vkCmdSetRasterizationSamplesEXT", "extendedDynamicState3RasterizationSamples");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetRasterizationStreamEXT(VkCommandBuffer, uint32_t) {
-    unsupported("vkCmdSetRasterizationStreamEXT", "extendedDynamicState3RasterizationStream");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetConservativeRasterizationModeEXT(VkCommandBuffer,
-                                                                      VkConservativeRasterizationModeEXT) {
-    unsupported("vkCmdSetConservativeRasterizationModeEXT", "extendedDynamicState3ConservativeRasterizationMode");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetExtraPrimitiveOverestimationSizeEXT(VkCommandBuffer, float) {
-    unsupported("vkCmdSetExtraPrimitiveOverestimationSizeEXT", "extendedDynamicState3ExtraPrimitiveOverestimationSize");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetSampleLocationsEnableEXT(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetSampleLocationsEnableEXT", "extendedDynamicState3SampleLocationsEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetColorBlendAdvancedEXT(VkCommandBuffer, uint32_t, uint32_t,
-                                                           const VkColorBlendAdvancedEXT*) {
-    unsupported("vkCmdSetColorBlendAdvancedEXT", "extendedDynamicState3ColorBlendAdvanced");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetViewportWScalingEnableNV(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetViewportWScalingEnableNV", "extendedDynamicState3ViewportWScalingEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetViewportSwizzleNV(VkCommandBuffer, uint32_t, uint32_t,
-                                                       const VkViewportSwizzleNV*) {
-    unsupported("vkCmdSetViewportSwizzleNV", "extendedDynamicState3ViewportSwizzle");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageToColorEnableNV(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetCoverageToColorEnableNV", "extendedDynamicState3CoverageToColorEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageToColorLocationNV(VkCommandBuffer, uint32_t) {
-    unsupported("vkCmdSetCoverageToColorLocationNV", "extendedDynamicState3CoverageToColorLocation");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageModulationModeNV(VkCommandBuffer, VkCoverageModulationModeNV) {
-    unsupported("vkCmdSetCoverageModulationModeNV", "extendedDynamicState3CoverageModulationMode");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageModulationTableEnableNV(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetCoverageModulationTableEnableNV", "extendedDynamicState3CoverageModulationTableEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageModulationTableNV(VkCommandBuffer, uint32_t, const float*) {
-    unsupported("vkCmdSetCoverageModulationTableNV", "extendedDynamicState3CoverageModulationTable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetShadingRateImageEnableNV(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetShadingRateImageEnableNV", "extendedDynamicState3ShadingRateImageEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetRepresentativeFragmentTestEnableNV(VkCommandBuffer, VkBool32) {
-    unsupported("vkCmdSetRepresentativeFragmentTestEnableNV", "extendedDynamicState3RepresentativeFragmentTestEnable");
-}
-VKAPI_ATTR void VKAPI_CALL tvk_CmdSetCoverageReductionModeNV(VkCommandBuffer, VkCoverageReductionModeNV) {
-    unsupported("vkCmdSetCoverageReductionModeNV", "extendedDynamicState3CoverageReductionMode");
 }
 
 }  // namespace tilevk::icd

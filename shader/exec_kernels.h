@@ -34,18 +34,6 @@ using i32a = int32_t __attribute__((may_alias));
 
 #define LANES for (int l = 0; l < kLanes; ++l)
 
-inline float half_to_float(uint32_t h) {
-    uint32_t s = (h >> 15) & 1, e = (h >> 10) & 31, m = h & 1023;
-    float v;
-    if (e == 0)
-        v = std::ldexp(float(m), -24);
-    else if (e == 31)
-        v = m ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
-    else
-        v = std::ldexp(float(m | 1024), int(e) - 25);
-    return s ? -v : v;
-}
-
 // float -> half, round to nearest even (GLSL packHalf2x16)
 inline uint32_t float_to_half(float f) {
     uint32_t x = std::bit_cast<uint32_t>(f);

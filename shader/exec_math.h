@@ -1,6 +1,7 @@
 // Interpreter kernels: conversions, GLSL.std.450 maths, packing, derivatives.
 #pragma once
 
+#include "format/texel_codec.h"
 #include "shader/exec_kernels.h"
 #include "shader/exec_libm.h"
 
@@ -180,16 +181,19 @@ TILEVK_GALLIVM_OPS(TILEVK_EXEC_GALLIVM)
     LANES d[l] = float_to_half(a[l]) | (float_to_half(b[l]) << 16);
 }
 
+// unpackHalf2x16: lavapipe lowers it to an fpext of each half (nir lower_pack_split: f2f32(u2u16(a))), the same
+// conversion as OpFConvert, so both go through the texel codec's half_to_float (NaN payloads kept). The result is
+// moved as bits, so that no float copy can touch a NaN.
 [[gnu::always_inline]] inline void op_unpack_half2x16_lo(const Inst& in, Machine& mc) {
-    f32a* __restrict d = FD;
+    uint32_t* __restrict d = D;
     const uint32_t* __restrict a = A;
-    LANES d[l] = half_to_float(a[l] & 0xffff);
+    LANES d[l] = std::bit_cast<uint32_t>(format::half_to_float(uint16_t(a[l] & 0xffff)));
 }
 
 [[gnu::always_inline]] inline void op_unpack_half2x16_hi(const Inst& in, Machine& mc) {
-    f32a* __restrict d = FD;
+    uint32_t* __restrict d = D;
     const uint32_t* __restrict a = A;
-    LANES d[l] = half_to_float(a[l] >> 16);
+    LANES d[l] = std::bit_cast<uint32_t>(format::half_to_float(uint16_t(a[l] >> 16)));
 }
 
 // packUnorm/packSnorm of kCount components of kBits each, the first in the low bits: unorm

@@ -172,8 +172,9 @@ void Device::destroy(Buffer& b) {
     b = {};
 }
 
-Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
-                                 VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
+VkImageCreateInfo image_info_2d(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
+                                VkSampleCountFlagBits samples, VkImageUsageFlags usage, VkImageTiling tiling,
+                                VkImageLayout initial_layout) {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = format;
@@ -181,11 +182,16 @@ Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t heigh
     ci.mipLevels = levels;
     ci.arrayLayers = layers;
     ci.samples = samples;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.tiling = tiling;
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    return make_image(ci);
+    ci.initialLayout = initial_layout;
+    return ci;
+}
+
+Device::Image Device::make_image(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
+                                 VkSampleCountFlagBits samples, VkImageUsageFlags usage) {
+    return make_image(image_info_2d(format, width, height, levels, layers, samples, usage));
 }
 
 Device::Image Device::make_image(const VkImageCreateInfo& ci) {

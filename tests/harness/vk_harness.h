@@ -96,6 +96,12 @@ class TwoDriverSuite : public ::testing::Test {
     static std::unique_ptr<Device> tilevk_, lavapipe_;
 };
 
+// A 2D image's create info (exclusive sharing), for Device::make_image or an image bound by hand.
+VkImageCreateInfo image_info_2d(VkFormat format, uint32_t width, uint32_t height, uint32_t levels, uint32_t layers,
+                                VkSampleCountFlagBits samples, VkImageUsageFlags usage,
+                                VkImageTiling tiling = VK_IMAGE_TILING_OPTIMAL,
+                                VkImageLayout initial_layout = VK_IMAGE_LAYOUT_UNDEFINED);
+
 // Whole-image layout transition (UNDEFINED or anything -> `to`), for the validation layer's benefit.
 void transition(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspects, VkImageLayout from, VkImageLayout to,
                 uint32_t levels = VK_REMAINING_MIP_LEVELS, uint32_t layers = VK_REMAINING_ARRAY_LAYERS);

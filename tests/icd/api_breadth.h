@@ -614,10 +614,49 @@ inline SamplerSet sampler_set(Kit& k) {
     return s;
 }
 
+// A uniform texel buffer view of `buf` (`format`, `offset`, `range`) written to binding 0 (fragment stage) of a
+// set of its own, with its layouts; the caller destroys the view.
+struct TexelBufferSet {
+    VkBufferView view;
+    VkDescriptorSetLayout dsl;
+    VkPipelineLayout layout;
+    VkDescriptorSet set;
+};
+inline TexelBufferSet uniform_texel_buffer_set(Kit& k, const Device::Buffer& buf, VkFormat format, VkDeviceSize offset,
+                                               VkDeviceSize range) {
+    TexelBufferSet t{};
+    VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    bvci.buffer = buf.buffer;
+    bvci.format = format;
+    bvci.offset = offset;
+    bvci.range = range;
+    EXPECT_EQ(vkCreateBufferView(k.d, &bvci, nullptr, &t.view), VK_SUCCESS);
+    t.dsl = k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
+    t.layout = k.pipeline_layout({t.dsl});
+    t.set = k.descriptor_set(t.dsl);
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = t.set;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    w.pTexelBufferView = &t.view;
+    vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+    return t;
+}
+
 // Binds `vb` as vertex buffer 0 at offset 0.
 inline void bind_vertices(VkCommandBuffer c, const Device::Buffer& vb) {
     const VkDeviceSize zero = 0;
     vkCmdBindVertexBuffers(c, 0, 1, &vb.buffer, &zero);
+}
+
+// One pass over all of `tg` (its colour cleared to `clear`) drawing `vertex_count` vertices of `vb` with `pipe`.
+inline void draw_vertices(VkCommandBuffer c, const Target& tg, VkPipeline pipe, const Device::Buffer& vb,
+                          uint32_t vertex_count, VkClearValue clear) {
+    begin_pass(c, tg.rp, tg.fb, tg.w, tg.h, {clear});
+    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
+    bind_vertices(c, vb);
+    vkCmdDraw(c, vertex_count, 1, 0, 0);
+    vkCmdEndRenderPass(c);
 }
 
 inline const std::vector<Vertex> kTriangle = {v(-0.8f, -0.8f, 0.2f, 1, 0, 0), v(0.8f, -0.6f, 0.4f, 0, 1, 0),

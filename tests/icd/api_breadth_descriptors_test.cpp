@@ -983,23 +983,11 @@ TEST_F(ApiBreadth, UniformTexelBuffers) {
             const std::vector<uint8_t> texels = texel_data(f, 20, 300 + uint32_t(f));
             data.insert(data.end(), texels.begin(), texels.end());
             Device::Buffer buf = k.buffer_of(data, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-            VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
-            bvci.buffer = buf.buffer;
-            bvci.format = f;
-            bvci.offset = offset;
-            bvci.range = VkDeviceSize(18) * n;  // 18 texels visible (2 more than the pixels)
-            VkBufferView view = VK_NULL_HANDLE;
-            EXPECT_EQ(vkCreateBufferView(k.d, &bvci, nullptr, &view), VK_SUCCESS);
-            VkDescriptorSetLayout dsl =
-                k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-            VkPipelineLayout layout = k.pipeline_layout({dsl});
-            VkDescriptorSet set = k.descriptor_set(dsl);
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = set;
-            w.descriptorCount = 1;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-            w.pTexelBufferView = &view;
-            vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+            // 18 texels visible (2 more than the pixels)
+            const TexelBufferSet tb = uniform_texel_buffer_set(k, buf, f, offset, VkDeviceSize(18) * n);
+            const VkBufferView view = tb.view;
+            const VkPipelineLayout layout = tb.layout;
+            const VkDescriptorSet set = tb.set;
             const Pipe p = fullscreen_pipe(uint_view   ? SPV(ab_texel_buffer_uint_frag)
                                            : sint_view ? SPV(ab_texel_buffer_sint_frag)
                                                        : SPV(ab_texel_buffer_frag),

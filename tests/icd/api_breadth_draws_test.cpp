@@ -344,14 +344,9 @@ TEST_F(ApiBreadth, VertexFormatsFetchLikeLavapipe) {
                     }
                 }
                 Device::Buffer vb = k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-                EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                    begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-                    vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                    bind_vertices(c, vb);
-                    vkCmdDraw(c, 16, 1, 0, 0);
-                    vkCmdEndRenderPass(c);
-                }),
-                          VK_SUCCESS);
+                EXPECT_EQ(
+                    k.run([&](VkCommandBuffer c) { draw_vertices(c, t, pipe, vb, 16, clear_color(-1, -1, -1, -1)); }),
+                    VK_SUCCESS);
                 return k.read(t.image.image, 4, 4, 16);
             });
         }
@@ -382,13 +377,7 @@ TEST_F(ApiBreadth, HalfVertexSpecialsFetchLikeLavapipe) {
         p.attrs = {{0, 0, VK_FORMAT_R16G16B16A16_SFLOAT, 0}};
         VkPipeline pipe = k.pipeline(p);
         Device::Buffer vb = k.buffer_of(data, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            begin_pass(c, t.rp, t.fb, 4, 4, {clear_color(-1, -1, -1, -1)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            bind_vertices(c, vb);
-            vkCmdDraw(c, 16, 1, 0, 0);
-            vkCmdEndRenderPass(c);
-        }),
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_vertices(c, t, pipe, vb, 16, clear_color(-1, -1, -1, -1)); }),
                   VK_SUCCESS);
         return k.read(t.image.image, 4, 4, 16);
     });

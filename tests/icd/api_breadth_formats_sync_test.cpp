@@ -40,11 +40,7 @@ void expect_format_works(VkFormat f, VkFormatFeatureFlags t, const BothDrivers& 
             VkPipeline pipe = k.pipeline(p);
             Device::Buffer vb = k.buffer_of(kBothTriangles, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
             EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-                begin_pass(c, tg.rp, tg.fb, 32, 32, {clear_color(0.1f, 0.2f, 0.3f, 0.4f)});
-                vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-                bind_vertices(c, vb);
-                vkCmdDraw(c, 6, 1, 0, 0);
-                vkCmdEndRenderPass(c);
+                draw_vertices(c, tg, pipe, vb, 6, clear_color(0.1f, 0.2f, 0.3f, 0.4f));
             }),
                       VK_SUCCESS);
             return k.read(tg.image.image, 32, 32, texel_bytes(f, VK_IMAGE_ASPECT_COLOR_BIT));
@@ -586,13 +582,7 @@ TEST_F(ApiBreadth, ErrorPathsFailCleanly) {
         ok.rp = t.rp;
         VkPipeline good = k.pipeline(ok);
         Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, good);
-            bind_vertices(c, vb);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
-        }),
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_vertices(c, t, good, vb, 3, clear_color(0, 0, 0.25f, 1)); }),
                   VK_SUCCESS);
         Bytes b = k.read(t.image.image, 32, 32, 4);
         EXPECT_NE(px(b, 10, 12)[2], 64);

@@ -63,16 +63,8 @@ void host_rows(Kit& k, VkImage img, uint8_t* map, uint32_t level, uint32_t layer
 }
 
 Bytes linear_levels_layers_scene(Kit& k) {
-    VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ici.imageType = VK_IMAGE_TYPE_2D;
-    ici.format = kFormat;
-    ici.extent = {kSize, kSize, 1};
-    ici.mipLevels = kLevels;
-    ici.arrayLayers = kLayers;
-    ici.samples = VK_SAMPLE_COUNT_1_BIT;
-    ici.tiling = VK_IMAGE_TILING_LINEAR;
-    ici.usage = kUsage;
-    ici.initialLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+    const VkImageCreateInfo ici = image_info_2d(kFormat, kSize, kSize, kLevels, kLayers, VK_SAMPLE_COUNT_1_BIT, kUsage,
+                                                VK_IMAGE_TILING_LINEAR, VK_IMAGE_LAYOUT_PREINITIALIZED);
     VkImage img = VK_NULL_HANDLE;
     EXPECT_EQ(vkCreateImage(k.d, &ici, nullptr, &img), VK_SUCCESS);
     if (img == VK_NULL_HANDLE) return {};

@@ -264,13 +264,7 @@ TEST_F(ApiMaintenance4, WiderVertexOutputThanFragmentInput) {
         pp.rp = t.rp;
         VkPipeline pipe = k.pipeline(pp);
         Device::Buffer vb = k.buffer_of(kTriangle, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0, 0)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            bind_vertices(c, vb);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
-        }),
+        EXPECT_EQ(k.run([&](VkCommandBuffer c) { draw_vertices(c, t, pipe, vb, 3, clear_color(0, 0, 0, 0)); }),
                   VK_SUCCESS);
         Bytes b = k.read(t.image.image, 32, 32, 4);
         EXPECT_NEAR(px(b, 16, 16)[2], 63.75, 1.0);  // 0.25 from the shader, not the vertex colour's blue

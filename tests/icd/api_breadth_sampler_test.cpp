@@ -332,10 +332,12 @@ TEST_F(ApiSamplerExt, FilterMinmaxReportsAsLavapipe) {
         vkGetPhysicalDeviceFormatProperties(lavapipe_->physical(), f, &l);
         const VkFormatFeatureFlags M = VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT;
         // every tilevk format lavapipe reports it for, where tilevk samples the format at all
-        if (t.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
+        if (t.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
             EXPECT_EQ(t.optimalTilingFeatures & M, l.optimalTilingFeatures & M) << "format " << int(f);
-        if (t.linearTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
+        }
+        if (t.linearTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) {
             EXPECT_EQ(t.linearTilingFeatures & M, l.linearTilingFeatures & M) << "format " << int(f);
+        }
         EXPECT_FALSE((t.optimalTilingFeatures & M) && !(t.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT));
     }
     const VkFormat expected[] = {VK_FORMAT_R8_UNORM,   VK_FORMAT_R8_SNORM,   VK_FORMAT_R16_UNORM, VK_FORMAT_R16_SNORM,

@@ -525,23 +525,10 @@ TEST_F(ApiSmallExtensions, TexelBufferAlignmentSingleTexelOffsets) {
         const Bytes out = both_on(d->tilevk, d->lavapipe, [&](Kit& k) {
             Target tg = target(k, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4);
             Device::Buffer buf = k.buffer_of(data, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-            VkBufferViewCreateInfo bvci{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
-            bvci.buffer = buf.buffer;
-            bvci.format = c.format;
-            bvci.offset = c.offset;
-            bvci.range = VkDeviceSize(18) * n;
-            VkBufferView view = VK_NULL_HANDLE;
-            EXPECT_EQ(vkCreateBufferView(k.d, &bvci, nullptr, &view), VK_SUCCESS);
-            VkDescriptorSetLayout dsl =
-                k.set_layout({{0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT}});
-            VkPipelineLayout layout = k.pipeline_layout({dsl});
-            VkDescriptorSet set = k.descriptor_set(dsl);
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = set;
-            w.descriptorCount = 1;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-            w.pTexelBufferView = &view;
-            vkUpdateDescriptorSets(k.d, 1, &w, 0, nullptr);
+            const TexelBufferSet tb = uniform_texel_buffer_set(k, buf, c.format, c.offset, VkDeviceSize(18) * n);
+            const VkBufferView view = tb.view;
+            const VkPipelineLayout layout = tb.layout;
+            const VkDescriptorSet set = tb.set;
             VkPipeline pipe = k.pipeline(fullscreen_pipe(SPV(ab_texel_buffer_frag), tg, layout));
             EXPECT_EQ(k.run([&](VkCommandBuffer cb) { draw_fullscreen(cb, tg, pipe, layout, set); }), VK_SUCCESS);
             Bytes o = k.read(tg.image.image, 4, 4, 16);

@@ -143,11 +143,7 @@ TEST_F(ApiVulkan12, Spirv15CopyLogicalAndIntegerTextures) {
             const float off[4] = {0.1f, -0.05f, 0, 0}, tint[8] = {1, 0.5f, 0.25f, 1, 0, 0.1f, 0.2f, 0};
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, 16, off);
             vkCmdPushConstants(c, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 16, 32, tint);
-            begin_pass(c, t.rp, t.fb, 32, 32, {clear_color(0, 0, 0.25f, 1)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe);
-            bind_vertices(c, vb);
-            vkCmdDraw(c, 3, 1, 0, 0);
-            vkCmdEndRenderPass(c);
+            draw_vertices(c, t, pipe, vb, 3, clear_color(0, 0, 0.25f, 1));
         }),
                   VK_SUCCESS);
         return k.read(t.image.image, 32, 32, 4);

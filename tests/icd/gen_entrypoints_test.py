@@ -2,7 +2,7 @@
 """icd/gen/gen_entrypoints.py's rules, on the real vk.xml with made-up driver sources:
 a listed extension needs all of its commands written; a written command must be core or of a listed extension;
 aliases of a listed extension point at the core function; require blocks that depend on a version or extension
-tilevk does not expose bring nothing."""
+tilevk does not expose bring nothing; the one-value vkCmdSet* of --simple-commands are written by the generator."""
 import os
 import subprocess
 import sys
@@ -11,7 +11,7 @@ import tempfile
 GEN, XML = sys.argv[1], sys.argv[2]
 
 
-def run(max_version, extensions, commands):
+def run(max_version, extensions, commands, simple=None):
     with tempfile.TemporaryDirectory() as d:
         src = os.path.join(d, 'src.cpp')
         with open(src, 'w') as f:
@@ -20,8 +20,13 @@ def run(max_version, extensions, commands):
         with open(ext, 'w') as f:
             f.write('# comment\n' + '\n'.join(extensions) + '\n')
         h, cpp = os.path.join(d, 'e.h'), os.path.join(d, 'e.cpp')
+        more = []
+        if simple is not None:
+            more = ['--simple-commands', os.path.join(d, 'simple.txt')]
+            with open(more[1], 'w') as f:
+                f.write('# comment\n' + '\n'.join(simple) + '\n')
         p = subprocess.run([sys.executable, GEN, '--xml', XML, '--max-version', max_version, '--extensions', ext,
-                            '--out-h', h, '--out-cpp', cpp, src], capture_output=True, text=True)
+                            *more, '--out-h', h, '--out-cpp', cpp, src], capture_output=True, text=True)
         out = open(cpp).read() if p.returncode == 0 else ''
         return p.returncode, p.stderr, out
 
@@ -77,6 +82,23 @@ check(rc == 1 and 'vkCreateSwapchainKHR: neither core' in err, 'stray extension 
 # An unknown extension name is refused.
 rc, err, _ = run('1.0', ['VK_TILEVK_not_real'], core10)
 check(rc == 1 and 'not a Vulkan extension' in err, 'unknown extension refused')
+
+# --simple-commands: a listed command counts as written and gets its definition; one that takes more than one scalar
+# value, or one that a source also writes, is refused.
+without = [c for c in core10 if c not in ('CmdSetLineWidth', 'CmdSetBlendConstants')]
+rc, err, out = run('1.0', [], without, ['vkCmdSetLineWidth record kLineWidth',
+                                        'vkCmdSetBlendConstants refuse someFeature'])
+check(rc == 0, f'simple commands accepted: {err}')
+check('VKAPI_ATTR void VKAPI_CALL tvk_CmdSetLineWidth(VkCommandBuffer commandBuffer, float lineWidth) {\n'
+      '    record_dynamic_value(commandBuffer, DynamicState::kLineWidth, uint32_t(lineWidth));\n}' in out,
+      'a record line is defined with the value it records')
+check('VKAPI_ATTR void VKAPI_CALL tvk_CmdSetBlendConstants(VkCommandBuffer, const float[4]) {\n'
+      '    refuse_dynamic_command("vkCmdSetBlendConstants", "someFeature");\n}' in out,
+      'a refuse line logs naming the feature, its parameters unnamed')
+rc, err, _ = run('1.0', [], without + ['CmdSetLineWidth'], ['vkCmdSetLineWidth record kLineWidth',
+                                                            'vkCmdSetBlendConstants record kBlendConstants'])
+check(rc == 1 and 'vkCmdSetBlendConstants does not set one scalar value' in err, 'an array value is not recorded')
+check('vkCmdSetLineWidth: written in a source and listed' in err, 'a command written twice is refused')
 
 if failures:
     print('FAILED:\n  ' + '\n  '.join(failures))

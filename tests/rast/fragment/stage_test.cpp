@@ -331,6 +331,22 @@ class FragmentStageTest : public ::testing::Test {
         return d;
     }
 
+    // Renders `d` on the reference path (which must draw something), then on the fast path under the AVX2 and the
+    // portable kernels where this CPU runs them (1 or 2 threads by `iter`), and hands `check` the kernel's name, the
+    // fast render and the reference. The kernel ISA in force before is restored.
+    template <class Check>
+    void expect_fast_isas_match(const SceneDesc& d, int iter, Check&& check) {
+        const Isa before = kernel_isa();
+        const Targets ref = render(d, false, 1);
+        ASSERT_TRUE(ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35)) << "nothing drawn, iter " << iter;
+        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
+            if (!set_kernel_isa_for_testing(isa)) continue;
+            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
+            check(isa == Isa::kAvx2 ? "avx2" : "portable", fast, ref);
+        }
+        set_kernel_isa_for_testing(before);
+    }
+
     std::shared_ptr<const shader::Program> vs_;
     std::vector<std::shared_ptr<const shader::Program>> fs_;
     std::shared_ptr<const shader::Program> copy_noperspective_;
@@ -390,20 +406,14 @@ TEST_F(FragmentStageTest, BothInstructionSetsWriteTheSameBytes) {
 // Whole squares of copy-shader draws take the fused square kernel (fragment_square.cpp) in the AVX2 build: the
 // same bytes and occlusion counts as the reference path, at 1 and 2 threads, and as the portable build.
 TEST_F(FragmentStageTest, SquareKernelWritesTheReferenceBytes) {
-    const Isa before = kernel_isa();
     std::mt19937 rng(4242);
     for (int iter = 0; iter < 80; ++iter) {
         const SceneDesc d = square_scene(rng, iter);
-        const Targets ref = render(d, false, 1);
-        ASSERT_TRUE(ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35)) << "nothing drawn, iter " << iter;
-        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
-            if (!set_kernel_isa_for_testing(isa)) continue;
-            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
-            const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
+        expect_fast_isas_match(d, iter, [&](const char* name, const Targets& fast, const Targets& ref) {
             ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
             ASSERT_TRUE(fast.passed == ref.passed) << name << " samples passed, iter " << iter << ": " << describe(d);
-        }
-        set_kernel_isa_for_testing(before);
+        });
+        if (HasFatalFailure()) return;
     }
 }
 
@@ -412,7 +422,6 @@ TEST_F(FragmentStageTest, SquareKernelWritesTheReferenceBytes) {
 // build): the reference bytes at 1 and 2 threads, and the portable build's. The framebuffer sizes that are not
 // multiples of 4 keep their edge blocks on the general path, next to blocks of the store.
 TEST_F(FragmentStageTest, UniformStore4xWritesTheReferenceBytes) {
-    const Isa before = kernel_isa();
     std::mt19937 rng(4711);
     for (int iter = 0; iter < 60; ++iter) {
         SceneDesc d = random_scene(rng, iter);
@@ -431,16 +440,11 @@ TEST_F(FragmentStageTest, UniformStore4xWritesTheReferenceBytes) {
             p.blend[0] = {};  // opaque, every channel written
             p.blend[1].write_mask = 0;
         }
-        const Targets ref = render(d, false, 1);
-        ASSERT_TRUE(ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35)) << "nothing drawn, iter " << iter;
-        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
-            if (!set_kernel_isa_for_testing(isa)) continue;
-            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
-            const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
+        expect_fast_isas_match(d, iter, [&](const char* name, const Targets& fast, const Targets& ref) {
             ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
             ASSERT_TRUE(fast.color1 == ref.color1) << name << " colour 1, iter " << iter << ": " << describe(d);
-        }
-        set_kernel_isa_for_testing(before);
+        });
+        if (HasFatalFailure()) return;
     }
 }
 
