@@ -236,4 +236,8 @@ void force_portable_for_testing(bool on, bool fused) {
     g_table.store(on ? (fused ? &kPortableFused : &kPortable) : automatic(), std::memory_order_release);
 }
 
+bool multiply_adds_fused() {
+    return &table() != &kPortable;
+}
+
 }  // namespace tilevk::shader::gallivm
