@@ -60,7 +60,7 @@ struct Emit {
         a.vsubps(y, mant, splat(1.0f));
         a.vaddps(mant, mant, splat(1.0f));
         a.vdivps(y, y, mant);
-        const Ymm z = mant;
+        const Ymm& z = mant;  // y² reuses the mantissa's register
         a.vmulps(z, y, y);
         polynomial(z, gallivm::kLog2Poly, t[3], t[4], res);
         a.vfmadd213ps(res, y, logexp);  // y·P(z) + exponent
