@@ -42,8 +42,8 @@ void cosh(float* d, const float* a, const float* b);
 const char* implementation_name();
 // Tests: run the portable build (with `fused` multiply-adds) from now on, or the automatic choice again.
 void force_portable_for_testing(bool on, bool fused);
-// Whether the build that runs fuses the multiply-adds (all but "portable"): the compiled tier emits the fused
-// algorithms inline only then.
-bool multiply_adds_fused();
+// Whether the AVX2/FMA build runs (the compiled tier emits its instructions inline only then: the portable twin
+// gives other NaN payloads where two NaNs meet, e.g. pow's log2(x)·y, whose operand order is GCC's choice).
+bool avx2_build_runs();
 
 }  // namespace tilevk::shader::gallivm

@@ -2,9 +2,9 @@
 // of shader/gallivm_math_impl.h, in its order and with its constants (gallivm_math.h), so the bits are the lane
 // call's (the interpreter's). The call cost more than the arithmetic: it writes the segment's live values home,
 // goes through two functions and clobbers every YMM register, which the segment then reloads (meshes_lit's Phong
-// exponent: a pow per 8 lanes). Emitted only where the running gallivm build fuses its multiply-adds
-// (gallivm::multiply_adds_fused: every host the compiled tier runs on, unless a test forces the unfused portable
-// build), because the polynomials here are FMAs; otherwise the op stays a lane call.
+// exponent: a pow per 8 lanes). Emitted only while gallivm's AVX2/FMA build is the one that runs
+// (gallivm::avx2_build_runs): these are its instructions, and its portable twin (TILEVK_SIMD=none, or forced by a
+// test) keeps other NaN payloads where two NaNs meet; otherwise the op stays a lane call.
 #include <bit>
 #include <iterator>
 

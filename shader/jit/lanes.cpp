@@ -107,7 +107,7 @@ void segment_uses(const ProgramImpl& p, size_t first, size_t end, std::vector<Us
 // --- register allocation ----------------------------------------------------------------------------------------
 
 LaneEmitter::LaneEmitter(const ProgramImpl& p, const Analysis& an, x86::Assembler& a, ConstantPool& pool)
-    : p_(p), an_(an), a_(a), pool_(pool), inline_gallivm_(gallivm::multiply_adds_fused()) {
+    : p_(p), an_(an), a_(a), pool_(pool), inline_gallivm_(gallivm::avx2_build_runs()) {
     reg_where_.assign(p.num_regs, -1);
     word_where_.assign(std::max(1u, p.local_words), -1);
 }
