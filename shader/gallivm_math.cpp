@@ -236,4 +236,12 @@ void force_portable_for_testing(bool on, bool fused) {
     g_table.store(on ? (fused ? &kPortableFused : &kPortable) : automatic(), std::memory_order_release);
 }
 
+bool avx2_build_runs() {
+#if defined(__x86_64__)
+    return &table() == &kAvx2;
+#else
+    return false;
+#endif
+}
+
 }  // namespace tilevk::shader::gallivm

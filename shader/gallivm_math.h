@@ -14,6 +14,19 @@
 
 namespace tilevk::shader::gallivm {
 
+// The constants of the algorithms (gallivm_math_impl.h), also emitted inline by the compiled tier
+// (jit/gallivm_ops.cpp). lp_build_exp2's polynomial (EXP_POLY_DEGREE 5) and its input clamp; lp_build_log2_approx's
+// (LOG_POLY_DEGREE 4).
+inline constexpr float kExp2Poly[6] = {float(1.000000000000000000000),   float(0.693153073200168932794),
+                                       float(0.240153617044375388211),   float(0.0558263180532956664775),
+                                       float(0.00898934009049466391101), float(0.00187757667519147912699)};
+inline constexpr float kExp2Max = 128.0f, kExp2Min = float(-126.99999);
+inline constexpr float kLog2Poly[5] = {float(2.88539009343309178325L), float(0.961791550404184197881L),
+                                       float(0.577440339438736392009L), float(0.403343858251329912514L),
+                                       float(0.406718052498846252698L)};
+// vtn_glsl450.c build_exp and build_log: the double M_LOG2E and 1/M_LOG2E rounded to float.
+inline constexpr float kLog2E = float(1.4426950408889634), kLn2 = float(1.0 / 1.4426950408889634);
+
 void exp2(float* d, const float* a, const float* b);
 void log2(float* d, const float* a, const float* b);  // lp_build_log2_safe
 void pow(float* d, const float* a, const float* b);   // exp2(log2(a)·b); a == 0 (or NaN) gives 0
@@ -29,5 +42,8 @@ void cosh(float* d, const float* a, const float* b);
 const char* implementation_name();
 // Tests: run the portable build (with `fused` multiply-adds) from now on, or the automatic choice again.
 void force_portable_for_testing(bool on, bool fused);
+// Whether the AVX2/FMA build runs (the compiled tier emits its instructions inline only then: the portable twin
+// gives other NaN payloads where two NaNs meet, e.g. pow's log2(x)·y, whose operand order is GCC's choice).
+bool avx2_build_runs();
 
 }  // namespace tilevk::shader::gallivm

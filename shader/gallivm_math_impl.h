@@ -20,24 +20,18 @@ template <int N>
 // lp_build_exp2 (EXP_POLY_DEGREE 5): x clamped to [-126.99999, 128] keeping NaN (MINPS/MAXPS with x second),
 // 2^floor(x) built in the exponent field, times the polynomial of the fraction.
 [[gnu::always_inline]] inline V exp2_v(V x) {
-    static constexpr float kC[6] = {float(1.000000000000000000000),   float(0.693153073200168932794),
-                                    float(0.240153617044375388211),   float(0.0558263180532956664775),
-                                    float(0.00898934009049466391101), float(0.00187757667519147912699)};
-    x = K::min(K::splat(128.0f), x);
-    x = K::max(K::splat(float(-126.99999)), x);
+    x = K::min(K::splat(kExp2Max), x);
+    x = K::max(K::splat(kExp2Min), x);
     const V ipart = K::floor(x);
     const V fpart = K::sub(x, ipart);
     const I e = K::shl23(K::iadd(K::cvtt(ipart), K::isplat(127)));
-    return K::mul(K::from_bits(e), polynomial(fpart, kC));
+    return K::mul(K::from_bits(e), polynomial(fpart, kExp2Poly));
 }
 
 // lp_build_log2_approx with handle_edge_cases (lp_build_log2_safe, LOG_POLY_DEGREE 4): exponent + y·P(y²) with
 // y = (m-1)/(m+1) for the mantissa m in [1, 2); then +Inf → +Inf, ±0 → -Inf, negative or NaN → NaN (unordered
 // compares, so a NaN takes the last selection).
 [[gnu::always_inline]] inline V log2_v(V x) {
-    static constexpr float kC[5] = {float(2.88539009343309178325L), float(0.961791550404184197881L),
-                                    float(0.577440339438736392009L), float(0.403343858251329912514L),
-                                    float(0.406718052498846252698L)};
     const I i = K::bits(x);
     const I expo = K::iand(i, K::isplat(0x7f800000));
     const V logexp = K::cvt(K::isub(K::srl23(expo), K::isplat(127)));
@@ -45,7 +39,7 @@ template <int N>
     const V mant = K::from_bits(K::ior(K::iand(i, K::isplat(0x007fffff)), K::bits(one)));
     const V y = K::div(K::sub(mant, one), K::add(mant, one));
     const V z = K::mul(y, y);
-    V res = K::mad(y, polynomial(z, kC), logexp);
+    V res = K::mad(y, polynomial(z, kLog2Poly), logexp);
     const V inf = K::splat(__builtin_inff()), zero = K::splat(0.0f);
     res = K::select(K::cmp_uge(x, inf), inf, res);
     res = K::select(K::cmp_ueq(x, zero), K::splat(-__builtin_inff()), res);
@@ -58,12 +52,12 @@ template <int N>
     return K::select(K::cmp_ueq(x, K::splat(0.0f)), K::splat(0.0f), res);
 }
 
-// vtn_glsl450.c build_exp and build_log: the constants are the double M_LOG2E and 1/M_LOG2E rounded to float.
+// vtn_glsl450.c build_exp and build_log (kLog2E, kLn2).
 [[gnu::always_inline]] inline V exp_v(V x) {
-    return exp2_v(K::mul(x, K::splat(float(1.4426950408889634))));
+    return exp2_v(K::mul(x, K::splat(kLog2E)));
 }
 [[gnu::always_inline]] inline V log_v(V x) {
-    return K::mul(log2_v(x), K::splat(float(1.0 / 1.4426950408889634)));
+    return K::mul(log2_v(x), K::splat(kLn2));
 }
 
 // lp_build_sin_or_cos (cephes' sinf/cosf in SSE): octant j of |x|·4/π (CVTTPS2DQ, rounded up to even), |x| reduced

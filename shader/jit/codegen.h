@@ -94,6 +94,7 @@ class LaneEmitter {
     std::optional<bool> int_op(const Inst& in);
     std::optional<bool> convert_op(const Inst& in);
     std::optional<bool> memory_op(const Inst& in);
+    std::optional<bool> gallivm_op(const Inst& in);  // gallivm_ops.cpp: exp2, log2, pow, exp, log inline
 
     // lowerings used by several ops
     template <typename F>
@@ -128,6 +129,7 @@ class LaneEmitter {
     int half_ = 0;
     bool overflow_ = false;
     uint32_t uniform_slot_ = kNoReg;  // the slot whose data and size r8, r9 hold (load_buf_uniform)
+    bool inline_gallivm_ = false;     // gallivm_op may emit (gallivm::avx2_build_runs)
 };
 
 // The memory sync ops as the interpreter's lane loops (memory_ops.cpp), at a sync point (every value in its home,

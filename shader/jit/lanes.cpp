@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "shader/gallivm_math.h"
 #include "shader/jit/codegen.h"
 #include "shader/jit/helpers.h"
 
@@ -106,7 +107,7 @@ void segment_uses(const ProgramImpl& p, size_t first, size_t end, std::vector<Us
 // --- register allocation ----------------------------------------------------------------------------------------
 
 LaneEmitter::LaneEmitter(const ProgramImpl& p, const Analysis& an, x86::Assembler& a, ConstantPool& pool)
-    : p_(p), an_(an), a_(a), pool_(pool) {
+    : p_(p), an_(an), a_(a), pool_(pool), inline_gallivm_(gallivm::avx2_build_runs()) {
     reg_where_.assign(p.num_regs, -1);
     word_where_.assign(std::max(1u, p.local_words), -1);
 }
@@ -767,6 +768,7 @@ std::optional<bool> LaneEmitter::memory_op(const Inst& in) {
 }
 
 bool LaneEmitter::op(const Inst& in) {
+    if (const std::optional<bool> emitted = gallivm_op(in)) return *emitted;
     if (const LaneFn f = lane_function(in.op)) {  // libm, as the interpreter calls it
         lane_call(in, reinterpret_cast<const void*>(f));
         return true;
