@@ -34,13 +34,14 @@ bool table_current(const ImageView& img) {
            std::bit_cast<uint32_t>(t.swizzle) == std::bit_cast<uint32_t>(img.swizzle);
 }
 
-// table[lv] per lane, lv in [0, levels - 1] (at most kMaxMipLevels - 1 = 15): one permute for views of at most 8
-// levels (lv < 8), two beyond, the second's entries taken where lv's bit 3 is set (lv >= 8), moved to the sign
-// bit that vblendvps reads (a compare against 7 cost GCC a broadcast, vpcmpgtd, vpcmpgtb and vpblendvb).
+// table[lv] per lane, lv in [0, levels - 1] (at most kMaxMipLevels - 1 = 15): one permute when every lv < 8
+// (`narrow`: a view of at most 8 levels, or a call whose levels are all below 8), two otherwise, the second's
+// entries taken where lv's bit 3 is set (lv >= 8), moved to the sign bit that vblendvps reads (a compare against 7
+// cost GCC a broadcast, vpcmpgtd, vpcmpgtb and vpblendvb).
 static_assert(kMaxMipLevels <= 16);
-TVK_AVX2 __m256i lookup(const int32_t* table, uint32_t levels, __m256i lv) {
+TVK_AVX2 __m256i lookup(const int32_t* table, bool narrow, __m256i lv) {
     const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
-    if (levels <= 8) return lo;
+    if (narrow) return lo;
     const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
     const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(lv, 28));
     return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo), _mm256_castsi256_ps(hi), upper));
@@ -152,10 +153,9 @@ TVK_AVX2 __attribute__((always_inline)) inline void load_rows(const uint8_t* bas
 // where REPEAT wraps or CLAMP_TO_EDGE holds at the last texel) as pairs, else by gathers.
 // Inlined into half(): both levels then share the constants and keep their results in registers.
 TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels,
-                                                                   __m256i lv, __m256 s, __m256 t, bool clamp_u,
-                                                                   bool clamp_v) {
-    const uint32_t n = levels.levels;
-    const __m256i off = lookup(levels.offset, n, lv), pitch = lookup(levels.pitch, n, lv);
+                                                                   __m256i lv, bool narrow, __m256 s, __m256 t,
+                                                                   bool clamp_u, bool clamp_v) {
+    const __m256i off = lookup(levels.offset, narrow, lv), pitch = lookup(levels.pitch, narrow, lv);
     // level sizes max(1, size >> lv) (level_table) by shifts: cheaper than two more look-ups
     const __m256i one = _mm256_set1_epi32(1);
     const __m256i w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(levels.width)), lv), one);
@@ -295,12 +295,13 @@ constexpr PickTable kPick = make_pick_table();
 // h of the destination registers. Inlined: a call per half would pass its results through memory.
 TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, uint32_t* R, const ImageView& img,
                                                                 const SamplerState& smp, const ViewLevelTable& levels,
-                                                                int h, const Levels& L) {
+                                                                int h, const Levels& L, bool narrow) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     const bool clamp_u = smp.address_u == AddressMode::ClampToEdge, clamp_v = smp.address_v == AddressMode::ClampToEdge;
-    Wide a = level_bilinear(img, levels, L.lv, s, t, clamp_u, clamp_v);
+    Wide a = level_bilinear(img, levels, L.lv, narrow, s, t, clamp_u, clamp_v);
     if (!_mm256_testz_si256(L.mw, L.mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
-        a = lerp(spread(_mm256_slli_epi32(L.mw, 7)), a, level_bilinear(img, levels, L.hi, s, t, clamp_u, clamp_v));
+        a = lerp(spread(_mm256_slli_epi32(L.mw, 7)), a,
+                 level_bilinear(img, levels, L.hi, narrow, s, t, clamp_u, clamp_v));
     // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
@@ -344,7 +345,11 @@ TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const BoundSample& b) {
             for (int h = 0; h < 2; ++h) L[h] = {quad_spread(q.lv, h), quad_spread(q.hi, h), quad_spread(q.mw, h)};
         }
     }
-    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, b.table, h, L[h]);
+    // every level the call reads below 8 (hi >= lv in every lane): one permute per look-up, even in a view of more
+    // levels (large_textured's 1024x1024 texture has 11 and reads its first few)
+    const bool narrow =
+        b.table.levels <= 8 || _mm256_testz_si256(_mm256_or_si256(L[0].hi, L[1].hi), _mm256_set1_epi32(8));
+    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, b.table, h, L[h], narrow);
     return true;
 }
 
