@@ -34,13 +34,14 @@ bool table_current(const ImageView& img) {
            std::bit_cast<uint32_t>(t.swizzle) == std::bit_cast<uint32_t>(img.swizzle);
 }
 
-// table[lv] per lane, lv in [0, levels - 1] (at most kMaxMipLevels - 1 = 15): one permute for views of at most 8
-// levels (lv < 8), two beyond, the second's entries taken where lv's bit 3 is set (lv >= 8), moved to the sign
-// bit that vblendvps reads (a compare against 7 cost GCC a broadcast, vpcmpgtd, vpcmpgtb and vpblendvb).
+// table[lv] per lane, lv in [0, levels - 1] (at most kMaxMipLevels - 1 = 15): one permute when every lv < 8
+// (`narrow`: a view of at most 8 levels, or a call whose levels are all below 8), two otherwise, the second's
+// entries taken where lv's bit 3 is set (lv >= 8), moved to the sign bit that vblendvps reads (a compare against 7
+// cost GCC a broadcast, vpcmpgtd, vpcmpgtb and vpblendvb).
 static_assert(kMaxMipLevels <= 16);
-TVK_AVX2 __m256i lookup(const int32_t* table, uint32_t levels, __m256i lv) {
+TVK_AVX2 __m256i lookup(const int32_t* table, bool narrow, __m256i lv) {
     const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table)), lv);
-    if (levels <= 8) return lo;
+    if (narrow) return lo;
     const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + 8)), lv);
     const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(lv, 28));
     return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(lo), _mm256_castsi256_ps(hi), upper));
@@ -104,6 +105,21 @@ TVK_AVX2 Wide lerp(const Wide& w, const Wide& a, const Wide& b) {
     return {lerp16(w.lo, a.lo, b.lo), lerp16(w.hi, a.hi, b.hi)};
 }
 
+// A pair of lanes' texel pairs: the 64 bits at base + o0 and at base + o1 in the low and the high half.
+TVK_AVX2 __m128i pair_at(const uint8_t* base, uint32_t o0, uint32_t o1) {
+    const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + o0));
+    return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(lo), reinterpret_cast<const double*>(base + o1)));
+}
+
+// Lanes 0, 1 | 4, 5 (a) and lanes 2, 3 | 6, 7 (b), each lane's two texels side by side, as the left and the right
+// texels of the eight lanes in lane order: the even (odd) words of a and b per 128-bit half.
+TVK_AVX2 void split_pairs(__m256i a, __m256i b, __m256i& left, __m256i& right) {
+    left =
+        _mm256_castps_si256(_mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _MM_SHUFFLE(2, 0, 2, 0)));
+    right =
+        _mm256_castps_si256(_mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _MM_SHUFFLE(3, 1, 3, 1)));
+}
+
 // The texels at byte offsets `off` and `off + 4` from base for eight lanes, as two vectors in lane order: eight
 // 64-bit loads instead of two 8-lane gathers, which take 2-3 times longer on the hosts measured (shader/jit/README.md,
 // "The RGBA8 sampler's loads"). llvmpipe fetches its texels with scalar loads too (lp_bld_gather.c).
@@ -111,16 +127,25 @@ TVK_AVX2 void load_pairs(const uint8_t* base, __m256i off, __m256i& left, __m256
     // unsigned: every offset is in [0, 2^31) (level_table), and a zero-extended index needs no movslq
     alignas(32) uint32_t o[8];
     _mm256_store_si256(reinterpret_cast<__m256i*>(o), off);
-    auto pair = [base, &o](int l0, int l1) {
-        const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + o[l0]));
-        return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(lo), reinterpret_cast<const double*>(base + o[l1])));
-    };
-    // a: lanes 0, 1 | 4, 5 and b: lanes 2, 3 | 6, 7, each lane's two texels side by side, so that taking the even
-    // (odd) words of a and b per 128-bit half gives the left (right) texels of lanes 0-3 | 4-7
-    const __m256 a = _mm256_castsi256_ps(_mm256_set_m128i(pair(4, 5), pair(0, 1)));
-    const __m256 b = _mm256_castsi256_ps(_mm256_set_m128i(pair(6, 7), pair(2, 3)));
-    left = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(2, 0, 2, 0)));
-    right = _mm256_castps_si256(_mm256_shuffle_ps(a, b, _MM_SHUFFLE(3, 1, 3, 1)));
+    split_pairs(_mm256_set_m128i(pair_at(base, o[4], o[5]), pair_at(base, o[0], o[1])),
+                _mm256_set_m128i(pair_at(base, o[6], o[7]), pair_at(base, o[2], o[3])), left, right);
+}
+
+// Both rows' pairs when the second row is `pitch` bytes after the first in every lane: each offset is taken out of
+// the vector once for both rows (the extractions were a third of a row's loads), the rows' loads interleaved so
+// that only two offsets are live at a time.
+TVK_AVX2 __attribute__((always_inline)) inline void load_rows(const uint8_t* base, uint32_t pitch, __m256i off,
+                                                              __m256i& p00, __m256i& p10, __m256i& p01, __m256i& p11) {
+    alignas(32) uint32_t o[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o), off);
+    const uint8_t* next = base + pitch;
+    __m128i r0[4], r1[4];  // lanes 0, 1 | 2, 3 | 4, 5 | 6, 7 of row 0 and row 1
+    for (int k = 0; k < 4; ++k) {
+        r0[k] = pair_at(base, o[2 * k], o[2 * k + 1]);
+        r1[k] = pair_at(next, o[2 * k], o[2 * k + 1]);
+    }
+    split_pairs(_mm256_set_m128i(r0[2], r0[0]), _mm256_set_m128i(r0[3], r0[1]), p00, p10);
+    split_pairs(_mm256_set_m128i(r1[2], r1[0]), _mm256_set_m128i(r1[3], r1[1]), p01, p11);
 }
 
 // sample_level_fixed8, linear, at per-lane level lv: x lerps on both rows, then the y lerp. The footprint's
@@ -128,10 +153,9 @@ TVK_AVX2 void load_pairs(const uint8_t* base, __m256i off, __m256i& left, __m256
 // where REPEAT wraps or CLAMP_TO_EDGE holds at the last texel) as pairs, else by gathers.
 // Inlined into half(): both levels then share the constants and keep their results in registers.
 TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageView& img, const ViewLevelTable& levels,
-                                                                   __m256i lv, __m256 s, __m256 t, bool clamp_u,
-                                                                   bool clamp_v) {
-    const uint32_t n = levels.levels;
-    const __m256i off = lookup(levels.offset, n, lv), pitch = lookup(levels.pitch, n, lv);
+                                                                   __m256i lv, bool narrow, __m256 s, __m256 t,
+                                                                   bool clamp_u, bool clamp_v) {
+    const __m256i off = lookup(levels.offset, narrow, lv), pitch = lookup(levels.pitch, narrow, lv);
     // level sizes max(1, size >> lv) (level_table) by shifts: cheaper than two more look-ups
     const __m256i one = _mm256_set1_epi32(1);
     const __m256i w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(levels.width)), lv), one);
@@ -141,8 +165,14 @@ TVK_AVX2 __attribute__((always_inline)) inline Wide level_bilinear(const ImageVi
     const __m256i row1 = _mm256_add_epi32(off, _mm256_mullo_epi32(y.i1, pitch));
     const __m256i x0 = _mm256_slli_epi32(x.i0, 2);
     const __m256i side_by_side = _mm256_cmpeq_epi32(x.i1, _mm256_add_epi32(x.i0, _mm256_set1_epi32(1)));
+    // the second row one pitch (lane 0's) after the first in every lane: the rows are adjacent (not wrapped or
+    // clamped) and the lanes' levels have that pitch, the usual case inside a level
+    const __m256i pitch0 = _mm256_broadcastd_epi32(_mm256_castsi256_si128(pitch));
+    const __m256i next_row = _mm256_cmpeq_epi32(row1, _mm256_add_epi32(row0, pitch0));
     __m256i p00, p10, p01, p11;
-    if (_mm256_movemask_epi8(side_by_side) == -1) {
+    if (_mm256_movemask_epi8(_mm256_and_si256(side_by_side, next_row)) == -1) {
+        load_rows(img.base, uint32_t(_mm256_cvtsi256_si32(pitch)), _mm256_add_epi32(row0, x0), p00, p10, p01, p11);
+    } else if (_mm256_movemask_epi8(side_by_side) == -1) {
         load_pairs(img.base, _mm256_add_epi32(row0, x0), p00, p10);
         load_pairs(img.base, _mm256_add_epi32(row1, x0), p01, p11);
     } else {
@@ -265,20 +295,23 @@ constexpr PickTable kPick = make_pick_table();
 // h of the destination registers. Inlined: a call per half would pass its results through memory.
 TVK_AVX2 __attribute__((always_inline)) inline void filter_half(const Inst& in, uint32_t* R, const ImageView& img,
                                                                 const SamplerState& smp, const ViewLevelTable& levels,
-                                                                int h, const Levels& L) {
+                                                                int h, const Levels& L, bool narrow) {
     const __m256 s = load_half(R, in.b, h), t = load_half(R, in.b + 1, h);
     const bool clamp_u = smp.address_u == AddressMode::ClampToEdge, clamp_v = smp.address_v == AddressMode::ClampToEdge;
-    Wide a = level_bilinear(img, levels, L.lv, s, t, clamp_u, clamp_v);
+    Wide a = level_bilinear(img, levels, L.lv, narrow, s, t, clamp_u, clamp_v);
     if (!_mm256_testz_si256(L.mw, L.mw))  // mw = 0 keeps a exactly: a + ((0 + 128) >> 8)
-        a = lerp(spread(_mm256_slli_epi32(L.mw, 7)), a, level_bilinear(img, levels, L.hi, s, t, clamp_u, clamp_v));
+        a = lerp(spread(_mm256_slli_epi32(L.mw, 7)), a,
+                 level_bilinear(img, levels, L.hi, narrow, s, t, clamp_u, clamp_v));
     // back to one RGBA word per lane (in lane order), then fl(float(c) * fl(1/255)) per channel in RGBA order
     const __m256i words = _mm256_packus_epi16(a.lo, a.hi);
     const __m256 k = _mm256_set1_ps(float(1.0 / 255.0));
     const auto& pick = kPick.bytes[levels.bgra ? 1 : 0];
+    // the destination's address once: the stores below may alias `in` for the compiler, which otherwise reloads
+    // in.d and recomputes the address for every channel
+    float* const dst = reinterpret_cast<float*>(R + size_t(in.d) * kLanes + 8 * h);
     for (int c = 0; c < 4; ++c) {
         const __m256i ch = _mm256_shuffle_epi8(words, _mm256_load_si256(reinterpret_cast<const __m256i*>(pick[c])));
-        _mm256_storeu_ps(reinterpret_cast<float*>(R + size_t(in.d + c) * kLanes + 8 * h),
-                         _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k));
+        _mm256_storeu_ps(dst + size_t(c) * kLanes, _mm256_mul_ps(_mm256_cvtepi32_ps(ch), k));
     }
 }
 
@@ -312,7 +345,11 @@ TVK_AVX2 bool sample_with(const Inst& in, uint32_t* R, const BoundSample& b) {
             for (int h = 0; h < 2; ++h) L[h] = {quad_spread(q.lv, h), quad_spread(q.hi, h), quad_spread(q.mw, h)};
         }
     }
-    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, b.table, h, L[h]);
+    // every level the call reads below 8 (hi >= lv in every lane): one permute per look-up, even in a view of more
+    // levels (large_textured's 1024x1024 texture has 11 and reads its first few)
+    const bool narrow =
+        b.table.levels <= 8 || _mm256_testz_si256(_mm256_or_si256(L[0].hi, L[1].hi), _mm256_set1_epi32(8));
+    for (int h = 0; h < 2; ++h) filter_half(in, R, img, smp, b.table, h, L[h], narrow);
     return true;
 }
 
