@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 
 #if TILEVK_SIMD_AVX2
@@ -317,6 +318,83 @@ template <int kN>
     };
     return ~(two(0) | (two(2) << 32));
 }
+
+// mask4x4_samples4 in 16-bit lanes, for planes whose steps inside a 4x4 block are small (a small primitive's edges):
+// one vector per plane and sample holds the sixteen pixels' offsets from the plane's sample-0 value at the block's
+// top-left pixel, v[s][i] = (c[s] - c[0]) + step[i], filled once per plane and tile (fill_sample_steps16). Per
+// block, base = c[0] + a*ox + b*oy - 1 is saturated to 16 bits and added to v[s] with saturation; the sign of the
+// result is the sign of base + v[s][i] (the value - 1) whenever |v| <= 32767: inside the 16-bit range the sum is
+// exact or saturates toward its own sign; a base above 32767 saturates to 32767 and 32767 + v >= 0 where the true
+// sum is above 0; a base below -32768 saturates to -32768 and -32768 + v <= -1 where the true sum is below -1.
+// Planes combine by OR (sign = some plane <= 0) and one signed pack per two samples gives their 32 sign bits.
+struct SampleSteps16 {
+    alignas(32) int16_t v[4][16];
+};
+
+// Fills *out for plane p; false (out unusable) when some |v| would exceed 32767.
+TILEVK_KERNEL bool fill_sample_steps16(const TilePlane& p, SampleSteps16* out) {
+    int64_t dmax = 0;
+    for (int s = 1; s < 4; ++s) dmax = std::max<int64_t>(dmax, std::abs(int64_t{p.c[s]} - p.c[0]));
+    if (dmax + 3 * (std::abs(int64_t{p.a}) + std::abs(int64_t{p.b})) > 32767) return false;
+#if TILEVK_SIMD_AVX2
+    // The steps packed to 16 bits (exact: |step| <= 3(|a| + |b|)); packs works per 128-bit half, 0xD8 reorders.
+    const __m256i step =
+        _mm256_permute4x64_epi64(_mm256_packs_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.step)),
+                                                    _mm256_load_si256(reinterpret_cast<const __m256i*>(p.step + 8))),
+                                 0xD8);
+    for (int s = 0; s < 4; ++s)
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out->v[s]),
+                           _mm256_add_epi16(step, _mm256_set1_epi16(static_cast<int16_t>(p.c[s] - p.c[0]))));
+#else
+    for (int s = 0; s < 4; ++s)
+        for (int i = 0; i < 16; ++i) out->v[s][i] = static_cast<int16_t>(p.c[s] - p.c[0] + p.step[i]);
+#endif
+    return true;
+}
+
+TILEVK_KERNEL uint64_t mask4x4_samples4_16_scalar(const TilePlane* const* planes, const SampleSteps16* steps, int n,
+                                                  int32_t ox, int32_t oy) {
+    uint64_t unc = 0;  // uncovered bits, sample s in bits 16s..16s+15
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        const int32_t base = std::clamp(p.c[0] + p.a * ox + p.b * oy - 1, -32768, 32767);
+        for (int s = 0; s < 4; ++s)
+            for (int i = 0; i < 16; ++i) {
+                const int32_t v = std::clamp(base + steps[k].v[s][i], -32768, 32767);
+                unc |= uint64_t{v < 0} << (16 * s + i);
+            }
+    }
+    return ~unc;
+}
+
+#if TILEVK_SIMD_AVX2
+template <int kN>
+[[gnu::always_inline]] TILEVK_KERNEL uint64_t mask4x4_samples4_16_avx2(const TilePlane* const* planes,
+                                                                       const SampleSteps16* steps, int n, int32_t ox,
+                                                                       int32_t oy) {
+    if constexpr (kN != 0) n = kN;
+    __m256i acc[4] = {_mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256()};
+#pragma GCC unroll 8
+    for (int k = 0; k < n; ++k) {
+        const TilePlane& p = *planes[k];
+        // packs_epi32 is the signed saturation to 16 bits (the scalar twin's clamp).
+        const __m128i b32 = _mm_cvtsi32_si128(p.c[0] + p.a * ox + p.b * oy - 1);
+        const __m256i b = _mm256_broadcastw_epi16(_mm_packs_epi32(b32, b32));
+        const auto* v = reinterpret_cast<const __m256i*>(steps[k].v);
+        // Spelled out: as a loop over the samples GCC kept acc in memory.
+        acc[0] = _mm256_or_si256(acc[0], _mm256_adds_epi16(b, _mm256_load_si256(v)));
+        acc[1] = _mm256_or_si256(acc[1], _mm256_adds_epi16(b, _mm256_load_si256(v + 1)));
+        acc[2] = _mm256_or_si256(acc[2], _mm256_adds_epi16(b, _mm256_load_si256(v + 2)));
+        acc[3] = _mm256_or_si256(acc[3], _mm256_adds_epi16(b, _mm256_load_si256(v + 3)));
+    }
+    // packs_epi16 per 128-bit half: [s lanes 0-7, s' lanes 0-7 | s lanes 8-15, s' lanes 8-15]; 0xD8 orders them.
+    const auto two = [&](int s) {
+        const __m256i w = _mm256_permute4x64_epi64(_mm256_packs_epi16(acc[s], acc[s + 1]), 0xD8);
+        return uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(w))};
+    };
+    return ~(two(0) | (two(2) << 32));
+}
+#endif
 
 // The 256 pixels as 32 row segments of 8 px per plane (row y, x in [0,8) or [8,16)): segment = base - 1 + a*x + b*y,
 // one add each (incremental down the rows, + 8a for the right half); planes combine by OR of the values (sign bit =

@@ -256,6 +256,24 @@ template <int kN>
 void scan_blocks_4x(const Prim& prim, const TileGeom& t, PlaneList planes, int n, const RelBox& r, TileScratch* out) {
     const uint64_t keep = sample_keep(prim.sample_mask);
     size_t nb = out->num_blocks;
+#if TILEVK_SIMD_AVX2
+    // Small steps (tile_kernels.h SampleSteps16): the four samples of a block in four 16-bit vectors per plane.
+    if constexpr (kN != 0) {
+        SampleSteps16 steps[kN];
+        bool small = true;
+        for (int k = 0; k < kN; ++k) small &= fill_sample_steps16(*planes[k], &steps[k]);
+        if (small) {
+            for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
+                for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) {
+                    const uint64_t masks = keep & mask4x4_samples4_16_avx2<kN>(planes, steps, kN, bx, by);
+                    store_block(&out->blocks[nb], pack_xy(t.x0 + bx, t.y0 + by), masks);
+                    nb += masks != 0;
+                }
+            out->num_blocks = nb;
+            return;
+        }
+    }
+#endif
     for (int32_t by = r.y0 & ~3; by <= r.y1; by += 4)
         for (int32_t bx = r.x0 & ~3; bx <= r.x1; bx += 4) {
             const uint64_t masks = keep & mask4x4_samples4<kN>(planes, n, bx, by);

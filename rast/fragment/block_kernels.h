@@ -461,6 +461,29 @@ TILEVK_KERNEL void store_rgba8_raster_rows_avx2(const __m128i rows[4], uint32_t 
     }
 }
 
+// store_rgba8_raster_rows_avx2 for a block inside the framebuffer without branches: the raster mask is widened to
+// one 32-bit lane per pixel (broadcast, and with each lane's bit, compare) and every row is read, merged and written
+// back, covered or not. For the 4x uniform store, whose blocks are mostly partial rows in a pattern the branches of
+// the row loop could not predict; the rows a mask does not cover are written with the bytes read.
+TILEVK_KERNEL void store_rgba8_raster_block_avx2(const __m128i rows[4], uint32_t raster, uint8_t* origin,
+                                                 size_t pitch) {
+    const __m256i m = _mm256_set1_epi32(static_cast<int>(raster));
+    const __m256i bits01 = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i bits23 = _mm256_slli_epi32(bits01, 8);
+    const __m256i m01 = _mm256_cmpeq_epi32(_mm256_and_si256(m, bits01), bits01);
+    const __m256i m23 = _mm256_cmpeq_epi32(_mm256_and_si256(m, bits23), bits23);
+    // Spelled out row by row: as a loop over an array of masks GCC kept the masks in memory and re-derived each one
+    // with a compare.
+    const auto merge = [&](int r, __m128i sel) {
+        auto* dst = reinterpret_cast<__m128i*>(origin + size_t(r) * pitch);
+        _mm_storeu_si128(dst, _mm_blendv_epi8(_mm_loadu_si128(dst), rows[r], sel));
+    };
+    merge(0, _mm256_castsi256_si128(m01));
+    merge(1, _mm256_extracti128_si256(m01, 1));
+    merge(2, _mm256_castsi256_si128(m23));
+    merge(3, _mm256_extracti128_si256(m23, 1));
+}
+
 TILEVK_KERNEL void store_rgba8_rows_avx2(const __m128i rows[4], uint16_t mask, uint8_t* origin, size_t pitch,
                                          bool inside) {
     store_rgba8_raster_rows_avx2(rows, lanes_to_raster(mask), origin, pitch, inside);

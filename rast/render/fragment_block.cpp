@@ -297,29 +297,37 @@ void opaque_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, c
     }
 }
 
-// DrawPlan::uniform_store_4x, a block inside the framebuffer: shade_block_n<4>'s steps as they fall out in that
-// state (each sample's final mask is its coverage, the colour is the primitive's uniform run), with the masks kept
-// in the rasterizer's order: the lane order only served the steps that have nothing to do here.
-void store_uniform_4x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
-    if (!(raster_masks[0] | raster_masks[1] | raster_masks[2] | raster_masks[3])) return;
-    const auto c = uint32_t(a.plan->uniform_store_4x);
+// DrawPlan::uniform_store_4x: the primitive's colour as the opaque store's packed rows of target c (what
+// run_uniform and opaque_rows give; both are the worker's already after the primitive's first block, tested once).
+void uniform_4x_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, __m128i rows[4]) {
     const uint64_t shade_start = w.shade_sample_start();
-    // The primitive's run and packed rows are the worker's already after its first block: what run_uniform and
-    // opaque_rows would find, tested once.
     const bool packed =
         w.uniform_prim == a.planes && w.uniform_front == a.front_facing && (w.uniform_rows_valid >> c & 1);
     if (!packed) run_uniform(w, a);
     w.shade_sample_end(shade_start);
-    const ColorTarget& t = a.fb->color[c];
-    __m128i rows[4];
     if (packed)
         for (int r = 0; r < 4; ++r) rows[r] = _mm_load_si128(reinterpret_cast<const __m128i*>(w.uniform_rows[c][r]));
     else
         opaque_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8,
                     reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c][0]), rows);
+}
+
+// A block inside the framebuffer: shade_block_n<4>'s steps as they fall out in that state (each sample's final mask
+// is its coverage, the colour is the primitive's uniform run), with the masks kept in the rasterizer's order: the
+// lane order only served the steps that have nothing to do here.
+[[gnu::always_inline]] inline void store_uniform_4x_block(const ColorTarget& t, const __m128i rows[4], int32_t x,
+                                                          int32_t y, const uint16_t raster_masks[4]) {
     uint8_t* origin = t.data + size_t(y) * t.row_pitch + size_t(x) * 4;
     for (int s = 0; s < 4; ++s, origin += t.sample_stride)
-        if (raster_masks[s]) fragment::store_rgba8_raster_rows_avx2(rows, raster_masks[s], origin, t.row_pitch, true);
+        if (raster_masks[s]) fragment::store_rgba8_raster_block_avx2(rows, raster_masks[s], origin, t.row_pitch);
+}
+
+void store_uniform_4x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
+    if (!(raster_masks[0] | raster_masks[1] | raster_masks[2] | raster_masks[3])) return;
+    const auto c = uint32_t(a.plan->uniform_store_4x);
+    __m128i rows[4];
+    uniform_4x_rows(w, a, c, rows);
+    store_uniform_4x_block(a.fb->color[c], rows, x, y, raster_masks);
 }
 #endif
 
@@ -422,6 +430,26 @@ void shade_block_n(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, 
 }
 
 }  // namespace
+
+#if TILEVK_SIMD_AVX2
+// fragment_plan.h Uniform4xFn. Blocks from the rasterizer are never empty (coverage.h Block4), so the primitive's
+// colour is looked up before the first; blocks reaching past the framebuffer take the block pipeline.
+void shade_uniform_4x_blocks(FragmentWorker& w, const BlockArgs& a, const Block4* blocks, size_t count) {
+    if (count == 0) return;
+    const auto c = uint32_t(a.plan->uniform_store_4x);
+    __m128i rows[4];
+    uniform_4x_rows(w, a, c, rows);
+    const ColorTarget& t = a.fb->color[c];
+    const int32_t last_x = a.fb->width - 4, last_y = a.fb->height - 4;
+    for (size_t i = 0; i < count; ++i) {
+        const Block4& b = blocks[i];
+        if (b.x <= last_x && b.y <= last_y)
+            store_uniform_4x_block(t, rows, b.x, b.y, b.mask);
+        else
+            shade_block_n<4>(w, a, b.x, b.y, b.mask);
+    }
+}
+#endif
 
 // Framebuffers have 1 or 4 samples (pipeline.cpp refuses other rasterizationSamples, rast/core's Scene clamps).
 void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {

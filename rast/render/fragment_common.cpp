@@ -51,6 +51,13 @@ SquareFn fast_square_function() {
     return nullptr;
 }
 
+Uniform4xFn fast_uniform_4x_function() {
+#if TILEVK_AVX2_VARIANT
+    if (kernel_isa() == Isa::kAvx2) return isa_avx2::shade_uniform_4x_blocks;
+#endif
+    return nullptr;
+}
+
 void load_depth_stencil(const DepthStencilTarget& t, int sample, int32_t x, int32_t y, uint16_t lanes,
                         fragment::DepthStencilBlock& zs) {
     const size_t bytes = depth_bytes(t.format);

@@ -15,9 +15,11 @@
 #pragma once
 
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "rast/core/coverage.h"
 #include "rast/fragment/blend.h"
 #include "rast/fragment/block_kernels.h"
 #include "rast/fragment/depth_stencil.h"
@@ -140,6 +142,13 @@ BlockFn fast_block_function();
 using SquareFn = bool (*)(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
 SquareFn fast_square_function();
 
+// Shades one primitive's partially covered 4x4 blocks (PrimCoverage::blocks) for a draw whose
+// plan.uniform_store_4x >= 0 (fragment_block.cpp): the primitive's colour is looked up once, then each block inside
+// the framebuffer is stored under its sample masks, and the others go through the block function. The same bytes as
+// calling the block function on each block, without its per-block set-up. Null when the running build has none.
+using Uniform4xFn = void (*)(FragmentWorker& w, const BlockArgs& a, const Block4* blocks, size_t count);
+Uniform4xFn fast_uniform_4x_function();
+
 // The fast pipeline of one instruction-set build (fragment_block.cpp).
 namespace isa_base {
 void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
@@ -148,6 +157,7 @@ bool shade_square_fast(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
 namespace isa_avx2 {
 void shade_block_fast(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]);
 bool shade_square_fast(const BlockArgs& a, int32_t x, int32_t y, int32_t size);
+void shade_uniform_4x_blocks(FragmentWorker& w, const BlockArgs& a, const Block4* blocks, size_t count);
 }
 
 // ---- shared by every block function and the reference pipeline (fragment_common.cpp) ----

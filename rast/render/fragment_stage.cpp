@@ -280,6 +280,7 @@ void FragmentStage::prepare(const Framebuffer& fb, const DrawRecords& draws, con
     fast_ = fragment_fast_paths();
     block_fn_ = fast_block_function();
     square_fn_ = fast_square_function();
+    uniform_4x_fn_ = fast_uniform_4x_function();
     while (workers_.size() < workers) workers_.push_back(std::make_unique<FragmentWorker>());
     for (auto& w : workers_) {
         w->scratch.set_stop_flag(stop_);
@@ -428,7 +429,12 @@ void FragmentStage::primitive(unsigned worker, const TileInfo& tile, const PrimC
         else
             shade_block(w, draw, prim, cov.front_facing, x, y, masks);
     };
-    for_each_block4(cov, one_block);
+    if (plan && uniform_4x_fn_ && plan->uniform_store_4x >= 0) {
+        // 4x: no Block16 entries; the stop flag is read once for the primitive's blocks instead of per block.
+        if (!stopped()) uniform_4x_fn_(w, args, cov.blocks, cov.num_blocks);
+    } else {
+        for_each_block4(cov, one_block);
+    }
     const bool squares = plan && square_fn_ && plan->square.ok && (cov.sample_mask & 1u);
     for (size_t i = 0; i < cov.num_full; ++i) {
         const FullBlock& f = cov.full[i];

@@ -90,6 +90,7 @@ class FragmentStage final : public CoverageConsumer {
     bool may_hide_ = false;
     BlockFn block_fn_ = nullptr;   // the fast path's block function (fragment_plan.h)
     SquareFn square_fn_ = nullptr;  // its fused full-square kernel, or null (fragment_plan.h)
+    Uniform4xFn uniform_4x_fn_ = nullptr;  // its per-primitive 4x uniform store, or null (fragment_plan.h)
     const std::vector<uint8_t>* tile_linear_ = nullptr;
     const std::vector<fragment::LinearRegion>* rect_boxes_ = nullptr;
     std::vector<std::unique_ptr<FragmentWorker>> workers_;

@@ -110,6 +110,55 @@ TEST(Kernels, ScalarAndAvx2Agree) {
 #endif
 }
 
+// The 16-bit 4x kernel (small steps) against mask4x4_samples4_scalar: planes with |a| + |b| up to the bound, block
+// values anywhere in (-2^30, 2^30] (saturated bases) and near 0 (exact sums).
+TEST(Kernels, SampleSteps16MatchesMask4x4Samples4) {
+    std::mt19937_64 rng(4242);
+    uint64_t used = 0, partial = 0;
+    for (int iter = 0; iter < 200000; ++iter) {
+        TilePlane planes[3];
+        SampleSteps16 steps[3];
+        const TilePlane* list[3] = {&planes[0], &planes[1], &planes[2]};
+        bool fits = true;
+        for (int k = 0; k < 3; ++k) {
+            TilePlane& p = planes[k];
+            p = TilePlane{};
+            const int32_t lim = (iter % 5 == 0) ? 8191 : 2048;  // 8191: the bound reached with the sample offsets
+            p.a = static_cast<int32_t>(std::uniform_int_distribution<int32_t>(-lim, lim)(rng));
+            const int32_t rest = lim - std::abs(p.a);
+            p.b = static_cast<int32_t>(std::uniform_int_distribution<int32_t>(-rest, rest)(rng));
+            const int64_t near = 16 * (int64_t{std::abs(p.a)} + std::abs(p.b)) + 40000;
+            const int64_t c0 = (iter % 3 == 0) ? std::uniform_int_distribution<int64_t>(-(1 << 29), 1 << 29)(rng)
+                                               : std::uniform_int_distribution<int64_t>(-near, near)(rng);
+            const int64_t d = (int64_t{std::abs(p.a)} + std::abs(p.b)) * 7 / 8 + 1;
+            for (int s = 0; s < 4; ++s)
+                p.c[s] = static_cast<int32_t>(c0 + (s ? std::uniform_int_distribution<int64_t>(-d, d)(rng) : 0));
+            fill_step_table(&p);
+            fits &= fill_sample_steps16(p, &steps[k]);
+        }
+        if (!fits) continue;
+        ++used;
+        for (int k = 0; k < 3; ++k)
+            for (int s = 0; s < 4; ++s)
+                for (int i = 0; i < 16; ++i)
+                    ASSERT_EQ(steps[k].v[s][i], planes[k].c[s] - planes[k].c[0] + planes[k].step[i]);
+        const int32_t bx = 4 * ((iter >> 2) & 15), by = 4 * ((iter >> 6) & 15);
+        for (int n = 1; n <= 3; ++n) {
+            const uint64_t expect = mask4x4_samples4_scalar(list, n, bx, by);
+            ASSERT_EQ(mask4x4_samples4_16_scalar(list, steps, n, bx, by), expect) << iter;
+#if TILEVK_SIMD_AVX2
+            ASSERT_EQ(mask4x4_samples4_16_avx2<0>(list, steps, n, bx, by), expect) << iter;
+            if (n == 3) {
+                ASSERT_EQ(mask4x4_samples4_16_avx2<3>(list, steps, n, bx, by), expect) << iter;
+            }
+#endif
+            partial += expect != 0 && expect != ~uint64_t{0};
+        }
+    }
+    EXPECT_GT(used, 100000u);
+    EXPECT_GT(partial, 10000u);
+}
+
 // Scalar kernel against a direct 64-bit evaluation of the same formula.
 TEST(Kernels, ScalarMatchesDefinition) {
     std::mt19937_64 rng(77);

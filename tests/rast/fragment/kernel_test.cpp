@@ -269,6 +269,13 @@ TEST(FragmentKernels, OpaqueStoreMatchesBlendBlock) {
                 std::vector<uint8_t> simd = mem;
                 store_rgba8_avx2(bgra, src, mask, simd.data(), pitch, inside);
                 ASSERT_EQ(simd, expect) << iter;
+                if (inside) {  // the branch-free block store of the 4x uniform path (inside blocks only)
+                    __m128i rows[4];
+                    detail::pack_rgba8_rows(bgra, src, rows);
+                    std::vector<uint8_t> block = mem;
+                    store_rgba8_raster_block_avx2(rows, lanes_to_raster(mask), block.data(), pitch);
+                    ASSERT_EQ(block, expect) << iter;
+                }
             }
 #endif
         }
