@@ -62,6 +62,7 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     s.unnormalized = in.unnormalizedCoordinates;
     s.compare_enable = in.compareEnable;
     s.compare_op = shader::CompareOp(in.compareOp);
+    s.max_anisotropy = in.anisotropyEnable ? in.maxAnisotropy : 1.0f;  // lvp_device.c lvp_CreateSampler
     return s;
 }
 
@@ -79,6 +80,9 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     out->width = img.level_width(b);
     out->height = img.level_height(b);
     out->depth = img.level_depth(b);  // 1 but for a 3D view (whose layer_pitch below is the depth pitch)
+    out->base_level = b;
+    out->width0 = img.level_width(0);
+    out->height0 = img.level_height(0);
     out->levels = std::min<uint32_t>(v.range.levelCount, uint32_t(out->level.size()));
     out->layers = v.range.layerCount;
     out->samples = img.samples;
