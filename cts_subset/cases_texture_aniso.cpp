@@ -50,18 +50,24 @@ void add_texture_aniso_cases(CaseList& out) {
                                              (mips ? "_mips_" : "_one_level_") + sh.name;
                     out.push_back({name, [=] { return quad(t, sh.q); }, nullptr, ""});
                 }
-    // a non-integer maxAnisotropy above 1, the checker, and the address modes (probes past the edge wrap or read
-    // the border like any nearest lookup)
+    // the checker under the address modes (probes past the edge wrap or read the border like any nearest lookup),
+    // at maxAnisotropy 2.5, which lavapipe truncates to 2, and at 1.5, truncated to 1: no anisotropy at all
     for (const WrapMode& w : kWrapModes) {
-        TextureSpec t = aniso_texture(1.5f, VK_FILTER_LINEAR, true, TexPattern::kChecker);
+        TextureSpec t = aniso_texture(2.5f, VK_FILTER_LINEAR, true, TexPattern::kChecker);
         t.wrap = w.mode;
         t.border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
-        out.push_back({std::string("texture.aniso.x1_5_checker_") + w.name,
+        out.push_back({std::string("texture.aniso.x2_5_checker_") + w.name,
                        [=] {
                            return quad(t, {-0.7f, 2.6f, 1.0f, true});
                        },
                        nullptr, ""});
     }
+    const TextureSpec t15 = aniso_texture(1.5f, VK_FILTER_LINEAR, true, TexPattern::kChecker);
+    out.push_back({"texture.aniso.x1_5_is_not_anisotropic",
+                   [=] {
+                       return quad(t15, {-0.7f, 2.6f, 1.0f, true});
+                   },
+                   nullptr, ""});
     // the LOD operands: explicit (the filter still takes the quad's differences), bias, gradients, and a gather
     // (lavapipe's anisotropic filter replaces it, at the first level)
     struct Body {

@@ -62,7 +62,9 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     s.unnormalized = in.unnormalizedCoordinates;
     s.compare_enable = in.compareEnable;
     s.compare_op = shader::CompareOp(in.compareOp);
-    s.max_anisotropy = in.anisotropyEnable ? in.maxAnisotropy : 1.0f;  // lvp_device.c lvp_CreateSampler
+    // lvp_CreateSampler stores maxAnisotropy into pipe_sampler_state's 5-bit unsigned max_anisotropy: truncated,
+    // so 1.5 is 1 (no anisotropy) and 2.9 is 2
+    s.max_anisotropy = in.anisotropyEnable ? float(uint32_t(std::clamp(in.maxAnisotropy, 0.0f, 31.0f))) : 1.0f;
     return s;
 }
 

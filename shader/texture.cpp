@@ -636,7 +636,8 @@ Vec4 sample_aniso_lane(const ImageOperands& op, const ImageView& img, const Samp
         size_lv = aniso_lane_level(op, img, smp, quad_derivs(s, t, src), src);
     }
     const Vec4 r = sample_aniso(img, smp, lv, size_lv, layer_index(img, layer_f), s[l], t[l], d, args);
-    return op.dref() ? r : swizzled(r, img);
+    // gathers skip the view's swizzle (lp_build_sample_soa_code), as their component choice replaces it
+    return (op.dref() || (in.imm & kSampleGather)) ? r : swizzled(r, img);
 }
 
 void exec_sample(const ImageOperands& op) {
