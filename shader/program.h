@@ -296,7 +296,7 @@ struct SamplerState {
     bool unnormalized = false;
     bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
     CompareOp compare_op = CompareOp::Never;
-    // anisotropyEnable ? maxAnisotropy : 1 (lvp_device.c); above 1 the filter is anisotropic (texture_aniso.cpp)
+    // anisotropyEnable ? maxAnisotropy truncated : 1 (icd/render_state.cpp); above 1 the filter is anisotropic
     float max_anisotropy = 1.0f;
 };
 
