@@ -51,6 +51,7 @@ void add_texture_3d_cases(CaseList& out);  // cases_texture_3d.cpp
 void add_texture_1d_cases(CaseList& out);  // cases_texture_1d.cpp
 void add_texture_cube_cases(CaseList& out);
 void add_texture_bc_cases(CaseList& out);  // cases_texture_bc.cpp
+void add_texture_aniso_cases(CaseList& out);  // cases_texture_aniso.cpp
 void add_mesh_cases(CaseList& out);
 void add_blit_cases(CaseList& out);
 void add_query_cases(CaseList& out);

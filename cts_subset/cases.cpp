@@ -83,6 +83,7 @@ CaseList all_cases() {
     add_texture_1d_cases(out);
     add_texture_cube_cases(out);
     add_texture_bc_cases(out);
+    add_texture_aniso_cases(out);
     add_mesh_cases(out);
     add_quirk_cases(out);
     add_transcendental_cases(out);

@@ -323,6 +323,8 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
     si.addressModeW = t.wrap_w.value_or(t.wrap);
     si.maxLod = t.max_lod;
     si.borderColor = t.border;
+    si.anisotropyEnable = t.max_anisotropy > 0.0f ? VK_TRUE : VK_FALSE;
+    si.maxAnisotropy = t.max_anisotropy;
     vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");
     VkDevice dev = c.device;
     gc.add([dev, s = tex.sampler] { vkDestroySampler(dev, s, nullptr); });

@@ -61,6 +61,8 @@ struct TextureSpec {
     // samplerFilterMinmax (VK_EXT_sampler_filter_minmax; texture.minmax.*, on an R8_UNORM `format`)
     VkSamplerReductionMode reduction = VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE;
     float lod_bias = 0.0f;
+    // above 0: anisotropyEnable with this maxAnisotropy (feature samplerAnisotropy; texture.aniso.*)
+    float max_anisotropy = 0.0f;
     bool compare = false;
     VkCompareOp compare_op = VK_COMPARE_OP_LESS;
 };

@@ -140,6 +140,21 @@ void add_atomic_features(Features& f) {
     f.core.v12.shaderSharedInt64Atomics = VK_TRUE;
 }
 
+// The samplers' filtering features.
+void add_sampler_features(Features& f) {
+    // MIRROR_CLAMP_TO_EDGE: shader/texture.cpp folds the coordinate as gallivm (lp_build_sample_wrap_*: |x| then
+    // CLAMP_TO_EDGE), nearest, linear and gathers (cts texture.wrap.mirror_clamp_to_edge_*,
+    // texture.float_target.mip_linear_mirror_clamp_to_edge).
+    f.core.v12.samplerMirrorClampToEdge = VK_TRUE;
+    // VkSamplerReductionModeCreateInfo MIN / MAX: shader/texture_reduce.h in every linear filter step as gallivm's
+    // lp_build_reduce_filter (ApiSamplerExt.FilterMinmax*, cts texture.minmax.*).
+    f.core.v12.samplerFilterMinmax = VK_TRUE;
+    // Anisotropic samplers on 2D and 2D-array views filter as llvmpipe's elliptical filter (shader/texture_aniso.cpp,
+    // docs/lavapipe-rules.md §10 "Anisotropy"; cts texture.aniso.*); on 1D, 3D and cube views they filter without
+    // anisotropy, said on stderr (icd/README.md "Known differences").
+    f.core10.samplerAnisotropy = VK_TRUE;
+}
+
 // The features tilevk reports, a member a line with why it holds. A deliberate twin in shape of make_limits
 // (physical_device.cpp): both are lists of "struct.member = value;" with different members and values. They stay
 // code rather than one generated table because each value's reason (the code that makes it true, the test that
@@ -225,19 +240,13 @@ Features make_supported() {
 
     add_extension_features(f);
     add_atomic_features(f);
+    add_sampler_features(f);
     // BaseVertex, BaseInstance, DrawIndex (the record's number within an indirect call, as lavapipe's drawid).
     f.core.v11.shaderDrawParameters = VK_TRUE;
     // execute.cpp runs a multiview subpass once per view into its layers, ViewIndex given to the shaders; there is
     // no geometry or tessellation stage, so multiviewGeometryShader / multiviewTessellationShader stay VK_FALSE.
     f.core.v11.multiview = VK_TRUE;
     f.core.v12.drawIndirectCount = VK_TRUE;  // vkCmdDraw[Indexed]IndirectCount: the count read at execution
-    // MIRROR_CLAMP_TO_EDGE: shader/texture.cpp folds the coordinate as gallivm (lp_build_sample_wrap_*: |x| then
-    // CLAMP_TO_EDGE), nearest, linear and gathers (cts texture.wrap.mirror_clamp_to_edge_*,
-    // texture.float_target.mip_linear_mirror_clamp_to_edge).
-    f.core.v12.samplerMirrorClampToEdge = VK_TRUE;
-    // VkSamplerReductionModeCreateInfo MIN / MAX: shader/texture_reduce.h in every linear filter step as gallivm's
-    // lp_build_reduce_filter (ApiSamplerExt.FilterMinmax*, cts texture.minmax.*).
-    f.core.v12.samplerFilterMinmax = VK_TRUE;
     f.core.v12.hostQueryReset = VK_TRUE;     // vkResetQueryPool: the reset vkCmdResetQueryPool does
     f.core.v12.timelineSemaphore = VK_TRUE;  // sync.cpp, queue_scheduler.h: wait-before-signal on the queue's worker
     // std430 uniform blocks: shader/ takes offsets and strides from the decorations (ApiSmallExtensions).

@@ -81,7 +81,7 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxDrawIndexedIndexValue = UINT32_MAX;  // fullDrawIndexUint32: indices are 32-bit all the way
     l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
     l.maxSamplerLodBias = 2.0f;
-    l.maxSamplerAnisotropy = 1.0f;
+    l.maxSamplerAnisotropy = 16.0f;  // lavapipe's (lvp_device.c)
     l.maxViewports = kMaxViewports;
     l.maxViewportDimensions[0] = l.maxViewportDimensions[1] = kMaxImageDimension;
     // viewportBoundsRange must hold [-2*maxViewportDimension, 2*maxViewportDimension - 1].

@@ -62,6 +62,9 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     s.unnormalized = in.unnormalizedCoordinates;
     s.compare_enable = in.compareEnable;
     s.compare_op = shader::CompareOp(in.compareOp);
+    // lvp_CreateSampler stores maxAnisotropy into pipe_sampler_state's 5-bit unsigned max_anisotropy: truncated,
+    // so 1.5 is 1 (no anisotropy) and 2.9 is 2
+    s.max_anisotropy = in.anisotropyEnable ? float(uint32_t(std::clamp(in.maxAnisotropy, 0.0f, 31.0f))) : 1.0f;
     return s;
 }
 
@@ -79,6 +82,9 @@ bool shader_view_of(const ImageView& v, shader::ImageView* out) {
     out->width = img.level_width(b);
     out->height = img.level_height(b);
     out->depth = img.level_depth(b);  // 1 but for a 3D view (whose layer_pitch below is the depth pitch)
+    out->base_level = b;
+    out->width0 = img.level_width(0);
+    out->height0 = img.level_height(0);
     out->levels = std::min<uint32_t>(v.range.levelCount, uint32_t(out->level.size()));
     out->layers = v.range.layerCount;
     out->samples = img.samples;

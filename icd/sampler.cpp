@@ -9,9 +9,6 @@ namespace tilevk::icd {
 VKAPI_ATTR VkResult VKAPI_CALL tvk_CreateSampler(VkDevice device, const VkSamplerCreateInfo* ci,
                                                  const VkAllocationCallbacks* pAllocator, VkSampler* pSampler) {
     Device* dev = from_handle<Device>(device);
-    if (ci->anisotropyEnable) {
-        return fail(VK_ERROR_FEATURE_NOT_PRESENT, "vkCreateSampler: samplerAnisotropy is not supported");
-    }
     Sampler* s = create_object<Sampler>(pick_allocator(pAllocator, &dev->allocator), VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (s == nullptr) return fail(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateSampler: out of host memory");
     s->state = sampler_state_of(*ci);  // with its pNext chain (custom border colour)

@@ -221,6 +221,9 @@ struct ImageView {
     const uint8_t* base = nullptr;
     Format format = Format::UNDEFINED;
     uint32_t width = 0, height = 0, depth = 1;  // of level 0 of the view
+    // The image's first level in the view and the image's own level-0 size (0: the view's): lavapipe's
+    // anisotropic filter scales by them (texture_aniso.cpp)
+    uint32_t base_level = 0, width0 = 0, height0 = 0;
     uint32_t levels = 1;                        // mip levels in the view
     uint32_t layers = 1;                        // array layers in the view
     uint32_t samples = 1;                       // 1, or 4 for a multisampled view (one level)
@@ -293,6 +296,8 @@ struct SamplerState {
     bool unnormalized = false;
     bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
     CompareOp compare_op = CompareOp::Never;
+    // anisotropyEnable ? maxAnisotropy truncated : 1 (icd/render_state.cpp); above 1 the filter is anisotropic
+    float max_anisotropy = 1.0f;
 };
 
 // One texture lookup outside a program (rast/'s blitter: lavapipe's u_blitter runs a TEX or TXF shader): what

@@ -7,10 +7,12 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "format/texel_codec.h"
 #include "shader/ir.h"
+#include "shader/texture_aniso.h"
 #include "shader/texture_cube.h"
 #include "shader/texture_fixed8.h"
 #include "shader/texture_internal.h"
@@ -596,6 +598,48 @@ void exec_image_store(const ImageOperands& op) {
     }
 }
 
+// The level lane `l` of an anisotropic lookup reads: the explicit LOD or the minor axis's of its quad (the quad's
+// implicit differences, lp_build_pmin), biased and clamped. Gathers and single-level views compute none
+// (lp_build_sample_common; lavapipe's mipmap mode is never NONE on a view of several levels, lvp_device.c).
+uint32_t aniso_lane_level(const ImageOperands& op, const ImageView& img, const SamplerState& smp, const QuadDerivs& d,
+                          int l) {
+    const Inst& in = op.in;
+    if ((in.imm & kSampleGather) || img.levels == 1) return 0;
+    float lambda = (in.imm & kSampleExplicitLod) ? op.fl(in.c, l) : aniso_raw_lambda(img, d, smp.max_anisotropy);
+    if (!(in.imm & kSampleExplicitLod) && (in.imm & kSampleBias)) lambda += op.fl(in.c, l);
+    return aniso_level(img, final_lambda(smp, lambda));
+}
+
+QuadDerivs quad_derivs(const float* s, const float* t, int l) {
+    const int q = l & ~3;
+    QuadDerivs d;
+    d.dsdx = s[q + 1] - s[q], d.dtdx = t[q + 1] - t[q];
+    d.dsdy = s[q + 2] - s[q], d.dtdy = t[q + 2] - t[q];
+    return d;
+}
+
+// An anisotropic sampler on a 2D view (lp_bld_sample_soa.c lp_build_sample_general: the anisotropic filter
+// replaces every other, gathers included), fed by the quad's implicit differences even beside an explicit LOD or
+// gradients. With a LOD per lane (an explicit LOD, a bias or gradients on a view of several levels) lavapipe
+// divides the probes' coordinates by the level size of lane 0 of its 8-lane vector in the vector's first half and
+// of lane 1 in its second half (lp_build_sample_aniso's swizzle04 / swizzle15 over per-lane sizes); otherwise by
+// the lane's own level's.
+Vec4 sample_aniso_lane(const ImageOperands& op, const ImageView& img, const SamplerState& smp, const float* s,
+                       const float* t, float layer_f, int l, const SampleArgs& args) {
+    const Inst& in = op.in;
+    if (integer_format(img)) return {0, 0, 0, 0};  // invalid usage: no filtering of integer formats
+    const QuadDerivs d = quad_derivs(s, t, l);
+    const uint32_t lv = aniso_lane_level(op, img, smp, d, l);
+    uint32_t size_lv = lv;
+    if (!(in.imm & kSampleGather) && img.levels > 1 && (in.imm & (kSampleExplicitLod | kSampleBias | kSampleGrad))) {
+        const int src = (l & ~7) + ((l & 4) ? 1 : 0);
+        size_lv = aniso_lane_level(op, img, smp, quad_derivs(s, t, src), src);
+    }
+    const Vec4 r = sample_aniso(img, smp, lv, size_lv, layer_index(img, layer_f), s[l], t[l], d, args);
+    // gathers skip the view's swizzle (lp_build_sample_soa_code), as their component choice replaces it
+    return (op.dref() || (in.imm & kSampleGather)) ? r : swizzled(r, img);
+}
+
 void exec_sample(const ImageOperands& op) {
     const Inst& in = op.in;
     const bool one_d = op.one_d();
@@ -630,6 +674,10 @@ void exec_sample(const ImageOperands& op) {
             op.write(l, {0, 0, 0, 0});
             continue;
         }
+        if (smp->max_anisotropy > 1.0f && !one_d && !three_d) {
+            op.write(l, sample_aniso_lane(op, *img, *smp, s, t, layer_f[l], l, args));
+            continue;
+        }
         if (in.imm & kSampleGather) {
             op.write(l, gather_texels(*img, *smp, s[l], t[l], layer_index(*img, layer_f[l]),
                                       (in.imm >> kSampleGatherCompShift) & 3, args));
@@ -661,6 +709,20 @@ void exec_sample(const ImageOperands& op) {
     }
 }
 
+// Anisotropic filtering is modelled on 2D views only (shader/README.md "Anisotropic filtering"): elsewhere the
+// sampler filters as without anisotropy, said once on stderr.
+void note_aniso_unmodelled(const ImageOperands& op) {
+    static std::atomic<bool> said{false};
+    for (int l = 0; l < kLanes; ++l) {
+        const SamplerState* smp = op.sampler(l);
+        if (smp == nullptr || !(smp->max_anisotropy > 1.0f) || said.exchange(true)) continue;
+        std::fprintf(stderr,
+                     "tilevk: samplerAnisotropy: a sampler with anisotropyEnable on a 1D, 3D or cube image view "
+                     "filters without anisotropy (tilevk models lavapipe's anisotropic filter on 2D views only)\n");
+        return;
+    }
+}
+
 }  // namespace tex
 
 using namespace tex;
@@ -679,6 +741,7 @@ void exec_image(const Inst& in, uint32_t* R, const Descriptor* const* slots, uin
         case Op::ImageStore:
             return exec_image_store(op);
         default:
+            if ((in.imm & (kSampleCube | kSample1D)) || op.three_d()) note_aniso_unmodelled(op);
             if (in.imm & kSampleCube) return cube::exec_sample_cube(in, R, slots, num_slots);
             return exec_sample(op);
     }

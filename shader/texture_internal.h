@@ -47,6 +47,10 @@ Vec4 texel(const Level& lv, int32_t x, int32_t y);
 Vec4 plane_texel(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y);
 Bytes plane_bytes(const format::FormatInfo& f, const uint8_t* plane, uint64_t pitch, int32_t x, int32_t y);
 int32_t floor_index(float u, AddressMode m);
+// One level (and layer) of a 1D/2D view through the float filter, nearest or bilinear, offsets, wraps and depth
+// compare applied, before the view's swizzle.
+Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
+                  bool linear, bool one_d, const SampleArgs& args);
 bool power_of_two(int32_t n);
 Axis repeat_npot_axis(float s, int32_t n, int32_t off);
 Vec4 border_color(const SamplerState& smp);

@@ -20,6 +20,7 @@ namespace {
 bool sampler_fits(const SamplerState& smp, const ViewLevelTable& t) {
     if (smp.unnormalized || smp.mag_filter != Filter::Linear || smp.min_filter != Filter::Linear) return false;
     if (smp.reduction != Reduction::WeightedAverage) return false;  // its kernel lerps (texture_reduce.h)
+    if (smp.max_anisotropy > 1.0f) return false;                    // the interpreter's texture_aniso.cpp filters those
     auto ok_wrap = [](AddressMode m, uint32_t n) {
         return m == AddressMode::ClampToEdge || (m == AddressMode::Repeat && (n & (n - 1)) == 0);
     };

@@ -208,7 +208,7 @@ TEST_F(HonestReports, NamedRefusalsAndAcceptances) {
         EXPECT_EQ(create_device(nullptr, &over), VK_SUCCESS);
     }
     for (size_t offset :
-         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, samplerAnisotropy),
+         {offsetof(VkPhysicalDeviceFeatures, geometryShader), offsetof(VkPhysicalDeviceFeatures, depthBounds),
           offsetof(VkPhysicalDeviceFeatures, shaderResourceMinLod)}) {
         VkPhysicalDeviceFeatures want{};
         set_member(&want, offset);
