@@ -145,6 +145,8 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
                     return "VK_EXT_sampler_filter_minmax";
                 need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT;
             }
+            if (d.texture->non_seamless && !c.non_seamless_cube_map.nonSeamlessCubeMap)
+                return "VK_EXT_non_seamless_cube_map nonSeamlessCubeMap";
             if (d.texture->custom_border && !c.custom_border_color.customBorderColors)
                 return "VK_EXT_custom_border_color customBorderColors";
             const VkFormat tf = d.texture->format == VK_FORMAT_R8_UNORM ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM;

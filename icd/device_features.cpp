@@ -109,6 +109,9 @@ void add_extension_features(Features& f) {
     // VkSamplerBorderColorComponentMappingCreateInfoEXT is accepted and, as in lavapipe, not needed.
     f.border_color_swizzle.borderColorSwizzle = VK_TRUE;
     f.border_color_swizzle.borderColorSwizzleFromImage = VK_TRUE;
+    // VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT: each face filtered alone, clamped to its edges as llvmpipe
+    // (shader/texture_cube.cpp non_seamless_sample).
+    f.non_seamless_cube_map.nonSeamlessCubeMap = VK_TRUE;
 }
 
 // The atomics beyond Vulkan 1.0's 32-bit integer ones.
@@ -312,6 +315,7 @@ Features::Features() {
     init(border_color_swizzle, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BORDER_COLOR_SWIZZLE_FEATURES_EXT);
     init(vertex_input_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state3, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT);
+    init(non_seamless_cube_map, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_NON_SEAMLESS_CUBE_MAP_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -333,7 +337,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&texel_buffer_alignment),
                                  reinterpret_cast<VkBaseOutStructure*>(&border_color_swizzle),
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_input_dynamic_state),
-                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3),
+                                 reinterpret_cast<VkBaseOutStructure*>(&non_seamless_cube_map)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

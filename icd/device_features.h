@@ -32,6 +32,7 @@ struct Features {
     VkPhysicalDeviceBorderColorSwizzleFeaturesEXT border_color_swizzle{};
     VkPhysicalDeviceVertexInputDynamicStateFeaturesEXT vertex_input_dynamic_state{};
     VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{};
+    VkPhysicalDeviceNonSeamlessCubeMapFeaturesEXT non_seamless_cube_map{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -62,6 +62,8 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     s.unnormalized = in.unnormalizedCoordinates;
     s.compare_enable = in.compareEnable;
     s.compare_op = shader::CompareOp(in.compareOp);
+    // VK_EXT_non_seamless_cube_map, as lavapipe's seamless_cube_map (lvp_device.c lvp_CreateSampler)
+    s.seamless_cube = (in.flags & VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT) == 0;
     return s;
 }
 

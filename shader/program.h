@@ -293,6 +293,9 @@ struct SamplerState {
     bool unnormalized = false;
     bool compare_enable = false;  // depth comparison for shadow samplers (texture(sampler2DShadow, ...))
     CompareOp compare_op = CompareOp::Never;
+    // Cube maps filter across face edges and corners unless VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT clears
+    // this (shader/texture_cube.cpp).
+    bool seamless_cube = true;
 };
 
 // One texture lookup outside a program (rast/'s blitter: lavapipe's u_blitter runs a TEX or TXF shader): what
