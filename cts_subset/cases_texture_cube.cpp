@@ -88,6 +88,46 @@ void add(CaseList& out, const std::string& name, const TextureSpec& t, const std
     out.push_back({"texture.cube." + name, [=] { return panels(t, frag); }, nullptr, ""});
 }
 
+// texture.cube.non_seamless.*: samplers with VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT. Each face is filtered
+// alone, clamped at its edges: the RGBA8 cubes through lavapipe's 8-bit filter, the depth cube in float; REPEAT,
+// which lavapipe clamps too.
+void add_non_seamless_cases(CaseList& out) {
+    const auto ns = [](TextureSpec t) {
+        t.non_seamless = true;
+        return t;
+    };
+    const std::string kSample = "o = texture(tex, d);";
+    const std::string p = "non_seamless.";
+    add(out, p + "mag_linear", ns(cube(8, 1, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST)), "samplerCube",
+        kSample);
+    add(out, p + "mag_nearest", ns(cube(8, 1, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST)), "samplerCube",
+        kSample);
+    TextureSpec repeat = ns(cube(8, 1, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST));
+    repeat.wrap = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    add(out, p + "mag_linear_repeat", repeat, "samplerCube", kSample);
+    for (VkSamplerMipmapMode m : {VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_MIPMAP_MODE_LINEAR}) {
+        const std::string mname = m == VK_SAMPLER_MIPMAP_MODE_NEAREST ? "nearest" : "linear";
+        add(out, p + "min_linear_mip_" + mname, ns(cube(64, 7, VK_FILTER_LINEAR, m)), "samplerCube", kSample);
+    }
+    const TextureSpec trilinear = ns(cube(64, 7, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR));
+    add(out, p + "lod", trilinear, "samplerCube", "o = textureLod(tex, d, uv.y * 7.0 - 1.0);");
+    add(out, p + "grad", trilinear, "samplerCube",
+        "o = textureGrad(tex, d, vec3(0.02, 0.01, -0.03) * uv.x, vec3(-0.01, 0.04, 0.02) * uv.y);");
+    // one level and an implicit LOD: one LOD per quad, so lavapipe still takes the 8-bit path, choosing the filter
+    // per quad (about 1.3 texels per pixel: some quads minify, some magnify)
+    TextureSpec mixed = ns(cube(32, 1, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST));
+    mixed.mag = VK_FILTER_NEAREST;
+    add(out, p + "min_linear_mag_nearest", mixed, "samplerCube", kSample);
+    TextureSpec shadow = ns(cube(16, 1, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST));
+    shadow.format = VK_FORMAT_D32_SFLOAT;
+    shadow.compare = true;
+    shadow.compare_op = VK_COMPARE_OP_LESS;
+    add(out, p + "shadow_linear", shadow, "samplerCubeShadow", "o = vec4(texture(tex, vec4(d, uv.x)), 0.0, 0.0, 1.0);");
+    TextureSpec arr = ns(cube(16, 5, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR));
+    arr.cube_layers = 18;
+    add(out, p + "array_linear", arr, "samplerCubeArray", "o = texture(tex, vec4(d, uv.x * 3.6 - 0.7));");
+}
+
 }  // namespace
 
 void add_texture_cube_cases(CaseList& out) {
@@ -128,6 +168,7 @@ void add_texture_cube_cases(CaseList& out) {
         add(out, std::string("array_") + (f == VK_FILTER_NEAREST ? "nearest" : "linear"), arr, "samplerCubeArray",
             "o = texture(tex, vec4(d, uv.x * 3.6 - 0.7));");
     }
+    add_non_seamless_cases(out);
     TextureSpec arr_queries = cube(16, 5, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST);
     arr_queries.cube_layers = 18;
     add(out, "array_queries", arr_queries, "samplerCubeArray",

@@ -252,6 +252,7 @@ static Texture make_cube_texture(const DeviceContext& c, Cleanup& gc, const Text
     si.mipLodBias = t.lod_bias;
     si.compareEnable = t.compare ? VK_TRUE : VK_FALSE;
     si.compareOp = t.compare_op;
+    if (t.non_seamless) si.flags = VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT;
     vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");
     VkDevice dev = c.device;
     gc.add([dev, s = tex.sampler] { vkDestroySampler(dev, s, nullptr); });

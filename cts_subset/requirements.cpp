@@ -150,6 +150,8 @@ std::string unsupported(const DeviceContext& c, const Scene& s) {
             if (d.texture->max_anisotropy > 0.0f && !f.samplerAnisotropy) return "feature samplerAnisotropy";
             if (d.texture->max_anisotropy > lim.maxSamplerAnisotropy)
                 return "maxSamplerAnisotropy " + std::to_string(lim.maxSamplerAnisotropy);
+            if (d.texture->non_seamless && !c.non_seamless_cube_map.nonSeamlessCubeMap)
+                return "VK_EXT_non_seamless_cube_map nonSeamlessCubeMap";
             if (d.texture->custom_border && !c.custom_border_color.customBorderColors)
                 return "VK_EXT_custom_border_color customBorderColors";
             const VkFormat tf = d.texture->format == VK_FORMAT_R8_UNORM ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM;

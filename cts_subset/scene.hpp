@@ -65,6 +65,8 @@ struct TextureSpec {
     float max_anisotropy = 0.0f;
     bool compare = false;
     VkCompareOp compare_op = VK_COMPARE_OP_LESS;
+    // VK_EXT_non_seamless_cube_map: the cube sampler made with VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT
+    bool non_seamless = false;
 };
 
 struct Draw {

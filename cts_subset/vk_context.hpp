@@ -67,6 +67,8 @@ struct DeviceContext {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT};
     VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT};
+    VkPhysicalDeviceNonSeamlessCubeMapFeaturesEXT non_seamless_cube_map{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_NON_SEAMLESS_CUBE_MAP_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {

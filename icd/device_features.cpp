@@ -114,6 +114,9 @@ void add_extension_features(Features& f) {
     // inheritedConditionalRendering VK_FALSE, so no secondary may run inside it (VUID-vkCmdExecuteCommands-
     // commandBuffer-00101) and tilevk has no reference to match.
     f.conditional_rendering.conditionalRendering = VK_TRUE;
+    // VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT: each face filtered alone, clamped to its edges as llvmpipe
+    // (shader/texture_cube.cpp non_seamless_sample).
+    f.non_seamless_cube_map.nonSeamlessCubeMap = VK_TRUE;
 }
 
 // The atomics beyond Vulkan 1.0's 32-bit integer ones.
@@ -327,6 +330,7 @@ Features::Features() {
     init(vertex_input_dynamic_state, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_INPUT_DYNAMIC_STATE_FEATURES_EXT);
     init(extended_dynamic_state3, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT);
     init(conditional_rendering, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT);
+    init(non_seamless_cube_map, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_NON_SEAMLESS_CUBE_MAP_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -349,7 +353,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&border_color_swizzle),
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_input_dynamic_state),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3),
-                                 reinterpret_cast<VkBaseOutStructure*>(&conditional_rendering)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&conditional_rendering),
+                                 reinterpret_cast<VkBaseOutStructure*>(&non_seamless_cube_map)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -65,6 +65,8 @@ shader::SamplerState sampler_state_of(const VkSamplerCreateInfo& in) {
     // lvp_CreateSampler stores maxAnisotropy into pipe_sampler_state's 5-bit unsigned max_anisotropy: truncated,
     // so 1.5 is 1 (no anisotropy) and 2.9 is 2
     s.max_anisotropy = in.anisotropyEnable ? float(uint32_t(std::clamp(in.maxAnisotropy, 0.0f, 31.0f))) : 1.0f;
+    // VK_EXT_non_seamless_cube_map, as lavapipe's seamless_cube_map (lvp_device.c lvp_CreateSampler)
+    s.seamless_cube = (in.flags & VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT) == 0;
     return s;
 }
 

@@ -298,6 +298,9 @@ struct SamplerState {
     CompareOp compare_op = CompareOp::Never;
     // anisotropyEnable ? maxAnisotropy truncated : 1 (icd/render_state.cpp); above 1 the filter is anisotropic
     float max_anisotropy = 1.0f;
+    // Cube maps filter across face edges and corners unless VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT clears
+    // this (shader/texture_cube.cpp).
+    bool seamless_cube = true;
 };
 
 // One texture lookup outside a program (rast/'s blitter: lavapipe's u_blitter runs a TEX or TXF shader): what

@@ -9,6 +9,7 @@
 
 #include "format/texel_codec.h"
 #include "shader/texture_fixed8.h"
+#include "shader/texture_internal.h"
 #include "shader/texture_reduce.h"
 
 namespace tilevk::shader::cube {
@@ -161,6 +162,7 @@ struct Lane {
     uint32_t level0 = 0, level1 = 0;
     float frac = 0.0f;  // weight of level1 (0 when the lod was clamped or the level filter is nearest)
     bool linear = false;
+    bool mip_none = false;  // the level filter is off (level_zero_only with a positive maxLod)
     bool dref = false;
     float ref = 0.0f;
 };
@@ -253,6 +255,7 @@ void set_up_lanes(const Regs& r, const Descriptor* const* slots, uint32_t num_sl
         // level_zero_only with a positive maxLod turns the level filter off (lp_bld_sample_soa.c); tilevk's view
         // does not keep its base level, so a one-level view stands for it
         const bool mip_none = img.levels == 1 && smp.max_lod > 0.0f;
+        ln.mip_none = mip_none;
         const bool lod_needed = smp.min_filter != smp.mag_filter || !mip_none;
         const bool lod_equal = lod_needed && smp.min_lod == smp.max_lod;
         const bool explicit_lod = in.imm & kSampleExplicitLod;
@@ -402,6 +405,44 @@ bool has_corner(const Lane& ln, uint32_t level) {
     return fp.corner[0] || fp.corner[1] || fp.corner[2] || fp.corner[3];
 }
 
+// Whether lavapipe takes its 8-bit path for a non-seamless cube map (lp_bld_sample_soa.c use_aos: no comparison,
+// and one lod per quad unless both filters agree; cube maps with a level filter have a lod per pixel).
+bool non_seamless_fixed8(const Lane& ln, uint32_t imm) {
+    const SamplerState& smp = *ln.smp;
+    if (ln.dref || !fixed8::fits_8unorm(format::format_info(ln.img->format))) return false;
+    const bool lod_per_quad = ln.mip_none && !(imm & (kSampleBias | kSampleExplicitLod | kSampleGrad));
+    return smp.min_filter == smp.mag_filter || lod_per_quad;
+}
+
+// A non-seamless cube map (VK_SAMPLER_CREATE_NON_SEAMLESS_CUBE_MAP_BIT_EXT; lavapipe clears seamless_cube_map):
+// after the face and levels are chosen as for a seamless one, the face is filtered as a layer of a 2D array with
+// CLAMP_TO_EDGE, whatever the sampler's address modes (lp_build_sample_soa_code forces the wrap for every cube
+// target), through the 8-bit path when use_aos allows it (its cube exclusion is for seamless filtering only).
+Vec4 non_seamless_sample(const Lane& ln, uint32_t imm) {
+    SamplerState smp = *ln.smp;
+    smp.address_u = smp.address_v = AddressMode::ClampToEdge;
+    tex::SampleArgs args;
+    args.dref = ln.dref, args.ref = ln.ref;
+    const uint32_t layer = texel_layer(ln, ln.fc.face);
+    const float s = ln.fc.s, t = ln.fc.t;
+    if (non_seamless_fixed8(ln, imm)) {
+        tex::Bytes a = tex::sample_level_fixed8(*ln.img, smp, ln.level0, layer, s, t, ln.linear, false, args);
+        if (const int32_t mw = fixed8::mip_weight(ln.frac); mw > 0) {
+            const tex::Bytes b = tex::sample_level_fixed8(*ln.img, smp, ln.level1, layer, s, t, ln.linear, false, args);
+            for (size_t c = 0; c < 4; ++c) a[c] = reduce_step8(smp.reduction, mw, a[c], b[c]);
+        }
+        Vec4 r;
+        for (size_t c = 0; c < 4; ++c) r[c] = format::unorm8_to_float(uint8_t(a[c]));
+        return r;
+    }
+    Vec4 r = tex::sample_level(*ln.img, smp, ln.level0, layer, s, t, ln.linear, false, args);
+    if (ln.frac > 0.0f) {
+        const Vec4 b = tex::sample_level(*ln.img, smp, ln.level1, layer, s, t, ln.linear, false, args);
+        for (size_t c = 0; c < 4; ++c) r[c] = lerp(ln.frac, r[c], b[c]);
+    }
+    return r;
+}
+
 // lavapipe's vectors are 8 lanes (a 4x4 block's two quad rows, 8 consecutive invocations elsewhere): the corner
 // branch and the second level's fetch are taken per vector.
 constexpr int kVector = 8;
@@ -434,9 +475,11 @@ void exec_sample_cube(const Inst& in, uint32_t* R, const Descriptor* const* slot
         // a linear filter on an integer format gives zeros (lp_build_sample_soa_code; texture.cpp sample_lambda)
         if (ln.img != nullptr && !(integer && any_linear)) {
             const int g = l / kVector;
-            // lavapipe's 8-bit path (use_aos): no comparison, and cube maps filter linearly in float (seamless)
-            if (!ln.linear && !ln.dref && fixed8::fits_8unorm(format::format_info(ln.img->format))) {
-                // the 8-bit path: nearest texels, an 8-bit lerp between levels (lp_bld_sample_aos.c)
+            if (!ln.smp->seamless_cube) {
+                r = non_seamless_sample(ln, in.imm);
+            } else if (!ln.linear && !ln.dref && fixed8::fits_8unorm(format::format_info(ln.img->format))) {
+                // lavapipe's 8-bit path (use_aos): no comparison, and seamless cube maps filter linearly in float;
+                // nearest texels, an 8-bit lerp between levels (lp_bld_sample_aos.c)
                 const format::FormatInfo& fi = format::format_info(ln.img->format);
                 const auto bytes = [&](uint32_t level) {
                     return fixed8::texel_bytes(fi, texel_at(ln, level, nearest_texel(ln, level), fi));

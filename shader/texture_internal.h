@@ -67,6 +67,13 @@ fixed8::Pair axis_fixed8(float s, int32_t n, int32_t off, bool unnormalized, Add
 int32_t nearest_fixed8(float s, float u, int32_t n, int32_t off, AddressMode m, bool unnormalized);
 using fixed8::texel_bytes;  // texture_fixed8.h
 
+// One mip level and array layer of a 1D/2D view, nearest or bilinear, through the float or the 8-bit filter
+// (texture.cpp); the cube sampler filters a face of a non-seamless cube map with them (texture_cube.cpp).
+Vec4 sample_level(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s, float t,
+                  bool linear, bool one_d, const SampleArgs& args);
+Bytes sample_level_fixed8(const ImageView& img, const SamplerState& smp, uint32_t level, uint32_t layer, float s,
+                          float t, bool linear, bool one_d, const SampleArgs& args);
+
 // texture_gather.cpp: OpImageGather / OpImageDrefGather's four texels at level 0 of a 1D/2D view.
 Vec4 gather_texels(const ImageView& img, const SamplerState& smp, float s, float t, uint32_t layer, uint32_t comp,
                    const SampleArgs& args);
