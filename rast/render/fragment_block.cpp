@@ -297,26 +297,28 @@ void opaque_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, c
     }
 }
 
+// The primitive's uniform run packed for the opaque store of target c. After the primitive's first block its run and
+// packed rows are the worker's already: what run_uniform and opaque_rows would find, tested once.
+void uniform_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, __m128i rows[4]) {
+    if (w.uniform_prim == a.planes && w.uniform_front == a.front_facing && (w.uniform_rows_valid >> c & 1)) {
+        for (int r = 0; r < 4; ++r) rows[r] = _mm_load_si128(reinterpret_cast<const __m128i*>(w.uniform_rows[c][r]));
+        return;
+    }
+    const uint64_t shade_start = w.shade_sample_start();
+    run_uniform(w, a);
+    w.shade_sample_end(shade_start);
+    opaque_rows(w, a, c, bgra, reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c][0]), rows);
+}
+
 // DrawPlan::uniform_store_4x, a block inside the framebuffer: shade_block_n<4>'s steps as they fall out in that
 // state (each sample's final mask is its coverage, the colour is the primitive's uniform run), with the masks kept
 // in the rasterizer's order: the lane order only served the steps that have nothing to do here.
 void store_uniform_4x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, const uint16_t raster_masks[4]) {
     if (!(raster_masks[0] | raster_masks[1] | raster_masks[2] | raster_masks[3])) return;
     const auto c = uint32_t(a.plan->uniform_store_4x);
-    const uint64_t shade_start = w.shade_sample_start();
-    // The primitive's run and packed rows are the worker's already after its first block: what run_uniform and
-    // opaque_rows would find, tested once.
-    const bool packed =
-        w.uniform_prim == a.planes && w.uniform_front == a.front_facing && (w.uniform_rows_valid >> c & 1);
-    if (!packed) run_uniform(w, a);
-    w.shade_sample_end(shade_start);
     const ColorTarget& t = a.fb->color[c];
     __m128i rows[4];
-    if (packed)
-        for (int r = 0; r < 4; ++r) rows[r] = _mm_load_si128(reinterpret_cast<const __m128i*>(w.uniform_rows[c][r]));
-    else
-        opaque_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8,
-                    reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c][0]), rows);
+    uniform_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8, rows);
     uint8_t* origin = t.data + size_t(y) * t.row_pitch + size_t(x) * 4;
     for (int s = 0; s < 4; ++s, origin += t.sample_stride)
         if (raster_masks[s]) fragment::store_rgba8_raster_rows_avx2(rows, raster_masks[s], origin, t.row_pitch, true);
@@ -358,11 +360,7 @@ void shade_block_1x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y,
     const ColorTarget& t = a.fb->color[bp.target];
     __m128i rows[4];
     if (!bp.copy) {
-        const uint64_t shade_start = w.shade_sample_start();
-        run_uniform(w, a);
-        w.shade_sample_end(shade_start);
-        opaque_rows(w, a, bp.target, bp.bgra,
-                    reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[bp.target][0]), rows);
+        uniform_rows(w, a, bp.target, bp.bgra, rows);
     } else {
         const float* attribs = a.planes + kPrimHeaderFloats;
         const fragment::Plane wplane = plane_of(a.planes, 3);
