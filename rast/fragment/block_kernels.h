@@ -269,7 +269,9 @@ TILEVK_KERNEL __m256i compare_epi32(CompareOp op, __m256i a, __m256i b) {
 // All 16 texels of the block must exist (the caller checks the framebuffer edge): whole rows are read and, when
 // a lane passes with writes on, written back (unchanged texels keep their bytes). Specialised on the format and the
 // compare op (depth_block_avx2 dispatches), so that a block is one straight sequence of vector operations.
-template <bool kD16, CompareOp kOp>
+// kRaster: `z` and `mask` are in raster order (lane 4 * row + column, fragment_block.cpp's fused 1x blocks), so
+// each half is two whole rows as they lie in memory; otherwise the shader's lane order (block.h).
+template <bool kD16, CompareOp kOp, bool kRaster = false>
 TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
                                            uint8_t* origin, size_t pitch, bool write) {
     __m256i stored[2];
@@ -277,14 +279,15 @@ TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBl
     for (int h = 0; h < 2; ++h) {
         const uint8_t* row0 = origin + size_t(2 * h) * pitch;
         if constexpr (kD16) {
-            // rows of 4 x u16; unpacklo_epi32(row0, row1) = lanes 0..7 in u16
+            // rows of 4 x u16; lane order: unpacklo_epi32(row0, row1) = lanes 0..7 in u16; raster: row0, row1
             const __m128i r0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(row0));
             const __m128i r1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(row0 + pitch));
-            stored[h] = _mm256_cvtepu16_epi32(_mm_unpacklo_epi32(r0, r1));
+            stored[h] = _mm256_cvtepu16_epi32(kRaster ? _mm_unpacklo_epi64(r0, r1) : _mm_unpacklo_epi32(r0, r1));
         } else {
             const __m128i r0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0));
             const __m128i r1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0 + pitch));
-            stored[h] = _mm256_set_m128i(_mm_unpackhi_epi64(r0, r1), _mm_unpacklo_epi64(r0, r1));
+            stored[h] = kRaster ? _mm256_set_m128i(r1, r0)
+                                : _mm256_set_m128i(_mm_unpackhi_epi64(r0, r1), _mm_unpacklo_epi64(r0, r1));
         }
     }
     // After the DAZ and the [0, 1] clamp (max(min(z, 1), 0) turns NaN into 1) z is no denormal, so the compare's own
@@ -323,11 +326,14 @@ TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBl
             uint8_t* row0 = origin + size_t(2 * h) * pitch;
             uint8_t* row1 = row0 + pitch;
             if constexpr (kD16) {
-                // back to u16 (values < 2^16), lanes {0,1,4,5} -> row 0, {2,3,6,7} -> row 1
+                // back to u16 (values < 2^16), lanes {0,1,4,5} -> row 0, {2,3,6,7} -> row 1 (raster: 0..3, 4..7)
                 const __m128i p = _mm_packus_epi32(lo, hi);  // lanes 0..7 as u16
-                const __m128i rows = _mm_shuffle_epi32(p, _MM_SHUFFLE(3, 1, 2, 0));
+                const __m128i rows = kRaster ? p : _mm_shuffle_epi32(p, _MM_SHUFFLE(3, 1, 2, 0));
                 _mm_storel_epi64(reinterpret_cast<__m128i*>(row0), rows);
                 _mm_storel_epi64(reinterpret_cast<__m128i*>(row1), _mm_unpackhi_epi64(rows, rows));
+            } else if constexpr (kRaster) {
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(row0), lo);
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(row1), hi);
             } else {
                 _mm_storeu_si128(reinterpret_cast<__m128i*>(row0), _mm_unpacklo_epi64(lo, hi));
                 _mm_storeu_si128(reinterpret_cast<__m128i*>(row1), _mm_unpackhi_epi64(lo, hi));
@@ -337,34 +343,41 @@ TILEVK_KERNEL uint16_t depth_block_avx2_op(const DepthFast& d, const float z[kBl
     return uint16_t(pass);
 }
 
-template <bool kD16>
+template <bool kD16, bool kRaster>
 TILEVK_KERNEL uint16_t depth_block_avx2_format(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
                                                uint8_t* origin, size_t pitch, bool write) {
     switch (d.op) {
         case CompareOp::Never:
-            return depth_block_avx2_op<kD16, CompareOp::Never>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::Never, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::Less:
-            return depth_block_avx2_op<kD16, CompareOp::Less>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::Less, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::Equal:
-            return depth_block_avx2_op<kD16, CompareOp::Equal>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::Equal, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::LessOrEqual:
-            return depth_block_avx2_op<kD16, CompareOp::LessOrEqual>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::LessOrEqual, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::Greater:
-            return depth_block_avx2_op<kD16, CompareOp::Greater>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::Greater, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::NotEqual:
-            return depth_block_avx2_op<kD16, CompareOp::NotEqual>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::NotEqual, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::GreaterOrEqual:
-            return depth_block_avx2_op<kD16, CompareOp::GreaterOrEqual>(d, z, mask, origin, pitch, write);
+            return depth_block_avx2_op<kD16, CompareOp::GreaterOrEqual, kRaster>(d, z, mask, origin, pitch, write);
         case CompareOp::Always:
             break;
     }
-    return depth_block_avx2_op<kD16, CompareOp::Always>(d, z, mask, origin, pitch, write);
+    return depth_block_avx2_op<kD16, CompareOp::Always, kRaster>(d, z, mask, origin, pitch, write);
 }
 
 TILEVK_KERNEL uint16_t depth_block_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask, uint8_t* origin,
                                         size_t pitch, bool write) {
-    return d.format == DepthFormat::D16 ? depth_block_avx2_format<true>(d, z, mask, origin, pitch, write)
-                                        : depth_block_avx2_format<false>(d, z, mask, origin, pitch, write);
+    return d.format == DepthFormat::D16 ? depth_block_avx2_format<true, false>(d, z, mask, origin, pitch, write)
+                                        : depth_block_avx2_format<false, false>(d, z, mask, origin, pitch, write);
+}
+
+// depth_block_avx2 with `z`, `mask` and the result in raster order (bit 4 * row + column).
+TILEVK_KERNEL uint16_t depth_block_raster_avx2(const DepthFast& d, const float z[kBlockLanes], uint16_t mask,
+                                               uint8_t* origin, size_t pitch, bool write) {
+    return d.format == DepthFormat::D16 ? depth_block_avx2_format<true, true>(d, z, mask, origin, pitch, write)
+                                        : depth_block_avx2_format<false, true>(d, z, mask, origin, pitch, write);
 }
 #endif
 
@@ -398,23 +411,29 @@ TILEVK_KERNEL void store_rgba8_scalar(bool bgra, const float src[4][kBlockLanes]
 
 #if TILEVK_SIMD_AVX2
 namespace detail {
-// The block's source colours as UNORM8 pixels in memory order (R G B A, or B G R A), raster rows 0..3.
 // u8 = packus(packs(cvtps2dq(fl(min(1, x) * 255)))): float_to_unorm8 with UnormPath::Avx8.
-TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i rows[4]) {
-    const __m256 one = _mm256_set1_ps(1.0f), k255 = _mm256_set1_ps(255.0f);
+TILEVK_KERNEL __m256i unorm8_lanes(__m256 x) {
+    return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(_mm256_set1_ps(1.0f), x), _mm256_set1_ps(255.0f)));
+}
+// Eight lanes of RGBA floats -> 32 bytes of pixels in memory order (R G B A, or B G R A), lane i at byte 4 * i.
+// Four named vectors rather than an array: GCC keeps an array of vectors on the stack, and the packs then wait on
+// store forwarding.
+TILEVK_KERNEL __m256i pack_row8(bool bgra, __m256 r, __m256 g, __m256 b, __m256 a) {
     // bytes r0..r3 g0..g3 b0..b3 a0..a3 (per 128-bit half) -> pixels r g b a (or b g r a)
     const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
                                                   5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15)
                                : _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
                                                   5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+    const __m256i rg = _mm256_packs_epi32(unorm8_lanes(r), unorm8_lanes(g));
+    const __m256i ba = _mm256_packs_epi32(unorm8_lanes(b), unorm8_lanes(a));
+    return _mm256_shuffle_epi8(_mm256_packus_epi16(rg, ba), order);
+}
+
+// The block's source colours as UNORM8 pixels in memory order, raster rows 0..3.
+TILEVK_KERNEL void pack_rgba8_rows(bool bgra, const float src[4][kBlockLanes], __m128i rows[4]) {
     for (int h = 0; h < 2; ++h) {
-        __m256i c[4];
-        for (int ch = 0; ch < 4; ++ch) {
-            const __m256 x = _mm256_loadu_ps(src[ch] + 8 * h);
-            c[ch] = _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(one, x), k255));
-        }
-        const __m256i px = _mm256_shuffle_epi8(
-            _mm256_packus_epi16(_mm256_packs_epi32(c[0], c[1]), _mm256_packs_epi32(c[2], c[3])), order);
+        const __m256i px = pack_row8(bgra, _mm256_loadu_ps(src[0] + 8 * h), _mm256_loadu_ps(src[1] + 8 * h),
+                                     _mm256_loadu_ps(src[2] + 8 * h), _mm256_loadu_ps(src[3] + 8 * h));
         // lanes 0..3 = (0,0) (1,0) (0,1) (1,1), lanes 4..7 = (2,0) (3,0) (2,1) (3,1)
         const __m128i lo = _mm256_castsi256_si128(px), hi = _mm256_extracti128_si256(px, 1);
         rows[2 * h] = _mm_unpacklo_epi64(lo, hi);

@@ -297,19 +297,17 @@ void opaque_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, c
     }
 }
 
-// DrawPlan::uniform_store_4x: the primitive's colour as the opaque store's packed rows of target c (what
-// run_uniform and opaque_rows give; both are the worker's already after the primitive's first block, tested once).
-void uniform_4x_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, __m128i rows[4]) {
-    const uint64_t shade_start = w.shade_sample_start();
-    const bool packed =
-        w.uniform_prim == a.planes && w.uniform_front == a.front_facing && (w.uniform_rows_valid >> c & 1);
-    if (!packed) run_uniform(w, a);
-    w.shade_sample_end(shade_start);
-    if (packed)
+// The primitive's uniform run packed for the opaque store of target c. After the primitive's first block its run and
+// packed rows are the worker's already: what run_uniform and opaque_rows would find, tested once.
+void uniform_rows(FragmentWorker& w, const BlockArgs& a, uint32_t c, bool bgra, __m128i rows[4]) {
+    if (w.uniform_prim == a.planes && w.uniform_front == a.front_facing && (w.uniform_rows_valid >> c & 1)) {
         for (int r = 0; r < 4; ++r) rows[r] = _mm_load_si128(reinterpret_cast<const __m128i*>(w.uniform_rows[c][r]));
-    else
-        opaque_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8,
-                    reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c][0]), rows);
+        return;
+    }
+    const uint64_t shade_start = w.shade_sample_start();
+    run_uniform(w, a);
+    w.shade_sample_end(shade_start);
+    opaque_rows(w, a, c, bgra, reinterpret_cast<const float(*)[kBlockLanes]>(w.block.outputs[c][0]), rows);
 }
 
 // A block inside the framebuffer: shade_block_n<4>'s steps as they fall out in that state (each sample's final mask
@@ -326,8 +324,64 @@ void store_uniform_4x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t 
     if (!(raster_masks[0] | raster_masks[1] | raster_masks[2] | raster_masks[3])) return;
     const auto c = uint32_t(a.plan->uniform_store_4x);
     __m128i rows[4];
-    uniform_4x_rows(w, a, c, rows);
+    uniform_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8, rows);
     store_uniform_4x_block(a.fb->color[c], rows, x, y, raster_masks);
+}
+
+// Block1xPlan: a 1x block inside the framebuffer from coverage to memory in raster order (lane 4 * row + column;
+// half h of a vector = rows 2h and 2h + 1), every value per pixel computed by the block pipeline's operations in its
+// order (lane order only permutes them): z = eval_plane + depth offset, the early depth kernel, the colour either
+// the uniform run's packed rows (opaque_rows) or the copied input fmuladd(dady, py, fmuladd(dadx, px, a0)) * fl(1/w)
+// (interpolate_input, mul_oow) packed by pack_row8, then the opaque row store under the survivors' raster mask.
+void shade_block_1x(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, uint16_t raster) {
+    const DrawPlan& plan = *a.plan;
+    const Block1xPlan& bp = plan.block1x;
+    // make_lane_coords: fl(fl(lane) + fl(block origin)) + offset
+    const fragment::EvalOffset off = fragment::plane_offset(1, -1);
+    const __m256 px = _mm256_add_ps(_mm256_add_ps(_mm256_setr_ps(0, 1, 2, 3, 0, 1, 2, 3), _mm256_set1_ps(float(x))),
+                                    _mm256_set1_ps(off.x));
+    const __m256 by = _mm256_set1_ps(float(y)), oy = _mm256_set1_ps(off.y);
+    const __m256 py[2] = {_mm256_add_ps(_mm256_add_ps(_mm256_setr_ps(0, 0, 0, 0, 1, 1, 1, 1), by), oy),
+                          _mm256_add_ps(_mm256_add_ps(_mm256_setr_ps(2, 2, 2, 2, 3, 3, 3, 3), by), oy)};
+    const bool fused = a.fused;
+    auto eval = [fused, &px](const fragment::Plane& p, __m256 row_y) {
+        const __m256 dadx = _mm256_set1_ps(p.dadx), dady = _mm256_set1_ps(p.dady), a0 = _mm256_set1_ps(p.a0);
+        // -ffp-contract=off keeps the unfused form's two roundings apart
+        return fused ? _mm256_fmadd_ps(dady, row_y, _mm256_fmadd_ps(dadx, px, a0))
+                     : _mm256_add_ps(_mm256_mul_ps(dady, row_y), _mm256_add_ps(_mm256_mul_ps(dadx, px), a0));
+    };
+    uint16_t pass = raster;
+    if (bp.depth) {
+        const fragment::Plane zplane = plane_of(a.planes, 2);
+        const __m256 depth_offset = _mm256_set1_ps(a.planes[kPlaneFloats]);
+        alignas(32) float z[kBlockLanes];
+        for (int h = 0; h < 2; ++h) _mm256_store_ps(z + 8 * h, _mm256_add_ps(eval(zplane, py[h]), depth_offset));
+        const DepthStencilTarget& dst = a.fb->depth_stencil;
+        uint8_t* zorigin = dst.depth + size_t(y) * dst.depth_row_pitch + size_t(x) * depth_bytes(dst.format);
+        pass = fragment::depth_block_raster_avx2(plan.depth, z, raster, zorigin, dst.depth_row_pitch, bp.depth_write);
+        if (!pass) return;
+    }
+    const ColorTarget& t = a.fb->color[bp.target];
+    __m128i rows[4];
+    if (!bp.copy) {
+        uniform_rows(w, a, bp.target, bp.bgra, rows);
+    } else {
+        const float* attribs = a.planes + kPrimHeaderFloats;
+        const fragment::Plane wplane = plane_of(a.planes, 3);
+        for (int h = 0; h < 2; ++h) {
+            __m256 c[4];
+            for (int k = 0; k < 4; ++k) c[k] = eval(plane_of(attribs + bp.plane[k], k), py[h]);
+            if (bp.perspective) {
+                const __m256 oow = _mm256_div_ps(_mm256_set1_ps(1.0f), eval(wplane, py[h]));
+                for (auto& v : c) v = fragment::mul_oow(v, oow);
+            }
+            const __m256i px8 = fragment::detail::pack_row8(bp.bgra, c[0], c[1], c[2], c[3]);
+            rows[2 * h] = _mm256_castsi256_si128(px8);
+            rows[2 * h + 1] = _mm256_extracti128_si256(px8, 1);
+        }
+    }
+    fragment::store_rgba8_raster_rows_avx2(rows, pass, t.data + size_t(y) * t.row_pitch + size_t(x) * 4, t.row_pitch,
+                                           true);
 }
 #endif
 
@@ -402,6 +456,11 @@ void shade_block_n(FragmentWorker& w, const BlockArgs& a, int32_t x, int32_t y, 
     if constexpr (kSamples == 4)
         if (a.plan->uniform_store_4x >= 0 && x + 4 <= a.fb->width && y + 4 <= a.fb->height)
             return store_uniform_4x(w, a, x, y, raster_masks);
+    if constexpr (kSamples == 1)
+        if (a.plan->block1x.ok && x + 4 <= a.fb->width && y + 4 <= a.fb->height) {
+            if (raster_masks[0]) shade_block_1x(w, a, x, y, raster_masks[0]);
+            return;
+        }
 #endif
     Block<kSamples> k;
     k.x = x;
@@ -438,7 +497,7 @@ void shade_uniform_4x_blocks(FragmentWorker& w, const BlockArgs& a, const Block4
     if (count == 0) return;
     const auto c = uint32_t(a.plan->uniform_store_4x);
     __m128i rows[4];
-    uniform_4x_rows(w, a, c, rows);
+    uniform_rows(w, a, c, a.plan->color[c] == ColorPath::kOpaqueBgra8, rows);
     const ColorTarget& t = a.fb->color[c];
     const int32_t last_x = a.fb->width - 4, last_y = a.fb->height - 4;
     for (size_t i = 0; i < count; ++i) {

@@ -58,6 +58,22 @@ struct SquarePlan {
     uint32_t plane[4] = {};   // float offset of each component's slot plane from the first attribute plane
 };
 
+// 1x blocks inside the framebuffer that fragment_block.cpp's fused block kernel (AVX2 build) takes from coverage to
+// memory in raster order, with no lane-order masks or lane arrays in between: a draw without queries, alpha to
+// coverage or alpha to one whose only written target is opaque RGBA8/BGRA8, shaded by a uniform shader or by a copy
+// (colour 0 only) of a vec4 interpolated alike on its four components, with no depth/stencil or the early depth
+// kernel's test (DrawPlan::depth_fast, an early test whose write, if any, is early: no late test runs).
+struct Block1xPlan {
+    bool ok = false;
+    bool copy = false;  // the copied input (SquarePlan's planes), else the uniform run's colour
+    bool perspective = false;
+    bool bgra = false;
+    bool depth = false;        // the early depth test runs (plan.depth)
+    bool depth_write = false;  // ... with its write
+    uint32_t target = 0;
+    uint32_t plane[4] = {};  // copy: float offset of each component's slot plane from the first attribute plane
+};
+
 // What the fast path derived from one draw's state, once per scene (fragment_stage.cpp make_plan).
 struct DrawPlan {
     bool fast = false;              // false: the reference path (unsupported states)
@@ -71,6 +87,7 @@ struct DrawPlan {
     fragment::Rgba8Blend rgba8[kMaxColorTargets];  // ColorPath::kRgba8: blending / partial write masks
     uint8_t color_bytes[kMaxColorTargets] = {};    // bytes per pixel of each target
     SquarePlan square;
+    Block1xPlan block1x;
     // >= 0: a 4x draw whose only written target is this opaque RGBA8/BGRA8 one, shaded by a uniform shader, with no
     // depth/stencil, query, alpha to coverage or alpha to one. Every step of the block pipeline between coverage and
     // store then leaves the masks as they are, so a block inside the framebuffer is the primitive's packed colour

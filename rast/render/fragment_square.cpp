@@ -39,22 +39,6 @@ inline __m256 row_value(__m256 dady, __m256 py, __m256 t, bool fused) {
     return fused ? _mm256_fmadd_ps(dady, py, t) : _mm256_add_ps(_mm256_mul_ps(dady, py), t);
 }
 
-// Eight pixels of RGBA floats -> 32 bytes in memory order (pack_rgba8_pairs' conversion; with eight consecutive
-// pixels in raster order the byte shuffle alone puts them in place). Four named vectors rather than an array: GCC
-// keeps an array of vectors on the stack, and the packs then wait on store forwarding.
-inline __m256i unorm8_lanes(__m256 x) {
-    return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_min_ps(_mm256_set1_ps(1.0f), x), _mm256_set1_ps(255.0f)));
-}
-inline __m256i pack_row8(bool bgra, __m256 r, __m256 g, __m256 b, __m256 a) {
-    const __m256i order = bgra ? _mm256_setr_epi8(8, 4, 0, 12, 9, 5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15, 8, 4, 0, 12, 9,
-                                                  5, 1, 13, 10, 6, 2, 14, 11, 7, 3, 15)
-                               : _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4, 8, 12, 1,
-                                                  5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-    const __m256i rg = _mm256_packs_epi32(unorm8_lanes(r), unorm8_lanes(g));
-    const __m256i ba = _mm256_packs_epi32(unorm8_lanes(b), unorm8_lanes(a));
-    return _mm256_shuffle_epi8(_mm256_packus_epi16(rg, ba), order);
-}
-
 // blend_rgba8.cpp over_pair: every byte adds(mul_norm(s, sa), mul_norm(d, 255 - sa)) in 16-bit lanes.
 inline __m256i over8(__m256i s, __m256i d) {
     const __m256i zero = _mm256_setzero_si256(), half = _mm256_set1_epi16(0x80), inv = _mm256_set1_epi16(0xff);
@@ -113,7 +97,7 @@ void shade_row(const SquareCtx& c, float py_value, int size, uint8_t* row) {
             b = _mm256_mul_ps(b, c.oow);
             a = _mm256_mul_ps(a, c.oow);
         }
-        const __m256i s = pack_row8(bgra, r, g, b, a);
+        const __m256i s = fragment::detail::pack_row8(bgra, r, g, b, a);
         auto* p = reinterpret_cast<__m256i*>(row + size_t(i) * 4);
         if constexpr (kOver) {
             const __m256i d = _mm256_loadu_si256(p);

@@ -103,6 +103,24 @@ uint16_t inside_mask(int32_t x, int32_t y, int32_t width, int32_t height) {
     return m;
 }
 
+// The planes of the copied location's four components (plan.copy_location) when all four are interpolated alike and
+// not flat (flat ones take the uniform run): their slot plane offsets, and whether they divide by w.
+bool copied_planes(const DrawPlan& plan, uint32_t plane[4], bool& perspective) {
+    if (plan.copy_location < 0 || plan.uniform_shader) return false;
+    uint32_t found = 0;
+    geometry::Interp interp = geometry::Interp::kFlat;
+    for (const InputPlan& in : plan.inputs) {
+        if (in.loc != uint32_t(plan.copy_location) || in.comp >= 4) continue;
+        if (found != 0 && in.interp != interp) return false;
+        interp = in.interp;
+        plane[in.comp] = in.plane;
+        found |= 1u << in.comp;
+    }
+    if (found != 0xf || interp == geometry::Interp::kFlat) return false;
+    perspective = interp == geometry::Interp::kPerspective;
+    return true;
+}
+
 // SquarePlan (fragment_plan.h) from a finished plan: whether the fused square kernel reproduces the block pipeline.
 void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     SquarePlan& sq = plan.square;
@@ -123,19 +141,36 @@ void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& p
     } else {
         return;
     }
-    // All four components of the copied location, interpolated alike (flat ones go through the block pipeline).
-    uint32_t found = 0;
-    geometry::Interp interp = geometry::Interp::kFlat;
-    for (const InputPlan& in : plan.inputs) {
-        if (in.loc != uint32_t(plan.copy_location) || in.comp >= 4) continue;
-        if (found != 0 && in.interp != interp) return;
-        interp = in.interp;
-        sq.plane[in.comp] = in.plane;
-        found |= 1u << in.comp;
+    sq.ok = copied_planes(plan, sq.plane, sq.perspective);
+}
+
+// Block1xPlan from a finished plan. The conditions are those under which shade_block_n<1>'s steps leave the final
+// mask equal to the early test's survivors (no discard, sample mask output, alpha to coverage, late test or query)
+// and its colour is write_color_in_place's opaque store of the uniform run's or the copied input's colour.
+void make_block1x_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
+    Block1xPlan& bp = plan.block1x;
+    const PipelineState& pipe = *draw.pipe;
+    if (fb.samples != 1 || !pipe.fragment || draw.samples_passed || pipe.alpha_to_coverage || pipe.alpha_to_one) return;
+    const uint8_t depth_flags = draw.depth_mode & uint8_t(~fragment::kEarlyDepthTestInferred);
+    if (depth_flags != 0) {
+        if (!plan.depth_fast || (depth_flags & ~fragment::kEarlyDepthWrite) != fragment::kEarlyDepthTest) return;
+        bp.depth = true;
+        bp.depth_write = depth_flags & fragment::kEarlyDepthWrite;
     }
-    if (found != 0xf || interp == geometry::Interp::kFlat) return;
-    sq.perspective = interp == geometry::Interp::kPerspective;
-    sq.ok = true;
+    int target = -1;
+    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
+        if (!fb.color[c].data || plan.color[c] == ColorPath::kNone) continue;
+        if (target >= 0) return;  // a second written target
+        target = int(c);
+    }
+    if (target < 0) return;
+    const ColorPath path = plan.color[target];
+    if (path != ColorPath::kOpaqueRgba8 && path != ColorPath::kOpaqueBgra8) return;
+    bp.bgra = path == ColorPath::kOpaqueBgra8;
+    bp.target = uint32_t(target);
+    bp.copy = !plan.uniform_shader;
+    if (bp.copy && (target != 0 || !copied_planes(plan, bp.plane, bp.perspective))) return;
+    bp.ok = true;
 }
 
 // DrawPlan::uniform_store_4x from a finished plan. The conditions are those under which shade_block_n<4> keeps
@@ -264,6 +299,7 @@ void make_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& plan) {
     make_square_plan(draw, fb, plan);
     make_direct_plan(draw, fb, plan);
     make_uniform_store_plan(draw, fb, plan);
+    make_block1x_plan(draw, fb, plan);
 }
 
 }  // namespace

@@ -448,6 +448,46 @@ TEST_F(FragmentStageTest, UniformStore4xWritesTheReferenceBytes) {
     }
 }
 
+// 1x draws of a uniform shader or a copy shader (perspective and noperspective) into one opaque RGBA8 or BGRA8
+// target, without queries, stencil or alpha to coverage, with no depth buffer or D16/D32F under random depth states,
+// take the fused 1x block kernel in the AVX2 build (DrawPlan::block1x): the reference bytes (colour and depth) at 1
+// and 2 threads, and the portable build's. Depth states with a late test (writes off but the test on) or none at all
+// sit beside the kernel's early ones, and edge blocks beside inside ones.
+TEST_F(FragmentStageTest, Block1xWritesTheReferenceBytes) {
+    const Isa before = kernel_isa();
+    std::mt19937 rng(1111);
+    int changed = 0;  // the depth states may reject every fragment of a scene, but not of most scenes
+    for (int iter = 0; iter < 80; ++iter) {
+        SceneDesc d = random_scene(rng, iter);
+        d.samples = 1;
+        d.stencil = false;
+        d.queries = false;
+        d.format0 = rng() % 2 ? fragment::ColorFormat::R8G8B8A8_UNORM : fragment::ColorFormat::B8G8R8A8_UNORM;
+        for (size_t i = 0; i < d.pipes.size(); ++i) {
+            PipelineState& p = d.pipes[i];
+            const int kinds[] = {0, 1, kCopyFs, -1};  // uniform, uniform with FrontFacing, copies
+            d.shaders[i] = kinds[rng() % 4];
+            p.fragment = d.shaders[i] < 0 ? copy_noperspective_.get() : fs_[size_t(d.shaders[i])].get();
+            p.samples = 1;
+            p.alpha_to_coverage = false;
+            p.depth_stencil.stencil_test = false;
+            p.blend[0] = {};  // opaque, every channel written
+            p.blend[1].write_mask = 0;
+        }
+        const Targets ref = render(d, false, 1);
+        changed += ref.color0 != std::vector<uint8_t>(ref.color0.size(), 0x35);
+        for (const Isa isa : {Isa::kAvx2, Isa::kPortable}) {
+            if (!set_kernel_isa_for_testing(isa)) continue;
+            const Targets fast = render(d, true, 1 + unsigned(iter % 2));
+            const char* name = isa == Isa::kAvx2 ? "avx2" : "portable";
+            ASSERT_TRUE(fast.color0 == ref.color0) << name << " colour 0, iter " << iter << ": " << describe(d);
+            ASSERT_TRUE(fast.depth == ref.depth) << name << " depth, iter " << iter << ": " << describe(d);
+        }
+        set_kernel_isa_for_testing(before);
+    }
+    EXPECT_GT(changed, 60);
+}
+
 // Direct runs bind each draw's descriptors once per worker and scene (Program::bind_fragment): draws of one scene
 // with other push constants, and a second scene of the same renderer whose draw records (and their bindings) take
 // the first scene's places, must still see their own. Random scenes whose draws take kPushFs shaders or kFs ones
