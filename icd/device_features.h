@@ -32,7 +32,7 @@ struct Features {
     VkPhysicalDeviceBorderColorSwizzleFeaturesEXT border_color_swizzle{};
     VkPhysicalDeviceVertexInputDynamicStateFeaturesEXT vertex_input_dynamic_state{};
     VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{};
-    VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional_rendering{,
+    VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional_rendering{};
     VkPhysicalDeviceNonSeamlessCubeMapFeaturesEXT non_seamless_cube_map{};
 
     Features();
