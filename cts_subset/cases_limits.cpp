@@ -3,7 +3,7 @@
 // compute.limits.*: one compute stage with 32 storage buffers, 15 uniform buffers of maxUniformBufferRange (64 KiB)
 // each, 64 storage images in one set. Every binding is read or written at both ends of its range, so a driver that
 // drops a binding past its old limit, or clamps a uniform buffer to 16 KiB, gives other words than the analytic ones.
-// rasterization.limits.varyings_128: maxVertexOutputComponents = maxFragmentInputComponents = 128, 32 vec4 varyings
+// rasterization.limits.varyings_128: maxVertexOutputComponents = maxFragmentInputComponents = 128, 31 varyings
 // that each move the output colour.
 #include <cstring>
 #include <string>
@@ -121,19 +121,24 @@ void add_storage_images_case(CaseList& out) {
     });
 }
 
-// Varying k = the vertex colour scaled by (k + 1) / 32 plus the position's x and y times k / 64 (each varying
-// differs from the next across the triangle); the colour is their mean, so a varying dropped or swapped with its
-// neighbour moves every pixel by at least 1/32 of the colour.
+// 128 output components as the validation layer counts them: gl_PerVertex's 7 (position, point size, one clip and
+// one cull distance), 30 vec4 varyings and a float at location 30. Varying k = the vertex colour scaled by
+// (k + 1) / 32 plus the position's x and y times k / 64 (each differs from the next across the triangle); the colour
+// is their mean plus a sixteenth of the float, so a varying dropped or swapped with its neighbour moves every pixel.
 Scene varyings_scene() {
-    constexpr int kVaryings = 32;
-    std::string vs = "#version 450\nlayout(location=0) in vec4 in_pos;\nlayout(location=1) in vec4 in_color;\n";
+    constexpr int kVaryings = 30;
+    std::string vs =
+        "#version 450\nlayout(location=0) in vec4 in_pos;\nlayout(location=1) in vec4 in_color;\n"
+        "layout(location=2) in vec2 in_uv;\nlayout(location=3) in float in_psize;\n";
     std::string fs = "#version 450\nlayout(location=0) out vec4 o;\n";
     for (int k = 0; k < kVaryings; ++k) {
         vs += "layout(location=" + std::to_string(k) + ") out vec4 v" + std::to_string(k) + ";\n";
         fs += "layout(location=" + std::to_string(k) + ") in vec4 v" + std::to_string(k) + ";\n";
     }
-    vs += "void main() {\n  gl_Position = in_pos;\n";
-    fs += "void main() {\n  vec4 s = vec4(0.0);\n";
+    vs +=
+        "layout(location=30) out float last;\nvoid main() {\n  gl_Position = in_pos;\n"
+        "  last = in_uv.x * 0.5 + in_psize * 0.25;\n";
+    fs += "layout(location=30) in float last;\nvoid main() {\n  vec4 s = vec4(0.0);\n";
     for (int k = 0; k < kVaryings; ++k) {
         const std::string v = "v" + std::to_string(k);
         vs += "  " + v + " = in_color * " + std::to_string(k + 1) + ".0 / 32.0 + vec4(in_pos.xy, in_pos.yx) * " +
@@ -141,7 +146,7 @@ Scene varyings_scene() {
         fs += "  s += " + v + (k % 2 ? ".wzyx" : "") + ";\n";
     }
     vs += "}\n";
-    fs += "  o = s / 32.0;\n}\n";
+    fs += "  o = s / 30.0 + vec4(last * 0.0625);\n}\n";
     Draw d;
     d.vertices = {vtxc(-0.9f, -0.8f, {1, 0, 0, 1}), vtxc(0.85f, -0.6f, {0, 1, 0, 0.5f}),
                   vtxc(-0.2f, 0.9f, {0, 0, 1, 0.25f})};
@@ -149,8 +154,7 @@ Scene varyings_scene() {
     d.fragment_glsl = fs;
     Scene s = one_draw(std::move(d));
     s.unsupported = [](const DeviceContext& c) -> std::string {
-        if (c.props.limits.maxVertexOutputComponents < 4 * kVaryings ||
-            c.props.limits.maxFragmentInputComponents < 4 * kVaryings)
+        if (c.props.limits.maxVertexOutputComponents < 128 || c.props.limits.maxFragmentInputComponents < 128)
             return "VkPhysicalDeviceLimits::maxVertexOutputComponents or maxFragmentInputComponents below 128";
         return {};
     };
