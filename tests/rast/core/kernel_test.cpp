@@ -110,6 +110,7 @@ TEST(Kernels, ScalarAndAvx2Agree) {
 #endif
 }
 
+#if TILEVK_SIMD_AVX2  // SampleSteps16 and its kernels exist only in the AVX2 build (tile_kernels.h)
 // The 16-bit 4x kernel (small steps) against mask4x4_samples4_scalar: planes with |a| + |b| up to the bound, block
 // values anywhere in (-2^30, 2^30] (saturated bases) and near 0 (exact sums).
 TEST(Kernels, SampleSteps16MatchesMask4x4Samples4) {
@@ -158,6 +159,7 @@ TEST(Kernels, SampleSteps16MatchesMask4x4Samples4) {
     EXPECT_GT(used, 100000u);
     EXPECT_GT(partial, 10000u);
 }
+#endif  // TILEVK_SIMD_AVX2
 
 // Scalar kernel against a direct 64-bit evaluation of the same formula.
 TEST(Kernels, ScalarMatchesDefinition) {
