@@ -144,6 +144,17 @@ void make_square_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& p
     sq.ok = copied_planes(plan, sq.plane, sq.perspective);
 }
 
+// The one colour target the plan writes, or -1 when it writes none or more than one.
+int sole_written_target(const Framebuffer& fb, const DrawPlan& plan) {
+    int target = -1;
+    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
+        if (!fb.color[c].data || plan.color[c] == ColorPath::kNone) continue;
+        if (target >= 0) return -1;  // a second written target
+        target = int(c);
+    }
+    return target;
+}
+
 // Block1xPlan from a finished plan. The conditions are those under which shade_block_n<1>'s steps leave the final
 // mask equal to the early test's survivors (no discard, sample mask output, alpha to coverage, late test or query)
 // and its colour is write_color_in_place's opaque store of the uniform run's or the copied input's colour.
@@ -157,12 +168,7 @@ void make_block1x_plan(const DrawRecord& draw, const Framebuffer& fb, DrawPlan& 
         bp.depth = true;
         bp.depth_write = depth_flags & fragment::kEarlyDepthWrite;
     }
-    int target = -1;
-    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
-        if (!fb.color[c].data || plan.color[c] == ColorPath::kNone) continue;
-        if (target >= 0) return;  // a second written target
-        target = int(c);
-    }
+    const int target = sole_written_target(fb, plan);
     if (target < 0) return;
     const ColorPath path = plan.color[target];
     if (path != ColorPath::kOpaqueRgba8 && path != ColorPath::kOpaqueBgra8) return;
@@ -182,12 +188,7 @@ void make_uniform_store_plan(const DrawRecord& draw, const Framebuffer& fb, Draw
     if (fb.samples != 4 || !pipe.fragment || !plan.uniform_shader || draw.depth_mode != 0 || draw.samples_passed ||
         pipe.alpha_to_coverage || pipe.alpha_to_one)
         return;
-    int target = -1;
-    for (uint32_t c = 0; c < fb.num_color && c < shader::kMaxColorOutputs; ++c) {
-        if (!fb.color[c].data || plan.color[c] == ColorPath::kNone) continue;
-        if (target >= 0) return;  // a second written target
-        target = int(c);
-    }
+    const int target = sole_written_target(fb, plan);
     if (target < 0) return;
     const ColorPath path = plan.color[target];
     if (path == ColorPath::kOpaqueRgba8 || path == ColorPath::kOpaqueBgra8) plan.uniform_store_4x = target;
