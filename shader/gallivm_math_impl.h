@@ -46,9 +46,17 @@ template <int N>
     return K::select(K::cmp_ult(x, zero), K::splat(__builtin_nanf("")), res);
 }
 
-// lp_build_pow: exp2(log2_safe(x)·y), 0 where x == 0 (unordered: also where x is NaN).
+// a·b with a's NaN (quieted) where both are NaN, as the compiled tier's `vmulps d, a, b` gives (shader/jit/
+// gallivm_ops.cpp). A plain multiplication leaves the order to the C++ compiler, which commutes it freely: the
+// optimised build happened to put a first and the ASan build b.
+[[gnu::always_inline]] inline V mul_nan_of_a(V a, V b) {
+    return K::select(K::cmp_unord(a, a), K::add(a, a), K::mul(a, b));
+}
+
+// lp_build_pow: exp2(log2_safe(x)·y), 0 where x == 0 (unordered: also where x is NaN). The product is the one
+// place where two NaNs meet (log2 of a negative x and a NaN y): log2's wins.
 [[gnu::always_inline]] inline V pow_v(V x, V y) {
-    const V res = exp2_v(K::mul(log2_v(x), y));
+    const V res = exp2_v(mul_nan_of_a(log2_v(x), y));
     return K::select(K::cmp_ueq(x, K::splat(0.0f)), K::splat(0.0f), res);
 }
 

@@ -127,7 +127,7 @@ std::optional<bool> LaneEmitter::gallivm_op(const Inst& in) {
             break;
         default: {  // Pow: exp2(log2(x)·y), 0 where x == 0 or NaN
             const Ymm l = e.log2(x);
-            a_.vmulps(l, l, y);  // log2 first: its NaN wins over y's, as in the AVX2 build
+            a_.vmulps(l, l, y);  // log2 first: its NaN wins over y's (gallivm_math_impl.h mul_nan_of_a)
             d = e.exp2(l);
             a_.vcmpps(e.t[0], x, e.splat(0.0f), kEqUQ);
             a_.vblendvps(d, d, e.splat(0.0f), e.t[0]);

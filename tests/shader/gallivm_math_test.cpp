@@ -60,6 +60,15 @@ TEST(GallivmMath, PowIsExp2OfLog2TimesYWithZeroForZeroAndNaNBases) {
     EXPECT_EQ(bits(one(gallivm::pow, 0.0f, -2.0f)), 0u);
     EXPECT_EQ(bits(one(gallivm::pow, NAN, 2.0f)), 0u);  // the compare is unordered
     EXPECT_TRUE(std::isnan(one(gallivm::pow, -2.0f, 2.0f)));
+    // log2 of a negative base is NaN and so is y: the product keeps log2's NaN (gallivm_math_impl.h mul_nan_of_a,
+    // the compiled tier's operand order) in every build, whatever order the compiler gives a plain multiplication.
+    for (bool portable : {false, true}) {
+        gallivm::force_portable_for_testing(portable, true);
+        EXPECT_EQ(bits(one(gallivm::pow, -2.0f, std::bit_cast<float>(0x7facc4e7u))), 0x7fc00000u) << portable;
+        EXPECT_EQ(bits(one(gallivm::pow, -2.0f, std::bit_cast<float>(0xffc12345u))), 0x7fc00000u) << portable;
+        EXPECT_EQ(bits(one(gallivm::pow, 2.0f, std::bit_cast<float>(0x7fc12345u))), 0x7fc12345u) << portable;
+        gallivm::force_portable_for_testing(false, false);
+    }
     EXPECT_EQ(one(gallivm::pow, 2.0f, 200.0f), INFINITY);
     EXPECT_NEAR(one(gallivm::pow, 0.9f, 32.0f), std::pow(0.9, 32.0), 2e-6);
 }
