@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "buffer.h"
+#include "compute_workers.h"
 #include "execute.h"
 #include "physical_device.h"
 #include "pipeline.h"
@@ -79,11 +80,16 @@ void run_dispatch(ExecState& st, const uint32_t base[3], const uint32_t count[3]
     rast::ThreadPool& pool = worker_pool(st);
     const uint64_t tasks = std::min<uint64_t>(groups, uint64_t(pool.num_workers()) * kTasksPerWorker);
     const std::atomic<bool>* stop = st.stop;
-    const auto run_task = [&](unsigned, size_t task) {
-        static thread_local shader::Scratch scratch;
-        static thread_local std::vector<shader::ComputeBatch> group;  // this workgroup's batches
-        scratch.set_stop_flag(stop);
-        program.reserve(scratch);
+    const std::span<ComputeWorker> workers = compute_workers(st);
+    for (ComputeWorker& w : workers) {  // sized here, so that no worker allocates in its task
+        w.scratch.set_stop_flag(stop);
+        program.reserve(w.scratch);
+        w.group.reserve(batches.size());
+    }
+    const auto run_task = [&](unsigned worker, size_t task) {
+        ComputeWorker& w = workers[worker];
+        std::vector<shader::ComputeBatch>& group = w.group;
+        shader::Scratch& scratch = w.scratch;
         group = batches;
         const uint64_t first = groups * task / tasks, end = groups * (task + 1) / tasks;
         for (uint64_t g = first; g < end; ++g) {

@@ -12,6 +12,7 @@
 
 #include "buffer.h"
 #include "buffer_view.h"
+#include "compute_workers.h"
 #include "descriptor_pool.h"
 #include "execute.h"
 #include "formats.h"
@@ -70,6 +71,7 @@ struct DrawContext {
     rast::RecycledList<Staged> staged;
     shader::Bindings bindings;  // the draw's descriptors, rebuilt per draw in reused storage
     bool warned = false;
+    std::vector<ComputeWorker> compute_workers{pool.num_workers()};  // execute_compute.cpp
 };
 
 DrawContext* create_draw_context(const std::atomic<bool>* stop) {
@@ -470,6 +472,10 @@ void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size
 
 rast::ThreadPool& worker_pool(ExecState& st) {
     return st.draw->pool;
+}
+
+std::span<ComputeWorker> compute_workers(ExecState& st) {
+    return st.draw->compute_workers;
 }
 
 namespace {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 
 #include "rast/core/function_ref.h"
 
@@ -12,6 +13,7 @@ class ThreadPool;
 namespace tilevk::icd {
 
 struct ExecState;
+struct ComputeWorker;
 
 // Calls fn(task) for every task in [0, num_tasks) on the queue's worker threads and returns when all are done.
 // Only while the renderer is idle (outside begin_rendering..finish_rendering): the pool is the renderer's.
@@ -19,5 +21,7 @@ struct ExecState;
 void run_on_workers(ExecState& st, size_t num_tasks, rast::FunctionRef<void(size_t task)> fn);
 // The pool itself, for rast/ work that schedules its own tasks (blits); the same condition applies.
 rast::ThreadPool& worker_pool(ExecState& st);
+// One ComputeWorker per worker of that pool (compute_workers.h).
+std::span<ComputeWorker> compute_workers(ExecState& st);
 
 }  // namespace tilevk::icd
