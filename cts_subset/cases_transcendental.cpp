@@ -77,6 +77,15 @@ void pow_inputs(std::vector<float>& x, std::vector<float>& y) {
             x.push_back(i < 4 ? float(i) / 3 : r.unit());
             y.push_back(p);
         }
+    // Two NaNs meeting in log2(x)·y: log2 of a negative or NaN base is NaN, and so is y; which NaN's bits win is
+    // the order of the multiplication's operands (a NaN base is selected away to 0 after).
+    const float bases[] = {-2.0f, -0.0f - 1e-30f, -INFINITY, fl(0xff812345u)};
+    const float nans[] = {fl(0x7fc12345u), fl(0xffc00000u), fl(0x7fa00001u), fl(0xffbedcbau)};
+    for (float b : bases)
+        for (float n : nans) {
+            x.push_back(b);
+            y.push_back(n);
+        }
     const std::vector<float> s = inputs(12, -20.0f, 20.0f);
     for (size_t i = 0; i < 48; ++i)
         for (size_t j = 0; j < 16; ++j) {
