@@ -107,6 +107,7 @@ class LaneEmitter {
     Ymm fmax(Ymm a, Ymm b);
     Ymm round(Ymm a, uint32_t mode);
     void add_mul(const Inst& in);
+    bool nan_order_free(const Inst& in) const;  // no lane can meet two NaNs in in.a and in.b
     void int_compare(const Inst& in);
     void f2u(const Inst& in);
     void u2f(const Inst& in);

@@ -301,15 +301,28 @@ x86::Ymm LaneEmitter::round(Ymm a, uint32_t mode) {
     return d;
 }
 
+// The operand order decides a lane's result only where both operands are NaNs: with one NaN, the SSE/AVX
+// instructions return that NaN (quieted) whichever operand it is (Intel SDM vol. 1, 4.8.3.5, table 4-7), as the
+// interpreter's do. So it is free when both operands are one register (x * x: the same bits either way) or when
+// one is a constant that is not a NaN.
+bool LaneEmitter::nan_order_free(const Inst& in) const {
+    if (in.a == in.b) return true;
+    const auto not_nan_const = [&](uint32_t r) {
+        return r < an_.is_const.size() && an_.is_const[r] && (an_.const_value[r] & 0x7fffffffu) <= 0x7f800000u;
+    };
+    return not_nan_const(in.a) || not_nan_const(in.b);
+}
+
 // FAdd / FMul with the interpreter's operand order, for the NaN it returns when both are NaN (analysis.h
 // nan_order). The order may differ between the two quarters of this half: then vblendps swaps the operands in the
 // quarters where b comes first (the same IEEE operation lane for lane, a + b and b + a differ only in that NaN).
 void LaneEmitter::add_mul(const Inst& in) {
     const NanOrder lo = nan_order(in.op, 2 * half_), hi = nan_order(in.op, 2 * half_ + 1);
     const bool add = in.op == Op::FAdd;
+    const bool free = nan_order_free(in);
     binary(in, [&](Ymm d, Ymm a, Ymm b) {
         Ymm x = a, y = b;
-        if (lo != hi) {
+        if (lo != hi && !free) {
             const uint32_t b_first = lo == NanOrder::BFirst ? 0x0Fu : 0xF0u;  // the lanes of the b-first quarter
             x = temp(), y = temp();
             a_.vblendps(x, a, b, b_first);

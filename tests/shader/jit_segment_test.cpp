@@ -1,12 +1,14 @@
 // The compiled tier's segment-level shortcuts against the interpreter (shader/jit/lanes.cpp): runs of LoadBufUniform
 // sharing one resolution of their descriptor (load_buf_uniform), and instructions whose results nothing reads left
-// out (LaneEmitter::dead). Both must leave every register the host or a later segment can see as the interpreter
+// out (LaneEmitter::dead), FAdd / FMul without the NaN operand-order blends where no lane can meet two NaNs
+// (LaneEmitter::nan_order_free). All must leave every register the host or a later segment can see as the interpreter
 // leaves it.
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
 
 #include <bit>
 #include <cstring>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,7 +31,9 @@ class JitSegment : public ::testing::Test {
 
 // Runs `p` on both tiers from the same registers; "" when every register that is not segment-local (the ones the
 // host or a later segment reads) has the same bits, else the first difference.
-std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descriptor*>& slots, std::mt19937& rng) {
+// `fill` (when given) then rewrites the random registers.
+std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descriptor*>& slots, std::mt19937& rng,
+                          const std::function<void(std::vector<uint32_t>&)>& fill = nullptr) {
     std::string why;
     auto code = jit::compile(p, &why);
     if (!code) return "not compiled: " + why;
@@ -37,6 +41,7 @@ std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descript
     Scratch::Impl a, b;
     a.regs.resize(size_t(p.num_regs) * kLanes);
     for (auto& w : a.regs) w = uint32_t(rng());
+    if (fill) fill(a.regs);
     a.local.assign(size_t(p.local_words) * kLanes, 0);
     a.slots = slots;
     b.regs = a.regs, b.local = a.local, b.slots = a.slots;
@@ -157,6 +162,65 @@ TEST_F(JitSegment, DeadResultsAreLeftOutAndLiveOnesKept) {
     }
     EXPECT_EQ(bytes_of[kDead], bytes_of[kWithout]);
     EXPECT_GT(bytes_of[kRead], bytes_of[kDead]);  // read, they are emitted
+}
+
+// FAdd / FMul whose operands are one register, or one a constant that is not a NaN, skip the blends that give each
+// quarter the interpreter's operand order (no lane can meet two NaNs); with a NaN constant they keep them. Lanes
+// hold NaNs of many payloads and both signs (so two NaNs meet wherever the order matters), numbers, infinities,
+// zeros; every result is read after a sync point.
+TEST_F(JitSegment, NanOrderFreeOperandsSkipTheBlendsAndMatchTheInterpreter) {
+    constexpr uint32_t kNumber = 2, kNan = 3;  // constant registers: 0.8f and a quiet NaN with a payload
+    constexpr uint32_t kNumberBits = 0x3f4ccccdu, kNanBits = 0xffc0beefu;
+    auto program = [&](uint32_t constant, bool same) {
+        ProgramImpl p;
+        p.num_regs = 16;
+        p.reg_live = 14, p.reg_entry_mask = 15;
+        p.const_regs = {kNumber, kNumberBits, kNan, kNanBits};
+        const uint32_t other = same ? 0 : 1;
+        p.code = {Inst{Op::FMul, 0, 4, 0, other},    Inst{Op::FAdd, 0, 5, 0, other},
+                  Inst{Op::FMul, 0, 6, 0, constant}, Inst{Op::FAdd, 0, 7, constant, 1},
+                  Inst{Op::FMul, 0, 8, constant, 1}, Inst{Op::FAdd, 0, 9, 1, constant}};
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, 14, kNoReg, kNoReg, uint32_t(p.code.size()) + 1});
+        for (uint32_t r = 4; r < 10; ++r) p.code.push_back(Inst{Op::FAdd, 0, 10, r, 10});
+        p.code.push_back(Inst{Op::Halt});
+        return p;
+    };
+    const auto fill = [&](std::vector<uint32_t>& regs) {
+        static constexpr uint32_t kSpecial[] = {0x7fc00000u, 0xffc00000u, 0x7f800001u, 0xff812345u, 0x7fc0abcdu,
+                                                0x7f800000u, 0xff800000u, 0x00000000u, 0x80000000u, 0x3f800000u};
+        for (uint32_t r : {0u, 1u})
+            for (int l = 0; l < kLanes; ++l) {
+                uint32_t& w = regs[r * kLanes + l];
+                if (w % 4 != 0) w = kSpecial[w % std::size(kSpecial)] ^ (w % 3 == 0 ? 0x1234u & (w >> 8) : 0u);
+            }
+        for (int l = 0; l < kLanes; ++l) {
+            regs[kNumber * kLanes + l] = kNumberBits;
+            regs[kNan * kLanes + l] = kNanBits;
+            regs[14 * kLanes + l] = regs[15 * kLanes + l] = ~0u;
+        }
+    };
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr((saved_csr & ~0x6000u) | 0x8040u);
+    std::mt19937 rng(11);
+    for (uint32_t constant : {kNumber, kNan})
+        for (bool same : {false, true})
+            for (int trial = 0; trial < 64; ++trial)
+                ASSERT_EQ(compare_tiers(program(constant, same), {}, rng, fill), "")
+                    << "constant " << constant << " same " << same;
+    _mm_setcsr(saved_csr);
+    // the blends are there to skip only when some half's two quarters take the operands in different orders
+    bool blends = false;
+    for (Op op : {Op::FAdd, Op::FMul})
+        for (int h = 0; h < 2; ++h) blends |= jit::nan_order(op, 2 * h) != jit::nan_order(op, 2 * h + 1);
+    auto bytes = [&](uint32_t constant, bool same) {
+        std::string why;
+        auto code = jit::compile(program(constant, same), &why);
+        EXPECT_NE(code, nullptr) << why;
+        return code ? code->code_bytes : 0;
+    };
+    if (!blends) GTEST_SKIP() << "every half's quarters take FAdd's and FMul's operands in one order: no blends";
+    EXPECT_LT(bytes(kNumber, false), bytes(kNan, false));  // the constant's four ops
+    EXPECT_LT(bytes(kNan, true), bytes(kNan, false));      // x * x and x + x
 }
 
 }  // namespace
