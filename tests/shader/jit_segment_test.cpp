@@ -1,7 +1,8 @@
 // The compiled tier's segment-level shortcuts against the interpreter (shader/jit/lanes.cpp): runs of LoadBufUniform
 // sharing one resolution of their descriptor (load_buf_uniform), and instructions whose results nothing reads left
 // out (LaneEmitter::dead), FAdd / FMul without the NaN operand-order blends where no lane can meet two NaNs
-// (LaneEmitter::nan_order_free). All must leave every register the host or a later segment can see as the interpreter
+// (LaneEmitter::nan_order_free), lane-uniform arithmetic on constants computed while compiling (fold.cpp). All
+// must leave every register the host or a later segment can see as the interpreter
 // leaves it.
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
@@ -221,6 +222,67 @@ TEST_F(JitSegment, NanOrderFreeOperandsSkipTheBlendsAndMatchTheInterpreter) {
     if (!blends) GTEST_SKIP() << "every half's quarters take FAdd's and FMul's operands in one order: no blends";
     EXPECT_LT(bytes(kNumber, false), bytes(kNan, false));  // the constant's four ops
     EXPECT_LT(bytes(kNan, true), bytes(kNan, false));      // x * x and x + x
+}
+
+// Arithmetic on constants into segment-local registers is computed while compiling and not emitted (fold.cpp): a
+// chain (x * x + y, its square root, a quotient, a difference, a division by zero) read by emitted ops, by a lane
+// call (libm's atan2 reads its operands from their homes) and redefined by an emitted op; beside it the cases that
+// must stay emitted: a NaN result (sqrt of -2), results FTZ would flush (1e-20 squared, FLT_MIN halved), a denormal
+// operand (DAZ) and a NaN operand. Under FTZ + DAZ (vertex, fragment) and without (compute), every register read
+// after the sync point equals the interpreter's, and exactly the chain is folded (none of it when it starts from
+// registers that are not constants).
+TEST_F(JitSegment, ConstantArithmeticIsFoldedWhileCompilingAndMatchesTheInterpreter) {
+    // 2: 3.0, 3: 0.5, 4: -2.0, 5: 1e-20, 6: a NaN with a payload, 7: FLT_MIN, 8: a denormal, 9: 0.0
+    const std::vector<uint32_t> constants = {2, 0x40400000u, 3, 0x3f000000u, 4, 0xc0000000u, 5, 0x1e3ce508u,
+                                             6, 0x7fc0beefu, 7, 0x00800000u, 8, 0x00000123u, 9, 0u};
+    auto program = [&](bool chain_constant) {
+        ProgramImpl p;
+        p.num_regs = 34;
+        p.reg_live = 32, p.reg_entry_mask = 33;
+        p.const_regs = constants;
+        if (!chain_constant) p.const_regs.erase(p.const_regs.begin(), p.const_regs.begin() + 4);  // 2 and 3
+        p.code = {Inst{Op::FMul, 0, 10, 2, 2},  Inst{Op::FAdd, 0, 11, 10, 3}, Inst{Op::Sqrt, 0, 12, 11},
+                  Inst{Op::FDiv, 0, 13, 3, 12}, Inst{Op::Sqrt, 0, 14, 4},     Inst{Op::FMul, 0, 15, 5, 5},
+                  Inst{Op::FMul, 0, 16, 7, 3},  Inst{Op::FAdd, 0, 17, 8, 2},  Inst{Op::FMul, 0, 18, 6, 2},
+                  Inst{Op::FDiv, 0, 19, 2, 9},  Inst{Op::FSub, 0, 20, 13, 12}};
+        const uint32_t read[] = {13, 14, 15, 16, 17, 18, 19, 20};
+        // the would-be flushed results copied bit for bit (a float op would read them through DAZ), the rest used
+        for (uint32_t k = 0; k < std::size(read); ++k)
+            p.code.push_back(read[k] == 15 || read[k] == 16 ? Inst{Op::Mov, 0, 21 + k, read[k]}
+                                                            : Inst{Op::FMul, 0, 21 + k, 0, read[k]});
+        p.code.push_back(Inst{Op::Atan2, 0, 29, 12, 1});  // a lane call on a folded operand
+        p.code.push_back(Inst{Op::FMul, 0, 10, 0, 1});    // a folded register redefined, then read
+        p.code.push_back(Inst{Op::FAdd, 0, 30, 10, 11});
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, 32, kNoReg, kNoReg, uint32_t(p.code.size()) + 1});
+        for (uint32_t r = 21; r <= 30; ++r) p.code.push_back(Inst{Op::FAdd, 0, 31, r, 31});
+        p.code.push_back(Inst{Op::Halt});
+        return p;
+    };
+    const auto fill = [&](std::vector<uint32_t>& regs) {
+        for (size_t i = 0; i + 1 < constants.size(); i += 2)
+            for (int l = 0; l < kLanes; ++l) regs[constants[i] * kLanes + l] = constants[i + 1];
+        for (uint32_t r : {0u, 1u})  // small floats, so that the products keep the folded values' bits visible
+            for (int l = 0; l < kLanes; ++l) regs[r * kLanes + l] = 0x3f800000u + (regs[r * kLanes + l] & 0x7fffffu);
+        for (int l = 0; l < kLanes; ++l) regs[32 * kLanes + l] = regs[33 * kLanes + l] = ~0u;
+    };
+    const jit::Analysis an = jit::analyze(program(true));
+    for (uint32_t r = 10; r <= 20; ++r) ASSERT_TRUE(an.local[r]) << "register " << r << " is not segment-local";
+    const unsigned saved_csr = _mm_getcsr();
+    std::mt19937 rng(5);
+    for (unsigned flush : {0x8040u, 0u}) {
+        _mm_setcsr((saved_csr & ~0xE040u) | flush);
+        for (int trial = 0; trial < 16; ++trial)
+            ASSERT_EQ(compare_tiers(program(true), {}, rng, fill), "") << "MXCSR flush bits " << flush;
+    }
+    _mm_setcsr(saved_csr);
+    std::string why;
+    auto folded = jit::compile(program(true), &why);
+    ASSERT_NE(folded, nullptr) << why;
+    auto emitted = jit::compile(program(false), &why);
+    ASSERT_NE(emitted, nullptr) << why;
+    // registers 10, 11, 12, 13, 19 and 20 in each half; none without the constants (the code counts its pool)
+    EXPECT_EQ(folded->folded, 2u * 6u);
+    EXPECT_EQ(emitted->folded, 0u);
 }
 
 }  // namespace
