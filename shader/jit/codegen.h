@@ -67,6 +67,7 @@ class LaneEmitter {
     LaneEmitter(const ProgramImpl& p, const Analysis& an, asmjit::x86::Assembler& a, ConstantPool& pool);
     // Emits code[first, end) for half h. False when an instruction cannot be emitted.
     bool pass(size_t first, size_t end, const std::vector<Uses>& uses, int h);
+    uint32_t folded() const { return folded_; }  // instructions fold() took, per half, so far
 
   private:
     using Ymm = asmjit::x86::Ymm;
@@ -87,6 +88,9 @@ class LaneEmitter {
     void def(uint32_t r, const Ymm& y) { def(reg_key(r), y); }
     void end_instruction();
     bool dead(const Inst& in) const;  // nothing reads its results: not emitted
+    bool fold(const Inst& in);        // a lane-uniform result known here: not emitted (fold.cpp)
+    bool value_of(uint32_t r, uint32_t& bits) const;
+    void forget_value(uint32_t r);
     bool op(const Inst& in);
     // op() by family (lanes.cpp): nullopt when in.op is not of the family, else op()'s answer
     std::optional<bool> float_op(const Inst& in);
@@ -107,6 +111,7 @@ class LaneEmitter {
     Ymm fmax(Ymm a, Ymm b);
     Ymm round(Ymm a, uint32_t mode);
     void add_mul(const Inst& in);
+    bool nan_order_free(const Inst& in) const;  // no lane can meet two NaNs in in.a and in.b
     void int_compare(const Inst& in);
     void f2u(const Inst& in);
     void u2f(const Inst& in);
@@ -130,6 +135,11 @@ class LaneEmitter {
     bool overflow_ = false;
     uint32_t uniform_slot_ = kNoReg;  // the slot whose data and size r8, r9 hold (load_buf_uniform)
     bool inline_gallivm_ = false;     // gallivm_op may emit (gallivm::avx2_build_runs)
+    // Segment-local registers whose value fold() computed in this pass (the same in every lane), with their bits:
+    // they reach a machine register from the constant pool when an emitted instruction reads them (use()).
+    std::vector<uint8_t> known_;
+    std::vector<uint32_t> known_bits_, known_list_;
+    uint32_t folded_ = 0;
 };
 
 // The memory sync ops as the interpreter's lane loops (memory_ops.cpp), at a sync point (every value in its home,

@@ -211,6 +211,7 @@ bool Generator::generate(std::string* why) {
                 return false;
             }
         out_.native_ops += uint32_t(end - pc);
+        out_.folded = lanes_.folded();
         pc = end;
     }
     if (an_.label[n]) a_.bind(labels_[n]);

@@ -34,6 +34,7 @@ struct Code {
     std::unique_ptr<Inst[]> helper_code;  // per helper op: the instruction, then Halt
     uint32_t native_ops = 0, helper_ops = 0;
     uint32_t sample_ops = 0;  // Sample instructions, numbered in code order: Scratch::Impl::samples[k]
+    uint32_t folded = 0;      // lane-wise instructions computed while compiling, once per 8-lane half (fold.cpp)
     size_t code_bytes = 0;
     double compile_ms = 0;
     ~Code();

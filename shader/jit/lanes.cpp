@@ -109,6 +109,8 @@ void segment_uses(const ProgramImpl& p, size_t first, size_t end, std::vector<Us
 LaneEmitter::LaneEmitter(const ProgramImpl& p, const Analysis& an, x86::Assembler& a, ConstantPool& pool)
     : p_(p), an_(an), a_(a), pool_(pool), inline_gallivm_(gallivm::avx2_build_runs()) {
     reg_where_.assign(p.num_regs, -1);
+    known_.assign(p.num_regs, 0);
+    known_bits_.assign(p.num_regs, 0);
     word_where_.assign(std::max(1u, p.local_words), -1);
 }
 
@@ -151,7 +153,8 @@ x86::Ymm LaneEmitter::use(uint64_t key) {
     int p = where(key);
     if (p < 0) {
         p = alloc();
-        a_.vmovups(x86::ymm(p), home(key));
+        const bool known = (key >> 32) == 1 && known_[uint32_t(key)];
+        a_.vmovups(x86::ymm(p), known ? pool_.splat(known_bits_[uint32_t(key)]) : home(key));
         phys_[p].key = key;
         where(key) = int8_t(p);
     }
@@ -186,6 +189,7 @@ void LaneEmitter::def(uint64_t key, Ymm y) {
     const int p = int(y.id());
     int8_t& w = where(key);
     if (w >= 0 && w != p) phys_[w].key = 0;  // the old value (maybe an operand of this instruction) is gone
+    if ((key >> 32) == 1) forget_value(uint32_t(key));
     w = int8_t(p);
     phys_[p].key = key;
     phys_[p].next = next_use(key, true);
@@ -206,15 +210,24 @@ void LaneEmitter::end_instruction() {
 bool LaneEmitter::pass(size_t first, size_t end, const std::vector<Uses>& uses, int h) {
     half_ = h;
     uniform_slot_ = kNoReg;  // the code before this pass (a sync op, the other half's end) may use r8-r11
+    for (uint32_t r : known_list_) known_[r] = 0;  // folded values live within one pass
+    known_list_.clear();
     for (size_t i = first; i < end; ++i) {
         uses_ = &uses[i - first];
         const Inst& in = p_.code[i];
         if (dead(in)) {  // its results' old values (maybe its own operands) are gone all the same
-            for (int k = 0; k < uses_->n; ++k)
-                if (uses_->write[k] && where(uses_->key[k]) >= 0) {
+            for (int k = 0; k < uses_->n; ++k) {
+                if (!uses_->write[k]) continue;
+                if ((uses_->key[k] >> 32) == 1) forget_value(uint32_t(uses_->key[k]));
+                if (where(uses_->key[k]) >= 0) {
                     phys_[where(uses_->key[k])] = Phys{};
                     where(uses_->key[k]) = -1;
                 }
+            }
+            end_instruction();
+            continue;
+        }
+        if (fold(in)) {
             end_instruction();
             continue;
         }
@@ -307,9 +320,10 @@ x86::Ymm LaneEmitter::round(Ymm a, uint32_t mode) {
 void LaneEmitter::add_mul(const Inst& in) {
     const NanOrder lo = nan_order(in.op, 2 * half_), hi = nan_order(in.op, 2 * half_ + 1);
     const bool add = in.op == Op::FAdd;
+    const bool free = nan_order_free(in);
     binary(in, [&](Ymm d, Ymm a, Ymm b) {
         Ymm x = a, y = b;
-        if (lo != hi) {
+        if (lo != hi && !free) {
             const uint32_t b_first = lo == NanOrder::BFirst ? 0x0Fu : 0xF0u;  // the lanes of the b-first quarter
             x = temp(), y = temp();
             a_.vblendps(x, a, b, b_first);
@@ -439,6 +453,8 @@ bool LaneEmitter::load_local(const Inst& in) {
 // (only segment-local registers can be missing there: everything else is written through) and the machine
 // registers are emptied; the result is left in d's home, where the next read finds it.
 void LaneEmitter::lane_call(const Inst& in, const void* fn) {
+    for (uint32_t r : {in.a, in.b})  // a folded operand has no home value yet: to a machine register, spilled below
+        if (r < known_.size() && known_[r]) use(r);
     for (int i = 0; i < 16; ++i) {
         Phys& ph = phys_[i];
         if (ph.key == 0) continue;
@@ -460,6 +476,7 @@ void LaneEmitter::lane_call(const Inst& in, const void* fn) {
     a_.vzeroupper();
     a_.call(rax);
     uniform_slot_ = kNoReg;  // the call clobbered r8-r11 (load_buf_uniform)
+    forget_value(in.d);
 }
 
 // The op families below mirror shader/exec_kernels.h; each answers nullopt for an op not of its family, else

@@ -1,12 +1,15 @@
 // The compiled tier's segment-level shortcuts against the interpreter (shader/jit/lanes.cpp): runs of LoadBufUniform
 // sharing one resolution of their descriptor (load_buf_uniform), and instructions whose results nothing reads left
-// out (LaneEmitter::dead). Both must leave every register the host or a later segment can see as the interpreter
+// out (LaneEmitter::dead), FAdd / FMul without the NaN operand-order blends where no lane can meet two NaNs
+// (LaneEmitter::nan_order_free), lane-uniform arithmetic on constants computed while compiling (fold.cpp). All
+// must leave every register the host or a later segment can see as the interpreter
 // leaves it.
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
 
 #include <bit>
 #include <cstring>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,7 +32,9 @@ class JitSegment : public ::testing::Test {
 
 // Runs `p` on both tiers from the same registers; "" when every register that is not segment-local (the ones the
 // host or a later segment reads) has the same bits, else the first difference.
-std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descriptor*>& slots, std::mt19937& rng) {
+// `fill` (when given) then rewrites the random registers.
+std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descriptor*>& slots, std::mt19937& rng,
+                          const std::function<void(std::vector<uint32_t>&)>& fill = nullptr) {
     std::string why;
     auto code = jit::compile(p, &why);
     if (!code) return "not compiled: " + why;
@@ -37,6 +42,7 @@ std::string compare_tiers(const ProgramImpl& p, const std::vector<const Descript
     Scratch::Impl a, b;
     a.regs.resize(size_t(p.num_regs) * kLanes);
     for (auto& w : a.regs) w = uint32_t(rng());
+    if (fill) fill(a.regs);
     a.local.assign(size_t(p.local_words) * kLanes, 0);
     a.slots = slots;
     b.regs = a.regs, b.local = a.local, b.slots = a.slots;
@@ -157,6 +163,126 @@ TEST_F(JitSegment, DeadResultsAreLeftOutAndLiveOnesKept) {
     }
     EXPECT_EQ(bytes_of[kDead], bytes_of[kWithout]);
     EXPECT_GT(bytes_of[kRead], bytes_of[kDead]);  // read, they are emitted
+}
+
+// FAdd / FMul whose operands are one register, or one a constant that is not a NaN, skip the blends that give each
+// quarter the interpreter's operand order (no lane can meet two NaNs); with a NaN constant they keep them. Lanes
+// hold NaNs of many payloads and both signs (so two NaNs meet wherever the order matters), numbers, infinities,
+// zeros; every result is read after a sync point.
+TEST_F(JitSegment, NanOrderFreeOperandsSkipTheBlendsAndMatchTheInterpreter) {
+    constexpr uint32_t kNumber = 2, kNan = 3;  // constant registers: 0.8f and a quiet NaN with a payload
+    constexpr uint32_t kNumberBits = 0x3f4ccccdu, kNanBits = 0xffc0beefu;
+    auto program = [&](uint32_t constant, bool same) {
+        ProgramImpl p;
+        p.num_regs = 16;
+        p.reg_live = 14, p.reg_entry_mask = 15;
+        p.const_regs = {kNumber, kNumberBits, kNan, kNanBits};
+        const uint32_t other = same ? 0 : 1;
+        p.code = {Inst{Op::FMul, 0, 4, 0, other},    Inst{Op::FAdd, 0, 5, 0, other},
+                  Inst{Op::FMul, 0, 6, 0, constant}, Inst{Op::FAdd, 0, 7, constant, 1},
+                  Inst{Op::FMul, 0, 8, constant, 1}, Inst{Op::FAdd, 0, 9, 1, constant}};
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, 14, kNoReg, kNoReg, uint32_t(p.code.size()) + 1});
+        for (uint32_t r = 4; r < 10; ++r) p.code.push_back(Inst{Op::FAdd, 0, 10, r, 10});
+        p.code.push_back(Inst{Op::Halt});
+        return p;
+    };
+    const auto fill = [&](std::vector<uint32_t>& regs) {
+        static constexpr uint32_t kSpecial[] = {0x7fc00000u, 0xffc00000u, 0x7f800001u, 0xff812345u, 0x7fc0abcdu,
+                                                0x7f800000u, 0xff800000u, 0x00000000u, 0x80000000u, 0x3f800000u};
+        for (uint32_t r : {0u, 1u})
+            for (int l = 0; l < kLanes; ++l) {
+                uint32_t& w = regs[r * kLanes + l];
+                if (w % 4 != 0) w = kSpecial[w % std::size(kSpecial)] ^ (w % 3 == 0 ? 0x1234u & (w >> 8) : 0u);
+            }
+        for (int l = 0; l < kLanes; ++l) {
+            regs[kNumber * kLanes + l] = kNumberBits;
+            regs[kNan * kLanes + l] = kNanBits;
+            regs[14 * kLanes + l] = regs[15 * kLanes + l] = ~0u;
+        }
+    };
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr((saved_csr & ~0x6000u) | 0x8040u);
+    std::mt19937 rng(11);
+    for (uint32_t constant : {kNumber, kNan})
+        for (bool same : {false, true})
+            for (int trial = 0; trial < 64; ++trial)
+                ASSERT_EQ(compare_tiers(program(constant, same), {}, rng, fill), "")
+                    << "constant " << constant << " same " << same;
+    _mm_setcsr(saved_csr);
+    // the blends are there to skip only when some half's two quarters take the operands in different orders
+    bool blends = false;
+    for (Op op : {Op::FAdd, Op::FMul})
+        for (int h = 0; h < 2; ++h) blends |= jit::nan_order(op, 2 * h) != jit::nan_order(op, 2 * h + 1);
+    auto bytes = [&](uint32_t constant, bool same) {
+        std::string why;
+        auto code = jit::compile(program(constant, same), &why);
+        EXPECT_NE(code, nullptr) << why;
+        return code ? code->code_bytes : 0;
+    };
+    if (!blends) GTEST_SKIP() << "every half's quarters take FAdd's and FMul's operands in one order: no blends";
+    EXPECT_LT(bytes(kNumber, false), bytes(kNan, false));  // the constant's four ops
+    EXPECT_LT(bytes(kNan, true), bytes(kNan, false));      // x * x and x + x
+}
+
+// Arithmetic on constants into segment-local registers is computed while compiling and not emitted (fold.cpp): a
+// chain (x * x + y, its square root, a quotient, a difference, a division by zero) read by emitted ops, by a lane
+// call (libm's atan2 reads its operands from their homes) and redefined by an emitted op; beside it the cases that
+// must stay emitted: a NaN result (sqrt of -2), results FTZ would flush (1e-20 squared, FLT_MIN halved), a denormal
+// operand (DAZ) and a NaN operand. Under FTZ + DAZ (vertex, fragment) and without (compute), every register read
+// after the sync point equals the interpreter's, and exactly the chain is folded (none of it when it starts from
+// registers that are not constants).
+TEST_F(JitSegment, ConstantArithmeticIsFoldedWhileCompilingAndMatchesTheInterpreter) {
+    // 2: 3.0, 3: 0.5, 4: -2.0, 5: 1e-20, 6: a NaN with a payload, 7: FLT_MIN, 8: a denormal, 9: 0.0
+    const std::vector<uint32_t> constants = {2, 0x40400000u, 3, 0x3f000000u, 4, 0xc0000000u, 5, 0x1e3ce508u,
+                                             6, 0x7fc0beefu, 7, 0x00800000u, 8, 0x00000123u, 9, 0u};
+    auto program = [&](bool chain_constant) {
+        ProgramImpl p;
+        p.num_regs = 34;
+        p.reg_live = 32, p.reg_entry_mask = 33;
+        p.const_regs = constants;
+        if (!chain_constant) p.const_regs.erase(p.const_regs.begin(), p.const_regs.begin() + 4);  // 2 and 3
+        p.code = {Inst{Op::FMul, 0, 10, 2, 2},  Inst{Op::FAdd, 0, 11, 10, 3}, Inst{Op::Sqrt, 0, 12, 11},
+                  Inst{Op::FDiv, 0, 13, 3, 12}, Inst{Op::Sqrt, 0, 14, 4},     Inst{Op::FMul, 0, 15, 5, 5},
+                  Inst{Op::FMul, 0, 16, 7, 3},  Inst{Op::FAdd, 0, 17, 8, 2},  Inst{Op::FMul, 0, 18, 6, 2},
+                  Inst{Op::FDiv, 0, 19, 2, 9},  Inst{Op::FSub, 0, 20, 13, 12}};
+        const uint32_t read[] = {13, 14, 15, 16, 17, 18, 19, 20};
+        // the would-be flushed results copied bit for bit (a float op would read them through DAZ), the rest used
+        for (uint32_t k = 0; k < std::size(read); ++k)
+            p.code.push_back(read[k] == 15 || read[k] == 16 ? Inst{Op::Mov, 0, 21 + k, read[k]}
+                                                            : Inst{Op::FMul, 0, 21 + k, 0, read[k]});
+        p.code.push_back(Inst{Op::Atan2, 0, 29, 12, 1});  // a lane call on a folded operand
+        p.code.push_back(Inst{Op::FMul, 0, 10, 0, 1});    // a folded register redefined, then read
+        p.code.push_back(Inst{Op::FAdd, 0, 30, 10, 11});
+        p.code.push_back(Inst{Op::JumpIfNone, 0, kNoReg, 32, kNoReg, kNoReg, uint32_t(p.code.size()) + 1});
+        for (uint32_t r = 21; r <= 30; ++r) p.code.push_back(Inst{Op::FAdd, 0, 31, r, 31});
+        p.code.push_back(Inst{Op::Halt});
+        return p;
+    };
+    const auto fill = [&](std::vector<uint32_t>& regs) {
+        for (size_t i = 0; i + 1 < constants.size(); i += 2)
+            for (int l = 0; l < kLanes; ++l) regs[constants[i] * kLanes + l] = constants[i + 1];
+        for (uint32_t r : {0u, 1u})  // small floats, so that the products keep the folded values' bits visible
+            for (int l = 0; l < kLanes; ++l) regs[r * kLanes + l] = 0x3f800000u + (regs[r * kLanes + l] & 0x7fffffu);
+        for (int l = 0; l < kLanes; ++l) regs[32 * kLanes + l] = regs[33 * kLanes + l] = ~0u;
+    };
+    const jit::Analysis an = jit::analyze(program(true));
+    for (uint32_t r = 10; r <= 20; ++r) ASSERT_TRUE(an.local[r]) << "register " << r << " is not segment-local";
+    const unsigned saved_csr = _mm_getcsr();
+    std::mt19937 rng(5);
+    for (unsigned flush : {0x8040u, 0u}) {
+        _mm_setcsr((saved_csr & ~0xE040u) | flush);
+        for (int trial = 0; trial < 16; ++trial)
+            ASSERT_EQ(compare_tiers(program(true), {}, rng, fill), "") << "MXCSR flush bits " << flush;
+    }
+    _mm_setcsr(saved_csr);
+    std::string why;
+    auto folded = jit::compile(program(true), &why);
+    ASSERT_NE(folded, nullptr) << why;
+    auto emitted = jit::compile(program(false), &why);
+    ASSERT_NE(emitted, nullptr) << why;
+    // registers 10, 11, 12, 13, 19 and 20 in each half; none without the constants (the code counts its pool)
+    EXPECT_EQ(folded->folded, 2u * 6u);
+    EXPECT_EQ(emitted->folded, 0u);
 }
 
 }  // namespace
