@@ -560,12 +560,4 @@ template <int kN>
 #endif
 }
 
-TILEVK_KERNEL uint32_t plane_mask4x4(const TilePlane& p, int32_t base) {
-#if TILEVK_SIMD_AVX2
-    return plane_mask4x4_avx2(p, base);
-#else
-    return plane_mask4x4_scalar(p, base);
-#endif
-}
-
 }  // namespace tilevk::rast

@@ -115,13 +115,6 @@ TILEVK_KERNEL void reciprocal_fast(const float w[kBlockLanes], float oow[kBlockL
     reciprocal_scalar(w, oow);
 #endif
 }
-TILEVK_KERNEL void mul_lanes_fast(float a[kBlockLanes], const float oow[kBlockLanes]) {
-#if TILEVK_SIMD_AVX2
-    mul_lanes_avx2(a, oow);
-#else
-    mul_lanes_scalar(a, oow);
-#endif
-}
 
 // One shader input component straight into the shader's lane words (float bits): eval_plane, then * oow when
 // `oow` is not null (perspective). The AVX2 form stores through may_alias vector types; the scalar form copies.

@@ -816,6 +816,34 @@ inline std::vector<uint8_t> texel_data(VkFormat f, size_t texels, uint32_t seed)
     return data;
 }
 
+// 64 halves (16 RGBA16F texels or vertices) drawn from the 16 `specials` in a fixed scatter, each in several
+// channels.
+inline Bytes half_specials(const uint16_t (&specials)[16]) {
+    Bytes data(64 * 2);
+    for (size_t i = 0; i < 64; ++i) {
+        const uint16_t h = specials[(i * 5 + i / 16) % 16];
+        std::memcpy(&data[2 * i], &h, 2);
+    }
+    return data;
+}
+
+// Independent spot check beside the comparison with lavapipe: each signalling NaN 0x7c01 among the 64 halves of
+// `halves` arrives in `out` (one float per half) as the quiet float NaN 0x7fc02000 (quiet bit set, payload moved up
+// 13 bits), and there is at least one.
+inline void expect_signalling_half_nan_quieted(const Bytes& halves, const Bytes& out) {
+    int found = 0;
+    for (size_t i = 0; i < 64; ++i) {
+        uint16_t h;
+        std::memcpy(&h, &halves[2 * i], 2);
+        if (h != 0x7c01) continue;
+        uint32_t got;
+        std::memcpy(&got, &out[4 * i], 4);
+        EXPECT_EQ(got, 0x7fc02000u) << i;
+        ++found;
+    }
+    EXPECT_GT(found, 0);
+}
+
 // Copies tight texels from `src` into level 0 (layers 0..layers-1, `aspect`) of a w x h image in UNDEFINED layout
 // and leaves it SHADER_READ_ONLY.
 inline void upload(Kit& k, const Device::Buffer& src, VkImage img, VkImageAspectFlags aspect, uint32_t w, uint32_t h,

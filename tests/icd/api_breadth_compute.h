@@ -50,6 +50,23 @@ inline void barrier(VkCommandBuffer c, VkPipelineStageFlags src, VkAccessFlags s
     vkCmdPipelineBarrier(c, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
 }
 
+// `code` over `groups` workgroups with the words `x` in storage buffer 0 and two words per input in buffer 1, filled
+// with 0xAD first so that unwritten words show; returns buffer 1.
+inline Bytes dispatch_two_words_per_input(Kit& k, const std::vector<uint32_t>& x, Spv code, uint32_t groups) {
+    Device::Buffer in = k.buffer_of(x, kStorage);
+    Device::Buffer res = k.buffer(VkDeviceSize(x.size()) * 8, kStorage);
+    std::memset(res.map, 0xAD, x.size() * 8);
+    StorageSet s = storage_set(k, {&in, &res});
+    VkPipeline p = compute_pipeline(k, code, s.layout);
+    EXPECT_EQ(k.run([&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
+        vkCmdDispatch(c, groups, 1, 1);
+    }),
+              VK_SUCCESS);
+    return Kit::bytes(res);
+}
+
 // cp_subgroup.comp (`code`: subgroup basic, vote and ballot operations; 16 words per invocation, every one modelled
 // in tests/shader/subgroup_test.cpp) at workgroup size n over three workgroups; inputs 0..199 with lane 5 of every
 // subgroup taking part in the divergent branch. The stage has `flags` and, when `required_size` is not 0, a

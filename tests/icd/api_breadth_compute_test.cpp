@@ -638,18 +638,7 @@ TEST_F(ApiCompute, SubgroupBroadcastDynamicId) {
     const Bytes out = both([](Kit& k) {
         std::vector<uint32_t> x(256);
         for (size_t i = 0; i < x.size(); ++i) x[i] = uint32_t(i * 2654435761u >> 7);
-        Device::Buffer in = k.buffer_of(x, kStorage);
-        Device::Buffer res = k.buffer(VkDeviceSize(x.size()) * 8, kStorage);
-        std::memset(res.map, 0xAD, x.size() * 8);
-        StorageSet s = storage_set(k, {&in, &res});
-        VkPipeline p = compute_pipeline(k, SPV(cp_broadcast_dynamic_comp), s.layout);
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
-            vkCmdDispatch(c, 4, 1, 1);
-        }),
-                  VK_SUCCESS);
-        return Kit::bytes(res);
+        return dispatch_two_words_per_input(k, x, SPV(cp_broadcast_dynamic_comp), 4);
     });
     ASSERT_EQ(out.size(), 256u * 8);
     std::vector<uint32_t> x(256), y(512);

@@ -3,6 +3,7 @@
 // a framebuffer made with those views, on each driver, and tilevk's equal lavapipe's (validation layer on); what
 // tilevk refuses fails by name, and an imageless pass begun without its views renders nothing without crashing.
 #include "api_breadth.h"
+#include "api_breadth_input_scene.h"
 #include "stderr_capture.h"
 
 namespace tilevk::test::breadth {
@@ -189,81 +190,23 @@ TEST_F(ApiImagelessFramebuffer, MsaaDrawClearResolveEqualTheFramebufferWithViews
 // Two subpasses: subpass 0 draws colour (RGBA8) with a depth test (D32); subpass 1 (vkCmdNextSubpass) reads both as
 // input attachments into an RGBA32F attachment: the depth target and the later subpass find the views given at begin.
 Bytes input_scene(Kit& k, bool imageless) {
-    const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, D = VK_FORMAT_D32_SFLOAT, O = VK_FORMAT_R32G32B32A32_SFLOAT;
-    const VkImageUsageFlags col_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT |
-                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                            dep_usage =
-                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT,
-                            out_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    Device::Image col = k.image(C, 32, 32, col_usage), dep = k.image(D, 32, 32, dep_usage),
-                  out = k.image(O, 32, 32, out_usage);
-    VkImageView cv = k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT),
-                dv = k.view(dep.image, D, VK_IMAGE_ASPECT_DEPTH_BIT),
-                ov = k.view(out.image, O, VK_IMAGE_ASPECT_COLOR_BIT);
-    const VkAttachmentReference c0{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-        d0{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-    const VkAttachmentReference in1[2] = {{0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                                          {1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}};
-    const VkAttachmentReference o1{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    std::vector<VkSubpassDescription> subs = {subpass(&c0, &d0), subpass(&o1)};
-    subs[1].inputAttachmentCount = 2;
-    subs[1].pInputAttachments = in1;
-    VkRenderPass rp =
-        k.render_pass({attachment(C, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-                       attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-                                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL),
-                       attachment(O, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)},
-                      subs,
-                      {{0, 1, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                        VK_ACCESS_INPUT_ATTACHMENT_READ_BIT, VK_DEPENDENCY_BY_REGION_BIT}});
-    const Fb fb = framebuffer(k, rp, {cv, dv, ov}, {{C, col_usage}, {D, dep_usage}, {O, out_usage}}, imageless);
-    const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
-    Pipe p0;
-    p0.rp = rp;
-    p0.ds = &ds;
-    VkPipeline pipe0 = k.pipeline(p0);
-    const VkShaderStageFlags F = VK_SHADER_STAGE_FRAGMENT_BIT;
-    VkDescriptorSetLayout dsl =
-        k.set_layout({{0, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 1, F}, {1, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 1, F}});
-    VkPipelineLayout layout = k.pipeline_layout({dsl});
-    VkDescriptorSet set = k.descriptor_set(dsl);
-    VkDescriptorImageInfo ci{VK_NULL_HANDLE, cv, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        di{VK_NULL_HANDLE, dv, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
-    k.write(set, 0, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, nullptr, &ci);
-    k.write(set, 1, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, nullptr, &di);
-    Pipe p1;
-    p1.fs = SPV(ab_subpass_load_frag);
-    p1.rp = rp;
-    p1.subpass = 1;
-    p1.layout = layout;
-    VkPipeline pipe1 = k.pipeline(p1);
-    std::vector<Vertex> verts = kBothTriangles;
-    verts.push_back(v(-1, -1, 0, 0.2f, 0.4f, 0.6f, 1));
-    verts.push_back(v(3, -1, 0, 0.2f, 0.4f, 0.6f, 1));
-    verts.push_back(v(-1, 3, 0, 0.2f, 0.4f, 0.6f, 1));
-    Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    InputScene s(k);
+    VkRenderPass rp = k.render_pass(InputScene::attachments(), s.subpasses(), {InputScene::dependency()});
+    const Fb fb = framebuffer(k, rp, s.views(),
+                              {{InputScene::kColour, InputScene::kColourUsage},
+                               {InputScene::kDepth, InputScene::kDepthUsage},
+                               {InputScene::kOut, InputScene::kOutUsage}},
+                              imageless);
+    s.build(rp);
     EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-        begin(c, rp, fb, {clear_color(0, 0, 0.25f, 1), clear_depth(0.75f), clear_color(0, 0, 0, 0)});
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe0);
-        bind_vertices(c, vb);
-        vkCmdDraw(c, 6, 1, 0, 0);
+        begin(c, rp, fb, InputScene::clears());
+        s.draw_subpass0(c);
         vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_INLINE);
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe1);
-        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-        vkCmdDraw(c, 3, 1, 6, 0);  // covers the whole target
+        s.draw_subpass1(c);
         vkCmdEndRenderPass(c);
     }),
               VK_SUCCESS);
-    Bytes o = k.read(out.image, 32, 32, 16);
-    // At the corner (no triangle of subpass 0): 0.5 of the colour read as .bgra + 0.5 of the vertex colour + 0.25 *
-    // depth 0.75 (ab_subpass_load.frag).
-    float corner[4];
-    std::memcpy(corner, o.data() + (31 * 32 + 0) * 16, 16);
-    EXPECT_NEAR(corner[0], 0.125f + 0.1f + 0.1875f, 1e-3f);
-    EXPECT_NEAR(corner[3], 0.5f + 0.5f + 0.1875f, 1e-3f);
-    return concat({o, k.read(col.image, 32, 32, 4)});
+    return s.read_checked();
 }
 
 TEST_F(ApiImagelessFramebuffer, DepthAndInputAttachmentsAcrossSubpassesEqualTheFramebufferWithViews) {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "api_breadth.h"
+#include "api_breadth_input_scene.h"
 
 namespace tilevk::test::breadth {
 namespace {
@@ -244,90 +245,19 @@ TEST_F(ApiBreadth, SubpassesPreserveAndMixedFormatAttachments) {
 // each pixel into an RGBA32F attachment.
 TEST_F(ApiBreadth, InputAttachmentsReadThePreviousSubpass) {
     both([](Kit& k) {
-        const VkFormat C = VK_FORMAT_R8G8B8A8_UNORM, D = VK_FORMAT_D32_SFLOAT, O = VK_FORMAT_R32G32B32A32_SFLOAT;
-        Device::Image col = k.image(C, 32, 32,
-                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT |
-                                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        Device::Image dep =
-            k.image(D, 32, 32, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT);
-        Device::Image out = k.image(O, 32, 32, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        VkImageView cv = k.view(col.image, C, VK_IMAGE_ASPECT_COLOR_BIT),
-                    dv = k.view(dep.image, D, VK_IMAGE_ASPECT_DEPTH_BIT),
-                    ov = k.view(out.image, O, VK_IMAGE_ASPECT_COLOR_BIT);
-        std::vector<VkAttachmentDescription> atts = {
-            attachment(C, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE),
-            attachment(D, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-                       VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL),
-            attachment(O, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE)};
-        VkAttachmentReference c0{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-            d0{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference in1[2] = {{0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                                        {1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}};
-        VkAttachmentReference o1{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        std::vector<VkSubpassDescription> subs(2);
-        subs[0].pipelineBindPoint = subs[1].pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        subs[0].colorAttachmentCount = 1;
-        subs[0].pColorAttachments = &c0;
-        subs[0].pDepthStencilAttachment = &d0;
-        subs[1].inputAttachmentCount = 2;
-        subs[1].pInputAttachments = in1;
-        subs[1].colorAttachmentCount = 1;
-        subs[1].pColorAttachments = &o1;
-        VkSubpassDependency dep01{
-            0,
-            1,
-            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-            VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-            VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-            VK_ACCESS_INPUT_ATTACHMENT_READ_BIT,
-            VK_DEPENDENCY_BY_REGION_BIT};
-        VkRenderPass rp = k.render_pass(atts, subs, {dep01});
-        VkFramebuffer fb = k.framebuffer(rp, {cv, dv, ov}, 32, 32);
-        const VkPipelineDepthStencilStateCreateInfo ds = depth_state(VK_COMPARE_OP_LESS);
-        Pipe p0;
-        p0.rp = rp;
-        p0.ds = &ds;
-        VkPipeline pipe0 = k.pipeline(p0);
-        const VkShaderStageFlags F = VK_SHADER_STAGE_FRAGMENT_BIT;
-        VkDescriptorSetLayout dsl = k.set_layout(
-            {{0, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 1, F}, {1, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 1, F}});
-        VkPipelineLayout layout = k.pipeline_layout({dsl});
-        VkDescriptorSet set = k.descriptor_set(dsl);
-        VkDescriptorImageInfo ci{VK_NULL_HANDLE, cv, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-            di{VK_NULL_HANDLE, dv, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
-        k.write(set, 0, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, nullptr, &ci);
-        k.write(set, 1, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, nullptr, &di);
-        Pipe p1;
-        p1.fs = SPV(ab_subpass_load_frag);
-        p1.rp = rp;
-        p1.subpass = 1;
-        p1.layout = layout;
-        VkPipeline pipe1 = k.pipeline(p1);
-        std::vector<Vertex> verts = kBothTriangles;
-        verts.push_back(v(-1, -1, 0, 0.2f, 0.4f, 0.6f, 1));
-        verts.push_back(v(3, -1, 0, 0.2f, 0.4f, 0.6f, 1));
-        verts.push_back(v(-1, 3, 0, 0.2f, 0.4f, 0.6f, 1));
-        Device::Buffer vb = k.buffer_of(verts, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        InputScene s(k);
+        VkRenderPass rp = k.render_pass(InputScene::attachments(), s.subpasses(), {InputScene::dependency()});
+        VkFramebuffer fb = k.framebuffer(rp, s.views(), 32, 32);
+        s.build(rp);
         EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            begin_pass(c, rp, fb, 32, 32, {clear_color(0, 0, 0.25f, 1), clear_depth(0.75f), clear_color(0, 0, 0, 0)});
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe0);
-            bind_vertices(c, vb);
-            vkCmdDraw(c, 6, 1, 0, 0);
+            begin_pass(c, rp, fb, 32, 32, InputScene::clears());
+            s.draw_subpass0(c);
             vkCmdNextSubpass(c, VK_SUBPASS_CONTENTS_INLINE);
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe1);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-            vkCmdDraw(c, 3, 1, 6, 0);  // covers the whole target
+            s.draw_subpass1(c);
             vkCmdEndRenderPass(c);
         }),
                   VK_SUCCESS);
-        Bytes o = k.read(out.image, 32, 32, 16);
-        // Independent check at the corner (no triangle of subpass 0 there): colour (0, 0, 0.25, 1) read as
-        // .bgra -> (0.25, 0, 0, 1); 0.5 of it + 0.5 of the vertex colour + 0.25 * depth 0.75.
-        float corner[4];
-        std::memcpy(corner, o.data() + (31 * 32 + 0) * 16, 16);
-        EXPECT_NEAR(corner[0], 0.125f + 0.1f + 0.1875f, 1e-3f);
-        EXPECT_NEAR(corner[3], 0.5f + 0.5f + 0.1875f, 1e-3f);
-        return concat({o, k.read(col.image, 32, 32, 4)});
+        return s.read_checked();
     });
 }
 

@@ -40,20 +40,8 @@ TEST_F(ApiVulkan13, ZeroInitializedWorkgroupMemory) {
     std::mt19937 rng(13);
     std::vector<uint32_t> x(256);
     for (uint32_t& v : x) v = rng() % 1000;
-    const Bytes out = both_on(dev->tilevk, dev->lavapipe, [&x](Kit& k) {
-        Device::Buffer in = k.buffer_of(x, kStorage);
-        Device::Buffer res = k.buffer(VkDeviceSize(x.size()) * 8, kStorage);
-        std::memset(res.map, 0xAD, x.size() * 8);
-        StorageSet s = storage_set(k, {&in, &res});
-        VkPipeline p = compute_pipeline(k, SPV(cp_zero_init_comp), s.layout);
-        EXPECT_EQ(k.run([&](VkCommandBuffer c) {
-            vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, p);
-            vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &s.set, 0, nullptr);
-            vkCmdDispatch(c, 4, 1, 1);
-        }),
-                  VK_SUCCESS);
-        return Kit::bytes(res);
-    });
+    const Bytes out = both_on(dev->tilevk, dev->lavapipe,
+                              [&x](Kit& k) { return dispatch_two_words_per_input(k, x, SPV(cp_zero_init_comp), 4); });
     ASSERT_EQ(out.size(), x.size() * 8);
     std::vector<uint32_t> y(x.size() * 2);
     std::memcpy(y.data(), out.data(), out.size());

@@ -7,16 +7,11 @@
 #include "glsl.h"
 
 using namespace tilevk::shader;
+using tilevk::shader::test::f;
 using tilevk::shader::test::make_program;
+using tilevk::shader::test::u;
 
 namespace {
-
-float f(uint32_t u) {
-    return std::bit_cast<float>(u);
-}
-uint32_t u(float x) {
-    return std::bit_cast<uint32_t>(x);
-}
 
 // Runs a vertex shader with inputs a (location 0, vec4) and b (location 1, vec4) per lane.
 struct VsRun {

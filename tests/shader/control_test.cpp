@@ -7,16 +7,11 @@
 #include "glsl.h"
 
 using namespace tilevk::shader;
+using tilevk::shader::test::f;
 using tilevk::shader::test::make_program;
+using tilevk::shader::test::u;
 
 namespace {
-
-float f(uint32_t x) {
-    return std::bit_cast<float>(x);
-}
-uint32_t u(float x) {
-    return std::bit_cast<uint32_t>(x);
-}
 
 // Fragment shader with `in vec4 v` at location 0 and `out vec4 color` at location 0.
 struct FsRun {

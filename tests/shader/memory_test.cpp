@@ -11,15 +11,11 @@
 #include "shader/jit/jit.h"
 
 using namespace tilevk::shader;
+using tilevk::shader::test::f;
 using tilevk::shader::test::make_program;
+using tilevk::shader::test::u;
 
 namespace {
-float f(uint32_t x) {
-    return std::bit_cast<float>(x);
-}
-uint32_t u(float x) {
-    return std::bit_cast<uint32_t>(x);
-}
 
 template <typename T>
 void put(std::vector<uint8_t>& buf, size_t off, T v) {

@@ -11,18 +11,13 @@
 #include "glsl.h"
 
 using namespace tilevk::shader;
+using tilevk::shader::test::f;
 using tilevk::shader::test::make_program;
+using tilevk::shader::test::u;
 
 namespace {
 
 constexpr float kUnorm8 = float(1.0 / 255.0);  // gallivm's UNORM8 -> float: c * fl(1/255)
-
-float f(uint32_t x) {
-    return std::bit_cast<float>(x);
-}
-uint32_t u(float x) {
-    return std::bit_cast<uint32_t>(x);
-}
 
 // A 3D image n x n x n with a full mip chain (depth halves too), tightly packed level after level; texel bytes
 // from `fill(level, x, y, z, out)`.

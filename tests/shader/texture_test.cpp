@@ -11,7 +11,9 @@
 #include "shader/texture_fixed8.h"
 
 using namespace tilevk::shader;
+using tilevk::shader::test::f;
 using tilevk::shader::test::make_program;
+using tilevk::shader::test::u;
 
 namespace {
 // gallivm's UNORM8 -> float: a multiply by fl(1/255), not a division (lp_build_unsigned_norm_to_float).
@@ -25,12 +27,6 @@ float srgb_decode(uint8_t u8) {
     if (x <= 15.0f) return x * (1.0f / (12.6f * 255.0f));
     return std::fma(std::fma(x2, 0.3012f / (255.0f * 255.0f * 255.0f), 0.0030f / 255.0f), x,
                     std::fma(x2, 0.6935f / (255.0f * 255.0f), 0.0023f));
-}
-float f(uint32_t x) {
-    return std::bit_cast<float>(x);
-}
-uint32_t u(float x) {
-    return std::bit_cast<uint32_t>(x);
 }
 
 // An RGBA8 image 8x8 with a full mip chain; texel (x, y) of level L = (x*16+L, y*16, 40*L, 255).

@@ -66,20 +66,6 @@ TEST(Snap, RoundHalfAwayFromZero) {
     EXPECT_FALSE(snap_round_half_away(16384.0f, &v));
 }
 
-using PixelSet = std::set<std::tuple<int, int, int>>;  // (x, y, sample)
-
-PixelSet covered(Scene& scene, Method m) {
-    ThreadPool pool(1);
-    GridConsumer g = render(scene, m, pool);
-    PixelSet out;
-    const SceneConfig& c = scene.config();
-    for (int y = 0; y < c.height; ++y)
-        for (int x = 0; x < c.width; ++x)
-            for (int s = 0; s < c.samples; ++s)
-                if (g.count[g.idx(x, y, s)]) out.insert({x, y, s});
-    return out;
-}
-
 TriangleInput tri(float x0, float y0, float x1, float y1, float x2, float y2) {
     TriangleInput t;
     t.x[0] = x0, t.y[0] = y0, t.x[1] = x1, t.y[1] = y1, t.x[2] = x2, t.y[2] = y2;
@@ -93,7 +79,7 @@ const Method kAllExact[] = {Method::kReference, Method::kHier, Method::kBBox};
 // top/left -> samples on them are in; the hypotenuse x+y=5 (window) is a right/bottom edge -> the centres with
 // px+py == 4 are out. By hand: {(px,py): px,py >= 0, px+py <= 3}, 10 pixels.
 TEST(FillRule, TopLeftOnSamplePoints1x) {
-    PixelSet expect;
+    SampleSet expect;
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x + y <= 3; ++x) expect.insert({x, y, 0});
     for (bool reverse : {false, true}) {
@@ -110,7 +96,7 @@ TEST(FillRule, TopLeftOnSamplePoints1x) {
 // The complementary triangle (4.5,0.5) (4.5,4.5) (0.5,4.5): right edge x=4.5 and bottom edge y=4.5 exclude their
 // samples; the diagonal is its top-left edge, so centres with px+py == 4 are in. By hand: px,py <= 3, px+py >= 4.
 TEST(FillRule, ComplementOnSamplePoints1x) {
-    PixelSet expect;
+    SampleSet expect;
     for (int y = 0; y <= 3; ++y)
         for (int x = 0; x <= 3; ++x)
             if (x + y >= 4) expect.insert({x, y, 0});
@@ -126,7 +112,7 @@ TEST(FillRule, ComplementOnSamplePoints1x) {
 // exactly on the left edge (left -> in); sample 2 at x = 0.125 is outside; pixel 1's samples are all inside.
 // Samples (y = 32,96,160,224 /256) are strictly inside [0,1]. x = 2 is the right edge: no sample of pixel 2.
 TEST(FillRule, LeftEdgeThroughSample4x) {
-    PixelSet expect = {{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {1, 0, 1}, {1, 0, 2}, {1, 0, 3}};
+    SampleSet expect = {{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {1, 0, 1}, {1, 0, 2}, {1, 0, 3}};
     for (Method m : kAllExact) {
         Scene scene({.width = 64, .height = 64, .samples = 4});
         ASSERT_EQ(scene.add_triangle(tri(0.375f, 0, 2, 0, 0.375f, 1)), SetupStatus::kAccepted);
@@ -138,7 +124,7 @@ TEST(FillRule, LeftEdgeThroughSample4x) {
 // 4x: horizontal top edge at y = 32/256 passes through sample 0 (top -> in); bottom edge at y = 160/256 passes
 // through sample 2 (bottom -> out). x spans the whole pixel [0,1]. In: sample 0 (y 32) and sample 1 (y 96).
 TEST(FillRule, TopAndBottomEdgesThroughSamples4x) {
-    PixelSet expect = {{0, 0, 0}, {0, 0, 1}};
+    SampleSet expect = {{0, 0, 0}, {0, 0, 1}};
     for (Method m : kAllExact) {
         Scene scene({.width = 64, .height = 64, .samples = 4});
         const float t = 32.0f / 256, b = 160.0f / 256;
@@ -266,11 +252,11 @@ TEST(Box, HalfOpenTopLeft) {
         b.x0 = 256, b.x1 = 768, b.y0 = 0, b.y1 = 256;
         b.common.clip = {0, 0, 64, 64};
         ASSERT_EQ(s1.add_box(b), SetupStatus::kAccepted);
-        EXPECT_EQ(covered(s1, m), (PixelSet{{1, 0, 0}, {2, 0, 0}})) << to_string(m);
+        EXPECT_EQ(covered(s1, m), (SampleSet{{1, 0, 0}, {2, 0, 0}})) << to_string(m);
         Scene s4({.width = 64, .height = 64, .samples = 4});
         b.x0 = 96, b.x1 = 352;
         ASSERT_EQ(s4.add_box(b), SetupStatus::kAccepted);
-        EXPECT_EQ(covered(s4, m), (PixelSet{{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 2}})) << to_string(m);
+        EXPECT_EQ(covered(s4, m), (SampleSet{{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 2}})) << to_string(m);
     }
 }
 
@@ -294,7 +280,7 @@ TEST(Convex, FourPlanesMatchBox) {
                 c({.width = 64, .height = 64, .samples = samples});
             ASSERT_EQ(a.add_convex(cv), SetupStatus::kAccepted);
             ASSERT_EQ(c.add_box(b), SetupStatus::kAccepted);
-            const PixelSet pa = covered(a, m);
+            const SampleSet pa = covered(a, m);
             EXPECT_EQ(pa, covered(c, m)) << to_string(m);
             EXPECT_FALSE(pa.empty());
         }

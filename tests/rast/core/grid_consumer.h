@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <random>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "rast/core/coverage.h"
@@ -118,6 +120,22 @@ inline GridConsumer render(Scene& scene, Method method, ThreadPool& pool) {
     scene.set_method(method);
     scene.rasterize(g, pool);
     return g;
+}
+
+// The samples a render covers, as (x, y, sample).
+using SampleSet = std::set<std::tuple<int, int, int>>;
+
+// The samples `scene` covers with `method` on one thread (each counted at least once).
+inline SampleSet covered(Scene& scene, Method method) {
+    ThreadPool pool(1);
+    GridConsumer g = render(scene, method, pool);
+    SampleSet out;
+    const SceneConfig& c = scene.config();
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x)
+            for (int s = 0; s < c.samples; ++s)
+                if (g.count[g.idx(x, y, s)]) out.insert({x, y, s});
+    return out;
 }
 
 }  // namespace tilevk::rast::test

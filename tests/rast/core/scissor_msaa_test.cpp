@@ -12,21 +12,7 @@
 namespace tilevk::rast::test {
 namespace {
 
-using SampleSet = std::set<std::tuple<int, int, int>>;  // (x, y, sample)
-
 const Method kAllExact[] = {Method::kReference, Method::kHier, Method::kBBox};
-
-SampleSet covered(Scene& scene, Method m) {
-    ThreadPool pool(1);
-    GridConsumer g = render(scene, m, pool);
-    SampleSet out;
-    const SceneConfig& c = scene.config();
-    for (int y = 0; y < c.height; ++y)
-        for (int x = 0; x < c.width; ++x)
-            for (int s = 0; s < c.samples; ++s)
-                if (g.count[g.idx(x, y, s)]) out.insert({x, y, s});
-    return out;
-}
 
 // A triangle far larger than the target: its bbox crosses every side of any clip rect.
 TriangleInput huge_triangle(const ClipRect& clip) {
