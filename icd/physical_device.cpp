@@ -80,7 +80,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.mipmapPrecisionBits = 4;
     l.maxDrawIndexedIndexValue = UINT32_MAX;  // fullDrawIndexUint32: indices are 32-bit all the way
     l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
-    l.maxSamplerLodBias = 2.0f;
+    // lavapipe's 16 (PIPE_CAPF_MAX_TEXTURE_LOD_BIAS). The bias is added unclamped after the shader's, as lavapipe does
+    // (shader/texture.cpp final_lambda, shader/jit/sample_rgba8.cpp select_levels); cts texture.lod_bias.*.
+    l.maxSamplerLodBias = 16.0f;
     l.maxSamplerAnisotropy = 16.0f;  // lavapipe's (lvp_device.c)
     l.maxViewports = kMaxViewports;
     l.maxViewportDimensions[0] = l.maxViewportDimensions[1] = kMaxImageDimension;
