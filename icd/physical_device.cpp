@@ -8,6 +8,7 @@
 
 #include "device_features.h"
 #include "device_properties.h"
+#include "dynamic_state.h"
 #include "entrypoints.h"
 #include "extensions.h"
 #include "formats.h"
@@ -58,8 +59,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxDescriptorSetSampledImages = 96;
     l.maxDescriptorSetStorageImages = 256;
     l.maxDescriptorSetInputAttachments = 4;
-    l.maxVertexInputAttributes = 16;
-    l.maxVertexInputBindings = 16;
+    // lavapipe's 32 (dynamic_state.h kMaxVertexInputs); api_breadth VertexInputs32BindingsAtTheLimit.
+    l.maxVertexInputAttributes = kMaxVertexInputs;
+    l.maxVertexInputBindings = kMaxVertexInputs;
     l.maxVertexInputAttributeOffset = 2047;
     l.maxVertexInputBindingStride = 2048;
     // 32 vec4 locations between the stages (shader/program.h kMaxLocations), lavapipe's 128 components; cts
