@@ -139,6 +139,7 @@ Texture make_bc_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& 
     si.mipmapMode = t.mip_mode;
     si.addressModeU = si.addressModeV = si.addressModeW = t.wrap;
     si.maxLod = t.max_lod;
+    si.mipLodBias = t.lod_bias;
     si.borderColor = t.border;
     vk_check(vkCreateSampler(c.device, &si, nullptr, &tex.sampler), "vkCreateSampler");
     VkDevice dev = c.device;

@@ -5,12 +5,16 @@
 // drops a binding past its old limit, or clamps a uniform buffer to 16 KiB, gives other words than the analytic ones.
 // rasterization.limits.varyings_128: maxVertexOutputComponents = maxFragmentInputComponents = 128, 31 varyings
 // that each move the output colour.
+// texture.lod_bias.*: VkSamplerCreateInfo::mipLodBias up to maxSamplerLodBias (lavapipe's 16), added to an implicit
+// LOD, a shader bias and an explicit LOD.
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "case.hpp"
 #include "compute_case.hpp"
+#include "texture_case.hpp"
 #include "vk_context.hpp"
 
 namespace tilevk::cts {
@@ -161,6 +165,71 @@ Scene varyings_scene() {
     return s;
 }
 
+// A 256x256 gradient of 9 levels, each tinted (render_objects.cpp texel), mip LINEAR or NEAREST, REPEAT: the
+// level and the blend weight between two levels show in every pixel of the RGBA32F target. REPEAT on a
+// power-of-two RGBA8 view is the compiled tier's sampler (shader/jit/sample_rgba8.cpp) as well as the interpreter's.
+TextureSpec lod_bias_texture(float bias, VkSamplerMipmapMode mip) {
+    TextureSpec t;
+    t.pattern = TexPattern::kGradient;
+    t.width = t.height = 256;
+    t.mip_levels = 9;
+    t.mag = t.min = VK_FILTER_LINEAR;
+    t.mip_mode = mip;
+    t.lod_bias = bias;
+    return t;
+}
+
+// One textured quad of `t`, `px` pixels wide, whose implicit LOD is about `lambda` (rho = u1 * 256 / px texels a
+// pixel), its right edge projected (w = 3) so that the LOD falls by log2(3) across it; `body` writes o_color.
+Scene lod_bias_scene(const TextureSpec& t, float lambda, float px, const std::string& body) {
+    QuadUv q;
+    q.u1 = std::exp2(lambda) * px / 256.0f;
+    q.x_scale = px / 64.0f;
+    q.projected = true;
+    return textured_nd(textured_quad(t, q), "sampler2D", body);
+}
+
+// The sampler's bias on implicit LODs that it carries to the middle of the mip chain (1.3 + bias below 0 puts
+// the LOD near 1.3; a positive bias goes past the last level, where the LOD clamps to it), then on an explicit LOD
+// (textureLod: lavapipe adds the sampler's bias to it, lp_build_lod_selector) so that the sum runs from -12 to 12
+// across the 64 pixels, then with a
+// shader bias whose sum with the sampler's passes 16 (lavapipe clamps neither the sum nor either bias, only the
+// LOD to the sampler's min/max and the view's levels).
+void add_lod_bias_cases(CaseList& out) {
+    struct Bias {
+        const char* name;
+        float v;
+    };
+    const Bias biases[] = {{"3_5", 3.5f}, {"6_25", 6.25f},     {"minus_2_75", -2.75f}, {"minus_15_75", -15.75f},
+                           {"16", 16.0f}, {"minus_16", -16.0f}};
+    for (VkSamplerMipmapMode mip : {VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST}) {
+        const std::string m = mip == VK_SAMPLER_MIPMAP_MODE_LINEAR ? "_mip_linear" : "_mip_nearest";
+        for (const Bias& b : biases) {
+            const TextureSpec t = lod_bias_texture(b.v, mip);
+            // below 0: the implicit LOD that the bias brings to 1.3 (coordinates below 2^22 texels on 8 pixels)
+            const float lambda = b.v < 0.0f ? 1.3f - b.v : 2.4f, px = b.v < 0.0f ? 8.0f : 64.0f;
+            out.push_back({"texture.lod_bias.implicit_" + std::string(b.name) + m,
+                           [=] { return lod_bias_scene(t, lambda, px, "    o_color = texture(tex, v_uv);\n"); }});
+            out.push_back({"texture.lod_bias.explicit_lod_" + std::string(b.name) + m, [=] {
+                               return lod_bias_scene(
+                                   t, 0.0f, 64.0f,
+                                   "    o_color = textureLod(tex, v_uv, gl_FragCoord.x * 0.375 - 12.0 - (" +
+                                       std::to_string(b.v) + "));\n");
+                           }});
+        }
+        // sampler bias 16 plus a shader bias of 4, and -16 plus -4 on an implicit LOD of 18.5 (the Vulkan
+        // formula clamps the sum to maxSamplerLodBias: level 2.5 where lavapipe magnifies)
+        out.push_back({"texture.lod_bias.sum_past_16" + m, [=] {
+                           return lod_bias_scene(lod_bias_texture(16.0f, mip), -2.6f, 64.0f,
+                                                 "    o_color = texture(tex, v_uv, 4.0);\n");
+                       }});
+        out.push_back({"texture.lod_bias.sum_past_minus_16" + m, [=] {
+                           return lod_bias_scene(lod_bias_texture(-16.0f, mip), 18.5f, 8.0f,
+                                                 "    o_color = texture(tex, v_uv, -4.0);\n");
+                       }});
+    }
+}
+
 }  // namespace
 
 void add_compute_limit_cases(CaseList& out) {
@@ -168,6 +237,7 @@ void add_compute_limit_cases(CaseList& out) {
     add_uniform_buffers_case(out);
     add_storage_images_case(out);
     out.push_back({"rasterization.limits.varyings_128", [] { return varyings_scene(); }});
+    add_lod_bias_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -323,6 +323,7 @@ Texture make_texture(const DeviceContext& c, Cleanup& gc, const TextureSpec& t) 
     si.addressModeU = si.addressModeV = si.addressModeW = t.wrap;
     si.addressModeW = t.wrap_w.value_or(t.wrap);
     si.maxLod = t.max_lod;
+    si.mipLodBias = t.lod_bias;
     si.borderColor = t.border;
     si.anisotropyEnable = t.max_anisotropy > 0.0f ? VK_TRUE : VK_FALSE;
     si.maxAnisotropy = t.max_anisotropy;

@@ -52,15 +52,15 @@ struct TextureSpec {
     VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
     float max_lod = 16.0f;
     // Cube textures (cases_texture_cube.cpp): a CUBE view when 6, a CUBE_ARRAY view of that many layers when a
-    // larger multiple of 6 (square: width is the size); their format (R8G8B8A8_UNORM or D32_SFLOAT), sampler
-    // LOD bias and depth comparison.
+    // larger multiple of 6 (square: width is the size); their format (R8G8B8A8_UNORM or D32_SFLOAT) and
+    // depth comparison.
     uint32_t cube_layers = 0;
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     // VK_EXT_custom_border_color: `border` must be VK_BORDER_COLOR_{FLOAT,INT}_CUSTOM_EXT (texture.custom_border.*)
     std::optional<VkClearColorValue> custom_border;
     // samplerFilterMinmax (VK_EXT_sampler_filter_minmax; texture.minmax.*, on an R8_UNORM `format`)
     VkSamplerReductionMode reduction = VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE;
-    float lod_bias = 0.0f;
+    float lod_bias = 0.0f;  // VkSamplerCreateInfo::mipLodBias, for every kind of texture (texture.lod_bias.*)
     // above 0: anisotropyEnable with this maxAnisotropy (feature samplerAnisotropy; texture.aniso.*)
     float max_anisotropy = 0.0f;
     bool compare = false;

@@ -16,6 +16,10 @@ enum class Topology : uint8_t;
 
 namespace tilevk::icd {
 
+// maxVertexInputAttributes and maxVertexInputBindings (lavapipe's 32): every vertex-input table of icd/ is this
+// long, as rast/render's are (kMaxVertexInputs, checked in execute_draw.cpp).
+inline constexpr uint32_t kMaxVertexInputs = 32;
+
 // The dynamic states tilevk implements, one bit each in Pipeline::dynamic.
 enum class DynamicState : uint8_t {
     kViewport,
@@ -78,7 +82,7 @@ std::string dynamic_mask_of(const VkPipelineDynamicStateCreateInfo* info, Dynami
 
 // vkCmdSetVertexInputEXT's bindings and attributes, translated (command_buffer_dynamic.cpp).
 struct VertexInputValues {
-    static constexpr uint32_t kMax = 16;  // maxVertexInputBindings / maxVertexInputAttributes
+    static constexpr uint32_t kMax = kMaxVertexInputs;
     struct Attribute {
         uint32_t location, binding, offset;
         VkFormat format;
@@ -104,7 +108,7 @@ struct DynamicValues {
     VkCullModeFlags cull_mode = VK_CULL_MODE_NONE;
     VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    static constexpr uint32_t kMaxBindings = 16;
+    static constexpr uint32_t kMaxBindings = kMaxVertexInputs;
     uint32_t strides[kMaxBindings] = {};
     bool depth_test = false, depth_write = false, depth_bounds_test = false, stencil_test = false;
     VkCompareOp depth_compare = VK_COMPARE_OP_NEVER;

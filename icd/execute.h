@@ -45,7 +45,7 @@ struct BoundSets {
 // bind points have their own pipeline and sets; push constants are shared (they belong to the layout, not the
 // bind point).
 struct BoundState {
-    static constexpr uint32_t kMaxSets = BoundSets::kMaxSets, kMaxVertexBuffers = 16,
+    static constexpr uint32_t kMaxSets = BoundSets::kMaxSets, kMaxVertexBuffers = kMaxVertexInputs,
                               kMaxDynamicOffsets = BoundSets::kMaxDynamicOffsets;
     Pipeline* pipeline = nullptr;  // graphics
     BoundSets graphics;

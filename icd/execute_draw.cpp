@@ -25,6 +25,7 @@
 #include "rast/render/linear_mode.h"
 #include "rast/render/renderer.h"
 #include "rast/render/stage_timer.h"
+#include "rast/render/vertex_stage.h"
 #include "render_pass.h"
 #include "render_state.h"
 #include "sampler.h"
@@ -34,6 +35,7 @@ namespace tilevk::icd {
 
 // The limits physical_device.cpp reports are the sizes of what holds them here.
 static_assert(BoundState::kMaxSets == kMaxBoundDescriptorSets);
+static_assert(rast::render::kMaxVertexInputs == kMaxVertexInputs);  // maxVertexInputAttributes / Bindings
 static_assert(rast::render::kMaxColorTargets == int(kMaxColorAttachments) &&
               shader::kMaxColorOutputs == int(kMaxColorAttachments));
 

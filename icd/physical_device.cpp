@@ -8,6 +8,7 @@
 
 #include "device_features.h"
 #include "device_properties.h"
+#include "dynamic_state.h"
 #include "entrypoints.h"
 #include "extensions.h"
 #include "formats.h"
@@ -58,8 +59,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.maxDescriptorSetSampledImages = 96;
     l.maxDescriptorSetStorageImages = 256;
     l.maxDescriptorSetInputAttachments = 4;
-    l.maxVertexInputAttributes = 16;
-    l.maxVertexInputBindings = 16;
+    // lavapipe's 32 (dynamic_state.h kMaxVertexInputs); api_breadth VertexInputs32BindingsAtTheLimit.
+    l.maxVertexInputAttributes = kMaxVertexInputs;
+    l.maxVertexInputBindings = kMaxVertexInputs;
     l.maxVertexInputAttributeOffset = 2047;
     l.maxVertexInputBindingStride = 2048;
     // 32 vec4 locations between the stages (shader/program.h kMaxLocations), lavapipe's 128 components; cts
@@ -80,7 +82,9 @@ VkPhysicalDeviceLimits make_limits() {
     l.mipmapPrecisionBits = 4;
     l.maxDrawIndexedIndexValue = UINT32_MAX;  // fullDrawIndexUint32: indices are 32-bit all the way
     l.maxDrawIndirectCount = UINT32_MAX;      // multiDrawIndirect: execute_draw.cpp loops over the records
-    l.maxSamplerLodBias = 2.0f;
+    // lavapipe's 16 (PIPE_CAPF_MAX_TEXTURE_LOD_BIAS). The bias is added unclamped after the shader's, as lavapipe does
+    // (shader/texture.cpp final_lambda, shader/jit/sample_rgba8.cpp select_levels); cts texture.lod_bias.*.
+    l.maxSamplerLodBias = 16.0f;
     l.maxSamplerAnisotropy = 16.0f;  // lavapipe's (lvp_device.c)
     l.maxViewports = kMaxViewports;
     l.maxViewportDimensions[0] = l.maxViewportDimensions[1] = kMaxImageDimension;

@@ -17,7 +17,7 @@
 
 namespace tilevk::rast::render {
 
-// At most this many vertex attributes, vertex buffer bindings and bound vertex buffers (the driver reports 16).
+// At most this many vertex attributes, vertex buffer bindings and bound vertex buffers (icd/ reports 32).
 inline constexpr size_t kMaxVertexInputs = 32;
 
 // Where the vertex shader's inputs come from: one attribute per shader input location.
