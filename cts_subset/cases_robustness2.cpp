@@ -30,7 +30,7 @@ std::vector<uint32_t> counting(uint32_t n, uint32_t first) {
 // Loads through a null storage buffer, uniform buffer and storage texel buffer read 0 (a null texel has no alpha
 // 1: llvmpipe's format-NONE texture returns all zeros), stores and atomics through them do nothing and atomics
 // return 0, sizes are 0. The buffers behind the bindings are never touched. The load comes before the store: lavapipe's
-// NIR forwards a store to a later load of the same invocation (copy propagation), so it would read the 7 back.
+// NIR forwards a store to a later load of the same invocation (nir_opt_copy_prop_vars), so it would read the 7 back.
 void add_null_buffers_case(CaseList& out) {
     ComputeSpec s;
     s.buffers = {buffer_of(std::vector<uint32_t>(16 * 8, kMarker)), null_buffer(counting(16, 1), false),

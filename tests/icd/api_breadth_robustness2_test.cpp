@@ -39,8 +39,8 @@ TEST_F(ApiRobustness2, FeaturesAndPropertiesAsLavapipe) {
     }
 }
 
-// Without nullDescriptor, each kind of null descriptor write and a null vertex buffer give one stderr line naming the
-// feature and the VUID; with it, none.
+// Without nullDescriptor, each kind of null descriptor write (directly and through a template) and a null vertex
+// buffer give one stderr line naming the feature and the VUID; with it, none.
 TEST_F(ApiRobustness2, NullHandlesNeedTheNullDescriptorFeature) {
     Harness plain(false);
     ASSERT_NE(plain.instance(), VK_NULL_HANDLE);
@@ -86,6 +86,23 @@ TEST_F(ApiRobustness2, NullHandlesNeedTheNullDescriptorFeature) {
                 EXPECT_NE(err.find(cases[i].vuid), std::string::npos) << err;
             }
         }
+        // A descriptor update template writes through the same checks.
+        const VkDescriptorUpdateTemplateEntry entry{
+            0, 0, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0, sizeof(VkDescriptorBufferInfo)};
+        VkDescriptorUpdateTemplateCreateInfo tci{VK_STRUCTURE_TYPE_DESCRIPTOR_UPDATE_TEMPLATE_CREATE_INFO};
+        tci.descriptorUpdateEntryCount = 1;
+        tci.pDescriptorUpdateEntries = &entry;
+        tci.templateType = VK_DESCRIPTOR_UPDATE_TEMPLATE_TYPE_DESCRIPTOR_SET;
+        tci.descriptorSetLayout = dsl;
+        VkDescriptorUpdateTemplate tmpl = VK_NULL_HANDLE;
+        ASSERT_EQ(vkCreateDescriptorUpdateTemplate(dev.device(), &tci, nullptr, &tmpl), VK_SUCCESS);
+        {
+            StderrCapture capture;
+            vkUpdateDescriptorSetWithTemplate(dev.device(), set, tmpl, &null_buffer);
+            const std::string err = capture.text();
+            EXPECT_EQ(err.find("VUID-VkDescriptorBufferInfo-buffer-02998") != std::string::npos, !feature) << err;
+        }
+        vkDestroyDescriptorUpdateTemplate(dev.device(), tmpl, nullptr);
         StderrCapture capture;
         EXPECT_EQ(k.run([&](VkCommandBuffer cb) {
             const VkBuffer none = VK_NULL_HANDLE;
