@@ -284,6 +284,7 @@ void add_compute_atomic_int64_cases(CaseList& out);   // cases_compute_atomic_in
 void add_compute_image_cases(CaseList& out);   // cases_compute_image.cpp
 void add_compute_store_cases(CaseList& out);   // cases_compute_stores.cpp
 void add_compute_limit_cases(CaseList& out);   // cases_limits.cpp
+void add_compute_robustness2_cases(CaseList& out);  // cases_robustness2.cpp
 
 void add_compute_cases(CaseList& out) {
     add_basic_cases(out);
@@ -296,6 +297,7 @@ void add_compute_cases(CaseList& out) {
     add_compute_image_cases(out);
     add_compute_store_cases(out);
     add_compute_limit_cases(out);
+    add_compute_robustness2_cases(out);
 }
 
 }  // namespace tilevk::cts

@@ -265,6 +265,12 @@ void Objects::make_resources(const ComputeSpec& s) {
         VkImageUsageFlags u =
             ms ? VK_IMAGE_USAGE_SAMPLED_BIT
                : VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        if (im.sampled) u |= VK_IMAGE_USAGE_SAMPLED_BIT;
+        if ((ms || im.sampled) && sampler == VK_NULL_HANDLE) {
+            VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // nearest, repeat
+            vk_check(vkCreateSampler(c.device, &sci, nullptr, &sampler), "vkCreateSampler");
+            later([dev = c.device, smp = sampler] { vkDestroySampler(dev, smp, nullptr); });
+        }
         if (im.attachment) {
             u |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
             attachment = int(j);
@@ -278,11 +284,6 @@ void Objects::make_resources(const ComputeSpec& s) {
         if (ms) {
             img.bytes = 0;
             images.push_back(img);
-            if (sampler == VK_NULL_HANDLE) {
-                VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // nearest, repeat
-                vk_check(vkCreateSampler(c.device, &sci, nullptr, &sampler), "vkCreateSampler");
-                later([dev = c.device, smp = sampler] { vkDestroySampler(dev, smp, nullptr); });
-            }
             continue;
         }
         img.bytes = VkDeviceSize(im.width) * im.height * storage_texel_bytes(im.format);
@@ -309,10 +310,10 @@ void Objects::make_descriptors(const ComputeSpec& s) {
     }
     uint32_t nstorage_images = 0;
     for (const ComputeImage& im : s.images) {
-        const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
-        nstorage_images += ms ? 0 : 1;
+        const bool combined = im.samples != VK_SAMPLE_COUNT_1_BIT || im.sampled;
+        nstorage_images += combined ? 0 : 1;
         bindings.push_back({uint32_t(bindings.size()),
-                            ms ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+                            combined ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
                             kAllStages, nullptr});
     }
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -353,6 +354,7 @@ void Objects::make_descriptors(const ComputeSpec& s) {
     std::vector<VkDescriptorBufferInfo> binfo(s.buffers.size());
     std::vector<VkDescriptorImageInfo> iinfo(s.images.size());
     std::vector<VkWriteDescriptorSet> writes;
+    static const VkBufferView kNullView = VK_NULL_HANDLE;
     for (size_t i = 0; i < bindings.size(); ++i) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = set;
@@ -360,14 +362,18 @@ void Objects::make_descriptors(const ComputeSpec& s) {
         w.descriptorCount = 1;
         w.descriptorType = bindings[i].descriptorType;
         if (i < s.buffers.size() && texel_views[i] != VK_NULL_HANDLE) {
-            w.pTexelBufferView = &texel_views[i];
+            w.pTexelBufferView = s.buffers[i].null_descriptor ? &kNullView : &texel_views[i];
         } else if (i < s.buffers.size()) {
-            binfo[i] = {buffers[i].buffer, 0, VK_WHOLE_SIZE};
+            const ComputeBuffer& b = s.buffers[i];
+            // a null buffer's offset is 0 and its range VK_WHOLE_SIZE (VUID-VkDescriptorBufferInfo-buffer-02999)
+            binfo[i] = {b.null_descriptor ? VK_NULL_HANDLE : buffers[i].buffer, 0,
+                        b.range != 0 && !b.null_descriptor ? VkDeviceSize(b.range) : VK_WHOLE_SIZE};
             w.pBufferInfo = &binfo[i];
         } else {
             const size_t j = i - s.buffers.size();
-            const bool ms = s.images[j].samples != VK_SAMPLE_COUNT_1_BIT;
-            iinfo[j] = {ms ? sampler : VK_NULL_HANDLE, images[j].view, VK_IMAGE_LAYOUT_GENERAL};
+            const bool combined = bindings[i].descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            iinfo[j] = {combined ? sampler : VK_NULL_HANDLE,
+                        s.images[j].null_descriptor ? VK_NULL_HANDLE : images[j].view, VK_IMAGE_LAYOUT_GENERAL};
             w.pImageInfo = &iinfo[j];
         }
         writes.push_back(w);
@@ -512,7 +518,10 @@ void record_draw(VkCommandBuffer cb, const Objects& o, const ComputeSpec& s) {
     if (!s.push.empty()) vkCmdPushConstants(cb, o.layout, kAllStages, 0, uint32_t(s.push.size() * 4), s.push.data());
     if (s.draw.vertex_buffer >= 0) {
         VkDeviceSize off = 0;
-        vkCmdBindVertexBuffers(cb, 0, 1, &o.buffers.at(size_t(s.draw.vertex_buffer)).buffer, &off);
+        const VkBuffer vb = s.buffers.at(size_t(s.draw.vertex_buffer)).null_descriptor
+                                ? VK_NULL_HANDLE
+                                : o.buffers.at(size_t(s.draw.vertex_buffer)).buffer;
+        vkCmdBindVertexBuffers(cb, 0, 1, &vb, &off);
     }
     vkCmdDraw(cb, s.draw.vertex_count, 1, 0, 0);
     vkCmdEndRenderPass(cb);
@@ -703,6 +712,10 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
             return "feature shaderBufferInt64Atomics or shaderSharedInt64Atomics";
     }
     if (std::string why = buffer_limits_unsupported(c.props.limits, s); !why.empty()) return why;
+    if ((std::any_of(s.buffers.begin(), s.buffers.end(), [](const ComputeBuffer& b) { return b.null_descriptor; }) ||
+         std::any_of(s.images.begin(), s.images.end(), [](const ComputeImage& im) { return im.null_descriptor; })) &&
+        !c.robustness2.nullDescriptor)
+        return "VK_EXT_robustness2 nullDescriptor";
     for (const ComputeBuffer& b : s.buffers) {
         if (b.texel_format == VK_FORMAT_UNDEFINED) continue;
         VkFormatProperties fp;
@@ -716,6 +729,7 @@ std::string compute_unsupported(const DeviceContext& c, const ComputeSpec& s) {
         vkGetPhysicalDeviceFormatProperties(c.physical, im.format, &fp);
         const bool ms = im.samples != VK_SAMPLE_COUNT_1_BIT;
         VkFormatFeatureFlags need = ms ? VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT : VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+        if (im.sampled) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
         if (im.attachment) need |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
         const VkFormatFeatureFlags have = im.linear ? fp.linearTilingFeatures : fp.optimalTilingFeatures;
         if ((have & need) != need)

@@ -22,6 +22,11 @@ struct ComputeBuffer {
     bool uniform = false;
     bool read_back = true;
     VkFormat texel_format = VK_FORMAT_UNDEFINED;
+    // VK_EXT_robustness2: with `null_descriptor` the binding (and the draw's vertex binding, when this is its vertex
+    // buffer) is written with VK_NULL_HANDLE (nullDescriptor); the buffer is still made and read back. A `range`
+    // other than 0 is the descriptor's range in bytes (robustBufferAccess2's exact bounds) instead of VK_WHOLE_SIZE.
+    bool null_descriptor = false;
+    uint32_t range = 0;
 };
 
 // Set 0, binding (number of buffers) + j: storage image j, 2D, one level, VK_IMAGE_LAYOUT_GENERAL throughout,
@@ -37,6 +42,10 @@ struct ComputeImage {
     // it is neither uploaded nor read back (a dispatch copies its samples into a buffer).
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool linear = false;  // VK_IMAGE_TILING_LINEAR (single-sample, not an attachment) instead of OPTIMAL
+    // A single-sample image bound as a combined image sampler (nearest) instead of a storage image; and, with
+    // `null_descriptor`, its binding written with imageView VK_NULL_HANDLE (VK_EXT_robustness2 nullDescriptor).
+    bool sampled = false;
+    bool null_descriptor = false;
 };
 
 struct ComputeStep {

@@ -44,7 +44,8 @@ const char* const kSubsetExtensions[] = {VK_KHR_MAINTENANCE_1_EXTENSION_NAME,
                                          VK_EXT_VERTEX_INPUT_DYNAMIC_STATE_EXTENSION_NAME,
                                          VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME,
                                          VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME,
-                                         VK_EXT_NON_SEAMLESS_CUBE_MAP_EXTENSION_NAME};
+                                         VK_EXT_NON_SEAMLESS_CUBE_MAP_EXTENSION_NAME,
+                                         VK_EXT_ROBUSTNESS_2_EXTENSION_NAME};
 
 }  // namespace
 
@@ -269,6 +270,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
         link(out.extended_dynamic_state3, VK_EXT_EXTENDED_DYNAMIC_STATE_3_EXTENSION_NAME);
         link(out.conditional_rendering, VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME);
         link(out.non_seamless_cube_map, VK_EXT_NON_SEAMLESS_CUBE_MAP_EXTENSION_NAME);
+        link(out.robustness2, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
         // SPIR-V 1.6 (a Vulkan 1.3 instance): glslang writes LocalSizeId for spec-constant workgroup sizes, which
         // needs maintenance4 (core in 1.3, required of every 1.3 device).
         VkPhysicalDeviceMaintenance4Features maintenance4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
@@ -318,7 +320,7 @@ bool Instance::open(const std::string& substring, bool prefix, DeviceContext& ou
             out.custom_border_color.pNext = nullptr;
             out.formats_4444.pNext = nullptr;
             out.vertex_input_dynamic_state.pNext = out.extended_dynamic_state3.pNext = nullptr;
-            out.conditional_rendering.pNext = nullptr;
+            out.conditional_rendering.pNext = out.robustness2.pNext = nullptr;
             load_dynamic_state_commands(out);
             out.queue_family = family;
             vkGetDeviceQueue(out.device, family, 0, &out.queue);

@@ -69,6 +69,7 @@ struct DeviceContext {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT};
     VkPhysicalDeviceNonSeamlessCubeMapFeaturesEXT non_seamless_cube_map{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_NON_SEAMLESS_CUBE_MAP_FEATURES_EXT};
+    VkPhysicalDeviceRobustness2FeaturesEXT robustness2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_FEATURES_EXT};
     bool has_extension(const char* name) const;
     // Extended dynamic state commands of the device (null when its extension is not enabled).
     struct DynamicStateCommands {

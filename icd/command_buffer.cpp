@@ -8,6 +8,7 @@
 
 #include "buffer.h"
 #include "descriptor_pool.h"
+#include "device.h"
 #include "device_group.h"
 #include "entrypoints.h"
 #include "framebuffer.h"
@@ -48,6 +49,22 @@ void record_regions(VkCommandBuffer commandBuffer, SrcHandle src, DstHandle dst,
         c->count = count;
         c->regions = cb->copy(regions, count);
     }
+}
+
+// A VK_NULL_HANDLE vertex buffer without the nullDescriptor feature (VK_EXT_robustness2) is invalid usage: the command
+// is skipped with a line naming the VUID. With the feature, the binding has no bytes and its attributes read zeros.
+bool null_vertex_buffer_refused(const CommandBuffer& cb, const VkBuffer* buffers, uint32_t count, const char* command,
+                                const char* vuid) {
+    if (cb.pool->device->enabled_features.robustness2.nullDescriptor) return false;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (buffers[i] != VK_NULL_HANDLE) continue;
+        log_error(
+            "%s: pBuffers[%u] is VK_NULL_HANDLE, which needs the nullDescriptor feature of "
+            "VkPhysicalDeviceRobustness2FeaturesEXT enabled (%s); the command is skipped",
+            command, i, vuid);
+        return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -249,6 +266,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBindVertexBuffers(VkCommandBuffer commandBuffe
                                                     uint32_t bindingCount, const VkBuffer* pBuffers,
                                                     const VkDeviceSize* pOffsets) {
     CommandBuffer* cb = cb_of(commandBuffer);
+    if (null_vertex_buffer_refused(*cb, pBuffers, bindingCount, "vkCmdBindVertexBuffers",
+                                   "VUID-vkCmdBindVertexBuffers-pBuffers-04001"))
+        return;
     if (auto* c = cb->append<CmdBindVertexBuffers>()) {
         c->first_binding = firstBinding;
         c->count = bindingCount;
@@ -263,6 +283,9 @@ VKAPI_ATTR void VKAPI_CALL tvk_CmdBindVertexBuffers2(VkCommandBuffer commandBuff
                                                      const VkDeviceSize* pOffsets, const VkDeviceSize* pSizes,
                                                      const VkDeviceSize* pStrides) {
     CommandBuffer* cb = cb_of(commandBuffer);
+    if (null_vertex_buffer_refused(*cb, pBuffers, bindingCount, "vkCmdBindVertexBuffers2",
+                                   "VUID-vkCmdBindVertexBuffers2-pBuffers-04111"))
+        return;
     if (auto* c = cb->append<CmdBindVertexBuffers>()) {
         c->first_binding = firstBinding;
         c->count = bindingCount;

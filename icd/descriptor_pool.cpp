@@ -155,8 +155,36 @@ VKAPI_ATTR VkResult VKAPI_CALL tvk_FreeDescriptorSets(VkDevice, VkDescriptorPool
     return VK_SUCCESS;
 }
 
-VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCount, const VkWriteDescriptorSet* writes,
-                                                    uint32_t copyCount, const VkCopyDescriptorSet* copies) {
+namespace {
+
+// The VUID a write of VK_NULL_HANDLE breaks when the nullDescriptor feature (VK_EXT_robustness2) is not enabled, or
+// null when element j of the write names an object (or the feature is enabled). Samplers are never null descriptors.
+const char* refused_null_descriptor(const Device& dev, const VkWriteDescriptorSet& w, uint32_t j) {
+    if (dev.enabled_features.robustness2.nullDescriptor) return nullptr;
+    switch (w.descriptorType) {
+        case VK_DESCRIPTOR_TYPE_SAMPLER:
+        case VK_DESCRIPTOR_TYPE_INLINE_UNIFORM_BLOCK:
+            return nullptr;
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+        case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+        case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:
+            return w.pImageInfo[j].imageView == VK_NULL_HANDLE ? "VUID-VkWriteDescriptorSet-descriptorType-02997"
+                                                               : nullptr;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+        case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+            return w.pTexelBufferView[j] == VK_NULL_HANDLE ? "VUID-VkWriteDescriptorSet-descriptorType-02995" : nullptr;
+        default:
+            return w.pBufferInfo[j].buffer == VK_NULL_HANDLE ? "VUID-VkDescriptorBufferInfo-buffer-02998" : nullptr;
+    }
+}
+
+}  // namespace
+
+VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice device, uint32_t writeCount,
+                                                    const VkWriteDescriptorSet* writes, uint32_t copyCount,
+                                                    const VkCopyDescriptorSet* copies) {
+    const Device* dev = from_handle<Device>(device);
     for (uint32_t i = 0; i < writeCount; ++i) {
         const VkWriteDescriptorSet& w = writes[i];
         DescriptorSet* set = from_handle<DescriptorSet>(w.dstSet);
@@ -170,6 +198,14 @@ VKAPI_ATTR void VKAPI_CALL tvk_UpdateDescriptorSets(VkDevice, uint32_t writeCoun
                 log_error("vkUpdateDescriptorSets: binding %u element %u is outside the set", w.dstBinding,
                           w.dstArrayElement + j);
                 break;
+            }
+            if (const char* vuid = refused_null_descriptor(*dev, w, j)) {
+                log_error(
+                    "vkUpdateDescriptorSets: binding %u element %u: VK_NULL_HANDLE needs the nullDescriptor "
+                    "feature of VkPhysicalDeviceRobustness2FeaturesEXT enabled (%s); the descriptor is left as "
+                    "it was",
+                    w.dstBinding, w.dstArrayElement + j, vuid);
+                continue;
             }
             d->type = w.descriptorType;
             switch (w.descriptorType) {

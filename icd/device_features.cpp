@@ -304,6 +304,11 @@ Features make_supported() {
     // VK_KHR_maintenance4 (resources2.cpp, README "Extensions"): requirements of objects not yet made from the code
     // that answers for made ones; no pipeline layout is kept after use; LocalSizeId; wider vertex outputs.
     f.core.v13.maintenance4 = VK_TRUE;
+    // VK_EXT_robustness2: per-word bounds of the exact range (robustBufferAccess above); a null descriptor is an empty
+    // one, read as llvmpipe's format-NONE view (docs/lavapipe-rules.md "Null descriptors"; cts compute.robustness2.*).
+    f.robustness2.robustBufferAccess2 = VK_TRUE;
+    f.robustness2.robustImageAccess2 = VK_TRUE;
+    f.robustness2.nullDescriptor = VK_TRUE;
     return f;
 }
 
@@ -331,6 +336,7 @@ Features::Features() {
     init(extended_dynamic_state3, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_3_FEATURES_EXT);
     init(conditional_rendering, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT);
     init(non_seamless_cube_map, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_NON_SEAMLESS_CUBE_MAP_FEATURES_EXT);
+    init(robustness2, VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_FEATURES_EXT);
 }
 
 VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
@@ -354,7 +360,8 @@ VkBaseOutStructure* Features::extension_struct(VkStructureType t) {
                                  reinterpret_cast<VkBaseOutStructure*>(&vertex_input_dynamic_state),
                                  reinterpret_cast<VkBaseOutStructure*>(&extended_dynamic_state3),
                                  reinterpret_cast<VkBaseOutStructure*>(&conditional_rendering),
-                                 reinterpret_cast<VkBaseOutStructure*>(&non_seamless_cube_map)};
+                                 reinterpret_cast<VkBaseOutStructure*>(&non_seamless_cube_map),
+                                 reinterpret_cast<VkBaseOutStructure*>(&robustness2)};
     for (VkBaseOutStructure* s : all)
         if (s->sType == t) return s;
     return nullptr;

@@ -34,6 +34,7 @@ struct Features {
     VkPhysicalDeviceExtendedDynamicState3FeaturesEXT extended_dynamic_state3{};
     VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional_rendering{};
     VkPhysicalDeviceNonSeamlessCubeMapFeaturesEXT non_seamless_cube_map{};
+    VkPhysicalDeviceRobustness2FeaturesEXT robustness2{};
 
     Features();
     // The extension-only struct with this sType, or nullptr.

@@ -173,6 +173,14 @@ void write_property_struct(const PhysicalDevice& pd, VkBaseOutStructure* s) {
             reinterpret_cast<VkPhysicalDeviceCustomBorderColorPropertiesEXT*>(s)->maxCustomBorderColorSamplers =
                 32 * 1024;
             return;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_PROPERTIES_EXT: {
+            // Bounds are checked per 32-bit word against the range as given, never a rounded one (docs/
+            // lavapipe-rules.md "Buffer bounds"): lavapipe's 1 for both.
+            auto* r = reinterpret_cast<VkPhysicalDeviceRobustness2PropertiesEXT*>(s);
+            r->robustStorageBufferAccessSizeAlignment = 1;
+            r->robustUniformBufferAccessSizeAlignment = 1;
+            return;
+        }
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT:
             reinterpret_cast<VkPhysicalDeviceExternalMemoryHostPropertiesEXT*>(s)->minImportedHostPointerAlignment =
                 kMinImportedHostPointerAlignment;

@@ -261,6 +261,13 @@ shader::Descriptor buffer_descriptor(const Descriptor& d, uint32_t dyn, bool wri
     out.buffer.data = p;
     out.buffer.writable = writable ? p : nullptr;
     out.buffer.size = std::min<VkDeviceSize>(d.range, d.buffer->size - off);
+    if (!writable) {
+        // A uniform buffer's bound is DIV_ROUND_UP(range, 4) words (lp_state_cs.c num_elements, constant buffer
+        // stride 4 under NIR), so the word straddling a range that is not a multiple of 4 is read whole
+        // (robustUniformBufferAccessSizeAlignment 1); never past the end of the memory.
+        const VkDeviceSize in_memory = d.buffer->memory->size - (d.buffer->memory_offset + off);
+        out.buffer.size = std::min<VkDeviceSize>((out.buffer.size + 3) & ~VkDeviceSize(3), in_memory);
+    }
     return out;
 }
 
